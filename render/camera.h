@@ -1,0 +1,55 @@
+// The render camera: a pinhole (perspective) or an orthographic projection looking from `position`
+// at `target`. Film coordinates run u in [0, 1] left to right and v in [0, 1] top to bottom.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+namespace stirrup::render {
+
+struct Ray {
+  glm::dvec3 origin;
+  glm::dvec3 direction;  // unit length
+};
+
+struct Camera {
+  enum class Projection { Perspective, Orthographic } projection = Projection::Perspective;
+  glm::dvec3 position{0.0, 120.0, 900.0};
+  glm::dvec3 target{0.0, 120.0, 0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fov_deg = 30.0;           // vertical field of view (perspective)
+  double ortho_height_cm = 300.0;  // height of the view (orthographic)
+
+  // The ray through film point (u, v) for a film of width / height = aspect.
+  Ray generateRay(double u, double v, double aspect) const;
+};
+
+// A camera prepared for one film: the orthonormal view basis and the film extent, computed once per
+// frame so that generating a ray is a few multiply-adds. Throws std::invalid_argument when the camera
+// cannot form an image (position on the target, a field of view outside (0, 180), a size <= 0).
+class CameraFrame {
+ public:
+  CameraFrame(const Camera& camera, int width, int height);
+  CameraFrame(const Camera& camera, double aspect, int height);
+
+  Ray ray(double u, double v) const;
+
+  // The width in centimetres of one pixel's footprint on a surface facing the camera at distance t
+  // along the ray: constant for orthographic views, growing with t for perspective ones. Used to
+  // filter the ground texture so that squares far away blur to their mean instead of crawling.
+  double pixelFootprint(double t) const { return footprint_at_0_ + footprint_per_cm_ * t; }
+
+  // Distance of a point in front of the camera along the viewing axis (the depth pass).
+  double viewDepth(const glm::dvec3& p) const;
+
+  const glm::dvec3& forward() const { return forward_; }
+  const glm::dvec3& right() const { return right_; }
+  const glm::dvec3& upward() const { return up_; }
+
+ private:
+  Camera::Projection projection_;
+  glm::dvec3 position_, forward_, right_, up_;
+  double half_width_, half_height_;  // film half-extent: tangents (perspective) or centimetres (ortho)
+  double footprint_at_0_, footprint_per_cm_;
+};
+
+}  // namespace stirrup::render

@@ -1,0 +1,158 @@
+// stirrup clip make GAIT [--param value ...] -o CLIP.glb: writes a generated horse clip as glTF 2.0.
+// stirrup clip info CLIP [--json]: measures a clip (a .glb/.gltf file or a generator name) and prints
+// it beside the ranges of ../shared/gait-reference.md.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "render/cli/commands.h"
+#include "rig/clip_factory.h"
+#include "rig/clip_info.h"
+#include "rig/error.h"
+#include "rig/gltf_clip.h"
+#include "rig/json_fields.h"
+
+namespace stirrup::cli {
+namespace {
+
+struct ClipOptions {
+  std::string clip;
+  std::string output;
+  double fps = 30.0;
+  bool json = false;
+  std::string mapping;
+  std::string animation;
+  std::string reference;
+  int loops = 4;
+  double ground_cm = -1.0;
+  std::vector<std::string> params;  // the --name value pairs after the gait
+};
+
+bool isGltf(const std::string& s) {
+  const std::string ext = std::filesystem::path(s).extension().string();
+  return ext == ".glb" || ext == ".gltf";
+}
+
+// "--fence-height-cm 90 --lead left" -> {"fence_height_cm": 90, "lead": "left"}.
+nlohmann::json paramsJson(const std::string& command, const std::vector<std::string>& args) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("--", 0) != 0 || a.size() < 3)
+      throw InputError(command + ": expected --parameter value, got \"" + a + "\"");
+    std::string key = a.substr(2);
+    std::string value;
+    if (const auto eq = key.find('='); eq != std::string::npos) {
+      value = key.substr(eq + 1);
+      key = key.substr(0, eq);
+    } else {
+      if (i + 1 >= args.size()) throw InputError(command + ": --" + key + ": expected a value");
+      value = args[++i];
+    }
+    for (char& c : key)
+      if (c == '-') c = '_';
+    char* end = nullptr;
+    const double number = std::strtod(value.c_str(), &end);
+    if (!value.empty() && end && *end == '\0') j[key] = number;
+    else if (value == "true" || value == "false") j[key] = value == "true";
+    else j[key] = value;
+  }
+  return j;
+}
+
+rig::ClipSpec generatorSpec(const std::string& command, const std::string& gait, const std::vector<std::string>& args) {
+  nlohmann::json j = paramsJson(command, args);
+  j["generator"] = gait;
+  JsonObjectReader r(command, "", j);
+  return rig::parseClipSpec(r, std::filesystem::current_path());
+}
+
+void runMake(const ClipOptions& o) {
+  if (isGltf(o.clip)) throw InputError("clip make: expected a generator name, got the file " + o.clip);
+  const rig::ClipSpec spec = generatorSpec("clip make", o.clip, o.params);
+  const std::unique_ptr<rig::Clip> clip = rig::makeClip(spec);
+  rig::GltfWriteOptions w;
+  w.fps = o.fps;
+  rig::writeClipGltf(*clip, o.output, w);
+  std::printf("wrote %s: %s, %.2f s at %g fps\n", o.output.c_str(), clip->name().c_str(), clip->duration(), o.fps);
+}
+
+void runInfo(const ClipOptions& o) {
+  std::unique_ptr<rig::Clip> clip;
+  rig::ClipInfoOptions io;
+  std::string reference = o.reference;
+  if (isGltf(o.clip)) {
+    if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a file: " + o.params[0]);
+    if (!std::filesystem::exists(o.clip)) throw InputError(o.clip + ": no such file");
+    rig::ClipMapping m = o.mapping.empty() ? rig::contractMapping() : rig::loadClipMapping(o.mapping);
+    if (!o.animation.empty()) m.animation = o.animation;
+    clip = std::make_unique<rig::GltfClip>(o.clip, m);
+    // A clip from another tool is a cycle: measure several loops; its stance hooves are rarely exactly 0.
+    io.end_s = clip->duration() * std::max(1, o.loops);
+    io.ground_cm = m.mode == rig::ClipMapping::Mode::Skeleton ? 0.5 : io.ground_cm;
+  } else {
+    clip = rig::makeClip(generatorSpec("clip info", o.clip, o.params));
+    if (reference.empty()) reference = o.clip;
+  }
+  if (o.ground_cm >= 0.0) io.ground_cm = o.ground_cm;
+  const rig::ClipInfo info = rig::measureClip(*clip, io);
+  const auto ref = rig::gaitReference(reference);
+  if (!reference.empty() && !ref && !o.reference.empty())
+    throw InputError("clip info: --reference: expected walk, trot, canter or gallop, got \"" + reference + "\"");
+  if (o.json) std::printf("%s\n", rig::clipInfoJson(info, ref ? &*ref : nullptr).dump(2).c_str());
+  else std::printf("%s", rig::formatClipInfo(info, ref ? &*ref : nullptr).c_str());
+}
+
+}  // namespace
+
+void addClipCommand(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("clip", "Make horse clips as glTF and measure clips against gait-reference");
+  cmd->require_subcommand(1);
+  std::string generators;
+  for (const auto& g : rig::clipGenerators()) generators += (generators.empty() ? "" : ", ") + g;
+
+  auto make = std::make_shared<ClipOptions>();
+  CLI::App* mk = cmd->add_subcommand("make", "Write a generated clip as glTF 2.0 (control nodes + one animation)");
+  std::string footer = "Generators: " + generators + ".\nParameters per generator:\n";
+  for (const auto& g : rig::clipGenerators()) {
+    footer += "  " + g + ":";
+    for (const auto& p : rig::clipGeneratorParameters(g)) footer += " --" + p;
+    footer += "\n";
+  }
+  footer += "Example: stirrup clip make jump --fence_height_cm 110 --seed 7 -o out/jump.glb";
+  mk->footer(footer);
+  mk->add_option("gait", make->clip, "Generator: " + generators)->required();
+  mk->add_option("-o,--output", make->output, "Output file (.glb binary or .gltf JSON)")->required();
+  mk->add_option("--fps", make->fps, "Samples per second of the animation (default 30)");
+  mk->allow_extras();
+  mk->callback([make, mk] {
+    make->params = mk->remaining();
+    runMake(*make);
+  });
+
+  auto info = std::make_shared<ClipOptions>();
+  CLI::App* in = cmd->add_subcommand("info", "Measure a clip: footfalls, duty factors, stride, bounce, slides");
+  in->footer(
+      "CLIP is a .glb/.gltf file or a generator name (" + generators + ") with its --parameters.\n"
+      "Example: stirrup clip info gallop --speed_cm_s 1200\n"
+      "         stirrup clip info ../shared/assets/fox/Fox.glb --mapping scenes/fox-mapping.json --animation Run");
+  in->add_option("clip", info->clip, "A .glb/.gltf file or a generator name")->required();
+  in->add_flag("--json", info->json, "Print JSON instead of a table");
+  in->add_option("--mapping", info->mapping, "Mapping file from the clip's nodes to the contract's controls");
+  in->add_option("--animation", info->animation, "Animation in the file (default: the first)");
+  in->add_option("--reference", info->reference, "Compare with this gait of gait-reference.md (walk, trot, canter, gallop)");
+  in->add_option("--loops", info->loops, "Loops of a file's animation to measure (default 4)");
+  in->add_option("--ground-cm", info->ground_cm, "A hoof this low or lower is down (default 0.001; 0.5 for skeletons)");
+  in->allow_extras();
+  in->callback([info, in] {
+    info->params = in->remaining();
+    runInfo(*info);
+  });
+}
+
+}  // namespace stirrup::cli

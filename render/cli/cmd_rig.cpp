@@ -1,0 +1,122 @@
+// stirrup rig eval HORSE.csv -o RIDER.csv: evaluates the rider rig on every row of a horse channel CSV.
+// stirrup rig params: lists a profile's parameters, their values and the thesis passages they cite.
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/cli/commands.h"
+#include "rig/channel_csv.h"
+#include "rig/error.h"
+#include "rig/rider_rig.h"
+#include "rig/rig_profile.h"
+
+namespace stirrup::cli {
+namespace {
+
+struct RigOptions {
+  std::string horse_csv;
+  std::string rider_csv;
+  std::string profile = "thesis";
+  std::vector<std::string> sets;
+};
+
+std::filesystem::path profilesDir() {
+  if (const char* env = std::getenv("STIRRUP_PROFILES"); env && *env) return env;
+  return STIRRUP_SOURCE_DIR "/scenes/profiles";
+}
+
+// --set key=value pairs as a JSON object; a value that is not a number stays a string so the
+// profile's own check reports it ("expected a number, got ...").
+nlohmann::json parseSets(const std::vector<std::string>& sets) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const std::string& s : sets) {
+    const std::size_t eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--set: expected key=value (e.g. eq1.w1_pivot_pitch=0.05), got \"" + s + "\"");
+    const std::string key = s.substr(0, eq);
+    const std::string text = s.substr(eq + 1);
+    double v = 0;
+    const char* begin = text.data() + (text.size() > 1 && text[0] == '+' ? 1 : 0);
+    const auto [ptr, ec] = std::from_chars(begin, text.data() + text.size(), v);
+    const bool number = !text.empty() && ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(v);
+    if (number) j[key] = v;
+    else j[key] = text;
+  }
+  return j;
+}
+
+rig::RigProfile resolveProfile(const RigOptions& o) {
+  rig::RigProfile p = rig::loadRigProfile(o.profile, profilesDir());
+  rig::applyProfileOverrides(p, parseSets(o.sets), "--set");
+  return p;
+}
+
+void runEval(const RigOptions& o) {
+  const rig::RigProfile profile = resolveProfile(o);
+  // Read and evaluate everything before writing, so bad input leaves no output file.
+  const rig::HorseTrack track = rig::readHorseCsv(o.horse_csv);
+  std::vector<rig::RiderChannels> rider;
+  rider.reserve(track.horse.size());
+  for (const rig::HorseChannels& h : track.horse) rider.push_back(rig::evaluateRider(h, profile));
+  rig::writeRiderCsv(o.rider_csv, track.frames, rider);
+}
+
+void runParams(const RigOptions& o) {
+  const rig::RigProfile profile = resolveProfile(o);
+  std::printf("# profile %s: %s\n", profile.name.c_str(), profile.doc.c_str());
+  for (const rig::RigParameter& param : rig::rigParameters()) {
+    const std::string key(param.key), cites(param.cites);
+    char value[32];
+    const auto [end, ec] = std::to_chars(value, value + sizeof value - 1, param.get(profile));
+    *(ec == std::errc() ? end : value) = '\0';
+    std::printf("%s = %s  # %s\n", key.c_str(), value, cites.c_str());
+  }
+}
+
+void addProfileOptions(CLI::App* cmd, const std::shared_ptr<RigOptions>& opts) {
+  cmd->add_option("--profile,-p", opts->profile,
+                  "Rig profile: a name looked up in the profiles folder (thesis, english, novice; folder: "
+                  "$STIRRUP_PROFILES or the project's scenes/profiles) or a path to a .json file")
+      ->capture_default_str();
+  cmd->add_option("--set,-s", opts->sets,
+                  "Override one profile parameter, KEY=NUMBER (repeatable), e.g. --set eq7.w2_scale=0.015; "
+                  "keys: `stirrup rig params`, docs/rider-rig.md");
+}
+
+}  // namespace
+
+void addRigCommand(CLI::App& app) {
+  CLI::App* rig_cmd = app.add_subcommand("rig", "Evaluate the rider rig (Kuhnel 2003) on horse channels");
+  rig_cmd->require_subcommand(1);
+
+  auto opts = std::make_shared<RigOptions>();
+  CLI::App* eval = rig_cmd->add_subcommand("eval", "Evaluate the rider rig on every row of a horse channel CSV");
+  eval->footer(
+      "HORSE.csv: a header row, then one row per frame, comma-separated.\n"
+      "  The header holds `frame` and any subset of the horse channels of ../shared/rig-channels.md, in\n"
+      "  any order: lfHoof rfHoof lbHoof rbHoof .tx .ty .tz (cm), rearPivot .tx .ty .tz (cm) .rx .ry .rz\n"
+      "  (degrees), backMid .rx .ry .rz (degrees). Absent channels are 0 (the rest pose). Values are\n"
+      "  offsets from rest in the horse's travel frame; blank lines are skipped.\n"
+      "RIDER.csv: `frame` then every rider channel (lowerBack.rz ... cloth.side): rotations in degrees,\n"
+      "  translations in rider units (profile rider_unit_cm cm each), hair/cloth as drive values.\n"
+      "  Written to RIDER.csv.tmp and renamed, so an error leaves no output file.\n"
+      "Errors (exit 1, one line): a missing `frame` column, an unknown or repeated column, a row with\n"
+      "  more or fewer fields than the header, an empty, non-numeric or non-finite value, e.g.\n"
+      "  `stirrup: horse.csv: row 3, column lfHoof.ty: expected a number, got \"high\"` (row = line number).\n"
+      "Example: stirrup rig eval trot_horse.csv -o trot_rider.csv --profile novice --set eq7.w2_scale=0.02");
+  eval->add_option("horse", opts->horse_csv, "Horse channel CSV (input)")->required();
+  eval->add_option("--out,-o", opts->rider_csv, "Rider channel CSV (output)")->required();
+  addProfileOptions(eval, opts);
+  eval->callback([opts] { runEval(*opts); });
+
+  CLI::App* params = rig_cmd->add_subcommand("params", "List a rig profile's parameters, values and citations");
+  addProfileOptions(params, opts);
+  params->callback([opts] { runParams(*opts); });
+}
+
+}  // namespace stirrup::cli

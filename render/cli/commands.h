@@ -1,0 +1,15 @@
+// Each subcommand of `stirrup` lives in its own file and registers itself on the app here.
+// A callback reports bad input by throwing stirrup::InputError (one line, printed by main, exit 1).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace stirrup::cli {
+
+void addBakeCommand(CLI::App& app);
+void addClipCommand(CLI::App& app);
+void addRenderCommand(CLI::App& app);
+void addRigCommand(CLI::App& app);
+void addSpineCommand(CLI::App& app);
+
+}  // namespace stirrup::cli

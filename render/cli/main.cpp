@@ -1,0 +1,32 @@
+// stirrup: animate a horse, and stirrup moves the rider.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "render/cli/commands.h"
+#include "rig/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"stirrup " STIRRUP_VERSION
+               ": bakes a rider's motion from a horse's controls and renders review movies"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", STIRRUP_VERSION);
+  stirrup::cli::addBakeCommand(app);
+  stirrup::cli::addClipCommand(app);
+  stirrup::cli::addRenderCommand(app);
+  stirrup::cli::addRigCommand(app);
+  stirrup::cli::addSpineCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const stirrup::InputError& e) {
+    std::fprintf(stderr, "stirrup: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "stirrup: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

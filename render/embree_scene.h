@@ -1,0 +1,78 @@
+// The Embree side of the renderer: one device and two scenes. The ground scene holds a static quad,
+// committed once and never touched again. The character scene holds triangle meshes whose vertex
+// buffers are overwritten in place every frame (rtcUpdateGeometryBuffer + rtcCommitGeometry, then
+// one rtcCommitScene before tracing). Keeping the ground out of the character BVH means shadow and
+// sky rays, which can never be blocked by the ground (see integrator.cpp), traverse only the
+// characters, and the huge ground triangles never inflate the character BVH's nodes.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/vec3.hpp>
+
+namespace stirrup::render {
+
+// How the acceleration structure follows deforming meshes. Measured on 2 cores with a 100k-triangle
+// deforming mesh (see the report in renderer.h): Rebuild is the default.
+enum class BvhUpdate {
+  // One MEDIUM-quality (SAH) BVH over every triangle, rebuilt at each commit. Deterministic: the BVH
+  // is a function of the current vertices only, never of earlier frames.
+  Rebuild,
+  // Two-level: each mesh has its own BVH, rebuilt (MEDIUM) only when that mesh changed.
+  RebuildPerMesh,
+  // Two-level, and deforming meshes keep the topology of their first build and only refit bounds.
+  // Cheapest commit, but traversal slows as the pose moves away from the first one, and the tree
+  // (so the order ties are broken in) depends on the frame history.
+  Refit,
+};
+
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(BvhUpdate update = BvhUpdate::Rebuild);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // Sets the ground scene to a horizontal square at y = 0 centred on the origin, 2 * half_extent_cm
+  // wide, and commits it.
+  void setGround(float half_extent_cm);
+  // A character triangle mesh with fixed topology; its vertices start at the origin until
+  // setVertices. Returns its geomID in the character scene.
+  // Throws std::invalid_argument for a partial triangle or an index out of range.
+  unsigned addTriangleMesh(size_t vertex_count, std::span<const uint32_t> indices);
+  // Overwrites the mesh's vertices in Embree's own buffer and marks the scene for commit.
+  void setVertices(unsigned geom_id, std::span<const glm::vec3> positions);
+
+  // Rebuilds or refits what changed since the last commit; no-op when nothing did. Call it from the
+  // task arena the trace will run in, so the build uses the same threads.
+  void commit();
+
+  RTCScene characters() const { return scene_; }
+  RTCScene ground() const { return ground_; }
+  // Bounds of the characters at the last commit (empty, lower > upper, when there are none).
+  const RTCBounds& characterBounds() const { return bounds_; }
+  size_t triangleCount() const { return triangles_; }
+
+ private:
+  struct Mesh {
+    RTCGeometry geometry = nullptr;
+    size_t vertex_count = 0;
+  };
+
+  std::string last_error_;  // filled by Embree's error callback
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  RTCScene ground_ = nullptr;
+  RTCGeometry ground_quad_ = nullptr;
+  RTCBounds bounds_{};
+  BvhUpdate update_;
+  std::vector<Mesh> meshes_;  // indexed by geomID
+  size_t triangles_ = 0;
+  bool dirty_ = true;
+};
+
+}  // namespace stirrup::render

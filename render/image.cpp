@@ -1,0 +1,108 @@
+#include "render/image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <system_error>
+
+#include <OpenImageIO/imageio.h>
+
+namespace stirrup::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Writes `pixels` (interleaved float channels, or per-channel formats given in the spec) through
+// OIIO to FILE.tmp in `format`, then renames it to FILE. On any failure the temporary is removed.
+void writeAtomically(const fs::path& file, const char* format, const OIIO::ImageSpec& spec,
+                     OIIO::TypeDesc data_type, const void* pixels) {
+  fs::path tmp = file;
+  tmp += ".tmp";
+  // The format is named explicitly: OIIO would otherwise guess it from the ".tmp" extension.
+  auto out = OIIO::ImageOutput::create(format);
+  if (!out) throw std::runtime_error("cannot write " + file.string() + ": no OpenImageIO " + format + " writer");
+  auto fail = [&](const std::string& what) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + file.string() + ": " + what);
+  };
+  if (!out->open(tmp.string(), spec)) fail(out->geterror());
+  if (!out->write_image(data_type, pixels)) {
+    const std::string err = out->geterror();
+    out->close();
+    fail(err);
+  }
+  if (!out->close()) fail(out->geterror());
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) fail("rename: " + ec.message());
+}
+
+}  // namespace
+
+Image::Image(int w, int h) : width(w), height(h) {
+  if (w <= 0 || h <= 0) throw std::invalid_argument("image size must be positive");
+  rgba.assign(pixelCount(), glm::vec4(0.0f));
+}
+
+float linearToSrgb(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);  // also maps NaN to 0 via the comparisons below
+  if (!(c > 0.0031308f)) return c > 0.0f ? 12.92f * c : 0.0f;
+  return 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+uint8_t linearToSrgb8(float linear) { return uint8_t(std::lround(linearToSrgb(linear) * 255.0f)); }
+
+void writePng(const Image& image, const fs::path& file) {
+  if (image.rgba.size() != image.pixelCount() || image.rgba.empty()) {
+    throw std::invalid_argument("writePng: image has no pixels");
+  }
+  std::vector<uint8_t> bytes(image.pixelCount() * 3);
+  for (size_t i = 0; i < image.pixelCount(); ++i) {
+    for (int c = 0; c < 3; ++c) bytes[3 * i + c] = linearToSrgb8(image.rgba[i][c]);
+  }
+  OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  writeAtomically(file, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+}
+
+void writeExr(const Image& image, const fs::path& file, const ExrMetadata& metadata) {
+  const size_t n = image.pixelCount();
+  if (image.rgba.size() != n || n == 0) throw std::invalid_argument("writeExr: image has no pixels");
+  auto present = [n](const auto& pass) {
+    if (!pass.empty() && pass.size() != n) throw std::invalid_argument("writeExr: pass size mismatch");
+    return !pass.empty();
+  };
+  const bool has_depth = present(image.depth), has_matte = present(image.matte),
+             has_id = present(image.object_id);
+
+  std::vector<std::string> names = {"R", "G", "B", "A"};
+  std::vector<OIIO::TypeDesc> formats(4, OIIO::TypeDesc::HALF);
+  if (has_depth) names.push_back("Z"), formats.push_back(OIIO::TypeDesc::FLOAT);
+  if (has_matte) names.push_back("matte"), formats.push_back(OIIO::TypeDesc::HALF);
+  // Ids as float: exact for small integers, and every EXR reader understands float channels.
+  if (has_id) names.push_back("objectId"), formats.push_back(OIIO::TypeDesc::FLOAT);
+  const int channels = int(names.size());
+
+  // Interleaved float data; OIIO converts each channel to its own file format.
+  std::vector<float> data(n * channels);
+  for (size_t i = 0; i < n; ++i) {
+    float* px = &data[i * channels];
+    for (int c = 0; c < 4; ++c) px[c] = image.rgba[i][c];
+    int c = 4;
+    if (has_depth) px[c++] = image.depth[i];
+    if (has_matte) px[c++] = image.matte[i];
+    if (has_id) px[c++] = image.object_id[i] == kNoObject ? -1.0f : float(image.object_id[i]);
+  }
+  OIIO::ImageSpec spec(image.width, image.height, channels, OIIO::TypeDesc::HALF);
+  spec.channelnames = names;
+  spec.channelformats = formats;
+  spec.alpha_channel = 3;
+  spec.z_channel = has_depth ? 4 : -1;
+  spec.attribute("compression", "zip");
+  spec.attribute("oiio:ColorSpace", "Linear");
+  for (const auto& [key, value] : metadata) spec.attribute(key, value);
+  writeAtomically(file, "openexr", spec, OIIO::TypeDesc::FLOAT, data.data());
+}
+
+}  // namespace stirrup::render

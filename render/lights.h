@@ -1,0 +1,73 @@
+// The two lights of the review look: a sun (a disc of a given angular radius, sampled as a cone so
+// shadows are soft) and a sky (a vertical gradient, sampled cosine-weighted for ambient occlusion).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace stirrup::render {
+
+// An orthonormal basis around a unit vector n (Duff et al. 2017, branchless and continuous).
+struct Frame {
+  glm::vec3 x, y, z;  // z = n
+
+  static Frame around(const glm::vec3& n) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    return {{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
+  }
+  glm::vec3 toWorld(const glm::vec3& v) const { return v.x * x + v.y * y + v.z * z; }
+};
+
+// Uniform direction within the cone of half-angle acos(cos_max) around the frame's z axis: uniform
+// in solid angle, which is exact for a disc of constant radiance.
+inline glm::vec3 sampleCone(const Frame& axis, float cos_max, glm::vec2 u) {
+  const float cos_t = 1.0f - u.x * (1.0f - cos_max);
+  const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
+  const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
+  return axis.toWorld({sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t});
+}
+
+// Cosine-weighted direction in the hemisphere around the frame's z axis (Malley's method over a
+// concentric disc mapping, which keeps the stratification of u). The pdf is cos / pi, so the mean
+// of L over these samples is the irradiance divided by pi.
+inline glm::vec3 sampleCosineHemisphere(const Frame& around, glm::vec2 u) {
+  const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
+  float r = 0.0f, phi = 0.0f;
+  if (a != 0.0f || b != 0.0f) {
+    constexpr float quarter_pi = std::numbers::pi_v<float> / 4.0f;
+    if (std::abs(a) > std::abs(b)) {
+      r = a, phi = quarter_pi * (b / a);
+    } else {
+      r = b, phi = 2.0f * quarter_pi - quarter_pi * (a / b);
+    }
+  }
+  const float dx = r * std::cos(phi), dy = r * std::sin(phi);
+  const float dz = std::sqrt(std::max(0.0f, 1.0f - dx * dx - dy * dy));
+  return around.toWorld({dx, dy, dz});
+}
+
+struct SkyGradient {
+  glm::vec3 horizon{0.60f, 0.66f, 0.74f};  // linear radiance
+  glm::vec3 zenith{0.22f, 0.34f, 0.62f};
+  glm::vec3 below{0.30f, 0.30f, 0.30f};     // seen past the edge of the ground only
+
+  // Radiance from direction d (unit). The square root keeps the sky pale for the lower third, as a
+  // clear sky is.
+  glm::vec3 radiance(const glm::vec3& d) const {
+    if (d.y < 0.0f) return glm::mix(horizon, below, std::min(1.0f, -8.0f * d.y));
+    return glm::mix(horizon, zenith, std::sqrt(d.y));
+  }
+
+  // Irradiance / pi on an upward-facing surface under the full, unoccluded sky: the cosine-weighted
+  // mean radiance. With t = sqrt(cos), E/pi = 2 * integral_0^1 mix(h, z, sqrt(c)) c dc = h + 0.8 (z - h).
+  glm::vec3 upwardIrradianceOverPi() const { return horizon + 0.8f * (zenith - horizon); }
+};
+
+}  // namespace stirrup::render

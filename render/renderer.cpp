@@ -1,0 +1,147 @@
+#include "render/renderer.h"
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#define STIRRUP_HAVE_MXCSR 1
+#endif
+
+#include "render/integrator.h"
+
+namespace stirrup::render {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+constexpr int kTileSize = 16;
+
+// Flush denormals to zero while a tile is traced (Embree's advice for speed), restoring the thread's
+// previous mode afterwards: TBB workers also run other people's code. Every tile sets the same mode,
+// so results do not depend on which thread traced them.
+class DenormalsAreZero {
+ public:
+#ifdef STIRRUP_HAVE_MXCSR
+  DenormalsAreZero() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }  // FTZ | DAZ
+  ~DenormalsAreZero() { _mm_setcsr(saved_); }
+
+ private:
+  unsigned saved_;
+#endif
+};
+
+void validate(const RenderSettings& s) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("render settings: ") + what);
+  };
+  require(s.width > 0 && s.height > 0, "width and height must be >= 1");
+  require(s.samples_per_pixel > 0, "samples_per_pixel must be >= 1");
+  require(s.light_samples > 0, "light_samples must be >= 1");
+  require(s.ao_samples > 0, "ao_samples must be >= 1");
+  require(s.threads >= 0, "threads must be >= 0 (0 = all cores)");
+  require(glm::length(s.sun_direction) > 0.0, "sun_direction must not be zero");
+  require(s.sun_angular_radius_deg >= 0.0 && s.sun_angular_radius_deg < 90.0, "sun_angular_radius_deg must be in [0, 90)");
+  require(s.ground_square_cm > 0.0f, "ground_square_cm must be > 0");
+  require(s.ao_distance_cm > 0.0f, "ao_distance_cm must be > 0");
+}
+
+}  // namespace
+
+struct Renderer::State {
+  explicit State(const RenderSettings& s)
+      : scene(s.bvh_update), arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic) {}
+
+  EmbreeScene scene;
+  tbb::task_arena arena;
+  std::vector<std::unique_ptr<ShadingMesh>> meshes;  // by handle
+  std::vector<unsigned> geometry_of_mesh;             // by handle
+  std::vector<const ShadingMesh*> by_geometry;        // by geomID in the character scene
+};
+
+Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
+  validate(settings_);
+  state_ = std::make_unique<State>(settings_);
+  state_->scene.setGround(settings_.ground_half_extent_cm);
+}
+
+Renderer::~Renderer() = default;
+
+int Renderer::addMesh(const MeshDesc& desc) {
+  if (!desc.colors.empty() && desc.colors.size() != desc.vertex_count) {
+    throw std::invalid_argument("addMesh: " + std::to_string(desc.colors.size()) + " colours for " +
+                                std::to_string(desc.vertex_count) + " vertices");
+  }
+  const unsigned geometry = state_->scene.addTriangleMesh(desc.vertex_count, desc.indices);
+  auto mesh = std::make_unique<ShadingMesh>();
+  mesh->id = desc.id;
+  mesh->indices = desc.indices;
+  mesh->colors = desc.colors.empty() ? std::vector<glm::vec3>(desc.vertex_count, glm::vec3(0.5f)) : desc.colors;
+  mesh->normals.assign(desc.vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
+  if (state_->by_geometry.size() <= geometry) state_->by_geometry.resize(geometry + 1, nullptr);
+  state_->by_geometry[geometry] = mesh.get();
+  state_->meshes.push_back(std::move(mesh));
+  state_->geometry_of_mesh.push_back(geometry);
+  return int(state_->meshes.size() - 1);
+}
+
+void Renderer::updateMesh(int mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals) {
+  if (mesh < 0 || size_t(mesh) >= state_->meshes.size()) throw std::invalid_argument("updateMesh: no mesh " + std::to_string(mesh));
+  ShadingMesh& m = *state_->meshes[size_t(mesh)];
+  if (normals.size() != m.normals.size()) {
+    throw std::invalid_argument("updateMesh: " + std::to_string(normals.size()) + " normals for " +
+                                std::to_string(m.normals.size()) + " vertices");
+  }
+  state_->scene.setVertices(state_->geometry_of_mesh[size_t(mesh)], positions);  // checks the count
+  std::copy(normals.begin(), normals.end(), m.normals.begin());
+}
+
+Image Renderer::render(const Camera& camera, int frame) {
+  const int w = settings_.width, h = settings_.height;
+  const CameraFrame camera_frame(camera, w, h);
+  Image image(w, h);
+  if (settings_.passes) {
+    image.depth.assign(image.pixelCount(), 0.0f);
+    image.matte.assign(image.pixelCount(), 0.0f);
+    image.object_id.assign(image.pixelCount(), kNoObject);
+  }
+  state_->arena.execute([&] {
+    const auto t0 = Clock::now();
+    state_->scene.commit();
+    stats_.commit_ms = msSince(t0);
+    const Integrator integrator(settings_, state_->scene, state_->by_geometry);
+
+    const auto t1 = Clock::now();
+    // simple_partitioner: tiles of at most 16 x 16, whatever the thread count.
+    tbb::parallel_for(
+        tbb::blocked_range2d<int>(0, h, kTileSize, 0, w, kTileSize),
+        [&](const tbb::blocked_range2d<int>& tile) {
+          DenormalsAreZero ftz;
+          for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+            for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+              const PixelResult p = integrator.renderPixel(camera_frame, x, y, frame);
+              const size_t i = size_t(y) * size_t(w) + size_t(x);
+              image.rgba[i] = p.rgba;
+              if (settings_.passes) {
+                image.depth[i] = p.depth;
+                image.matte[i] = p.matte;
+                image.object_id[i] = p.object_id;
+              }
+            }
+          }
+        },
+        tbb::simple_partitioner());
+    stats_.trace_ms = msSince(t1);
+  });
+  stats_.triangles = state_->scene.triangleCount();
+  return image;
+}
+
+}  // namespace stirrup::render

@@ -1,0 +1,75 @@
+// A scene file (scenes/NAME.json): which clip, which characters, which rig profile, the frame range,
+// the resolution and quality, the cameras and the output folder. Every field has a default, so `{}` is
+// a valid scene (the default trot); unknown fields and wrong types are one-line errors.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "rig/clip_factory.h"
+#include "rig/procedural_gait.h"
+
+namespace stirrup::render {
+
+struct CameraSpec {
+  std::string name = "side";
+  bool orthographic = true;
+  double fov_deg = 30.0;             // vertical field of view (perspective)
+  double ortho_height_cm = 320.0;    // height of the view (orthographic)
+  // Positions in the horse's travel frame when follow is true (the camera travels with the horse),
+  // else in the world. Centimetres, Y up, +X the horse's direction of travel, +Z its right side.
+  std::array<double, 3> position = {20.0, 255.0, 900.0};
+  std::array<double, 3> target = {20.0, 100.0, 0.0};
+  bool follow = true;
+};
+
+struct SceneSpec {
+  std::filesystem::path file;        // where the scene was read from (empty for built-in defaults)
+  std::string name = "trot";
+  rig::GaitParams gait = rig::trotParams();  // the steady gait when clip is one (walk/trot/canter/gallop)
+  rig::ClipSpec clip;                         // what plays: a generator and its parameters, or a glTF file
+  std::string horse = "default";
+  std::string rider = "default";
+  std::string profile = "thesis";
+  nlohmann::json profile_overrides = nlohmann::json::object();
+  double fps = 24.0;
+  std::string frames = "1-48";
+  int width = 640;
+  int height = 360;
+  int samples = 16;                  // per pixel, stratified
+  int light_samples = 4;
+  int ao_samples = 4;
+  std::array<double, 3> sun_direction = {0.45, 0.75, 0.5};  // toward the sun, from the camera's side
+  double sun_angular_radius_deg = 2.0;
+  std::vector<CameraSpec> cameras = {CameraSpec{}};
+  std::filesystem::path output = "out/trot";
+};
+
+// Reads a scene file; throws stirrup::InputError "FILE: FIELD: expected ..., got ..." on bad input.
+SceneSpec loadScene(const std::filesystem::path& file);
+// Parses scene JSON already in memory; `file` names it in errors.
+SceneSpec parseScene(const nlohmann::json& json, const std::string& file);
+
+// The camera of the scene named `name` (or the first when empty); InputError if there is none.
+const CameraSpec& findCamera(const SceneSpec& scene, const std::string& name);
+
+// Seconds into the clip at a frame: frame 1 is t = 0.
+double frameTime(const SceneSpec& scene, int frame);
+
+}  // namespace stirrup::render
+
+namespace stirrup::rig {
+struct RigProfile;
+}
+
+namespace stirrup::render {
+
+// The scene's rig profile: a name is looked up as profiles/NAME.json beside the scene file (so
+// scenes/trot.json finds scenes/profiles/thesis.json from any working directory), a path ending in
+// .json is read as it is; then the scene's profile_overrides are applied.
+rig::RigProfile resolveProfile(const SceneSpec& scene);
+
+}  // namespace stirrup::render

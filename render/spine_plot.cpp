@@ -1,0 +1,135 @@
+#include "render/spine_plot.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include <OpenImageIO/imageio.h>
+#include <glm/geometric.hpp>
+
+#include "rig/error.h"
+
+namespace stirrup::render {
+namespace {
+
+using Color = std::array<float, 3>;
+const Color kBackground = {0.97f, 0.97f, 0.95f};
+const Color kPanelEdge = {0.80f, 0.80f, 0.78f};
+const Color kGround = {0.70f, 0.70f, 0.68f};
+const Color kFkColor = {0.55f, 0.55f, 0.55f};
+const Color kCurveColor = {0.15f, 0.35f, 0.85f};
+const Color kChainColor = {0.95f, 0.45f, 0.10f};
+const Color kTwistColor = {0.10f, 0.60f, 0.25f};
+
+class Canvas {
+ public:
+  Canvas(int width, int height) : width_(width), height_(height), rgb_(std::size_t(width) * height * 3) {
+    for (std::size_t i = 0; i < rgb_.size(); ++i) rgb_[i] = kBackground[i % 3];
+  }
+
+  // A segment of the given width: each pixel is covered by its distance to the segment, with a
+  // one-pixel ramp at the edge, which is enough antialiasing for diagrams.
+  void line(glm::dvec2 a, glm::dvec2 b, double width, const Color& c) {
+    const double r = 0.5 * width;
+    const int x0 = std::max(0, int(std::floor(std::min(a.x, b.x) - r - 1)));
+    const int x1 = std::min(width_ - 1, int(std::ceil(std::max(a.x, b.x) + r + 1)));
+    const int y0 = std::max(0, int(std::floor(std::min(a.y, b.y) - r - 1)));
+    const int y1 = std::min(height_ - 1, int(std::ceil(std::max(a.y, b.y) + r + 1)));
+    const glm::dvec2 ab = b - a;
+    const double len2 = glm::dot(ab, ab);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const glm::dvec2 p(x + 0.5, y + 0.5);
+        const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+        const double d = glm::length(p - (a + t * ab));
+        blend(x, y, std::clamp(r + 0.5 - d, 0.0, 1.0), c);
+      }
+  }
+
+  void disk(glm::dvec2 centre, double radius, const Color& c) { line(centre, centre, 2.0 * radius, c); }
+
+  bool write(const std::filesystem::path& file) const {
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(file.string());
+    if (!out) return false;
+    const OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::UINT8);
+    return out->open(file.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, rgb_.data()) && out->close();
+  }
+
+ private:
+  void blend(int x, int y, double coverage, const Color& c) {
+    if (coverage <= 0.0) return;
+    float* px = &rgb_[(std::size_t(y) * width_ + x) * 3];
+    for (int k = 0; k < 3; ++k) px[k] = float(px[k] + coverage * (c[k] - px[k]));
+  }
+
+  int width_, height_;
+  std::vector<float> rgb_;
+};
+
+}  // namespace
+
+void writeSpinePlot(const std::vector<rig::SpineResult>& poses, const std::filesystem::path& file,
+                    const SpinePlotStyle& style) {
+  if (poses.empty()) throw InputError(file.string() + ": no poses to plot");
+  const int count = static_cast<int>(poses.size());
+  const int perRow = std::min(count, style.poses_per_row);
+  const int rows = (count + perRow - 1) / perRow;
+  Canvas canvas(2 * perRow * style.panel_size, rows * style.panel_size);
+
+  // One scale for every panel, from the bounding box of everything drawn (FK chain included).
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const rig::SpineResult& r : poses) {
+    for (const glm::dvec3& p : r.fk) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    for (const glm::dvec3& p : r.samples) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  }
+  const glm::dvec3 size = glm::max(hi - lo, glm::dvec3(1e-9));
+  const double usable = style.panel_size - 2.0 * style.margin;
+  const double scale = usable / std::max({size.x, size.y, size.z});
+  const glm::dvec3 mid = 0.5 * (lo + hi);
+  const double tick = 0.05 * std::max({size.x, size.y, size.z});  // twist ticks, cm
+
+  for (int i = 0; i < count; ++i) {
+    const rig::SpineResult& r = poses[i];
+    const int row = i / perRow, column = i % perRow;
+    for (int view = 0; view < 2; ++view) {
+      const double cx = (2.0 * column + view + 0.5) * style.panel_size, cy = (row + 0.5) * style.panel_size;
+      // view 0: horizontal = world x; view 1: horizontal = world z. Image y grows downward.
+      const auto project = [&](const glm::dvec3& p) {
+        return glm::dvec2(cx + scale * (view == 0 ? p.x - mid.x : p.z - mid.z), cy - scale * (p.y - mid.y));
+      };
+      const double rootY = project(glm::dvec3(0.0)).y;
+      const double left = cx - 0.5 * style.panel_size;
+      const double top = cy - 0.5 * style.panel_size;
+      // Panel frame: a strong line between poses, a faint one between the two views of a pose.
+      canvas.line({left + 0.5, top}, {left + 0.5, top + style.panel_size}, view == 0 ? 2.0 : 1.0, kPanelEdge);
+      canvas.line({left, top + 0.5}, {left + style.panel_size, top + 0.5}, 2.0, kPanelEdge);
+      canvas.line({left + 8, rootY}, {left + style.panel_size - 8, rootY}, 1.0, kGround);  // the root's level
+      for (int k = 0; k < 3; ++k) canvas.line(project(r.fk[k]), project(r.fk[k + 1]), 5.0, kFkColor);
+      for (const glm::dvec3& p : r.fk) canvas.disk(project(p), 4.0, kFkColor);
+      for (std::size_t k = 0; k + 1 < r.samples.size(); ++k)
+        canvas.line(project(r.samples[k]), project(r.samples[k + 1]), 2.0, kCurveColor);
+      for (std::size_t j = 0; j < r.joints.size(); ++j) {
+        const rig::SpineJoint& joint = r.joints[j];
+        if (j + 1 < r.joints.size())
+          canvas.line(project(joint.position), project(r.joints[j + 1].position), 2.5, kChainColor);
+        canvas.line(project(joint.position), project(joint.position + tick * (joint.rotation * glm::dvec3(0, 1, 0))),
+                    1.5, kTwistColor);
+        canvas.disk(project(joint.position), 2.5, kChainColor);
+      }
+      for (const glm::dvec3& p : r.curve_points) canvas.disk(project(p), 2.0, kCurveColor);
+    }
+  }
+
+  namespace fs = std::filesystem;
+  if (!file.parent_path().empty()) fs::create_directories(file.parent_path());
+  const fs::path tmp = file.parent_path() / (file.stem().string() + ".tmp" + file.extension().string());
+  if (!canvas.write(tmp)) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw InputError(file.string() + ": cannot write the image (" + OIIO::geterror() + ")");
+  }
+  fs::rename(tmp, file);
+}
+
+}  // namespace stirrup::render

@@ -1,0 +1,114 @@
+// A curve spine driven by a traditional three-bone FK spine (Raisani 2004, "Curve based spine rig",
+// Part III; project issue 4). The animator rotates three controllers — lower, middle, top — exactly as
+// on a three-bone spine; translations and scales are locked (only rotations enter this API). From the
+// FK chain a C² cubic (SpineCurve) is built through the root of bone 1, the three bone midpoints and
+// the tip of bone 3, and a chain of N equal bones is laid on it:
+//
+//  * Chain layout: every joint lies on the curve, every bone has the same chord length c, the first
+//    joint is the curve's start and the last its end. Joints and c are solved together by Newton's
+//    method started from joints at equal arc length, so the layout moves continuously with the pose
+//    (Blender's sphere-marching construction gives the same chords but jumps at hairpins). The
+//    chain is therefore exactly as long as the polyline it inscribes, and shorter than the curve's arc
+//    length by the chord-vs-arc deficit, reported as SpineResult::chain_deficit (0 at rest, where the
+//    curve is straight; see docs/curve-spine.md for its size at extreme bends).
+//  * Frames: a rotation-minimizing frame (double reflection) runs along the curve from the lower
+//    controller's frame; each bone takes that frame at the arc-length middle of the bone, turned by the
+//    smallest rotation onto its chord. No Frenet frame, no up vector, hence no flips.
+//  * Twist: the top controller's twist rx is spread evenly, bone i (1-based) turning i·rx/N about its
+//    own axis (Raisani 2004, Part III: roll = RX / NB per bone, inherited down the chain). The twist is
+//    the scalar channel value, never decomposed from a matrix, so 270° or 720° twist just works.
+//
+// Conventions. Lengths in cm, angles in degrees. World: Y up, +X forward (the rider faces +X), +Z
+// right. Bone axes as in both theses' rigs: x along the bone toward its tip, rx twist about x, ry side
+// to side, rz bend front/back. At rest every bone points up: bone x = world +Y, bone y = world +X
+// (forward), bone z = x × y = world −Z (left). So +rz bends forward (toward +X), +ry leans right
+// (toward +Z), and +rx turns the front toward the left (right-hand rule about the bone).
+// Rotation order "XYZ" (as XSI's and Maya's default): R = Rz(rz) · Ry(ry) · Rx(rx) on column vectors —
+// the twist rx is applied first, about the bone's own axis, then ry, then rz, about the parent's axes.
+// Each controller is parented under the one below: world frame of bone k = Rest · R(lower) ⋯ R(k).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "rig/spine_curve.h"
+
+namespace stirrup::rig {
+
+// Controller rotations in degrees: (rx twist, ry side to side, rz bend front/back).
+struct SpineControllers {
+  glm::dvec3 lower{0.0}, middle{0.0}, top{0.0};
+};
+
+// A joint of the chain: its position and the world frame of the bone starting there (x along the
+// bone toward the next joint, y forward at rest, z = x × y). The last joint (the tip) carries the
+// frame at the end of the curve, x along the end tangent, with the full twist.
+struct SpineJoint {
+  glm::dvec3 position{0.0};
+  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
+};
+
+struct SpineResult {
+  std::array<glm::dvec3, 4> fk;               // FK joints: root, tips of bones 1, 2, 3
+  std::array<glm::dvec3, 5> curve_points;     // root, three bone midpoints, tip of bone 3
+  double length = 0.0;                        // exact arc length of the curve (cm)
+  std::vector<glm::dvec3> samples;            // curve points at equal arc length, both ends included
+  std::vector<SpineJoint> joints;             // N + 1 joints, root first
+  double bone_length = 0.0;                   // chord of every chain bone (cm)
+  double chain_deficit = 0.0;                 // 1 − N·bone_length / length (≥ 0)
+  bool layout_converged = true;               // false: equal-arc-length fallback, chords unequal
+  std::vector<double> joint_arc_lengths;      // arc length of every joint along the curve
+  std::vector<glm::dquat> untwisted_rotations;  // the joint frames before the twist (RMF on the chord)
+  std::vector<double> twist_deg;              // the twist added to each joint, i·rx/N
+  double ten_null_length = 0.0;               // Raisani's ten-null length estimate, for comparison
+};
+
+// World rotation of a controller's Euler angles (degrees) in the order stated above.
+glm::dquat controllerRotation(const glm::dvec3& degrees);
+// The rest frame of every spine bone: bone x → world +Y, y → +X, z → −Z.
+glm::dquat restBoneFrame();
+
+// Raisani 2004, Part III §2 (and the Appendix A script): ten nulls at equal path percentage, the
+// curve's length taken as the distance between the first two times the number of gaps,
+// Ctr_Dist(N1, N2) · (NN − 1). Kept only to measure how far it is off the exact length.
+inline constexpr int kRaisaniLengthNulls = 10;  // NN, Raisani 2004, Part III §2 and Appendix A
+double tenNullLengthEstimate(const SpineCurve& curve);
+
+class CurveSpine {
+ public:
+  static constexpr int kMinSegments = 3;
+  static constexpr int kMaxSegments = 32;
+  // Raisani 2004, Part III §1: "for a humanoid character of average height, eight to ten bones".
+  static constexpr int kRiderSegments = 10;
+  static constexpr int kSampleCount = 129;  // curve samples in SpineResult::samples
+
+  // Throws std::invalid_argument for a non-positive or non-finite length or segments outside 3..32.
+  CurveSpine(std::array<double, 3> boneLengths, int segments);
+
+  // The curve, joints and frames for one pose. `stretch` (> 0) scales the three FK bone lengths and so
+  // the whole spine along its curve — the squash and stretch of Kuhnel's equation 9 acting on the
+  // chain; use stretchForOffset to turn a vertical offset in cm into a stretch.
+  SpineResult solve(const SpineControllers& controllers, double stretch = 1.0) const;
+
+  // Pieces of solve, for tools and tests.
+  std::array<glm::dquat, 3> controllerFrames(const SpineControllers& controllers) const;
+  std::array<glm::dvec3, 4> fkJoints(const SpineControllers& controllers, double stretch = 1.0) const;
+  SpineCurve curve(const SpineControllers& controllers, double stretch = 1.0) const;
+
+  // Length of the straight FK chain, L1 + L2 + L3.
+  double restLength() const { return lengths_[0] + lengths_[1] + lengths_[2]; }
+  // The stretch that lengthens the spine by `offsetCm` at rest: (rest + offset) / rest.
+  double stretchForOffset(double offsetCm) const { return (restLength() + offsetCm) / restLength(); }
+
+  int segments() const { return segments_; }
+  const std::array<double, 3>& boneLengths() const { return lengths_; }
+
+ private:
+  std::array<double, 3> lengths_;
+  int segments_;
+};
+
+}  // namespace stirrup::rig

@@ -1,0 +1,67 @@
+// Reading user JSON with errors a user can act on: every problem is one line naming the file, the
+// field path (for example `cameras[1].fov`) and what was expected. Unknown fields are errors too, so a
+// typo never silently falls back to a default.
+#pragma once
+
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace stirrup {
+
+// Reads and parses a JSON file; a missing file or a syntax error is an InputError naming the file.
+nlohmann::json readJsonFile(const std::filesystem::path& file);
+
+// A short rendering of a JSON value for error messages: "wide", 12, [1,2], {...}.
+std::string describeJson(const nlohmann::json& value);
+
+// A view of one JSON object at a field path. Reading a field marks it known; finish() rejects the rest.
+class JsonObjectReader {
+ public:
+  JsonObjectReader(std::string file, std::string path, const nlohmann::json& object);
+
+  bool has(const std::string& key) const;
+  double number(const std::string& key, double fallback);
+  int integer(const std::string& key, int fallback);
+  bool boolean(const std::string& key, bool fallback);
+  std::string string(const std::string& key, const std::string& fallback);
+  // The raw value (marked known) or nullptr when absent.
+  const nlohmann::json* value(const std::string& key);
+  // A fixed-size array of numbers.
+  template <std::size_t N>
+  std::array<double, N> numbers(const std::string& key, std::array<double, N> fallback);
+  JsonObjectReader object(const std::string& key);
+
+  // The path of a field, for messages: "cameras[1].fov".
+  std::string fieldPath(const std::string& key) const;
+  [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
+  // Rejects any field that was never read.
+  void finish() const;
+
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+  std::string path_;
+  const nlohmann::json& object_;
+  std::set<std::string> known_;
+};
+
+template <std::size_t N>
+std::array<double, N> JsonObjectReader::numbers(const std::string& key, std::array<double, N> fallback) {
+  const nlohmann::json* v = value(key);
+  if (!v) return fallback;
+  if (!v->is_array() || v->size() != N)
+    fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + describeJson(*v));
+  std::array<double, N> out{};
+  for (std::size_t i = 0; i < N; ++i) {
+    if (!(*v)[i].is_number())
+      fail(key + "[" + std::to_string(i) + "]", "expected a number, got " + describeJson((*v)[i]));
+    out[i] = (*v)[i].get<double>();
+  }
+  return out;
+}
+
+}  // namespace stirrup

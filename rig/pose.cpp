@@ -1,0 +1,262 @@
+#include "rig/pose.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "rig/ik.h"
+#include "rig/skeleton.h"
+
+namespace stirrup::rig {
+namespace {
+
+constexpr glm::vec3 kX{1.0f, 0.0f, 0.0f}, kY{0.0f, 1.0f, 0.0f}, kZ{0.0f, 0.0f, 1.0f};
+
+glm::mat4 rot(double degrees, glm::vec3 axis) {
+  return glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(degrees)), axis);
+}
+glm::mat4 translate(glm::vec3 t) { return glm::translate(glm::mat4(1.0f), t); }
+glm::vec3 position(const glm::mat4& m) { return glm::vec3(m[3]); }
+glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
+
+// Rest local with an extra translation (in the parent's frame) and rotation.
+glm::mat4 offsetLocal(const Joint& j, glm::vec3 extra_translation, const glm::mat4& rotation) {
+  return translate(extra_translation) * j.rest_local * rotation;
+}
+
+// A pole point at rest: the middle joint pushed away from the root-end chord, so the limb keeps
+// bending the way it bends at rest.
+glm::vec3 restPole(glm::vec3 root, glm::vec3 middle, glm::vec3 end, float distance) {
+  const glm::vec3 chord = end - root;
+  const float t = glm::dot(middle - root, chord) / std::max(glm::dot(chord, chord), 1e-8f);
+  glm::vec3 bend = middle - (root + chord * t);
+  if (glm::length(bend) < 1e-5f) bend = glm::cross(chord, kZ);
+  return middle + glm::normalize(bend) * distance;
+}
+
+struct LimbPose {
+  glm::mat4 upper, middle;  // world matrices of the chain root and middle joints
+  glm::vec3 end;            // where the end joint landed
+};
+
+// Two-bone IK for a chain whose rest positions (bind world) and rest pole are given; the posed
+// root, target and pole are in world. Bones are rotated from their rest orientation without twist.
+LimbPose solveLimb(glm::vec3 rest_root, glm::vec3 rest_middle, glm::vec3 rest_end, glm::vec3 rest_pole,
+                   glm::vec3 root, glm::vec3 target, glm::vec3 pole, float soften) {
+  TwoBoneIkInput rest;
+  rest.root = rest_root;
+  rest.upper_length = glm::length(rest_middle - rest_root);
+  rest.lower_length = glm::length(rest_end - rest_middle);
+  rest.target = rest_end;
+  rest.pole = rest_pole;
+  const glm::vec3 rest_normal = solveTwoBoneIk(rest).bend_normal;
+
+  TwoBoneIkInput in = rest;
+  in.root = root;
+  in.target = target;
+  in.pole = pole;
+  in.soften = soften;
+  const TwoBoneIkResult r = solveTwoBoneIk(in);
+  LimbPose out;
+  out.upper = translate(root) * glm::mat4(boneRotation(rest_middle - rest_root, rest_normal, r.middle - root,
+                                                       r.bend_normal));
+  out.middle = translate(r.middle) * glm::mat4(boneRotation(rest_end - rest_middle, rest_normal,
+                                                            r.end - r.middle, r.bend_normal));
+  out.end = r.end;
+  return out;
+}
+
+// The rigid motion a joint has made from its bind pose: world * inverse bind.
+glm::mat4 motion(const Skeleton& s, std::span<const glm::mat4> world, int joint) {
+  return world[joint] * s.joints[joint].inverse_bind;
+}
+
+void checkSize(const Character& c, std::span<const glm::mat4> world) {
+  if (world.size() != c.skeleton.size())
+    throw std::invalid_argument("pose: expected one world matrix per joint of " + c.name);
+}
+
+}  // namespace
+
+std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params) {
+  const Skeleton& s = horse.skeleton;
+  const HorseChannels& h = frame.controls;
+  using C = HorseChannel;
+  std::vector<glm::mat4> local = restLocals(s);
+
+  // Body: the travel frame carries the rear pivot; rearPivot moves and turns it.
+  const glm::mat4 travel = translate({static_cast<float>(frame.travel_cm), 0.0f, 0.0f});
+  const int root = horse.role("root");
+  local[root] = travel * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]), float(h[C::rearPivotTz])}) *
+                s.joints[root].rest_local * rot(-h[C::rearPivotRy], kY) * rot(h[C::rearPivotRz], kZ) *
+                rot(h[C::rearPivotRx], kX);
+  // Back arch: the hips-to-mid-back segment tilts up by half, the front half pitches down by half,
+  // so the middle of the back rises relative to both ends.
+  const int back_mid = horse.role("backMid");
+  const float half_arch = static_cast<float>(h[C::backMidRz]) * 0.5f;
+  const glm::vec3 back_offset(s.joints[back_mid].rest_local[3]);
+  const glm::vec3 arched = glm::vec3(rot(half_arch, kZ) * glm::vec4(back_offset, 0.0f));
+  local[back_mid] = translate(arched) * rot(-h[C::backMidRy], kY) * rot(h[C::backMidRx], kX) * rot(-half_arch, kZ);
+  // Neck and head: + = up, spread over the two neck joints. Tail: + = up and to the right.
+  for (const char* n : {"neck1", "neck2"})
+    local[horse.role(n)] = s.joints[horse.role(n)].rest_local * rot(frame.neck_rz * 0.5, kZ);
+  local[horse.role("head")] = s.joints[horse.role("head")].rest_local * rot(frame.head_rz, kZ);
+  for (const char* n : {"tail1", "tail2", "tail3"}) {
+    const int j = s.require(n);
+    local[j] = s.joints[j].rest_local * rot(frame.tail_ry / 3.0, kY) * rot(-frame.tail_rz / 3.0, kZ);
+  }
+  std::vector<glm::mat4> world(s.size());
+  localToWorld(s, local, world);
+
+  // Legs: hoof targets in the travel frame; the pastern folds back as the hoof lifts, the IK chain
+  // reaches for the fetlock above the hoof.
+  static constexpr std::array<const char*, 4> kLegs = {"lf", "rf", "lb", "rb"};
+  static constexpr std::array<std::array<C, 3>, 4> kHoofChannels = {{{C::lfHoofTx, C::lfHoofTy, C::lfHoofTz},
+                                                                     {C::rfHoofTx, C::rfHoofTy, C::rfHoofTz},
+                                                                     {C::lbHoofTx, C::lbHoofTy, C::lbHoofTz},
+                                                                     {C::rbHoofTx, C::rbHoofTy, C::rbHoofTz}}};
+  for (int leg = 0; leg < 4; ++leg) {
+    const std::string n = kLegs[leg];
+    const int upper = horse.role(n + "Upper"), middle = horse.role(n + "Middle");
+    const int fetlock = horse.role(n + "Fetlock"), hoof = horse.role(n + "Hoof");
+    const glm::vec3 rest_upper = s.restPosition(upper), rest_middle = s.restPosition(middle);
+    const glm::vec3 rest_fetlock = s.restPosition(fetlock), rest_hoof = s.restPosition(hoof);
+    const auto& ch = kHoofChannels[leg];
+    const glm::vec3 offset{static_cast<float>(h[ch[0]]), static_cast<float>(h[ch[1]]), static_cast<float>(h[ch[2]])};
+    const glm::vec3 hoof_target = transformPoint(travel, rest_hoof + offset);
+    const float lift = std::clamp(offset.y / params.hoof_flex_full_lift, 0.0f, 1.0f);
+    const float flex = params.hoof_flex_deg * lift * lift * (3.0f - 2.0f * lift);
+    const glm::mat4 fold = rot(-flex, kZ);  // hoof sole turns to face backward
+    const glm::vec3 fetlock_target = hoof_target + glm::vec3(fold * glm::vec4(rest_fetlock - rest_hoof, 0.0f));
+
+    const glm::vec3 rest_pole = restPole(rest_upper, rest_middle, rest_fetlock, 40.0f);
+    const int parent = s.joints[upper].parent;
+    const glm::vec3 pole = transformPoint(motion(s, world, parent), rest_pole);
+    const LimbPose limb = solveLimb(rest_upper, rest_middle, rest_fetlock, rest_pole, position(world[upper]),
+                                    fetlock_target, pole, params.leg_soften);
+    world[upper] = limb.upper;
+    world[middle] = limb.middle;
+    world[fetlock] = translate(limb.end) * fold;
+    world[hoof] = translate(limb.end + glm::vec3(fold * glm::vec4(rest_hoof - rest_fetlock, 0.0f))) * fold;
+  }
+  return world;
+}
+
+void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider_unit_cm,
+                    const RiderPoseParams& params, std::span<glm::mat4> local) {
+  const Skeleton& s = rider.skeleton;
+  if (local.size() != s.size()) throw std::invalid_argument("poseRiderSpine: expected one matrix per joint");
+  using C = RiderChannel;
+  const float u = static_cast<float>(rider_unit_cm);
+  auto up = [&](C c) { return glm::vec3(0.0f, float(r[c]) * u, 0.0f); };
+  auto joint = [&](const char* n) -> const Joint& { return s.joints[rider.role(n)]; };
+  // Pelvis: lifted by cog.ty and slid by cog.tx; tips forward (hip.rz) and rolls (hip.ry).
+  local[rider.role("pelvis")] = offsetLocal(joint("pelvis"), glm::vec3(float(r[C::cogTx]) * u, float(r[C::cogTy]) * u, 0.0f),
+                                            rot(-r[C::hipRz], kZ) * rot(r[C::hipRy], kX));
+  local[rider.role("lowerBack")] = offsetLocal(joint("lowerBack"), glm::vec3(0.0f),
+                                               rot(-r[C::lowerBackRx], kY) * rot(r[C::lowerBackRy], kX) *
+                                                   rot(-r[C::lowerBackRz], kZ));
+  local[rider.role("waist")] = offsetLocal(joint("waist"), up(C::spineCTy), rot(-r[C::waistRz], kZ));
+  local[rider.role("chest")] = offsetLocal(joint("chest"), up(C::spineDTy), rot(-r[C::waistRz] * params.chest_follow, kZ));
+  local[rider.role("upperChest")] = offsetLocal(joint("upperChest"), up(C::spineFTy), glm::mat4(1.0f));
+  local[rider.role("neck")] = offsetLocal(joint("neck"), up(C::neckTy), glm::mat4(1.0f));
+  local[rider.role("head")] = offsetLocal(joint("head"), up(C::headATy), rot(r[C::headRy], kX) * rot(-r[C::headRz], kZ));
+}
+
+glm::vec3 stirrupTarget(const Character& horse, std::span<const glm::mat4> horseWorld, const RiderChannels& r,
+                        double rider_unit_cm, int side) {
+  checkSize(horse, horseWorld);
+  using C = RiderChannel;
+  const Skeleton& s = horse.skeleton;
+  const int saddle = horse.role("saddle");
+  const int stirrup = horse.role(side == 0 ? "lStirrup" : "rStirrup");
+  const float u = static_cast<float>(rider_unit_cm);
+  const float tx = float(r[side == 0 ? C::lFootTx : C::rFootTx]) * u;
+  const float away = float(r[side == 0 ? C::lFootTz : C::rFootTz]) * u * (side == 0 ? -1.0f : 1.0f);
+  const glm::vec3 rest_in_saddle = s.restPosition(stirrup) - s.restPosition(saddle);
+  return transformPoint(horseWorld[saddle], rest_in_saddle + glm::vec3(tx, 0.0f, away));
+}
+
+void placeStirrups(const Character& horse, std::span<glm::mat4> horseWorld, const RiderChannels& r,
+                   double rider_unit_cm) {
+  for (int side = 0; side < 2; ++side) {
+    const glm::vec3 p = stirrupTarget(horse, horseWorld, r, rider_unit_cm, side);
+    glm::mat4& m = horseWorld[horse.role(side == 0 ? "lStirrup" : "rStirrup")];
+    m = horseWorld[horse.role("saddle")];
+    m[3] = glm::vec4(p, 1.0f);
+  }
+}
+
+std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse, std::span<const glm::mat4> horseWorld,
+                                 const RiderChannels& r, double rider_unit_cm, const RiderPoseParams& params) {
+  checkSize(horse, horseWorld);
+  using C = RiderChannel;
+  const Skeleton& s = rider.skeleton;
+  const float u = static_cast<float>(rider_unit_cm);
+  // The rider is built in saddle space: the posed saddle is the rider's frame.
+  const glm::mat4 saddle = horseWorld[horse.role("saddle")];
+
+  std::vector<glm::mat4> local = restLocals(s);
+  poseRiderSpine(rider, r, rider_unit_cm, params, local);
+  // Braid and coat tail: "up" swings them back and up, "side" toward the right, spread along the chain.
+  const float hair_up = float(r[C::hairUp]) * params.hair_deg_per_unit / 3.0f;
+  const float hair_side = float(r[C::hairSide]) * params.hair_deg_per_unit / 3.0f;
+  for (const char* n : {"braid1", "braid2", "braid3"})
+    local[rider.role(n)] = s.joints[rider.role(n)].rest_local * rot(-hair_side, kX) * rot(-hair_up, kZ);
+  const int coat_tail = rider.role("coatTail");
+  local[coat_tail] = s.joints[coat_tail].rest_local * rot(-r[C::clothSide] * params.cloth_deg_per_unit, kX) *
+                     rot(-r[C::clothUp] * params.cloth_deg_per_unit, kZ);
+  local[rider.role("pelvis")] = saddle * local[rider.role("pelvis")];
+  std::vector<glm::mat4> world(s.size());
+  localToWorld(s, local, world);
+
+  for (int side = 0; side < 2; ++side) {
+    const std::string n = side == 0 ? "l" : "r";
+    const float away = side == 0 ? -1.0f : 1.0f;  // +Z is the horse's right
+    // Arm: the wrist reaches for the rein, moved by wrist tx (forward) and ty (up) in saddle space.
+    {
+      const int shoulder = rider.role(n + "Shoulder"), elbow = rider.role(n + "Elbow"), wrist = rider.role(n + "Wrist");
+      const glm::vec3 rs = s.restPosition(shoulder), re = s.restPosition(elbow), rw = s.restPosition(wrist);
+      const glm::vec3 offset(float(r[side == 0 ? C::lWristTx : C::rWristTx]) * u,
+                             float(r[side == 0 ? C::lWristTy : C::rWristTy]) * u, 0.0f);
+      const glm::vec3 target = transformPoint(saddle, rw + offset);
+      const glm::vec3 rest_pole = restPole(rs, re, rw, 40.0f);
+      const glm::vec3 pole = transformPoint(motion(s, world, s.joints[shoulder].parent), rest_pole);
+      const LimbPose limb = solveLimb(rs, re, rw, rest_pole, position(world[shoulder]), target, pole, params.limb_soften);
+      world[shoulder] = limb.upper;
+      world[elbow] = limb.middle;
+      world[wrist] = translate(limb.end) * glm::mat4(glm::mat3(saddle));  // the hand keeps its grip angle
+    }
+    // Leg: the ball of the foot in the stirrup; the foot turns about the ball; the knee's pole moves
+    // with the knee channels (away from the belly, up).
+    {
+      const int hip = rider.role(n + "Hip"), knee = rider.role(n + "Knee");
+      const int ankle = rider.role(n + "Ankle"), ball = rider.role(n + "Ball");
+      const glm::vec3 rh = s.restPosition(hip), rk = s.restPosition(knee), ra = s.restPosition(ankle),
+                      rb = s.restPosition(ball);
+      const glm::mat4 foot_rot = rot(-r[side == 0 ? C::lFootRy : C::rFootRy], kY) *
+                                 rot(r[side == 0 ? C::lFootRx : C::rFootRx], kX) *
+                                 rot(r[side == 0 ? C::lFootRz : C::rFootRz], kZ);
+      const glm::mat4 foot_world_rot = glm::mat4(glm::mat3(saddle)) * foot_rot;
+      const glm::vec3 ball_target = stirrupTarget(horse, horseWorld, r, rider_unit_cm, side);
+      const glm::vec3 ankle_target = ball_target + glm::vec3(foot_world_rot * glm::vec4(ra - rb, 0.0f));
+      const glm::vec3 rest_pole = restPole(rh, rk, ra, 50.0f);
+      const glm::vec3 knee_offset(0.0f, float(r[side == 0 ? C::lKneeTy : C::rKneeTy]) * u,
+                                  float(r[side == 0 ? C::lKneeTz : C::rKneeTz]) * u * away);
+      const glm::vec3 pole = transformPoint(saddle, rest_pole + knee_offset * params.knee_pole_gain);
+      const LimbPose limb = solveLimb(rh, rk, ra, rest_pole, position(world[hip]), ankle_target,
+                                      pole, params.limb_soften);
+      world[hip] = limb.upper;
+      world[knee] = limb.middle;
+      world[ankle] = translate(limb.end) * foot_world_rot;
+      world[ball] = translate(limb.end + glm::vec3(foot_world_rot * glm::vec4(rb - ra, 0.0f))) * foot_world_rot;
+    }
+  }
+  return world;
+}
+
+}  // namespace stirrup::rig

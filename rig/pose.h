@@ -1,0 +1,66 @@
+// Posing jobs: explicit inputs, explicit outputs, no hidden state. Each returns world matrices, one
+// per joint of the character's skeleton, for skinMesh.
+//
+// Signs follow ../shared/rig-channels.md by meaning. In the world (+X travel, +Y up, +Z the horse's
+// right): "front end up" is a rotation about +Z, "roll toward the right" about +X, "yaw to the
+// right" about -Y. A rider's "lean forward" is about -Z, "lean to her right" about +X.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "rig/channels.h"
+#include "rig/character.h"
+#include "rig/clip.h"
+#include "rig/horse_character.h"  // the characters these jobs pose, for callers that include only pose.h
+#include "rig/rider_character.h"
+
+namespace stirrup::rig {
+
+struct HorsePoseParams {
+  float hoof_flex_deg = 55.0f;        // pastern fold (hoof sole turning back) when a hoof is lifted
+  float hoof_flex_full_lift = 18.0f;  // lift (cm) at which the fold is complete
+  float leg_soften = 0.3f;            // IK reach softening (cm), so a leg never snaps straight
+};
+
+// The horse at one frame: travel frame at world x = travel_cm; the body (root at the hips) moved and
+// turned by rearPivot, the front half turned at backMid, neck/head/tail by the frame's follow-through,
+// each leg solved by two-bone IK to its hoof target (rest hoof place + hoof tx/ty/tz), knees bending
+// forward in front and hocks backward behind, the pastern folding as the hoof lifts.
+std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame,
+                                 const HorsePoseParams& params = {});
+
+struct RiderPoseParams {
+  float chest_follow = 0.5f;       // fraction of waist.rz the chest adds on top
+  float hair_deg_per_unit = 1.0f;  // braid swing (degrees over the whole braid) per hair.up/side unit
+  float cloth_deg_per_unit = 1.0f; // coat-tail swing per cloth.up/side unit
+  float limb_soften = 0.5f;        // IK reach softening (cm)
+  // The knee channels move the knee's pole point, 50 cm out; this gain makes a knee offset of
+  // one cm move the knee by roughly one cm.
+  float knee_pole_gain = 3.0f;
+};
+
+// The rider's spine and head, local transforms (saddle space at the pelvis). Kept apart so a
+// curve-based spine can replace it. `local` holds one matrix per rider joint; only pelvis, spine,
+// neck and head entries are written.
+void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider_unit_cm,
+                    const RiderPoseParams& params, std::span<glm::mat4> local);
+
+// The rider seated in the posed horse's saddle, moved by the rider channels (translations in rider
+// units; rider_unit_cm converts them). Hands reach for the reins, feet for the stirrups.
+std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
+                                 std::span<const glm::mat4> horseWorld, const RiderChannels& r,
+                                 double rider_unit_cm, const RiderPoseParams& params = {});
+
+// Where the ball of each foot goes, in world: the horse's stirrup rest place (hanging from the posed
+// saddle) moved by lFoot/rFoot tx (forward) and tz (away from the belly). index 0 = left, 1 = right.
+glm::vec3 stirrupTarget(const Character& horse, std::span<const glm::mat4> horseWorld, const RiderChannels& r,
+                        double rider_unit_cm, int side);
+
+// Moves the horse's stirrup joints to the rider's feet (call after poseHorse when a rider rides).
+void placeStirrups(const Character& horse, std::span<glm::mat4> horseWorld, const RiderChannels& r,
+                   double rider_unit_cm);
+
+}  // namespace stirrup::rig

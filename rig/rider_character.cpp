@@ -1,0 +1,147 @@
+#include "rig/rider_character.h"
+
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "rig/ik.h"
+#include "rig/implicit_body.h"
+
+namespace stirrup::rig {
+namespace {
+
+glm::vec3 mirrorZ(glm::vec3 v, float side) { return {v.x, v.y, v.z * side}; }
+
+int addJointAt(Skeleton& s, std::string name, int parent, glm::vec3 world) {
+  const glm::vec3 parent_pos = parent < 0 ? glm::vec3(0.0f) : s.restPosition(parent);
+  return s.addJoint(std::move(name), parent, glm::translate(glm::mat4(1.0f), world - parent_pos));
+}
+
+// The middle joint of a limb at rest: the same IK the posing job runs, so rest is reproduced exactly.
+glm::vec3 restMiddle(glm::vec3 root, glm::vec3 end, float upper, float lower, glm::vec3 pole_dir) {
+  TwoBoneIkInput in;
+  in.root = root;
+  in.target = end;
+  in.upper_length = upper;
+  in.lower_length = lower;
+  in.pole = 0.5f * (root + end) + glm::normalize(pole_dir) * 50.0f;
+  return solveTwoBoneIk(in).middle;
+}
+
+}  // namespace
+
+Character buildRider(const RiderParams& p) {
+  Character c;
+  c.name = "rider";
+  Skeleton& s = c.skeleton;
+  ImplicitBody body;
+
+  const int pelvis = addJointAt(s, "pelvis", -1, p.pelvis);
+  const int lower_back = addJointAt(s, "lowerBack", pelvis, p.lower_back);
+  const int waist = addJointAt(s, "waist", lower_back, p.waist);
+  const int chest = addJointAt(s, "chest", waist, p.chest);
+  const int upper_chest = addJointAt(s, "upperChest", chest, p.upper_chest);
+  const int neck = addJointAt(s, "neck", upper_chest, p.neck);
+  const int head = addJointAt(s, "head", neck, p.head);
+  const glm::vec3 crown = p.head + glm::vec3(1.0f, p.head_height - 4.0f, 0.0f);
+  const glm::vec3 skull = p.head + glm::vec3(1.5f, p.head_height * 0.45f, 0.0f);
+  const glm::vec3 braid_root = skull + glm::vec3(-8.5f, -2.0f, 0.0f);
+  const glm::vec3 braid_dir = glm::normalize(glm::vec3(-0.15f, -1.0f, 0.0f));
+  const int braid1 = addJointAt(s, "braid1", head, braid_root);
+  const int braid2 = addJointAt(s, "braid2", braid1, braid_root + braid_dir * (p.braid_length / 3.0f));
+  const int braid3 = addJointAt(s, "braid3", braid2, braid_root + braid_dir * (2.0f * p.braid_length / 3.0f));
+  const int coat_tail = addJointAt(s, "coatTail", waist, p.waist + glm::vec3(-10.0f, -4.0f, 0.0f));
+  c.roles = {{"pelvis", pelvis}, {"lowerBack", lower_back}, {"waist", waist}, {"chest", chest},
+             {"upperChest", upper_chest}, {"neck", neck}, {"head", head}, {"braid1", braid1},
+             {"braid2", braid2}, {"braid3", braid3}, {"coatTail", coat_tail}};
+
+  // Torso: coat over the chest and waist, breeches over the hips.
+  body.add(ellipsoid(p.pelvis + glm::vec3(-0.5f, 0.0f, 0.0f), p.hips_radii, pelvis, p.breeches, 4.0f));
+  body.add(ellipsoid(p.lower_back + glm::vec3(1.0f, 3.0f, 0.0f), {10.5f, 9.0f, p.waist_radius + 1.0f}, lower_back,
+                     p.coat, 6.0f));
+  body.add(ellipsoid(p.waist + glm::vec3(1.0f, 2.0f, 0.0f), {9.5f, 9.0f, p.waist_radius}, waist, p.coat, 6.0f));
+  body.add(ellipsoid(p.chest + glm::vec3(1.0f, 3.0f, 0.0f), p.chest_radii, chest, p.coat, 6.0f));
+  body.add(ellipsoid(p.upper_chest + glm::vec3(-0.5f, 1.0f, 0.0f), {9.0f, 6.5f, 18.5f}, upper_chest, p.coat, 5.0f));
+  // Neck and head.
+  body.add(taperedCapsule(p.neck + glm::vec3(0.0f, -2.0f, 0.0f), p.head + glm::vec3(0.5f, 3.0f, 0.0f), 5.6f, 5.0f,
+                          neck, p.skin, 3.0f));
+  body.add(ellipsoid(skull, {10.0f, 11.5f, 8.6f}, head, p.skin, 3.0f));
+  body.add(ellipsoid(p.head + glm::vec3(4.0f, 4.0f, 0.0f), {6.5f, 5.5f, 6.0f}, head, p.skin, 4.0f));
+  body.add(taperedCapsule(skull + glm::vec3(8.5f, 1.0f, 0.0f), skull + glm::vec3(10.8f, -2.5f, 0.0f), 1.3f, 1.7f, head,
+                          p.skin, 1.5f));
+  for (float side : {-1.0f, 1.0f}) {
+    body.add(ellipsoid(skull + glm::vec3(8.6f, 2.5f, 3.3f * side), glm::vec3(1.1f), head, p.eyes, 0.3f));
+    body.add(ellipsoid(skull + glm::vec3(-0.5f, 0.0f, 8.4f * side), {2.0f, 3.0f, 1.2f}, head, p.skin, 1.0f));
+  }
+  ImplicitPrimitive cap = ellipsoid(skull + glm::vec3(-1.2f, 1.2f, 0.0f), {10.6f, 11.8f, 9.3f}, head, p.hair, 0.6f);
+  cap.clip_min.y = skull.y + 3.0f;
+  body.add(cap);
+  ImplicitPrimitive back_hair = ellipsoid(skull + glm::vec3(-3.0f, -1.0f, 0.0f), {8.5f, 10.5f, 9.2f}, head, p.hair, 0.6f);
+  back_hair.clip_max.x = skull.x - 3.0f;
+  body.add(back_hair);
+  (void)crown;
+  // Braid: three tapering segments that the hair channels swing.
+  const glm::vec3 b1 = s.restPosition(braid1), b2 = s.restPosition(braid2), b3 = s.restPosition(braid3);
+  const glm::vec3 btip = braid_root + braid_dir * p.braid_length;
+  body.add(taperedCapsule(b1, b2, p.braid_radius, p.braid_radius * 0.9f, braid1, p.hair, 1.5f));
+  body.add(taperedCapsule(b2, b3, p.braid_radius * 0.9f, p.braid_radius * 0.75f, braid2, p.hair, 1.0f));
+  body.add(taperedCapsule(b3, btip, p.braid_radius * 0.75f, p.braid_radius * 0.5f, braid3, p.hair, 1.0f));
+  // Coat tail, draped over the cantle behind the seat.
+  const glm::vec3 ct = s.restPosition(coat_tail);
+  body.add(ellipsoid(ct + glm::vec3(-2.0f, -p.coat_tail_length * 0.45f, 0.0f), {2.2f, p.coat_tail_length * 0.55f, 14.0f},
+                     coat_tail, p.coat, 3.0f, {1.0f, 0.0f, 0.0f}));
+
+  for (float side : {-1.0f, 1.0f}) {  // parameters describe the left side (z < 0)
+    const std::string n = side < 0 ? "l" : "r";
+    const float m = -side;  // mirror factor applied to left-side parameters
+    // Arm: shoulder -> elbow -> wrist, the wrist at the rein.
+    const glm::vec3 shoulder = mirrorZ(p.shoulder, m);
+    const glm::vec3 wrist = mirrorZ(p.rein_grip + p.wrist_from_grip, m);
+    const glm::vec3 elbow = restMiddle(shoulder, wrist, p.upper_arm, p.forearm, mirrorZ(p.elbow_pole_dir, m));
+    const int j_shoulder = addJointAt(s, n + "Shoulder", upper_chest, shoulder);
+    const int j_elbow = addJointAt(s, n + "Elbow", j_shoulder, elbow);
+    const int j_wrist = addJointAt(s, n + "Wrist", j_elbow, wrist);
+    // Leg: hip -> knee -> ankle, the ball of the foot on the stirrup tread.
+    const glm::vec3 hip = mirrorZ(p.hip, m);
+    const glm::vec3 ball = mirrorZ(p.stirrup, m);
+    const glm::vec3 ankle = ball + mirrorZ(p.ankle_from_ball, m);
+    const glm::vec3 knee = restMiddle(hip, ankle, p.thigh, p.shin, mirrorZ(p.knee_pole_dir, m));
+    const int j_hip = addJointAt(s, n + "Hip", pelvis, hip);
+    const int j_knee = addJointAt(s, n + "Knee", j_hip, knee);
+    const int j_ankle = addJointAt(s, n + "Ankle", j_knee, ankle);
+    const int j_ball = addJointAt(s, n + "Ball", j_ankle, ball);
+    for (const auto& [role, j] : {std::pair{"Shoulder", j_shoulder}, {"Elbow", j_elbow}, {"Wrist", j_wrist},
+                                  {"Hip", j_hip}, {"Knee", j_knee}, {"Ankle", j_ankle}, {"Ball", j_ball}})
+      c.roles[n + role] = j;
+
+    const glm::vec3 out(0.0f, 0.0f, side);
+    body.add(ellipsoid(shoulder + glm::vec3(0.0f, 0.5f, -1.5f * side), {6.0f, 5.5f, 6.0f}, j_shoulder, p.coat, 4.0f));
+    body.add(taperedCapsule(shoulder, elbow, p.shoulder_radius, 4.2f, j_shoulder, p.coat, 3.0f));
+    body.add(taperedCapsule(elbow, wrist, 4.2f, p.wrist_radius, j_elbow, p.coat, 2.0f));
+    const glm::vec3 fwd = glm::normalize(wrist - elbow);
+    body.add(ellipsoid(wrist + fwd * 4.5f + glm::vec3(0.0f, -0.5f, 0.0f), {5.0f, 3.8f, 2.8f}, j_wrist, p.skin, 2.0f,
+                       fwd));
+    body.add(taperedCapsule(wrist + fwd * 5.0f + out * 1.5f, wrist + fwd * 5.0f + glm::vec3(0.0f, 3.0f, 0.0f) + out * 1.5f,
+                            1.2f, 1.1f, j_wrist, p.skin, 1.5f));  // thumb on top of the rein
+
+    body.add(taperedCapsule(hip + glm::vec3(0.0f, 0.0f, 1.0f * side), knee, p.thigh_radius, p.knee_radius, j_hip,
+                            p.breeches, 4.0f));
+    const glm::vec3 boot_top = knee + (ankle - knee) * 0.12f;
+    body.add(taperedCapsule(knee, boot_top, p.knee_radius, p.knee_radius, j_knee, p.breeches, 2.0f));
+    body.add(taperedCapsule(boot_top, ankle, p.calf_radius + 0.4f, p.ankle_radius + 0.4f, j_knee, p.boots, 1.0f));
+    const glm::vec3 heel = ankle + glm::vec3(-3.0f, -4.0f, 0.0f);
+    const glm::vec3 toe = ball + glm::vec3(7.0f, 3.3f, 0.0f);
+    ImplicitPrimitive foot = taperedCapsule(heel, toe, 4.2f, 3.4f, j_ankle, p.boots, 2.0f);
+    body.add(foot);
+  }
+
+  PolygonizeParams poly;
+  poly.cell = p.cell;
+  poly.skin_falloff = 2.0f;
+  c.mesh = polygonize(body, poly);
+  return c;
+}
+
+Character buildDefaultRider() { return buildRider(RiderParams{}); }
+
+}  // namespace stirrup::rig

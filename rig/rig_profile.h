@@ -1,0 +1,150 @@
+// A rig profile: every weight, offset and limit of the rider rig (Kuhnel 2003, section 8 and
+// Appendix B) as a named parameter, so a profile file can retune the rider without touching code.
+// Each parameter's JSON key is `eqN.name` (or `knee.` / `hair.` / `cloth.` for the Appendix B drives
+// that have no equation number); the key table with its citations lives in rig_profile.cpp and is
+// documented in docs/rider-rig.md. RigProfile::thesis() holds the values the thesis used, with the
+// contradictions between prose and code decided as that document's table says.
+#pragma once
+
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+namespace stirrup::rig {
+
+struct RigProfile {
+  std::string name = "thesis";
+  std::string doc;
+  // Units: horse translations (cm) are divided by horse_unit_cm before the thesis's expressions;
+  // rider translations come out in rider units and rider_unit_cm maps them to cm for posing.
+  double horse_unit_cm = 10, rider_unit_cm = 10;
+
+  // Equation 1: lowerBack.rz (lean forward).
+  struct LowerBackPitch {
+    double w1_pivot_pitch = 0.07;   // x rearPivot.rz x (rearPivot.ty + h1)
+    double h1_pivot_height = 2;     // added to the rear pivot height
+    double w2_front_reach = 0.25;   // x (mean front hoof tx - rearPivot.tx)
+    double w3_hind_reach = 0.25;    // x (rearPivot.tx - mean hind hoof tx)
+    double w4_pivot_pitch_gain = 0.1;
+    double h2_pivot_pitch = 5;      // added to |rearPivot.rz|
+    double w5_front_height = 0.9;
+    double w6_hind_height = 0.4;
+    double w7_hoof_height = 0.4;
+    double front_height_limit = 18;  // sum of the front hoof heights is clamped to this
+    double hind_height_limit = 15;   // sum of the hind hoof heights is clamped to this
+    double front_limited_lf_tx_offset = 0;  // Appendix B branch 2 adds 2.5 to lfHoof.tx; we do not
+  } eq1;
+  struct LowerBackRoll { double w1_counter_roll = -1; } eq2;          // lowerBack.ry
+  struct LowerBackTwist { double w1_twist = 0.5; } eq3;              // lowerBack.rx
+  struct Waist { double w1_lower_back = 1.7; } eq4;                  // waist.rz
+  struct HipPitch { double w1_lower_back = 0.8; } eq5;               // hip.rz
+  struct HipRoll {                                                   // hip.ry
+    double w1_pivot_roll = 0.5;
+    double w2_hind_height_difference = 2;
+  } eq6;
+  struct Lift {                                                      // cog.ty
+    double w1_front_height = 2;
+    double w2_scale = 0.01;
+    double lift_limit = 15;
+  } eq7;
+  struct SeatShift {                                                 // cog.tx
+    double w1_pivot_pitch = 2;
+    double w2_scale = 0.1;
+    double shift_limit = 1;  // symmetric: [-shift_limit, +shift_limit]
+  } eq8;
+  struct SquashStretch {                                             // spine*/neck/headA.ty
+    double h1_squash = 0.1;
+    double w1_spine_divisor = 6;  // spineC, spineD, spineF
+    double w1_neck_divisor = 7;   // neck, headA (Appendix B)
+  } eq9;
+  struct HeadPitch {                                                 // head.rz
+    double w1_lower_back = 0.9;
+    double w2_lift = 18;
+    double rest_pitch = 5;
+    double lower_back_min = -20;
+    double lower_back_max = 17;
+  } eq10;
+  struct HeadTurn { double w1_pivot_roll = 0.8; } eq11;              // head.ry
+  struct WristForward {                                              // l/rWrist.tx
+    double w1_lower_back = 0.0001;
+    double w2_front_reach = 0.008;
+    double lower_back_limit = 17;  // symmetric: [-limit, +limit]
+    double rear_pivot_rz_rest = 0;
+  } eq12;
+  struct WristUp {                                                   // l/rWrist.ty
+    double w1_hoof_height = 0.03;
+    double w2_pivot_height = 0.0005;
+    double hoof_height_limit = 20;
+  } eq13;
+  struct FootForward {                                               // l/rFoot.tx
+    double w1_pivot_pitch = 0.005;
+    double h1_reach_gain = 0.08;
+    double w3_back_arch = 0.02;
+    double w2_lower_back = 0.005;
+    double reach_max = 0;  // the front-reach term is clamped to at most this (feet not too far forward)
+    double rear_pivot_rz_rest = 0;
+  } eq14;
+  struct FootPitch {                                                 // l/rFoot.rz
+    double w1 = 2;
+    double w2_rig_scale = 6;
+    double foot_tx_rest = 0;
+  } eq15;
+  struct FootRoll {                                                  // l/rFoot.ry, l/rFoot.rx
+    double w1_twist = 1.7;
+    double twist_offset = -1;
+    double w2_side = 0.1;
+    double side_offset = 1;
+    double hoof_height_limit = 15;
+  } eq16;
+  struct FootOut {                                                   // l/rFoot.tz
+    double w1_hoof_height = 0.05;
+    double w2_pivot_roll = 0.05;
+    double rest_offset = 0;
+    double hoof_height_limit = 15;
+  } eq17;
+  struct KneeOut { double w1_foot = 1.1; } eq18;                     // l/rKnee.tz
+  struct KneeUp {                                                    // l/rKnee.ty (Appendix B)
+    double w1_hoof_height = 0.03;
+    double rest_offset = 0;
+    double hoof_height_limit = 15;
+  } knee;
+  struct Hair {                                                      // hair.up, hair.side
+    double up_w = 0.7;
+    double hoof_height_offset = 2;
+    double side_w = 0.02;
+  } hair;
+  struct Cloth {                                                     // cloth.up, cloth.side
+    double up_w = 0.7;
+    double hoof_height_offset = 2;
+    double side_w1_pivot_roll = 0.5;
+    double side_w2_hind_height_difference = 2;
+  } cloth;
+
+  // The thesis's values (the member initialisers above), named "thesis".
+  static RigProfile thesis();
+};
+
+// One tunable parameter: its JSON key, where it lives, and the thesis passage it comes from.
+struct RigParameter {
+  std::string_view key;
+  double& (*field)(RigProfile&);
+  std::string_view cites;
+  // Read-only access through the same accessor; nothing is written through the cast.
+  const double& get(const RigProfile& p) const { return field(const_cast<RigProfile&>(p)); }
+};
+// Every parameter, in equation order (horse_unit_cm and rider_unit_cm first).
+std::span<const RigParameter> rigParameters();
+const RigParameter* findRigParameter(std::string_view key);
+
+// nameOrPath: a name ("thesis") looked up as profilesDir/NAME.json, or a path to a .json file.
+// Parameters the file does not name keep the thesis value.
+RigProfile loadRigProfile(const std::string& nameOrPath, const std::filesystem::path& profilesDir);
+// Overrides single parameters by their JSON key; unknown key or wrong type -> InputError naming `context` and the key.
+void applyProfileOverrides(RigProfile& p, const nlohmann::json& overrides, const std::string& context);
+// The JSON form of a profile: name, doc and every parameter by key.
+nlohmann::json profileToJson(const RigProfile& p);
+
+}  // namespace stirrup::rig

@@ -1,0 +1,24 @@
+// Linear blend skinning: each vertex moves by the weighted sum of its joints' skinning matrices
+// (joint world * inverse bind). Normals move by the same blend and are renormalised, which is exact
+// for rigid joints and a close approximation where they blend.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "rig/mesh.h"
+#include "rig/skeleton.h"
+
+namespace stirrup::rig {
+
+// Skinning matrices, one per joint: jointWorld[i] * inverse_bind[i].
+std::vector<glm::mat4> skinningMatrices(const Skeleton& skel, std::span<const glm::mat4> jointWorld);
+
+// Deforms the mesh by the posed joints; positions and normals are resized to the vertex count.
+// Parallel over vertices (TBB). Throws std::invalid_argument when jointWorld is not one per joint.
+void skinMesh(const SkinnedMesh& mesh, const Skeleton& skel, std::span<const glm::mat4> jointWorld,
+              std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals);
+
+}  // namespace stirrup::rig

@@ -1,0 +1,115 @@
+#include "render/image.h"
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+namespace stirrup::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path tempDir() {
+  const fs::path dir = fs::temp_directory_path() / ("stirrup_image_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+Image gradient(int w, int h) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) img.at(x, y) = {float(x) / float(w - 1), float(y) / float(h - 1), 0.5f, 1.0f};
+  }
+  return img;
+}
+
+TEST(Image, SrgbEncodesKnownValues) {
+  EXPECT_EQ(linearToSrgb8(0.0f), 0);
+  EXPECT_EQ(linearToSrgb8(1.0f), 255);
+  EXPECT_EQ(linearToSrgb8(0.5f), 188);
+  EXPECT_EQ(linearToSrgb8(0.18f), 118);  // middle grey
+  EXPECT_EQ(linearToSrgb8(0.002f), 7);   // the linear toe: 12.92 * 0.002 * 255 = 6.6
+  EXPECT_EQ(linearToSrgb8(-1.0f), 0);
+  EXPECT_EQ(linearToSrgb8(7.0f), 255);
+  EXPECT_EQ(linearToSrgb8(std::nanf("")), 0);
+  EXPECT_NEAR(linearToSrgb(0.214041f), 0.5f, 1e-5f);
+}
+
+TEST(Image, PngRoundTripsThroughOpenImageIO) {
+  const fs::path file = tempDir() / "gradient.png";
+  const Image img = gradient(33, 17);
+  writePng(img, file);
+  EXPECT_FALSE(fs::exists(fs::path(file.string() + ".tmp")));
+  auto in = OIIO::ImageInput::open(file.string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec& spec = in->spec();
+  ASSERT_EQ(spec.width, 33);
+  ASSERT_EQ(spec.height, 17);
+  ASSERT_EQ(spec.nchannels, 3);
+  std::vector<uint8_t> px(33 * 17 * 3);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
+  in->close();
+  for (int y = 0; y < 17; ++y) {
+    for (int x = 0; x < 33; ++x) {
+      const size_t i = (size_t(y) * 33 + x) * 3;
+      ASSERT_EQ(px[i + 0], linearToSrgb8(img.at(x, y).x));
+      ASSERT_EQ(px[i + 1], linearToSrgb8(img.at(x, y).y));
+      ASSERT_EQ(px[i + 2], 188);
+    }
+  }
+}
+
+TEST(Image, ExrKeepsLinearValuesAndPasses) {
+  const fs::path file = tempDir() / "passes.exr";
+  Image img = gradient(8, 4);
+  img.at(3, 2) = {2.5f, 0.125f, 0.0f, 0.5f};  // above 1: scene-linear, not clamped
+  img.depth.assign(img.pixelCount(), 1234.5f);
+  img.matte.assign(img.pixelCount(), 0.25f);
+  img.object_id.assign(img.pixelCount(), 2u);
+  img.object_id[0] = kNoObject;
+  writeExr(img, file, {{"stirrup:frame", "12"}});
+  auto in = OIIO::ImageInput::open(file.string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec spec = in->spec();
+  ASSERT_EQ(spec.nchannels, 7);
+  EXPECT_EQ(spec.channelnames[4], "Z");
+  EXPECT_EQ(spec.channelnames[6], "objectId");
+  EXPECT_EQ(spec.get_string_attribute("stirrup:frame"), "12");
+  EXPECT_EQ(spec.channelformat(0), OIIO::TypeDesc::HALF);
+  std::vector<float> px(8 * 4 * 7);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 7, OIIO::TypeDesc::FLOAT, px.data()));
+  in->close();
+  const float* p = &px[(2 * 8 + 3) * 7];
+  EXPECT_EQ(p[0], 2.5f);
+  EXPECT_EQ(p[1], 0.125f);
+  EXPECT_EQ(p[3], 0.5f);
+  EXPECT_EQ(p[4], 1234.5f);
+  EXPECT_EQ(p[5], 0.25f);
+  EXPECT_EQ(p[6], 2.0f);
+  EXPECT_EQ(px[6], -1.0f);
+}
+
+TEST(Image, FailedWriteLeavesNoFile) {
+  const fs::path file = tempDir() / "no_such_dir" / "x.png";
+  EXPECT_THROW(writePng(gradient(4, 4), file), std::runtime_error);
+  EXPECT_FALSE(fs::exists(file));
+  EXPECT_THROW(writePng(Image{}, tempDir() / "empty.png"), std::invalid_argument);
+}
+
+TEST(Image, WriteReplacesAnExistingFileWhole) {
+  const fs::path file = tempDir() / "replace.png";
+  writePng(gradient(64, 64), file);
+  writePng(gradient(8, 8), file);
+  auto in = OIIO::ImageInput::open(file.string());
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().width, 8);
+}
+
+}  // namespace
+}  // namespace stirrup::render

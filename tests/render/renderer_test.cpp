@@ -1,0 +1,254 @@
+#include "render/renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "render/integrator.h"
+#include "tests/render/test_meshes.h"
+
+namespace stirrup::render {
+namespace {
+
+using testing::makeSphere;
+using testing::TestMesh;
+
+// A 30 cm sphere floating 45 cm above the ground, seen from the front-right and above.
+struct SmallScene {
+  RenderSettings settings;
+  Camera camera;
+  TestMesh sphere = makeSphere({0.0f, 45.0f, 0.0f}, 30.0f, 24, 48, {0.6f, 0.35f, 0.2f});
+
+  SmallScene() {
+    settings.width = 64;
+    settings.height = 36;
+    settings.samples_per_pixel = 4;
+    settings.light_samples = 2;
+    settings.ao_samples = 2;
+    settings.sun_direction = {0.3, 0.8, 0.5};
+    camera.position = {0.0, 300.0, 500.0};
+    camera.target = {0.0, 20.0, 0.0};
+    camera.fov_deg = 40.0;
+  }
+
+  Image render(int threads, int frame = 1) {
+    RenderSettings s = settings;
+    s.threads = threads;
+    Renderer r(s);
+    const int mesh = r.addMesh({ObjectId::Horse, sphere.indices, sphere.colors, sphere.positions.size()});
+    r.updateMesh(mesh, sphere.positions, sphere.normals);
+    return r.render(camera, frame);
+  }
+
+  // The pixel a world point projects to.
+  glm::ivec2 pixelOf(glm::dvec3 p) const {
+    const CameraFrame f(camera, settings.width, settings.height);
+    const glm::dvec3 d = p - camera.position;
+    const double z = glm::dot(d, f.forward());
+    const double half_h = std::tan(camera.fov_deg * std::numbers::pi / 360.0);
+    const double half_w = half_h * settings.width / settings.height;
+    const double u = 0.5 + 0.5 * glm::dot(d, f.right()) / z / half_w;
+    const double v = 0.5 - 0.5 * glm::dot(d, f.upward()) / z / half_h;
+    return {int(u * settings.width), int(v * settings.height)};
+  }
+
+  // Where the sun shadow of the sphere's centre falls on the ground.
+  glm::dvec3 shadowCentre() const {
+    const glm::dvec3 sun = glm::normalize(settings.sun_direction);
+    const glm::dvec3 c(0.0, 45.0, 0.0);
+    return c - sun * (c.y / sun.y);
+  }
+};
+
+float luminance(const glm::vec4& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// Mean luminance of a 3 x 3 block, to be robust to the checker and the noise.
+float blockLuminance(const Image& img, glm::ivec2 p) {
+  float sum = 0.0f;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) sum += luminance(img.at(p.x + dx, p.y + dy));
+  return sum / 9.0f;
+}
+
+bool sameBytes(const Image& a, const Image& b) {
+  return a.width == b.width && a.height == b.height && a.rgba.size() == b.rgba.size() &&
+         std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(glm::vec4)) == 0 &&
+         std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0 &&
+         std::memcmp(a.matte.data(), b.matte.data(), a.matte.size() * sizeof(float)) == 0 && a.object_id == b.object_id;
+}
+
+TEST(Renderer, TheSphereCoversTheExpectedPixels) {
+  SmallScene scene;
+  const Image img = scene.render(0);
+  ASSERT_EQ(img.width, 64);
+  ASSERT_EQ(img.height, 36);
+  ASSERT_EQ(img.object_id.size(), img.pixelCount());
+  const glm::ivec2 centre = scene.pixelOf({0.0, 45.0, 0.0});
+  EXPECT_EQ(img.object_id[centre.y * 64 + centre.x], uint32_t(ObjectId::Horse));
+  EXPECT_EQ(img.matte[centre.y * 64 + centre.x], 1.0f);
+  EXPECT_EQ(img.at(centre.x, centre.y).w, 1.0f);
+  // A ground point beside the sphere.
+  const glm::ivec2 beside = scene.pixelOf({-120.0, 0.0, 60.0});
+  EXPECT_EQ(img.object_id[beside.y * 64 + beside.x], uint32_t(ObjectId::Ground));
+  EXPECT_EQ(img.matte[beside.y * 64 + beside.x], 0.0f);
+  EXPECT_EQ(img.at(beside.x, beside.y).w, 1.0f);
+  // Count the character pixels: the sphere's silhouette is a disc of about pi r^2 pixels.
+  const double r_px = 30.0 / (glm::length(scene.camera.position - glm::dvec3(0, 45, 0)) *
+                              std::tan(scene.camera.fov_deg * std::numbers::pi / 360.0)) * 18.0;
+  double covered = 0;
+  for (float m : img.matte) covered += m;
+  EXPECT_NEAR(covered, std::numbers::pi * r_px * r_px, 0.15 * std::numbers::pi * r_px * r_px);
+}
+
+TEST(Renderer, SkyIsAGradientWithZeroAlpha) {
+  SmallScene scene;
+  scene.camera.position = {0.0, 100.0, 500.0};
+  scene.camera.target = {0.0, 140.0, 0.0};  // looking up a little: the top rows are sky
+  const Image img = scene.render(0);
+  EXPECT_EQ(img.at(10, 0).w, 0.0f);
+  EXPECT_EQ(img.object_id[10], kNoObject);
+  EXPECT_TRUE(std::isinf(img.depth[10]));
+  // Bluer toward the zenith: the top row has a larger blue/red ratio than the row at the horizon.
+  const glm::vec4 top = img.at(10, 0);
+  EXPECT_GT(top.z / top.x, 1.2f);
+}
+
+TEST(Renderer, TheSunShadowIsDarkerThanLitGround) {
+  SmallScene scene;
+  const Image img = scene.render(0);
+  const glm::dvec3 shadow = scene.shadowCentre();
+  const glm::ivec2 in_shadow = scene.pixelOf(shadow);
+  const glm::ivec2 in_sun = scene.pixelOf({-shadow.x - 100.0, 0.0, shadow.z});  // same depth, other side
+  ASSERT_EQ(img.object_id[in_shadow.y * 64 + in_shadow.x], uint32_t(ObjectId::Ground));
+  ASSERT_EQ(img.object_id[in_sun.y * 64 + in_sun.x], uint32_t(ObjectId::Ground));
+  EXPECT_LT(blockLuminance(img, in_shadow), 0.5f * blockLuminance(img, in_sun));
+}
+
+TEST(Renderer, SkyOcclusionDarkensTheGroundUnderTheObject) {
+  SmallScene scene;
+  scene.settings.sun_strength = 0.0f;  // sky light only
+  scene.settings.ao_samples = 8;
+  const Image img = scene.render(0);
+  const float under = blockLuminance(img, scene.pixelOf({0.0, 0.0, 32.0}));  // just in front of the contact point
+  const float open = blockLuminance(img, scene.pixelOf({-150.0, 0.0, 32.0}));
+  EXPECT_LT(under, 0.85f * open);
+  EXPECT_GT(under, 0.0f);
+}
+
+TEST(Renderer, TheSunlitSideIsBrighterThanTheShadedSide) {
+  SmallScene scene;
+  scene.settings.sun_direction = {1.0, 0.3, 0.0};  // from the right of the picture
+  scene.camera.position = {0.0, 45.0, 500.0};
+  scene.camera.target = {0.0, 45.0, 0.0};
+  const Image img = scene.render(0);
+  const glm::ivec2 right = scene.pixelOf({20.0, 45.0, 22.0}), left = scene.pixelOf({-20.0, 45.0, 22.0});
+  EXPECT_GT(luminance(img.at(right.x, right.y)), 2.0f * luminance(img.at(left.x, left.y)));
+}
+
+TEST(Renderer, BytesDoNotDependOnTheThreadCount) {
+  SmallScene scene;
+  const Image one = scene.render(1), all = scene.render(0), two = scene.render(2), three = scene.render(3);
+  EXPECT_TRUE(sameBytes(one, all));
+  EXPECT_TRUE(sameBytes(one, two));
+  EXPECT_TRUE(sameBytes(one, three));
+}
+
+TEST(Renderer, RenderingTwiceGivesTheSameBytes) {
+  SmallScene scene;
+  RenderSettings s = scene.settings;
+  Renderer r(s);
+  const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+  const Image a = r.render(scene.camera, 3);
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);  // a new commit of the same vertices
+  const Image b = r.render(scene.camera, 3);
+  EXPECT_TRUE(sameBytes(a, b));
+  EXPECT_TRUE(sameBytes(a, scene.render(0, 3)));  // and a fresh renderer agrees
+}
+
+TEST(Renderer, AnotherFrameMovesOnlyTheNoise) {
+  SmallScene scene;
+  const Image a = scene.render(0, 1), b = scene.render(0, 2);
+  double mean_a = 0, mean_b = 0;
+  int differing = 0;
+  for (size_t i = 0; i < a.pixelCount(); ++i) {
+    mean_a += luminance(a.rgba[i]);
+    mean_b += luminance(b.rgba[i]);
+    differing += a.rgba[i] != b.rgba[i];
+  }
+  EXPECT_GT(differing, 0);  // the sampling pattern changed...
+  EXPECT_NEAR(mean_a / a.pixelCount(), mean_b / b.pixelCount(), 0.01);  // ...the picture did not
+  // Open sky has no sampling noise beyond the filter: frames agree to float rounding there.
+  EXPECT_EQ(a.object_id[0], b.object_id[0]);
+}
+
+TEST(Renderer, MovingAMeshMovesItsPixels) {
+  SmallScene scene;
+  Renderer r(scene.settings);
+  const int mesh = r.addMesh({ObjectId::Rider, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+  const glm::ivec2 centre = scene.pixelOf({0.0, 45.0, 0.0});
+  EXPECT_EQ(r.render(scene.camera, 1).object_id[centre.y * 64 + centre.x], uint32_t(ObjectId::Rider));
+  std::vector<glm::vec3> moved = scene.sphere.positions;
+  for (glm::vec3& p : moved) p.x += 150.0f;
+  r.updateMesh(mesh, moved, scene.sphere.normals);
+  const Image img = r.render(scene.camera, 1);
+  EXPECT_EQ(img.object_id[centre.y * 64 + centre.x], uint32_t(ObjectId::Ground));
+  const glm::ivec2 now = scene.pixelOf({150.0, 45.0, 0.0});
+  EXPECT_EQ(img.object_id[now.y * 64 + now.x], uint32_t(ObjectId::Rider));
+}
+
+TEST(Renderer, AllBvhUpdateModesSeeTheSameScene) {
+  SmallScene scene;
+  const Image reference = scene.render(0);
+  for (BvhUpdate mode : {BvhUpdate::RebuildPerMesh, BvhUpdate::Refit}) {
+    scene.settings.bvh_update = mode;
+    const Image img = scene.render(0);
+    EXPECT_EQ(img.object_id, reference.object_id);
+    double diff = 0;
+    for (size_t i = 0; i < img.pixelCount(); ++i) diff += std::abs(luminance(img.rgba[i]) - luminance(reference.rgba[i]));
+    EXPECT_LT(diff / img.pixelCount(), 1e-3);
+  }
+}
+
+TEST(Renderer, RejectsInconsistentInput) {
+  SmallScene scene;
+  Renderer r(scene.settings);
+  const size_t n = scene.sphere.positions.size();
+  EXPECT_THROW(r.addMesh({ObjectId::Horse, {0, 1}, {}, 3}), std::invalid_argument);         // partial triangle
+  EXPECT_THROW(r.addMesh({ObjectId::Horse, {0, 1, 3}, {}, 3}), std::invalid_argument);      // index out of range
+  EXPECT_THROW(r.addMesh({ObjectId::Horse, {0, 1, 2}, {{1, 1, 1}}, 3}), std::invalid_argument);  // colour count
+  const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, {}, n});
+  EXPECT_THROW(r.updateMesh(mesh, std::span(scene.sphere.positions).first(n - 1), scene.sphere.normals),
+               std::invalid_argument);
+  EXPECT_THROW(r.updateMesh(mesh, scene.sphere.positions, std::span(scene.sphere.normals).first(n - 1)),
+               std::invalid_argument);
+  EXPECT_THROW(r.updateMesh(mesh + 1, scene.sphere.positions, scene.sphere.normals), std::invalid_argument);
+  RenderSettings bad;
+  bad.samples_per_pixel = 0;
+  EXPECT_THROW(Renderer{bad}, std::invalid_argument);
+  bad = {};
+  bad.sun_direction = {0, 0, 0};
+  EXPECT_THROW(Renderer{bad}, std::invalid_argument);
+}
+
+TEST(Renderer, GroundCheckerIsFilteredToItsMean) {
+  EXPECT_EQ(filteredChecker(0.5f, 0.5f, 0.0f), 0.0f);
+  EXPECT_EQ(filteredChecker(1.5f, 0.5f, 0.0f), 1.0f);
+  EXPECT_EQ(filteredChecker(1.5f, 1.5f, 0.0f), 0.0f);
+  EXPECT_NEAR(filteredChecker(1.5f, 0.5f, 0.5f), 1.0f, 1e-6f);  // the box stays inside one square
+  EXPECT_NEAR(filteredChecker(1.0f, 0.5f, 1.0f), 0.5f, 1e-6f);  // straddles an edge evenly
+  EXPECT_EQ(filteredChecker(12.3f, 45.6f, 3.0f), 0.5f);          // far away: the mean
+  EXPECT_EQ(filteredChecker(1999.5f, 0.5f, 0.0f), 1.0f);   // far from the origin, still sharp
+  EXPECT_EQ(filteredChecker(-0.5f, 0.5f, 0.0f), 1.0f);
+}
+
+}  // namespace
+}  // namespace stirrup::render

@@ -1,0 +1,231 @@
+#include "rig/pose.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "rig/horse_character.h"
+#include "rig/rider_character.h"
+#include "rig/skin.h"
+
+namespace stirrup::rig {
+namespace {
+
+const Character& horse() {
+  static const Character c = buildDefaultHorse();
+  return c;
+}
+const Character& rider() {
+  static const Character c = buildDefaultRider();
+  return c;
+}
+glm::vec3 pos(const std::vector<glm::mat4>& w, int j) { return glm::vec3(w[j][3]); }
+glm::vec3 at(const Character& c, const std::vector<glm::mat4>& w, const char* role) { return pos(w, c.role(role)); }
+bool finite(const std::vector<glm::mat4>& w) {
+  for (const glm::mat4& m : w)
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 4; ++k)
+        if (!std::isfinite(m[i][k])) return false;
+  return true;
+}
+
+// How far the middle joint sits ahead (+X) of the line from the chain root to the fetlock.
+float middleAheadOfChord(const std::vector<glm::mat4>& w, const char* leg) {
+  const std::string n = leg;
+  const glm::vec3 a = at(horse(), w, (n + "Upper").c_str()), m = at(horse(), w, (n + "Middle").c_str());
+  const glm::vec3 b = at(horse(), w, (n + "Fetlock").c_str());
+  const float t = glm::dot(m - a, b - a) / glm::dot(b - a, b - a);
+  return (m - (a + (b - a) * t)).x;
+}
+
+TEST(PoseHorse, RestPoseIsTheBindPoseWithHoovesOnTheGround) {
+  const Character& h = horse();
+  const std::vector<glm::mat4> w = poseHorse(h, HorseFrame{});
+  ASSERT_EQ(w.size(), h.skeleton.size());
+  const std::vector<glm::mat4> rest = restWorlds(h.skeleton);
+  for (std::size_t j = 0; j < w.size(); ++j)
+    EXPECT_LT(glm::length(pos(w, int(j)) - pos(rest, int(j))), 0.1f) << h.skeleton.joints[j].name;
+  for (const char* leg : {"lfHoof", "rfHoof", "lbHoof", "rbHoof"}) {
+    EXPECT_NEAR(at(h, w, leg).y, 0.0f, 0.1f) << leg;
+    EXPECT_LT(glm::length(at(h, w, leg) - h.skeleton.restPosition(h.role(leg))), 0.1f);
+  }
+  // Hooves under the shoulders and hips: fore ahead of hind, left at -Z.
+  EXPECT_GT(at(h, w, "lfHoof").x, at(h, w, "lbHoof").x + 80.0f);
+  EXPECT_LT(at(h, w, "lfHoof").z, 0.0f);
+  EXPECT_GT(at(h, w, "rfHoof").z, 0.0f);
+}
+
+TEST(PoseHorse, ProportionsOfAHorse) {
+  const Character& h = horse();
+  const float withers = h.skeleton.restPosition(h.role("withers")).y;
+  EXPECT_GE(withers, 150.0f);
+  EXPECT_LE(withers, 170.0f);
+  glm::vec3 lo(1e9f), hi(-1e9f);
+  float top_at_withers = 0.0f;
+  for (const glm::vec3& p : h.mesh.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+    if (std::abs(p.x - h.skeleton.restPosition(h.role("withers")).x) < 3.0f && std::abs(p.z) < 3.0f)
+      top_at_withers = std::max(top_at_withers, p.y);
+  }
+  EXPECT_NEAR(top_at_withers, withers, 10.0f);  // the mesh's withers, not just the joint
+  EXPECT_NEAR(lo.y, 0.0f, 0.5f);
+  EXPECT_GT(hi.x - lo.x, 220.0f);
+  EXPECT_LT(hi.x - lo.x, 270.0f);
+}
+
+TEST(PoseHorse, HoofChannelsMoveHoovesAndLegsBendTheRightWay) {
+  const Character& h = horse();
+  HorseFrame f;
+  f.travel_cm = 100.0;
+  f.controls[HorseChannel::lfHoofTy] = 25.0;
+  f.controls[HorseChannel::lfHoofTx] = 5.0;
+  f.controls[HorseChannel::lbHoofTy] = 25.0;
+  f.controls[HorseChannel::rbHoofTz] = 3.0;
+  const std::vector<glm::mat4> w = poseHorse(h, f);
+  ASSERT_TRUE(finite(w));
+  const glm::vec3 rest_lf = h.skeleton.restPosition(h.role("lfHoof"));
+  EXPECT_LT(glm::length(at(h, w, "lfHoof") - (rest_lf + glm::vec3(105, 25, 0))), 0.2f);
+  EXPECT_NEAR(at(h, w, "rbHoof").z - h.skeleton.restPosition(h.role("rbHoof")).z, 3.0f, 0.2f);
+  EXPECT_NEAR(at(h, w, "rfHoof").y, 0.0f, 0.1f);
+  // A lifted foreleg folds at the knee, which points forward; a lifted hind leg's hock points back.
+  EXPECT_GT(middleAheadOfChord(w, "lf"), 3.0f);
+  EXPECT_LT(middleAheadOfChord(w, "lb"), -3.0f);
+}
+
+TEST(PoseHorse, BodyChannelsFollowTheContractSigns) {
+  const Character& h = horse();
+  const std::vector<glm::mat4> rest = poseHorse(h, HorseFrame{});
+  auto posed = [&](HorseChannel c, double v) {
+    HorseFrame f;
+    f.controls[c] = v;
+    return poseHorse(h, f);
+  };
+  EXPECT_GT(at(h, posed(HorseChannel::rearPivotRz, 10), "withers").y, at(h, rest, "withers").y + 5.0f);
+  EXPECT_GT(at(h, posed(HorseChannel::rearPivotRx, 10), "withers").z, 2.0f);  // rolls to its right
+  EXPECT_GT(at(h, posed(HorseChannel::rearPivotRy, 10), "head").z, 10.0f);    // yaws to the right
+  EXPECT_NEAR(at(h, posed(HorseChannel::rearPivotTy, 7), "root").y, at(h, rest, "root").y + 7.0f, 1e-3f);
+  EXPECT_GT(at(h, posed(HorseChannel::backMidRz, 6), "backMid").y, at(h, rest, "backMid").y + 1.0f);
+  // Hooves stay planted while the body moves.
+  const std::vector<glm::mat4> w = posed(HorseChannel::rearPivotTy, -5);
+  EXPECT_NEAR(at(h, w, "lfHoof").y, 0.0f, 0.1f);
+  HorseFrame f;
+  f.neck_rz = 10;
+  f.head_rz = -10;
+  f.tail_rz = 20;
+  EXPECT_GT(at(h, poseHorse(h, f), "head").y, at(h, rest, "head").y);
+}
+
+TEST(PoseHorse, ExtremeValuesStayFinite) {
+  HorseFrame f;
+  for (std::size_t i = 0; i < kHorseChannelCount; ++i) f.controls.value[i] = (i % 2 ? 1 : -1) * 400.0;
+  EXPECT_TRUE(finite(poseHorse(horse(), f)));
+}
+
+TEST(PoseRider, AtRestSeatedInTheSaddleWithFeetInTheStirrupsAndHandsOnTheReins) {
+  const Character& h = horse();
+  const Character& r = rider();
+  const std::vector<glm::mat4> hw = poseHorse(h, HorseFrame{});
+  const std::vector<glm::mat4> rw = poseRider(r, h, hw, RiderChannels{}, 2.54);
+  ASSERT_EQ(rw.size(), r.skeleton.size());
+  const glm::vec3 seat = at(h, hw, "saddle");
+  const glm::vec3 pelvis = at(r, rw, "pelvis");
+  EXPECT_LT(std::abs(pelvis.x - seat.x), 20.0f);  // within the seat's length
+  EXPECT_LT(std::abs(pelvis.z - seat.z), 1e-3f);
+  EXPECT_GT(pelvis.y, seat.y);
+  EXPECT_LT(pelvis.y, seat.y + 15.0f);
+  EXPECT_LT(glm::length(at(r, rw, "lBall") - at(h, hw, "lStirrup")), 0.5f);
+  EXPECT_LT(glm::length(at(r, rw, "rBall") - at(h, hw, "rStirrup")), 0.5f);
+  // Rest pose reproduces the bind pose (in saddle space).
+  for (std::size_t j = 0; j < rw.size(); ++j)
+    EXPECT_LT(glm::length(pos(rw, int(j)) - (seat + r.skeleton.restPosition(int(j)))), 0.1f)
+        << r.skeleton.joints[j].name;
+  // Head above the seat by a seated 170 cm person's height, hands ahead of the seat.
+  EXPECT_GT(at(r, rw, "head").y - seat.y, 55.0f);
+  EXPECT_GT(at(r, rw, "lWrist").x, seat.x + 15.0f);
+}
+
+TEST(PoseRider, NothingOfTheRiderPassesIntoTheHorsesTrunk) {
+  const Character& h = horse();
+  const Character& r = rider();
+  const HorseParams hp;
+  const std::vector<glm::mat4> hw = poseHorse(h, HorseFrame{});
+  const std::vector<glm::mat4> rw = poseRider(r, h, hw, RiderChannels{}, 2.54);
+  std::vector<glm::vec3> p, n;
+  skinMesh(r.mesh, r.skeleton, rw, p, n);
+  int inside = 0;
+  for (const glm::vec3& v : p) {
+    const glm::vec3 b = (v - hp.barrel_center) / hp.barrel_radii;
+    const glm::vec3 c = (v - hp.chest_center) / hp.chest_radii;
+    inside += glm::dot(b, b) < 1.0f || glm::dot(c, c) < 1.0f;
+  }
+  EXPECT_EQ(inside, 0);
+}
+
+TEST(PoseRider, CogLiftsThePelvisByExactlyTheRiderUnit) {
+  const Character& h = horse();
+  const Character& r = rider();
+  HorseFrame f;
+  f.travel_cm = 321.0;
+  f.controls[HorseChannel::rearPivotTy] = 4.0;
+  const std::vector<glm::mat4> hw = poseHorse(h, f);
+  RiderChannels ch;
+  const glm::vec3 rest = at(r, poseRider(r, h, hw, ch, 2.54), "pelvis");
+  ch[RiderChannel::cogTy] = 1.5;
+  ch[RiderChannel::cogTx] = 0.5;
+  const glm::vec3 lifted = at(r, poseRider(r, h, hw, ch, 2.54), "pelvis");
+  EXPECT_NEAR(lifted.y - rest.y, 1.5 * 2.54, 1e-3);
+  EXPECT_NEAR(lifted.x - rest.x, 0.5 * 2.54, 1e-3);
+}
+
+TEST(PoseRider, ChannelsFollowTheContractSigns) {
+  const Character& h = horse();
+  const Character& r = rider();
+  const std::vector<glm::mat4> hw = poseHorse(h, HorseFrame{});
+  const std::vector<glm::mat4> rest = poseRider(r, h, hw, RiderChannels{}, 1.0);
+  auto posed = [&](RiderChannel c, double v) {
+    RiderChannels ch;
+    ch[c] = v;
+    return poseRider(r, h, hw, ch, 1.0);
+  };
+  EXPECT_GT(at(r, posed(RiderChannel::lowerBackRz, 15), "head").x, at(r, rest, "head").x + 5.0f);
+  EXPECT_GT(at(r, posed(RiderChannel::waistRz, 15), "head").x, at(r, rest, "head").x + 3.0f);
+  EXPECT_GT(at(r, posed(RiderChannel::lowerBackRy, 10), "head").z, 3.0f);  // leans to her right
+  EXPECT_GT(at(r, posed(RiderChannel::hipRy, 10), "head").z, 3.0f);        // as rearPivot.rx +
+  EXPECT_NEAR(at(r, posed(RiderChannel::neckTy, 2), "head").y, at(r, rest, "head").y + 2.0f, 1e-3f);
+  EXPECT_GT(at(r, posed(RiderChannel::lWristTy, 5), "lWrist").y, at(r, rest, "lWrist").y + 4.9f);
+  EXPECT_GT(at(r, posed(RiderChannel::rWristTx, 5), "rWrist").x, at(r, rest, "rWrist").x + 4.9f);
+  EXPECT_LT(at(r, posed(RiderChannel::lFootTz, 4), "lBall").z, at(r, rest, "lBall").z - 3.9f);  // away from belly
+  EXPECT_GT(at(r, posed(RiderChannel::rFootTz, 4), "rBall").z, at(r, rest, "rBall").z + 3.9f);
+  EXPECT_GT(at(r, posed(RiderChannel::lFootTx, 4), "lBall").x, at(r, rest, "lBall").x + 3.9f);
+  EXPECT_LT(at(r, posed(RiderChannel::lKneeTz, 4), "lKnee").z, at(r, rest, "lKnee").z - 1.0f);
+  EXPECT_GT(at(r, posed(RiderChannel::rKneeTz, 4), "rKnee").z, at(r, rest, "rKnee").z + 1.0f);
+  // Head pitches forward: a point ahead of the head drops.
+  const auto head_fwd = [&](const std::vector<glm::mat4>& w) {
+    return glm::vec3(w[r.role("head")] * r.skeleton.joints[r.role("head")].inverse_bind *
+                     glm::vec4(r.skeleton.restPosition(r.role("head")) + glm::vec3(10, 10, 0), 1.0f));
+  };
+  EXPECT_LT(head_fwd(posed(RiderChannel::headRz, 20)).y, head_fwd(rest).y - 1.0f);
+  // Toe up: the ball stays, the ankle (heel) drops.
+  EXPECT_LT(at(r, posed(RiderChannel::lFootRz, 15), "lAnkle").y, at(r, rest, "lAnkle").y - 1.0f);
+  // Hair and cloth swing.
+  EXPECT_GT(glm::length(at(r, posed(RiderChannel::hairUp, 30), "braid3") - at(r, rest, "braid3")), 1.0f);
+  RiderChannels wild;
+  for (std::size_t i = 0; i < kRiderChannelCount; ++i) wild.value[i] = (i % 2 ? 1 : -1) * 300.0;
+  EXPECT_TRUE(finite(poseRider(r, h, hw, wild, 2.54)));
+}
+
+TEST(PoseRider, StirrupsFollowTheFeet) {
+  const Character& h = horse();
+  std::vector<glm::mat4> hw = poseHorse(h, HorseFrame{});
+  const glm::vec3 before = at(h, hw, "lStirrup");
+  RiderChannels ch;
+  ch[RiderChannel::lFootTx] = 2.0;
+  placeStirrups(h, hw, ch, 2.54);
+  EXPECT_NEAR(at(h, hw, "lStirrup").x - before.x, 5.08f, 1e-3f);
+  const std::vector<glm::mat4> rw = poseRider(rider(), h, hw, ch, 2.54);
+  EXPECT_LT(glm::length(at(rider(), rw, "lBall") - at(h, hw, "lStirrup")), 0.5f);
+}
+
+}  // namespace
+}  // namespace stirrup::rig

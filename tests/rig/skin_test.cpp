@@ -1,0 +1,94 @@
+#include "rig/skin.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "rig/horse_character.h"
+#include "rig/rider_character.h"
+
+namespace stirrup::rig {
+namespace {
+
+Skeleton twoJoints() {
+  Skeleton s;
+  const int a = s.addJoint("a", -1, glm::translate(glm::mat4(1.0f), glm::vec3(0, 10, 0)));
+  s.addJoint("b", a, glm::translate(glm::mat4(1.0f), glm::vec3(20, 0, 0)));
+  return s;
+}
+
+SkinnedMesh oneVertex(glm::vec3 p, glm::vec3 n, glm::u16vec4 joints, glm::vec4 weights) {
+  SkinnedMesh m;
+  m.positions = {p};
+  m.normals = {n};
+  m.colors = {glm::vec3(1)};
+  m.joints = {joints};
+  m.weights = {weights};
+  return m;
+}
+
+TEST(Skin, VertexBoundToOneJointFollowsItExactly) {
+  const Skeleton s = twoJoints();
+  const SkinnedMesh m = oneVertex({25, 12, 3}, glm::normalize(glm::vec3(0, 1, 1)), {1, 0, 0, 0}, {1, 0, 0, 0});
+  std::vector<glm::mat4> world = restWorlds(s);
+  world[1] = glm::translate(glm::mat4(1.0f), glm::vec3(5, -7, 40)) *
+             glm::rotate(glm::mat4(1.0f), glm::radians(70.0f), glm::normalize(glm::vec3(1, 2, 3)));
+  std::vector<glm::vec3> p, n;
+  skinMesh(m, s, world, p, n);
+  const glm::mat4 motion = world[1] * s.joints[1].inverse_bind;
+  const glm::vec3 expected = glm::vec3(motion * glm::vec4(m.positions[0], 1.0f));
+  const glm::vec3 expected_n = glm::normalize(glm::mat3(motion) * m.normals[0]);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_NEAR(glm::length(p[0] - expected), 0.0f, 1e-4f);
+  EXPECT_NEAR(glm::length(n[0] - expected_n), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(n[0]), 1.0f, 1e-5f);
+}
+
+TEST(Skin, RestPoseLeavesTheMeshUnchangedAndBlendsAreLinear) {
+  const Skeleton s = twoJoints();
+  const SkinnedMesh m = oneVertex({10, 10, 0}, {0, 1, 0}, {0, 1, 0, 0}, {0.25f, 0.75f, 0, 0});
+  std::vector<glm::mat4> world = restWorlds(s);
+  std::vector<glm::vec3> p, n;
+  skinMesh(m, s, world, p, n);
+  EXPECT_NEAR(glm::length(p[0] - m.positions[0]), 0.0f, 1e-4f);
+  // Translating only joint b by 8 moves a 75 % b vertex by 6.
+  world[1] = glm::translate(glm::mat4(1.0f), glm::vec3(0, 8, 0)) * world[1];
+  skinMesh(m, s, world, p, n);
+  EXPECT_NEAR(p[0].y - m.positions[0].y, 6.0f, 1e-4f);
+}
+
+TEST(Skin, RejectsWrongJointCount) {
+  const Skeleton s = twoJoints();
+  const SkinnedMesh m = oneVertex({0, 0, 0}, {0, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0});
+  std::vector<glm::mat4> world(1);
+  std::vector<glm::vec3> p, n;
+  EXPECT_THROW(skinMesh(m, s, world, p, n), std::invalid_argument);
+}
+
+void expectValidWeights(const Character& c) {
+  const SkinnedMesh& m = c.mesh;
+  ASSERT_EQ(m.joints.size(), m.vertexCount());
+  ASSERT_EQ(m.weights.size(), m.vertexCount());
+  for (std::size_t v = 0; v < m.vertexCount(); ++v) {
+    float sum = 0.0f;
+    int influences = 0;
+    for (int i = 0; i < 4; ++i) {
+      ASSERT_GE(m.weights[v][i], 0.0f);
+      ASSERT_LT(m.joints[v][i], c.skeleton.size());
+      sum += m.weights[v][i];
+      influences += m.weights[v][i] > 0.0f;
+    }
+    ASSERT_NEAR(sum, 1.0f, 1e-4f) << c.name << " vertex " << v;
+    ASSERT_GE(influences, 1);
+    ASSERT_LE(influences, kMaxInfluences);
+  }
+}
+
+TEST(Skin, DefaultCharactersHaveNormalisedWeightsOfAtMostFourJoints) {
+  expectValidWeights(buildDefaultHorse());
+  expectValidWeights(buildDefaultRider());
+}
+
+}  // namespace
+}  // namespace stirrup::rig
