@@ -16,8 +16,8 @@
 
 namespace stirrup::render {
 
-// How the acceleration structure follows deforming meshes. Measured on 2 cores with a 100k-triangle
-// deforming mesh (see the report in renderer.h): Rebuild is the default.
+// How the acceleration structure follows deforming meshes. Measured with a 100k-triangle deforming
+// mesh (numbers in renderer.h): Rebuild is the default, for determinism per frame.
 enum class BvhUpdate {
   // One MEDIUM-quality (SAH) BVH over every triangle, rebuilt at each commit. Deterministic: the BVH
   // is a function of the current vertices only, never of earlier frames.

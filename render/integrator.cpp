@@ -5,7 +5,6 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
-#include <cstdlib>
 
 #include <glm/geometric.hpp>
 
@@ -96,42 +95,22 @@ bool Integrator::mayHitCharacters(const glm::vec3& origin, const glm::vec3& dire
 
 unsigned Integrator::occluded4(const glm::vec3& origin, const glm::vec3* directions, const float* t_far,
                                int count) const {
-  alignas(16) int valid[4] = {0, 0, 0, 0};
-  alignas(16) RTCRay4 rays;
-  bool any = false;
-  for (int k = 0; k < 4; ++k) {
-    const bool live = k < count && mayHitCharacters(origin, directions[k], t_far[k]);
-    valid[k] = live ? -1 : 0;
-    any |= live;
-    const glm::vec3 d = k < count ? directions[k] : glm::vec3(0.0f, 1.0f, 0.0f);
-    rays.org_x[k] = origin.x, rays.org_y[k] = origin.y, rays.org_z[k] = origin.z;
-    rays.dir_x[k] = d.x, rays.dir_y[k] = d.y, rays.dir_z[k] = d.z;
-    rays.tnear[k] = 0.0f;
-    rays.tfar[k] = live ? t_far[k] : 0.0f;
-    rays.time[k] = 0.0f;
-    rays.mask[k] = 0xffffffffu;
-    rays.id[k] = unsigned(k);
-    rays.flags[k] = 0;
-  }
-  if (!any) return 0;
-  if (std::getenv("XX_SINGLE")) {
-    unsigned b = 0;
-    for (int k = 0; k < count; ++k) {
-      if (!valid[k]) continue;
-      RTCRay r; r.org_x = origin.x; r.org_y = origin.y; r.org_z = origin.z; r.dir_x = rays.dir_x[k]; r.dir_y = rays.dir_y[k]; r.dir_z = rays.dir_z[k];
-      r.tnear = 0; r.tfar = rays.tfar[k]; r.time = 0; r.mask = ~0u; r.id = 0; r.flags = 0;
-      RTCIntersectContext c; rtcInitIntersectContext(&c); rtcOccluded1(characters_, &c, &r);
-      if (r.tfar < 0) b |= 1u << k;
-    }
-    return b;
-  }
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  rtcOccluded4(valid, characters_, &context, &rays);
   unsigned blocked = 0;
   for (int k = 0; k < count; ++k) {
-    if (valid[k] && rays.tfar[k] < 0.0f) blocked |= 1u << k;  // Embree sets tfar to -inf on a hit
+    if (!mayHitCharacters(origin, directions[k], t_far[k])) continue;
+    RTCRay ray;
+    ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
+    ray.dir_x = directions[k].x, ray.dir_y = directions[k].y, ray.dir_z = directions[k].z;
+    ray.tnear = 0.0f;
+    ray.tfar = t_far[k];
+    ray.time = 0.0f;
+    ray.mask = 0xffffffffu;
+    ray.id = 0;
+    ray.flags = 0;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1(characters_, &context, &ray);
+    if (ray.tfar < 0.0f) blocked |= 1u << k;  // Embree sets tfar to -inf on a hit
   }
   return blocked;
 }
@@ -229,8 +208,9 @@ Integrator::Sample Integrator::traceCameraSample(const CameraFrame& camera, doub
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  // The ground first; its distance then bounds the search through the characters.
-  rtcIntersect1(ground_, &context, &rh);
+  // The ground first; its distance then bounds the search through the characters. A ray from above
+  // the ground heading level or up cannot meet it (half the rays of a typical view).
+  if (!(origin.y > 0.0f && dir.y >= 0.0f)) rtcIntersect1(ground_, &context, &rh);
   const bool ground_hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(characters_, &context, &rh);

@@ -70,9 +70,10 @@ class Integrator {
                            const PixelPoints& points) const;
   glm::vec3 shade(const Surface& s, uint32_t sample, const PixelPoints& points) const;
   bool mayHitCharacters(const glm::vec3& origin, const glm::vec3& direction, float t_far) const;
-  // Occlusion of up to 4 rays from one origin, traced as one Embree packet (they are coherent: all
-  // sun rays, or all sky rays of one point). Rays with t_far <= 0 are skipped and count as open.
-  // Returns a bit per ray, set when blocked.
+  // Occlusion of up to 4 rays from one origin: a bit per ray, set when blocked. Rays with t_far <= 0
+  // or that miss the characters' bounds are not traced and count as open. Single rtcOccluded1 rays:
+  // 4-wide rtcOccluded4 packets of the same rays measured no faster (2.99 vs 2.95 s CPU per
+  // review-quality frame of the 100k-triangle stand-in).
   unsigned occluded4(const glm::vec3& origin, const glm::vec3* directions, const float* t_far, int count) const;
   bool sunMayBeBlocked(const glm::vec3& origin) const;
   float distanceToCharacters(const glm::vec3& p) const;

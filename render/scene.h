@@ -40,8 +40,8 @@ struct SceneSpec {
   int width = 640;
   int height = 360;
   int samples = 16;                  // per pixel, stratified
-  int light_samples = 4;
-  int ao_samples = 4;
+  int light_samples = 1;            // sun shadow rays per camera sample
+  int ao_samples = 1;               // sky rays per camera sample
   std::array<double, 3> sun_direction = {0.45, 0.75, 0.5};  // toward the sun, from the camera's side
   double sun_angular_radius_deg = 2.0;
   std::vector<CameraSpec> cameras = {CameraSpec{}};

@@ -58,6 +58,7 @@ double parseNumber(std::string_view text, const std::filesystem::path& file, std
 }
 
 std::string formatNumber(double v) {
+  if (v == 0) v = 0;  // "-0" (e.g. -1 x 0) reads as noise in a CSV
   char buf[32];
   const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
   return ec == std::errc() ? std::string(buf, ptr) : std::to_string(v);

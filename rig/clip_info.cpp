@@ -86,8 +86,9 @@ ClipInfo measureClip(const Clip& clip, const ClipInfoOptions& o) {
       double phase = std::atan2(sy, sx) / (2 * std::numbers::pi);
       if (phase < -1e-9) phase += 1.0;
       info.hooves[h].touchdown_phase = std::abs(phase) < 1e-9 ? 0.0 : phase;
+      // Sample intervals with the hoof down at both ends: a stance of N ms counts N, not N + 1.
       int d = 0;
-      for (int i = i0; i < i1; ++i) d += down[i][h];
+      for (int i = i0; i < i1; ++i) d += down[i][h] && down[i + 1][h];
       info.hooves[h].duty_factor = double(d) / std::max(1, i1 - i0);
     }
     info.footfall_order = {0, 1, 2, 3};

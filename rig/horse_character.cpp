@@ -1,11 +1,14 @@
 #include "rig/horse_character.h"
 
 #include <cmath>
+#include <initializer_list>
+#include <span>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "rig/implicit_body.h"
+#include "rig/tube.h"
 
 namespace stirrup::rig {
 namespace {
@@ -25,6 +28,7 @@ ImplicitPrimitive barrelShell(const HorseParams& p, float offset, glm::vec3 clip
   ImplicitPrimitive s = ellipsoid(p.barrel_center, p.barrel_radii + offset, joint, color, 0.3f);
   s.clip_min = clip_min;
   s.clip_max = clip_max;
+  s.clip_round = 2.0f;
   return s;
 }
 
@@ -134,8 +138,10 @@ Character buildHorse(const HorseParams& p) {
       body.add(taperedCapsule(upper, middle + glm::vec3(2.0f, 3.0f, 0.0f), p.gaskin_radius, p.hock_radius * 0.9f,
                               j_upper, p.coat, 5.0f));
       // Hamstring: fills the gaskin from the point of the buttock down to the point of the hock.
-      body.add(taperedCapsule(glm::vec3(p.buttock_center.x - 6.0f, p.buttock_center.y - 14.0f, top.z * 0.8f),
-                              middle + glm::vec3(-3.0f, 8.0f, 0.0f), 11.0f, 4.0f, j_upper, p.coat, 8.0f));
+      body.add(taperedCapsule(glm::vec3(p.buttock_center.x - 4.0f, p.buttock_center.y - 10.0f, top.z * 0.8f),
+                              middle + glm::vec3(-2.0f, 4.0f, 0.0f), 11.0f, 4.5f, j_upper, p.coat, 10.0f));
+      body.add(ellipsoid(0.55f * upper + 0.45f * middle + glm::vec3(-5.0f, 4.0f, 0.0f), {10.5f, 18.0f, 8.5f}, j_upper,
+                         p.coat, 8.0f, middle - upper));
       body.add(ellipsoid(middle + glm::vec3(-1.0f, 0.0f, 0.0f),
                          glm::vec3(p.hock_radius * 1.2f, p.hock_radius * 1.2f, p.hock_radius * 0.9f), j_middle,
                          p.points, 2.0f));
@@ -164,45 +170,52 @@ Character buildHorse(const HorseParams& p) {
   body.add(ellipsoid(seat + glm::vec3(22.0f, 1.0f, 0.0f), {7.0f, 7.0f, 10.0f}, saddle, p.leather, 3.0f));
   body.add(ellipsoid(seat + glm::vec3(-22.0f, 3.0f, 0.0f), {5.5f, 8.0f, 13.0f}, saddle, p.leather, 3.0f,
                      {1.0f, 0.5f, 0.0f}));
-  for (float side : {-1.0f, 1.0f}) {
-    const int js = side < 0 ? l_stirrup : r_stirrup;
-    const glm::vec3 tread = s.restPosition(js);
-    const float flap_z = (p.barrel_radii.z + 4.0f) * side;
-    body.add(taperedCapsule({seat.x, seat.y - 34.0f, flap_z}, tread + glm::vec3(0.0f, 11.0f, 0.0f), 1.1f, 1.1f, js,
-                            p.leather, 0.3f));
-    const glm::vec3 a = tread + glm::vec3(0.0f, 0.0f, -5.0f), b = tread + glm::vec3(0.0f, 0.0f, 5.0f);
-    const glm::vec3 top = tread + glm::vec3(0.0f, 11.0f, 0.0f);
-    body.add(taperedCapsule(a, b, 1.3f, 1.3f, js, p.metal, 0.3f));
-    body.add(taperedCapsule(a, top, 0.9f, 0.9f, js, p.metal, 0.3f));
-    body.add(taperedCapsule(b, top, 0.9f, 0.9f, js, p.metal, 0.3f));
-  }
-
-  // Bridle and reins.
-  const float hz = p.head_radius - 0.5f;
-  const glm::vec3 bit_l = p.muzzle + glm::vec3(-7.0f, -2.0f, -7.5f), bit_r = mirrorZ(bit_l, -1.0f);
-  body.add(taperedCapsule(p.poll + glm::vec3(-3.0f, 8.0f, -hz), p.poll + glm::vec3(-3.0f, 8.0f, hz), p.strap_radius,
-                          p.strap_radius, head, p.leather, 0.5f));
-  const glm::vec3 nose = p.poll + (p.muzzle - p.poll) * 0.68f;
-  const float nz = p.muzzle_radius + 1.3f;
-  body.add(taperedCapsule(nose + glm::vec3(1.5f, 6.0f, -nz), nose + glm::vec3(1.5f, 6.0f, nz), p.strap_radius,
-                          p.strap_radius, head, p.leather, 0.5f));
-  for (float side : {-1.0f, 1.0f}) {
-    const glm::vec3 bit = side < 0 ? bit_l : bit_r;
-    body.add(taperedCapsule(p.poll + glm::vec3(-3.0f, 8.0f, hz * side), bit, p.strap_radius, p.strap_radius, head,
-                            p.leather, 0.5f));
-    body.add(taperedCapsule(nose + glm::vec3(1.5f, 6.0f, nz * side), nose + glm::vec3(-2.0f, -5.0f, nz * side),
-                            p.strap_radius, p.strap_radius, head, p.leather, 0.5f));
-    body.add(ellipsoid(bit, glm::vec3(1.6f), head, p.metal, 0.3f));
-    const glm::vec3 mid = p.neck_mid + glm::vec3(4.0f, 2.0f, (p.neck_mid_radius + 2.5f) * side);
-    const glm::vec3 hand = seat + mirrorZ(p.rein_hand, -side);
-    body.add(taperedCapsule(bit, mid, p.rein_radius, p.rein_radius, neck2, p.leather, 0.3f));
-    body.add(taperedCapsule(mid, hand, p.rein_radius, p.rein_radius, chest, p.leather, 0.3f));
-  }
-
   PolygonizeParams poly;
   poly.cell = p.cell;
   poly.skin_falloff = 3.0f;
   c.mesh = polygonize(body, poly);
+
+  // Thin tack as tubes: stirrup leathers and irons, bridle, bit and reins.
+  auto tube = [&](std::initializer_list<TubePoint> pts, float radius, glm::vec3 color, float sag = 0.0f) {
+    TubeParams tp;
+    tp.radius = radius;
+    tp.color = color;
+    tp.sag = sag;
+    tp.sides = radius < 0.9f ? 6 : 8;
+    appendTube(c.mesh, std::span<const TubePoint>(pts.begin(), pts.size()), tp);
+  };
+  for (float side : {-1.0f, 1.0f}) {
+    const int js = side < 0 ? l_stirrup : r_stirrup;
+    const glm::vec3 tread = s.restPosition(js);
+    const glm::vec3 top = tread + glm::vec3(0.0f, 12.0f, 0.0f);
+    const glm::vec3 a = tread + glm::vec3(0.0f, 0.0f, -5.5f), b = tread + glm::vec3(0.0f, 0.0f, 5.5f);
+    tube({{{seat.x, seat.y - 28.0f, (p.barrel_radii.z + 4.2f) * side}, saddle}, {top, js}}, p.strap_radius,
+         p.leather);
+    tube({{top, js}, {a + glm::vec3(0.0f, 2.0f, 0.0f), js}, {a, js}, {b, js}, {b + glm::vec3(0.0f, 2.0f, 0.0f), js},
+          {top, js}},
+         0.7f, p.metal);
+  }
+  const float hz = p.head_radius + 0.3f;
+  const glm::vec3 bit_l = p.muzzle + glm::vec3(-7.0f, -2.0f, -(p.muzzle_radius + 0.5f)), bit_r = mirrorZ(bit_l, -1.0f);
+  const glm::vec3 crown = p.poll + glm::vec3(-3.0f, 8.5f, 0.0f);
+  const glm::vec3 nose = p.poll + (p.muzzle - p.poll) * 0.68f + glm::vec3(1.5f, 6.0f, 0.0f);
+  const float nz = p.muzzle_radius + 1.6f;
+  tube({{crown + glm::vec3(0.0f, -6.0f, -hz), head}, {crown + glm::vec3(0.0f, 0.0f, -hz * 0.6f), head},
+        {crown + glm::vec3(0.0f, 0.0f, hz * 0.6f), head}, {crown + glm::vec3(0.0f, -6.0f, hz), head}},
+       p.strap_radius, p.leather);
+  tube({{nose + glm::vec3(-2.0f, -10.0f, -nz), head}, {nose + glm::vec3(0.0f, 0.0f, -nz), head},
+        {nose + glm::vec3(0.0f, 1.5f, 0.0f), head}, {nose + glm::vec3(0.0f, 0.0f, nz), head},
+        {nose + glm::vec3(-2.0f, -10.0f, nz), head}},
+       p.strap_radius, p.leather);
+  tube({{bit_l + glm::vec3(0.0f, 0.0f, -1.0f), head}, {bit_r + glm::vec3(0.0f, 0.0f, 1.0f), head}}, 0.6f, p.metal);
+  for (float side : {-1.0f, 1.0f}) {
+    const glm::vec3 bit = side < 0 ? bit_l : bit_r;
+    tube({{crown + glm::vec3(0.0f, -6.0f, hz * side), head}, {bit + glm::vec3(0.0f, 1.0f, 0.0f), head}},
+         p.strap_radius, p.leather);
+    const glm::vec3 mid = p.neck_mid + glm::vec3(4.0f, 2.0f, (p.neck_mid_radius + 2.0f) * side);
+    const glm::vec3 hand = seat + mirrorZ(p.rein_hand, -side);
+    tube({{bit, head}, {mid, neck2}, {hand, chest}}, p.rein_radius, p.leather, 3.0f);
+  }
   return c;
 }
 

@@ -63,7 +63,7 @@ struct HorseParams {
   float saddle_seat_height = 6.0f;     // seat above the top of the back
   glm::vec3 stirrup_offset{0.0f, -74.0f, -31.0f};  // left stirrup tread from the seat centre
   glm::vec3 rein_hand{34.0f, 16.0f, -6.0f};        // where the left rein meets the rider's hand, from the seat centre
-  float rein_radius = 1.0f, strap_radius = 1.0f;
+  float rein_radius = 0.7f, strap_radius = 0.8f;
   // Colours (linear).
   glm::vec3 coat{0.16f, 0.05f, 0.016f};      // bay
   glm::vec3 points{0.02f, 0.014f, 0.01f};    // black legs, mane and tail

@@ -67,12 +67,12 @@ struct PreparedBody {
   }
   template <typename Indices>
   float distance(glm::vec3 p, const Indices& subset) const;
+  // Tetrahedral differences: four evaluations instead of six for the same accuracy order.
   glm::vec3 gradient(glm::vec3 p, const std::vector<int>& subset, float h) const {
-    const glm::vec3 dx(h, 0, 0), dy(0, h, 0), dz(0, 0, h);
-    return glm::vec3(distance(p + dx, subset) - distance(p - dx, subset),
-                     distance(p + dy, subset) - distance(p - dy, subset),
-                     distance(p + dz, subset) - distance(p - dz, subset)) /
-           (2.0f * h);
+    const glm::vec3 k0(1, -1, -1), k1(-1, -1, 1), k2(-1, 1, -1), k3(1, 1, 1);
+    return (k0 * distance(p + k0 * h, subset) + k1 * distance(p + k1 * h, subset) +
+            k2 * distance(p + k2 * h, subset) + k3 * distance(p + k3 * h, subset)) /
+           (4.0f * h);
   }
 };
 
@@ -91,7 +91,8 @@ float primitiveDistance(const ImplicitPrimitive& prim, glm::vec3 p) {
   else
     d = roundConeDistance(p, prim.a, prim.b, prim.ra, prim.rb);
   const glm::vec3 outside = glm::max(prim.clip_min - p, p - prim.clip_max);
-  return std::max(d, std::max(outside.x, std::max(outside.y, outside.z)));
+  const float box = std::max(outside.x, std::max(outside.y, outside.z));
+  return prim.clip_round > 0.0f ? -smoothMin(-d, -box, prim.clip_round) : std::max(d, box);
 }
 
 ImplicitPrimitive taperedCapsule(glm::vec3 a, glm::vec3 b, float ra, float rb, int joint,
@@ -205,7 +206,7 @@ SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params)
       if (!far)
         for (int i : all)
           if (glm::length(centre - prepared.spheres[i].c) - prepared.spheres[i].r <=
-              dc + 3.0f * block_reach + body.primitives[i].blend)
+              dc + 2.0f * block_reach + body.primitives[i].blend)
             near.push_back(i);
       for (int k = n0.z; k < n1.z; ++k)
         for (int j = n0.y; j < n1.y; ++j)

@@ -28,6 +28,7 @@ struct ImplicitPrimitive {
   // hoof soles and for saddle flaps cut from a shell around the barrel.
   glm::vec3 clip_min{-std::numeric_limits<float>::infinity()};
   glm::vec3 clip_max{std::numeric_limits<float>::infinity()};
+  float clip_round = 0.0f;  // cm: rounds the cut edges (smooth intersection) so they don't alias on the grid
   // How softly this primitive merges into what was added before it (cm); ~0 keeps a crisp seam.
   float blend = 2.0f;
   int joint = 0;

@@ -152,7 +152,8 @@ JumpTimes jumpTimes(const JumpParams& p) {
   JumpTimes t;
   const double stride_s = 1.0 / canterParams(p.lead).stride_hz;
   // The centre of gravity rises enough for the tucked hooves to clear the fence.
-  t.apex_cm = std::max(20.0, p.fence_height_cm + p.clearance_cm - 0.5 * (p.fore_tuck_cm + p.hind_tuck_cm) - 25.0);
+  // The centre of gravity rises enough for every folded hoof to clear the fence with the clearance.
+  t.apex_cm = std::max(20.0, p.fence_height_cm + p.clearance_cm - std::min(p.fore_tuck_cm, p.hind_tuck_cm));
   t.takeoff_s = p.approach_strides * stride_s + 0.45;
   t.landing_s = t.takeoff_s + std::sqrt(8.0 * t.apex_cm / kGravityCm);  // ballistic: apex = g T^2 / 8
   return t;
@@ -180,8 +181,9 @@ Movement makeJump(const JumpParams& p, Variation v) {
   const int lead_hind = right ? kRH : kLH, trail_hind = right ? kLH : kRH;
   // Take-off: the forelegs plant and leave first (raising the forehand), then the hind legs come
   // under the body and push off together; the leading hind leaves last.
-  SwingShape fore_tuck{p.fore_tuck_cm * jitter(v, 5), 0.35, -15.0, true};
-  SwingShape hind_tuck{p.hind_tuck_cm * jitter(v, 6), 0.3, 10.0, true};
+  // Folded legs are held through the middle of the flight (plateau), hooves up and under the body.
+  SwingShape fore_tuck{p.fore_tuck_cm * jitter(v, 5), 0.5, -15.0, true};
+  SwingShape hind_tuck{p.hind_tuck_cm * jitter(v, 6), 0.5, 10.0, true};
   const std::array<std::array<double, 2>, 4> takeoff = {{
       {t_off - 0.44, t_off - 0.30},  // trailing fore
       {t_off - 0.40, t_off - 0.26},  // leading fore

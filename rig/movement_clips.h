@@ -51,8 +51,10 @@ struct JumpParams {
   int recovery_strides = 3;
   double takeoff_pitch_deg = 21.4;     // gait-reference: trunk 21.4 ± 2.5° at lift-off of the leading hind
   double landing_pitch_deg = -14.0;
-  double fore_tuck_cm = 60.0;          // forelegs folded: hoof height above the flight path
-  double hind_tuck_cm = 45.0;
+  // Legs folded in flight: hoof height above the ground as the body would stand (forehoof near the
+  // elbow, hind hoof under the flexed hock). ≈: no measurement in gait-reference.
+  double fore_tuck_cm = 70.0;
+  double hind_tuck_cm = 55.0;
   double clearance_cm = 15.0;
   Lead lead = Lead::Right;
 };

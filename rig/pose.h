@@ -4,6 +4,17 @@
 // Signs follow ../shared/rig-channels.md by meaning. In the world (+X travel, +Y up, +Z the horse's
 // right): "front end up" is a rotation about +Z, "roll toward the right" about +X, "yaw to the
 // right" about -Y. A rider's "lean forward" is about -Z, "lean to her right" about +X.
+//
+// Decisions where the contract leaves the sense open (all in saddle space):
+//   head.ry          tilts the head's top toward her right (+X rotation), the sense of rearPivot.rx +
+//   lowerBack.rx     twists the chest toward her right (about -Y)
+//   lFoot/rFoot.rz   toe up: the foot turns about the ball in the stirrup, so the heel drops
+//   lFoot/rFoot.ry   toe turns toward the horse's right (about -Y); .rx sole rolls right (+X)
+//   lKnee/rKnee.tz/ty move the knee's IK pole (away from the belly / up), scaled by knee_pole_gain
+//   lWrist/rWrist    offsets of the hand target in saddle space (not in the rider's chest frame)
+//   hair.*, cloth.*  degrees of swing per unit (hair_deg_per_unit, cloth_deg_per_unit); "up" swings
+//                    the braid / coat skirt backward and up, "side" toward her right
+//   spineC/D/F.ty    waist / chest / upperChest joints; neck.ty neck; headA.ty head
 #pragma once
 
 #include <span>

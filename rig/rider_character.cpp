@@ -43,8 +43,7 @@ Character buildRider(const RiderParams& p) {
   const int upper_chest = addJointAt(s, "upperChest", chest, p.upper_chest);
   const int neck = addJointAt(s, "neck", upper_chest, p.neck);
   const int head = addJointAt(s, "head", neck, p.head);
-  const glm::vec3 crown = p.head + glm::vec3(1.0f, p.head_height - 4.0f, 0.0f);
-  const glm::vec3 skull = p.head + glm::vec3(1.5f, p.head_height * 0.45f, 0.0f);
+  const glm::vec3 skull = p.head + glm::vec3(1.5f, p.head_height * 0.45f, 0.0f);  // cranium centre
   const glm::vec3 braid_root = skull + glm::vec3(-8.5f, -2.0f, 0.0f);
   const glm::vec3 braid_dir = glm::normalize(glm::vec3(-0.15f, -1.0f, 0.0f));
   const int braid1 = addJointAt(s, "braid1", head, braid_root);
@@ -79,7 +78,6 @@ Character buildRider(const RiderParams& p) {
   ImplicitPrimitive back_hair = ellipsoid(skull + glm::vec3(-3.0f, -1.0f, 0.0f), {8.5f, 10.5f, 9.2f}, head, p.hair, 0.6f);
   back_hair.clip_max.x = skull.x - 3.0f;
   body.add(back_hair);
-  (void)crown;
   // Braid: three tapering segments that the hair channels swing.
   const glm::vec3 b1 = s.restPosition(braid1), b2 = s.restPosition(braid2), b3 = s.restPosition(braid3);
   const glm::vec3 btip = braid_root + braid_dir * p.braid_length;
@@ -88,8 +86,12 @@ Character buildRider(const RiderParams& p) {
   body.add(taperedCapsule(b3, btip, p.braid_radius * 0.75f, p.braid_radius * 0.5f, braid3, p.hair, 1.0f));
   // Coat tail, draped over the cantle behind the seat.
   const glm::vec3 ct = s.restPosition(coat_tail);
-  body.add(ellipsoid(ct + glm::vec3(-2.0f, -p.coat_tail_length * 0.45f, 0.0f), {2.2f, p.coat_tail_length * 0.55f, 14.0f},
-                     coat_tail, p.coat, 3.0f, {1.0f, 0.0f, 0.0f}));
+  // A shell around the hips cut to its back half: the coat's skirt, lying over the seat's back.
+  ImplicitPrimitive skirt = ellipsoid(p.pelvis + glm::vec3(-0.5f, 4.0f, 0.0f), p.hips_radii + glm::vec3(1.5f, 4.0f, 1.5f),
+                                      coat_tail, p.coat, 1.0f);
+  skirt.clip_max = glm::vec3(p.pelvis.x - 4.0f, ct.y + 2.0f, 1e3f);
+  skirt.clip_min.y = ct.y - p.coat_tail_length;
+  body.add(skirt);
 
   for (float side : {-1.0f, 1.0f}) {  // parameters describe the left side (z < 0)
     const std::string n = side < 0 ? "l" : "r";

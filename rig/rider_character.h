@@ -32,17 +32,17 @@ struct RiderParams {
   glm::vec3 wrist_from_grip{-6.0f, 1.0f, -1.0f};
   glm::vec3 elbow_pole_dir{-0.5f, -1.0f, -0.45f};  // elbows hang back, down and a little out
   // Legs (left; mirrored for the right).
-  glm::vec3 hip{-2.0f, 10.0f, -11.0f};
+  glm::vec3 hip{-2.0f, 10.0f, -12.5f};
   float thigh = 45.0f, shin = 45.0f;
   glm::vec3 stirrup{0.0f, -74.0f, -31.0f};         // stirrup tread under the ball of the foot
   glm::vec3 ankle_from_ball{-12.0f, 7.0f, 0.0f};   // heel down, toe in the iron
-  glm::vec3 knee_pole_dir{1.0f, 0.0f, -0.45f};     // knees forward and out around the barrel
+  glm::vec3 knee_pole_dir{1.0f, 0.0f, -0.8f};      // knees forward and out around the barrel
   // Soft tissue and clothes (radii, cm).
   glm::vec3 hips_radii{11.0f, 10.0f, 16.5f};
   glm::vec3 chest_radii{11.5f, 11.5f, 16.0f};
   float waist_radius = 13.5f;
   float shoulder_radius = 5.2f, wrist_radius = 3.2f;
-  float thigh_radius = 8.5f, knee_radius = 5.8f, calf_radius = 5.6f, ankle_radius = 4.0f;
+  float thigh_radius = 8.0f, knee_radius = 5.8f, calf_radius = 5.6f, ankle_radius = 4.0f;
   float braid_radius = 2.6f, braid_length = 34.0f;
   float coat_tail_length = 22.0f;
   // Colours (linear).

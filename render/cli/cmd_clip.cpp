@@ -28,7 +28,7 @@ struct ClipOptions {
   std::string mapping;
   std::string animation;
   std::string reference;
-  int loops = 4;
+  int loops = 0;  // 0: 1 for a contract clip, 4 for a skeleton clip (a cycle)
   double ground_cm = -1.0;
   std::vector<std::string> params;  // the --name value pairs after the gait
 };
@@ -93,8 +93,9 @@ void runInfo(const ClipOptions& o) {
     if (!o.animation.empty()) m.animation = o.animation;
     clip = std::make_unique<rig::GltfClip>(o.clip, m);
     // A clip from another tool is a cycle: measure several loops; its stance hooves are rarely exactly 0.
-    io.end_s = clip->duration() * std::max(1, o.loops);
-    io.ground_cm = m.mode == rig::ClipMapping::Mode::Skeleton ? 0.5 : io.ground_cm;
+    const bool skeleton = m.mode == rig::ClipMapping::Mode::Skeleton;
+    io.end_s = clip->duration() * (o.loops > 0 ? o.loops : skeleton ? 4 : 1);
+    if (skeleton) io.ground_cm = 0.5;
   } else {
     clip = rig::makeClip(generatorSpec("clip info", o.clip, o.params));
     if (reference.empty()) reference = o.clip;
@@ -146,7 +147,7 @@ void addClipCommand(CLI::App& app) {
   in->add_option("--mapping", info->mapping, "Mapping file from the clip's nodes to the contract's controls");
   in->add_option("--animation", info->animation, "Animation in the file (default: the first)");
   in->add_option("--reference", info->reference, "Compare with this gait of gait-reference.md (walk, trot, canter, gallop)");
-  in->add_option("--loops", info->loops, "Loops of a file's animation to measure (default 4)");
+  in->add_option("--loops", info->loops, "Loops of a file's animation to measure (default 1; 4 with a skeleton mapping)");
   in->add_option("--ground-cm", info->ground_cm, "A hoof this low or lower is down (default 0.001; 0.5 for skeletons)");
   in->allow_extras();
   in->callback([info, in] {

@@ -6,7 +6,14 @@
 
 namespace stirrup::cli {
 
+// Thrown by a command that has already reported its outcome and wants `stirrup` to exit with `code`
+// (for example `diff`: 0 pass, 1 warn, 2 fail, 3 images that cannot be compared).
+struct ExitStatus {
+  int code = 0;
+};
+
 void addBakeCommand(CLI::App& app);
+void addDiffCommand(CLI::App& app);
 void addClipCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addRigCommand(CLI::App& app);

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", STIRRUP_VERSION);
   stirrup::cli::addBakeCommand(app);
   stirrup::cli::addClipCommand(app);
+  stirrup::cli::addDiffCommand(app);
   stirrup::cli::addRenderCommand(app);
   stirrup::cli::addRigCommand(app);
   stirrup::cli::addSpineCommand(app);
@@ -21,6 +22,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const stirrup::cli::ExitStatus& s) {
+    return s.code;
   } catch (const stirrup::InputError& e) {
     std::fprintf(stderr, "stirrup: %s\n", e.what());
     return 1;

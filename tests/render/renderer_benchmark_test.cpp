@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <ctime>
 #include <numbers>
 #include <string>
@@ -138,7 +139,11 @@ TEST(RendererBenchmark, ReviewQualityStandIn) {
                 mode == BvhUpdate::Rebuild ? "Rebuild" : mode == BvhUpdate::Refit ? "Refit" : "RebuildPerMesh",
                 settings.width, settings.height, settings.samples_per_pixel, settings.light_samples,
                 settings.ao_samples, frames, total / frames, commit / frames, trace / frames, cpu_ms);
-    if (mode == BvhUpdate::Rebuild) writePng(image, sample);
+    if (mode == BvhUpdate::Rebuild) {
+      writePng(image, sample);
+      std::filesystem::path exr = sample;
+      writeExr(image, exr.replace_extension(".exr"), {{"stirrup:frame", std::to_string(frames)}});
+    }
   }
 }
 

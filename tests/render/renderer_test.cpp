@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <numbers>
+#include <vector>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -185,8 +186,10 @@ TEST(Renderer, AnotherFrameMovesOnlyTheNoise) {
   }
   EXPECT_GT(differing, 0);  // the sampling pattern changed...
   EXPECT_NEAR(mean_a / a.pixelCount(), mean_b / b.pixelCount(), 0.01);  // ...the picture did not
-  // Open sky has no sampling noise beyond the filter: frames agree to float rounding there.
-  EXPECT_EQ(a.object_id[0], b.object_id[0]);
+  // Only edge pixels can change their majority object between frames.
+  int ids_changed = 0;
+  for (size_t i = 0; i < a.pixelCount(); ++i) ids_changed += a.object_id[i] != b.object_id[i];
+  EXPECT_LT(ids_changed, int(a.pixelCount() / 50));
 }
 
 TEST(Renderer, MovingAMeshMovesItsPixels) {
@@ -216,6 +219,35 @@ TEST(Renderer, AllBvhUpdateModesSeeTheSameScene) {
     for (size_t i = 0; i < img.pixelCount(); ++i) diff += std::abs(luminance(img.rgba[i]) - luminance(reference.rgba[i]));
     EXPECT_LT(diff / img.pixelCount(), 1e-3);
   }
+}
+
+// A lit flat panel must shade evenly: self-intersection of shadow rays ("acne") would speckle it.
+TEST(Renderer, AFlatLitPanelHasNoShadowAcne) {
+  RenderSettings settings;
+  settings.width = 48;
+  settings.height = 48;
+  settings.samples_per_pixel = 4;
+  settings.sun_direction = {0.2, 1.0, 0.1};
+  settings.sky.horizon = settings.sky.zenith = settings.sky.below = glm::vec3(0.0f);  // sun only: no sky noise
+  // A 400 cm square at y = 80, far from the origin so float error in hit points is realistic.
+  const float x0 = 3000.0f, y = 80.0f;
+  const std::vector<glm::vec3> positions = {{x0 - 200, y, -200}, {x0 - 200, y, 200}, {x0 + 200, y, 200}, {x0 + 200, y, -200}};
+  const std::vector<glm::vec3> normals(4, glm::vec3(0, 1, 0));
+  Renderer r(settings);
+  const int mesh = r.addMesh({ObjectId::Horse, {0, 1, 2, 0, 2, 3}, std::vector<glm::vec3>(4, glm::vec3(0.5f)), 4});
+  r.updateMesh(mesh, positions, normals);
+  Camera camera;
+  camera.projection = Camera::Projection::Orthographic;
+  camera.position = {x0, 500.0, 300.0};
+  camera.target = {x0, y, 0.0};
+  camera.ortho_height_cm = 150.0;  // only the middle of the panel: no edges, no sky
+  const Image img = r.render(camera, 1);
+  float lo = 1e9f, hi = 0.0f;
+  for (const glm::vec4& c : img.rgba) lo = std::min(lo, luminance(c)), hi = std::max(hi, luminance(c));
+  // One blocked sun ray of the 4 x 4 per pixel would cost 1/16 of the light; the spread allowed is the
+  // small specular variation across the view.
+  EXPECT_GT(lo, 0.5f);
+  EXPECT_LT(hi - lo, 0.01f * hi);
 }
 
 TEST(Renderer, RejectsInconsistentInput) {

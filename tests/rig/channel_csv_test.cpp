@@ -112,6 +112,7 @@ TEST_F(ChannelCsv, RiderCsvHasFrameAndEveryRiderChannel) {
   RiderChannels r;
   r[R::lowerBackRz] = 1.5;
   r[R::clothSide] = -2;
+  r[R::hipRz] = -0.0;  // written as 0
   const fs::path f = dir_ / "r.csv";
   writeRiderCsv(f, std::vector<double>{7}, std::vector<RiderChannels>{r});
   std::ifstream in(f);
@@ -126,6 +127,7 @@ TEST_F(ChannelCsv, RiderCsvHasFrameAndEveryRiderChannel) {
   EXPECT_EQ(header, expected_header);
   EXPECT_EQ(row.substr(0, 8), "7,1.5,0,");
   EXPECT_EQ(row.substr(row.size() - 3), ",-2");
+  EXPECT_EQ(row.find("-0,"), std::string::npos);
 }
 
 TEST_F(ChannelCsv, FailedWriteLeavesNoFileBehind) {

@@ -14,14 +14,21 @@ namespace stirrup::rig {
 namespace {
 
 // Every edge used by exactly two triangles, in opposite directions: closed and consistently wound.
-void expectClosedAndOriented(const SkinnedMesh& m) {
+// Surface Nets puts one vertex per cell, so where two sheets of surface pass through one cell (a
+// crease sharper than the grid) a few edges can be shared by four triangles: allowed up to
+// `nonmanifold_fraction`, but never an open edge.
+void expectClosedAndOriented(const SkinnedMesh& m, double nonmanifold_fraction = 0.0) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
   for (std::size_t t = 0; t < m.indices.size(); t += 3)
     for (int e = 0; e < 3; ++e) ++edges[{m.indices[t + e], m.indices[t + (e + 1) % 3]}];
+  std::size_t shared = 0, open = 0;
   for (const auto& [edge, count] : edges) {
-    ASSERT_EQ(count, 1) << "edge used twice in one direction";
-    ASSERT_TRUE(edges.count({edge.second, edge.first})) << "open edge";
+    shared += count != 1;
+    const auto twin = edges.find({edge.second, edge.first});
+    open += twin == edges.end() || twin->second != count;
   }
+  EXPECT_EQ(open, 0u) << "open edges";
+  EXPECT_LE(double(shared), nonmanifold_fraction * double(edges.size())) << shared << " of " << edges.size();
 }
 
 float signedVolume(const SkinnedMesh& m) {
@@ -71,7 +78,7 @@ TEST(ImplicitBody, BlendedLimbIsClosedWithVerticesOnTheSurface) {
   params.cell = 1.2f;
   const SkinnedMesh m = polygonize(body, params);
   expectFiniteAndUnitNormals(m);
-  expectClosedAndOriented(m);
+  expectClosedAndOriented(m, 0.002);
   EXPECT_GT(signedVolume(m), 0.0f);
   for (std::size_t v = 0; v < m.vertexCount(); ++v) {
     ASSERT_LT(std::abs(body.distance(m.positions[v])), 0.25f * params.cell) << v;

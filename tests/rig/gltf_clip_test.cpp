@@ -1,0 +1,171 @@
+#include "rig/gltf_clip.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "rig/clip_info.h"
+#include "rig/error.h"
+#include "rig/movement_clips.h"
+#include "rig/procedural_gait.h"
+#include "rig/rider_rig.h"
+#include "rig/rig_profile.h"
+
+namespace stirrup::rig {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path tempFile(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("stirrup_gltf_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+const fs::path kFox = fs::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb";
+const fs::path kFoxMapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox-mapping.json";
+
+void expectSameFrames(const Clip& a, const Clip& b, double fps, double duration) {
+  for (int i = 0; i <= static_cast<int>(duration * fps); ++i) {
+    const double t = i / fps;
+    const HorseFrame x = a.sample(t), y = b.sample(t);
+    // Floats in the file: 1e-4 relative to a few metres of travel, angles to 1e-3 degrees.
+    EXPECT_NEAR(x.travel_cm, y.travel_cm, 1e-3 * std::max(1.0, std::abs(x.travel_cm) / 100.0)) << t;
+    for (std::size_t c = 0; c < kHorseChannelCount; ++c)
+      ASSERT_NEAR(x.controls.value[c], y.controls.value[c], 2e-3) << kHorseChannelNames[c] << " at " << t;
+    EXPECT_NEAR(x.neck_rz, y.neck_rz, 2e-3);
+    EXPECT_NEAR(x.head_rz, y.head_rz, 2e-3);
+    EXPECT_NEAR(x.tail_rz, y.tail_rz, 2e-3);
+    EXPECT_NEAR(x.tail_ry, y.tail_ry, 2e-3);
+  }
+}
+
+TEST(GltfClip, RoundTripGivesTheSameChannels) {
+  // The buck exercises every rotation channel (pitch, roll and yaw of the rear pivot, the back arch).
+  const MovementClip buck(makeBuck(BuckParams{}));
+  for (const char* name : {"buck.glb", "buck.gltf"}) {
+    const fs::path file = tempFile(name);
+    writeClipGltf(buck, file, {30.0});
+    const GltfClip back(file, contractMapping());
+    EXPECT_EQ(back.name(), "buck");
+    EXPECT_NEAR(back.duration(), std::floor(buck.duration() * 30.0) / 30.0, 1e-5);
+    expectSameFrames(buck, back, 30.0, back.duration());
+  }
+}
+
+TEST(GltfClip, WritesNamedControlNodesWithLinearSamplers) {
+  const fs::path file = tempFile("trot.glb");
+  writeClipGltf(ProceduralGait(trotParams(), 2.0), file, {24.0});
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, file.string())) << err;
+  std::set<std::string> names;
+  for (const auto& n : model.nodes) names.insert(n.name);
+  for (const char* c : {"lfHoof", "rfHoof", "lbHoof", "rbHoof", "rearPivot", "backMid", "neck", "head", "tail"})
+    EXPECT_TRUE(names.count(c)) << c;
+  ASSERT_EQ(model.animations.size(), 1u);
+  for (const auto& s : model.animations[0].samplers) EXPECT_EQ(s.interpolation, "LINEAR");
+  EXPECT_EQ(model.accessors[model.animations[0].samplers[0].input].count, 49u);  // 2 s at 24 fps
+}
+
+TEST(GltfClip, RenamedThroughAMappingDrivesTheRiderTheSameWay) {
+  const MovementClip jump(makeJump(JumpParams{}));
+  const fs::path file = tempFile("jump.glb"), renamed = tempFile("renamed.glb"), mapping = tempFile("map.json");
+  writeClipGltf(jump, file, {30.0});
+  // Another tool renames every node and moves the rest pose: the mapping undoes both.
+  tinygltf::Model model;
+  tinygltf::TinyGLTF io;
+  std::string err, warn;
+  ASSERT_TRUE(io.LoadBinaryFromFile(&model, &err, &warn, file.string()));
+  nlohmann::json nodes;
+  for (auto& n : model.nodes) {
+    nodes[n.name] = "Bone_" + n.name;
+    n.name = "Bone_" + n.name;
+  }
+  ASSERT_TRUE(io.WriteGltfSceneToFile(&model, renamed.string(), false, true, false, true));
+  std::ofstream(mapping) << nlohmann::json({{"mode", "controls"}, {"nodes", nodes}}).dump();
+  const GltfClip a(file, contractMapping()), b(renamed, loadClipMapping(mapping));
+  for (double t = 0.0; t < a.duration(); t += 0.1) {
+    const RiderChannels ra = evaluateRider(a.sample(t).controls, RigProfile::thesis());
+    const RiderChannels rb = evaluateRider(b.sample(t).controls, RigProfile::thesis());
+    const RiderChannels rj = evaluateRider(jump.sample(t).controls, RigProfile::thesis());
+    for (std::size_t c = 0; c < kRiderChannelCount; ++c) {
+      EXPECT_EQ(ra.value[c], rb.value[c]) << kRiderChannelNames[c];
+      EXPECT_NEAR(ra.value[c], rj.value[c], 0.05 + 0.02 * std::abs(rj.value[c])) << kRiderChannelNames[c] << " at " << t;
+    }
+  }
+}
+
+TEST(GltfClip, AMissingNodeIsAOneLineErrorNamingIt) {
+  const fs::path file = tempFile("trot2.glb"), mapping = tempFile("bad.json");
+  writeClipGltf(ProceduralGait(trotParams(), 1.0), file);
+  std::ofstream(mapping) << R"({"nodes": {"lfHoof": "lfHoof", "rfHoof": "rfHoof", "lbHoof": "LeftHindHoof", "rbHoof": "rbHoof"}})";
+  try {
+    GltfClip clip(file, loadClipMapping(mapping));
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("nodes.lbHoof: no node named \"LeftHindHoof\""), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos);
+  }
+  std::ofstream(mapping) << R"({"nodes": {"lfHoof": "a", "rfHoof": "b", "lbHoof": "c", "rbHoof": "d", "hoofy": "e"}})";
+  EXPECT_THROW(loadClipMapping(mapping), InputError);
+}
+
+TEST(GltfClip, FoxWalkAndRunGiveHoofHeightsThatRiseAndFall) {
+  if (!fs::exists(kFox)) GTEST_SKIP() << kFox << " is not there";
+  ClipMapping m = loadClipMapping(kFoxMapping);
+  for (const char* animation : {"Walk", "Run"}) {
+    m.animation = animation;
+    const GltfClip fox(kFox, m);
+    EXPECT_EQ(fox.name(), animation);
+    ASSERT_GT(fox.duration(), 0.5);
+    // Every hoof leaves the ground and comes back within one cycle, at horse scale.
+    for (HorseChannel ty : {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy, HorseChannel::lbHoofTy, HorseChannel::rbHoofTy}) {
+      double lo = 1e9, hi = -1e9;
+      int rises = 0;
+      bool low = true;
+      // The first cycle settles the high/low state; count rises over the next two.
+      for (double t = 0.0; t < 3.0 * fox.duration(); t += 0.005) {
+        const double y = fox.sample(t).controls[ty];
+        lo = std::min(lo, y);
+        hi = std::max(hi, y);
+        if (low && y > 10.0) rises += t >= fox.duration(), low = false;
+        if (!low && y < 1.0) low = true;
+      }
+      EXPECT_EQ(lo, 0.0) << animation << " " << name(ty);
+      EXPECT_GT(hi, 20.0) << animation << " " << name(ty);
+      EXPECT_LT(hi, 200.0) << animation << " " << name(ty);
+      EXPECT_EQ(rises, 2) << animation << " " << name(ty) << ": one step per cycle";
+    }
+    // The travel keeps the supporting hoof still on average: the clip moves forward.
+    EXPECT_GT(fox.sample(fox.duration()).travel_cm, 100.0);
+    // It drives the rider without error and with finite values.
+    for (double t = 0.0; t < fox.duration(); t += 0.05) {
+      const RiderChannels r = evaluateRider(fox.sample(t).controls, RigProfile::thesis());
+      for (double v : r.value) ASSERT_TRUE(std::isfinite(v));
+    }
+  }
+}
+
+TEST(GltfClip, FoxWithAMisnamedNodeNamesIt) {
+  if (!fs::exists(kFox)) GTEST_SKIP() << kFox << " is not there";
+  ClipMapping m = loadClipMapping(kFoxMapping);
+  m.nodes["lfHoof"] = "b_LeftHand_11";
+  try {
+    GltfClip fox(kFox, m);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nodes.lfHoof: no node named \"b_LeftHand_11\""), std::string::npos) << e.what();
+  }
+  m = loadClipMapping(kFoxMapping);
+  m.animation = "Trot";
+  EXPECT_THROW(GltfClip(kFox, m), InputError);
+}
+
+}  // namespace
+}  // namespace stirrup::rig

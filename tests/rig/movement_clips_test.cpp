@@ -1,0 +1,295 @@
+// The movement generators against ../shared/gait-reference.md, measured from the clips themselves
+// (rig/clip_info.h), and the rider's response per Kuhnel 2003 sections 5 and 9.
+#include "rig/movement_clips.h"
+
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "rig/clip_factory.h"
+#include "rig/clip_info.h"
+#include "rig/error.h"
+#include "rig/rider_rig.h"
+#include "rig/rig_profile.h"
+
+namespace stirrup::rig {
+namespace {
+
+constexpr int kLF = 0, kRF = 1, kLH = 2, kRH = 3;
+
+std::unique_ptr<Clip> generator(const std::string& name, nlohmann::json params = nlohmann::json::object()) {
+  params["generator"] = name;
+  JsonObjectReader r("test", "clip", params);
+  return makeClip(parseClipSpec(r, "."));
+}
+
+// Every clip: no hoof below the ground, no down hoof moving more than a few mm a frame (except the
+// stated slide of the stop's hind hooves), and every channel continuous.
+void expectSound(const Clip& clip, bool hind_slide_allowed = false) {
+  ClipInfoOptions o;
+  o.fps = 24.0;
+  const ClipInfo info = measureClip(clip, o);
+  for (int h = 0; h < 4; ++h) {
+    EXPECT_GE(info.hooves[h].lowest_cm, 0.0) << clip.name() << " hoof " << h;
+    if (hind_slide_allowed && h >= 2) continue;
+    EXPECT_LE(info.hooves[h].max_slide_mm, 3.0) << clip.name() << " hoof " << h << " at " << info.hooves[h].max_slide_at_s;
+  }
+  // Continuity: sampled at 1 kHz no channel changes faster than a galloping hoof swings (a pop would
+  // show as a step of centimetres in one millisecond, i.e. > 10000 /s).
+  EXPECT_LT(info.max_channel_step, 2500.0) << clip.name() << ": " << info.max_step_channel << " at " << info.max_step_at_s;
+  // And the body follow-through too.
+  for (double t = 0.0; t + 0.001 < clip.duration(); t += 0.001) {
+    const HorseFrame a = clip.sample(t), b = clip.sample(t + 0.001);
+    ASSERT_LT(std::abs(a.neck_rz - b.neck_rz) + std::abs(a.head_rz - b.head_rz) + std::abs(a.tail_rz - b.tail_rz) +
+                  std::abs(a.tail_ry - b.tail_ry),
+              1.0)
+        << clip.name() << " at " << t;
+    ASSERT_LT(std::abs(a.travel_cm - b.travel_cm), 2.0) << clip.name() << " at " << t;
+  }
+}
+
+struct GaitCase {
+  std::string name;
+  std::vector<int> order;  // footfall order, left hind first
+  int suspensions;
+  int bounce_cycles;
+};
+
+class SteadyGait : public ::testing::TestWithParam<GaitCase> {};
+
+TEST_P(SteadyGait, MeasuresInsideTheReference) {
+  const GaitCase& c = GetParam();
+  for (const double variation : {0.0, 0.3}) {
+    const auto clip = generator(c.name, {{"variation", variation}, {"seed", 11}, {"duration_s", 8.0}});
+    const ClipInfo info = measureClip(*clip);
+    const GaitReference ref = *gaitReference(c.name);
+    SCOPED_TRACE(c.name + " variation " + std::to_string(variation));
+    ASSERT_GE(info.strides, 4);
+    EXPECT_EQ(info.footfall_order, c.order);
+    for (int h = 0; h < 4; ++h) {
+      const auto& duty = h < 2 ? ref.duty_fore : ref.duty_hind;
+      if (duty) {
+        EXPECT_TRUE(duty->contains(info.hooves[h].duty_factor)) << h << ": " << info.hooves[h].duty_factor;
+      }
+    }
+    EXPECT_NEAR(info.suspensions_per_stride, c.suspensions, 1e-9);
+    EXPECT_TRUE(ref.stride_hz->contains(info.stride_hz)) << info.stride_hz;
+    EXPECT_TRUE(ref.stride_length_cm->contains(info.stride_length_cm)) << info.stride_length_cm;
+    EXPECT_TRUE(ref.speed_cm_s->contains(info.speed_cm_s)) << info.speed_cm_s;
+    EXPECT_NEAR(info.pivot_ty_cycles_per_stride, c.bounce_cycles, 1e-9);
+    if (ref.pivot_ty_peak_to_peak_cm) {
+      EXPECT_TRUE(ref.pivot_ty_peak_to_peak_cm->contains(info.pivot_ty_peak_to_peak_cm)) << info.pivot_ty_peak_to_peak_cm;
+    }
+    if (ref.suspension_ms) {
+      EXPECT_TRUE(ref.suspension_ms->contains(info.suspension_ms)) << info.suspension_ms;
+    }
+    const double pitch = info.pitch_max_deg - info.pitch_min_deg;
+    EXPECT_TRUE(ref.pitch_range_deg->contains(pitch)) << pitch;
+    expectSound(*clip);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(GaitReference, SteadyGait,
+                         ::testing::Values(GaitCase{"walk", {kLH, kLF, kRH, kRF}, 0, 2},
+                                           GaitCase{"trot", {kLH, kRF, kRH, kLF}, 2, 2},
+                                           GaitCase{"canter", {kLH, kRH, kLF, kRF}, 1, 1},
+                                           GaitCase{"gallop", {kLH, kRH, kLF, kRF}, 1, 1}),
+                         [](const auto& info) { return info.param.name; });
+
+TEST(SteadyGait, LeftLeadMirrorsTheFootfalls) {
+  const auto clip = generator("canter", {{"lead", "left"}, {"duration_s", 6.0}});
+  const ClipInfo info = measureClip(*clip);
+  // Left lead: right hind trails, then LH with RF, then the leading LF.
+  EXPECT_NEAR(info.hooves[kRH].touchdown_phase, 0.73, 0.02);
+  EXPECT_GT(info.hooves[kLF].touchdown_phase, info.hooves[kRF].touchdown_phase);
+}
+
+TEST(SteadyGait, VariationIsDeterministicPerSeed) {
+  const auto a = generator("gallop", {{"variation", 0.5}, {"seed", 3}});
+  const auto b = generator("gallop", {{"variation", 0.5}, {"seed", 3}});
+  const auto c = generator("gallop", {{"variation", 0.5}, {"seed", 4}});
+  double same = 0.0, differ = 0.0;
+  for (double t = 0.0; t < 4.0; t += 0.05) {
+    same += std::abs(a->sample(t).controls[HorseChannel::lfHoofTy] - b->sample(t).controls[HorseChannel::lfHoofTy]);
+    differ += std::abs(a->sample(t).controls[HorseChannel::lfHoofTy] - c->sample(t).controls[HorseChannel::lfHoofTy]);
+  }
+  EXPECT_EQ(same, 0.0);
+  EXPECT_GT(differ, 1.0);
+}
+
+TEST(GaitSequence, WalkTrotCanterGallopStopBlendsWithoutPops) {
+  const auto clip = generator("sequence", {{"gaits", "walk,trot,canter,gallop"}, {"end_with_stop", true}});
+  expectSound(*clip, true);
+  // Speed ends at zero after the stop and the travel never goes backwards.
+  const HorseFrame end = clip->sample(clip->duration());
+  EXPECT_NEAR(end.travel_cm, clip->sample(clip->duration() - 0.5).travel_cm, 1e-6);
+  for (double t = 0.0; t < clip->duration(); t += 0.01)
+    EXPECT_GE(clip->sample(t + 0.01).travel_cm, clip->sample(t).travel_cm - 1e-9);
+}
+
+TEST(GaitSequence, EachSegmentPlaysItsGait) {
+  const Movement m = makeGaitSequence({walkParams(), trotParams(), canterParams(), gallopParams()}, 4.0, 1.0, {0.0, 1});
+  const MovementClip clip(m);
+  const std::array<std::string, 4> names = {"walk", "trot", "canter", "gallop"};
+  for (int i = 0; i < 4; ++i) {
+    ClipInfoOptions o;
+    o.start_s = 4.0 * i + 0.6;  // past the blend
+    o.end_s = 4.0 * i + 3.4;
+    const ClipInfo info = measureClip(clip, o);
+    const GaitReference ref = *gaitReference(names[i]);
+    EXPECT_TRUE(ref.stride_hz->contains(info.stride_hz)) << names[i] << " " << info.stride_hz;
+    EXPECT_TRUE(ref.speed_cm_s->contains(info.speed_cm_s)) << names[i] << " " << info.speed_cm_s;
+  }
+}
+
+// ---- the scripted movements ----
+
+TEST(Stop, HindHoovesSlideUnderTheBodyWhileForelegsStep) {
+  const StopParams p;
+  const MovementClip clip(makeStop(p));
+  expectSound(clip, true);
+  const double mid = p.entry_s + 0.5 * p.slide_s;
+  const HorseFrame f = clip.sample(mid);
+  // Hind hooves drawn forward under the body, down, and moving in the world with it (the slide).
+  for (HorseChannel tx : {HorseChannel::lbHoofTx, HorseChannel::rbHoofTx}) EXPECT_GT(f.controls[tx], 30.0);
+  EXPECT_EQ(f.controls[HorseChannel::lbHoofTy], 0.0);
+  EXPECT_GT(clip.sample(mid + 0.1).travel_cm - f.travel_cm, 10.0);
+  // Croup lowered, front up.
+  EXPECT_LT(f.controls[HorseChannel::rearPivotTy], -20.0);
+  EXPECT_GT(f.controls[HorseChannel::rearPivotRz], 4.0);
+  // The forelegs keep stepping during the slide.
+  int fore_lifts = 0;
+  bool was_down = true;
+  for (double t = p.entry_s + 0.2; t < p.entry_s + p.slide_s; t += 0.005) {
+    const bool down = clip.sample(t).controls[HorseChannel::lfHoofTy] == 0.0;
+    fore_lifts += was_down && !down;
+    was_down = down;
+  }
+  EXPECT_GE(fore_lifts, 2);
+  // Slide length: gait-reference, up to ≈ 10 m.
+  const double slide = clip.sample(p.entry_s + p.slide_s).travel_cm - clip.sample(p.entry_s).travel_cm;
+  EXPECT_GT(slide, 300.0);
+  EXPECT_LT(slide, 1000.0);
+}
+
+TEST(Jump, TakeOffFlightAndLanding) {
+  const JumpParams p;
+  const MovementClip clip(makeJump(p));
+  expectSound(clip);
+  const JumpTimes jt = jumpTimes(p);
+  // Take-off pitch (gait-reference: 21.4 ± 2.5°), body on a parabola, forelegs tucked, landing pitch -.
+  EXPECT_NEAR(clip.sample(jt.takeoff_s).controls[HorseChannel::rearPivotRz], 21.4, 2.5);
+  const double mid = 0.5 * (jt.takeoff_s + jt.landing_s);
+  const HorseFrame apex = clip.sample(mid);
+  EXPECT_NEAR(apex.controls[HorseChannel::rearPivotTy], jt.apex_cm, 1.0);
+  for (HorseChannel ty : {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy, HorseChannel::lbHoofTy, HorseChannel::rbHoofTy})
+    EXPECT_GT(apex.controls[ty], p.fence_height_cm) << "hooves clear the fence";
+  EXPECT_LT(clip.sample(jt.landing_s).controls[HorseChannel::rearPivotRz], -10.0);
+  // Ballistic: the flight lasts sqrt(8 h / g).
+  EXPECT_NEAR(jt.landing_s - jt.takeoff_s, std::sqrt(8.0 * jt.apex_cm / 981.0), 1e-9);
+  // A higher fence flies higher and longer.
+  JumpParams high = p;
+  high.fence_height_cm = 130.0;
+  EXPECT_GT(jumpTimes(high).apex_cm, jt.apex_cm);
+}
+
+TEST(Rear, PitchHeldOnTheHindLegsWithForelegsUp) {
+  const RearParams p;
+  const MovementClip clip(makeRear(p));
+  expectSound(clip);
+  const RearTimes rt = rearTimes(p);
+  for (double t = rt.hold_start_s; t <= rt.hold_end_s; t += 0.05) {
+    const HorseFrame f = clip.sample(t);
+    EXPECT_GE(f.controls[HorseChannel::rearPivotRz], 40.0);  // gait-reference: 40–70°
+    EXPECT_LE(f.controls[HorseChannel::rearPivotRz], 70.0);
+    EXPECT_GT(f.controls[HorseChannel::lfHoofTy], 80.0);
+    EXPECT_LT(f.controls[HorseChannel::lfHoofTx], -20.0);  // folded back
+    EXPECT_EQ(f.controls[HorseChannel::lbHoofTy], 0.0);
+    EXPECT_GT(f.controls[HorseChannel::lbHoofTx], 10.0);   // under the body
+  }
+  EXPECT_GE(rt.hold_end_s - rt.hold_start_s, 0.5);
+  EXPECT_LE(rt.hold_end_s - rt.hold_start_s, 2.0);
+}
+
+TEST(Buck, CroupUpHindKickFrontPlantedWithTwist) {
+  const BuckParams p;
+  const MovementClip clip(makeBuck(p));
+  expectSound(clip);
+  double min_rz = 0.0, max_hind = 0.0, max_twist = 0.0;
+  for (double t = 0.0; t < clip.duration(); t += 0.005) {
+    const HorseFrame f = clip.sample(t);
+    min_rz = std::min(min_rz, f.controls[HorseChannel::rearPivotRz]);
+    max_twist = std::max(max_twist, std::abs(f.controls[HorseChannel::rearPivotRx]));
+    if (f.controls[HorseChannel::rearPivotRz] < -15.0) {
+      EXPECT_EQ(f.controls[HorseChannel::lfHoofTy], 0.0) << t;  // front planted while the croup is up
+      max_hind = std::max(max_hind, f.controls[HorseChannel::lbHoofTy]);
+    }
+  }
+  EXPECT_LE(min_rz, -20.0);  // gait-reference: −20..−35°
+  EXPECT_GE(min_rz, -35.0);
+  EXPECT_GT(max_hind, 30.0);
+  EXPECT_GT(max_twist, 4.0);
+}
+
+// ---- the rider (Kuhnel 2003 sections 5 and 9) ----
+
+double meanLowerBack(const Clip& clip, double a, double b) {
+  double sum = 0.0;
+  int n = 0;
+  for (double t = a; t <= b; t += 0.01, ++n)
+    sum += evaluateRider(clip.sample(t).controls, RigProfile::thesis())[RiderChannel::lowerBackRz];
+  return sum / n;
+}
+
+TEST(RiderResponse, LeansForwardOverTheFence) {
+  const JumpParams p;
+  const MovementClip clip(makeJump(p));
+  const JumpTimes jt = jumpTimes(p);
+  const double mid = 0.5 * (jt.takeoff_s + jt.landing_s);
+  EXPECT_GT(meanLowerBack(clip, jt.takeoff_s, jt.landing_s), 1.0);
+  EXPECT_GT(meanLowerBack(clip, mid - 0.05, mid + 0.05), 0.0);
+}
+
+TEST(RiderResponse, LeansBackAtTheStop) {
+  const StopParams p;
+  const MovementClip clip(makeStop(p));
+  EXPECT_LT(meanLowerBack(clip, p.entry_s + 0.3, p.entry_s + p.slide_s), 0.0);
+}
+
+TEST(RiderResponse, LeansForwardAndLiftsAtTheRear) {
+  const RearParams p;
+  const MovementClip clip(makeRear(p));
+  const RearTimes rt = rearTimes(p);
+  EXPECT_GT(meanLowerBack(clip, rt.hold_start_s, rt.hold_end_s), 1.0);
+  const RiderChannels r = evaluateRider(clip.sample(0.5 * (rt.hold_start_s + rt.hold_end_s)).controls, RigProfile::thesis());
+  EXPECT_GT(r[RiderChannel::cogTy], 0.0);
+  const RiderChannels still = evaluateRider(clip.sample(0.0).controls, RigProfile::thesis());
+  EXPECT_GT(r[RiderChannel::cogTy], still[RiderChannel::cogTy]);
+}
+
+TEST(RiderResponse, LeansForwardAsTheForehandRisesAndBackAsTheCroupRises) {
+  const BuckParams p;
+  const MovementClip clip(makeBuck(p));
+  const double s = 0.3;  // first buck
+  EXPECT_GT(meanLowerBack(clip, s + 0.17, s + 0.27), 0.0);
+  const double croup = s + 0.5 + 0.5 * p.kick_s;
+  EXPECT_LT(meanLowerBack(clip, croup - 0.05, croup + 0.05), 0.0);
+}
+
+TEST(ClipSpec, UnknownParameterNamesFileAndField) {
+  nlohmann::json j = {{"generator", "jump"}, {"fence_hieght_cm", 90}};
+  JsonObjectReader r("scenes/x.json", "clip", j);
+  try {
+    parseClipSpec(r, ".");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "scenes/x.json: clip.fence_hieght_cm: unknown field");
+  }
+  nlohmann::json bad = {{"generator", "rear"}, {"angle_deg", 95}};
+  JsonObjectReader r2("scenes/x.json", "clip", bad);
+  EXPECT_THROW(parseClipSpec(r2, "."), InputError);
+}
+
+}  // namespace
+}  // namespace stirrup::rig
