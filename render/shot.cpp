@@ -63,7 +63,8 @@ Image Shot::renderFrame(int frame) {
   const rig::BakedFrame baked = bake(frame);
 
   auto t0 = Clock::now();
-  const std::vector<glm::mat4> horse_world = rig::poseHorse(horse_, baked.horse);
+  std::vector<glm::mat4> horse_world = rig::poseHorse(horse_, baked.horse);
+  rig::placeStirrups(horse_, horse_world, baked.rider, profile_.rider_unit_cm);
   const std::vector<glm::mat4> rider_world =
       rig::poseRider(rider_, horse_, horse_world, baked.rider, profile_.rider_unit_cm);
   timings_.pose_ms = msSince(t0);
