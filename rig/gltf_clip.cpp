@@ -163,6 +163,7 @@ ClipMapping loadClipMapping(const std::filesystem::path& file) {
   else if (mode == "skeleton") m.mode = ClipMapping::Mode::Skeleton;
   else r.fail("mode", "expected \"controls\" or \"skeleton\", got \"" + mode + "\"");
   m.animation = r.string("animation", "");
+  m.loop = r.boolean("loop", m.mode == ClipMapping::Mode::Skeleton);
   m.scale_cm = r.number("scale_cm", m.scale_cm);
   if (!(m.scale_cm > 0.0)) r.fail("scale_cm", "expected centimetres per file unit > 0");
   m.forward = r.numbers<3>("forward", m.forward);
@@ -419,9 +420,10 @@ double GltfClip::duration() const { return impl_->duration; }
 
 HorseFrame GltfClip::sample(double seconds) const {
   const Impl& m = *impl_;
-  // Loop the file's animation (clips from other tools are cycles); travel keeps accumulating.
-  const double t = m.duration > 0.0 ? seconds - m.duration * std::floor(seconds / m.duration) : 0.0;
-  const double cycles = m.duration > 0.0 ? std::floor(seconds / m.duration) : 0.0;
+  // Loop the file's animation (travel keeps accumulating) or hold its ends.
+  const bool loop = m.mapping.loop && m.duration > 0.0;
+  const double t = loop ? seconds - m.duration * std::floor(seconds / m.duration) : std::clamp(seconds, 0.0, m.duration);
+  const double cycles = loop ? std::floor(seconds / m.duration) : 0.0;
   HorseFrame f;
   using H = HorseChannel;
   const auto hoofChannels = [](const std::string& c) -> std::array<H, 3> {
@@ -472,7 +474,7 @@ HorseFrame GltfClip::sample(double seconds) const {
   }
   // Skeleton: world positions and rotations relative to rest, in the travel frame, scaled to the horse.
   const double s = m.mapping.scale_cm;
-  f.travel_cm = m.mapping.speed_cm_s * seconds;
+  f.travel_cm = m.mapping.speed_cm_s * (loop ? seconds : t);
   const auto position = [&](const std::string& c) {
     return m.to_travel * glm::dvec3(m.world(m.control_node.at(c), t)[3]);
   };

@@ -35,6 +35,9 @@ struct ClipMapping {
   Mode mode = Mode::Controls;
   std::map<std::string, std::string> nodes;  // control name -> node name in the file
   std::string animation;                     // empty: the file's first animation
+  // Past its end the animation loops (a cycle from another tool; default for skeletons) or holds its
+  // last frame (a finished stirrup clip; default for controls).
+  bool loop = false;
   // Skeleton mode: file units to horse centimetres, the file's travel and up directions, where the
   // ground is for each hoof ("rest": the tip's rest height; "lowest": the lowest it reaches in the
   // clip) and the travel speed to add for a clip animated in place (a number, or "auto" to make the

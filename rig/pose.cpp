@@ -7,6 +7,7 @@
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "rig/ik.h"
 #include "rig/skeleton.h"
@@ -146,6 +147,23 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
   return world;
 }
 
+SpineControllers riderSpineControllers(const RiderChannels& r, const RiderPoseParams& params) {
+  using C = RiderChannel;
+  SpineControllers c;
+  // Contract: lowerBack.rz + leans forward = the spine's +rz (toward +X); lowerBack.ry + leans to her
+  // right = +ry (toward +Z); lowerBack.rx + twists the chest to her right = −rx about the bone's up.
+  c.lower = {0.0, r[C::lowerBackRy], r[C::lowerBackRz]};
+  c.middle = {0.0, 0.0, r[C::waistRz]};
+  c.top = {-r[C::lowerBackRx], 0.0, r[C::waistRz] * params.chest_follow};
+  return c;
+}
+
+double riderSpineStretch(const CurveSpine& spine, const RiderChannels& r, double rider_unit_cm) {
+  using C = RiderChannel;
+  const double offset = (r[C::spineCTy] + r[C::spineDTy] + r[C::spineFTy]) * rider_unit_cm;
+  return std::max(spine.stretchForOffset(offset), kMinRiderSpineStretch);
+}
+
 void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider_unit_cm,
                     const RiderPoseParams& params, std::span<glm::mat4> local) {
   const Skeleton& s = rider.skeleton;
@@ -157,12 +175,34 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
   // Pelvis: lifted by cog.ty and slid by cog.tx; tips forward (hip.rz) and rolls (hip.ry).
   local[rider.role("pelvis")] = offsetLocal(joint("pelvis"), glm::vec3(float(r[C::cogTx]) * u, float(r[C::cogTy]) * u, 0.0f),
                                             rot(-r[C::hipRz], kZ) * rot(r[C::hipRy], kX));
-  local[rider.role("lowerBack")] = offsetLocal(joint("lowerBack"), glm::vec3(0.0f),
-                                               rot(-r[C::lowerBackRx], kY) * rot(r[C::lowerBackRy], kX) *
-                                                   rot(-r[C::lowerBackRz], kZ));
-  local[rider.role("waist")] = offsetLocal(joint("waist"), up(C::spineCTy), rot(-r[C::waistRz], kZ));
-  local[rider.role("chest")] = offsetLocal(joint("chest"), up(C::spineDTy), rot(-r[C::waistRz] * params.chest_follow, kZ));
-  local[rider.role("upperChest")] = offsetLocal(joint("upperChest"), up(C::spineFTy), glm::mat4(1.0f));
+
+  // The curve spine, in the pelvis's frame with its root at the lower back. Constructing it only
+  // stores the lengths; solve() is the work (tens of microseconds, see pose_test).
+  const RiderSpine layout = riderSpine(rider);
+  const CurveSpine spine(layout.fk_lengths, kRiderSpineSegments);
+  const SpineControllers controllers = riderSpineControllers(r, params);
+  const SpineResult solved = spine.solve(controllers, riderSpineStretch(spine, r, rider_unit_cm));
+  const glm::dvec3 root(layout.root);
+  const glm::dquat unrest = glm::inverse(restBoneFrame());
+  // A spine joint's transform relative to the pelvis: at its place, turned by its frame's change
+  // from the rest frame (joints are translation-only at rest).
+  const auto place = [&](const glm::dvec3& p, const glm::dquat& frame) {
+    return glm::translate(glm::dmat4(1.0), root + p) * glm::mat4_cast(frame * unrest);
+  };
+  const std::array<glm::dquat, 3> frames = spine.controllerFrames(controllers);
+  glm::dmat4 parent(1.0);  // the pelvis
+  for (int k = 0; k < 3; ++k) {
+    const glm::dmat4 world = place(solved.fk[k], frames[k]);
+    local[layout.controllers[k]] = glm::mat4(glm::inverse(parent) * world);
+    parent = world;
+  }
+  parent = glm::dmat4(1.0);
+  for (int i = 0; i <= kRiderSpineSegments; ++i) {
+    const glm::dmat4 world = place(solved.joints[i].position, solved.joints[i].rotation);
+    local[layout.chain[i]] = glm::mat4(glm::inverse(parent) * world);
+    parent = world;
+  }
+  // Neck and head ride on the chain's tip.
   local[rider.role("neck")] = offsetLocal(joint("neck"), up(C::neckTy), glm::mat4(1.0f));
   local[rider.role("head")] = offsetLocal(joint("head"), up(C::headATy), rot(r[C::headRy], kX) * rot(-r[C::headRz], kZ));
 }

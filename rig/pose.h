@@ -14,7 +14,10 @@
 //   lWrist/rWrist    offsets of the hand target in saddle space (not in the rider's chest frame)
 //   hair.*, cloth.*  degrees of swing per unit (hair_deg_per_unit, cloth_deg_per_unit); "up" swings
 //                    the braid / coat skirt backward and up, "side" toward her right
-//   spineC/D/F.ty    waist / chest / upperChest joints; neck.ty neck; headA.ty head
+//   spineC/D/F.ty    the curve spine's stretch: the top of the chain rises by their sum (as the
+//                    three joints' offsets added up on the FK spine), Kuhnel's Eq 9 acting on the
+//                    chain through CurveSpine::stretchForOffset; neck.ty neck; headA.ty head
+//   lowerBack.rx     (with the curve spine) is the top controller's twist, spread along the chain
 #pragma once
 
 #include <span>
@@ -25,6 +28,7 @@
 #include "rig/channels.h"
 #include "rig/character.h"
 #include "rig/clip.h"
+#include "rig/curve_spine.h"
 #include "rig/horse_character.h"  // the characters these jobs pose, for callers that include only pose.h
 #include "rig/rider_character.h"
 
@@ -53,9 +57,21 @@ struct RiderPoseParams {
   float knee_pole_gain = 3.0f;
 };
 
-// The rider's spine and head, local transforms (saddle space at the pelvis). Kept apart so a
-// curve-based spine can replace it. `local` holds one matrix per rider joint; only pelvis, spine,
-// neck and head entries are written.
+// The curve spine's controllers from the rider channels (docs/curve-spine.md, "The rider"): lower =
+// lowerBack (ry side, rz lean), middle = waist (rz), top = the chest's follow of the waist
+// (chest_follow · waist.rz) with the lowerBack twist, which the chain spreads from the lower back up
+// (rx = −lowerBack.rx: the spine's +rx turns the front to her left).
+SpineControllers riderSpineControllers(const RiderChannels& r, const RiderPoseParams& params);
+// Equation 9 on the chain: the stretch that raises the top of the spine by
+// (spineC + spineD + spineF).ty · rider_unit_cm at rest, kept ≥ kMinRiderSpineStretch.
+inline constexpr double kMinRiderSpineStretch = 0.25;
+double riderSpineStretch(const CurveSpine& spine, const RiderChannels& r, double rider_unit_cm);
+
+// The rider's spine and head, local transforms (saddle space at the pelvis). The torso is the curve
+// spine (rig/curve_spine.h): the FK controllers lowerBack/waist/chest are posed from the channels,
+// the chain spine0..spine<N> is laid on the curve they drive, and neck and head ride on the chain's
+// tip. `local` holds one matrix per rider joint; only pelvis, spine, neck and head entries are
+// written.
 void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider_unit_cm,
                     const RiderPoseParams& params, std::span<glm::mat4> local);
 

@@ -1,6 +1,13 @@
 #include "rig/rider_character.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -15,6 +22,45 @@ glm::vec3 mirrorZ(glm::vec3 v, float side) { return {v.x, v.y, v.z * side}; }
 int addJointAt(Skeleton& s, std::string name, int parent, glm::vec3 world) {
   const glm::vec3 parent_pos = parent < 0 ? glm::vec3(0.0f) : s.restPosition(parent);
   return s.addJoint(std::move(name), parent, glm::translate(glm::mat4(1.0f), world - parent_pos));
+}
+
+// Linear blend weights along the spine chain. Each vertex keeps its weights on other joints (pelvis,
+// shoulders, neck); the share it has on the chain is moved onto the two chain bones whose middles
+// bracket its height, linearly (bone i's middle is at y0 + (i + ½)·bone, the tip joint's half a
+// bone above the chain), so a bent chain bends the torso smoothly instead of at a few joints.
+void spreadTorsoWeights(SkinnedMesh& mesh, std::span<const int> chain, float y0, float bone) {
+  const int n = static_cast<int>(chain.size()) - 1;
+  const auto on_chain = [&](int j) { return std::find(chain.begin(), chain.end(), j) != chain.end(); };
+  std::vector<std::pair<float, int>> w;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    w.clear();
+    float torso = 0.0f;
+    for (int k = 0; k < kMaxInfluences; ++k) {
+      const float wk = mesh.weights[v][k];
+      if (wk <= 0.0f) continue;
+      const int j = mesh.joints[v][k];
+      if (on_chain(j))
+        torso += wk;
+      else
+        w.emplace_back(wk, j);
+    }
+    if (torso <= 0.0f) continue;
+    const float u = std::clamp((mesh.positions[v].y - y0) / bone - 0.5f, 0.0f, static_cast<float>(n));
+    const int i = std::min(static_cast<int>(u), n - 1);
+    const float f = u - static_cast<float>(i);
+    w.emplace_back(torso * (1.0f - f), chain[i]);
+    w.emplace_back(torso * f, chain[i + 1]);
+    std::sort(w.begin(), w.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    const int count = std::min<int>(kMaxInfluences, static_cast<int>(w.size()));
+    float total = 0.0f;
+    for (int k = 0; k < count; ++k) total += w[k].first;
+    mesh.joints[v] = glm::u16vec4(0);
+    mesh.weights[v] = glm::vec4(0.0f);
+    for (int k = 0; k < count; ++k) {
+      mesh.joints[v][k] = static_cast<std::uint16_t>(w[k].second);
+      mesh.weights[v][k] = w[k].first / total;
+    }
+  }
 }
 
 // The middle joint of a limb at rest: the same IK the posing job runs, so rest is reproduced exactly.
@@ -37,10 +83,24 @@ Character buildRider(const RiderParams& p) {
   ImplicitBody body;
 
   const int pelvis = addJointAt(s, "pelvis", -1, p.pelvis);
+  // The curve spine's FK controllers, straight up from the lower back (the curve spine's rest pose),
+  // then the chain of equal bones the torso is skinned to, over the same length.
+  const auto above_lower_back = [&](float y) { return glm::vec3(p.lower_back.x, y, p.lower_back.z); };
   const int lower_back = addJointAt(s, "lowerBack", pelvis, p.lower_back);
-  const int waist = addJointAt(s, "waist", lower_back, p.waist);
-  const int chest = addJointAt(s, "chest", waist, p.chest);
-  const int upper_chest = addJointAt(s, "upperChest", chest, p.upper_chest);
+  const int waist = addJointAt(s, "waist", lower_back, above_lower_back(p.waist.y));
+  const int chest = addJointAt(s, "chest", waist, above_lower_back(p.chest.y));
+  constexpr int kN = kRiderSpineSegments;
+  const float chain_bone = (p.upper_chest.y - p.lower_back.y) / kN;
+  std::array<int, kN + 1> chain{};
+  for (int i = 0; i <= kN; ++i)
+    chain[i] = addJointAt(s, "spine" + std::to_string(i), i == 0 ? pelvis : chain[i - 1],
+                          above_lower_back(p.lower_back.y + chain_bone * static_cast<float>(i)));
+  // The chain joint nearest a height: where a primitive or a child at that height hangs.
+  const auto chain_at = [&](float y) {
+    const int i = static_cast<int>(std::lround((y - p.lower_back.y) / chain_bone));
+    return chain[std::clamp(i, 0, kN)];
+  };
+  const int upper_chest = chain[kN];
   const int neck = addJointAt(s, "neck", upper_chest, p.neck);
   const int head = addJointAt(s, "head", neck, p.head);
   const glm::vec3 skull = p.head + glm::vec3(1.5f, p.head_height * 0.45f, 0.0f);  // cranium centre
@@ -49,17 +109,20 @@ Character buildRider(const RiderParams& p) {
   const int braid1 = addJointAt(s, "braid1", head, braid_root);
   const int braid2 = addJointAt(s, "braid2", braid1, braid_root + braid_dir * (p.braid_length / 3.0f));
   const int braid3 = addJointAt(s, "braid3", braid2, braid_root + braid_dir * (2.0f * p.braid_length / 3.0f));
-  const int coat_tail = addJointAt(s, "coatTail", waist, p.waist + glm::vec3(-10.0f, -4.0f, 0.0f));
+  const int coat_tail = addJointAt(s, "coatTail", chain_at(p.waist.y), p.waist + glm::vec3(-10.0f, -4.0f, 0.0f));
   c.roles = {{"pelvis", pelvis}, {"lowerBack", lower_back}, {"waist", waist}, {"chest", chest},
              {"upperChest", upper_chest}, {"neck", neck}, {"head", head}, {"braid1", braid1},
              {"braid2", braid2}, {"braid3", braid3}, {"coatTail", coat_tail}};
 
   // Torso: coat over the chest and waist, breeches over the hips.
   body.add(ellipsoid(p.pelvis + glm::vec3(-0.5f, 0.0f, 0.0f), p.hips_radii, pelvis, p.breeches, 4.0f));
-  body.add(ellipsoid(p.lower_back + glm::vec3(1.0f, 3.0f, 0.0f), {10.5f, 9.0f, p.waist_radius + 1.0f}, lower_back,
+  // (Each is attached to the chain joint at its height; spreadTorsoWeights then spreads the torso's
+  // share of every vertex's weight along the chain.)
+  body.add(ellipsoid(p.lower_back + glm::vec3(1.0f, 3.0f, 0.0f), {10.5f, 9.0f, p.waist_radius + 1.0f},
+                     chain_at(p.lower_back.y + 3.0f), p.coat, 6.0f));
+  body.add(ellipsoid(p.waist + glm::vec3(1.0f, 2.0f, 0.0f), {9.5f, 9.0f, p.waist_radius}, chain_at(p.waist.y + 2.0f),
                      p.coat, 6.0f));
-  body.add(ellipsoid(p.waist + glm::vec3(1.0f, 2.0f, 0.0f), {9.5f, 9.0f, p.waist_radius}, waist, p.coat, 6.0f));
-  body.add(ellipsoid(p.chest + glm::vec3(1.0f, 3.0f, 0.0f), p.chest_radii, chest, p.coat, 6.0f));
+  body.add(ellipsoid(p.chest + glm::vec3(1.0f, 3.0f, 0.0f), p.chest_radii, chain_at(p.chest.y + 3.0f), p.coat, 6.0f));
   body.add(ellipsoid(p.upper_chest + glm::vec3(-0.5f, 1.0f, 0.0f), {9.0f, 6.5f, 18.5f}, upper_chest, p.coat, 5.0f));
   // Neck and head.
   body.add(taperedCapsule(p.neck + glm::vec3(0.0f, -2.0f, 0.0f), p.head + glm::vec3(0.5f, 3.0f, 0.0f), 5.6f, 5.0f,
@@ -141,9 +204,37 @@ Character buildRider(const RiderParams& p) {
   poly.cell = p.cell;
   poly.skin_falloff = 2.0f;
   c.mesh = polygonize(body, poly);
+  spreadTorsoWeights(c.mesh, chain, p.lower_back.y, chain_bone);
   return c;
 }
 
 Character buildDefaultRider() { return buildRider(RiderParams{}); }
+
+RiderSpine riderSpine(const Character& rider) {
+  const Skeleton& s = rider.skeleton;
+  RiderSpine spine;
+  spine.controllers = {rider.role("lowerBack"), rider.role("waist"), rider.role("chest")};
+  for (int i = 0; i <= kRiderSpineSegments; ++i) spine.chain[i] = s.require("spine" + std::to_string(i));
+  const int pelvis = rider.role("pelvis");
+  const bool parents_ok = s.joints[spine.controllers[0]].parent == pelvis &&
+                          s.joints[spine.controllers[1]].parent == spine.controllers[0] &&
+                          s.joints[spine.controllers[2]].parent == spine.controllers[1] &&
+                          s.joints[spine.chain[0]].parent == pelvis &&
+                          rider.role("upperChest") == spine.chain[kRiderSpineSegments];
+  if (!parents_ok) throw std::invalid_argument("riderSpine: " + rider.name + "'s spine joints are not parented as built");
+  const std::array<int, 4> fk = {spine.controllers[0], spine.controllers[1], spine.controllers[2],
+                                 spine.chain[kRiderSpineSegments]};
+  const glm::vec3 base = s.restPosition(fk[0]);
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec3 d = s.restPosition(fk[k + 1]) - s.restPosition(fk[k]);
+    spine.fk_lengths[k] = d.y;
+    if (!(d.y > 0.0f) || std::abs(d.x) > 1e-3f || std::abs(d.z) > 1e-3f)
+      throw std::invalid_argument("riderSpine: " + rider.name + "'s spine controllers are not straight up at rest");
+  }
+  if (glm::length(s.restPosition(spine.chain[0]) - base) > 1e-3f)
+    throw std::invalid_argument("riderSpine: " + rider.name + "'s chain does not start at the lower back");
+  spine.root = base - s.restPosition(pelvis);
+  return spine;
+}
 
 }  // namespace stirrup::rig

@@ -7,11 +7,21 @@
 // "neck", "head" (headA), "braid1".."braid3", "coatTail", and per side s = l, r: "<s>Shoulder",
 // "<s>Elbow", "<s>Wrist", "<s>Hip", "<s>Knee", "<s>Ankle", "<s>Ball" (ball of the foot, on the
 // stirrup tread at rest).
+//
+// Spine (docs/curve-spine.md, "The rider"): "lowerBack", "waist" and "chest" are the curve spine's
+// three FK controllers (unskinned joints straight up from the lower back; their bones end at the
+// next controller and at "upperChest"). The torso is skinned to a chain of kRiderSpineSegments
+// equal bones, joints "spine0" (at the lower back, child of the pelvis) .. "spine<N>" (the chain's
+// tip = "upperChest"), laid on the curve by poseRiderSpine. Neck, shoulders and coat tail hang
+// from chain joints.
 #pragma once
+
+#include <array>
 
 #include <glm/glm.hpp>
 
 #include "rig/character.h"
+#include "rig/curve_spine.h"
 
 namespace stirrup::rig {
 
@@ -58,5 +68,18 @@ struct RiderParams {
 
 Character buildRider(const RiderParams& params);
 Character buildDefaultRider();
+
+inline constexpr int kRiderSpineSegments = CurveSpine::kRiderSegments;
+
+// The spine of a rider built by buildRider, read from its skeleton.
+struct RiderSpine {
+  std::array<int, 3> controllers{};                   // lowerBack, waist, chest joints
+  std::array<int, kRiderSpineSegments + 1> chain{};   // spine0 .. spine<N>, root first
+  std::array<double, 3> fk_lengths{};                 // rest lengths of the three FK bones (cm)
+  glm::vec3 root{0.0f};                               // spine0 (= lowerBack) in the pelvis's frame at rest
+};
+// Throws std::out_of_range when the rider lacks the joints, std::invalid_argument when they are not
+// laid out as buildRider lays them (parents, straight up at rest).
+RiderSpine riderSpine(const Character& rider);
 
 }  // namespace stirrup::rig

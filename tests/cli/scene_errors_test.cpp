@@ -14,7 +14,9 @@ namespace fs = std::filesystem;
 
 class SceneErrors : public ::testing::Test {
  protected:
-  fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_scene_errors";
+  // One folder per test: CTest runs tests in parallel processes.
+  fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_scene_errors" /
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name();
   void SetUp() override {
     fs::remove_all(dir);
     fs::create_directories(dir / "profiles");

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include "rig/clip_factory.h"
 #include "rig/clip_info.h"
 #include "rig/error.h"
 #include "rig/movement_clips.h"
@@ -165,6 +166,35 @@ TEST(GltfClip, FoxWithAMisnamedNodeNamesIt) {
   m = loadClipMapping(kFoxMapping);
   m.animation = "Trot";
   EXPECT_THROW(GltfClip(kFox, m), InputError);
+}
+
+TEST(GltfClip, ASceneClipCanBeAFileWithAMapping) {
+  const fs::path file = tempFile("scene_clip.glb");
+  const MovementClip rear(makeRear(RearParams{}));
+  writeClipGltf(rear, file, {30.0});
+  // Paths resolve against the scene's folder.
+  nlohmann::json j = {{"file", file.filename().string()}};
+  JsonObjectReader r("scenes/x.json", "clip", j);
+  const ClipSpec spec = parseClipSpec(r, file.parent_path());
+  const auto clip = makeClip(spec);
+  EXPECT_NEAR(clip->sample(2.0).controls[HorseChannel::rearPivotRz], rear.sample(2.0).controls[HorseChannel::rearPivotRz], 1e-3);
+  // A missing file, an unknown field: one line naming the file and field.
+  nlohmann::json missing = {{"file", "nowhere.glb"}};
+  JsonObjectReader r2("scenes/x.json", "clip", missing);
+  try {
+    parseClipSpec(r2, file.parent_path());
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("scenes/x.json: clip.file: no such file", 0), 0u) << e.what();
+  }
+  nlohmann::json extra = {{"file", file.filename().string()}, {"fence_height_cm", 90}};
+  JsonObjectReader r3("scenes/x.json", "clip", extra);
+  EXPECT_THROW(parseClipSpec(r3, file.parent_path()), InputError);
+  if (!fs::exists(kFox)) GTEST_SKIP() << kFox << " is not there";
+  nlohmann::json fox = {{"file", kFox.string()}, {"mapping", kFoxMapping.string()}, {"animation", "Run"}};
+  JsonObjectReader r4("scenes/x.json", "clip", fox);
+  const auto run = makeClip(parseClipSpec(r4, "."));
+  EXPECT_EQ(run->name(), "Run");
 }
 
 }  // namespace

@@ -1,7 +1,11 @@
 #include "rig/pose.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 #include "rig/horse_character.h"
@@ -213,6 +217,152 @@ TEST(PoseRider, ChannelsFollowTheContractSigns) {
   RiderChannels wild;
   for (std::size_t i = 0; i < kRiderChannelCount; ++i) wild.value[i] = (i % 2 ? 1 : -1) * 300.0;
   EXPECT_TRUE(finite(poseRider(r, h, hw, wild, 2.54)));
+}
+
+// The rider's spine chain joints in the pelvis's rest frame, for a horse at rest and the hip still.
+struct RiderSpinePose {
+  std::vector<glm::mat4> world;
+  glm::vec3 origin{0.0f};  // where the chain's root (spine0) sits at rest, world
+};
+RiderSpinePose poseRiderAt(const RiderChannels& ch, double unit = 2.54) {
+  const Character& h = horse();
+  const Character& r = rider();
+  const std::vector<glm::mat4> hw = poseHorse(h, HorseFrame{});
+  RiderSpinePose out;
+  out.world = poseRider(r, h, hw, ch, unit);
+  out.origin = at(h, hw, "saddle") + r.skeleton.restPosition(riderSpine(r).chain[0]);
+  return out;
+}
+double angleDeg(glm::dvec3 a, glm::dvec3 b) {
+  return glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)));
+}
+
+TEST(PoseRiderSpine, ChainJointsLieOnTheCurveSpinesSolution) {
+  const Character& r = rider();
+  const RiderSpine layout = riderSpine(r);
+  EXPECT_NEAR(layout.fk_lengths[0], 10.0, 1e-4);  // the default rider's lower back → waist → chest → upper chest
+  EXPECT_NEAR(layout.fk_lengths[1], 11.0, 1e-4);
+  EXPECT_NEAR(layout.fk_lengths[2], 10.0, 1e-4);
+  RiderChannels ch;
+  ch[RiderChannel::lowerBackRz] = 12.0;
+  ch[RiderChannel::lowerBackRy] = -6.0;
+  ch[RiderChannel::lowerBackRx] = 9.0;
+  ch[RiderChannel::waistRz] = 20.0;
+  ch[RiderChannel::spineCTy] = 0.3;
+  ch[RiderChannel::spineDTy] = 0.2;
+  ch[RiderChannel::spineFTy] = -0.1;
+  const RiderSpinePose posed = poseRiderAt(ch);
+  const CurveSpine spine(layout.fk_lengths, kRiderSpineSegments);
+  const RiderPoseParams params;
+  const double stretch = riderSpineStretch(spine, ch, 2.54);
+  EXPECT_NEAR(stretch, (31.0 + 0.4 * 2.54) / 31.0, 1e-9);
+  const SpineResult solved = spine.solve(riderSpineControllers(ch, params), stretch);
+  const glm::dquat unrest = glm::inverse(restBoneFrame());
+  for (int i = 0; i <= kRiderSpineSegments; ++i) {
+    const glm::mat4& m = posed.world[layout.chain[i]];
+    const glm::dvec3 expected = glm::dvec3(posed.origin) + solved.joints[i].position;
+    EXPECT_LT(glm::length(glm::dvec3(glm::vec3(m[3])) - expected), 1e-3) << "spine" << i;
+    const glm::dmat3 rotation = glm::mat3_cast(solved.joints[i].rotation * unrest);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT(glm::length(glm::dvec3(glm::vec3(m[c])) - rotation[c]), 1e-4) << "spine" << i << " axis " << c;
+  }
+  // The neck rides on the tip: its offset from the tip is the rest offset turned by the tip's frame.
+  const int tip = layout.chain[kRiderSpineSegments];
+  const glm::vec3 rest_offset = r.skeleton.restPosition(r.role("neck")) - r.skeleton.restPosition(tip);
+  const glm::vec3 neck = at(r, posed.world, "neck");
+  EXPECT_LT(glm::length(neck - (pos(posed.world, tip) + glm::mat3(posed.world[tip]) * rest_offset)), 1e-3f);
+}
+
+TEST(PoseRiderSpine, AtRestTheTorsoIsUpright) {
+  const Character& r = rider();
+  const RiderSpine layout = riderSpine(r);
+  const RiderSpinePose posed = poseRiderAt(RiderChannels{});
+  for (int i = 0; i < kRiderSpineSegments; ++i) {
+    const glm::vec3 d = pos(posed.world, layout.chain[i + 1]) - pos(posed.world, layout.chain[i]);
+    EXPECT_NEAR(d.y, 3.1f, 1e-4f) << "spine" << i;
+    EXPECT_LT(std::abs(d.x) + std::abs(d.z), 1e-4f) << "spine" << i;
+    const glm::mat3 turn = glm::mat3(posed.world[layout.chain[i]]);
+    for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(turn[c] - glm::mat3(1.0f)[c]), 1e-5f) << "spine" << i;
+  }
+  // The torso's mesh: every vertex skinned to the chain alone is where the bind pose put it, and
+  // its weights are spread over neighbouring chain bones.
+  std::vector<glm::vec3> p, n;
+  skinMesh(r.mesh, r.skeleton, posed.world, p, n);
+  const glm::vec3 seat = posed.origin - r.skeleton.restPosition(layout.chain[0]);
+  const auto on_chain = [&](int j) {
+    return std::find(layout.chain.begin(), layout.chain.end(), j) != layout.chain.end();
+  };
+  float worst = 0.0f;
+  int torso = 0, blended = 0;
+  for (std::size_t v = 0; v < p.size(); ++v) {
+    bool chain_only = true;
+    int influences = 0;
+    for (int k = 0; k < kMaxInfluences; ++k)
+      if (r.mesh.weights[v][k] > 0.0f) {
+        chain_only = chain_only && on_chain(r.mesh.joints[v][k]);
+        ++influences;
+      }
+    if (!chain_only) continue;
+    ++torso;
+    blended += influences == 2;
+    worst = std::max(worst, glm::length(p[v] - (seat + r.mesh.positions[v])));
+  }
+  EXPECT_GT(torso, 1000);
+  EXPECT_GT(blended, torso / 2);
+  EXPECT_LT(worst, 1e-3f);
+}
+
+TEST(PoseRiderSpine, LeaningForwardBendsTheChainSmoothlyTowardTheFront) {
+  const Character& r = rider();
+  const RiderSpine layout = riderSpine(r);
+  RiderChannels ch;
+  ch[RiderChannel::lowerBackRz] = 15.0;
+  ch[RiderChannel::waistRz] = 15.0 * 1.7;  // Eq 4
+  const RiderSpinePose posed = poseRiderAt(ch);
+  std::vector<glm::dvec3> bones;
+  for (int i = 0; i < kRiderSpineSegments; ++i)
+    bones.push_back(glm::dvec3(pos(posed.world, layout.chain[i + 1]) - pos(posed.world, layout.chain[i])));
+  const double total = angleDeg(bones.front(), bones.back());
+  EXPECT_GT(total, 20.0);  // the waist and the chest follow bend the chain, not just the lower back
+  double worst = 0.0, previous_lean = -1.0;
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    const double lean = std::atan2(bones[i].x, bones[i].y);  // forward lean of the bone, radians
+    EXPECT_GT(lean, previous_lean) << "bone " << i << " leans less than the one below";
+    EXPECT_GT(lean, 0.0) << "bone " << i;
+    EXPECT_NEAR(bones[i].z, 0.0, 1e-4);
+    previous_lean = lean;
+    if (i > 0) worst = std::max(worst, angleDeg(bones[i - 1], bones[i]));
+  }
+  // No kink: the bend is spread over the chain, no neighbouring pair turns more than a few degrees
+  // (the FK spine put the whole waist bend in one joint).
+  EXPECT_LT(worst, 5.0);
+  EXPECT_LT(worst, 0.25 * total);
+  // The tip ends up well ahead of the root and the head further still.
+  const glm::vec3 tip = pos(posed.world, layout.chain[kRiderSpineSegments]);
+  EXPECT_GT(tip.x - posed.origin.x, 8.0f);
+  EXPECT_GT(at(r, posed.world, "head").x, tip.x);
+  // Twist goes to the chest, spread over the chain: lowerBack.rx + turns the chest's front to her right.
+  ch = RiderChannels{};
+  ch[RiderChannel::lowerBackRx] = 20.0;
+  const RiderSpinePose twisted = poseRiderAt(ch);
+  const glm::vec3 front = glm::mat3(twisted.world[layout.chain[kRiderSpineSegments]]) * glm::vec3(1, 0, 0);
+  EXPECT_NEAR(glm::degrees(std::atan2(front.z, front.x)), 20.0, 1e-3);
+  const glm::vec3 low = glm::mat3(twisted.world[layout.chain[0]]) * glm::vec3(1, 0, 0);
+  EXPECT_NEAR(glm::degrees(std::atan2(low.z, low.x)), 2.0, 1e-3);
+}
+
+TEST(PoseRiderSpine, SolvingPerCallIsCheap) {
+  const Character& r = rider();
+  RiderChannels ch;
+  ch[RiderChannel::lowerBackRz] = 10.0;
+  ch[RiderChannel::waistRz] = 17.0;
+  std::vector<glm::mat4> local = restLocals(r.skeleton);
+  const int calls = 200;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < calls; ++i) poseRiderSpine(r, ch, 2.54, RiderPoseParams{}, local);
+  const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() / calls;
+  std::printf("poseRiderSpine (CurveSpine built and solved per call): %.1f us\n", us);
+  EXPECT_LT(us, 5000.0);  // a frame's budget is milliseconds; generous for a shared, loaded machine
 }
 
 TEST(PoseRider, StirrupsFollowTheFeet) {
