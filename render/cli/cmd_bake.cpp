@@ -1,11 +1,12 @@
 // stirrup bake SCENE: evaluates the clip and the rider rig for every frame of the scene.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <vector>
 
 #include "render/cli/commands.h"
 #include "render/scene.h"
 #include "rig/bake.h"
+#include "rig/channel_csv.h"
 #include "rig/error.h"
 #include "rig/frame_range.h"
 #include "rig/clip_factory.h"
@@ -29,27 +30,25 @@ void runBake(const BakeOptions& o) {
   const std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
 
   if (o.channels.empty()) throw InputError("bake: nothing to write (expected --channels FILE)");
-  const fs::path out = o.channels;
-  const fs::path tmp = out.string() + ".tmp";
-  if (!out.parent_path().empty()) fs::create_directories(out.parent_path());
-  {
-    std::ofstream csv(tmp);
-    if (!csv) throw InputError(out.string() + ": cannot write the file");
-    csv.precision(9);
-    csv << "frame,time";
-    for (std::string_view n : rig::kHorseChannelNames) csv << ',' << n;
-    for (std::string_view n : rig::kRiderChannelNames) csv << ',' << n;
-    csv << '\n';
-    for (int frame : frames) {
-      const rig::BakedFrame b = rig::bakeFrame(*clip, profile, frame, render::frameTime(scene, frame));
-      csv << b.frame << ',' << b.seconds;
-      for (double v : b.horse.controls.value) csv << ',' << v;
-      for (double v : b.rider.value) csv << ',' << v;
-      csv << '\n';
-    }
-    if (!csv.flush()) throw InputError(out.string() + ": write failed");
+  // Columns: time, every horse channel, every rider channel, in contract order.
+  std::vector<std::string_view> names;
+  names.reserve(1 + rig::kHorseChannelCount + rig::kRiderChannelCount);
+  names.push_back("time");
+  for (std::string_view n : rig::kHorseChannelNames) names.push_back(n);
+  for (std::string_view n : rig::kRiderChannelNames) names.push_back(n);
+  std::vector<double> frame_numbers, values;
+  values.reserve(frames.size() * names.size());
+  for (int frame : frames) {
+    const rig::BakedFrame b = rig::bakeFrame(*clip, profile, frame, render::frameTime(scene, frame));
+    frame_numbers.push_back(b.frame);
+    values.push_back(b.seconds);
+    values.insert(values.end(), b.horse.controls.value.begin(), b.horse.controls.value.end());
+    values.insert(values.end(), b.rider.value.begin(), b.rider.value.end());
   }
-  fs::rename(tmp, out);
+  std::vector<const double*> rows;
+  for (std::size_t i = 0; i < frames.size(); ++i) rows.push_back(values.data() + i * names.size());
+  if (const fs::path parent = fs::path(o.channels).parent_path(); !parent.empty()) fs::create_directories(parent);
+  rig::writeChannelCsv(o.channels, names, frame_numbers, rows);
 }
 
 }  // namespace

