@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <regex>
 
 #include "render/cli/commands.h"
 #include "render/image_diff.h"
@@ -83,20 +82,17 @@ void compareAll(const DiffOptions& o) {
   }
 
   render::DiffVerdict worst = render::DiffVerdict::Pass;
-  {
-    for (const auto& [a, b] : pairs) {
-      fs::path diff_image;
-      if (!o.diff_image.empty()) {
-        diff_image = o.diff_image;
-        if (pairs.size() > 1) {  // one diff image per frame: OUT.ext -> OUT.<frame file name>
-          diff_image = fs::path(o.diff_image).replace_extension("").string() + "." + b.filename().string();
-        }
-      }
-      const render::DiffResult r = render::compareImageFiles(a, b, t, diff_image, o.scale);
-      std::printf("%s vs %s: %s: %s\n", a.string().c_str(), b.string().c_str(), verdictName(r.verdict).c_str(),
-                  r.summary().c_str());
-      worst = std::max(worst, r.verdict);
+  for (const auto& [a, b] : pairs) {
+    fs::path diff_image;
+    if (!o.diff_image.empty()) {
+      diff_image = o.diff_image;
+      if (pairs.size() > 1)  // one diff image per frame: OUT.ext -> OUT.<frame file name>
+        diff_image = fs::path(o.diff_image).replace_extension("").string() + "." + b.filename().string();
     }
+    const render::DiffResult r = render::compareImageFiles(a, b, t, diff_image, o.scale);
+    std::printf("%s vs %s: %s: %s\n", a.string().c_str(), b.string().c_str(), verdictName(r.verdict).c_str(),
+                r.summary().c_str());
+    worst = std::max(worst, r.verdict);
   }
   if (pairs.size() > 1) std::printf("%zu frames: %s\n", pairs.size(), verdictName(worst).c_str());
   throw ExitStatus{static_cast<int>(worst)};
