@@ -1,0 +1,177 @@
+// The golden images must catch small changes: each test renders the golden frames of a copy of
+// tests/golden/trot_side.json with ONE change (a 10% change of the main weight of Equations 1, 4, 7,
+// 8 or 10, the camera turned or tilted 1 degree about its target, the sun turned 2 degrees) and expects
+// at least one golden comparison to fail; the unchanged copy must pass at 1 thread and at all threads.
+// Each test works in its own folder under BUILD/golden_sensitivity/ (CTest runs them in parallel).
+// The measured margins are in README.md, "Golden images".
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "render/scene.h"
+#include "tests/cli/golden_support.h"
+#include "tests/cli/run_command.h"
+
+namespace stirrup::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+enum class Change { None, Weight, CameraTurn, CameraTilt, SunTurn };
+
+struct Perturbation {
+  std::string name;  // test and folder name
+  Change change = Change::None;
+  std::string key;        // Weight: the profile key, scaled by `amount`
+  double amount = 0;      // Weight: factor; otherwise degrees
+  int threads = 0;        // --threads (0 = all cores)
+};
+
+void PrintTo(const Perturbation& p, std::ostream* os) { *os << p.name; }
+
+json readJson(const fs::path& file) {
+  std::ifstream in(file);
+  return json::parse(in);
+}
+
+// Rotates `v` about the vertical (Y) axis by `deg`.
+std::array<double, 3> turn(const std::array<double, 3>& v, double deg) {
+  const double a = deg * std::numbers::pi / 180.0;
+  return {v[0] * std::cos(a) + v[2] * std::sin(a), v[1], -v[0] * std::sin(a) + v[2] * std::cos(a)};
+}
+
+// Rotates `v` about the horizontal X axis (across the view of the side camera) by `deg`.
+std::array<double, 3> tilt(const std::array<double, 3>& v, double deg) {
+  const double a = deg * std::numbers::pi / 180.0;
+  return {v[0], v[1] * std::cos(a) + v[2] * std::sin(a), -v[1] * std::sin(a) + v[2] * std::cos(a)};
+}
+
+// The golden scene with the change, its profile made absolute (profile paths are relative to the
+// scene file, and this copy lives in the build folder).
+json perturbedScene(const Perturbation& p) {
+  const fs::path golden_scene = kGoldenDir / "trot_side.json";
+  const fs::path profile = fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json";
+  json scene = readJson(golden_scene);
+  scene["profile"] = profile.string();
+  switch (p.change) {
+    case Change::None: break;
+    case Change::Weight: {
+      const json thesis = readJson(profile);
+      if (!thesis.contains(p.key)) throw std::runtime_error(p.key + " is not in " + profile.string());
+      scene["profile_overrides"] = {{p.key, thesis.at(p.key).get<double>() * p.amount}};
+      break;
+    }
+    case Change::CameraTurn:
+    case Change::CameraTilt: {
+      json& cam = scene.at("cameras").at(0);
+      const auto pos = cam.at("position").get<std::array<double, 3>>();
+      const auto target = cam.at("target").get<std::array<double, 3>>();
+      const std::array<double, 3> offset = {pos[0] - target[0], pos[1] - target[1], pos[2] - target[2]};
+      const auto moved = p.change == Change::CameraTurn ? turn(offset, p.amount) : tilt(offset, p.amount);
+      cam["position"] = {target[0] + moved[0], target[1] + moved[1], target[2] + moved[2]};
+      break;
+    }
+    case Change::SunTurn: {
+      // The golden scene's sun (the default unless it names one), turned about the vertical.
+      const render::SceneSpec spec = render::loadScene(golden_scene);
+      scene["sun"]["direction"] = turn(spec.sun_direction, p.amount);
+      break;
+    }
+  }
+  return scene;
+}
+
+struct Rendered {
+  fs::path dir;
+  std::string error;  // non-empty when the render failed
+};
+
+Rendered renderGoldenFrames(const Perturbation& p) {
+  Rendered r;
+  r.dir = fs::path(STIRRUP_BINARY_DIR) / "golden_sensitivity" / p.name;
+  fs::remove_all(r.dir);
+  fs::create_directories(r.dir);
+  const fs::path scene_file = r.dir / "scene.json";
+  std::ofstream(scene_file) << perturbedScene(p).dump(2) << "\n";
+  std::string frames;
+  for (int f : kGoldenFrames) {
+    if (!frames.empty()) frames += ',';
+    frames.append(std::to_string(f));
+  }
+  const CommandResult c = runStirrup("render " + quote(scene_file.string()) + " --frames " + frames + " --threads " +
+                                     std::to_string(p.threads) + " --out " + quote(r.dir.string()));
+  if (c.exit_code != 0) r.error = "stirrup render exited " + std::to_string(c.exit_code) + ": " + c.err;
+  return r;
+}
+
+class GoldenSensitivity : public ::testing::TestWithParam<Perturbation> {};
+
+TEST_P(GoldenSensitivity, APerturbedRenderFailsAGoldenComparison) {
+  const Perturbation& p = GetParam();
+  const Rendered r = renderGoldenFrames(p);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  int failed = 0;
+  std::string numbers;
+  for (int frame : kGoldenFrames) {
+    const std::string name = goldenName(frame);
+    ASSERT_TRUE(fs::exists(r.dir / name)) << r.dir / name << " was not rendered";
+    const GoldenComparison c = compareWithGolden(kGoldenDir / name, r.dir / name);
+    failed += c.failed();
+    if (c.failed()) {
+      EXPECT_TRUE(fs::exists(c.report)) << c.report;
+    }
+    numbers += "\n  " + name + ": " + c.diff.summary();
+  }
+  RecordProperty("comparisons", numbers);
+  EXPECT_GE(failed, 1) << p.name << " passed every golden comparison: the goldens do not see it" << numbers;
+  std::cout << p.name << ":" << numbers << "\n";
+}
+
+// 10% of the weight that drives each equation's motion at the trot (docs/rider-rig.md): Eq 1 the
+// lower back's lean (front reach; the other Eq 1 weights move the same pixels as much), Eq 4 the
+// waist, Eq 7 the lift, Eq 8 the seat shift, Eq 10 the head's pitch with the lift.
+INSTANTIATE_TEST_SUITE_P(
+    Changes, GoldenSensitivity,
+    ::testing::Values(Perturbation{"eq1_w2_front_reach_x1_1", Change::Weight, "eq1.w2_front_reach", 1.1, 0},
+                      Perturbation{"eq4_w1_lower_back_x1_1", Change::Weight, "eq4.w1_lower_back", 1.1, 0},
+                      Perturbation{"eq7_w2_scale_x1_1", Change::Weight, "eq7.w2_scale", 1.1, 0},
+                      Perturbation{"eq8_w2_scale_x1_1", Change::Weight, "eq8.w2_scale", 1.1, 0},
+                      Perturbation{"eq10_w2_lift_x1_1", Change::Weight, "eq10.w2_lift", 1.1, 0},
+                      Perturbation{"camera_turned_1deg", Change::CameraTurn, "", 1.0, 0},
+                      Perturbation{"camera_tilted_1deg", Change::CameraTilt, "", 1.0, 0},
+                      Perturbation{"sun_turned_2deg", Change::SunTurn, "", 2.0, 0}),
+    [](const ::testing::TestParamInfo<Perturbation>& info) { return info.param.name; });
+
+class GoldenUnchanged : public ::testing::TestWithParam<Perturbation> {};
+
+// The control: the same rewritten scene without a change passes, at 1 thread and at all threads, so
+// the failures above come from the change and not from the copy.
+TEST_P(GoldenUnchanged, TheRewrittenSceneMatchesEveryReference) {
+  const Perturbation& p = GetParam();
+  const Rendered r = renderGoldenFrames(p);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  for (int frame : kGoldenFrames) {
+    const std::string name = goldenName(frame);
+    ASSERT_TRUE(fs::exists(r.dir / name)) << r.dir / name << " was not rendered";
+    const GoldenComparison c = compareWithGolden(kGoldenDir / name, r.dir / name);
+    EXPECT_FALSE(c.failed()) << c.message();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Threads, GoldenUnchanged,
+                         ::testing::Values(Perturbation{"unchanged_1_thread", Change::None, "", 0, 1},
+                                           Perturbation{"unchanged_all_threads", Change::None, "", 0, 0}),
+                         [](const ::testing::TestParamInfo<Perturbation>& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace stirrup::test

@@ -1,0 +1,104 @@
+#include "tests/cli/golden_support.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace stirrup::test {
+
+namespace fs = std::filesystem;
+
+std::string goldenName(int frame) {
+  char name[64];
+  std::snprintf(name, sizeof name, "trot_side.%04d.png", frame);
+  return name;
+}
+
+namespace {
+
+std::string html(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string number(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+void writeReport(const GoldenComparison& c, const fs::path& reference_copy, const render::DiffThresholds& t) {
+  const render::DiffResult& d = c.diff;
+  const double pixels = double(d.width) * d.height;
+  std::ostringstream o;
+  o << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>golden: " << html(c.image.filename().string())
+    << "</title>\n<style>body{font-family:sans-serif} figure{display:inline-block;margin:0 1em 1em 0}"
+       " img{image-rendering:pixelated;width:640px;border:1px solid #888} td{padding:0 1em 0 0}</style>"
+       "</head><body>\n"
+    << "<h1>Golden image " << html(c.image.filename().string()) << ": FAIL</h1>\n"
+    << "<figure><img src=\"" << html(reference_copy.filename().string()) << "\" alt=\"reference\"><figcaption>reference ("
+    << html(c.reference.string()) << ")</figcaption></figure>\n"
+    << "<figure><img src=\"" << html(c.image.filename().string()) << "\" alt=\"new\"><figcaption>new image</figcaption></figure>\n"
+    << "<figure><img src=\"" << html(c.diff_image.filename().string())
+    << "\" alt=\"diff\"><figcaption>|new &minus; reference| &times; 16</figcaption></figure>\n"
+    << "<table>\n"
+    << "<tr><td>size</td><td>" << d.width << " &times; " << d.height << ", " << d.channels << " channels</td></tr>\n"
+    << "<tr><td>mean error</td><td>" << number("%.6f", d.mean_error) << "</td></tr>\n"
+    << "<tr><td>RMS error</td><td>" << number("%.6f", d.rms_error) << "</td></tr>\n"
+    << "<tr><td>max error</td><td>" << number("%.6f", d.max_error) << " (" << number("%.1f", d.max_error * 255)
+    << "/255) at pixel (" << d.worst_x << ", " << d.worst_y << ")</td></tr>\n"
+    << "<tr><td>PSNR</td><td>" << number("%.2f", d.psnr_db) << " dB</td></tr>\n"
+    << "<tr><td>pixels over fail</td><td>" << d.pixels_over_fail << " (" << number("%.4f", 100.0 * d.pixels_over_fail / pixels)
+    << "%)</td></tr>\n"
+    << "<tr><td>pixels over warn</td><td>" << d.pixels_over_warn << " (" << number("%.4f", 100.0 * d.pixels_over_warn / pixels)
+    << "%)</td></tr>\n"
+    << "<tr><td>thresholds</td><td>fail: more than " << number("%.4f", 100.0 * t.fail_fraction) << "% of the pixels ("
+    << number("%.1f", t.fail_fraction * pixels) << ") off by more than " << number("%.6f", t.fail) << " ("
+    << number("%.1f", t.fail * 255) << "/255)" << (std::isfinite(t.hardfail) ? ", or any pixel over " + number("%.6f", t.hardfail) : "")
+    << "; warn: more than " << number("%.4f", 100.0 * t.warn_fraction) << "% over " << number("%.6f", t.warn)
+    << "</td></tr>\n"
+    << "</table>\n<p>After an intended change to the look or the rig: <code>scripts/update-goldens</code>.</p>\n"
+    << "</body></html>\n";
+  std::ofstream out(c.report);
+  out << o.str();
+}
+
+}  // namespace
+
+std::string GoldenComparison::message() const {
+  std::ostringstream o;
+  o << image.filename().string() << ": " << diff.summary() << "\n  new: " << image << "\n  reference: " << reference
+    << "\n  diff (x16): " << diff_image;
+  if (!report.empty()) o << "\n  report: " << report;
+  o << "\n  after an intended change: scripts/update-goldens";
+  return o.str();
+}
+
+GoldenComparison compareWithGolden(const fs::path& reference, const fs::path& image) {
+  GoldenComparison c;
+  c.image = image;
+  c.reference = reference;
+  c.diff_image = image.parent_path() / (image.filename().string() + ".diff.png");
+  const render::DiffThresholds t = goldenThresholds();
+  c.diff = render::compareImageFiles(reference, image, t, c.diff_image);
+  if (c.failed()) {
+    const fs::path stem = image.parent_path() / image.stem();
+    const fs::path reference_copy = stem.string() + ".reference.png";
+    fs::copy_file(reference, reference_copy, fs::copy_options::overwrite_existing);
+    c.report = stem.string() + ".report.html";
+    writeReport(c, reference_copy, t);
+  }
+  return c;
+}
+
+}  // namespace stirrup::test
