@@ -38,14 +38,20 @@ TEST_P(Golden, TrotSideMatchesTheReference) {
 
 INSTANTIATE_TEST_SUITE_P(Frames, Golden, ::testing::ValuesIn(kGoldenFrames));
 
+// A fresh folder holding a copy of the checked-in golden `name`, as if just rendered there.
+fs::path copyGoldenInto(const std::string& folder, const std::string& name) {
+  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / folder;
+  fs::remove_all(out);
+  fs::create_directories(out);
+  fs::copy_file(kGoldenDir / name, out / name);
+  return out / name;
+}
+
 TEST(GoldenDiff, ADifferentImageFailsWithAReport) {
   // The comparison itself must be able to fail: the two golden frames differ from each other. The
   // failure writes the report next to the new image, with the three images beside it.
-  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / "different";
-  fs::remove_all(out);
-  fs::create_directories(out);
-  const fs::path image = out / "trot_side.0009.png";
-  fs::copy_file(kGoldenDir / "trot_side.0009.png", image);
+  const fs::path image = copyGoldenInto("different", "trot_side.0009.png");
+  const fs::path out = image.parent_path();
   const GoldenComparison c = compareWithGolden(kGoldenDir / "trot_side.0004.png", image);
   ASSERT_TRUE(c.failed()) << c.diff.summary();
   EXPECT_EQ(c.report, out / "trot_side.0009.report.html");
@@ -60,11 +66,8 @@ TEST(GoldenDiff, ADifferentImageFailsWithAReport) {
 }
 
 TEST(GoldenDiff, AMatchWritesNoReport) {
-  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / "same";
-  fs::remove_all(out);
-  fs::create_directories(out);
-  const fs::path image = out / "trot_side.0004.png";
-  fs::copy_file(kGoldenDir / "trot_side.0004.png", image);
+  const fs::path image = copyGoldenInto("same", "trot_side.0004.png");
+  const fs::path out = image.parent_path();
   const GoldenComparison c = compareWithGolden(kGoldenDir / "trot_side.0004.png", image);
   EXPECT_FALSE(c.failed()) << c.message();
   EXPECT_EQ(c.diff.max_error, 0.0);
