@@ -142,8 +142,8 @@ double tenNullLengthEstimate(const SpineCurve& curve) {
   return glm::length(n2 - n1) * gaps;
 }
 
-CurveSpine::CurveSpine(std::array<double, 3> boneLengths, int segments)
-    : lengths_(boneLengths), segments_(segments) {
+CurveSpine::CurveSpine(std::array<double, 3> boneLengths, int segments, ChainLayout layout)
+    : lengths_(boneLengths), segments_(segments), layout_(layout) {
   for (double l : lengths_)
     if (!(std::isfinite(l) && l > 0.0))
       throw std::invalid_argument("CurveSpine: bone length " + std::to_string(l) + " is not positive");
@@ -192,17 +192,29 @@ SpineResult CurveSpine::solve(const SpineControllers& c, double stretch) const {
   r.samples.reserve(kSampleCount);
   for (int k = 0; k < kSampleCount; ++k) r.samples.push_back(spline.pointAtArcLength(r.length * k / (kSampleCount - 1)));
 
-  // Equal chords, every joint on the curve, the first and last at its ends.
+  // Every joint on the curve, the first and last at its ends; bones equal in the layout's measure.
+  r.layout = layout_;
   r.joint_arc_lengths.assign(n + 1, 0.0);
-  const double chord = layEqualChords(spline, r.joint_arc_lengths);
+  for (int j = 0; j <= n; ++j) r.joint_arc_lengths[j] = r.length * j / n;
+  double chord = r.length / n;
+  if (layout_ == ChainLayout::EqualChord) {
+    chord = layEqualChords(spline, r.joint_arc_lengths);
+    r.layout_converged = chord > 0.0;
+  }
   std::vector<double> t(n + 1);
   for (int j = 0; j <= n; ++j) t[j] = spline.parameterAtArcLength(r.joint_arc_lengths[j]);
   const double end = spline.endParameter();
+  t[0] = 0.0;
   t[n] = end;
-  r.layout_converged = chord > 0.0;
   double sum = 0.0;
-  for (int j = 0; j < n; ++j) sum += glm::length(spline.point(t[j + 1]) - spline.point(t[j]));
-  r.bone_length = r.layout_converged ? chord : sum / n;
+  r.bone_chords.resize(n);
+  for (int j = 0; j < n; ++j) sum += r.bone_chords[j] = glm::length(spline.point(t[j + 1]) - spline.point(t[j]));
+  if (layout_ == ChainLayout::EqualArcLength) {
+    r.bone_length = r.length / n;
+  } else {
+    r.bone_length = r.layout_converged ? chord : sum / n;
+  }
+  r.chain_length = layout_ == ChainLayout::EqualArcLength ? r.length : sum;
   r.chain_deficit = 1.0 - sum / r.length;
 
   // Where frames are needed: the arc-length middle of every bone, and the end of the curve.

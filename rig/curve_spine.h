@@ -4,13 +4,16 @@
 // FK chain a C² cubic (SpineCurve) is built through the root of bone 1, the three bone midpoints and
 // the tip of bone 3, and a chain of N equal bones is laid on it:
 //
-//  * Chain layout: every joint lies on the curve, every bone has the same chord length c, the first
-//    joint is the curve's start and the last its end. Joints and c are solved together by Newton's
-//    method started from joints at equal arc length, so the layout moves continuously with the pose
-//    (Blender's sphere-marching construction gives the same chords but jumps at hairpins). The
-//    chain is therefore exactly as long as the polyline it inscribes, and shorter than the curve's arc
-//    length by the chord-vs-arc deficit, reported as SpineResult::chain_deficit (0 at rest, where the
-//    curve is straight; see docs/curve-spine.md for its size at extreme bends).
+//  * Chain layout (ChainLayout): every joint lies on the curve, the first at its start and the last at
+//    its end, and every bone is the same length. A bone is measured the way the skin it drives sees it,
+//    along the curve between its two joints, so by default (EqualArcLength) joint j sits at arc length
+//    j·L/N and the N bones sum to the curve's exact arc length L: the chain neither kinks nor
+//    overshoots, at rest or at any bend, and it moves continuously with the pose. Straight segments
+//    between joints on a bent curve are always a little shorter than the arcs they span (the
+//    chord-vs-arc deficit, SpineResult::chain_deficit: 0 at rest, 0.06% at ±45°, 0.3% at ±90°, a few
+//    percent at hairpins; docs/curve-spine.md). EqualChord instead makes the straight segments equal
+//    (Newton's method from the equal-arc layout), for tools that want equal chords; its chain is then
+//    as long as the polyline it inscribes, shorter than the curve by that deficit.
 //  * Frames: a rotation-minimizing frame (double reflection) runs along the curve from the lower
 //    controller's frame; each bone takes that frame at the arc-length middle of the bone, turned by the
 //    smallest rotation onto its chord. No Frenet frame, no up vector, hence no flips.
@@ -51,15 +54,25 @@ struct SpineJoint {
   glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
 };
 
+// How the chain's joints are spaced along the curve (see the header comment).
+enum class ChainLayout {
+  EqualArcLength,  // bones of equal arc length L/N: the chain is exactly as long as the curve (default)
+  EqualChord,      // bones of equal straight length: the chain is the inscribed equilateral polyline
+};
+
 struct SpineResult {
   std::array<glm::dvec3, 4> fk;               // FK joints: root, tips of bones 1, 2, 3
   std::array<glm::dvec3, 5> curve_points;     // root, three bone midpoints, tip of bone 3
   double length = 0.0;                        // exact arc length of the curve (cm)
   std::vector<glm::dvec3> samples;            // curve points at equal arc length, both ends included
   std::vector<SpineJoint> joints;             // N + 1 joints, root first
-  double bone_length = 0.0;                   // chord of every chain bone (cm)
-  double chain_deficit = 0.0;                 // 1 − N·bone_length / length (≥ 0)
-  bool layout_converged = true;               // false: equal-arc-length fallback, chords unequal
+  ChainLayout layout = ChainLayout::EqualArcLength;
+  double bone_length = 0.0;                   // every bone's length in the layout's measure (cm):
+                                              // arc length (EqualArcLength) or chord (EqualChord)
+  double chain_length = 0.0;                  // N · bone_length; equals `length` for EqualArcLength
+  std::vector<double> bone_chords;            // straight distance between each bone's joints (cm)
+  double chain_deficit = 0.0;                 // 1 − Σ bone_chords / length (≥ 0): what straight bones lose
+  bool layout_converged = true;               // EqualChord only — false: fell back to equal arcs
   std::vector<double> joint_arc_lengths;      // arc length of every joint along the curve
   std::vector<glm::dquat> untwisted_rotations;  // the joint frames before the twist (RMF on the chord)
   std::vector<double> twist_deg;              // the twist added to each joint, i·rx/N
@@ -86,7 +99,8 @@ class CurveSpine {
   static constexpr int kSampleCount = 129;  // curve samples in SpineResult::samples
 
   // Throws std::invalid_argument for a non-positive or non-finite length or segments outside 3..32.
-  CurveSpine(std::array<double, 3> boneLengths, int segments);
+  CurveSpine(std::array<double, 3> boneLengths, int segments,
+             ChainLayout layout = ChainLayout::EqualArcLength);
 
   // The curve, joints and frames for one pose. `stretch` (> 0) scales the three FK bone lengths and so
   // the whole spine along its curve — the squash and stretch of Kuhnel's equation 9 acting on the
@@ -104,11 +118,13 @@ class CurveSpine {
   double stretchForOffset(double offsetCm) const { return (restLength() + offsetCm) / restLength(); }
 
   int segments() const { return segments_; }
+  ChainLayout layout() const { return layout_; }
   const std::array<double, 3>& boneLengths() const { return lengths_; }
 
  private:
   std::array<double, 3> lengths_;
   int segments_;
+  ChainLayout layout_;
 };
 
 }  // namespace stirrup::rig

@@ -33,6 +33,7 @@ struct SpinePose {
 struct SpineFile {
   std::array<double, 3> bones{};
   int segments = rig::CurveSpine::kRiderSegments;
+  rig::ChainLayout layout = rig::ChainLayout::EqualArcLength;
   std::vector<SpinePose> poses;
 };
 
@@ -73,6 +74,11 @@ SpineFile readSpineFile(const std::string& file) {
     top.fail("segments", "expected a whole number from 3 to 32, got " + describeJson(seg));
   spine.segments = top.integer("segments", rig::CurveSpine::kRiderSegments);
 
+  const std::string layout = top.string("layout", "equal_arc_length");
+  if (layout == "equal_chord") spine.layout = rig::ChainLayout::EqualChord;
+  else if (layout != "equal_arc_length")
+    top.fail("layout", "expected \"equal_arc_length\" or \"equal_chord\", got \"" + layout + "\"");
+
   const nlohmann::json* poses = top.value("poses");
   if (!poses) top.fail("poses", "missing (expected an array of poses)");
   if (!poses->is_array() || poses->empty())
@@ -103,7 +109,10 @@ nlohmann::json toJson(const rig::SpineResult& r, double stretch) {
   for (const glm::dvec3& p : r.curve_points) pose["curve_points"].push_back(toJson(p));
   pose["length"] = r.length;
   pose["stretch"] = stretch;
+  pose["layout"] = r.layout == rig::ChainLayout::EqualChord ? "equal_chord" : "equal_arc_length";
   pose["bone_length"] = r.bone_length;
+  pose["chain_length"] = r.chain_length;
+  pose["bone_chords"] = r.bone_chords;
   pose["chain_deficit"] = r.chain_deficit;
   pose["layout_converged"] = r.layout_converged;
   pose["ten_null_length"] = r.ten_null_length;
@@ -122,7 +131,7 @@ nlohmann::json toJson(const rig::SpineResult& r, double stretch) {
 void runSpine(const SpineOptions& o) {
   namespace fs = std::filesystem;
   const SpineFile spine = readSpineFile(o.input);
-  const rig::CurveSpine rig(spine.bones, spine.segments);
+  const rig::CurveSpine rig(spine.bones, spine.segments, spine.layout);
   std::vector<rig::SpineResult> results;
   nlohmann::json out;
   out["bones"] = spine.bones;
@@ -159,13 +168,16 @@ void addSpineCommand(CLI::App& app) {
       "  \"middle\": [rx, ry, rz], \"top\": [rx, ry, rz], \"stretch\": s}, ...]}\n"
       "  bones: the three FK bone lengths in cm (> 0); segments: chain bones N, 3..32 (a rider uses 10);\n"
       "  lower/middle/top: controller rotations in degrees, rx twist, ry side to side, rz bend front/back;\n"
-      "  stretch: optional factor (> 0, default 1) on the whole spine's length (squash and stretch).\n"
+      "  stretch: optional factor (> 0, default 1) on the whole spine's length (squash and stretch);\n"
+      "  layout: optional, \"equal_arc_length\" (default: bones of equal length measured along the curve,\n"
+      "  the chain exactly as long as the curve) or \"equal_chord\" (equal straight bones).\n"
       "Rotation order XYZ: R = Rz(rz)·Ry(ry)·Rx(rx), twist first about the bone, then ry, then rz about\n"
       "  the parent's axes; each controller is parented under the one below. At rest the spine points\n"
       "  up (+Y), the rider faces +X, +Z is right: +rz bends forward, +ry leans right.\n"
       "Output (JSON): {\"poses\": [{\"fk\": 4 points, \"curve_points\": 5 points, \"length\": cm,\n"
       "  \"samples\": 129 points at equal arc length, \"joints\": N+1 of {\"position\": [x, y, z],\n"
-      "  \"rotation\": [w, x, y, z], \"twist\": degrees}, \"bone_length\", \"chain_deficit\", ...}]}.\n"
+      "  \"rotation\": [w, x, y, z], \"twist\": degrees}, \"bone_length\", \"chain_length\", \"bone_chords\",\n"
+      "  \"chain_deficit\" (1 - sum of chords / length), ...}]}.\n"
       "  A joint's rotation maps bone axes to world: x along the bone to the next joint, y forward at rest.\n"
       "--plot draws every pose: x-y and z-y views side by side (grey FK, blue curve, orange chain).\n"
       "Example: stirrup spine scenes/spine-demo.json --plot docs/images/curve-spine.png");
