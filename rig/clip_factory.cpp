@@ -26,7 +26,7 @@ const std::map<std::string, std::vector<std::string>> kParameters = {
     {"jump", {"fence_height_cm", "approach_speed_cm_s", "approach_strides", "recovery_strides", "takeoff_pitch_deg",
               "landing_pitch_deg", "fore_tuck_cm", "hind_tuck_cm", "clearance_cm"}},
     {"rear", {"angle_deg", "rise_s", "hold_s", "descend_s", "hind_under_cm"}},
-    {"buck", {"bucks", "period_s", "croup_deg", "kick_s", "kick_lift_cm", "twist_deg", "front_rise_deg"}},
+    {"buck", {"bucks", "period_s", "croup_deg", "kick_s", "kick_lift_cm", "twist_deg", "front_rise_deg", "leap_s"}},
 };
 
 // Reads a generator's parameters from a JSON object (already limited to known keys) into the
@@ -186,6 +186,7 @@ std::unique_ptr<Clip> buildGenerator(const std::string& gen, const ParamReader& 
     p.kick_lift_cm = r.number("kick_lift_cm", p.kick_lift_cm, 0.0, 150.0);
     p.twist_deg = r.number("twist_deg", p.twist_deg, 0.0, 45.0);
     p.front_rise_deg = r.number("front_rise_deg", p.front_rise_deg, 0.0, 45.0);
+    p.leap_s = r.number("leap_s", p.leap_s, 0.05, 0.3);
     return std::make_unique<MovementClip>(makeBuck(p, v));
   }
   r.fail("generator", "unknown generator \"" + gen + "\"");

@@ -213,6 +213,7 @@ struct GltfClip::Impl {
     std::vector<float> times, values;
     int components = 3;
     bool step = false;
+    bool cubic = false;  // CUBICSPLINE: values hold (in-tangent, value, out-tangent) per key
   };
   std::vector<Track> tracks;
   // Skeleton mode: the travel frame's axes in file space, and rest / ground values per control.
@@ -221,21 +222,81 @@ struct GltfClip::Impl {
   std::map<std::string, glm::dquat> rest_rotation;
   std::map<std::string, double> ground;
 
+  // An accessor's elements as floats: float data, or normalised integers (glTF allows them for
+  // rotations), dense or sparse (a sparse accessor replaces some elements of its base, or of zeros).
   std::vector<float> readFloats(int accessor_index, int components) const {
-    const tinygltf::Accessor& a = model.accessors.at(accessor_index);
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.sparse.isSparse)
-      throw InputError(file + ": accessor " + std::to_string(accessor_index) + ": expected dense float data");
-    const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
-    const tinygltf::Buffer& b = model.buffers.at(v.buffer);
-    const std::size_t stride = v.byteStride ? v.byteStride : components * sizeof(float);
-    std::vector<float> out(a.count * components);
-    for (std::size_t i = 0; i < a.count; ++i) {
-      const std::size_t at = v.byteOffset + a.byteOffset + i * stride;
-      if (at + components * sizeof(float) > b.data.size())
-        throw InputError(file + ": accessor " + std::to_string(accessor_index) + " reads past its buffer");
-      std::memcpy(&out[i * components], &b.data[at], components * sizeof(float));
+    const std::string where = file + ": accessor " + std::to_string(accessor_index);
+    if (accessor_index < 0 || accessor_index >= static_cast<int>(model.accessors.size()))
+      throw InputError(where + ": no such accessor");
+    const tinygltf::Accessor& a = model.accessors[accessor_index];
+    const int type_components = tinygltf::GetNumComponentsInType(a.type);
+    if (type_components != components)
+      throw InputError(where + ": expected " + std::to_string(components) + " components per element, got " +
+                       std::to_string(type_components));
+    const bool is_float = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    if (!is_float && !a.normalized)
+      throw InputError(where + ": expected float or normalised integer data");
+    std::vector<float> out(a.count * components, 0.0f);
+    if (a.bufferView >= 0) readElements(where, a.bufferView, a.byteOffset, a.componentType, a.count, components, out.data());
+    if (a.sparse.isSparse) {
+      const int n = a.sparse.count;
+      std::vector<uint32_t> indices(n);
+      const tinygltf::BufferView& iv = bufferView(where + " sparse indices", a.sparse.indices.bufferView);
+      const tinygltf::Buffer& ib = model.buffers.at(iv.buffer);
+      const int isize = tinygltf::GetComponentSizeInBytes(a.sparse.indices.componentType);
+      if (isize != 1 && isize != 2 && isize != 4) throw InputError(where + ": sparse indices: expected an unsigned integer type");
+      for (int i = 0; i < n; ++i) {
+        const std::size_t at = iv.byteOffset + a.sparse.indices.byteOffset + std::size_t(i) * isize;
+        if (at + isize > ib.data.size()) throw InputError(where + ": sparse indices read past their buffer");
+        uint32_t v = 0;
+        if (isize == 1) v = ib.data[at];
+        if (isize == 2) { uint16_t x; std::memcpy(&x, &ib.data[at], 2); v = x; }
+        if (isize == 4) std::memcpy(&v, &ib.data[at], 4);
+        if (v >= a.count) throw InputError(where + ": sparse index " + std::to_string(v) + " is past the accessor's " + std::to_string(a.count) + " elements");
+        indices[i] = v;
+      }
+      std::vector<float> values(std::size_t(n) * components);
+      readElements(where + " sparse values", a.sparse.values.bufferView, a.sparse.values.byteOffset, a.componentType, n,
+                   components, values.data());
+      for (int i = 0; i < n; ++i)
+        std::copy_n(&values[std::size_t(i) * components], components, &out[std::size_t(indices[i]) * components]);
     }
     return out;
+  }
+
+  const tinygltf::BufferView& bufferView(const std::string& where, int index) const {
+    if (index < 0 || index >= static_cast<int>(model.bufferViews.size())) throw InputError(where + ": no such bufferView");
+    const tinygltf::BufferView& v = model.bufferViews[index];
+    if (v.buffer < 0 || v.buffer >= static_cast<int>(model.buffers.size())) throw InputError(where + ": no such buffer");
+    return v;
+  }
+
+  // `count` elements of `components` values each, converted to float (normalised integers mapped to
+  // [0, 1] or [-1, 1] as the glTF specification says).
+  void readElements(const std::string& where, int view_index, std::size_t offset, int component_type, std::size_t count,
+                    int components, float* out) const {
+    const tinygltf::BufferView& v = bufferView(where, view_index);
+    const tinygltf::Buffer& b = model.buffers[v.buffer];
+    const int size = tinygltf::GetComponentSizeInBytes(component_type);
+    if (size <= 0) throw InputError(where + ": unknown component type " + std::to_string(component_type));
+    const std::size_t stride = v.byteStride ? v.byteStride : std::size_t(components) * size;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t at = v.byteOffset + offset + i * stride;
+      if (at + std::size_t(components) * size > b.data.size()) throw InputError(where + " reads past its buffer");
+      for (int j = 0; j < components; ++j) {
+        const unsigned char* p = &b.data[at + std::size_t(j) * size];
+        float x = 0.0f;
+        switch (component_type) {
+          case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&x, p, 4); break;
+          case TINYGLTF_COMPONENT_TYPE_BYTE: x = std::max(float(static_cast<int8_t>(*p)) / 127.0f, -1.0f); break;
+          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: x = float(*p) / 255.0f; break;
+          case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t q; std::memcpy(&q, p, 2); x = std::max(float(q) / 32767.0f, -1.0f); break; }
+          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t q; std::memcpy(&q, p, 2); x = float(q) / 65535.0f; break; }
+          default: throw InputError(where + ": expected float or normalised integer data");
+        }
+        out[i * components + j] = x;
+      }
+    }
   }
 
   // A track's value at t (clamped to its keys), `components` wide.
@@ -244,20 +305,39 @@ struct GltfClip::Impl {
     std::vector<double> out(c);
     const auto& ts = tr.times;
     std::size_t i1 = std::upper_bound(ts.begin(), ts.end(), float(t)) - ts.begin();
+    // Element k's value: CUBICSPLINE keys store (in-tangent, value, out-tangent).
+    const std::size_t vs = tr.cubic ? 3 : 1, vo = tr.cubic ? 1 : 0;
+    const auto value = [&](std::size_t k, int j) { return double(tr.values[((k * vs) + vo) * c + j]); };
     if (i1 == 0 || i1 >= ts.size() || tr.step) {
       const std::size_t k = i1 == 0 ? 0 : i1 - 1;
-      for (int j = 0; j < c; ++j) out[j] = tr.values[k * c + j];
+      for (int j = 0; j < c; ++j) out[j] = value(k, j);
       return out;
     }
     const std::size_t i0 = i1 - 1;
-    const double u = (t - ts[i0]) / std::max(1e-12, double(ts[i1] - ts[i0]));
+    const double td = std::max(1e-12, double(ts[i1] - ts[i0]));
+    const double u = (t - ts[i0]) / td;
+    if (tr.cubic) {
+      // glTF 2.0 Appendix C: cubic Hermite with tangents scaled by the key interval.
+      const double u2 = u * u, u3 = u2 * u;
+      const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
+      for (int j = 0; j < c; ++j) {
+        const double out_tangent = tr.values[(i0 * 3 + 2) * c + j], in_tangent = tr.values[(i1 * 3) * c + j];
+        out[j] = h00 * value(i0, j) + h10 * td * out_tangent + h01 * value(i1, j) + h11 * td * in_tangent;
+      }
+      if (c == 4) {
+        const double n = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
+        if (n > 0.0)
+          for (double& x : out) x /= n;
+      }
+      return out;
+    }
     if (c == 4) {
-      const glm::dquat a(tr.values[i0 * 4 + 3], tr.values[i0 * 4], tr.values[i0 * 4 + 1], tr.values[i0 * 4 + 2]);
-      const glm::dquat b(tr.values[i1 * 4 + 3], tr.values[i1 * 4], tr.values[i1 * 4 + 1], tr.values[i1 * 4 + 2]);
+      const glm::dquat a(value(i0, 3), value(i0, 0), value(i0, 1), value(i0, 2));
+      const glm::dquat b(value(i1, 3), value(i1, 0), value(i1, 1), value(i1, 2));
       const glm::dquat q = glm::slerp(a, b, u);
       return {q.x, q.y, q.z, q.w};
     }
-    for (int j = 0; j < c; ++j) out[j] = tr.values[i0 * c + j] * (1 - u) + tr.values[i1 * c + j] * u;
+    for (int j = 0; j < c; ++j) out[j] = value(i0, j) * (1 - u) + value(i1, j) * u;
     return out;
   }
 
@@ -347,16 +427,25 @@ GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping
   for (const tinygltf::AnimationChannel& ch : anim.channels) {
     if (ch.target_node < 0) continue;
     const tinygltf::AnimationSampler& s = anim.samplers.at(ch.sampler);
-    if (s.interpolation == "CUBICSPLINE")
-      throw InputError(m.file + ": animation \"" + anim.name + "\": CUBICSPLINE samplers are not supported (LINEAR, STEP)");
+    if (ch.target_path == "weights") continue;
+    const std::string where = m.file + ": animation \"" + anim.name + "\": sampler " + std::to_string(ch.sampler);
+    if (s.interpolation != "LINEAR" && s.interpolation != "STEP" && s.interpolation != "CUBICSPLINE")
+      throw InputError(where + ": interpolation: expected LINEAR, STEP or CUBICSPLINE, got \"" + s.interpolation + "\"");
     Impl::Track tr;
     const int comps = ch.target_path == "rotation" ? 4 : 3;
-    if (ch.target_path == "weights") continue;
     tr.components = comps;
     tr.step = s.interpolation == "STEP";
+    tr.cubic = s.interpolation == "CUBICSPLINE";
     tr.times = m.readFloats(s.input, 1);
     tr.values = m.readFloats(s.output, comps);
     if (tr.times.empty()) continue;
+    if (tr.values.size() != tr.times.size() * comps * (tr.cubic ? 3 : 1))
+      throw InputError(where + ": output: expected " + std::to_string(tr.times.size() * (tr.cubic ? 3 : 1)) +
+                       " elements for " + std::to_string(tr.times.size()) + " keys, got " +
+                       std::to_string(tr.values.size() / comps));
+    for (std::size_t k = 1; k < tr.times.size(); ++k)
+      if (!(tr.times[k] > tr.times[k - 1]))
+        throw InputError(where + ": input: key times must increase (key " + std::to_string(k) + ")");
     m.duration = std::max(m.duration, double(tr.times.back()));
     m.tracks.push_back(std::move(tr));
     const int k = static_cast<int>(m.tracks.size()) - 1;

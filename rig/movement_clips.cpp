@@ -278,12 +278,34 @@ Movement makeRear(const RearParams& p, Variation v) {
   return m;
 }
 
+namespace {
+constexpr double kBuckLead_s = 0.3;       // standing still before the first buck
+constexpr double kBuckForeUp_s = 0.42;    // the forehand's flight, from the start of a buck
+constexpr double kRightLag_s = 0.03;      // the right fore follows the left (the right hind: 0.02)
+}  // namespace
+
+BuckTimes buckTimes(const BuckParams& p, int buck) {
+  BuckTimes t;
+  t.start_s = kBuckLead_s + buck * p.period_s;
+  t.fore_land_s = t.start_s + kBuckForeUp_s;
+  t.hind_off_s = t.fore_land_s - p.leap_s;
+  t.hind_land_s = t.hind_off_s + p.kick_s;
+  // The croup keeps rising after the forelegs plant and peaks in the second half of the kick.
+  t.croup_peak_s = std::max(t.fore_land_s + 0.06, t.hind_off_s + 0.75 * p.kick_s);
+  return t;
+}
+
 Movement makeBuck(const BuckParams& p, Variation v) {
   if (p.bucks < 1 || p.bucks > 50) throw InputError("buck: bucks must be 1..50");
   if (p.kick_s < 0.15 || p.kick_s > 0.6 * p.period_s) throw InputError("buck: kick_s must be 0.15..0.6 x period_s");
+  if (p.leap_s < 0.05 || p.leap_s > 0.3) throw InputError("buck: leap_s must be 0.05..0.3");
+  if (p.kick_s < p.leap_s + 0.1) throw InputError("buck: kick_s must be at least leap_s + 0.1 (the hind legs land after the forelegs)");
+  if (buckTimes(p, 0).hind_land_s + 0.05 > buckTimes(p, 1).start_s)
+    throw InputError("buck: period_s must leave the hind legs time to land before the next buck (longer period_s or shorter kick_s)");
   Movement m;
   m.name = "buck";
-  const double t0 = 0.3, P = p.period_s;
+  const double P = p.period_s;
+  const double t0 = kBuckLead_s;
   m.duration_s = t0 + p.bucks * P + 0.8;
   for (auto& s : m.hooves) s.push_back(planted(-1.0, t0, 0.0));
   for (auto& k : {HC::rearPivotRz, HC::rearPivotTy, HC::rearPivotRx, HC::rearPivotRy, HC::backMidRz})
@@ -291,27 +313,31 @@ Movement makeBuck(const BuckParams& p, Variation v) {
   m.neck_rz.add(t0, 0.0);
   m.head_rz.add(t0, 0.0);
   for (int b = 0; b < p.bucks; ++b) {
-    const double s = t0 + b * P;
+    const BuckTimes bt = buckTimes(p, b);
+    const double s = bt.start_s;
     const double amp = jitter(v, 12, b);
     // Side action: the twist changes side from buck to buck, its size seeded.
     const double side = (b % 2 == 0 ? 1.0 : -1.0) * p.twist_deg * jitter(v, 13, b);
-    // Forehand rises (hinds planted), lands; then the croup goes up and the hind legs kick back.
+    // Forehand rises (hinds planted) ...
     for (int h : {kLF, kRF}) {
-      const double off = h == kLF ? 0.0 : 0.03;
+      const double off = h == kLF ? 0.0 : kRightLag_s;
       m.hooves[h].back().up_s = s + off;
       m.hooves[h].back().swing = {35.0 * amp, 0.2, -10.0, false};
-      m.hooves[h].push_back(planted(s + 0.42 + off, s + P + (h == kLF ? 0.0 : 0.03), 0.0));
+      m.hooves[h].push_back(planted(bt.fore_land_s + off, s + P + off, 0.0));
     }
-    const double kick0 = s + 0.5, kick1 = kick0 + p.kick_s;
+    // ... the hind legs push off before it lands (all four in the air), then kick back and land.
     for (int h : {kLH, kRH}) {
       const double off = h == kLH ? 0.0 : 0.02;
-      m.hooves[h].back().up_s = kick0 + off;
+      m.hooves[h].back().up_s = bt.hind_off_s + off;
       m.hooves[h].back().swing = {p.kick_lift_cm * amp, 0.3, -40.0, false};
-      m.hooves[h].push_back(planted(kick1 + off, s + P + 0.5, 0.0));
+      m.hooves[h].push_back(planted(bt.hind_land_s + off, s + P + 0.5, 0.0));
     }
-    const double peak = kick0 + 0.5 * p.kick_s;
-    key(m, HC::rearPivotRz).add(s + 0.22, p.front_rise_deg * amp).add(peak, p.croup_deg * amp).add(s + P, 0.0);
-    key(m, HC::rearPivotTy).add(s + 0.22, 8.0).add(peak, 14.0 * amp).add(s + P, 0.0);
+    const double peak = bt.croup_peak_s;
+    // Level at the top of the leap, then croup up while the forelegs carry the weight.
+    key(m, HC::rearPivotRz).add(s + 0.22, p.front_rise_deg * amp).add(bt.fore_land_s, 0.0)
+        .add(peak, p.croup_deg * amp).add(s + P, 0.0);
+    key(m, HC::rearPivotTy).add(s + 0.22, 8.0).add(bt.fore_land_s - 0.5 * p.leap_s, 16.0 * amp)
+        .add(peak, 14.0 * amp).add(s + P, 0.0);
     key(m, HC::rearPivotRx).add(peak, side).add(s + P, 0.0);
     key(m, HC::rearPivotRy).add(peak, 0.8 * side).add(s + P, 0.0);
     // Back arched like an angry cat, head down between the legs (Thayer via Kuhnel 5.6).

@@ -80,8 +80,10 @@ struct RearTimes {
 };
 RearTimes rearTimes(const RearParams& p);
 
-// Kuhnel 5.6 / gait-reference: head down, back arched, croup up −20..−35°, hind kick 0.3–0.5 s,
-// some twist. Forehand first rises, then plants while the hind legs kick.
+// Kuhnel 5.6 / gait-reference: head down, back arched, all four legs leave the ground, croup up
+// −20..−35°, hind kick 0.3–0.5 s, some twist. Each buck: the forehand rises, the hind legs push off
+// before the forelegs land (a leap with all four hooves in the air), then the forelegs plant while the
+// croup goes up and the hind legs kick back.
 struct BuckParams {
   int bucks = 3;
   double period_s = 1.1;
@@ -90,7 +92,17 @@ struct BuckParams {
   double kick_lift_cm = 55.0;
   double twist_deg = 8.0;
   double front_rise_deg = 12.0;
+  double leap_s = 0.12;  // the hind hooves leave this long before the left fore lands
 };
+// When things happen in buck number `buck` (0-based), in seconds from the clip's start.
+struct BuckTimes {
+  double start_s = 0.0;        // the forehand starts to rise
+  double hind_off_s = 0.0;     // the left hind leaves the ground: the leap begins
+  double fore_land_s = 0.0;    // the left fore lands: the leap ends
+  double croup_peak_s = 0.0;   // the croup is highest, the hind legs kicked out
+  double hind_land_s = 0.0;    // the left hind lands again
+};
+BuckTimes buckTimes(const BuckParams& p, int buck);
 Movement makeBuck(const BuckParams& p, Variation v = {});
 
 }  // namespace stirrup::rig

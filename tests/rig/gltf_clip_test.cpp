@@ -1,8 +1,10 @@
 #include "rig/gltf_clip.h"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
@@ -54,6 +56,146 @@ TEST(GltfClip, RoundTripGivesTheSameChannels) {
     EXPECT_EQ(back.name(), "buck");
     EXPECT_NEAR(back.duration(), std::floor(buck.duration() * 30.0) / 30.0, 1e-5);
     expectSameFrames(buck, back, 30.0, back.duration());
+  }
+}
+
+// Helpers to rewrite an exported clip the way other tools write theirs.
+tinygltf::Model loadModel(const fs::path& file) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, file.string())) << err;
+  return model;
+}
+
+void saveModel(tinygltf::Model& model, const fs::path& file) {
+  tinygltf::TinyGLTF writer;
+  ASSERT_TRUE(writer.WriteGltfSceneToFile(&model, file.string(), true, true, true, true));
+}
+
+// Appends floats to buffer 0 as a new bufferView and accessor; returns the accessor.
+int appendFloats(tinygltf::Model& model, const std::vector<float>& data, int type) {
+  tinygltf::Buffer& buffer = model.buffers[0];
+  while (buffer.data.size() % 4) buffer.data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buffer.data.size();
+  view.byteLength = data.size() * sizeof(float);
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+  buffer.data.insert(buffer.data.end(), bytes, bytes + view.byteLength);
+  model.bufferViews.push_back(view);
+  tinygltf::Accessor a;
+  a.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.type = type;
+  a.count = data.size() / tinygltf::GetNumComponentsInType(type);
+  model.accessors.push_back(a);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
+std::vector<float> accessorFloats(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& a = model.accessors[index];
+  const tinygltf::BufferView& v = model.bufferViews[a.bufferView];
+  const int n = tinygltf::GetNumComponentsInType(a.type);
+  std::vector<float> out(a.count * n);
+  std::memcpy(out.data(), &model.buffers[v.buffer].data[v.byteOffset + a.byteOffset], out.size() * sizeof(float));
+  return out;
+}
+
+// Every LINEAR translation sampler rewritten as CUBICSPLINE whose tangents on each interval are that
+// interval's slope (a different in- and out-tangent at every key): the cubic is then the straight
+// line, so the file must play exactly like the LINEAR original. Plus one hand-computed bend: the
+// lfHoof track's out-tangents set to +T and in-tangents to −T moves each interval's middle by td·T/4.
+TEST(GltfClip, ReadsCubicSplineSamplers) {
+  const fs::path linear = tempFile("trot_linear.glb"), cubic = tempFile("trot_cubic.glb"),
+                 bent = tempFile("trot_bent.glb");
+  writeClipGltf(ProceduralGait(trotParams(), 1.0), linear, {24.0});
+  for (int variant = 0; variant < 2; ++variant) {
+    tinygltf::Model model = loadModel(linear);
+    tinygltf::Animation& anim = model.animations[0];
+    for (const tinygltf::AnimationChannel& ch : anim.channels) {
+      if (ch.target_path != "translation") continue;
+      tinygltf::AnimationSampler& s = anim.samplers[ch.sampler];
+      const std::vector<float> t = accessorFloats(model, s.input), v = accessorFloats(model, s.output);
+      const bool lf = model.nodes[ch.target_node].name == "lfHoof";
+      std::vector<float> out;
+      for (std::size_t k = 0; k < t.size(); ++k)
+        for (int part = 0; part < 3; ++part)
+          for (int j = 0; j < 3; ++j) {
+            float x = v[k * 3 + j];
+            if (part == 0) x = k == 0 ? 0.0f : (v[k * 3 + j] - v[(k - 1) * 3 + j]) / (t[k] - t[k - 1]);
+            if (part == 2) x = k + 1 == t.size() ? 0.0f : (v[(k + 1) * 3 + j] - v[k * 3 + j]) / (t[k + 1] - t[k]);
+            if (variant == 1 && lf && part != 1) x = (part == 2 ? 1.0f : -1.0f) * (j == 1 ? 40.0f : 0.0f);
+            out.push_back(x);
+          }
+      s.output = appendFloats(model, out, TINYGLTF_TYPE_VEC3);
+      s.interpolation = "CUBICSPLINE";
+    }
+    saveModel(model, variant == 0 ? cubic : bent);
+  }
+  const GltfClip a(linear, contractMapping()), b(cubic, contractMapping()), c(bent, contractMapping());
+  for (double t = 0.0; t <= a.duration(); t += 1.0 / 96.0) {
+    const HorseFrame x = a.sample(t), y = b.sample(t);
+    for (std::size_t ch = 0; ch < kHorseChannelCount; ++ch)
+      ASSERT_NEAR(x.controls.value[ch], y.controls.value[ch], 1e-3) << kHorseChannelNames[ch] << " at " << t;
+  }
+  // Middle of an interval (keys at 1/24 s): +td·T/4 = (1/24)·40/4 cm above the linear value.
+  const double mid = 10.5 / 24.0;
+  EXPECT_NEAR(c.sample(mid).controls[HorseChannel::lfHoofTy] - a.sample(mid).controls[HorseChannel::lfHoofTy],
+              40.0 / 24.0 / 4.0, 1e-3);
+  EXPECT_NEAR(c.sample(10.0 / 24.0).controls[HorseChannel::lfHoofTy], a.sample(10.0 / 24.0).controls[HorseChannel::lfHoofTy], 1e-4);
+}
+
+// A sparse accessor replaces chosen elements of its base: here key 5 of the lfHoof translation.
+TEST(GltfClip, ReadsSparseAccessors) {
+  const fs::path dense = tempFile("walk_dense.glb"), sparse = tempFile("walk_sparse.glb");
+  writeClipGltf(ProceduralGait(walkParams(), 1.0), dense, {24.0});
+  tinygltf::Model model = loadModel(dense);
+  int output = -1;
+  for (const tinygltf::AnimationChannel& ch : model.animations[0].channels)
+    if (ch.target_path == "translation" && model.nodes[ch.target_node].name == "lfHoof")
+      output = model.animations[0].samplers[ch.sampler].output;
+  ASSERT_GE(output, 0);
+  const std::vector<float> base = accessorFloats(model, output);
+  const float replacement[3] = {base[15] + 7.0f, base[16] + 11.0f, base[17]};
+  const int values = appendFloats(model, {replacement[0], replacement[1], replacement[2]}, TINYGLTF_TYPE_VEC3);
+  const uint32_t index = 5;
+  tinygltf::Buffer& buffer = model.buffers[0];
+  tinygltf::BufferView iv;
+  iv.buffer = 0;
+  iv.byteOffset = buffer.data.size();
+  iv.byteLength = 4;
+  buffer.data.insert(buffer.data.end(), reinterpret_cast<const unsigned char*>(&index),
+                     reinterpret_cast<const unsigned char*>(&index) + 4);
+  model.bufferViews.push_back(iv);
+  tinygltf::Accessor& a = model.accessors[output];
+  a.sparse.isSparse = true;
+  a.sparse.count = 1;
+  a.sparse.indices.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
+  a.sparse.indices.byteOffset = 0;
+  a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  a.sparse.values.bufferView = model.accessors[values].bufferView;
+  a.sparse.values.byteOffset = 0;
+  saveModel(model, sparse);
+  const GltfClip d(dense, contractMapping()), s(sparse, contractMapping());
+  const HorseFrame x = d.sample(5.0 / 24.0), y = s.sample(5.0 / 24.0);
+  EXPECT_NEAR(y.controls[HorseChannel::lfHoofTx] - x.controls[HorseChannel::lfHoofTx], 7.0, 1e-3);
+  EXPECT_NEAR(y.controls[HorseChannel::lfHoofTy] - x.controls[HorseChannel::lfHoofTy], 11.0, 1e-3);
+  EXPECT_NEAR(s.sample(4.0 / 24.0).controls[HorseChannel::lfHoofTx], d.sample(4.0 / 24.0).controls[HorseChannel::lfHoofTx], 1e-4);
+}
+
+TEST(GltfClip, RejectsUnknownInterpolation) {
+  const fs::path good = tempFile("trot_interp.glb"), bad = tempFile("trot_badinterp.glb");
+  writeClipGltf(ProceduralGait(trotParams(), 0.5), good, {24.0});
+  tinygltf::Model model = loadModel(good);
+  model.animations[0].samplers[0].interpolation = "BEZIER";
+  saveModel(model, bad);
+  try {
+    GltfClip clip(bad, contractMapping());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("interpolation: expected LINEAR, STEP or CUBICSPLINE"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(bad.string()), std::string::npos) << e.what();
   }
 }
 

@@ -232,6 +232,32 @@ TEST(Buck, CroupUpHindKickFrontPlantedWithTwist) {
   EXPECT_GT(max_twist, 4.0);
 }
 
+// gait-reference: "all four legs leave the ground" — in every buck, for a while, no hoof is down.
+TEST(Buck, AllFourHoovesLeaveTheGroundInEveryBuck) {
+  const BuckParams p;
+  const MovementClip clip(makeBuck(p));
+  constexpr double kStep = 0.002;
+  for (int b = 0; b < p.bucks; ++b) {
+    const BuckTimes bt = buckTimes(p, b);
+    double airborne = 0.0, lowest = 1e9;
+    for (double t = bt.start_s; t < bt.start_s + p.period_s; t += kStep) {
+      const HorseFrame f = clip.sample(t);
+      const double low = std::min({f.controls[HorseChannel::lfHoofTy], f.controls[HorseChannel::rfHoofTy],
+                                   f.controls[HorseChannel::lbHoofTy], f.controls[HorseChannel::rbHoofTy]});
+      if (low > 1.0) airborne += kStep;  // every hoof more than a centimetre up
+      if (t > bt.hind_off_s + 0.04 && t < bt.fore_land_s - 0.04) lowest = std::min(lowest, low);
+    }
+    EXPECT_GE(airborne, 0.05) << "buck " << b;  // at least 50 ms with all four in the air
+    EXPECT_GT(lowest, 1.0) << "buck " << b;
+  }
+  // Measured the way `stirrup clip info` measures it (buck to buck, left hind touchdown to left hind
+  // touchdown): one suspension per buck.
+  const ClipInfo info = measureClip(clip);
+  EXPECT_GE(info.strides, 1);
+  EXPECT_NEAR(info.suspensions_per_stride, 1.0, 1e-9);
+  EXPECT_GE(info.suspension_ms, 50.0);
+}
+
 // ---- the rider (Kuhnel 2003 sections 5 and 9) ----
 
 double meanLowerBack(const Clip& clip, double a, double b) {
@@ -271,9 +297,10 @@ TEST(RiderResponse, LeansForwardAndLiftsAtTheRear) {
 TEST(RiderResponse, LeansForwardAsTheForehandRisesAndBackAsTheCroupRises) {
   const BuckParams p;
   const MovementClip clip(makeBuck(p));
-  const double s = 0.3;  // first buck
+  const BuckTimes first = buckTimes(p, 0);
+  const double s = first.start_s;
   EXPECT_GT(meanLowerBack(clip, s + 0.17, s + 0.27), 0.0);
-  const double croup = s + 0.5 + 0.5 * p.kick_s;
+  const double croup = first.croup_peak_s;
   EXPECT_LT(meanLowerBack(clip, croup - 0.05, croup + 0.05), 0.0);
 }
 
