@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "rig/channels.h"
 
@@ -19,6 +20,16 @@ struct HorseFrame {
   double tail_ry = 0.0;
 };
 
+// Something the horse moves over that a review shot must show: the fence of a jump. Placed in the
+// travel frame: it stands under the middle of the horse (halfway between its rest fore and hind
+// hooves) when the horse has travelled `travel_cm`, square across the direction of travel.
+struct Obstacle {
+  double travel_cm = 0.0;
+  double height_cm = 0.0;   // top of the top rail
+  double width_cm = 320.0;  // between the wings, across the travel direction
+  double depth_cm = 12.0;   // of the rails, along the travel direction
+};
+
 class Clip {
  public:
   virtual ~Clip() = default;
@@ -26,6 +37,8 @@ class Clip {
   // Seconds; sample() accepts any t and is periodic or clamped as the clip defines.
   virtual double duration() const = 0;
   virtual HorseFrame sample(double seconds) const = 0;
+  // What the clip's horse must clear (empty for most clips).
+  virtual std::vector<Obstacle> obstacles() const { return {}; }
 };
 
 }  // namespace stirrup::rig

@@ -78,6 +78,7 @@ struct Movement {
   // Keyed offsets added to channels (rearPivot, backMid; hoof channels are ignored) and body parts.
   std::array<Keys, kHorseChannelCount> channel_keys;
   Keys neck_rz, head_rz, tail_rz, tail_ry;
+  std::vector<Obstacle> obstacles;      // the jump's fence
   // Ballistic flight (jump): the body follows a parabola between take-off and landing.
   double flight_start_s = 0.0, flight_end_s = 0.0, flight_apex_cm = 0.0;
 
@@ -94,6 +95,7 @@ class MovementClip final : public Clip {
   std::string name() const override { return movement_.name; }
   double duration() const override { return movement_.duration_s; }
   HorseFrame sample(double seconds) const override { return sampleMovement(movement_, seconds); }
+  std::vector<Obstacle> obstacles() const override { return movement_.obstacles; }
   const Movement& movement() const { return movement_; }
 
  private:

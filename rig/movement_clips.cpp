@@ -175,6 +175,10 @@ Movement makeJump(const JumpParams& p, Variation v) {
   m.flight_start_s = t_off;
   m.flight_end_s = t_land;
   m.flight_apex_cm = jt.apex_cm;
+  Obstacle fence;
+  fence.travel_cm = m.travelCm(0.5 * (t_off + t_land));
+  fence.height_cm = p.fence_height_cm;
+  m.obstacles.push_back(fence);
 
   const bool right = p.lead == Lead::Right;
   const int lead_fore = right ? kRF : kLF, trail_fore = right ? kLF : kRF;

@@ -63,6 +63,7 @@ Movement makeJump(const JumpParams& p, Variation v = {});
 struct JumpTimes {
   double takeoff_s = 0.0, landing_s = 0.0, apex_cm = 0.0;
 };
+// The fence stands where the horse is at the top of its flight (Obstacle::travel_cm).
 JumpTimes jumpTimes(const JumpParams& p);
 
 // Kuhnel 5.4 / gait-reference: trunk pitched 40–70° on the hind legs, held 0.5–2 s, forelegs up.

@@ -3,6 +3,7 @@
 #include "rig/movement_clips.h"
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include "rig/clip_factory.h"
 #include "rig/clip_info.h"
 #include "rig/error.h"
+#include "rig/horse_character.h"
 #include "rig/rider_rig.h"
 #include "rig/rig_profile.h"
 
@@ -192,6 +194,40 @@ TEST(Jump, TakeOffFlightAndLanding) {
   JumpParams high = p;
   high.fence_height_cm = 130.0;
   EXPECT_GT(jumpTimes(high).apex_cm, jt.apex_cm);
+}
+
+// The fence in the world: wherever a hoof passes over the fence's rails (the default horse's rest hoof
+// places, plus the hoof's radius), its sole is above the top rail — at the default and a high fence.
+TEST(Jump, EveryHoofClearsTheFenceWhereverItCrossesIt) {
+  const HorseParams horse;
+  const std::array<std::pair<HorseChannel, HorseChannel>, 4> hooves = {{
+      {HorseChannel::lfHoofTx, HorseChannel::lfHoofTy}, {HorseChannel::rfHoofTx, HorseChannel::rfHoofTy},
+      {HorseChannel::lbHoofTx, HorseChannel::lbHoofTy}, {HorseChannel::rbHoofTx, HorseChannel::rbHoofTy}}};
+  const std::array<double, 4> rest_x = {horse.fore_hoof.x, horse.fore_hoof.x, horse.hind_hoof.x, horse.hind_hoof.x};
+  for (double height : {90.0, 130.0}) {
+    JumpParams p;
+    p.fence_height_cm = height;
+    const MovementClip clip(makeJump(p));
+    const std::vector<Obstacle> fences = clip.obstacles();
+    ASSERT_EQ(fences.size(), 1u);
+    EXPECT_EQ(fences[0].height_cm, height);
+    const double fence_x = fences[0].travel_cm + 0.5 * (horse.fore_hoof.x + horse.hind_hoof.x);
+    const double reach = 0.5 * fences[0].depth_cm + horse.hoof_radius;
+    std::array<int, 4> crossings{};
+    double margin = 1e9;
+    for (double t = 0.0; t < clip.duration(); t += 0.001) {
+      const HorseFrame f = clip.sample(t);
+      for (int h = 0; h < 4; ++h) {
+        const double x = f.travel_cm + f.controls[hooves[h].first] + rest_x[h];
+        if (std::abs(x - fence_x) > reach) continue;
+        ++crossings[h];
+        margin = std::min(margin, f.controls[hooves[h].second] - height);
+        EXPECT_GT(f.controls[hooves[h].second], height) << "hoof " << h << " at " << t << " s, fence " << height;
+      }
+    }
+    for (int h = 0; h < 4; ++h) EXPECT_GT(crossings[h], 0) << "hoof " << h << " never passes the fence";
+    std::printf("[ fence ] %.0f cm: lowest hoof over the rails %.1f cm above the top rail\n", height, margin);
+  }
 }
 
 TEST(Rear, PitchHeldOnTheHindLegsWithForelegsUp) {
