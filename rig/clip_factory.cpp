@@ -25,7 +25,7 @@ const std::map<std::string, std::vector<std::string>> kParameters = {
               "settle_s"}},
     {"jump", {"fence_height_cm", "approach_speed_cm_s", "approach_strides", "recovery_strides", "takeoff_pitch_deg",
               "landing_pitch_deg", "fore_tuck_cm", "hind_tuck_cm", "clearance_cm"}},
-    {"rear", {"angle_deg", "rise_s", "hold_s", "descend_s", "hind_under_cm"}},
+    {"rear", {"angle_deg", "rise_s", "hold_s", "descend_s", "hind_under_cm", "paw_strokes", "paw_cm"}},
     {"buck", {"bucks", "period_s", "croup_deg", "kick_s", "kick_lift_cm", "twist_deg", "front_rise_deg", "leap_s"}},
 };
 
@@ -175,6 +175,8 @@ std::unique_ptr<Clip> buildGenerator(const std::string& gen, const ParamReader& 
     p.hold_s = r.number("hold_s", p.hold_s, 0.0, 10.0);
     p.descend_s = r.number("descend_s", p.descend_s, 0.2, 5.0);
     p.hind_under_cm = r.number("hind_under_cm", p.hind_under_cm, 0.0, 60.0);
+    p.paw_strokes = r.integer("paw_strokes", p.paw_strokes, 0, 8);
+    p.paw_cm = r.number("paw_cm", p.paw_cm, 0.0, 40.0);
     return std::make_unique<MovementClip>(makeRear(p, v));
   }
   if (gen == "buck") {

@@ -71,6 +71,15 @@ HoofPlace hoofAt(const Movement& m, const HoofSchedule& steps, double t) {
   HoofPlace h;
   h.tx = x - travel + w.reach_cm * bump;
   h.ty = w.lift_cm * bump + (w.carried ? m.flightElevationCm(t) : 0.0);
+  if (w.paw_strokes > 0 && w.paw_cm > 0.0 && w.plateau > 0.0) {
+    const double ramp = 0.5 * (1.0 - w.plateau);
+    const double u = std::clamp((s - ramp) / w.plateau, 0.0, 1.0);  // 0..1 over the plateau
+    const double fade = std::pow(std::sin(std::numbers::pi * u), 2.0);
+    const double a = 2.0 * std::numbers::pi * (w.paw_strokes * u + w.paw_phase);
+    // Forward and up, then back and down: the hoof strikes out and pulls back.
+    h.tx += w.paw_cm * fade * std::sin(a);
+    h.ty += 0.6 * w.paw_cm * fade * (1.0 - std::cos(a));
+  }
   return h;
 }
 

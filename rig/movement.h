@@ -51,6 +51,11 @@ struct SwingShape {
   double plateau = 0.0;    // fraction of the swing held at the peak (0 = arc, e.g. 0.6 = legs held up)
   double reach_cm = 0.0;   // extra forward (+) or backward (-) excursion at the peak (tuck, kick)
   bool carried = false;    // rides on the flight elevation (jump): height above ground includes it
+  // Strokes while held at the peak (a rearing horse paws the air): circles of radius paw_cm, faded in
+  // and out over the plateau so the hoof stays C1; paw_phase (0..1) offsets one leg from the other.
+  double paw_cm = 0.0;
+  int paw_strokes = 0;
+  double paw_phase = 0.0;
 };
 
 struct Footfall {

@@ -243,6 +243,8 @@ RearTimes rearTimes(const RearParams& p) {
 Movement makeRear(const RearParams& p, Variation v) {
   if (p.angle_deg < 10.0 || p.angle_deg > 80.0) throw InputError("rear: angle_deg must be 10..80");
   if (p.hold_s < 0.0 || p.rise_s < 0.2 || p.descend_s < 0.2) throw InputError("rear: rise_s, descend_s >= 0.2 and hold_s >= 0");
+  if (p.paw_strokes < 0 || p.paw_strokes > 8) throw InputError("rear: paw_strokes must be 0..8");
+  if (p.paw_cm < 0.0 || p.paw_cm > 40.0) throw InputError("rear: paw_cm must be 0..40");
   const double t_r0 = 1.0, t_r1 = t_r0 + p.rise_s, t_h1 = t_r1 + p.hold_s, t_d1 = t_h1 + p.descend_s;
   Movement m;
   m.name = "rear";
@@ -267,6 +269,10 @@ Movement makeRear(const RearParams& p, Variation v) {
     raised.reach_cm = -p.shoulder_cm * (1.0 - std::cos(theta)) - 25.0;
     // Rise and fall of the hoof take as long as the trunk's rise and descent.
     raised.plateau = std::clamp(1.0 - (p.rise_s + p.descend_s) / (down - up), 0.0, 0.9);
+    // Pawing the air, the legs half a stroke apart (one strikes out as the other pulls back).
+    raised.paw_strokes = p.paw_strokes;
+    raised.paw_cm = p.paw_cm * jitter(v, 14, h);
+    raised.paw_phase = h == kLF ? 0.0 : 0.5;
     m.hooves[h].push_back(planted(-1.0, up, 0.0, raised));
     m.hooves[h].push_back(planted(down, kNever, 4.0));
   }

@@ -74,6 +74,9 @@ struct RearParams {
   double descend_s = 0.7;
   double hind_under_cm = 25.0;
   double shoulder_cm = 120.0;  // hips to shoulders: how far the forehand swings up and back
+  // Kuhnel 5.4: "to stay up in the air longer it will often use a kicking motion to aid balance".
+  int paw_strokes = 2;          // strokes of each foreleg while held up (0: held still)
+  double paw_cm = 16.0;         // reach of a stroke. ≈: no measurement in gait-reference
 };
 Movement makeRear(const RearParams& p, Variation v = {});
 struct RearTimes {

@@ -248,6 +248,36 @@ TEST(Rear, PitchHeldOnTheHindLegsWithForelegsUp) {
   EXPECT_LE(rt.hold_end_s - rt.hold_start_s, 2.0);
 }
 
+// Kuhnel 5.4: while up, the horse uses "a kicking motion to aid balance": each foreleg strikes out and
+// pulls back paw_strokes times, the two legs half a stroke apart, and is still when paw_strokes = 0.
+TEST(Rear, ForelegsPawTheAirWhileUp) {
+  const auto strokes = [](const RearParams& p, HorseChannel tx) {
+    const MovementClip clip(makeRear(p));
+    const RearTimes rt = rearTimes(p);
+    int turns = 0;
+    double last = 0.0, prev = clip.sample(rt.hold_start_s).controls[tx];
+    for (double t = rt.hold_start_s + 0.01; t <= rt.hold_end_s; t += 0.01) {
+      const double x = clip.sample(t).controls[tx], d = x - prev;
+      if (std::abs(d) > 1e-3) {
+        if (last != 0.0 && (d > 0) != (last > 0)) ++turns;
+        last = d;
+      }
+      prev = x;
+    }
+    return turns;
+  };
+  RearParams p;
+  // Two strokes: out-back-out-back, at least three reversals of each hoof's fore-aft motion.
+  EXPECT_GE(strokes(p, HorseChannel::lfHoofTx), 3);
+  EXPECT_GE(strokes(p, HorseChannel::rfHoofTx), 3);
+  const MovementClip clip(makeRear(p));
+  const RearTimes rt = rearTimes(p);
+  const HorseFrame mid = clip.sample(0.5 * (rt.hold_start_s + rt.hold_end_s));
+  EXPECT_GT(std::abs(mid.controls[HorseChannel::lfHoofTx] - mid.controls[HorseChannel::rfHoofTx]), 5.0);  // out of step
+  p.paw_strokes = 0;
+  EXPECT_LE(strokes(p, HorseChannel::lfHoofTx), 1);
+}
+
 TEST(Buck, CroupUpHindKickFrontPlantedWithTwist) {
   const BuckParams p;
   const MovementClip clip(makeBuck(p));
