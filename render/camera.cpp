@@ -47,6 +47,18 @@ CameraFrame::CameraFrame(const Camera& camera, double aspect, int height) : proj
     footprint_per_cm_ = 0.0;
   }
   half_width_ = half_height_ * aspect;
+  perspective_ = projection_ == Camera::Projection::Perspective;
+  position_f_ = glm::vec3(position_);
+  forward_f_ = glm::vec3(forward_);
+  right_f_ = glm::vec3(right_);
+  up_f_ = glm::vec3(up_);
+  half_width_f_ = float(half_width_);
+  half_height_f_ = float(half_height_);
+  const double width_px = aspect * height;
+  pixel_dx_ = float(2.0 * half_width_ / width_px);
+  pixel_dy_ = float(2.0 * half_height_ / height);
+  footprint_at_0_f_ = float(footprint_at_0_);
+  footprint_per_cm_f_ = float(footprint_per_cm_);
 }
 
 Ray CameraFrame::ray(double u, double v) const {

@@ -2,6 +2,8 @@
 // at `target`. Film coordinates run u in [0, 1] left to right and v in [0, 1] top to bottom.
 #pragma once
 
+#include <cmath>
+
 #include <glm/vec3.hpp>
 
 namespace stirrup::render {
@@ -32,6 +34,26 @@ class CameraFrame {
   CameraFrame(const Camera& camera, double aspect, int height);
 
   Ray ray(double u, double v) const;
+  // The same ray in floats, from pixel coordinates (x right, y down, in pixels): the renderer's
+  // per-sample path. Positions are kept relative to the camera in floats, so the error stays a few
+  // ulps of the view size rather than of the world coordinates.
+  void rayFromPixel(float px, float py, glm::vec3& origin, glm::vec3& direction) const {
+    const float x = px * pixel_dx_ - half_width_f_, y = half_height_f_ - py * pixel_dy_;
+    if (perspective_) {
+      const glm::vec3 d = forward_f_ + x * right_f_ + y * up_f_;
+      origin = position_f_;
+      direction = d * (1.0f / std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z));
+    } else {
+      origin = position_f_ + x * right_f_ + y * up_f_;
+      direction = forward_f_;
+    }
+  }
+  // pixelFootprint and viewDepth in floats.
+  float pixelFootprintF(float t) const { return footprint_at_0_f_ + footprint_per_cm_f_ * t; }
+  float viewDepthF(const glm::vec3& p) const {
+    const glm::vec3 d = p - position_f_;
+    return d.x * forward_f_.x + d.y * forward_f_.y + d.z * forward_f_.z;
+  }
 
   // The width in centimetres of one pixel's footprint on a surface facing the camera at distance t
   // along the ray: constant for orthographic views, growing with t for perspective ones. Used to
@@ -50,6 +72,11 @@ class CameraFrame {
   glm::dvec3 position_, forward_, right_, up_;
   double half_width_, half_height_;  // film half-extent: tangents (perspective) or centimetres (ortho)
   double footprint_at_0_, footprint_per_cm_;
+  // Float copies for the per-sample path.
+  bool perspective_;
+  glm::vec3 position_f_, forward_f_, right_f_, up_f_;
+  float half_width_f_, half_height_f_, pixel_dx_, pixel_dy_;
+  float footprint_at_0_f_, footprint_per_cm_f_;
 };
 
 }  // namespace stirrup::render

@@ -69,7 +69,10 @@ void EmbreeScene::setGround(float half_extent_cm) {
   throwOnDeviceError(device_, "ground commit", last_error_);
 }
 
-unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint32_t> indices) {
+unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint32_t> indices,
+                                      std::span<const glm::vec3> rest_positions) {
+  if (!rest_positions.empty() && rest_positions.size() != vertex_count)
+    throw std::invalid_argument("mesh: rest positions do not match the vertex count");
   if (indices.size() % 3 != 0) throw std::invalid_argument("mesh: index count is not a multiple of 3");
   for (uint32_t i : indices) {
     if (i >= vertex_count) throw std::invalid_argument("mesh: index " + std::to_string(i) + " >= vertex count " + std::to_string(vertex_count));
@@ -93,7 +96,9 @@ unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint3
   const unsigned id = rtcAttachGeometry(scene_, g);
   throwOnDeviceError(device_, "rtcAttachGeometry", last_error_);
   if (id >= meshes_.size()) meshes_.resize(id + 1);
-  meshes_[id] = {g, vertex_count};
+  meshes_[id] = {g, vertex_count, {}};
+  if (update_ == BvhUpdate::Refit) meshes_[id].rest.assign(rest_positions.begin(), rest_positions.end());
+  built_ = false;
   triangles_ += indices.size() / 3;
   dirty_ = true;
   return id;
@@ -116,6 +121,35 @@ void EmbreeScene::setVertices(unsigned geom_id, std::span<const glm::vec3> posit
 
 void EmbreeScene::commit() {
   if (!dirty_) return;
+  if (update_ == BvhUpdate::Refit && !built_) {
+    // Build each tree over its rest pose, then put the current vertices back: the commit below
+    // refits. The current vertices are copied out of Embree's buffer and restored.
+    std::vector<std::vector<glm::vec3>> current(meshes_.size());
+    bool any_rest = false;
+    for (size_t id = 0; id < meshes_.size(); ++id) {
+      Mesh& m = meshes_[id];
+      if (!m.geometry || m.rest.empty()) continue;
+      auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+      current[id].assign(v, v + m.vertex_count);
+      std::memcpy(v, m.rest.data(), m.vertex_count * sizeof(glm::vec3));
+      rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+      rtcCommitGeometry(m.geometry);
+      any_rest = true;
+    }
+    if (any_rest) {
+      rtcCommitScene(scene_);
+      throwOnDeviceError(device_, "rtcCommitScene", last_error_);
+      for (size_t id = 0; id < meshes_.size(); ++id) {
+        Mesh& m = meshes_[id];
+        if (current[id].empty()) continue;
+        auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+        std::memcpy(v, current[id].data(), m.vertex_count * sizeof(glm::vec3));
+        rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+        rtcCommitGeometry(m.geometry);
+      }
+    }
+    built_ = true;
+  }
   rtcCommitScene(scene_);
   throwOnDeviceError(device_, "rtcCommitScene", last_error_);
   rtcGetSceneBounds(scene_, &bounds_);

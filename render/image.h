@@ -11,7 +11,13 @@
 #include <utility>
 #include <vector>
 
+#include <variant>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+
+#include "render/camera.h"
 
 namespace stirrup::render {
 
@@ -31,6 +37,7 @@ struct Image {
   // writer stores every non-empty one as extra channels.
   std::vector<float> depth;         // nearest view-axis depth in cm over the pixel's samples; +inf: sky
   std::vector<float> matte;         // fraction of the pixel covered by the horse or the rider
+  std::vector<glm::vec3> normal;    // mean world-space shading normal (unit; 0 over open sky)
   std::vector<uint32_t> object_id;  // the ObjectId most of the pixel's samples hit, or kNoObject
 
   glm::vec4& at(int x, int y) { return rgba[size_t(y) * size_t(width) + size_t(x)]; }
@@ -47,10 +54,23 @@ uint8_t linearToSrgb8(float linear);
 // and movie encoders never show the sky as transparent). Throws std::runtime_error on failure.
 void writePng(const Image& image, const std::filesystem::path& file);
 
-// Scene-linear OpenEXR: R, G, B, A as half float, plus Z (float, cm), matte (half) and objectId
-// (float holding the integer id, -1 for none) for each pass the image has; ZIP compressed.
-// `metadata` pairs become string attributes in the header (e.g. {"stirrup:frame", "12"}).
-using ExrMetadata = std::vector<std::pair<std::string, std::string>>;
+// One attribute of an EXR header: a string, int, float, 3-vector (v3f) or 4x4 matrix (m44f).
+struct ExrAttribute {
+  std::string name;
+  std::variant<std::string, int, float, glm::vec3, glm::mat4> value;
+};
+using ExrMetadata = std::vector<ExrAttribute>;
+
+// Scene-linear OpenEXR: R, G, B, A as half float, plus for each pass the image has Z (float, cm along
+// the view axis), matte (half), objectId (float holding the integer id: ground 0, horse 1, rider 2,
+// -1 for sky) and N.x, N.y, N.z (half, world space); ZIP compressed. `metadata` becomes
+// header attributes (e.g. {"stirrup:frame", 12}).
 void writeExr(const Image& image, const std::filesystem::path& file, const ExrMetadata& metadata = {});
+
+// The header attributes that let a compositor line up a frame: the camera (projection, position,
+// target, vertical fov in degrees or ortho height in cm, and the standard worldToCamera matrix),
+// the frame, its time in seconds and the scene's name, under "stirrup:" names.
+ExrMetadata exrFrameMetadata(const Camera& camera, const std::string& camera_name, int frame, double time_s,
+                             const std::string& scene_name);
 
 }  // namespace stirrup::render

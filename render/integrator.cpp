@@ -27,18 +27,22 @@ float originOffset(const glm::vec3& p) {
 }  // namespace
 
 float filteredChecker(float s, float t, float width) {
-  // Doubles: the integrals below are differences of values that grow with the distance from origin.
-  const double half = 0.5 * double(width);
-  if (half < 1e-4) return float((int64_t(std::floor(s)) + int64_t(std::floor(t))) & 1);
-  if (half >= 1.0) return 0.5f;  // the box spans whole pairs of squares: exactly the mean
-  // Integral of the square wave that is 1 on [1, 2) mod 2.
-  auto integral = [](double x) {
-    const double f = std::floor(x / 2.0);
-    return f + 2.0 * std::max(x / 2.0 - f - 0.5, 0.0);
+  const float half = 0.5f * width;
+  if (half < 1e-4f) return float((int64_t(std::floor(s)) + int64_t(std::floor(t))) & 1);
+  if (half >= 1.0f) return 0.5f;  // the box spans whole pairs of squares: exactly the mean
+  // Integral of the square wave that is 1 on [1, 2) mod 2. The wave has period 2, so each
+  // coordinate is first reduced to [0, 2): the differences below then stay exact enough in floats
+  // however far from the origin the point is.
+  auto integral = [](float x) {
+    const float f = std::floor(x * 0.5f);
+    return f + 2.0f * std::max(x * 0.5f - f - 0.5f, 0.0f);
   };
-  const double ss = (integral(s + half) - integral(s - half)) / (2.0 * half);
-  const double tt = (integral(t + half) - integral(t - half)) / (2.0 * half);
-  return float(ss + tt - 2.0 * ss * tt);  // odd in s xor odd in t
+  auto box = [&](float x) {
+    x -= 2.0f * std::floor(x * 0.5f);
+    return (integral(x + half) - integral(x - half)) / (2.0f * half);
+  };
+  const float ss = box(s), tt = box(t);
+  return ss + tt - 2.0f * ss * tt;  // odd in s xor odd in t
 }
 
 struct Integrator::Surface {
@@ -72,6 +76,7 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
   const glm::vec3 ground_albedo = 0.5f * (settings.ground_color_a + settings.ground_color_b);
   ground_bounce_ = ground_albedo * (sun_radiance_ * std::max(0.0f, sun.y) + settings.sky.upwardIrradianceOverPi());
   blinn_norm_ = (settings.shininess + 8.0f) / 8.0f;
+  ground_extent_ = settings.ground_half_extent_cm;
   spp_ = uint32_t(settings.samples_per_pixel);
   light_spp_ = uint32_t(settings.light_samples);
   ao_spp_ = uint32_t(settings.ao_samples);
@@ -93,20 +98,32 @@ bool Integrator::mayHitCharacters(const glm::vec3& origin, const glm::vec3& dire
   return true;
 }
 
+namespace {
+
+RTCRay makeRay(const glm::vec3& origin, const glm::vec3& direction, float t_far) {
+  RTCRay ray;
+  ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
+  ray.dir_x = direction.x, ray.dir_y = direction.y, ray.dir_z = direction.z;
+  ray.tnear = 0.0f;
+  ray.tfar = t_far;
+  ray.time = 0.0f;
+  ray.mask = 0xffffffffu;
+  ray.id = 0;
+  ray.flags = 0;
+  return ray;
+}
+
+}  // namespace
+
 unsigned Integrator::occluded4(const glm::vec3& origin, const glm::vec3* directions, const float* t_far,
-                               int count) const {
+                               int count, RayTally& tally) const {
   unsigned blocked = 0;
   for (int k = 0; k < count; ++k) {
+    if (!(t_far[k] > 0.0f)) continue;
+    ++tally.rays;
+    if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, directions[k], t_far[k]));
     if (!mayHitCharacters(origin, directions[k], t_far[k])) continue;
-    RTCRay ray;
-    ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
-    ray.dir_x = directions[k].x, ray.dir_y = directions[k].y, ray.dir_z = directions[k].z;
-    ray.tnear = 0.0f;
-    ray.tfar = t_far[k];
-    ray.time = 0.0f;
-    ray.mask = 0xffffffffu;
-    ray.id = 0;
-    ray.flags = 0;
+    RTCRay ray = makeRay(origin, directions[k], t_far[k]);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     rtcOccluded1(characters_, &context, &ray);
@@ -145,13 +162,13 @@ float Integrator::distanceToCharacters(const glm::vec3& p) const {
   return glm::length(d);
 }
 
-PixelResult Integrator::renderPixel(const CameraFrame& camera, int x, int y, int frame) const {
+PixelResult Integrator::renderPixel(const CameraFrame& camera, int x, int y, int frame, RayTally& tally) const {
   const PixelSampler sampler(x, y, frame);
   const Stratified2D pixel_points(sampler, spp_, SampleDimension::PixelFilter);
   const Stratified2D sun_points(sampler, spp_ * light_spp_, SampleDimension::SunCone);
   const Stratified2D sky_points(sampler, spp_ * ao_spp_, SampleDimension::SkyHemisphere);
   const PixelPoints points{sun_points, sky_points};
-  glm::vec3 sum(0.0f);
+  glm::vec3 sum(0.0f), normal_sum(0.0f);
   uint32_t hits = 0, character_hits = 0;
   float nearest = kInfinity;
   // Votes for the object id pass: at most a handful of distinct ids can meet in one pixel.
@@ -160,15 +177,16 @@ PixelResult Integrator::renderPixel(const CameraFrame& camera, int x, int y, int
   int distinct = 0, sky_votes = 0;
   for (uint32_t i = 0; i < spp_; ++i) {
     const glm::vec2 u = pixel_points[i];
-    const double fu = (x + 0.5 + tentOffset(u.x)) / settings_.width;
-    const double fv = (y + 0.5 + tentOffset(u.y)) / settings_.height;
-    const Sample s = traceCameraSample(camera, fu, fv, i, points);
+    const float px = float(x) + 0.5f + tentOffset(u.x);
+    const float py = float(y) + 0.5f + tentOffset(u.y);
+    const Sample s = traceCameraSample(camera, px, py, i, points, tally);
     sum += s.radiance;
     if (!s.hit) {
       ++sky_votes;
       continue;
     }
     ++hits;
+    normal_sum += s.normal;
     if (s.id != ObjectId::Ground) ++character_hits;
     nearest = std::min(nearest, s.depth);
     int k = 0;
@@ -181,6 +199,8 @@ PixelResult Integrator::renderPixel(const CameraFrame& camera, int x, int y, int
   r.rgba = glm::vec4(sum * inv, float(hits) * inv);
   r.depth = nearest;
   r.matte = float(character_hits) * inv;
+  const float normal_length = glm::length(normal_sum);
+  if (normal_length > 0.0f) r.normal = normal_sum / normal_length;
   // Most votes wins; on a tie the id seen first, and the sky only with more votes than any object.
   r.object_id = kNoObject;
   int best = -1;
@@ -191,29 +211,34 @@ PixelResult Integrator::renderPixel(const CameraFrame& camera, int x, int y, int
   return r;
 }
 
-Integrator::Sample Integrator::traceCameraSample(const CameraFrame& camera, double u, double v, uint32_t sample,
-                                                 const PixelPoints& points) const {
-  const Ray primary = camera.ray(u, v);
-  const glm::vec3 origin(primary.origin), dir(primary.direction);
+Integrator::Sample Integrator::traceCameraSample(const CameraFrame& camera, float px, float py, uint32_t sample,
+                                                 const PixelPoints& points, RayTally& tally) const {
+  glm::vec3 origin, dir;
+  camera.rayFromPixel(px, py, origin, dir);
+  ++tally.rays;
+  if (tally.camera) tally.camera->push_back(makeRay(origin, dir, kInfinity));
+  // The ground is a square in the plane y = 0: intersected here, without a call into Embree. Its
+  // distance then bounds the search through the characters.
+  float t_ground = kInfinity;
+  if (dir.y != 0.0f) {
+    const float t = -origin.y / dir.y;
+    if (t > 0.0f) {
+      const float hx = origin.x + t * dir.x, hz = origin.z + t * dir.z;
+      if (std::abs(hx) <= ground_extent_ && std::abs(hz) <= ground_extent_) t_ground = t;
+    }
+  }
+  const bool ground_hit = t_ground < kInfinity;
   RTCRayHit rh;
-  rh.ray.org_x = origin.x, rh.ray.org_y = origin.y, rh.ray.org_z = origin.z;
-  rh.ray.dir_x = dir.x, rh.ray.dir_y = dir.y, rh.ray.dir_z = dir.z;
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = kInfinity;
-  rh.ray.time = 0.0f;
-  rh.ray.mask = 0xffffffffu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
+  rh.ray = makeRay(origin, dir, t_ground);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  // The ground first; its distance then bounds the search through the characters. A ray from above
-  // the ground heading level or up cannot meet it (half the rays of a typical view).
-  if (!(origin.y > 0.0f && dir.y >= 0.0f)) rtcIntersect1(ground_, &context, &rh);
-  const bool ground_hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(characters_, &context, &rh);
+  // Most camera rays of a review view pass beside the characters' box: no call into Embree.
+  if (mayHitCharacters(origin, dir, t_ground)) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1(characters_, &context, &rh);
+  }
   const bool character_hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 
   Sample result;
@@ -231,7 +256,7 @@ Integrator::Sample Integrator::traceCameraSample(const CameraFrame& camera, doub
     // The sample's footprint on the ground: a pixel's width at this distance, stretched by the
     // grazing angle (isotropically, which blurs a little more than needed across the view).
     const float cos_view = std::max(std::abs(dir.y), 0.02f);
-    const float width = float(camera.pixelFootprint(t)) / cos_view / settings_.ground_square_cm;
+    const float width = camera.pixelFootprintF(t) / cos_view / settings_.ground_square_cm;
     const float odd = filteredChecker(s.p.x / settings_.ground_square_cm, s.p.z / settings_.ground_square_cm, width);
     s.albedo = glm::mix(settings_.ground_color_a, settings_.ground_color_b, odd);
     s.specular = 0.0f;
@@ -258,12 +283,13 @@ Integrator::Sample Integrator::traceCameraSample(const CameraFrame& camera, doub
     result.id = mesh.id;
   }
   result.hit = true;
-  result.depth = float(camera.viewDepth(glm::dvec3(s.p)));
-  result.radiance = shade(s, sample, points);
+  result.depth = camera.viewDepthF(s.p);
+  result.normal = s.n;
+  result.radiance = shade(s, sample, points, tally);
   return result;
 }
 
-glm::vec3 Integrator::shade(const Surface& s, uint32_t sample, const PixelPoints& points) const {
+glm::vec3 Integrator::shade(const Surface& s, uint32_t sample, const PixelPoints& points, RayTally& tally) const {
   // Secondary rays start off the surface along the geometric normal (not the shading normal,
   // which can point into neighbouring triangles): no acne, and contacts stay tight.
   const glm::vec3 origin = s.p + s.ng * originOffset(s.p);
@@ -297,7 +323,7 @@ glm::vec3 Integrator::shade(const Surface& s, uint32_t sample, const PixelPoints
         f[k] = reflected(wi[k]);
         t_far[k] = f[k] == glm::vec3(0.0f) ? 0.0f : kInfinity;  // no light from below: skip the ray
       }
-      const unsigned blocked = occluded4(origin, wi, t_far, n);
+      const unsigned blocked = occluded4(origin, wi, t_far, n, tally);
       for (int k = 0; k < n; ++k) {
         if (!(blocked & (1u << k))) sun += f[k];
       }
@@ -326,7 +352,7 @@ glm::vec3 Integrator::shade(const Surface& s, uint32_t sample, const PixelPoints
       if (!s.on_ground && wi[k].y < 0.0f) t_far[k] = std::min(t_far[k], 0.999f * origin.y / -wi[k].y);
       if (!open[k]) t_far[k] = 0.0f;
     }
-    const unsigned blocked = occluded4(origin, wi, t_far, n);
+    const unsigned blocked = occluded4(origin, wi, t_far, n, tally);
     for (int k = 0; k < n; ++k) {
       if (!open[k] || (blocked & (1u << k))) continue;
       sky += (!s.on_ground && wi[k].y < 0.0f) ? ground_bounce_ : settings_.sky.radiance(wi[k]);

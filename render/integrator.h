@@ -35,7 +35,16 @@ struct PixelResult {
   glm::vec4 rgba{0.0f};
   float depth = 0.0f;
   float matte = 0.0f;
+  glm::vec3 normal{0.0f};  // mean world-space shading normal of the samples that hit (0 over sky)
   uint32_t object_id = 0;
+};
+
+// Counts the rays a pixel casts and, when the vectors are set, keeps them as Embree rays for
+// replaying through Embree alone (stirrup bench's bound). One per tile: no sharing between threads.
+struct RayTally {
+  uint64_t rays = 0;                        // camera rays + shadow and sky rays
+  std::vector<RTCRay>* camera = nullptr;    // camera rays as cast, tfar = infinity
+  std::vector<RTCRay>* occlusion = nullptr; // shadow and sky rays as cast
 };
 
 // Fraction of the area within a box of `width` (in squares) around (s, t) (in squares) that falls on
@@ -51,7 +60,7 @@ class Integrator {
              std::span<const ShadingMesh* const> meshes_by_geometry);
 
   // All samples of pixel (x, y). Allocates nothing.
-  PixelResult renderPixel(const CameraFrame& camera, int x, int y, int frame) const;
+  PixelResult renderPixel(const CameraFrame& camera, int x, int y, int frame, RayTally& tally) const;
 
  private:
   struct Surface;
@@ -60,21 +69,23 @@ class Integrator {
     bool hit = false;
     ObjectId id = ObjectId::Ground;
     float depth = 0.0f;
+    glm::vec3 normal{0.0f};
   };
   // The stratified points of one pixel, set up once per pixel.
   struct PixelPoints {
     const Stratified2D& sun;
     const Stratified2D& sky;
   };
-  Sample traceCameraSample(const CameraFrame& camera, double u, double v, uint32_t sample,
-                           const PixelPoints& points) const;
-  glm::vec3 shade(const Surface& s, uint32_t sample, const PixelPoints& points) const;
+  Sample traceCameraSample(const CameraFrame& camera, float px, float py, uint32_t sample,
+                           const PixelPoints& points, RayTally& tally) const;
+  glm::vec3 shade(const Surface& s, uint32_t sample, const PixelPoints& points, RayTally& tally) const;
   bool mayHitCharacters(const glm::vec3& origin, const glm::vec3& direction, float t_far) const;
   // Occlusion of up to 4 rays from one origin: a bit per ray, set when blocked. Rays with t_far <= 0
   // or that miss the characters' bounds are not traced and count as open. Single rtcOccluded1 rays:
   // 4-wide rtcOccluded4 packets of the same rays measured no faster (2.99 vs 2.95 s CPU per
   // review-quality frame of the 100k-triangle stand-in).
-  unsigned occluded4(const glm::vec3& origin, const glm::vec3* directions, const float* t_far, int count) const;
+  unsigned occluded4(const glm::vec3& origin, const glm::vec3* directions, const float* t_far, int count,
+                     RayTally& tally) const;
   bool sunMayBeBlocked(const glm::vec3& origin) const;
   float distanceToCharacters(const glm::vec3& p) const;
 
@@ -89,6 +100,7 @@ class Integrator {
   float sun_cos_max_, sun_angle_, sun_tan_;
   glm::vec3 sun_radiance_;     // of a white matte surface facing the sun
   glm::vec3 ground_bounce_;    // radiance of the lit ground, seen by downward sky rays
+  float ground_extent_;        // the ground is the square |x|, |z| <= this at y = 0, hit analytically
   float blinn_norm_;           // (n + 8) / 8: Blinn-Phong lobe normalised for energy
   uint32_t spp_, light_spp_, ao_spp_;
 };

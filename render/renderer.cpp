@@ -4,7 +4,11 @@
 #include <stdexcept>
 #include <string>
 
+#include <atomic>
+
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
@@ -79,7 +83,11 @@ int Renderer::addMesh(const MeshDesc& desc) {
     throw std::invalid_argument("addMesh: " + std::to_string(desc.colors.size()) + " colours for " +
                                 std::to_string(desc.vertex_count) + " vertices");
   }
-  const unsigned geometry = state_->scene.addTriangleMesh(desc.vertex_count, desc.indices);
+  if (!desc.rest_positions.empty() && desc.rest_positions.size() != desc.vertex_count) {
+    throw std::invalid_argument("addMesh: " + std::to_string(desc.rest_positions.size()) + " rest positions for " +
+                                std::to_string(desc.vertex_count) + " vertices");
+  }
+  const unsigned geometry = state_->scene.addTriangleMesh(desc.vertex_count, desc.indices, desc.rest_positions);
   auto mesh = std::make_unique<ShadingMesh>();
   mesh->id = desc.id;
   mesh->indices = desc.indices;
@@ -103,15 +111,22 @@ void Renderer::updateMesh(int mesh, std::span<const glm::vec3> positions, std::s
   std::copy(normals.begin(), normals.end(), m.normals.begin());
 }
 
-Image Renderer::render(const Camera& camera, int frame) {
+Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
   const int w = settings_.width, h = settings_.height;
   const CameraFrame camera_frame(camera, w, h);
   Image image(w, h);
   if (settings_.passes) {
     image.depth.assign(image.pixelCount(), 0.0f);
     image.matte.assign(image.pixelCount(), 0.0f);
+    image.normal.assign(image.pixelCount(), glm::vec3(0.0f));
     image.object_id.assign(image.pixelCount(), kNoObject);
   }
+  struct KeptRays {
+    std::vector<RTCRay> camera, occlusion;
+  };
+  tbb::enumerable_thread_specific<KeptRays> kept;
+  const size_t stride = log ? size_t(std::max(1, log->pixel_stride)) : 0;
+  std::atomic<uint64_t> rays{0};
   state_->arena.execute([&] {
     const auto t0 = Clock::now();
     state_->scene.commit();
@@ -124,24 +139,89 @@ Image Renderer::render(const Camera& camera, int frame) {
         tbb::blocked_range2d<int>(0, h, kTileSize, 0, w, kTileSize),
         [&](const tbb::blocked_range2d<int>& tile) {
           DenormalsAreZero ftz;
+          RayTally tally;
+          KeptRays* keep = log ? &kept.local() : nullptr;
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
             for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-              const PixelResult p = integrator.renderPixel(camera_frame, x, y, frame);
               const size_t i = size_t(y) * size_t(w) + size_t(x);
+              const bool keep_pixel = keep && i % stride == 0;
+              tally.camera = keep_pixel ? &keep->camera : nullptr;
+              tally.occlusion = keep_pixel ? &keep->occlusion : nullptr;
+              const PixelResult p = integrator.renderPixel(camera_frame, x, y, frame, tally);
               image.rgba[i] = p.rgba;
               if (settings_.passes) {
                 image.depth[i] = p.depth;
                 image.matte[i] = p.matte;
+                image.normal[i] = p.normal;
                 image.object_id[i] = p.object_id;
               }
             }
           }
+          rays.fetch_add(tally.rays, std::memory_order_relaxed);
         },
         tbb::simple_partitioner());
     stats_.trace_ms = msSince(t1);
   });
   stats_.triangles = state_->scene.triangleCount();
+  stats_.rays = rays.load();
+  if (log) {
+    log->camera.clear();
+    log->occlusion.clear();
+    for (KeptRays& k : kept) {
+      log->camera.insert(log->camera.end(), k.camera.begin(), k.camera.end());
+      log->occlusion.insert(log->occlusion.end(), k.occlusion.begin(), k.occlusion.end());
+    }
+    log->rays = log->camera.size() + log->occlusion.size();
+  }
   return image;
+}
+
+double Renderer::replay(const RayLog& log) {
+  const RTCScene ground = state_->scene.ground(), characters = state_->scene.characters();
+  std::atomic<uint64_t> hits{0};
+  constexpr size_t kChunk = 256;  // about one 16 x 16 tile of camera rays
+  const auto t0 = Clock::now();
+  state_->arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, log.camera.size(), kChunk),
+        [&](const tbb::blocked_range<size_t>& r) {
+          DenormalsAreZero ftz;
+          uint64_t n = 0;
+          RTCIntersectContext context;
+          rtcInitIntersectContext(&context);
+          context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+          for (size_t i = r.begin(); i < r.end(); ++i) {
+            RTCRayHit rh;
+            rh.ray = log.camera[i];
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(ground, &context, &rh);
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(characters, &context, &rh);
+            n += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+          }
+          hits.fetch_add(n, std::memory_order_relaxed);
+        },
+        tbb::simple_partitioner());
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, log.occlusion.size(), kChunk),
+        [&](const tbb::blocked_range<size_t>& r) {
+          DenormalsAreZero ftz;
+          uint64_t n = 0;
+          RTCIntersectContext context;
+          rtcInitIntersectContext(&context);
+          for (size_t i = r.begin(); i < r.end(); ++i) {
+            RTCRay ray = log.occlusion[i];
+            rtcOccluded1(characters, &context, &ray);
+            n += ray.tfar < 0.0f;
+          }
+          hits.fetch_add(n, std::memory_order_relaxed);
+        },
+        tbb::simple_partitioner());
+  });
+  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (hits.load() > log.rays) throw std::logic_error("replay: more hits than rays");  // keeps the work observable
+  return seconds;
 }
 
 }  // namespace stirrup::render

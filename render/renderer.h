@@ -6,14 +6,9 @@
 // splatted) and draws its random numbers from a hash of (pixel, frame, sample, dimension), so the same
 // scene and frame give the same bytes at any thread count and tile order.
 //
-// Cost (tests/render/renderer_benchmark_test.cpp, 98k-triangle deforming stand-in, 640 x 360, on a
-// 2-core VM shared with other builds, which gave this process about 0.4 of a core, so CPU time is the
-// comparable figure): review quality (16 spp, 4 sun, 4 sky) 2.7-3.0 s CPU per frame; 16 spp with 1 sun
-// and 1 sky ray 1.3-1.7 s. Per camera sample that is 1 primary ray plus up to light_samples +
-// ao_samples occlusion rays; rays that cannot reach the characters (open ground) are not traced.
-// BVH update, same benchmark: full MEDIUM rebuild ~100-380 ms commit (wall, contended), refit about
-// 3.5x cheaper to commit with no measurable trace slowdown for this motion; Rebuild stays the default
-// because only it makes the BVH, and so tie-breaking, a function of the current frame alone.
+// Cost: `stirrup bench` measures it per quality preset (README "Speed"). Per camera sample there is
+// 1 camera ray plus up to light_samples + ao_samples occlusion rays; the ground is intersected
+// analytically and rays that cannot reach the characters' box never call into Embree.
 #pragma once
 
 #include <cstdint>
@@ -37,6 +32,10 @@ struct MeshDesc {
   std::vector<uint32_t> indices;  // three per triangle, counter-clockwise seen from outside
   std::vector<glm::vec3> colors;  // linear base colour per vertex (empty: a neutral grey)
   size_t vertex_count = 0;
+  // The mesh in its rest (bind) pose, vertex_count positions, or empty. With BvhUpdate::Refit the BVH
+  // is built once over these and refitted every frame, so its topology never depends on which frames
+  // were rendered before (see embree_scene.h).
+  std::vector<glm::vec3> rest_positions{};
 };
 
 struct RenderSettings {
@@ -67,8 +66,8 @@ struct RenderSettings {
   float specular = 0.04f;         // Blinn-Phong weight on the characters (the ground is matte)
   float shininess = 48.0f;
 
-  BvhUpdate bvh_update = BvhUpdate::Rebuild;
-  bool passes = true;  // also fill Image::depth, matte and object_id
+  BvhUpdate bvh_update = BvhUpdate::Refit;  // built over the rest poses (MeshDesc::rest_positions)
+  bool passes = true;  // also fill Image::depth, matte, normal and object_id
 };
 
 // Timings of the last render() in milliseconds.
@@ -76,6 +75,16 @@ struct RenderStats {
   double commit_ms = 0;  // BVH rebuild or refit
   double trace_ms = 0;   // tracing and shading
   size_t triangles = 0;
+  uint64_t rays = 0;     // camera, shadow and sky rays of the frame (including those culled before Embree)
+};
+
+// The rays of one frame as Embree rays, kept by Renderer::render for Renderer::replay: what Embree
+// alone would have to trace for the frame, with no shading, sampling or film work around it.
+struct RayLog {
+  int pixel_stride = 1;              // keep the rays of every Nth pixel (row-major index), to bound memory
+  std::vector<RTCRay> camera;        // against the ground, then the characters up to the ground
+  std::vector<RTCRay> occlusion;     // shadow and sky rays against the characters
+  uint64_t rays = 0;                 // camera.size() + occlusion.size()
 };
 
 class Integrator;
@@ -94,7 +103,13 @@ class Renderer {
   void updateMesh(int mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
 
   // Commits the changes since the last call and traces the frame. Deterministic for (scene, frame).
-  Image render(const Camera& camera, int frame);
+  // With `log`, also keeps the frame's rays in it (slower; for benchmarks only).
+  Image render(const Camera& camera, int frame, RayLog* log = nullptr);
+
+  // Casts the logged rays through Embree alone on the renderer's threads, in tiles of consecutive
+  // rays with rtcIntersect1 / rtcOccluded1 as the integrator does, and returns the wall-clock
+  // seconds. The scene must be committed for the logged frame (call right after render()).
+  double replay(const RayLog& log);
 
   const RenderSettings& settings() const { return settings_; }
   const RenderStats& lastStats() const { return stats_; }

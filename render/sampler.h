@@ -29,11 +29,18 @@ constexpr uint64_t mixBits(uint64_t v) {
   return v;
 }
 
-// A hash of all five coordinates; chained so that (1, 2) and (2, 1) differ.
+// A hash of all five coordinates; chained so that (1, 2) and (2, 1) differ. The first two rounds
+// depend on the pixel, frame and dimension only, so a pixel's sequence hashes them once
+// (hashPixel) and each sample costs one round (hashSampleOf).
+constexpr uint64_t hashPixel(uint32_t x, uint32_t y, uint32_t frame, uint32_t dim) {
+  const uint64_t h = mixBits((uint64_t(x) << 32 | y) ^ 0x9e3779b97f4a7c15ull);
+  return mixBits(h ^ (uint64_t(frame) << 32 | dim));
+}
+constexpr uint64_t hashSampleOf(uint64_t pixel_hash, uint32_t sample) {
+  return mixBits(pixel_hash ^ (uint64_t(sample) * 0xd1b54a32d192ed03ull));
+}
 constexpr uint64_t hashSample(uint32_t x, uint32_t y, uint32_t frame, uint32_t sample, uint32_t dim) {
-  uint64_t h = mixBits((uint64_t(x) << 32 | y) ^ 0x9e3779b97f4a7c15ull);
-  h = mixBits(h ^ (uint64_t(frame) << 32 | dim));
-  return mixBits(h ^ (uint64_t(sample) * 0xd1b54a32d192ed03ull));
+  return hashSampleOf(hashPixel(x, y, frame, dim), sample);
 }
 
 // The top 24 bits as a float in [0, 1): exactly representable, so never rounds up to 1.
@@ -96,8 +103,7 @@ class PixelSampler {
   }
   // Two independent uniform numbers from one hash (the top and the next 24 bits).
   constexpr glm::vec2 uniform2D(uint32_t sample, SampleDimension dim) const {
-    const uint64_t h = hashSample(x_, y_, frame_, sample, uint32_t(dim) * 4 + 3);
-    return {unitFloat(h), float((h >> 8) & 0xffffffu) * 0x1p-24f};
+    return split2D(hashSample(x_, y_, frame_, sample, uint32_t(dim) * 4 + 3));
   }
   // A per-pixel seed for the stratification permutations of a dimension.
   constexpr uint32_t seed(SampleDimension dim) const {
@@ -106,6 +112,12 @@ class PixelSampler {
 
   // Sample `index` of `count` stratified points in [0, 1)^2 (see Stratified2D).
   glm::vec2 stratified2D(uint32_t index, uint32_t count, SampleDimension dim) const;
+
+  // The pixel part of uniform2D's hash for a dimension: uniform2D(i, dim) is split(hashSampleOf(it, i)).
+  constexpr uint64_t pixelHash2D(SampleDimension dim) const {
+    return hashPixel(x_, y_, frame_, uint32_t(dim) * 4 + 3);
+  }
+  static constexpr glm::vec2 split2D(uint64_t h) { return {unitFloat(h), float((h >> 8) & 0xffffffu) * 0x1p-24f}; }
 
  private:
   uint32_t x_, y_, frame_;
@@ -119,8 +131,7 @@ class PixelSampler {
 class Stratified2D {
  public:
   Stratified2D(const PixelSampler& sampler, uint32_t count, SampleDimension dim)
-      : sampler_(sampler),
-        dim_(dim),
+      : pixel_hash_(sampler.pixelHash2D(dim)),
         count_(count),
         seed_(sampler.seed(dim)),
         row_seed_(seed_ ^ 0x5bd1e995u),
@@ -138,7 +149,7 @@ class Stratified2D {
 
   glm::vec2 operator[](uint32_t index) const {
     const uint32_t cell = permuteIndex(index, count_, seed_, mask_, offset_);
-    const glm::vec2 j = sampler_.uniform2D(index, dim_);
+    const glm::vec2 j = PixelSampler::split2D(hashSampleOf(pixel_hash_, index));
     if (side_ != 0) {
       const uint32_t row = side_shift_ >= 0 ? cell >> side_shift_ : cell / side_;
       const uint32_t col = cell - row * side_;
@@ -152,8 +163,7 @@ class Stratified2D {
   // (cell + jitter) / n can round up to exactly 1 in float; keep the half-open range.
   static constexpr float belowOne(float v) { return v < 0x1.fffffep-1f ? v : 0x1.fffffep-1f; }
 
-  const PixelSampler& sampler_;
-  SampleDimension dim_;
+  uint64_t pixel_hash_;  // hashed once per pixel and dimension
   uint32_t count_, seed_, row_seed_, mask_, offset_, row_offset_;
   float inv_count_;
   uint32_t side_;

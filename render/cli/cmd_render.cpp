@@ -1,4 +1,5 @@
-// stirrup render SCENE: writes the frames of a shot as NAME.####.png, and a movie with --movie.
+// stirrup render SCENE: writes the frames of a shot as NAME.####.png (and/or linear NAME.####.exr
+// with the compositing passes), and a movie with --movie.
 #include <cstdio>
 #include <filesystem>
 
@@ -6,6 +7,7 @@
 #include "render/cli/progress.h"
 #include "render/image.h"
 #include "render/movie.h"
+#include "render/preset.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/error.h"
@@ -21,23 +23,30 @@ struct RenderOptions {
   std::string camera;
   std::string out;
   std::string movie;
+  std::string preset;
+  std::string format = "png";
+  bool exr = false;
   int threads = 0;
   int padding = 4;
   bool progress = false;
   bool resume = false;
 };
 
-std::string frameName(const std::string& base, int frame, int padding) {
+std::string frameName(const std::string& base, int frame, int padding, const char* extension) {
   char digits[32];
   std::snprintf(digits, sizeof digits, "%0*d", padding, frame);
-  return base + "." + digits + ".png";
+  return base + "." + digits + extension;
 }
 
 void runRender(const RenderOptions& o) {
   namespace fs = std::filesystem;
   if (!o.movie.empty() && fs::path(o.movie).extension() != ".mp4")
     throw InputError("--movie: " + o.movie + ": expected a file name ending in .mp4");
-  const render::SceneSpec scene = render::loadScene(o.scene);
+  const std::string format = o.exr ? "both" : o.format;
+  const bool png = format != "exr", exr = format != "png";
+  if (!o.movie.empty() && !png) throw InputError("--movie: needs PNG frames; use --format png or both");
+  render::SceneSpec scene = render::loadScene(o.scene);
+  if (!o.preset.empty()) render::applyPreset(scene, render::findPreset(o.preset));
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
   const rig::RigProfile profile = render::resolveProfile(scene);
@@ -50,9 +59,19 @@ void runRender(const RenderOptions& o) {
   std::vector<fs::path> written;
   int done = 0;
   for (int frame : frames) {
-    const fs::path file = frameName(base, frame, o.padding);
-    if (!(o.resume && fs::exists(file))) render::writePng(shot.renderFrame(frame), file);
-    written.push_back(file);
+    const fs::path png_file = frameName(base, frame, o.padding, ".png");
+    const fs::path exr_file = frameName(base, frame, o.padding, ".exr");
+    const bool complete = (!png || fs::exists(png_file)) && (!exr || fs::exists(exr_file));
+    if (!(o.resume && complete)) {
+      const render::Image image = shot.renderFrame(frame);
+      if (png) render::writePng(image, png_file);
+      if (exr) {
+        render::writeExr(image, exr_file,
+                         render::exrFrameMetadata(shot.cameraAtFrame(frame), camera.name, frame,
+                                                  render::frameTime(scene, frame), scene.name));
+      }
+    }
+    if (png) written.push_back(png_file);
     bar.step(++done);
   }
   if (!o.movie.empty()) {
@@ -67,7 +86,7 @@ void addRenderCommand(CLI::App& app) {
   auto opts = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene's frames (NAME.####.png) and optionally a movie");
   cmd->footer(
-      "Frames are written as OUT/SCENE_CAMERA.####.png, each to a temporary name renamed when complete.\n"
+      "Frames are written as OUT/SCENE_CAMERA.####.png (or .exr), each to a temporary name renamed when complete.\n"
       "Frame lists: 1-120, 1-120x2 (every 2nd), 1-10,20-30, 7.\n"
       "Example: stirrup render scenes/trot.json --frames 1-48 --movie out/trot_side.mp4");
   cmd->add_option("scene", opts->scene, "Scene file (JSON), e.g. scenes/trot.json")->required();
@@ -75,6 +94,12 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--camera,-c", opts->camera, "Camera name (default: the scene's first camera)");
   cmd->add_option("--out,-o", opts->out, "Output folder (default: the scene's output)");
   cmd->add_option("--movie,-m", opts->movie, "Also encode the frames as an H.264 .mp4 movie");
+  cmd->add_option("--preset", opts->preset, "Quality preset: draft, review or final (default: the scene's quality)");
+  cmd->add_option("--format", opts->format,
+                  "png (sRGB review frames), exr (linear half float with RGBA, N, Z, matte and objectId "
+                  "passes and the camera in the header) or both")
+      ->check(CLI::IsMember({"png", "exr", "both"}));
+  cmd->add_flag("--exr", opts->exr, "Also write the EXR frames (same as --format both)");
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, 9));
   cmd->add_flag("--resume", opts->resume, "Skip frames whose file already exists");

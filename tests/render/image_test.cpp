@@ -95,6 +95,55 @@ TEST(Image, ExrKeepsLinearValuesAndPasses) {
   EXPECT_EQ(px[6], -1.0f);
 }
 
+TEST(Image, ExrCarriesNormalsAndTypedMetadata) {
+  const fs::path file = tempDir() / "normals.exr";
+  Image img = gradient(4, 2);
+  img.depth.assign(img.pixelCount(), 50.0f);
+  img.normal.assign(img.pixelCount(), glm::vec3(0.0f, 1.0f, 0.0f));
+  img.normal[5] = {0.6f, 0.0f, -0.8f};
+  Camera camera;
+  camera.projection = Camera::Projection::Orthographic;
+  camera.position = {100.0, 200.0, 900.0};
+  camera.target = {100.0, 200.0, 0.0};  // looking down -Z: worldToCamera is a pure translation
+  camera.ortho_height_cm = 320.0;
+  writeExr(img, file, exrFrameMetadata(camera, "side", 7, 0.25, "trot"));
+  auto in = OIIO::ImageInput::open(file.string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec spec = in->spec();
+  ASSERT_EQ(spec.nchannels, 8);
+  const std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"R", "G", "B", "A", "Z", "N.x", "N.y", "N.z"}));
+  EXPECT_EQ(spec.z_channel, 4);
+  EXPECT_EQ(spec.get_string_attribute("stirrup:scene"), "trot");
+  EXPECT_EQ(spec.get_int_attribute("stirrup:frame"), 7);
+  EXPECT_EQ(spec.get_float_attribute("stirrup:time"), 0.25f);
+  EXPECT_EQ(spec.get_string_attribute("stirrup:camera"), "side");
+  EXPECT_EQ(spec.get_string_attribute("stirrup:camera:projection"), "orthographic");
+  EXPECT_EQ(spec.get_float_attribute("stirrup:camera:ortho_height"), 320.0f);
+  const OIIO::ParamValue* position = spec.find_attribute("stirrup:camera:position");
+  ASSERT_TRUE(position);
+  ASSERT_EQ(position->type(), OIIO::TypeDesc::TypeVector);
+  EXPECT_EQ(static_cast<const float*>(position->data())[2], 900.0f);
+  const OIIO::ParamValue* w2c = spec.find_attribute("worldToCamera");
+  ASSERT_TRUE(w2c);
+  ASSERT_EQ(w2c->type(), OIIO::TypeDesc::TypeMatrix44);
+  const float* m = static_cast<const float*>(w2c->data());
+  // Row vectors: p * M. The camera's own position maps to the origin.
+  const float p[4] = {100.0f, 200.0f, 900.0f, 1.0f};
+  for (int col = 0; col < 3; ++col) {
+    float sum = 0.0f;
+    for (int row = 0; row < 4; ++row) sum += p[row] * m[row * 4 + col];
+    EXPECT_NEAR(sum, 0.0f, 1e-3f) << "column " << col;
+  }
+  std::vector<float> px(4 * 2 * 8);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 8, OIIO::TypeDesc::FLOAT, px.data()));
+  in->close();
+  EXPECT_NEAR(px[5 * 8 + 5], 0.6f, 1e-3f);  // half float: within its precision
+  EXPECT_NEAR(px[5 * 8 + 7], -0.8f, 1e-3f);
+  EXPECT_EQ(px[0 * 8 + 6], 1.0f);
+  EXPECT_EQ(px[0 * 8 + 4], 50.0f);
+}
+
 TEST(Image, FailedWriteLeavesNoFile) {
   const fs::path file = tempDir() / "no_such_dir" / "x.png";
   EXPECT_THROW(writePng(gradient(4, 4), file), std::runtime_error);

@@ -82,7 +82,10 @@ bool sameBytes(const Image& a, const Image& b) {
   return a.width == b.width && a.height == b.height && a.rgba.size() == b.rgba.size() &&
          std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(glm::vec4)) == 0 &&
          std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0 &&
-         std::memcmp(a.matte.data(), b.matte.data(), a.matte.size() * sizeof(float)) == 0 && a.object_id == b.object_id;
+         std::memcmp(a.matte.data(), b.matte.data(), a.matte.size() * sizeof(float)) == 0 &&
+         a.normal.size() == b.normal.size() &&
+         std::memcmp(a.normal.data(), b.normal.data(), a.normal.size() * sizeof(glm::vec3)) == 0 &&
+         a.object_id == b.object_id;
 }
 
 TEST(Renderer, TheSphereCoversTheExpectedPixels) {
@@ -219,6 +222,89 @@ TEST(Renderer, AllBvhUpdateModesSeeTheSameScene) {
     for (size_t i = 0; i < img.pixelCount(); ++i) diff += std::abs(luminance(img.rgba[i]) - luminance(reference.rgba[i]));
     EXPECT_LT(diff / img.pixelCount(), 1e-3);
   }
+}
+
+TEST(Renderer, TheNormalPassIsUnitOnSurfacesAndZeroOnSky) {
+  SmallScene scene;
+  const Image img = scene.render(0);
+  ASSERT_EQ(img.normal.size(), img.pixelCount());
+  for (size_t i = 0; i < img.pixelCount(); ++i) {
+    if (img.rgba[i].w == 0.0f) {  // no sample hit anything
+      EXPECT_EQ(img.normal[i], glm::vec3(0.0f));
+    } else {
+      EXPECT_NEAR(glm::length(img.normal[i]), 1.0f, 1e-4f);
+    }
+  }
+  // The sphere's point nearest the camera faces it; the open ground faces up.
+  const glm::dvec3 centre(0.0, 45.0, 0.0);
+  const glm::dvec3 toward = glm::normalize(scene.camera.position - centre);
+  const glm::ivec2 front = scene.pixelOf(centre + 30.0 * toward);
+  const glm::vec3 n = img.normal[size_t(front.y) * 64 + size_t(front.x)];
+  EXPECT_GT(glm::dot(glm::dvec3(n), toward), 0.95);
+  const glm::ivec2 ground = scene.pixelOf({-150.0, 0.0, 100.0});
+  EXPECT_EQ(img.object_id[size_t(ground.y) * 64 + size_t(ground.x)], uint32_t(ObjectId::Ground));
+  EXPECT_EQ(img.normal[size_t(ground.y) * 64 + size_t(ground.x)], glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+// With Refit the BVH is built over the rest pose and only refitted, so a frame's bytes must not
+// depend on which poses were committed before it (a farm renders frames alone, in any order).
+TEST(Renderer, RefitFromTheRestPoseDoesNotDependOnEarlierFrames) {
+  SmallScene scene;
+  scene.settings.bvh_update = BvhUpdate::Refit;
+  auto posed = [&](float dx, float squash) {
+    std::vector<glm::vec3> p = scene.sphere.positions;
+    for (glm::vec3& v : p) v = {v.x * (1.0f + squash) + dx, 45.0f + (v.y - 45.0f) * (1.0f - squash), v.z};
+    return p;
+  };
+  auto renderAfter = [&](const std::vector<std::vector<glm::vec3>>& poses, int threads) {
+    RenderSettings s = scene.settings;
+    s.threads = threads;
+    Renderer r(s);
+    MeshDesc desc{ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size(),
+                  scene.sphere.positions};
+    const int mesh = r.addMesh(desc);
+    Image last;
+    for (const auto& p : poses) {
+      r.updateMesh(mesh, p, scene.sphere.normals);
+      last = r.render(scene.camera, 5);
+    }
+    return last;
+  };
+  const auto a = posed(-40.0f, 0.3f), b = posed(25.0f, -0.2f);
+  const Image alone = renderAfter({b}, 1);
+  EXPECT_TRUE(sameBytes(alone, renderAfter({a, b}, 1)));
+  EXPECT_TRUE(sameBytes(alone, renderAfter({b, a, b}, 0)));
+  EXPECT_TRUE(sameBytes(alone, renderAfter({a, a, b}, 2)));
+  // And it sees the same picture as a rebuild of pose b.
+  scene.settings.bvh_update = BvhUpdate::Rebuild;
+  const Image rebuilt = renderAfter({b}, 0);
+  EXPECT_EQ(rebuilt.object_id, alone.object_id);
+}
+
+TEST(Renderer, CountsItsRaysAndKeepsThemForReplay) {
+  SmallScene scene;
+  Renderer r(scene.settings);
+  const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+  const Image plain = r.render(scene.camera, 2);
+  const uint64_t rays = r.lastStats().rays;
+  const uint64_t camera_rays = uint64_t(64 * 36 * scene.settings.samples_per_pixel);
+  EXPECT_GT(rays, camera_rays);  // camera rays plus shadow and sky rays near the sphere
+  EXPECT_LE(rays, camera_rays * uint64_t(1 + scene.settings.light_samples + scene.settings.ao_samples));
+
+  RayLog log;
+  const Image logged = r.render(scene.camera, 2, &log);
+  EXPECT_TRUE(sameBytes(plain, logged));  // keeping the rays changes nothing
+  EXPECT_EQ(log.camera.size(), camera_rays);
+  EXPECT_EQ(log.rays, rays);
+  EXPECT_EQ(log.rays, log.camera.size() + log.occlusion.size());
+  EXPECT_GT(r.replay(log), 0.0);
+
+  RayLog half;
+  half.pixel_stride = 2;
+  r.render(scene.camera, 2, &half);
+  EXPECT_EQ(half.camera.size(), camera_rays / 2);
+  EXPECT_LT(half.rays, log.rays);
 }
 
 // A lit flat panel must shade evenly: self-intersection of shadow rays ("acne") would speckle it.
