@@ -115,8 +115,9 @@ double footForward(const HorseMeasures& m, double lower_back_rz, const RigProfil
 }  // namespace
 
 RiderChannels evaluateRider(const HorseChannels& horse, const RigProfile& p) {
-  const HorseMeasures m = measureHorse(horse, p.horse_unit_cm);
   RiderChannels r;
+  if (p.rigid) return r;  // fixed to the saddle: every channel at rest (RigProfile::rigid)
+  const HorseMeasures m = measureHorse(horse, p.horse_unit_cm);
 
   // Lower back first: the waist, hips, seat, head, wrists and feet read it.
   const double lower_back_rz = lowerBackPitch(m, p.eq1);

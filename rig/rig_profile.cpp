@@ -138,11 +138,20 @@ RigProfile RigProfile::thesis() {
   return p;
 }
 
+RigProfile RigProfile::rigidRider() {
+  RigProfile p = thesis();
+  p.name = "rigid";
+  p.doc = "A rider rigidly fixed to the saddle: every rider channel at rest (what the rig adds, by contrast)";
+  p.rigid = true;
+  return p;
+}
+
 RigProfile loadRigProfile(const std::string& nameOrPath, const std::filesystem::path& profilesDir) {
   namespace fs = std::filesystem;
   const bool is_path = fs::path(nameOrPath).extension() == ".json" || nameOrPath.find('/') != std::string::npos;
   if (nameOrPath.empty()) throw InputError("rig profile: expected a profile name or a .json path, got \"\"");
   const fs::path file = is_path ? fs::path(nameOrPath) : profilesDir / (nameOrPath + ".json");
+  if (!is_path && nameOrPath == "rigid" && !fs::exists(file)) return RigProfile::rigidRider();
   if (!fs::exists(file)) {
     std::string names;
     std::error_code ec;
@@ -160,7 +169,10 @@ RigProfile loadRigProfile(const std::string& nameOrPath, const std::filesystem::
   p.name = file.stem().string();
   p.doc.clear();
   for (const auto& [key, value] : j.items()) {
-    if (key == "name" || key == "doc") {
+    if (key == "rigid") {
+      if (!value.is_boolean()) throw InputError(file.string() + ": rigid: expected true or false, got " + describeJson(value));
+      p.rigid = value.get<bool>();
+    } else if (key == "name" || key == "doc") {
       if (!value.is_string()) throw InputError(file.string() + ": " + key + ": expected a string, got " + describeJson(value));
       (key == "name" ? p.name : p.doc) = value.get<std::string>();
     } else if (key == "notes") {
@@ -192,6 +204,7 @@ nlohmann::json profileToJson(const RigProfile& p) {
   nlohmann::json j = nlohmann::json::object();
   j["name"] = p.name;
   j["doc"] = p.doc;
+  if (p.rigid) j["rigid"] = true;
   for (const RigParameter& param : kParameters) j[std::string(param.key)] = param.get(p);
   return j;
 }

@@ -123,8 +123,17 @@ struct RigProfile {
     double side_w2_hind_height_difference = 2;
   } cloth;
 
+  // A rider rigidly fixed to the saddle: evaluateRider returns every rider channel at its rest value
+  // (0), whatever the horse does, so she rides the saddle like a statue. The layered review movies
+  // compare the rigged rider with this one to show what the rig adds (docs/rider-rig.md, "The rigid
+  // rider"). The weights above are ignored while it is set. In a profile file: "rigid": true.
+  bool rigid = false;
+
   // The thesis's values (the member initialisers above), named "thesis".
   static RigProfile thesis();
+  // The built-in profile "rigid": thesis() with rigid set. loadRigProfile("rigid", ...) returns it
+  // when the profiles folder has no rigid.json.
+  static RigProfile rigidRider();
 };
 
 // One tunable parameter: its JSON key, where it lives, and the thesis passage it comes from.
