@@ -58,12 +58,13 @@ Character buildHorse(const HorseParams& p) {
   const float back_top = p.barrel_center.y + p.barrel_radii.y * std::sqrt(std::max(0.0f, 1.0f - bx * bx));
   const glm::vec3 seat{p.saddle_x, back_top + p.saddle_seat_height, 0.0f};
   const int saddle = addJointAt(s, "saddle", back_mid, seat);
-  const int l_stirrup = addJointAt(s, "lStirrup", saddle, seat + p.stirrup_offset);
-  const int r_stirrup = addJointAt(s, "rStirrup", saddle, seat + mirrorZ(p.stirrup_offset, -1.0f));
+  const int l_stirrup = addJointAt(s, "lStirrup", saddle, seat + p.mount.stirrup);
+  const int r_stirrup = addJointAt(s, "rStirrup", saddle, seat + mirrorZ(p.mount.stirrup, -1.0f));
 
   c.roles = {{"root", root},     {"backMid", back_mid}, {"chest", chest},       {"withers", withers},
              {"neck1", neck1},   {"neck2", neck2},      {"head", head},         {"saddle", saddle},
-             {"lStirrup", l_stirrup}, {"rStirrup", r_stirrup}, {"tail1", tail1}};
+             {"lStirrup", l_stirrup}, {"rStirrup", r_stirrup}, {"tail1", tail1}, {"tail2", tail2},
+             {"tail3", tail3}};
 
   // Trunk shapes.
   body.add(ellipsoid(p.croup_center, p.croup_radii, root, p.coat, 6.0f));
@@ -213,9 +214,13 @@ Character buildHorse(const HorseParams& p) {
     tube({{crown + glm::vec3(0.0f, -6.0f, hz * side), head}, {bit + glm::vec3(0.0f, 1.0f, 0.0f), head}},
          p.strap_radius, p.leather);
     const glm::vec3 mid = p.neck_mid + glm::vec3(4.0f, 2.0f, (p.neck_mid_radius + 2.0f) * side);
-    const glm::vec3 hand = seat + mirrorZ(p.rein_hand, -side);
-    tube({{bit, head}, {mid, neck2}, {hand, chest}}, p.rein_radius, p.leather, 3.0f);
+    const glm::vec3 hand = seat + mirrorZ(p.mount.rein_grip, -side);
+    // The hand end is its own joint, which placeReins moves to the rider's hand every frame.
+    const int rein = addJointAt(s, side < 0 ? "lRein" : "rRein", saddle, hand);
+    c.roles[side < 0 ? "lRein" : "rRein"] = rein;
+    tube({{bit, head}, {mid, neck2}, {hand, rein}}, p.rein_radius, p.leather, 3.0f);
   }
+  groupTrianglesByColor(c.mesh);
   return c;
 }
 

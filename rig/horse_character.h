@@ -3,7 +3,8 @@
 // Bind pose: ground at y = 0, mid-barrel at x = 0, travelling along +X, +Z = the horse's right.
 //
 // Roles: "root" (rear pivot at the hips), "backMid", "chest", "withers", "neck1", "neck2", "head",
-// "saddle" (seat centre, the rider's attachment), "lStirrup", "rStirrup" (tread centres),
+// "saddle" (seat centre, the rider's attachment), "lStirrup", "rStirrup" (tread centres), "tail1".."tail3",
+// "lRein", "rRein" (the hand ends of the reins, moved to the rider's hands by placeReins),
 // per leg "<leg>Upper" (chain root: elbow or stifle), "<leg>Middle" (knee or hock),
 // "<leg>Fetlock", "<leg>Hoof" (ground contact), leg = lf, rf, lb, rb.
 #pragma once
@@ -13,6 +14,15 @@
 #include "rig/character.h"
 
 namespace stirrup::rig {
+
+// Where the rider meets the horse, in saddle space (the seat centre is the origin; left side, z < 0;
+// mirrored for the right). The one source of truth for both characters: the horse hangs its stirrups
+// and rein ends here, the rider is built with the balls of her feet on the treads and her hands
+// closed on the reins.
+struct MountParams {
+  glm::vec3 stirrup{0.0f, -74.0f, -31.0f};   // left stirrup tread from the seat centre
+  glm::vec3 rein_grip{34.0f, 16.0f, -6.0f};  // where the left rein meets the rider's hand
+};
 
 struct HorseParams {
   // Trunk (cm, bind pose).
@@ -61,8 +71,7 @@ struct HorseParams {
   // Tack: saddle seat centre ahead of the back-mid pivot, just behind the withers.
   float saddle_x = 10.0f;
   float saddle_seat_height = 6.0f;     // seat above the top of the back
-  glm::vec3 stirrup_offset{0.0f, -74.0f, -31.0f};  // left stirrup tread from the seat centre
-  glm::vec3 rein_hand{34.0f, 16.0f, -6.0f};        // where the left rein meets the rider's hand, from the seat centre
+  MountParams mount;
   float rein_radius = 0.7f, strap_radius = 0.8f;
   // Colours (linear).
   glm::vec3 coat{0.16f, 0.05f, 0.016f};      // bay

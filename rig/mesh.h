@@ -1,7 +1,9 @@
 // A skinned triangle mesh in its bind pose: what the skinning job deforms and the renderer draws.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -23,5 +25,27 @@ struct SkinnedMesh {
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return indices.size() / 3; }
 };
+
+// Reorders the triangles so each base colour (a triangle's colour is its first vertex's) forms one
+// run, colours in the order they first appear, triangles in their order within a colour. Vertices
+// are untouched. A glTF writer then needs one primitive (one material) per colour.
+inline void groupTrianglesByColor(SkinnedMesh& mesh) {
+  const std::size_t nt = mesh.triangleCount();
+  std::vector<glm::vec3> palette;
+  std::vector<int> group(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const glm::vec3 c = mesh.colors[mesh.indices[t * 3]];
+    auto it = std::find(palette.begin(), palette.end(), c);
+    if (it == palette.end()) it = palette.insert(palette.end(), c);
+    group[t] = static_cast<int>(it - palette.begin());
+  }
+  std::vector<std::size_t> order(nt);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return group[a] < group[b]; });
+  std::vector<std::uint32_t> indices(mesh.indices.size());
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) indices[t * 3 + k] = mesh.indices[order[t] * 3 + k];
+  mesh.indices = std::move(indices);
+}
 
 }  // namespace stirrup::rig

@@ -107,7 +107,7 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     local[horse.role(n)] = s.joints[horse.role(n)].rest_local * rot(frame.neck_rz * 0.5, kZ);
   local[horse.role("head")] = s.joints[horse.role("head")].rest_local * rot(frame.head_rz, kZ);
   for (const char* n : {"tail1", "tail2", "tail3"}) {
-    const int j = s.require(n);
+    const int j = horse.role(n);
     local[j] = s.joints[j].rest_local * rot(frame.tail_ry / 3.0, kY) * rot(-frame.tail_rz / 3.0, kZ);
   }
   std::vector<glm::mat4> world(s.size());
@@ -231,6 +231,17 @@ void placeStirrups(const Character& horse, std::span<glm::mat4> horseWorld, cons
   }
 }
 
+void placeReins(const Character& horse, std::span<glm::mat4> horseWorld, const Character& rider,
+                std::span<const glm::mat4> riderWorld) {
+  checkSize(horse, horseWorld);
+  checkSize(rider, riderWorld);
+  for (const char* side : {"l", "r"}) {
+    glm::mat4& m = horseWorld[horse.role(std::string(side) + "Rein")];
+    m = horseWorld[horse.role("saddle")];
+    m[3] = riderWorld[rider.role(std::string(side) + "Hand")][3];
+  }
+}
+
 std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse, std::span<const glm::mat4> horseWorld,
                                  const RiderChannels& r, double rider_unit_cm, const RiderPoseParams& params) {
   checkSize(horse, horseWorld);
@@ -270,6 +281,8 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
       world[shoulder] = limb.upper;
       world[elbow] = limb.middle;
       world[wrist] = translate(limb.end) * glm::mat4(glm::mat3(saddle));  // the hand keeps its grip angle
+      const int hand = rider.role(n + "Hand");
+      world[hand] = world[wrist] * s.joints[hand].rest_local;
     }
     // Leg: the ball of the foot in the stirrup; the foot turns about the ball; the knee's pole moves
     // with the knee channels (away from the belly, up).
@@ -297,6 +310,31 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
     }
   }
   return world;
+}
+
+RiderChannels limitRiderChannels(RiderChannels r, const RiderPoseParams& params, double rider_unit_cm) {
+  using C = RiderChannel;
+  const double lean = r[C::hipRz] + r[C::lowerBackRz] + r[C::waistRz] * (1.0 + params.chest_follow);
+  if (std::abs(lean) > params.max_lean_deg) {
+    const double s = params.max_lean_deg / std::abs(lean);
+    for (C c : {C::hipRz, C::lowerBackRz, C::waistRz}) r[c] *= s;
+  }
+  const double swing = params.max_foot_swing_cm / std::max(rider_unit_cm, 1e-9);
+  for (C c : {C::lFootTx, C::rFootTx}) r[c] = std::clamp(r[c], -swing, swing);
+  for (C c : {C::lFootRz, C::rFootRz})
+    r[c] = std::clamp(r[c], -double(params.max_foot_turn_deg), double(params.max_foot_turn_deg));
+  return r;
+}
+
+MountedPose poseMounted(const Character& horse, const Character& rider, const HorseFrame& frame,
+                        const RiderChannels& channels, double rider_unit_cm) {
+  const RiderChannels r = limitRiderChannels(channels, RiderPoseParams{}, rider_unit_cm);
+  MountedPose p;
+  p.horse = poseHorse(horse, frame);
+  placeStirrups(horse, p.horse, r, rider_unit_cm);
+  p.rider = poseRider(rider, horse, p.horse, r, rider_unit_cm);
+  placeReins(horse, p.horse, rider, p.rider);
+  return p;
 }
 
 }  // namespace stirrup::rig

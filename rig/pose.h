@@ -55,7 +55,18 @@ struct RiderPoseParams {
   // The knee channels move the knee's pole point, 50 cm out; this gain makes a knee offset of
   // one cm move the knee by roughly one cm.
   float knee_pole_gain = 3.0f;
+  // Posing limits (docs/rider-rig.md, "Posing limits"): the thesis expressions grow with the horse's
+  // pitch without bound, so on a 55° rear they fold the rider 170° forward into the neck and swing
+  // her feet 130 cm back. The forward lean of the torso relative to the saddle (hip.rz + lowerBack.rz
+  // + waist.rz · (1 + chest_follow)) is scaled down to at most max_lean_deg, keeping the proportions
+  // between the joints; the stirrup swing (foot tx) and the foot's toe-up turn (foot rz) are clamped.
+  float max_lean_deg = 45.0f;
+  float max_foot_swing_cm = 15.0f;
+  float max_foot_turn_deg = 30.0f;
 };
+
+// The rider channels within the posing limits above (poseMounted applies this).
+RiderChannels limitRiderChannels(RiderChannels r, const RiderPoseParams& params, double rider_unit_cm);
 
 // The curve spine's controllers from the rider channels (docs/curve-spine.md, "The rider"): lower =
 // lowerBack (ry side, rz lean), middle = waist (rz), top = the chest's follow of the waist
@@ -89,5 +100,18 @@ glm::vec3 stirrupTarget(const Character& horse, std::span<const glm::mat4> horse
 // Moves the horse's stirrup joints to the rider's feet (call after poseHorse when a rider rides).
 void placeStirrups(const Character& horse, std::span<glm::mat4> horseWorld, const RiderChannels& r,
                    double rider_unit_cm);
+
+// Moves the hand ends of the horse's reins ("lRein", "rRein") to the rider's hands ("lHand",
+// "rHand"), so the reins run from the bit to where her hands close on them (call after poseRider).
+void placeReins(const Character& horse, std::span<glm::mat4> horseWorld, const Character& rider,
+                std::span<const glm::mat4> riderWorld);
+
+// Both characters at one frame, the way every consumer (shot, bake, tests) poses them: poseHorse,
+// placeStirrups, poseRider, placeReins. World matrices, one per joint of each skeleton.
+struct MountedPose {
+  std::vector<glm::mat4> horse, rider;
+};
+MountedPose poseMounted(const Character& horse, const Character& rider, const HorseFrame& frame,
+                        const RiderChannels& r, double rider_unit_cm);
 
 }  // namespace stirrup::rig

@@ -76,7 +76,7 @@ glm::vec3 restMiddle(glm::vec3 root, glm::vec3 end, float upper, float lower, gl
 
 }  // namespace
 
-Character buildRider(const RiderParams& p) {
+Character buildRider(const RiderParams& p, const MountParams& mount) {
   Character c;
   c.name = "rider";
   Skeleton& s = c.skeleton;
@@ -113,6 +113,7 @@ Character buildRider(const RiderParams& p) {
   c.roles = {{"pelvis", pelvis}, {"lowerBack", lower_back}, {"waist", waist}, {"chest", chest},
              {"upperChest", upper_chest}, {"neck", neck}, {"head", head}, {"braid1", braid1},
              {"braid2", braid2}, {"braid3", braid3}, {"coatTail", coat_tail}};
+  for (int i = 0; i <= kN; ++i) c.roles["spine" + std::to_string(i)] = chain[i];
 
   // Torso: coat over the chest and waist, breeches over the hips.
   body.add(ellipsoid(p.pelvis + glm::vec3(-0.5f, 0.0f, 0.0f), p.hips_radii, pelvis, p.breeches, 4.0f));
@@ -161,21 +162,22 @@ Character buildRider(const RiderParams& p) {
     const float m = -side;  // mirror factor applied to left-side parameters
     // Arm: shoulder -> elbow -> wrist, the wrist at the rein.
     const glm::vec3 shoulder = mirrorZ(p.shoulder, m);
-    const glm::vec3 wrist = mirrorZ(p.rein_grip + p.wrist_from_grip, m);
+    const glm::vec3 wrist = mirrorZ(mount.rein_grip + p.wrist_from_grip, m);
     const glm::vec3 elbow = restMiddle(shoulder, wrist, p.upper_arm, p.forearm, mirrorZ(p.elbow_pole_dir, m));
     const int j_shoulder = addJointAt(s, n + "Shoulder", upper_chest, shoulder);
     const int j_elbow = addJointAt(s, n + "Elbow", j_shoulder, elbow);
     const int j_wrist = addJointAt(s, n + "Wrist", j_elbow, wrist);
+    const int j_hand = addJointAt(s, n + "Hand", j_wrist, mirrorZ(mount.rein_grip, m));
     // Leg: hip -> knee -> ankle, the ball of the foot on the stirrup tread.
     const glm::vec3 hip = mirrorZ(p.hip, m);
-    const glm::vec3 ball = mirrorZ(p.stirrup, m);
+    const glm::vec3 ball = mirrorZ(mount.stirrup, m);
     const glm::vec3 ankle = ball + mirrorZ(p.ankle_from_ball, m);
     const glm::vec3 knee = restMiddle(hip, ankle, p.thigh, p.shin, mirrorZ(p.knee_pole_dir, m));
     const int j_hip = addJointAt(s, n + "Hip", pelvis, hip);
     const int j_knee = addJointAt(s, n + "Knee", j_hip, knee);
     const int j_ankle = addJointAt(s, n + "Ankle", j_knee, ankle);
     const int j_ball = addJointAt(s, n + "Ball", j_ankle, ball);
-    for (const auto& [role, j] : {std::pair{"Shoulder", j_shoulder}, {"Elbow", j_elbow}, {"Wrist", j_wrist},
+    for (const auto& [role, j] : {std::pair{"Shoulder", j_shoulder}, {"Elbow", j_elbow}, {"Wrist", j_wrist}, {"Hand", j_hand},
                                   {"Hip", j_hip}, {"Knee", j_knee}, {"Ankle", j_ankle}, {"Ball", j_ball}})
       c.roles[n + role] = j;
 
@@ -205,16 +207,17 @@ Character buildRider(const RiderParams& p) {
   poly.skin_falloff = 2.0f;
   c.mesh = polygonize(body, poly);
   spreadTorsoWeights(c.mesh, chain, p.lower_back.y, chain_bone);
+  groupTrianglesByColor(c.mesh);
   return c;
 }
 
-Character buildDefaultRider() { return buildRider(RiderParams{}); }
+Character buildDefaultRider() { return buildRider(RiderParams{}, HorseParams{}.mount); }
 
 RiderSpine riderSpine(const Character& rider) {
   const Skeleton& s = rider.skeleton;
   RiderSpine spine;
   spine.controllers = {rider.role("lowerBack"), rider.role("waist"), rider.role("chest")};
-  for (int i = 0; i <= kRiderSpineSegments; ++i) spine.chain[i] = s.require("spine" + std::to_string(i));
+  for (int i = 0; i <= kRiderSpineSegments; ++i) spine.chain[i] = rider.role("spine" + std::to_string(i));
   const int pelvis = rider.role("pelvis");
   const bool parents_ok = s.joints[spine.controllers[0]].parent == pelvis &&
                           s.joints[spine.controllers[1]].parent == spine.controllers[0] &&

@@ -1,17 +1,17 @@
 // The default rider: about 170 cm, built seated, in saddle space (the horse's "saddle" joint, the
 // seat centre, is the origin; +X toward the horse's head, +Y up, +Z the horse's right). Red coat,
 // breeches, tall dark boots, a braid. Every proportion is a named parameter; the mount geometry
-// (stirrup and rein places) matches HorseParams' defaults.
+// (stirrup and rein places) is the horse's MountParams, passed in, never repeated here.
 //
 // Roles: "pelvis" (root), "lowerBack", "waist" (spineC), "chest" (spineD), "upperChest" (spineF),
 // "neck", "head" (headA), "braid1".."braid3", "coatTail", and per side s = l, r: "<s>Shoulder",
-// "<s>Elbow", "<s>Wrist", "<s>Hip", "<s>Knee", "<s>Ankle", "<s>Ball" (ball of the foot, on the
+// "<s>Elbow", "<s>Wrist", "<s>Hand" (where the hand closes on the rein, unskinned), "<s>Hip", "<s>Knee", "<s>Ankle", "<s>Ball" (ball of the foot, on the
 // stirrup tread at rest).
 //
 // Spine (docs/curve-spine.md, "The rider"): "lowerBack", "waist" and "chest" are the curve spine's
 // three FK controllers (unskinned joints straight up from the lower back; their bones end at the
 // next controller and at "upperChest"). The torso is skinned to a chain of kRiderSpineSegments
-// equal bones, joints "spine0" (at the lower back, child of the pelvis) .. "spine<N>" (the chain's
+// equal bones, joints and roles "spine0" (at the lower back, child of the pelvis) .. "spine<N>" (the chain's
 // tip = "upperChest"), laid on the curve by poseRiderSpine. Neck, shoulders and coat tail hang
 // from chain joints.
 #pragma once
@@ -22,6 +22,7 @@
 
 #include "rig/character.h"
 #include "rig/curve_spine.h"
+#include "rig/horse_character.h"
 
 namespace stirrup::rig {
 
@@ -38,15 +39,13 @@ struct RiderParams {
   // Arms (left; mirrored for the right).
   glm::vec3 shoulder{-4.5f, 50.0f, -17.0f};
   float upper_arm = 29.0f, forearm = 25.0f;
-  glm::vec3 rein_grip{34.0f, 16.0f, -6.0f};  // where the hand closes on the rein
   glm::vec3 wrist_from_grip{-6.0f, 1.0f, -1.0f};
   glm::vec3 elbow_pole_dir{-0.5f, -1.0f, -0.45f};  // elbows hang back, down and a little out
   // Legs (left; mirrored for the right).
   glm::vec3 hip{-2.0f, 10.0f, -12.5f};
   float thigh = 45.0f, shin = 45.0f;
-  glm::vec3 stirrup{0.0f, -74.0f, -31.0f};         // stirrup tread under the ball of the foot
   glm::vec3 ankle_from_ball{-12.0f, 7.0f, 0.0f};   // heel down, toe in the iron
-  glm::vec3 knee_pole_dir{1.0f, 0.0f, -0.8f};      // knees forward and out around the barrel
+  glm::vec3 knee_pole_dir{1.0f, 0.0f, -1.3f};      // knees forward and out around the barrel
   // Soft tissue and clothes (radii, cm).
   glm::vec3 hips_radii{11.0f, 10.0f, 16.5f};
   glm::vec3 chest_radii{11.5f, 11.5f, 16.0f};
@@ -66,7 +65,8 @@ struct RiderParams {
   float cell = 1.05f;
 };
 
-Character buildRider(const RiderParams& params);
+// `mount`: where the stirrup treads and rein grips are (the horse's HorseParams::mount).
+Character buildRider(const RiderParams& params, const MountParams& mount = MountParams{});
 Character buildDefaultRider();
 
 inline constexpr int kRiderSpineSegments = CurveSpine::kRiderSegments;

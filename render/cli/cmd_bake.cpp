@@ -1,4 +1,6 @@
-// stirrup bake SCENE: evaluates the clip and the rider rig for every frame of the scene.
+// stirrup bake SCENE: evaluates the clip and the rider rig for every frame of the scene; --channels
+// writes them as CSV, -o writes the posed characters, their animation and the cameras as glTF 2.0.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <vector>
@@ -9,6 +11,8 @@
 #include "rig/channel_csv.h"
 #include "rig/error.h"
 #include "rig/frame_range.h"
+#include "rig/gltf_bake.h"
+#include "rig/gltf_character.h"
 #include "rig/clip_factory.h"
 #include "rig/procedural_gait.h"
 #include "rig/rig_profile.h"
@@ -20,7 +24,40 @@ struct BakeOptions {
   std::string scene;
   std::string frames;
   std::string channels;
+  std::string output;
 };
+
+// The whole shot as one glTF: both characters posed at every frame, and every camera of the scene.
+void writeBakedGlb(const render::SceneSpec& scene, const rig::RigProfile& profile, const rig::Clip& clip,
+                   std::vector<int> frames, const std::string& output) {
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  const rig::Character horse = rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping);
+  const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping);
+  rig::BakedShot shot;
+  shot.name = scene.name;
+  for (const render::CameraSpec& c : scene.cameras) {
+    rig::BakedCamera bc;
+    bc.name = c.name;
+    bc.orthographic = c.orthographic;
+    bc.fov_deg = c.fov_deg;
+    bc.ortho_height_cm = c.ortho_height_cm;
+    bc.aspect = static_cast<double>(scene.width) / scene.height;
+    shot.cameras.push_back(bc);
+  }
+  for (int frame : frames) {
+    const rig::BakedFrame b = rig::bakeFrame(clip, profile, frame, render::frameTime(scene, frame));
+    shot.seconds.push_back(static_cast<float>(b.seconds));
+    shot.poses.push_back(rig::poseMounted(horse, rider, b.horse, b.rider, profile.rider_unit_cm));
+    for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
+      const render::CameraSpec& c = scene.cameras[i];
+      const glm::dvec3 offset = c.follow ? glm::dvec3(b.horse.travel_cm, 0.0, 0.0) : glm::dvec3(0.0);
+      shot.cameras[i].world.push_back(rig::lookAtWorld(glm::dvec3(c.position[0], c.position[1], c.position[2]) + offset,
+                                                       glm::dvec3(c.target[0], c.target[1], c.target[2]) + offset));
+    }
+  }
+  rig::writeFileAtomically(output, rig::bakedShotGlb(horse, rider, shot));
+}
 
 void runBake(const BakeOptions& o) {
   namespace fs = std::filesystem;
@@ -29,7 +66,12 @@ void runBake(const BakeOptions& o) {
   const rig::RigProfile profile = render::resolveProfile(scene);
   const std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
 
-  if (o.channels.empty()) throw InputError("bake: nothing to write (expected --channels FILE)");
+  if (o.channels.empty() && o.output.empty()) throw InputError("bake: nothing to write (expected --channels FILE or -o FILE.glb)");
+  if (!o.output.empty()) {
+    if (fs::path(o.output).extension() != ".glb") throw InputError("bake: -o: expected a .glb file, got " + o.output);
+    writeBakedGlb(scene, profile, *clip, frames, o.output);
+  }
+  if (o.channels.empty()) return;
   // Columns: time, every horse channel, every rider channel, in contract order.
   std::vector<std::string_view> names;
   names.reserve(1 + rig::kHorseChannelCount + rig::kRiderChannelCount);
@@ -60,10 +102,14 @@ void addBakeCommand(CLI::App& app) {
       "--channels writes CSV: a header `frame,time,` then every horse channel and every rider channel in\n"
       "the names of ../shared/rig-channels.md (horse: cm and degrees; rider: degrees and rider units),\n"
       "one row per frame.\n"
-      "Example: stirrup bake scenes/trot.json --channels out/trot.csv");
+      "-o writes one glTF 2.0 binary: both characters as skinned meshes, their joints at every frame\n"
+      "(translation and rotation, LINEAR) and the scene's cameras, animated where they follow the horse.\n"
+      "Example: stirrup bake scenes/trot.json --channels out/trot.csv\n"
+      "         stirrup bake scenes/rear.json -o out/rear.glb");
   cmd->add_option("scene", opts->scene, "Scene file (JSON), e.g. scenes/trot.json")->required();
   cmd->add_option("--frames,-f", opts->frames, "Frames to bake (default: the scene's frames), e.g. 1-120x2");
-  cmd->add_option("--channels", opts->channels, "Write the channels of every frame as CSV to FILE")->required();
+  cmd->add_option("--channels", opts->channels, "Write the channels of every frame as CSV to FILE");
+  cmd->add_option("-o,--output", opts->output, "Write the baked shot as glTF 2.0 (.glb)");
   cmd->callback([opts] { runBake(*opts); });
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
@@ -378,6 +379,48 @@ TEST(PoseRider, StirrupsFollowTheFeet) {
   EXPECT_NEAR(at(h, hw, "lStirrup").x - before.x, 5.08f, 1e-3f);
   const std::vector<glm::mat4> rw = poseRider(rider(), h, hw, ch, 2.54);
   EXPECT_LT(glm::length(at(rider(), rw, "lBall") - at(h, hw, "lStirrup")), 0.5f);
+}
+
+// The reins run from the bit to the rider's hands: wherever the wrist channels move the hands, the
+// horse's rein ends (lRein, rRein) are where the hands close on the reins (lHand, rHand).
+TEST(PoseMounted, ReinsEndInTheRidersHands) {
+  const Character& h = horse();
+  const Character& r = rider();
+  HorseFrame f;
+  f.controls[HorseChannel::rearPivotRz] = 10.0;
+  RiderChannels ch;
+  ch[RiderChannel::lWristTx] = 1.5;
+  ch[RiderChannel::rWristTy] = -1.0;
+  const MountedPose p = poseMounted(h, r, f, ch, 10.0);
+  for (const char* side : {"l", "r"}) {
+    const glm::vec3 rein = glm::vec3(p.horse[h.role(std::string(side) + "Rein")][3]);
+    const glm::vec3 hand = glm::vec3(p.rider[r.role(std::string(side) + "Hand")][3]);
+    EXPECT_LT(glm::length(rein - hand), 1e-4f) << side;
+    EXPECT_GT(glm::length(rein - h.skeleton.restPosition(h.role(std::string(side) + "Rein"))), 5.0f) << side;
+  }
+}
+
+// The posing limits (docs/rider-rig.md): the torso's forward lean is scaled to at most max_lean_deg
+// keeping its proportions; stirrup swing and toe turn are clamped; small values pass unchanged.
+TEST(PoseMounted, LimitsScaleTheLeanAndClampTheFeet) {
+  RiderPoseParams params;
+  RiderChannels ch;
+  ch[RiderChannel::hipRz] = 31.0;
+  ch[RiderChannel::lowerBackRz] = 39.0;
+  ch[RiderChannel::waistRz] = 67.0;
+  ch[RiderChannel::lFootTx] = -13.0;
+  ch[RiderChannel::rFootRz] = -158.0;
+  const RiderChannels l = limitRiderChannels(ch, params, 10.0);
+  const double lean = l[RiderChannel::hipRz] + l[RiderChannel::lowerBackRz] + l[RiderChannel::waistRz] * (1.0 + params.chest_follow);
+  EXPECT_NEAR(lean, params.max_lean_deg, 1e-9);
+  EXPECT_NEAR(l[RiderChannel::waistRz] / l[RiderChannel::hipRz], 67.0 / 31.0, 1e-9);
+  EXPECT_DOUBLE_EQ(l[RiderChannel::lFootTx], -params.max_foot_swing_cm / 10.0);
+  EXPECT_DOUBLE_EQ(l[RiderChannel::rFootRz], -params.max_foot_turn_deg);
+  RiderChannels small;
+  small[RiderChannel::lowerBackRz] = 5.0;
+  small[RiderChannel::lFootTx] = 0.5;
+  const RiderChannels same = limitRiderChannels(small, params, 10.0);
+  EXPECT_EQ(same.value, small.value);
 }
 
 }  // namespace
