@@ -21,6 +21,11 @@ std::string shellQuote(const std::string& s) {
 void encodeMovie(const MovieRequest& r) {
   namespace fs = std::filesystem;
   if (r.frames.empty()) throw std::runtime_error("movie " + r.output.string() + ": no frames to encode");
+  const std::string ext = r.output.extension().string();
+  if (ext != ".mp4" && ext != ".mov")
+    throw std::runtime_error("movie " + r.output.string() + ": expected a file name ending in .mp4 or .mov");
+  if (r.codec == MovieCodec::ProRes && ext != ".mov")
+    throw std::runtime_error("movie " + r.output.string() + ": ProRes needs a .mov file");
   if (!r.output.parent_path().empty()) fs::create_directories(r.output.parent_path());
   const fs::path tmp = r.output.string() + ".tmp" + r.output.extension().string();
   std::ostringstream fps;
@@ -43,9 +48,12 @@ void encodeMovie(const MovieRequest& r) {
       << " -f concat -safe 0 -i " << shellQuote(list.string())
       << " -frames:v " << r.frames.size()
       << " -vf " << shellQuote("scale=trunc(iw/2)*2:trunc(ih/2)*2:out_color_matrix=bt709")
-      << " -c:v libx264 -preset medium -crf " << r.crf << " -pix_fmt yuv420p"
+      << (r.codec == MovieCodec::ProRes
+              ? std::string(" -c:v prores_ks -profile:v 3 -vendor apl0 -pix_fmt yuv422p10le")
+              : " -c:v libx264 -preset medium -crf " + std::to_string(r.crf) + " -pix_fmt yuv420p")
       << " -color_range tv -colorspace bt709 -color_primaries bt709 -color_trc iec61966-2-1"
-      << " -r " << fps.str() << " -movflags +faststart -f mp4 " << shellQuote(tmp.string()) << " 2>&1";
+      << " -r " << fps.str() << " -movflags +faststart -f " << (ext == ".mov" ? "mov" : "mp4") << " "
+      << shellQuote(tmp.string()) << " 2>&1";
   FILE* pipe = popen(cmd.str().c_str(), "r");
   if (!pipe) throw std::runtime_error("movie " + r.output.string() + ": cannot start ffmpeg");
   std::string last, line;

@@ -1,5 +1,10 @@
 #include "render/scene.h"
 
+#include <cmath>
+
+#include "render/footage.h"
+#include "render/preset.h"
+
 #include "rig/error.h"
 #include "rig/frame_range.h"
 #include "rig/json_fields.h"
@@ -13,6 +18,12 @@ rig::ClipSpec parseClip(JsonObjectReader r, const std::filesystem::path& scene_d
   rig::ClipSpec spec = rig::parseClipSpec(r, scene_dir);
   if (auto g = rig::steadyGaitParams(spec)) gait = *g;
   return spec;
+}
+
+const QualityPreset& findQualityPreset(const std::string& name, const std::string& context) {
+  for (const QualityPreset& p : qualityPresets())
+    if (p.name == name) return p;
+  throw InputError(context + ": expected \"draft\", \"review\" or \"final\", got \"" + name + "\"");
 }
 
 CameraSpec parseCamera(JsonObjectReader r, int index) {
@@ -33,6 +44,33 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
   c.position = r.numbers<3>("position", c.position);
   c.target = r.numbers<3>("target", c.target);
   c.follow = r.boolean("follow", c.follow);
+  c.motion = c.follow ? "follow" : "fixed";
+  c.motion = r.string("motion", c.motion);
+  if (c.motion != "fixed" && c.motion != "follow" && c.motion != "orbit")
+    r.fail("motion", "expected \"fixed\", \"follow\" or \"orbit\", got \"" + c.motion + "\"");
+  c.follow = c.motion == "follow";
+  c.follow_target = r.string("follow_target", c.follow_target);
+  if (c.follow_target != "travel" && c.follow_target != "rider")
+    r.fail("follow_target", "expected \"travel\" or \"rider\", got \"" + c.follow_target + "\"");
+  c.damping_s = r.number("damping", c.damping_s);
+  if (!(c.damping_s >= 0.0 && c.damping_s <= 10.0)) r.fail("damping", "expected seconds between 0 and 10");
+  c.orbit_deg_per_frame = r.number("orbit_deg_per_frame", c.orbit_deg_per_frame);
+  if (!std::isfinite(c.orbit_deg_per_frame)) r.fail("orbit_deg_per_frame", "expected a finite number");
+  c.orbit_frames = static_cast<int>(r.number("orbit_frames", c.orbit_frames));
+  if (c.orbit_frames < 0) r.fail("orbit_frames", "expected a frame count >= 0");
+  c.focal_length_mm = r.number("focal_length", c.focal_length_mm);
+  if (r.has("focal_length")) {
+    if (!(c.focal_length_mm > 0.0)) r.fail("focal_length", "expected millimetres > 0");
+    c.fov_deg = 2.0 * std::atan(12.0 / c.focal_length_mm) * 180.0 / 3.14159265358979323846;
+  }
+  c.view = r.string("view", c.view);
+  if (!c.view.empty() && c.view != "side" && c.view != "persp" && c.view != "close" && c.view != "turntable")
+    r.fail("view", "expected \"side\", \"persp\", \"close\" or \"turntable\", got \"" + c.view + "\"");
+  c.frame_margin = r.number("frame_margin", c.frame_margin);
+  if (!(c.frame_margin >= 0.0 && c.frame_margin < 0.45)) r.fail("frame_margin", "expected a fraction in [0, 0.45)");
+  c.treadmill = r.boolean("treadmill", c.treadmill);
+  c.hold_frame = static_cast<int>(r.number("hold_frame", c.hold_frame));
+  if (c.hold_frame < 0) r.fail("hold_frame", "expected a frame number >= 1 (0: no hold)");
   if (c.position == c.target) r.fail("target", "expected a point different from position");
   r.finish();
   return c;
@@ -48,10 +86,39 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
   if (r.has("clip")) s.clip = parseClip(r.object("clip"), std::filesystem::path(file).parent_path(), s.gait);
   if (r.has("characters")) {
     JsonObjectReader c = r.object("characters");
-    s.horse = c.string("horse", s.horse);
-    s.rider = c.string("rider", s.rider);
-    if (s.horse != "default") c.fail("horse", "expected \"default\", got \"" + s.horse + "\"");
-    if (s.rider != "default") c.fail("rider", "expected \"default\", got \"" + s.rider + "\"");
+    // "default" (the built-in generator), a glTF file (relative to the scene file) carrying its role
+    // table, or {"file": ..., "mapping": ...} for a user's character (docs/characters.md).
+    const std::filesystem::path dir = std::filesystem::path(file).parent_path();
+    const auto character = [&](const char* key, std::string& path, std::string& mapping) {
+      const nlohmann::json* v = c.value(key);
+      if (!v) return;
+      const auto resolve = [&](const std::string& field, const std::string& name) {
+        const std::filesystem::path f = dir / name;
+        if (!std::filesystem::exists(f)) c.fail(field, "no such file: " + f.string());
+        return f.string();
+      };
+      if (v->is_string() && v->get<std::string>() == "default") {
+        path = "default";
+      } else if (v->is_string()) {
+        path = resolve(key, v->get<std::string>());
+      } else if (v->is_object()) {
+        JsonObjectReader o = c.object(key);
+        const std::string f = o.string("file", "");
+        if (f.empty()) o.fail("file", "expected a glTF file (.glb or .gltf)");
+        path = f == "default" ? f : std::filesystem::exists(dir / f) ? (dir / f).string() : "";
+        if (path.empty()) o.fail("file", "no such file: " + (dir / f).string());
+        const std::string m = o.string("mapping", "");
+        if (!m.empty()) {
+          if (!std::filesystem::exists(dir / m)) o.fail("mapping", "no such file: " + (dir / m).string());
+          mapping = (dir / m).string();
+        }
+        o.finish();
+      } else {
+        c.fail(key, "expected \"default\", a glTF file or {\"file\": ..., \"mapping\": ...}, got " + describeJson(*v));
+      }
+    };
+    character("horse", s.horse, s.horse_mapping);
+    character("rider", s.rider, s.rider_mapping);
     c.finish();
   }
   s.profile = r.string("profile", s.profile);
@@ -72,8 +139,12 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
     if (s.width < 8 || s.height < 8 || s.width > 8192 || s.height > 8192)
       r.fail("resolution", "expected a width and height between 8 and 8192");
   }
-  if (r.has("quality")) {
+  // "quality": "review", or {"preset": "draft", "samples": 8} where explicit fields override the preset.
+  if (const nlohmann::json* qv = r.value("quality"); qv && qv->is_string()) {
+    applyPreset(s, findQualityPreset(qv->get<std::string>(), file + ": quality"));
+  } else if (r.has("quality")) {
     JsonObjectReader q = r.object("quality");
+    if (q.has("preset")) applyPreset(s, findQualityPreset(q.string("preset", ""), file + ": quality.preset"));
     s.samples = q.integer("samples", s.samples);
     s.light_samples = q.integer("light_samples", s.light_samples);
     s.ao_samples = q.integer("ao_samples", s.ao_samples);
@@ -102,6 +173,7 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
     }
   }
   s.output = r.string("output", "out/" + s.name);
+  if (r.has("reference")) s.reference = parseReferenceSpec(r.object("reference"), std::filesystem::path(file).parent_path());
   r.finish();
   return s;
 }

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "render/layer.h"
 #include "rig/clip_factory.h"
 #include "rig/procedural_gait.h"
 
@@ -24,6 +26,20 @@ struct CameraSpec {
   std::array<double, 3> position = {20.0, 255.0, 900.0};
   std::array<double, 3> target = {20.0, 100.0, 0.0};
   bool follow = true;
+  // How the camera moves (render/camera_motion.h). "follow" with damping_s 0 and target "travel" is
+  // the camera rigidly in the horse's travel frame (the old `follow: true`); "fixed" is in the world.
+  std::string motion = "follow";     // fixed | follow | orbit
+  std::string follow_target = "travel";  // travel (the horse's travel frame) | rider (the rider's seat)
+  double damping_s = 0.0;            // critically damped time constant of a follow camera, seconds
+  double orbit_deg_per_frame = 0.0;  // orbit: degrees about the vertical through `target` per frame
+  int orbit_frames = 0;              // orbit: a full 360 degrees over this many frames (overrides deg)
+  double focal_length_mm = 0.0;      // perspective: > 0 sets fov from a 24 mm high film back
+  // A named view preset (render/view.h): side, persp, close, turntable. Its position, target and size
+  // are framed from the characters' bounds over the whole clip, so `position`/`target` are ignored.
+  std::string view;
+  double frame_margin = 0.12;        // view framing: fraction of the image kept free at each border
+  bool treadmill = false;            // the horse moves in place: travel removed (turntables)
+  int hold_frame = 0;                // > 0: every frame shows the pose of this frame (held-pose turntable)
 };
 
 struct SceneSpec {
@@ -31,8 +47,11 @@ struct SceneSpec {
   std::string name = "trot";
   rig::GaitParams gait = rig::trotParams();  // the steady gait when clip is one (walk/trot/canter/gallop)
   rig::ClipSpec clip;                         // what plays: a generator and its parameters, or a glTF file
+  // "default" (the built-in generator) or a glTF file (resolved against the scene's folder), with an
+  // optional mapping file (empty: the file's own role table). See rig::resolveCharacter.
   std::string horse = "default";
   std::string rider = "default";
+  std::string horse_mapping, rider_mapping;
   std::string profile = "thesis";
   nlohmann::json profile_overrides = nlohmann::json::object();
   double fps = 24.0;
@@ -46,6 +65,9 @@ struct SceneSpec {
   double sun_angular_radius_deg = 2.0;
   std::vector<CameraSpec> cameras = {CameraSpec{}};
   std::filesystem::path output = "out/trot";
+  // Reference footage for the layered view ("reference": {...}, render/layer.h ReferenceSpec); its
+  // file is resolved against the scene file. Absent: the layered view compares with the rigid rider.
+  std::optional<ReferenceSpec> reference;
 };
 
 // Reads a scene file; throws stirrup::InputError "FILE: FIELD: expected ..., got ..." on bad input.

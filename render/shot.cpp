@@ -1,8 +1,12 @@
 #include "render/shot.h"
 
+#include <algorithm>
 #include <chrono>
 
+#include "render/camera_motion.h"
+#include "render/view.h"
 #include "rig/clip_factory.h"
+#include "rig/gltf_character.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
 
@@ -23,8 +27,8 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
       profile_(profile),
       camera_(camera),
       clip_(rig::makeClip(scene.clip)),
-      horse_(rig::buildDefaultHorse()),
-      rider_(rig::buildDefaultRider()) {
+      horse_(rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping)),
+      rider_(rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping)) {
   RenderSettings settings;
   settings.width = scene.width;
   settings.height = scene.height;
@@ -36,9 +40,19 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
   settings.sun_angular_radius_deg = scene.sun_angular_radius_deg;
   renderer_ = std::make_unique<Renderer>(settings);
   horse_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Horse, horse_.mesh.indices, horse_.mesh.colors,
-                                            horse_.mesh.positions.size()});
+                                            horse_.mesh.positions.size(), horse_.mesh.positions});
   rider_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Rider, rider_.mesh.indices, rider_.mesh.colors,
-                                            rider_.mesh.positions.size()});
+                                            rider_.mesh.positions.size(), rider_.mesh.positions});
+  if (!camera_.view.empty()) {
+    // A named view: framed from the characters' vertices over every frame it shows (render/view.h).
+    CameraSpec preset = camera_;
+    applyViewPreset(preset);
+    camera_ = preset;  // treadmill / hold apply while sampling the points
+    camera_ = frameView(preset, scene_, *clip_, profile_, framingFrames(preset, scene_),
+                        [this](int f, std::vector<glm::dvec3>& h, std::vector<glm::dvec3>& r) {
+                          characterPoints(f, 3, h, r);
+                        });
+  }
 }
 
 Shot::~Shot() = default;
@@ -47,26 +61,42 @@ rig::BakedFrame Shot::bake(int frame) const {
   return rig::bakeFrame(*clip_, profile_, frame, frameTime(scene_, frame));
 }
 
-Camera Shot::cameraAt(const rig::BakedFrame& baked) const {
-  Camera c;
-  c.projection = camera_.orthographic ? Camera::Projection::Orthographic : Camera::Projection::Perspective;
-  c.fov_deg = camera_.fov_deg;
-  c.ortho_height_cm = camera_.ortho_height_cm;
-  const glm::dvec3 offset = camera_.follow ? glm::dvec3(baked.horse.travel_cm, 0.0, 0.0) : glm::dvec3(0.0);
-  c.position = toVec(camera_.position) + offset;
-  c.target = toVec(camera_.target) + offset;
-  c.up = {0.0, 1.0, 0.0};
-  return c;
+Camera Shot::cameraAt(const rig::BakedFrame& baked) const { return cameraAtFrame(baked.frame); }
+
+Camera Shot::cameraAtFrame(int frame) const {
+  return render::cameraAtFrame(camera_, scene_, *clip_, profile_, frame);
 }
 
-Image Shot::renderFrame(int frame) {
-  const rig::BakedFrame baked = bake(frame);
+rig::BakedFrame Shot::bakeShown(int frame) const {
+  rig::BakedFrame baked = bake(camera_.hold_frame > 0 ? camera_.hold_frame : frame);
+  baked.frame = frame;
+  if (camera_.treadmill) baked.horse.travel_cm = 0.0;
+  if (rigid_rider_) baked.rider = rig::RiderChannels{};
+  return baked;
+}
+
+void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse,
+                           std::vector<glm::dvec3>& rider) {
+  const rig::BakedFrame baked = bakeShown(frame);
+  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, profile_.rider_unit_cm);
+  const std::vector<glm::mat4>& horse_world = pose.horse;
+  const std::vector<glm::mat4>& rider_world = pose.rider;
+  const std::size_t step = static_cast<std::size_t>(std::max(1, stride));
+  horse.clear();
+  rider.clear();
+  rig::skinMesh(horse_.mesh, horse_.skeleton, horse_world, positions_, normals_);
+  for (std::size_t i = 0; i < positions_.size(); i += step) horse.emplace_back(positions_[i]);
+  rig::skinMesh(rider_.mesh, rider_.skeleton, rider_world, positions_, normals_);
+  for (std::size_t i = 0; i < positions_.size(); i += step) rider.emplace_back(positions_[i]);
+}
+
+Image Shot::renderFrame(int frame, RayLog* log) {
+  const rig::BakedFrame baked = bakeShown(frame);
 
   auto t0 = Clock::now();
-  std::vector<glm::mat4> horse_world = rig::poseHorse(horse_, baked.horse);
-  rig::placeStirrups(horse_, horse_world, baked.rider, profile_.rider_unit_cm);
-  const std::vector<glm::mat4> rider_world =
-      rig::poseRider(rider_, horse_, horse_world, baked.rider, profile_.rider_unit_cm);
+  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, profile_.rider_unit_cm);
+  const std::vector<glm::mat4>& horse_world = pose.horse;
+  const std::vector<glm::mat4>& rider_world = pose.rider;
   timings_.pose_ms = msSince(t0);
 
   t0 = Clock::now();
@@ -77,8 +107,10 @@ Image Shot::renderFrame(int frame) {
   timings_.skin_ms = msSince(t0);
 
   t0 = Clock::now();
-  Image image = renderer_->render(cameraAt(baked), frame);
+  Image image = renderer_->render(cameraAtFrame(frame), frame, log);
   timings_.trace_ms = msSince(t0);
+  timings_.bvh_ms = renderer_->lastStats().commit_ms;
+  timings_.rays = renderer_->lastStats().rays;
   return image;
 }
 

@@ -17,6 +17,8 @@ namespace stirrup::render {
 // Timings of the last frame, in milliseconds, for progress reports and benchmarks.
 struct FrameTimings {
   double pose_ms = 0, skin_ms = 0, trace_ms = 0;
+  double bvh_ms = 0;   // the BVH update, part of trace_ms
+  uint64_t rays = 0;   // camera, shadow and sky rays of the frame
 };
 
 class Shot {
@@ -25,12 +27,24 @@ class Shot {
   Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads);
   ~Shot();
 
-  Image renderFrame(int frame);
+  // With `log`, the frame's rays are also kept in it (see Renderer::render).
+  Image renderFrame(int frame, RayLog* log = nullptr);
+  Renderer& renderer() { return *renderer_; }
   rig::BakedFrame bake(int frame) const;
   const FrameTimings& lastTimings() const { return timings_; }
 
-  // The render camera at a frame (follow cameras travel with the horse).
+  // The render camera at a frame (follow cameras travel with the horse; render/camera_motion.h).
   Camera cameraAt(const rig::BakedFrame& baked) const;
+  Camera cameraAtFrame(int frame) const;
+  // The camera as resolved: a view camera (render/view.h) framed from the characters' bounds over
+  // the clip when the Shot was made.
+  const CameraSpec& camera() const { return camera_; }
+  // World positions of every `stride`-th skinned vertex of the horse and the rider at a frame, as it
+  // is shown (a treadmill camera removes the travel, a held pose holds its frame).
+  void characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
+  // The rider rigidly fixed to the saddle (every rider channel at rest): what the rig adds, for the
+  // layered comparison (render/layer.h).
+  void setRigidRider(bool rigid) { rigid_rider_ = rigid; }
 
  private:
   SceneSpec scene_;
@@ -42,6 +56,9 @@ class Shot {
   int horse_mesh_ = -1, rider_mesh_ = -1;
   std::vector<glm::vec3> positions_, normals_;
   FrameTimings timings_;
+  bool rigid_rider_ = false;
+  // The baked frame shown at `frame`: the held pose, and no travel on a treadmill.
+  rig::BakedFrame bakeShown(int frame) const;
 };
 
 }  // namespace stirrup::render

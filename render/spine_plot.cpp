@@ -8,12 +8,12 @@
 #include <OpenImageIO/imageio.h>
 #include <glm/geometric.hpp>
 
+#include "render/plot_canvas.h"
 #include "rig/error.h"
 
 namespace stirrup::render {
 namespace {
 
-using Color = std::array<float, 3>;
 const Color kBackground = {0.97f, 0.97f, 0.95f};
 const Color kPanelEdge = {0.80f, 0.80f, 0.78f};
 const Color kGround = {0.70f, 0.70f, 0.68f};
@@ -21,51 +21,6 @@ const Color kFkColor = {0.55f, 0.55f, 0.55f};
 const Color kCurveColor = {0.15f, 0.35f, 0.85f};
 const Color kChainColor = {0.95f, 0.45f, 0.10f};
 const Color kTwistColor = {0.10f, 0.60f, 0.25f};
-
-class Canvas {
- public:
-  Canvas(int width, int height) : width_(width), height_(height), rgb_(std::size_t(width) * height * 3) {
-    for (std::size_t i = 0; i < rgb_.size(); ++i) rgb_[i] = kBackground[i % 3];
-  }
-
-  // A segment of the given width: each pixel is covered by its distance to the segment, with a
-  // one-pixel ramp at the edge, which is enough antialiasing for diagrams.
-  void line(glm::dvec2 a, glm::dvec2 b, double width, const Color& c) {
-    const double r = 0.5 * width;
-    const int x0 = std::max(0, int(std::floor(std::min(a.x, b.x) - r - 1)));
-    const int x1 = std::min(width_ - 1, int(std::ceil(std::max(a.x, b.x) + r + 1)));
-    const int y0 = std::max(0, int(std::floor(std::min(a.y, b.y) - r - 1)));
-    const int y1 = std::min(height_ - 1, int(std::ceil(std::max(a.y, b.y) + r + 1)));
-    const glm::dvec2 ab = b - a;
-    const double len2 = glm::dot(ab, ab);
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const glm::dvec2 p(x + 0.5, y + 0.5);
-        const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-        const double d = glm::length(p - (a + t * ab));
-        blend(x, y, std::clamp(r + 0.5 - d, 0.0, 1.0), c);
-      }
-  }
-
-  void disk(glm::dvec2 centre, double radius, const Color& c) { line(centre, centre, 2.0 * radius, c); }
-
-  bool write(const std::filesystem::path& file) const {
-    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(file.string());
-    if (!out) return false;
-    const OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::UINT8);
-    return out->open(file.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, rgb_.data()) && out->close();
-  }
-
- private:
-  void blend(int x, int y, double coverage, const Color& c) {
-    if (coverage <= 0.0) return;
-    float* px = &rgb_[(std::size_t(y) * width_ + x) * 3];
-    for (int k = 0; k < 3; ++k) px[k] = float(px[k] + coverage * (c[k] - px[k]));
-  }
-
-  int width_, height_;
-  std::vector<float> rgb_;
-};
 
 }  // namespace
 
@@ -75,7 +30,7 @@ void writeSpinePlot(const std::vector<rig::SpineResult>& poses, const std::files
   const int count = static_cast<int>(poses.size());
   const int perRow = std::min(count, style.poses_per_row);
   const int rows = (count + perRow - 1) / perRow;
-  Canvas canvas(2 * perRow * style.panel_size, rows * style.panel_size);
+  Canvas canvas(2 * perRow * style.panel_size, rows * style.panel_size, kBackground);
 
   // One scale for every panel, from the bounding box of everything drawn (FK chain included).
   glm::dvec3 lo(1e300), hi(-1e300);
@@ -121,15 +76,8 @@ void writeSpinePlot(const std::vector<rig::SpineResult>& poses, const std::files
     }
   }
 
-  namespace fs = std::filesystem;
-  if (!file.parent_path().empty()) fs::create_directories(file.parent_path());
-  const fs::path tmp = file.parent_path() / (file.stem().string() + ".tmp" + file.extension().string());
-  if (!canvas.write(tmp)) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw InputError(file.string() + ": cannot write the image (" + OIIO::geterror() + ")");
-  }
-  fs::rename(tmp, file);
+  if (!file.parent_path().empty()) std::filesystem::create_directories(file.parent_path());
+  canvas.write(file);
 }
 
 }  // namespace stirrup::render

@@ -13,7 +13,11 @@ struct ExitStatus {
 };
 
 void addBakeCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
+void addLayerCommand(CLI::App& app);
+void addMoviesCommand(CLI::App& app);
+void addCharacterCommand(CLI::App& app);
 void addClipCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addRigCommand(CLI::App& app);

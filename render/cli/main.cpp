@@ -13,8 +13,12 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", STIRRUP_VERSION);
   stirrup::cli::addBakeCommand(app);
+  stirrup::cli::addBenchCommand(app);
+  stirrup::cli::addCharacterCommand(app);
   stirrup::cli::addClipCommand(app);
   stirrup::cli::addDiffCommand(app);
+  stirrup::cli::addLayerCommand(app);
+  stirrup::cli::addMoviesCommand(app);
   stirrup::cli::addRenderCommand(app);
   stirrup::cli::addRigCommand(app);
   stirrup::cli::addSpineCommand(app);

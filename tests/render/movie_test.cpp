@@ -54,6 +54,43 @@ TEST(Movie, EncodesH264Yuv420pWithTheFrameCountAndRate) {
   EXPECT_EQ(probe, "h264,yuv420p,24/1,5\n");
 }
 
+TEST(Movie, EncodesQuickTimeProResAndH264) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_movie_mov";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  MovieRequest r;
+  for (int i = 1; i <= 6; ++i) {
+    const fs::path f = dir / ("m." + std::to_string(i) + ".png");
+    writeFrame(f, 30 * i);
+    r.frames.push_back(f);
+  }
+  r.fps = 25;
+  r.output = dir / "prores.mov";
+  r.codec = MovieCodec::ProRes;
+  encodeMovie(r);
+  const std::string probe = "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+                            "stream=codec_name,profile,pix_fmt,nb_read_frames,r_frame_rate -of csv=p=0 ";
+  EXPECT_EQ(run(probe + shellQuote(r.output.string())), "prores,HQ,yuv422p10le,25/1,6\n");
+  EXPECT_NE(run("ffprobe -v error -show_entries format=format_name -of csv=p=0 " + shellQuote(r.output.string()))
+                .find("mov"),
+            std::string::npos);
+  r.output = dir / "h264.mov";
+  r.codec = MovieCodec::H264;
+  encodeMovie(r);
+  EXPECT_EQ(run(probe + shellQuote(r.output.string())), "h264,High,yuv420p,25/1,6\n");
+}
+
+TEST(Movie, RejectsProResInMp4AndOtherExtensions) {
+  MovieRequest r;
+  r.frames = {"x.png"};
+  r.output = "x.mp4";
+  r.codec = MovieCodec::ProRes;
+  EXPECT_THROW(encodeMovie(r), std::runtime_error);
+  r.output = "x.avi";
+  r.codec = MovieCodec::H264;
+  EXPECT_THROW(encodeMovie(r), std::runtime_error);
+}
+
 TEST(Movie, FailedEncodeLeavesNoMovie) {
   const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_movie_fail";
   fs::remove_all(dir);

@@ -1,0 +1,94 @@
+#include "render/camera_motion.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "rig/bake.h"
+
+namespace stirrup::render {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+}  // namespace
+
+glm::dvec3 dampedFollow(const std::function<glm::dvec3(double)>& path, double t, double tau) {
+  if (!(tau > 0.0)) return path(t);
+  constexpr double kDerivStep = 1.0 / 480.0;
+  // Before t = 0 the path continues at its mean velocity over the first window (steady travel
+  // continues; a bob or a stride is not extrapolated).
+  const glm::dvec3 p0 = path(0.0);
+  const glm::dvec3 v0 = (path(10.0 * tau) - p0) / (10.0 * tau);
+  auto at = [&](double u) { return u >= 0.0 ? path(u) : p0 + v0 * u; };
+  auto velocity = [&](double u) {
+    if (u < 0.0) return v0;
+    const double lo = std::max(0.0, u - kDerivStep);
+    return (at(u + kDerivStep) - at(lo)) / (u + kDerivStep - lo);
+  };
+  // Midpoint rule over [0, 10 tau] (the kernel's weight beyond it is 5e-4), normalised by the
+  // discrete weights so a constant path is returned exactly.
+  constexpr int kSteps = 200;
+  const double ds = 10.0 * tau / kSteps;
+  glm::dvec3 sum(0.0);
+  double weight = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    const double s = (i + 0.5) * ds;
+    const double h = s * std::exp(-s / tau);
+    sum += h * (at(t - s) + s * velocity(t - s));
+    weight += h;
+  }
+  return sum / weight;
+}
+
+glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
+                       double seconds) {
+  if (spec.follow_target == "rider") {
+    const rig::BakedFrame b = rig::bakeFrame(clip, profile, 0, seconds);
+    using H = rig::HorseChannel;
+    using R = rig::RiderChannel;
+    const double travel = spec.treadmill ? 0.0 : b.horse.travel_cm;
+    return {travel + b.horse.controls[H::rearPivotTx] + b.rider[R::cogTx] * profile.rider_unit_cm,
+            b.horse.controls[H::rearPivotTy] + b.rider[R::cogTy] * profile.rider_unit_cm, 0.0};
+  }
+  if (spec.treadmill) return glm::dvec3(0.0);
+  return {clip.sample(seconds).travel_cm, 0.0, 0.0};
+}
+
+Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
+                     const rig::RigProfile& profile, int frame) {
+  Camera c;
+  c.projection = spec.orthographic ? Camera::Projection::Orthographic : Camera::Projection::Perspective;
+  c.fov_deg = spec.fov_deg;
+  c.ortho_height_cm = spec.ortho_height_cm;
+  c.up = {0.0, 1.0, 0.0};
+  glm::dvec3 position = toVec(spec.position);
+  glm::dvec3 target = toVec(spec.target);
+  if (spec.motion == "fixed") {
+    c.position = position;
+    c.target = target;
+    return c;
+  }
+  const int shown = spec.hold_frame > 0 ? spec.hold_frame : frame;
+  const double t = frameTime(scene, shown);
+  glm::dvec3 offset;
+  if (spec.motion == "orbit") {
+    offset = followPoint(spec, clip, profile, t);
+    const double deg = spec.orbit_frames > 0 ? 360.0 / spec.orbit_frames : spec.orbit_deg_per_frame;
+    const double a = deg * (frame - 1) * kPi / 180.0;
+    const glm::dvec3 rel = position - target;
+    // Counter-clockwise seen from above: from the horse's right side (+Z) toward its front (+X).
+    position = target + glm::dvec3(rel.x * std::cos(a) + rel.z * std::sin(a), rel.y,
+                                   -rel.x * std::sin(a) + rel.z * std::cos(a));
+  } else {
+    offset = dampedFollow([&](double u) { return followPoint(spec, clip, profile, u); }, t,
+                          spec.hold_frame > 0 ? 0.0 : spec.damping_s);
+  }
+  c.position = position + offset;
+  c.target = target + offset;
+  return c;
+}
+
+}  // namespace stirrup::render

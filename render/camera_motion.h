@@ -1,0 +1,41 @@
+// Camera motion: where a scene camera (CameraSpec) is at a frame, as a pure function of the frame, so
+// any frame renders alone, in any order, on any machine.
+//   fixed  - position and target in the world.
+//   follow - position and target relative to a followed point: the horse's travel ((travel, 0, 0))
+//            or the rider's seat (travel plus the rear pivot and the rider's cog offsets). With
+//            damping_s > 0 the followed point is smoothed by a critically damped filter of that time
+//            constant with velocity feed-forward (see dampedFollow), evaluated by resampling the clip
+//            over the preceding 10 time constants: no state is carried from one frame to the next.
+//   orbit  - the follow camera (undamped, horse's travel) turned about the vertical through its
+//            target by orbit_deg_per_frame (or 360 / orbit_frames) per frame after frame 1.
+// A treadmill camera follows nothing along X (the horse moves in place); a held pose camera follows
+// the held frame's point.
+#pragma once
+
+#include <functional>
+
+#include <glm/vec3.hpp>
+
+#include "render/camera.h"
+#include "render/scene.h"
+#include "rig/clip.h"
+#include "rig/rig_profile.h"
+
+namespace stirrup::render {
+
+// The critically damped response to a path p(t), lag-free for constant velocity:
+//   y(t) = integral over s >= 0 of h(s) [p(t - s) + s p'(t - s)] ds,  h(s) = s e^(-s/tau) / tau^2.
+// Its transfer function is (1 + 3 i w tau) / (1 + i w tau)^3: 1 at rest, a ramp (steady travel) is
+// followed exactly, a bob at w tau = 5 is cut to 12%. tau <= 0 returns p(t). Times before 0 see the
+// path extrapolated from t = 0 at its mean velocity over [0, 10 tau] (the camera starts steady).
+glm::dvec3 dampedFollow(const std::function<glm::dvec3(double)>& path, double t, double tau);
+
+// The point a follow camera follows, in the world, at `seconds` (before damping).
+glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
+                       double seconds);
+
+// The render camera of `spec` at `frame` of `scene`.
+Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
+                     const rig::RigProfile& profile, int frame);
+
+}  // namespace stirrup::render

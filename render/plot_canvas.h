@@ -1,0 +1,46 @@
+// A small drawing surface for diagrams (spine plots, channel plots, contact sheets): antialiased
+// lines and disks, filled rectangles, images and DejaVu text, in a float RGB buffer written as an
+// 8-bit PNG by OpenImageIO (via FILE.tmp.EXT and a rename).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "render/text.h"
+
+namespace stirrup::render {
+
+using Color = std::array<float, 3>;  // display-referred (written as is to 8 bits)
+
+class Canvas {
+ public:
+  Canvas(int width, int height, const Color& background);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  // A segment of the given width: each pixel is covered by its distance to the segment, with a
+  // one-pixel ramp at the edge, which is enough antialiasing for diagrams.
+  void line(glm::dvec2 a, glm::dvec2 b, double width, const Color& c);
+  void disk(glm::dvec2 centre, double radius, const Color& c) { line(centre, centre, 2.0 * radius, c); }
+  void fill(int x0, int y0, int x1, int y1, const Color& c);  // [x0, x1) x [y0, y1)
+  // Text with its baseline at y; x is the left edge, centre or right edge.
+  void text(int x, int y, const std::string& s, int size, const Color& c, TextAlign align = TextAlign::Left,
+            FontStyle style = FontStyle::Sans);
+  // Pastes an RGB image (display-referred, row-major, w*h*3) with its top-left at (x, y).
+  void paste(int x, int y, int w, int h, const std::vector<float>& rgb);
+  // Writes an 8-bit PNG; throws stirrup::InputError naming the file on failure.
+  void write(const std::filesystem::path& file) const;
+
+  void blend(int x, int y, double coverage, const Color& c);
+
+ private:
+  int width_, height_;
+  std::vector<float> rgb_;
+};
+
+}  // namespace stirrup::render

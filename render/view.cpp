@@ -1,0 +1,193 @@
+#include "render/view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "render/camera_motion.h"
+#include "rig/frame_range.h"
+
+namespace stirrup::render {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double fovFromFocal(double mm) { return 2.0 * std::atan(12.0 / mm) * 180.0 / kPi; }
+
+// The direction from the target toward the camera, in the travel frame.
+glm::dvec3 viewDirection(const std::string& view) {
+  if (view == "side") return glm::normalize(glm::dvec3(0.0, 0.12, 1.0));
+  if (view == "persp") return glm::normalize(glm::dvec3(0.75, 0.32, 1.0));
+  if (view == "close") return glm::normalize(glm::dvec3(0.45, 0.18, 1.0));
+  return glm::normalize(glm::dvec3(0.0, 0.22, 1.0));  // turntable: starts on the right side
+}
+
+struct Basis {
+  glm::dvec3 forward, right, up, target;
+};
+
+Basis basisOf(const Camera& c) {
+  Basis b;
+  b.forward = glm::normalize(c.target - c.position);
+  b.right = glm::normalize(glm::cross(b.forward, c.up));
+  b.up = glm::cross(b.right, b.forward);
+  b.target = c.target;
+  return b;
+}
+
+std::vector<glm::dvec3> viewPoints(const CameraSpec& spec, const CharacterPoints& points, int frame) {
+  std::vector<glm::dvec3> horse, rider;
+  points(frame, horse, rider);
+  if (spec.view != "close") {
+    horse.insert(horse.end(), rider.begin(), rider.end());
+    return horse;
+  }
+  // The rider above the saddle: the upper 55% of the rider's height at this frame.
+  double lo = kInf, hi = -kInf;
+  for (const glm::dvec3& p : rider) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+  const double cut = lo + 0.45 * (hi - lo);
+  std::vector<glm::dvec3> upper;
+  for (const glm::dvec3& p : rider)
+    if (p.y >= cut) upper.push_back(p);
+  return upper;
+}
+
+glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+std::array<double, 3> toArray(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+void applyViewPreset(CameraSpec& spec) {
+  if (spec.view.empty()) return;
+  spec.follow_target = "travel";
+  if (spec.view == "side") {
+    spec.orthographic = true;
+    spec.motion = "follow";
+    spec.damping_s = 0.3;
+  } else if (spec.view == "persp") {
+    spec.orthographic = false;
+    spec.focal_length_mm = 50.0;
+    spec.motion = "follow";
+    spec.damping_s = 0.4;
+  } else if (spec.view == "close") {
+    spec.orthographic = false;
+    spec.focal_length_mm = 85.0;
+    spec.motion = "follow";
+    spec.follow_target = "rider";
+    spec.damping_s = 0.3;
+  } else if (spec.view == "turntable") {
+    spec.orthographic = false;
+    spec.focal_length_mm = 50.0;
+    spec.motion = "orbit";
+    if (spec.orbit_frames == 0 && spec.orbit_deg_per_frame == 0.0) spec.orbit_frames = 96;
+  } else {
+    throw std::invalid_argument("unknown view \"" + spec.view + "\"");
+  }
+  if (!spec.orthographic) spec.fov_deg = fovFromFocal(spec.focal_length_mm);
+  spec.follow = spec.motion == "follow";
+}
+
+std::vector<int> framingFrames(const CameraSpec& spec, const SceneSpec& scene) {
+  std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  if (spec.motion == "orbit") {
+    const int n = spec.orbit_frames > 0
+                      ? spec.orbit_frames
+                      : (spec.orbit_deg_per_frame != 0.0 ? int(std::ceil(360.0 / std::abs(spec.orbit_deg_per_frame))) : 1);
+    for (int f = 1; f <= n; ++f) frames.push_back(f);
+    std::sort(frames.begin(), frames.end());
+    frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  }
+  return frames;
+}
+
+CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& clip,
+                     const rig::RigProfile& profile, const std::vector<int>& frames,
+                     const CharacterPoints& points) {
+  applyViewPreset(spec);
+  if (frames.empty()) throw std::invalid_argument("frameView: no frames");
+  // The points of every frame, once.
+  std::vector<std::vector<glm::dvec3>> pts;
+  pts.reserve(frames.size());
+  for (int f : frames) pts.push_back(viewPoints(spec, points, f));
+
+  // 1. Aim at the centre of the points' bounds in the followed frame.
+  glm::dvec3 lo(kInf), hi(-kInf);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const int shown = spec.hold_frame > 0 ? spec.hold_frame : frames[i];
+    const glm::dvec3 follow = spec.motion == "fixed" ? glm::dvec3(0.0)
+                                                     : followPoint(spec, clip, profile, frameTime(scene, shown));
+    for (const glm::dvec3& p : pts[i]) lo = glm::min(lo, p - follow), hi = glm::max(hi, p - follow);
+  }
+  if (!(lo.x <= hi.x)) throw std::invalid_argument("frameView: the characters have no vertices");
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  const double radius = 0.5 * glm::length(hi - lo);
+  const glm::dvec3 dir = viewDirection(spec.view);
+  spec.target = toArray(centre);
+  spec.position = toArray(centre + dir * (spec.orthographic ? radius + 600.0 : 3.0 * radius));
+
+  const double aspect = double(scene.width) / double(scene.height);
+  const double keep = 1.0 - 2.0 * spec.frame_margin;  // fraction of the film the points may use
+  const bool orbit = spec.motion == "orbit";
+
+  // 2. Truck (shift position and target together) to centre the extents, then size; three passes so
+  //    the perspective centring sees the final distance.
+  for (int pass = 0; pass < 3; ++pass) {
+    double umin = kInf, umax = -kInf, vmin = kInf, vmax = -kInf;
+    const double th = std::tan(0.5 * spec.fov_deg * kPi / 180.0), tw = th * aspect;
+    glm::dvec3 right0(1, 0, 0), up0(0, 1, 0);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+      const Basis b = basisOf(cam);
+      if (i == 0) right0 = b.right, up0 = b.up;
+      const double dist = glm::length(cam.target - cam.position);
+      for (const glm::dvec3& p : pts[i]) {
+        const glm::dvec3 q = p - b.target;
+        const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
+        if (spec.orthographic) {
+          umin = std::min(umin, x), umax = std::max(umax, x), vmin = std::min(vmin, y), vmax = std::max(vmax, y);
+        } else {
+          const double depth = dist + z;  // along the view axis from the camera
+          if (depth <= 1.0) continue;  // behind the camera: the dolly below moves it out
+          // Film coordinates at the target's distance (so a truck by d moves them by d).
+          umin = std::min(umin, x * dist / depth), umax = std::max(umax, x * dist / depth);
+          vmin = std::min(vmin, y * dist / depth), vmax = std::max(vmax, y * dist / depth);
+        }
+      }
+    }
+    // Centre: truck along the first frame's right/up (constant for follow cameras); an orbit only
+    // rises or sinks, along the world vertical.
+    const double cu = 0.5 * (umin + umax), cv = 0.5 * (vmin + vmax);
+    glm::dvec3 shift = orbit ? glm::dvec3(0.0, cv / std::max(0.2, up0.y), 0.0) : right0 * cu + up0 * cv;
+    spec.position = toArray(toVec(spec.position) + shift);
+    spec.target = toArray(toVec(spec.target) + shift);
+    if (spec.orthographic) {
+      const double half = std::max(0.5 * (vmax - vmin), 0.5 * (umax - umin) / aspect);
+      const double halfu = orbit ? std::max(std::abs(umin), std::abs(umax)) / aspect : 0.0;
+      spec.ortho_height_cm = 2.0 * std::max(half, halfu) / keep;
+    } else {
+      // Dolly back along the view axis until every point fits: |x| <= tw keep (dist' + z).
+      double dist_needed = 0.0;
+      for (std::size_t i = 0; i < frames.size(); ++i) {
+        const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+        const Basis b = basisOf(cam);
+        for (const glm::dvec3& p : pts[i]) {
+          const glm::dvec3 q = p - b.target;
+          const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
+          dist_needed = std::max(dist_needed, std::abs(x) / (tw * keep) - z);
+          dist_needed = std::max(dist_needed, std::abs(y) / (th * keep) - z);
+          dist_needed = std::max(dist_needed, 1.05 * radius - z);  // never inside the characters
+        }
+      }
+      const glm::dvec3 t = toVec(spec.target);
+      const glm::dvec3 back = glm::normalize(toVec(spec.position) - t);
+      spec.position = toArray(t + back * dist_needed);
+    }
+  }
+  return spec;
+}
+
+}  // namespace stirrup::render

@@ -1,0 +1,110 @@
+#include "render/camera_motion.h"
+
+#include <cmath>
+#include <complex>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "render/scene.h"
+#include "rig/clip_factory.h"
+#include "rig/rig_profile.h"
+
+namespace stirrup::render {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(DampedFollow, ReturnsAConstantPathExactly) {
+  const glm::dvec3 p(3.0, -2.0, 7.0);
+  const glm::dvec3 y = dampedFollow([&](double) { return p; }, 1.3, 0.4);
+  EXPECT_NEAR(glm::length(y - p), 0.0, 1e-9);
+}
+
+TEST(DampedFollow, FollowsSteadyTravelWithoutLag) {
+  // A horse at 360 cm/s: a plain critically damped follower would lag 2 tau v = 288 cm behind.
+  const auto path = [](double t) { return glm::dvec3(360.0 * t, 0.0, 0.0); };
+  for (double t : {0.0, 0.5, 2.0}) EXPECT_NEAR(dampedFollow(path, t, 0.4).x, 360.0 * t, 0.5) << t;
+}
+
+TEST(DampedFollow, DampsABobByItsTransferFunction) {
+  // A 2 Hz bob of 10 cm, tau chosen so w tau = 5: |H| = |1 + 15i| / |1 + 5i|^3 = 0.113.
+  const double w = 2.0 * kPi * 2.0, tau = 5.0 / w;
+  const auto path = [&](double t) { return glm::dvec3(0.0, 10.0 * std::sin(w * t), 0.0); };
+  double peak = 0.0;
+  // From t = 5 s the filter's 10-tau window (4 s) no longer reaches before t = 0.
+  for (int i = 0; i < 200; ++i) peak = std::max(peak, std::abs(dampedFollow(path, 5.0 + i * 0.0025, tau).y));
+  const double expected = 10.0 * std::abs(std::complex<double>(1.0, 3.0 * w * tau) /
+                                          std::pow(std::complex<double>(1.0, w * tau), 3));
+  EXPECT_NEAR(peak, expected, 0.05 * expected);
+  EXPECT_LT(peak, 1.5);
+}
+
+TEST(DampedFollow, ZeroTauIsThePathItself) {
+  const auto path = [](double t) { return glm::dvec3(t, t * t, 0.0); };
+  EXPECT_EQ(dampedFollow(path, 1.7, 0.0), path(1.7));
+}
+
+struct MotionFixture : ::testing::Test {
+  SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
+  rig::RigProfile profile = resolveProfile(scene);
+  std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
+};
+
+TEST_F(MotionFixture, FollowCameraTravelsWithTheHorse) {
+  CameraSpec spec;  // follow, damping 0: rigidly in the travel frame
+  for (int f : {1, 10, 40}) {
+    const Camera c = cameraAtFrame(spec, scene, *clip, profile, f);
+    const double travel = clip->sample(frameTime(scene, f)).travel_cm;
+    EXPECT_NEAR(c.position.x, spec.position[0] + travel, 1e-9);
+    EXPECT_NEAR(c.target.x, spec.target[0] + travel, 1e-9);
+  }
+}
+
+TEST_F(MotionFixture, FixedCameraStays) {
+  CameraSpec spec;
+  spec.motion = "fixed";
+  const Camera a = cameraAtFrame(spec, scene, *clip, profile, 1), b = cameraAtFrame(spec, scene, *clip, profile, 40);
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_EQ(a.target, b.target);
+}
+
+TEST_F(MotionFixture, DampedCameraIsAPureFunctionOfTheFrame) {
+  CameraSpec spec;
+  spec.follow_target = "rider";
+  spec.damping_s = 0.3;
+  const Camera later = cameraAtFrame(spec, scene, *clip, profile, 30);
+  for (int f = 1; f < 30; ++f) (void)cameraAtFrame(spec, scene, *clip, profile, f);
+  const Camera again = cameraAtFrame(spec, scene, *clip, profile, 30);
+  EXPECT_EQ(later.position, again.position);
+  // The rider's bob is smoothed: the damped camera's height moves less than the rider's seat does.
+  double seat_lo = 1e9, seat_hi = -1e9, cam_lo = 1e9, cam_hi = -1e9;
+  for (int f = 20; f <= 60; ++f) {
+    const double seat = followPoint(spec, *clip, profile, frameTime(scene, f)).y;
+    const double cam = cameraAtFrame(spec, scene, *clip, profile, f).target.y;
+    seat_lo = std::min(seat_lo, seat), seat_hi = std::max(seat_hi, seat);
+    cam_lo = std::min(cam_lo, cam), cam_hi = std::max(cam_hi, cam);
+  }
+  EXPECT_GT(seat_hi - seat_lo, 1.0);
+  EXPECT_LT(cam_hi - cam_lo, 0.5 * (seat_hi - seat_lo));
+}
+
+TEST_F(MotionFixture, OrbitGoesOnceAroundOverItsFrames) {
+  CameraSpec spec;
+  spec.motion = "orbit";
+  spec.treadmill = true;
+  spec.orbit_frames = 36;
+  spec.position = {0.0, 150.0, 500.0};
+  spec.target = {0.0, 100.0, 0.0};
+  const Camera start = cameraAtFrame(spec, scene, *clip, profile, 1);
+  const Camera quarter = cameraAtFrame(spec, scene, *clip, profile, 10);
+  const Camera full = cameraAtFrame(spec, scene, *clip, profile, 37);
+  EXPECT_NEAR(glm::length(full.position - start.position), 0.0, 1e-6);
+  // A quarter turn later the camera looks from the horse's front (+X), at the same height and radius.
+  EXPECT_NEAR(quarter.position.x, 500.0, 1e-6);
+  EXPECT_NEAR(quarter.position.z, 0.0, 1e-6);
+  EXPECT_NEAR(quarter.position.y, 150.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace stirrup::render

@@ -1,0 +1,98 @@
+// Each view frames the horse and rider fully on every default scene: rendered small and fast, no pixel
+// of the character matte may touch the image border on any frame shown.
+#include "render/view.h"
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "render/shot.h"
+#include "rig/frame_range.h"
+#include "rig/rig_profile.h"
+
+namespace stirrup::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BorderCount {
+  int matte = 0;      // border pixels with any horse or rider coverage
+  int rider_top = 0;  // top-row pixels that show the rider
+  int rider = 0;      // rider pixels anywhere
+};
+
+BorderCount countBorder(const Image& im) {
+  BorderCount c;
+  EXPECT_EQ(im.matte.size(), im.pixelCount());
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) {
+      const std::size_t i = std::size_t(y) * im.width + x;
+      const bool rider = im.object_id[i] == static_cast<uint32_t>(ObjectId::Rider);
+      c.rider += rider;
+      if (y == 0 && rider) ++c.rider_top;
+      if ((x == 0 || y == 0 || x == im.width - 1 || y == im.height - 1) && im.matte[i] > 0.0f) ++c.matte;
+    }
+  return c;
+}
+
+class ViewFraming : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ViewFraming, EveryViewKeepsHorseAndRiderInFrame) {
+  SceneSpec scene = loadScene(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (GetParam() + ".json"));
+  scene.width = 96;
+  scene.height = 54;
+  scene.samples = 1;
+  scene.light_samples = 1;
+  scene.ao_samples = 1;
+  const rig::RigProfile profile = resolveProfile(scene);
+  for (const char* name : {"side", "persp", "close", "turntable", "turntable_pose"}) {
+    const CameraSpec& camera = findCamera(scene, name);
+    ASSERT_FALSE(camera.view.empty()) << name;
+    Shot shot(scene, profile, camera, 0);
+    std::vector<int> frames = framingFrames(shot.camera(), scene);
+    int shown = 0;
+    for (std::size_t k = 0; k < frames.size(); k += 6) {
+      const int f = frames[k];
+      const Image im = shot.renderFrame(f);
+      const BorderCount c = countBorder(im);
+      if (std::string(name) == "close") {
+        // close frames the rider above the saddle: the horse runs off the frame, the rider's head never.
+        EXPECT_GT(c.rider, 0) << GetParam() << " close frame " << f;
+        EXPECT_EQ(c.rider_top, 0) << GetParam() << " close frame " << f << ": the rider touches the top";
+      } else {
+        EXPECT_EQ(c.matte, 0) << GetParam() << " " << name << " frame " << f
+                              << ": horse or rider on the image border";
+      }
+      ++shown;
+    }
+    EXPECT_GT(shown, 3) << name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(DefaultScenes, ViewFraming,
+                         ::testing::Values("walk", "trot", "canter", "gallop", "stop", "jump", "rear", "buck"));
+
+TEST(ViewPreset, SetsTheLensAndMotionOfEachView) {
+  CameraSpec side;
+  side.view = "side";
+  applyViewPreset(side);
+  EXPECT_TRUE(side.orthographic);
+  EXPECT_EQ(side.motion, "follow");
+  CameraSpec persp;
+  persp.view = "persp";
+  applyViewPreset(persp);
+  EXPECT_FALSE(persp.orthographic);
+  EXPECT_NEAR(persp.fov_deg, 2.0 * std::atan(12.0 / 50.0) * 180.0 / 3.14159265358979323846, 1e-9);
+  CameraSpec turn;
+  turn.view = "turntable";
+  applyViewPreset(turn);
+  EXPECT_EQ(turn.motion, "orbit");
+  EXPECT_EQ(turn.orbit_frames, 96);
+}
+
+}  // namespace
+}  // namespace stirrup::render
