@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "render/camera_motion.h"
+#include "render/fence.h"
 #include "render/view.h"
 #include "rig/clip_factory.h"
 #include "rig/gltf_character.h"
@@ -43,6 +44,7 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
                                             horse_.mesh.positions.size(), horse_.mesh.positions});
   rider_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Rider, rider_.mesh.indices, rider_.mesh.colors,
                                             rider_.mesh.positions.size(), rider_.mesh.positions});
+  addObstacles();
   if (!camera_.view.empty()) {
     // A named view: framed from the characters' vertices over every frame it shows (render/view.h).
     CameraSpec preset = camera_;
@@ -56,6 +58,25 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
 }
 
 Shot::~Shot() = default;
+
+// The clip's fences, standing in the world: each under the middle of the horse (halfway between its
+// rest fore and hind hooves) where the clip says, in the travel frame. A treadmill shot, which takes
+// the travel out, has nothing to stand still against, so it shows no fence. Props are ground-like in
+// the passes (object id 0, outside the characters' matte) and never move, so they are set once.
+void Shot::addObstacles() {
+  if (camera_.treadmill) return;
+  const std::vector<rig::Obstacle> obstacles = clip_->obstacles();
+  if (obstacles.empty()) return;
+  double middle = 0.0;
+  for (const char* hoof : {"lfHoof", "rfHoof", "lbHoof", "rbHoof"})
+    middle += 0.25 * horse_.skeleton.restPosition(horse_.role(hoof)).x;
+  for (const rig::Obstacle& o : obstacles) {
+    const PropMesh fence = makeFence(o, o.travel_cm + middle);
+    const int mesh = renderer_->addMesh(
+        MeshDesc{ObjectId::Ground, fence.indices, fence.colors, fence.positions.size(), fence.positions});
+    renderer_->updateMesh(mesh, fence.positions, fence.normals);
+  }
+}
 
 rig::BakedFrame Shot::bake(int frame) const {
   return rig::bakeFrame(*clip_, profile_, frame, frameTime(scene_, frame));

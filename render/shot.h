@@ -47,6 +47,8 @@ class Shot {
   void setRigidRider(bool rigid) { rigid_rider_ = rigid; }
 
  private:
+  void addObstacles();
+
   SceneSpec scene_;
   rig::RigProfile profile_;
   CameraSpec camera_;
