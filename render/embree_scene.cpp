@@ -1,5 +1,6 @@
 #include "render/embree_scene.h"
 
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -24,8 +25,15 @@ void rememberError(void* user, RTCError, const char* message) {
 EmbreeScene::EmbreeScene(BvhUpdate update) : update_(update) {
   // No "threads=" setting: Embree's builders run on TBB, inside whatever arena calls commit().
   // (Embree 3.13 has no switch to ignore ~/.embree3; such a file could still pin another ISA.)
-  device_ = rtcNewDevice("verbose=0");
-  if (!device_) throw std::runtime_error("embree: cannot create a device");
+  // STIRRUP_EMBREE_CONFIG adds to the device config, e.g. "isa=sse4.2" to pin the instruction set
+  // the way a farm of mixed CPUs would run it (the golden noise floor is measured so; README).
+  std::string config = "verbose=0";
+  if (const char* extra = std::getenv("STIRRUP_EMBREE_CONFIG"); extra && *extra) config += std::string(",") + extra;
+  device_ = rtcNewDevice(config.c_str());
+  if (!device_) {
+    throw std::runtime_error("embree: cannot create a device with the config \"" + config +
+                             "\" (check STIRRUP_EMBREE_CONFIG: settings like isa=sse4.2 or isa=avx2)");
+  }
   rtcSetDeviceErrorFunction(device_, rememberError, &last_error_);
   scene_ = rtcNewScene(device_);
   throwOnDeviceError(device_, "rtcNewScene", last_error_);

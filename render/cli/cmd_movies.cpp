@@ -6,10 +6,11 @@
 #include <filesystem>
 #include <map>
 #include <set>
-#include <sstream>
+#include <tuple>
 
 #include "render/cli/commands.h"
 #include "render/cli/progress.h"
+#include "render/cli/resolution.h"
 #include "render/index_page.h"
 #include "render/movie_set.h"
 #include "render/preset.h"
@@ -51,14 +52,7 @@ void runMovies(const MoviesOptions& o) {
     mo.mov_codec = o.mov == "prores" ? render::MovieCodec::ProRes : render::MovieCodec::H264;
   }
   if (!mo.mp4 && !mo.mov) throw InputError("--no-mp4: expected --mov as well (there would be no movie)");
-  if (!o.resolution.empty()) {
-    int w = 0, h = 0;
-    char x = 0;
-    std::istringstream in(o.resolution);
-    if (!(in >> w >> x >> h) || x != 'x' || w < 16 || h < 16 || w > 8192 || h > 8192 || !in.eof())
-      throw InputError("--resolution: expected WIDTHxHEIGHT (16-8192), got \"" + o.resolution + "\"");
-    mo.width = w, mo.height = h;
-  }
+  if (!o.resolution.empty()) std::tie(mo.width, mo.height) = parseResolution(o.resolution);
   const fs::path source = STIRRUP_SOURCE_DIR;
   const fs::path scenes = o.scenes.empty() ? source / "scenes" : fs::path(o.scenes);
   if (!fs::is_directory(scenes)) throw InputError("--scenes: " + scenes.string() + ": no such folder");

@@ -2,9 +2,11 @@
 // with the compositing passes), and a movie with --movie.
 #include <cstdio>
 #include <filesystem>
+#include <tuple>
 
 #include "render/cli/commands.h"
 #include "render/cli/progress.h"
+#include "render/cli/resolution.h"
 #include "render/image.h"
 #include "render/movie.h"
 #include "render/preset.h"
@@ -24,6 +26,7 @@ struct RenderOptions {
   std::string out;
   std::string movie;
   std::string preset;
+  std::string resolution;
   std::string format = "png";
   bool exr = false;
   int threads = 0;
@@ -47,6 +50,7 @@ void runRender(const RenderOptions& o) {
   if (!o.movie.empty() && !png) throw InputError("--movie: needs PNG frames; use --format png or both");
   render::SceneSpec scene = render::loadScene(o.scene);
   if (!o.preset.empty()) render::applyPreset(scene, render::findPreset(o.preset));
+  if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
   const rig::RigProfile profile = render::resolveProfile(scene);
@@ -95,6 +99,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--out,-o", opts->out, "Output folder (default: the scene's output)");
   cmd->add_option("--movie,-m", opts->movie, "Also encode the frames as an H.264 .mp4 movie");
   cmd->add_option("--preset", opts->preset, "Quality preset: draft, review or final (default: the scene's quality)");
+  cmd->add_option("--resolution", opts->resolution, "WIDTHxHEIGHT instead of the scene's (e.g. 320x180)");
   cmd->add_option("--format", opts->format,
                   "png (sRGB review frames), exr (linear half float with RGBA, N, Z, matte and objectId "
                   "passes and the camera in the header) or both")

@@ -35,6 +35,7 @@ struct Perturbation {
   std::string key;        // Weight: the profile key, scaled by `amount`
   double amount = 0;      // Weight: factor; otherwise degrees
   int threads = 0;        // --threads (0 = all cores)
+  std::string embree_config;  // STIRRUP_EMBREE_CONFIG for the render (e.g. "isa=sse4.2")
 };
 
 void PrintTo(const Perturbation& p, std::ostream* os) { *os << p.name; }
@@ -108,7 +109,8 @@ Rendered renderGoldenFrames(const Perturbation& p) {
     if (!frames.empty()) frames += ',';
     frames.append(std::to_string(f));
   }
-  const CommandResult c = runStirrup("render " + quote(scene_file.string()) + " --frames " + frames + " --threads " +
+  const std::string env = p.embree_config.empty() ? "" : "STIRRUP_EMBREE_CONFIG=" + quote(p.embree_config) + " ";
+  const CommandResult c = runCommand(env + quote(STIRRUP_EXE) + " render " + quote(scene_file.string()) + " --frames " + frames + " --threads " +
                                      std::to_string(p.threads) + " --out " + quote(r.dir.string()));
   if (c.exit_code != 0) r.error = "stirrup render exited " + std::to_string(c.exit_code) + ": " + c.err;
   return r;
@@ -142,20 +144,21 @@ TEST_P(GoldenSensitivity, APerturbedRenderFailsAGoldenComparison) {
 // waist, Eq 7 the lift, Eq 8 the seat shift, Eq 10 the head's pitch with the lift.
 INSTANTIATE_TEST_SUITE_P(
     Changes, GoldenSensitivity,
-    ::testing::Values(Perturbation{"eq1_w2_front_reach_x1_1", Change::Weight, "eq1.w2_front_reach", 1.1, 0},
-                      Perturbation{"eq4_w1_lower_back_x1_1", Change::Weight, "eq4.w1_lower_back", 1.1, 0},
-                      Perturbation{"eq7_w2_scale_x1_1", Change::Weight, "eq7.w2_scale", 1.1, 0},
-                      Perturbation{"eq8_w2_scale_x1_1", Change::Weight, "eq8.w2_scale", 1.1, 0},
-                      Perturbation{"eq10_w2_lift_x1_1", Change::Weight, "eq10.w2_lift", 1.1, 0},
-                      Perturbation{"camera_turned_1deg", Change::CameraTurn, "", 1.0, 0},
-                      Perturbation{"camera_tilted_1deg", Change::CameraTilt, "", 1.0, 0},
-                      Perturbation{"sun_turned_2deg", Change::SunTurn, "", 2.0, 0}),
+    ::testing::Values(Perturbation{"eq1_w2_front_reach_x1_1", Change::Weight, "eq1.w2_front_reach", 1.1, 0, ""},
+                      Perturbation{"eq4_w1_lower_back_x1_1", Change::Weight, "eq4.w1_lower_back", 1.1, 0, ""},
+                      Perturbation{"eq7_w2_scale_x1_1", Change::Weight, "eq7.w2_scale", 1.1, 0, ""},
+                      Perturbation{"eq8_w2_scale_x1_1", Change::Weight, "eq8.w2_scale", 1.1, 0, ""},
+                      Perturbation{"eq10_w2_lift_x1_1", Change::Weight, "eq10.w2_lift", 1.1, 0, ""},
+                      Perturbation{"camera_turned_1deg", Change::CameraTurn, "", 1.0, 0, ""},
+                      Perturbation{"camera_tilted_1deg", Change::CameraTilt, "", 1.0, 0, ""},
+                      Perturbation{"sun_turned_2deg", Change::SunTurn, "", 2.0, 0, ""}),
     [](const ::testing::TestParamInfo<Perturbation>& info) { return info.param.name; });
 
 class GoldenUnchanged : public ::testing::TestWithParam<Perturbation> {};
 
-// The control: the same rewritten scene without a change passes, at 1 thread and at all threads, so
-// the failures above come from the change and not from the copy.
+// The control: the same rewritten scene without a change passes, at 1 thread and at all threads, and
+// with Embree pinned to SSE4.2 (another CPU's traversal and intersection code), so the failures above
+// come from the change and not from the copy, the thread count or the instruction set.
 TEST_P(GoldenUnchanged, TheRewrittenSceneMatchesEveryReference) {
   const Perturbation& p = GetParam();
   const Rendered r = renderGoldenFrames(p);
@@ -169,8 +172,9 @@ TEST_P(GoldenUnchanged, TheRewrittenSceneMatchesEveryReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Threads, GoldenUnchanged,
-                         ::testing::Values(Perturbation{"unchanged_1_thread", Change::None, "", 0, 1},
-                                           Perturbation{"unchanged_all_threads", Change::None, "", 0, 0}),
+                         ::testing::Values(Perturbation{"unchanged_1_thread", Change::None, "", 0, 1, ""},
+                                           Perturbation{"unchanged_all_threads", Change::None, "", 0, 0, ""},
+                                           Perturbation{"unchanged_isa_sse4_2", Change::None, "", 0, 0, "isa=sse4.2"}),
                          [](const ::testing::TestParamInfo<Perturbation>& info) { return info.param.name; });
 
 }  // namespace

@@ -2,17 +2,72 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 namespace stirrup::test {
 
 namespace fs = std::filesystem;
 
-std::string goldenName(int frame) {
-  char name[64];
-  std::snprintf(name, sizeof name, "trot_side.%04d.png", frame);
-  return name;
+std::string goldenName(int frame) { return frameFileName("trot_side", frame); }
+
+std::string frameFileName(const std::string& base, int frame) {
+  char digits[16];
+  std::snprintf(digits, sizeof digits, "%04d", frame);
+  return base + "." + digits + ".png";
+}
+
+GoldenSet loadGoldenSet() {
+  const fs::path file = kGoldenDir / "scenes.json";
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file.string() + ": cannot be read");
+  GoldenSet set;
+  std::string field;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    field = "resolution";
+    set.resolution = j.at(field).get<std::string>();
+    field = "preset";
+    set.preset = j.at(field).get<std::string>();
+    const nlohmann::json& shots = j.at("shots");
+    for (std::size_t i = 0; i < shots.size(); ++i) {
+      field = "shots[" + std::to_string(i) + "]";
+      GoldenShot s;
+      s.scene = shots[i].at("scene").get<std::string>();
+      s.camera = shots[i].at("camera").get<std::string>();
+      s.frames = shots[i].at("frames").get<std::vector<int>>();
+      s.why = shots[i].at("why").get<std::string>();
+      if (s.frames.empty()) throw std::runtime_error("expected at least one frame");
+      set.shots.push_back(s);
+    }
+  } catch (const std::exception& e) {
+    throw std::runtime_error(file.string() + ": " + field + ": " + e.what());
+  }
+  return set;
+}
+
+bool updatingGoldens() {
+  const char* v = std::getenv("STIRRUP_UPDATE_GOLDENS");
+  return v && std::string(v) == "1";
+}
+
+std::string replaceGolden(const fs::path& reference, const fs::path& image) {
+  std::string what = "new";
+  if (fs::exists(reference)) {
+    try {
+      const render::DiffResult d = render::compareImageFiles(reference, image, goldenThresholds());
+      what = d.max_error == 0.0 ? "unchanged" : "changed: " + d.summary();
+    } catch (const std::exception& e) {
+      what = std::string("replaced, not comparable: ") + e.what();
+    }
+  }
+  fs::create_directories(reference.parent_path());
+  fs::copy_file(image, reference, fs::copy_options::overwrite_existing);
+  return reference.filename().string() + ": " + what;
 }
 
 namespace {

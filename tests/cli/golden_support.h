@@ -3,7 +3,9 @@
 #pragma once
 
 #include <filesystem>
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include "render/image_diff.h"
 
@@ -34,6 +36,26 @@ inline render::DiffThresholds goldenThresholds() {
 // "trot_side.0004.png"
 std::string goldenName(int frame);
 
+// "NAME.0063.png"
+std::string frameFileName(const std::string& base, int frame);
+
+// The golden set of the shipped scenes (tests/golden/scenes.json): each shot renders
+// scenes/SCENE.json through CAMERA at the set's resolution and preset, and each of its frames is
+// compared with tests/golden/scenes/SCENE_CAMERA.####.png.
+struct GoldenShot {
+  std::string scene, camera;
+  std::vector<int> frames;
+  std::string why;
+  std::string name() const { return scene + "_" + camera; }
+};
+inline void PrintTo(const GoldenShot& s, std::ostream* os) { *os << s.name(); }
+struct GoldenSet {
+  std::string resolution, preset;
+  std::vector<GoldenShot> shots;
+};
+inline const std::filesystem::path kSceneGoldenDir = kGoldenDir / "scenes";
+GoldenSet loadGoldenSet();  // throws std::runtime_error naming the file and field on bad input
+
 struct GoldenComparison {
   render::DiffResult diff;
   std::filesystem::path image, reference, diff_image;
@@ -47,5 +69,13 @@ struct GoldenComparison {
 // IMAGE_STEM.report.html there: the reference, the new image and the diff side by side (relative
 // links) and the numbers.
 GoldenComparison compareWithGolden(const std::filesystem::path& reference, const std::filesystem::path& image);
+
+// scripts/update-goldens sets STIRRUP_UPDATE_GOLDENS=1 and runs the golden tests: each then replaces
+// its reference with the new image instead of failing, and says what moved.
+bool updatingGoldens();
+
+// Updating: copies `image` over `reference` and returns one line saying whether and how far it moved
+// ("new", "unchanged", or the diff numbers).
+std::string replaceGolden(const std::filesystem::path& reference, const std::filesystem::path& image);
 
 }  // namespace stirrup::test

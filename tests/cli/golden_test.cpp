@@ -1,5 +1,7 @@
-// Golden images: two small frames of the trot side view rendered by the program and compared with
-// the references checked in under tests/golden/. Rendering is deterministic (per-pixel random
+// Golden images. Two small frames of a fixed trot side camera (tests/golden/trot_side.json, the
+// scene the sensitivity tests perturb), and the golden set of the shipped scenes: every movement in
+// every view at its telling frames (tests/golden/scenes.json), rendered by the program and compared
+// with the references checked in under tests/golden/. Rendering is deterministic (per-pixel random
 // sequences, fixed BVH quality), so on the machine that made the references the difference is 0;
 // the tolerance (tests/cli/golden_support.h: no more than 0.01% of pixels off by more than 4/255)
 // leaves room for another CPU's floating-point paths without letting a moved limb or camera through
@@ -7,6 +9,8 @@
 // the new image, the diff and the numbers is written next to the new image.
 // Update the references after an intended change with scripts/update-goldens.
 #include <filesystem>
+#include <iostream>
+#include <set>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -31,12 +35,70 @@ TEST_P(Golden, TrotSideMatchesTheReference) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string name = goldenName(frame);
   const fs::path reference = kGoldenDir / name;
+  if (updatingGoldens()) {
+    std::cout << "[ update ] " << replaceGolden(reference, out / name) << std::endl;
+    return;
+  }
   ASSERT_TRUE(fs::exists(reference)) << reference << " is missing: run scripts/update-goldens";
   const GoldenComparison c = compareWithGolden(reference, out / name);
   EXPECT_FALSE(c.failed()) << c.message();
 }
 
 INSTANTIATE_TEST_SUITE_P(Frames, Golden, ::testing::ValuesIn(kGoldenFrames));
+
+class SceneGolden : public ::testing::TestWithParam<GoldenShot> {};
+
+// One shot of the set: scenes/SCENE.json through CAMERA, its telling frames at the set's resolution
+// and preset, each compared with its reference. The scene is the shipped one, so a change to a
+// default scene, clip, character, rig profile or view framing shows here as well as a change to the
+// renderer.
+TEST_P(SceneGolden, MatchesTheReference) {
+  const GoldenShot& shot = GetParam();
+  const GoldenSet set = loadGoldenSet();
+  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / shot.name();
+  fs::remove_all(out);
+  std::string frames;
+  for (int f : shot.frames) {
+    if (!frames.empty()) frames += ',';
+    frames += std::to_string(f);
+  }
+  const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (shot.scene + ".json");
+  const CommandResult r = runStirrup("render " + quote(scene.string()) + " --camera " + quote(shot.camera) +
+                                     " --frames " + frames + " --resolution " + set.resolution + " --preset " +
+                                     set.preset + " --out " + quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int frame : shot.frames) {
+    const std::string name = frameFileName(shot.name(), frame);
+    const fs::path reference = kSceneGoldenDir / name;
+    ASSERT_TRUE(fs::exists(out / name)) << out / name << " was not rendered";
+    if (updatingGoldens()) {
+      std::cout << "[ update ] " << replaceGolden(reference, out / name) << std::endl;
+      continue;
+    }
+    ASSERT_TRUE(fs::exists(reference)) << reference << " is missing: run scripts/update-goldens";
+    const GoldenComparison c = compareWithGolden(reference, out / name);
+    EXPECT_FALSE(c.failed()) << shot.why << "\n" << c.message();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shots, SceneGolden, ::testing::ValuesIn(loadGoldenSet().shots),
+                         [](const ::testing::TestParamInfo<GoldenShot>& info) { return info.param.name(); });
+
+// Every shipped scene and every view of the review movies is in the set, so a new movement or view
+// cannot go unguarded.
+TEST(SceneGoldenSet, CoversEveryMovementAndView) {
+  const GoldenSet set = loadGoldenSet();
+  std::set<std::string> scenes, views;
+  for (const GoldenShot& s : set.shots) {
+    scenes.insert(s.scene);
+    views.insert(s.camera);
+  }
+  for (const char* scene : {"walk", "trot", "canter", "gallop", "stop", "jump", "rear", "buck"})
+    EXPECT_TRUE(scenes.count(scene)) << scene << " has no golden shot";
+  for (const char* view : {"side", "persp", "close", "turntable", "turntable_pose"})
+    EXPECT_TRUE(views.count(view)) << view << " has no golden shot";
+  EXPECT_EQ(set.resolution, "320x180");
+}
 
 // A fresh folder holding a copy of the checked-in golden `name`, as if just rendered there.
 fs::path copyGoldenInto(const std::string& folder, const std::string& name) {

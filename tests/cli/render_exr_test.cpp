@@ -1,4 +1,4 @@
-// stirrup render --format exr|both, --exr and --preset, end to end: the EXR a compositor gets has the
+// stirrup render --format exr|both, --exr, --preset and --resolution, end to end: the EXR a compositor gets has the
 // passes and the camera, frame and scene in its header.
 #include <filesystem>
 #include <fstream>
@@ -110,6 +110,32 @@ TEST(RenderExr, AnUnknownPresetIsAOneLineErrorBeforeAnyOutput) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "stirrup: --preset: expected draft, review or final, got fast\n");
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(RenderOverrides, ResolutionSetsTheFrameSize) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "render_exr_test" / "resolution";
+  fs::remove_all(dir);
+  const fs::path scene = writeSmallScene(dir);
+  const CommandResult r =
+      runStirrup("render " + quote(scene.string()) + " --frames 2 --resolution 64x40 --out " + quote(dir.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto in = OIIO::ImageInput::open((dir / "small_cam.0002.png").string());
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().width, 64);
+  EXPECT_EQ(in->spec().height, 40);
+}
+
+TEST(RenderOverrides, ABadResolutionIsAOneLineErrorBeforeAnyOutput) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "render_exr_test" / "bad_resolution";
+  fs::remove_all(dir);
+  const fs::path scene = writeSmallScene(dir);
+  const fs::path out = dir / "out";
+  for (const char* bad : {"320", "320x", "0x180", "320x180x2", "wide"}) {
+    const CommandResult r = runStirrup("render " + quote(scene.string()) + " --resolution " + bad + " --out " + quote(out.string()));
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_EQ(r.err, std::string("stirrup: --resolution: expected WIDTHxHEIGHT (16-8192 each), got \"") + bad + "\"\n");
+    EXPECT_FALSE(fs::exists(out)) << bad;
+  }
 }
 
 TEST(RenderExr, APresetChangesTheSamples) {
