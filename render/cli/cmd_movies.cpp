@@ -10,7 +10,7 @@
 
 #include "render/cli/commands.h"
 #include "render/cli/progress.h"
-#include "render/cli/resolution.h"
+#include "render/cli/options.h"
 #include "render/index_page.h"
 #include "render/movie_set.h"
 #include "render/preset.h"

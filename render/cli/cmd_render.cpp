@@ -3,10 +3,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <tuple>
+#include <vector>
 
 #include "render/cli/commands.h"
 #include "render/cli/progress.h"
-#include "render/cli/resolution.h"
+#include "render/cli/options.h"
 #include "render/image.h"
 #include "render/movie.h"
 #include "render/preset.h"
@@ -27,6 +28,7 @@ struct RenderOptions {
   std::string movie;
   std::string preset;
   std::string resolution;
+  std::vector<std::string> sets;
   std::string format = "png";
   bool exr = false;
   int threads = 0;
@@ -53,7 +55,8 @@ void runRender(const RenderOptions& o) {
   if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  rig::RigProfile profile = render::resolveProfile(scene);
+  rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
   fs::create_directories(dir);
   const std::string base = (dir / (scene.name + "_" + camera.name)).string();
@@ -99,6 +102,9 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--out,-o", opts->out, "Output folder (default: the scene's output)");
   cmd->add_option("--movie,-m", opts->movie, "Also encode the frames as an H.264 .mp4 movie");
   cmd->add_option("--preset", opts->preset, "Quality preset: draft, review or final (default: the scene's quality)");
+  cmd->add_option("--set,-s", opts->sets,
+                  "Override one rig-profile parameter after the scene's, KEY=NUMBER (repeatable), e.g. --set eq7.w2_scale=0.015 "
+                  "(stirrup rig params lists them)");
   cmd->add_option("--resolution", opts->resolution, "WIDTHxHEIGHT instead of the scene's (e.g. 320x180)");
   cmd->add_option("--format", opts->format,
                   "png (sRGB review frames), exr (linear half float with RGBA, N, Z, matte and objectId "

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/cli/commands.h"
+#include "render/cli/options.h"
 #include "rig/channel_csv.h"
 #include "rig/error.h"
 #include "rig/rider_rig.h"
@@ -28,26 +29,6 @@ struct RigOptions {
 std::filesystem::path profilesDir() {
   if (const char* env = std::getenv("STIRRUP_PROFILES"); env && *env) return env;
   return STIRRUP_SOURCE_DIR "/scenes/profiles";
-}
-
-// --set key=value pairs as a JSON object; a value that is not a number stays a string so the
-// profile's own check reports it ("expected a number, got ...").
-nlohmann::json parseSets(const std::vector<std::string>& sets) {
-  nlohmann::json j = nlohmann::json::object();
-  for (const std::string& s : sets) {
-    const std::size_t eq = s.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw InputError("--set: expected key=value (e.g. eq1.w1_pivot_pitch=0.05), got \"" + s + "\"");
-    const std::string key = s.substr(0, eq);
-    const std::string text = s.substr(eq + 1);
-    double v = 0;
-    const char* begin = text.data() + (text.size() > 1 && text[0] == '+' ? 1 : 0);
-    const auto [ptr, ec] = std::from_chars(begin, text.data() + text.size(), v);
-    const bool number = !text.empty() && ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(v);
-    if (number) j[key] = v;
-    else j[key] = text;
-  }
-  return j;
 }
 
 rig::RigProfile resolveProfile(const RigOptions& o) {

@@ -1,4 +1,4 @@
-// stirrup render --format exr|both, --exr, --preset and --resolution, end to end: the EXR a compositor gets has the
+// stirrup render --format exr|both, --exr, --preset, --resolution and --set, end to end: the EXR a compositor gets has the
 // passes and the camera, frame and scene in its header.
 #include <filesystem>
 #include <fstream>
@@ -136,6 +136,28 @@ TEST(RenderOverrides, ABadResolutionIsAOneLineErrorBeforeAnyOutput) {
     EXPECT_EQ(r.err, std::string("stirrup: --resolution: expected WIDTHxHEIGHT (16-8192 each), got \"") + bad + "\"\n");
     EXPECT_FALSE(fs::exists(out)) << bad;
   }
+}
+
+TEST(RenderOverrides, SetChangesTheRiderAndBadKeysAreOneLineErrors) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "render_exr_test" / "set";
+  fs::remove_all(dir);
+  const fs::path scene = writeSmallScene(dir);
+  for (const char* run : {"plain", "lifted"}) {
+    const std::string set = std::string(run) == "lifted" ? " --set eq7.w2_scale=0.05" : "";
+    const CommandResult r = runStirrup("render " + quote(scene.string()) + " --frames 5" + set + " --out " +
+                                       quote((dir / run).string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  EXPECT_NE(readText(dir / "plain/small_cam.0005.png"), readText(dir / "lifted/small_cam.0005.png"));
+  const fs::path out = dir / "bad";
+  const CommandResult unknown = runStirrup("render " + quote(scene.string()) + " --set eq7.nope=1 --out " + quote(out.string()));
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_EQ(lineCount(unknown.err), 1u) << unknown.err;
+  EXPECT_NE(unknown.err.find("--set: eq7.nope: unknown rig profile parameter"), std::string::npos) << unknown.err;
+  const CommandResult text = runStirrup("render " + quote(scene.string()) + " --set eq7.w2_scale=high --out " + quote(out.string()));
+  EXPECT_EQ(text.exit_code, 1);
+  EXPECT_EQ(text.err, "stirrup: --set: eq7.w2_scale: expected a number, got \"high\"\n");
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(RenderExr, APresetChangesTheSamples) {
