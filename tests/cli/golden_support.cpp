@@ -44,6 +44,19 @@ GoldenSet loadGoldenSet() {
       if (s.frames.empty()) throw std::runtime_error("expected at least one frame");
       set.shots.push_back(s);
     }
+    const nlohmann::json& movies = j.at("movies");
+    for (std::size_t i = 0; i < movies.size(); ++i) {
+      field = "movies[" + std::to_string(i) + "]";
+      GoldenMovie m;
+      m.movie = movies[i].at("movie").get<std::string>();
+      m.frames_limit = movies[i].at("frames_limit").get<int>();
+      m.date = movies[i].at("date").get<std::string>();
+      m.files = movies[i].at("files").get<std::vector<std::string>>();
+      m.why = movies[i].at("why").get<std::string>();
+      if (m.frames_limit < 1) throw std::runtime_error("frames_limit: expected at least 1");
+      if (m.files.empty()) throw std::runtime_error("files: expected at least one file");
+      set.movies.push_back(m);
+    }
   } catch (const std::exception& e) {
     throw std::runtime_error(file.string() + ": " + field + ": " + e.what());
   }

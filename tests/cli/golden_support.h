@@ -49,10 +49,23 @@ struct GoldenShot {
   std::string name() const { return scene + "_" + camera; }
 };
 inline void PrintTo(const GoldenShot& s, std::ostream* os) { *os << s.name(); }
+// A movie of the review set (stirrup movies --only MOVIE --frames-limit N --keep-frames), whose
+// output files (kept frames with burn-ins, the slate, sheets, plots) are compared with
+// tests/golden/movies/FILENAME.
+struct GoldenMovie {
+  std::string movie;
+  int frames_limit = 0;
+  std::string date;
+  std::vector<std::string> files;  // relative to the movies' output folder
+  std::string why;
+};
+inline void PrintTo(const GoldenMovie& m, std::ostream* os) { *os << m.movie; }
 struct GoldenSet {
   std::string resolution, preset;
   std::vector<GoldenShot> shots;
+  std::vector<GoldenMovie> movies;
 };
+inline const std::filesystem::path kMovieGoldenDir = kGoldenDir / "movies";
 inline const std::filesystem::path kSceneGoldenDir = kGoldenDir / "scenes";
 GoldenSet loadGoldenSet();  // throws std::runtime_error naming the file and field on bad input
 

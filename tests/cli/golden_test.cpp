@@ -84,6 +84,37 @@ TEST_P(SceneGolden, MatchesTheReference) {
 INSTANTIATE_TEST_SUITE_P(Shots, SceneGolden, ::testing::ValuesIn(loadGoldenSet().shots),
                          [](const ::testing::TestParamInfo<GoldenShot>& info) { return info.param.name(); });
 
+class MovieGolden : public ::testing::TestWithParam<GoldenMovie> {};
+
+// A review movie as `stirrup movies` makes it, at the set's resolution and preset with a fixed slate
+// date: the burnt-in frames, the slate and the plot, compared file by file.
+TEST_P(MovieGolden, MatchesTheReference) {
+  const GoldenMovie& movie = GetParam();
+  const GoldenSet set = loadGoldenSet();
+  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / ("movie_" + movie.movie);
+  fs::remove_all(out);
+  const CommandResult r = runStirrup("movies --only " + quote(movie.movie) + " --frames-limit " +
+                                     std::to_string(movie.frames_limit) + " --resolution " + set.resolution +
+                                     " --preset " + set.preset + " --date " + quote(movie.date) +
+                                     " --keep-frames --out " + quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& file : movie.files) {
+    const fs::path image = out / file;
+    const fs::path reference = kMovieGoldenDir / image.filename();
+    ASSERT_TRUE(fs::exists(image)) << image << " was not written";
+    if (updatingGoldens()) {
+      std::cout << "[ update ] movies/" << replaceGolden(reference, image) << std::endl;
+      continue;
+    }
+    ASSERT_TRUE(fs::exists(reference)) << reference << " is missing: run scripts/update-goldens";
+    const GoldenComparison c = compareWithGolden(reference, image);
+    EXPECT_FALSE(c.failed()) << movie.why << "\n" << c.message();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Movies, MovieGolden, ::testing::ValuesIn(loadGoldenSet().movies),
+                         [](const ::testing::TestParamInfo<GoldenMovie>& info) { return info.param.movie; });
+
 // Every shipped scene and every view of the review movies is in the set, so a new movement or view
 // cannot go unguarded.
 TEST(SceneGoldenSet, CoversEveryMovementAndView) {
@@ -97,6 +128,9 @@ TEST(SceneGoldenSet, CoversEveryMovementAndView) {
     EXPECT_TRUE(scenes.count(scene)) << scene << " has no golden shot";
   for (const char* view : {"side", "persp", "close", "turntable", "turntable_pose"})
     EXPECT_TRUE(views.count(view)) << view << " has no golden shot";
+  bool layered = false;
+  for (const GoldenMovie& m : set.movies) layered = layered || m.movie.find("_layered") != std::string::npos;
+  EXPECT_TRUE(layered) << "no layered movie in the golden set";
   EXPECT_EQ(set.resolution, "320x180");
 }
 
