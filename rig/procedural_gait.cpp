@@ -108,8 +108,11 @@ GaitParams gallopParams(double speed_cm_s, Lead lead) {
   // gait-reference transverse gallop, right lead: LH 0, RH .10, LF .50, RF .60 (Muybridge). With
   // Witte's stance times those phases leave a second airborne gap between RH lift-off and LF
   // touchdown, where gait-reference (and Kuhnel 5.3) count one suspension: we move the fore pair
-  // earlier keeping its .10 lag (LF .36, RF .46), which leaves one suspension after the leading fore.
-  g.touchdown_phase = {0.36, 0.46, 0.0, 0.10};
+  // earlier keeping its .10 lag, so that LF lands .026 of a stride before RH lifts off (LF .36, RF .46
+  // at 9 m/s; LF .30, RF .40 at 17 m/s, where the hind stance is shorter), which leaves one suspension
+  // after the leading fore at every speed (docs/horse-clips.md, "Gallop phases").
+  const double lf = 0.36 - (0.143 * 2.0 - hind_duty);
+  g.touchdown_phase = {lf, lf + 0.10, 0.0, 0.10};
   g.duty_factor = {fore_duty, fore_duty, hind_duty, hind_duty};
   g.hoof_lift_cm = 24.0;                // gait-reference: more than walk and trot
   g.fore_lift_scale = 1.2;

@@ -1,5 +1,10 @@
 // stirrup clip make / clip info, end to end.
+#include <algorithm>
 #include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -42,6 +47,40 @@ TEST(ClipCli, InfoOnAGeneratorShowsTheReference) {
   EXPECT_EQ(nlohmann::json::parse(j.out)["reference"]["gait"], "trot");
 }
 
+// Verdicts: ok / OUTSIDE in the table, booleans in --json; the gallop says which reference its fore
+// pair is judged by; the stop's slide is labelled as the stop's, not as a problem.
+TEST(ClipCli, InfoPrintsVerdicts) {
+  const CommandResult gallop = runStirrup("clip info gallop");
+  ASSERT_EQ(gallop.exit_code, 0) << gallop.err;
+  EXPECT_NE(gallop.out.find("lfHoof       0.360"), std::string::npos) << gallop.out;
+  EXPECT_NE(gallop.out.find("0.39* ok"), std::string::npos) << gallop.out;
+  EXPECT_NE(gallop.out.find("Against the table's phases they are 0.14/0.14 away: OUTSIDE"), std::string::npos) << gallop.out;
+  EXPECT_NE(gallop.out.find("rear pivot cycles/stride     1.00   reference 1  ok"), std::string::npos) << gallop.out;
+  EXPECT_NE(gallop.out.find("verdict: all 14 numbers inside the reference"), std::string::npos) << gallop.out;
+
+  const CommandResult rear = runStirrup("clip info rear --json");
+  ASSERT_EQ(rear.exit_code, 0) << rear.err;
+  const nlohmann::json ok = nlohmann::json::parse(rear.out);
+  EXPECT_TRUE(ok["verdicts"]["rear.peak_pitch_deg"].get<bool>());
+  EXPECT_TRUE(ok["verdicts"]["rear.held_s"].get<bool>());
+  EXPECT_TRUE(ok["all_ok"].get<bool>());
+  const CommandResult steep = runStirrup("clip info rear --angle_deg 75 --json");
+  ASSERT_EQ(steep.exit_code, 0) << steep.err;
+  const nlohmann::json bad = nlohmann::json::parse(steep.out);
+  EXPECT_FALSE(bad["verdicts"]["rear.peak_pitch_deg"].get<bool>());
+  EXPECT_FALSE(bad["all_ok"].get<bool>());
+
+  const CommandResult stop = runStirrup("clip info stop");
+  ASSERT_EQ(stop.exit_code, 0) << stop.err;
+  EXPECT_NE(stop.out.find("stop: slide (cm)             720.0   reference 0–1000  ok"), std::string::npos) << stop.out;
+  EXPECT_NE(stop.out.find("slide (the sliding stop's, expected): lbHoof slides"), std::string::npos) << stop.out;
+  EXPECT_EQ(stop.out.find("problem:"), std::string::npos) << stop.out;
+  const CommandResult jump = runStirrup("clip info jump");
+  ASSERT_EQ(jump.exit_code, 0) << jump.err;
+  EXPECT_NE(jump.out.find("jump: take-off pitch (deg)"), std::string::npos) << jump.out;
+  EXPECT_NE(jump.out.find("reference 18.9–23.9  ok"), std::string::npos) << jump.out;
+}
+
 TEST(ClipCli, BadInputIsOneLine) {
   const CommandResult unknown = runStirrup("clip make jump --fence 3 -o " + quote((outDir() / "x.glb").string()));
   EXPECT_EQ(unknown.exit_code, 1);
@@ -78,6 +117,119 @@ TEST(ClipCli, EveryMovementSceneBakes) {
                                        " --channels " + quote(csv.string()));
     EXPECT_EQ(r.exit_code, 0) << scene << ": " << r.err;
   }
+}
+
+// Every scene file in scenes/ (a JSON object with a "clip") bakes. A scene whose clip is a third-party
+// file outside the repository (the Khronos Fox in ../shared) that is not there is SKIPPED, never passed.
+std::vector<std::string> sceneFiles() {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(fs::path(STIRRUP_SOURCE_DIR) / "scenes")) {
+    if (e.path().extension() != ".json") continue;
+    const nlohmann::json j = nlohmann::json::parse(readText(e.path()), nullptr, false);
+    if (j.is_object() && j.contains("clip")) out.push_back(e.path().stem().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The clip file a scene names, resolved against the scene's folder (empty for a generator).
+fs::path sceneClipFile(const fs::path& scene) {
+  const nlohmann::json j = nlohmann::json::parse(readText(scene));
+  if (!j["clip"].contains("file")) return {};
+  return fs::weakly_canonical(scene.parent_path() / j["clip"]["file"].get<std::string>());
+}
+
+// Skips (GTEST_SKIP) when the scene's clip is a file outside the repository that is not there.
+#define SKIP_IF_THIRD_PARTY_CLIP_IS_MISSING(scene)                                                          \
+  do {                                                                                                      \
+    const fs::path clip_file = sceneClipFile(scene);                                                        \
+    const std::string source = fs::weakly_canonical(STIRRUP_SOURCE_DIR).string();                           \
+    if (!clip_file.empty() && !fs::exists(clip_file) && clip_file.string().rfind(source, 0) != 0)           \
+      GTEST_SKIP() << (scene).filename().string() << " plays " << clip_file << ", which is not there";     \
+  } while (0)
+
+class SceneFile : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SceneFile, Bakes) {
+  const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (GetParam() + ".json");
+  SKIP_IF_THIRD_PARTY_CLIP_IS_MISSING(scene);
+  const fs::path csv = outDir() / ("scene_" + GetParam() + ".csv");
+  fs::remove(csv);
+  const CommandResult r = runStirrup("bake " + quote(scene.string()) + " --channels " + quote(csv.string()));
+  ASSERT_EQ(r.exit_code, 0) << GetParam() << ": " << r.err;
+  EXPECT_TRUE(fs::exists(csv));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SceneFile, ::testing::ValuesIn(sceneFiles()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+TEST(SceneFile, TheFoxScenesAreAmongThem) {
+  const std::vector<std::string> scenes = sceneFiles();
+  for (const char* s : {"fox", "fox_run", "walk", "buck"})
+    EXPECT_NE(std::find(scenes.begin(), scenes.end(), s), scenes.end()) << s;
+  EXPECT_EQ(std::find(scenes.begin(), scenes.end(), "fox-mapping"), scenes.end());
+}
+
+// A channel CSV as columns by name.
+std::map<std::string, std::vector<double>> readColumns(const fs::path& csv) {
+  std::istringstream in(readText(csv));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  for (std::istringstream h(line); std::getline(h, line, ',');) names.push_back(line);
+  std::map<std::string, std::vector<double>> cols;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::string cell;
+    for (std::size_t i = 0; i < names.size() && std::getline(row, cell, ','); ++i) cols[names[i]].push_back(std::stod(cell));
+  }
+  return cols;
+}
+
+// scenes/fox.json (Walk) and scenes/fox_run.json (Run): the Khronos Fox through scenes/fox-mapping.json
+// drives the horse; baked, every hoof leaves the ground and comes back down, more than once.
+TEST(ClipCli, FoxScenesBakeWithHoovesThatRiseAndFall) {
+  for (const char* name : {"fox", "fox_run"}) {
+    const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (std::string(name) + ".json");
+    SKIP_IF_THIRD_PARTY_CLIP_IS_MISSING(scene);
+    const fs::path csv = outDir() / (std::string(name) + "_hooves.csv");
+    const CommandResult r = runStirrup("bake " + quote(scene.string()) + " --channels " + quote(csv.string()));
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    const auto cols = readColumns(csv);
+    ASSERT_TRUE(cols.count("frame")) << name;
+    EXPECT_GE(cols.at("frame").size(), 48u) << name;
+    for (const char* hoof : {"lfHoof.ty", "rfHoof.ty", "lbHoof.ty", "rbHoof.ty"}) {
+      ASSERT_TRUE(cols.count(hoof)) << name << " " << hoof;
+      const std::vector<double>& y = cols.at(hoof);
+      int rises = 0;
+      bool low = y.front() < 1.0;
+      for (double v : y) {
+        if (low && v > 10.0) ++rises, low = false;
+        else if (!low && v < 1.0) low = true;
+      }
+      EXPECT_LE(*std::min_element(y.begin(), y.end()), 0.5) << name << " " << hoof << " never lands";
+      EXPECT_GT(*std::max_element(y.begin(), y.end()), 20.0) << name << " " << hoof;
+      EXPECT_LT(*std::max_element(y.begin(), y.end()), 200.0) << name << " " << hoof;
+      EXPECT_GE(rises, 2) << name << " " << hoof << ": steps up and down more than once";
+    }
+    // The horse travels forward ("speed_cm_s": "auto") and the rider is driven.
+    EXPECT_GT(cols.at("lowerBack.rz").size(), 0u);
+  }
+}
+
+// The same scene copied where ../../shared does not exist: one line naming the scene file and field.
+TEST(ClipCli, FoxSceneWithoutTheSharedAssetsIsAOneLineError) {
+  const fs::path dir = outDir() / "fox_alone" / "scenes";
+  fs::remove_all(dir.parent_path());
+  fs::create_directories(dir);
+  for (const char* f : {"fox.json", "fox-mapping.json"})
+    fs::copy_file(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / f, dir / f);
+  const CommandResult r = runStirrup("bake " + quote((dir / "fox.json").string()) + " --channels " +
+                                     quote((dir / "fox.csv").string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find((dir / "fox.json").string() + ": clip.file: no such file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "fox.csv"));
 }
 
 }  // namespace

@@ -4,8 +4,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
@@ -219,25 +221,80 @@ TEST(GltfClip, RenamedThroughAMappingDrivesTheRiderTheSameWay) {
   const MovementClip jump(makeJump(JumpParams{}));
   const fs::path file = tempFile("jump.glb"), renamed = tempFile("renamed.glb"), mapping = tempFile("map.json");
   writeClipGltf(jump, file, {30.0});
-  // Another tool renames every node and moves the rest pose: the mapping undoes both.
-  tinygltf::Model model;
-  tinygltf::TinyGLTF io;
-  std::string err, warn;
-  ASSERT_TRUE(io.LoadBinaryFromFile(&model, &err, &warn, file.string()));
+  // Another tool renames every node and moves the rest pose: each node gets its own rest translation
+  // and rest rotation, and its animation is moved by the same (keys translated by the offset, rotation
+  // keys turned by the rest rotation), so the file plays the same motion from a different rest pose.
+  // The mapping undoes the names; the rest pose must be taken from the file.
+  tinygltf::Model model = loadModel(file);
   nlohmann::json nodes;
-  for (auto& n : model.nodes) {
+  std::map<int, glm::dvec3> offset;
+  std::map<int, glm::dquat> turn;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+    tinygltf::Node& n = model.nodes[i];
     nodes[n.name] = "Bone_" + n.name;
     n.name = "Bone_" + n.name;
+    const double k = static_cast<double>(i + 1);
+    offset[int(i)] = {3.0 * k, -2.0 + 1.5 * k, 7.0 - k};
+    turn[int(i)] = glm::angleAxis(0.1 * k, glm::normalize(glm::dvec3(1.0, k, 2.0)));
+    n.translation = {offset[int(i)].x, offset[int(i)].y, offset[int(i)].z};
+    n.rotation = {turn[int(i)].x, turn[int(i)].y, turn[int(i)].z, turn[int(i)].w};
   }
-  ASSERT_TRUE(io.WriteGltfSceneToFile(&model, renamed.string(), false, true, false, true));
+  const fs::path rest_only = tempFile("rest_only.glb");
+  saveModel(model, rest_only);
+  int lf_node = -1;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i)
+    if (model.nodes[i].name == "Bone_lfHoof") lf_node = int(i);
+  ASSERT_GE(lf_node, 0);
+  tinygltf::Animation& anim = model.animations[0];
+  int moved = 0, turned = 0;
+  for (const tinygltf::AnimationChannel& ch : anim.channels) {
+    tinygltf::AnimationSampler& s = anim.samplers[ch.sampler];
+    std::vector<float> v = accessorFloats(model, s.output);
+    if (ch.target_path == "translation") {
+      const glm::dvec3 o = offset.at(ch.target_node);
+      for (std::size_t k = 0; k + 2 < v.size(); k += 3)
+        for (int j = 0; j < 3; ++j) v[k + j] = static_cast<float>(v[k + j] + o[j]);
+      s.output = appendFloats(model, v, TINYGLTF_TYPE_VEC3);
+      ++moved;
+    } else if (ch.target_path == "rotation") {
+      const glm::dquat q0 = turn.at(ch.target_node);
+      for (std::size_t k = 0; k + 3 < v.size(); k += 4) {
+        const glm::dquat q = q0 * glm::dquat(v[k + 3], v[k], v[k + 1], v[k + 2]);
+        v[k] = float(q.x), v[k + 1] = float(q.y), v[k + 2] = float(q.z), v[k + 3] = float(q.w);
+      }
+      s.output = appendFloats(model, v, TINYGLTF_TYPE_VEC4);
+      ++turned;
+    }
+  }
+  ASSERT_GE(moved, 6);   // the travel root, four hooves and the rear pivot
+  ASSERT_GE(turned, 5);  // rear pivot, back, neck, head, tail
+  saveModel(model, renamed);
   std::ofstream(mapping) << nlohmann::json({{"mode", "controls"}, {"nodes", nodes}}).dump();
   const GltfClip a(file, contractMapping()), b(renamed, loadClipMapping(mapping));
+  // Control: the rest pose moved but the animation not (rest_only) reads as the motion less the offset,
+  // so a reader that ignored the file's rest pose could not pass the comparison below.
+  const GltfClip c(rest_only, loadClipMapping(mapping));
+  const int lf = lf_node;
+  for (double t : {0.0, 0.5, 1.3}) {
+    const HorseFrame fa = a.sample(t), fc = c.sample(t);
+    EXPECT_NEAR(fc.controls[HorseChannel::lfHoofTx], fa.controls[HorseChannel::lfHoofTx] - offset.at(lf).x, 1e-3) << t;
+    EXPECT_NEAR(fc.controls[HorseChannel::lfHoofTy], fa.controls[HorseChannel::lfHoofTy] - offset.at(lf).y, 1e-3) << t;
+  }
   for (double t = 0.0; t < a.duration(); t += 0.1) {
-    const RiderChannels ra = evaluateRider(a.sample(t).controls, RigProfile::thesis());
-    const RiderChannels rb = evaluateRider(b.sample(t).controls, RigProfile::thesis());
+    const HorseFrame fa = a.sample(t), fb = b.sample(t);
+    // Floats in the file: a few 1e-5 of the moved values.
+    EXPECT_NEAR(fa.travel_cm, fb.travel_cm, 1e-3) << t;
+    for (std::size_t c = 0; c < kHorseChannelCount; ++c)
+      ASSERT_NEAR(fa.controls.value[c], fb.controls.value[c], 2e-3) << kHorseChannelNames[c] << " at " << t;
+    EXPECT_NEAR(fa.neck_rz, fb.neck_rz, 2e-3) << t;
+    EXPECT_NEAR(fa.head_rz, fb.head_rz, 2e-3) << t;
+    EXPECT_NEAR(fa.tail_rz, fb.tail_rz, 2e-3) << t;
+    EXPECT_NEAR(fa.tail_ry, fb.tail_ry, 2e-3) << t;
+    const RiderChannels ra = evaluateRider(fa.controls, RigProfile::thesis());
+    const RiderChannels rb = evaluateRider(fb.controls, RigProfile::thesis());
     const RiderChannels rj = evaluateRider(jump.sample(t).controls, RigProfile::thesis());
     for (std::size_t c = 0; c < kRiderChannelCount; ++c) {
-      EXPECT_EQ(ra.value[c], rb.value[c]) << kRiderChannelNames[c];
+      EXPECT_NEAR(ra.value[c], rb.value[c], 1e-3 + 1e-4 * std::abs(ra.value[c])) << kRiderChannelNames[c] << " at " << t;
       EXPECT_NEAR(ra.value[c], rj.value[c], 0.05 + 0.02 * std::abs(rj.value[c])) << kRiderChannelNames[c] << " at " << t;
     }
   }

@@ -2,12 +2,16 @@
 // (rig/clip_info.h), and the rider's response per Kuhnel 2003 sections 5 and 9.
 #include "rig/movement_clips.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <ostream>
 
 #include <gtest/gtest.h>
 
+#include "render/scene.h"
 #include "rig/clip_factory.h"
 #include "rig/clip_info.h"
 #include "rig/error.h"
@@ -26,16 +30,46 @@ std::unique_ptr<Clip> generator(const std::string& name, nlohmann::json params =
   return makeClip(parseClipSpec(r, "."));
 }
 
+// A stretch of time in which the two hind hooves of a sliding stop may move while down: from the
+// slide's start to its end, taken from the clip's own parameters.
+struct SlideWindow {
+  double from_s = 0.0, to_s = 0.0;
+};
+
 // Every clip: no hoof below the ground, no down hoof moving more than a few mm a frame (except the
-// stated slide of the stop's hind hooves), and every channel continuous.
-void expectSound(const Clip& clip, bool hind_slide_allowed = false) {
+// hind hooves of a sliding stop inside its slide window), and every channel continuous.
+void expectSound(const Clip& clip, std::optional<SlideWindow> hind_slide = std::nullopt) {
   ClipInfoOptions o;
   o.fps = 24.0;
   const ClipInfo info = measureClip(clip, o);
   for (int h = 0; h < 4; ++h) {
     EXPECT_GE(info.hooves[h].lowest_cm, 0.0) << clip.name() << " hoof " << h;
-    if (hind_slide_allowed && h >= 2) continue;
+    if (hind_slide && h >= 2) continue;  // checked frame by frame below
     EXPECT_LE(info.hooves[h].max_slide_mm, 3.0) << clip.name() << " hoof " << h << " at " << info.hooves[h].max_slide_at_s;
+  }
+  if (hind_slide) {
+    // Hind hooves frame by frame, as clip info measures them: a frame that overlaps the slide window is
+    // exempt, every other frame with the hoof down at both ends moves it at most 3 mm in the world.
+    const std::array<std::pair<HorseChannel, HorseChannel>, 2> hind = {
+        {{HorseChannel::lbHoofTx, HorseChannel::lbHoofTy}, {HorseChannel::rbHoofTx, HorseChannel::rbHoofTy}}};
+    const double dt = 1.0 / o.fps;
+    int exempt = 0, checked = 0;
+    for (int k = 0; (k + 1) * dt <= clip.duration(); ++k) {
+      const double t = k * dt;
+      const HorseFrame a = clip.sample(t), b = clip.sample(t + dt);
+      for (const auto& [tx, ty] : hind) {
+        if (a.controls[ty] > o.ground_cm || b.controls[ty] > o.ground_cm) continue;
+        if (t < hind_slide->to_s && t + dt > hind_slide->from_s) {
+          ++exempt;
+          continue;
+        }
+        ++checked;
+        EXPECT_LE(10.0 * std::abs((b.travel_cm + b.controls[tx]) - (a.travel_cm + a.controls[tx])), 3.0)
+            << clip.name() << " " << name(tx) << " slides outside the slide window at " << t << " s";
+      }
+    }
+    EXPECT_GT(exempt, 0) << clip.name() << ": the slide window holds no sliding frame";
+    EXPECT_GT(checked, 0) << clip.name() << ": no hind stance outside the slide window was checked";
   }
   // Continuity: sampled at 1 kHz no channel changes faster than a galloping hoof swings (a pop would
   // show as a step of centimetres in one millisecond, i.e. > 10000 /s).
@@ -57,6 +91,9 @@ struct GaitCase {
   int suspensions;
   int bounce_cycles;
 };
+
+// gtest prints a parameter it cannot print as its bytes, and CTest names the test after that: name it.
+void PrintTo(const GaitCase& c, std::ostream* os) { *os << c.name; }
 
 class SteadyGait : public ::testing::TestWithParam<GaitCase> {};
 
@@ -120,9 +157,26 @@ TEST(SteadyGait, VariationIsDeterministicPerSeed) {
   EXPECT_GT(differ, 1.0);
 }
 
+// gait-reference: one suspension per stride from 9 to 17 m/s. The fore pair lands before the right
+// hind lifts off at every speed (its stance shortens from 143 to 94 ms), not only at 9 m/s.
+TEST(SteadyGait, GallopKeepsOneSuspensionAtEverySpeed) {
+  const GaitReference ref = *gaitReference("gallop");
+  for (const double speed : {900.0, 1300.0, 1700.0}) {
+    for (const double variation : {0.0, 0.3}) {
+      const auto clip = generator("gallop", {{"speed_cm_s", speed}, {"variation", variation}, {"duration_s", 6.0}});
+      const ClipInfo info = measureClip(*clip);
+      SCOPED_TRACE(std::to_string(speed) + " cm/s, variation " + std::to_string(variation));
+      EXPECT_NEAR(info.suspensions_per_stride, 1.0, 1e-9);
+      for (const Verdict& v : clipVerdicts(info, ref)) EXPECT_TRUE(v.ok) << v.key << " = " << v.value;
+    }
+  }
+}
+
 TEST(GaitSequence, WalkTrotCanterGallopStopBlendsWithoutPops) {
   const auto clip = generator("sequence", {{"gaits", "walk,trot,canter,gallop"}, {"end_with_stop", true}});
-  expectSound(*clip, true);
+  // The stop starts after the four 3 s segments (the sequence's defaults) and slides for slide_s.
+  const StopParams stop;
+  expectSound(*clip, SlideWindow{4 * 3.0, 4 * 3.0 + stop.slide_s});
   // Speed ends at zero after the stop and the travel never goes backwards.
   const HorseFrame end = clip->sample(clip->duration());
   EXPECT_NEAR(end.travel_cm, clip->sample(clip->duration() - 0.5).travel_cm, 1e-6);
@@ -150,7 +204,7 @@ TEST(GaitSequence, EachSegmentPlaysItsGait) {
 TEST(Stop, HindHoovesSlideUnderTheBodyWhileForelegsStep) {
   const StopParams p;
   const MovementClip clip(makeStop(p));
-  expectSound(clip, true);
+  expectSound(clip, SlideWindow{p.entry_s, p.entry_s + p.slide_s});
   const double mid = p.entry_s + 0.5 * p.slide_s;
   const HorseFrame f = clip.sample(mid);
   // Hind hooves drawn forward under the body, down, and moving in the world with it (the slide).
@@ -324,6 +378,62 @@ TEST(Buck, AllFourHoovesLeaveTheGroundInEveryBuck) {
   EXPECT_GE(info.suspension_ms, 50.0);
 }
 
+// ---- clip info's verdicts on the shipped scenes and on the scripted movements ----
+
+// What `stirrup clip info GENERATOR` prints for every movement scene: every number inside its reference
+// (the gallop's fore pair against the one-suspension phases, see clip_info_test).
+TEST(ClipInfoVerdicts, EveryDefaultSceneClipIsInsideTheReference) {
+  for (const char* scene : {"walk", "trot", "canter", "gallop", "stop", "jump", "rear", "buck"}) {
+    const render::SceneSpec spec = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene + ".json");
+    const auto clip = makeClip(spec.clip);
+    const ClipInfo info = measureClip(*clip);
+    const auto ref = gaitReference(spec.clip.generator);
+    ASSERT_TRUE(ref) << scene;
+    const std::vector<Verdict> verdicts = clipVerdicts(info, *ref);
+    EXPECT_GE(verdicts.size(), ref->periodic ? 10u : 1u) << scene;
+    for (const Verdict& v : verdicts) EXPECT_TRUE(v.ok) << scene << ": " << v.key << " = " << v.value;
+    EXPECT_NE(formatClipInfo(info, &*ref).find("verdict: all"), std::string::npos) << scene;
+  }
+}
+
+// Each scripted check measures the clip, so a parameter outside the reference shows as OUTSIDE.
+TEST(ClipInfoVerdicts, ScriptedMovementsOutsideTheReferenceAreOutside) {
+  const auto judged = [](const std::string& gen, const nlohmann::json& params, const std::string& key) {
+    const auto clip = generator(gen, params);
+    const std::vector<Verdict> v = clipVerdicts(measureClip(*clip), *gaitReference(gen));
+    for (const Verdict& x : v)
+      if (x.key == key) return x;
+    ADD_FAILURE() << gen << ": no verdict " << key;
+    return Verdict{};
+  };
+  // Rear: 55° held 1.2 s is inside; 75° is too steep, a 3 s hold too long.
+  const Verdict rear = judged("rear", nlohmann::json::object(), "rear.peak_pitch_deg");
+  EXPECT_TRUE(rear.ok);
+  EXPECT_NEAR(rear.value, 55.0, 0.6);  // seeded ±1 %
+  const Verdict held = judged("rear", nlohmann::json::object(), "rear.held_s");
+  EXPECT_TRUE(held.ok);
+  EXPECT_GT(held.value, 1.2);  // the hold plus the parts of the rise and descent above 40°
+  EXPECT_FALSE(judged("rear", {{"angle_deg", 75}}, "rear.peak_pitch_deg").ok);
+  EXPECT_FALSE(judged("rear", {{"hold_s", 3.0}}, "rear.held_s").ok);
+  // Buck: −28° croup-up; −15° is not a buck's.
+  EXPECT_TRUE(judged("buck", nlohmann::json::object(), "buck.croup_pitch_deg").ok);
+  EXPECT_FALSE(judged("buck", {{"croup_deg", -15}}, "buck.croup_pitch_deg").ok);
+  const Verdict leaps = judged("buck", {{"bucks", 4}}, "buck.airborne_phases");
+  EXPECT_TRUE(leaps.ok);
+  EXPECT_EQ(leaps.value, 4.0);
+  // Jump: the pitch as the leading hind leaves, 21.4 ± 2.5°.
+  const Verdict takeoff = judged("jump", nlohmann::json::object(), "jump.takeoff_pitch_deg");
+  EXPECT_TRUE(takeoff.ok);
+  EXPECT_NEAR(takeoff.value, 21.4, 0.3);
+  EXPECT_FALSE(judged("jump", {{"takeoff_pitch_deg", 30}}, "jump.takeoff_pitch_deg").ok);
+  // Stop: 9 m/s over 1.6 s slides 7.2 m; 17 m/s over 3 s would slide 25 m.
+  const Verdict slide = judged("stop", nlohmann::json::object(), "stop.slide_cm");
+  EXPECT_TRUE(slide.ok);
+  EXPECT_NEAR(slide.value, 900.0 * 1.6 / 2.0, 5.0);
+  EXPECT_FALSE(judged("stop", {{"entry_speed_cm_s", 1700}, {"slide_s", 3.0}}, "stop.slide_cm").ok);
+  EXPECT_TRUE(judged("stop", nlohmann::json::object(), "stop.fore_steps_during_slide").ok);
+}
+
 // ---- the rider (Kuhnel 2003 sections 5 and 9) ----
 
 double meanLowerBack(const Clip& clip, double a, double b) {
@@ -368,6 +478,193 @@ TEST(RiderResponse, LeansForwardAsTheForehandRisesAndBackAsTheCroupRises) {
   EXPECT_GT(meanLowerBack(clip, s + 0.17, s + 0.27), 0.0);
   const double croup = first.croup_peak_s;
   EXPECT_LT(meanLowerBack(clip, croup - 0.05, croup + 0.05), 0.0);
+}
+
+// ---- the rider in the steady gaits (Kuhnel 2003 section 9; docs/rider-rig.md) ----
+//
+// Each default gait clip (as scenes/*.json play them) sampled at 1 kHz over whole strides, the thesis
+// rider evaluated on every sample.
+struct Ride {
+  double stride_s = 0.0;
+  int strides = 0;
+  std::vector<double> t;
+  std::vector<HorseFrame> horse;
+  std::vector<RiderChannels> rider;
+  std::vector<double> series(RiderChannel c) const {
+    std::vector<double> v;
+    for (const RiderChannels& r : rider) v.push_back(r[c]);
+    return v;
+  }
+  std::vector<double> series(HorseChannel c) const {
+    std::vector<double> v;
+    for (const HorseFrame& f : horse) v.push_back(f.controls[c]);
+    return v;
+  }
+  // Fore-aft spread of the limbs: the fore pair's mean reach minus the hind pair's (out = +).
+  std::vector<double> limbSpread() const {
+    std::vector<double> v;
+    for (const HorseFrame& f : horse) {
+      const HorseChannels& c = f.controls;
+      v.push_back(0.5 * (c[HorseChannel::lfHoofTx] + c[HorseChannel::rfHoofTx]) -
+                  0.5 * (c[HorseChannel::lbHoofTx] + c[HorseChannel::rbHoofTx]));
+    }
+    return v;
+  }
+  bool airborne(std::size_t i) const {
+    const HorseChannels& c = horse[i].controls;
+    return c[HorseChannel::lfHoofTy] > 0.0 && c[HorseChannel::rfHoofTy] > 0.0 && c[HorseChannel::lbHoofTy] > 0.0 &&
+           c[HorseChannel::rbHoofTy] > 0.0;
+  }
+};
+
+Ride ride(const std::string& gait, int strides = 6) {
+  const GaitParams g = *gaitParamsByName(gait);
+  const auto clip = generator(gait, {{"duration_s", (strides + 1) / g.stride_hz}});
+  Ride r;
+  r.stride_s = 1.0 / g.stride_hz;
+  r.strides = strides;
+  const RigProfile thesis = RigProfile::thesis();
+  for (int i = 0; i <= static_cast<int>(std::lround(strides * r.stride_s * 1000.0)); ++i) {
+    const double t = i * 0.001;
+    r.t.push_back(t);
+    r.horse.push_back(clip->sample(t));
+    r.rider.push_back(evaluateRider(r.horse.back().controls, thesis));
+  }
+  return r;
+}
+
+// How many times per stride a series rises through its middle (hysteresis: a quarter of its range),
+// as clip info counts the rear pivot's bounce.
+double risesPerStride(const std::vector<double>& y, int strides) {
+  const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+  const double mid = 0.5 * (*lo + *hi), band = 0.125 * (*hi - *lo);
+  int rises = 0;
+  bool low = y.front() < mid;
+  for (double v : y) {
+    if (low && v > mid + band) ++rises, low = false;
+    else if (!low && v < mid - band) low = true;
+  }
+  return double(rises) / strides;
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = double(a.size());
+  double ma = 0.0, mb = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ab += (a[i] - ma) * (b[i] - mb);
+    aa += (a[i] - ma) * (a[i] - ma);
+    bb += (b[i] - mb) * (b[i] - mb);
+  }
+  return ab / std::sqrt(aa * bb);
+}
+
+// The index of the largest value of y in samples [from, to).
+std::size_t argmax(const std::vector<double>& y, std::size_t from, std::size_t to) {
+  return static_cast<std::size_t>(std::max_element(y.begin() + from, y.begin() + to) - y.begin());
+}
+
+// Touchdown times of a hoof (up at one sample, down at the next).
+std::vector<double> touchdowns(const Ride& r, HorseChannel ty) {
+  std::vector<double> out;
+  for (std::size_t i = 1; i < r.t.size(); ++i)
+    if (r.horse[i].controls[ty] <= 0.0 && r.horse[i - 1].controls[ty] > 0.0) out.push_back(r.t[i]);
+  return out;
+}
+
+// 9.2: "when the distance between each set of the horse's feet is the greatest the rider will bounce up
+// and as they pass by each other the rider sinks back down": the lift (Eq 7) twice per stride, highest
+// at the widest spread of the pairs, lowest as they pass.
+TEST(RiderResponse, TrotLiftsTwicePerStrideWhereThePairsSpreadWidest) {
+  const Ride r = ride("trot");
+  const std::vector<double> lift = r.series(RiderChannel::cogTy);
+  EXPECT_NEAR(risesPerStride(lift, r.strides), 2.0, 1e-9);
+  std::vector<double> spread;
+  for (const HorseFrame& f : r.horse) {
+    const HorseChannels& c = f.controls;
+    spread.push_back(std::abs(c[HorseChannel::lfHoofTx] - c[HorseChannel::rfHoofTx]) +
+                     std::abs(c[HorseChannel::lbHoofTx] - c[HorseChannel::rbHoofTx]));
+  }
+  std::vector<double> neg_lift, neg_spread;
+  for (std::size_t i = 0; i < lift.size(); ++i) neg_lift.push_back(-lift[i]), neg_spread.push_back(-spread[i]);
+  const std::size_t half = static_cast<std::size_t>(std::lround(500.0 * r.stride_s));
+  for (int k = 0; k < 2 * r.strides; ++k) {
+    const std::size_t a = k * half, b = std::min(a + half, lift.size());
+    // Highest lift within 0.05 stride of the widest spread, lowest within 0.05 of the narrowest.
+    EXPECT_NEAR(r.t[argmax(lift, a, b)], r.t[argmax(spread, a, b)], 0.05 * r.stride_s) << "half stride " << k;
+    EXPECT_NEAR(r.t[argmax(neg_lift, a, b)], r.t[argmax(neg_spread, a, b)], 0.05 * r.stride_s) << "half stride " << k;
+  }
+}
+
+// Eq 1 (section 8.1): the lower back leans with the horse's pitch. At the trot the diagonal pairs' reach
+// terms nearly cancel, so the lean follows the pitch (measured correlation 0.94).
+TEST(RiderResponse, TrotLowerBackLeansWithThePitch) {
+  const Ride r = ride("trot");
+  EXPECT_GT(correlation(r.series(RiderChannel::lowerBackRz), r.series(HorseChannel::rearPivotRz)), 0.8);
+  EXPECT_NEAR(risesPerStride(r.series(RiderChannel::lowerBackRz), r.strides), 1.0, 1e-9);
+}
+
+// 9.3: "The rider leans slightly back when the average position of each set of the horse's limbs move
+// towards the center ... As the horse's limbs move out ... the rider leans forward", "when all of the
+// horse's limbs are towards the center of the horse and the horse's feet are off the ground the rider
+// lifts into the air", and "the seat slides back as the rider leans forward".
+TEST(RiderResponse, GallopLeansWithTheLimbsAndLiftsInTheSuspension) {
+  const Ride r = ride("gallop");
+  const std::vector<double> lean = r.series(RiderChannel::lowerBackRz), lift = r.series(RiderChannel::cogTy);
+  EXPECT_GT(correlation(lean, r.limbSpread()), 0.9);  // measured 0.98
+  EXPECT_NEAR(risesPerStride(lean, r.strides), 1.0, 1e-9);
+  EXPECT_NEAR(risesPerStride(lift, r.strides), 1.0, 1e-9);
+  const std::size_t stride = static_cast<std::size_t>(std::lround(1000.0 * r.stride_s));
+  for (int k = 0; k < r.strides; ++k) {
+    const std::size_t top = argmax(lift, k * stride, std::min((k + 1) * stride, lift.size()));
+    EXPECT_TRUE(r.airborne(top)) << "stride " << k << ": highest lift at " << r.t[top] << " s with a hoof down";
+  }
+  // The seat slides against the lean only weakly (measured −0.19): Eq 8's seat shift is
+  // (2 × pitch − lean) × 0.1, and at the gallop the horse's pitch term is the larger.
+  EXPECT_LT(correlation(r.series(RiderChannel::cogTx), lean), 0.0);
+}
+
+// The canter is not in section 9; gait-reference (Viry 2013): the body rises and falls once per stride
+// at the canter, and the same expressions as the gallop apply: the lift once per stride, highest in the
+// suspension, the lean following the limbs.
+TEST(RiderResponse, CanterLiftsOncePerStrideAndLeansWithTheLimbs) {
+  const Ride r = ride("canter");
+  const std::vector<double> lean = r.series(RiderChannel::lowerBackRz), lift = r.series(RiderChannel::cogTy);
+  EXPECT_NEAR(risesPerStride(lift, r.strides), 1.0, 1e-9);
+  EXPECT_NEAR(risesPerStride(lean, r.strides), 1.0, 1e-9);
+  EXPECT_GT(correlation(lean, r.limbSpread()), 0.9);  // measured 0.997
+  const std::size_t stride = static_cast<std::size_t>(std::lround(1000.0 * r.stride_s));
+  for (int k = 0; k < r.strides; ++k) {
+    const std::size_t top = argmax(lift, k * stride, std::min((k + 1) * stride, lift.size()));
+    EXPECT_TRUE(r.airborne(top)) << "stride " << k << ": highest lift at " << r.t[top] << " s with a hoof down";
+  }
+}
+
+// 9.6: "the rider will lean forward as one of the horse's front legs is lifted and set on the ground in
+// front of him. As each leg is lifted and placed in front of him a repetitive rolling motion of the
+// rider is created": the lean peaks twice per stride, just before each fore hoof lands (at most 0.1
+// stride before it), and the lower back rolls once per stride against the horse's roll (Eq 2).
+TEST(RiderResponse, WalkLeansForwardAsEachForeHoofIsSetDownAndRolls) {
+  const Ride r = ride("walk");
+  const std::vector<double> lean = r.series(RiderChannel::lowerBackRz);
+  EXPECT_NEAR(risesPerStride(lean, r.strides), 2.0, 1e-9);
+  int checked = 0;
+  for (HorseChannel ty : {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy})
+    for (double land : touchdowns(r, ty)) {
+      const double window = 0.25 * r.stride_s;
+      if (land - window < 0.0 || land + window > r.t.back()) continue;
+      const std::size_t a = static_cast<std::size_t>(std::lround((land - window) * 1000.0));
+      const std::size_t b = static_cast<std::size_t>(std::lround((land + window) * 1000.0));
+      const double peak = r.t[argmax(lean, a, b)];
+      EXPECT_LE(peak, land) << name(ty) << " lands at " << land;
+      EXPECT_GE(peak, land - 0.1 * r.stride_s) << name(ty) << " lands at " << land;
+      ++checked;
+    }
+  EXPECT_GE(checked, 2 * (r.strides - 1));
+  const std::vector<double> roll = r.series(RiderChannel::lowerBackRy);
+  EXPECT_NEAR(risesPerStride(roll, r.strides), 1.0, 1e-9);
+  EXPECT_LT(correlation(roll, r.series(HorseChannel::rearPivotRx)), -0.99);
 }
 
 TEST(ClipSpec, UnknownParameterNamesFileAndField) {
