@@ -45,7 +45,7 @@ struct RiderParams {
   glm::vec3 hip{-2.0f, 10.0f, -12.5f};
   float thigh = 45.0f, shin = 45.0f;
   glm::vec3 ankle_from_ball{-12.0f, 7.0f, 0.0f};   // heel down, toe in the iron
-  glm::vec3 knee_pole_dir{1.0f, 0.0f, -1.3f};      // knees forward and out around the barrel
+  glm::vec3 knee_pole_dir{1.0f, 0.0f, -1.0f};      // knees forward and out around the barrel
   // Soft tissue and clothes (radii, cm).
   glm::vec3 hips_radii{11.0f, 10.0f, 16.5f};
   glm::vec3 chest_radii{11.5f, 11.5f, 16.0f};
