@@ -104,7 +104,7 @@ void runInfo(const ClipOptions& o) {
   const rig::ClipInfo info = rig::measureClip(*clip, io);
   const auto ref = rig::gaitReference(reference);
   if (!reference.empty() && !ref && !o.reference.empty())
-    throw InputError("clip info: --reference: expected walk, trot, canter or gallop, got \"" + reference + "\"");
+    throw InputError("clip info: --reference: expected walk, trot, canter, gallop, stop, jump, rear or buck, got \"" + reference + "\"");
   if (o.json) std::printf("%s\n", rig::clipInfoJson(info, ref ? &*ref : nullptr).dump(2).c_str());
   else std::printf("%s", rig::formatClipInfo(info, ref ? &*ref : nullptr).c_str());
 }
@@ -146,7 +146,7 @@ void addClipCommand(CLI::App& app) {
   in->add_flag("--json", info->json, "Print JSON instead of a table");
   in->add_option("--mapping", info->mapping, "Mapping file from the clip's nodes to the contract's controls");
   in->add_option("--animation", info->animation, "Animation in the file (default: the first)");
-  in->add_option("--reference", info->reference, "Compare with this gait of gait-reference.md (walk, trot, canter, gallop)");
+  in->add_option("--reference", info->reference, "Compare with this movement of gait-reference.md (walk, trot, canter, gallop, stop, jump, rear, buck)");
   in->add_option("--loops", info->loops, "Loops of a file's animation to measure (default 1; 4 with a skeleton mapping)");
   in->add_option("--ground-cm", info->ground_cm, "A hoof this low or lower is down (default 0.001; 0.5 for skeletons)");
   in->allow_extras();
