@@ -1,11 +1,11 @@
 // Contact between the rider and the horse on every default clip (the scenes in scenes/*.json), every
-// second frame, with the default characters posed as the shot poses them (rig::poseMounted):
+// frame, with the default characters posed as the shot poses them (rig::poseMounted):
 //  - seat: the rider's pelvis stays over the saddle's seat, in the saddle's frame;
 //  - feet: the ball of each foot stays on its stirrup tread;
 //  - depth: no rider vertex is inside the horse by more than kMaxDepthCm. Inside is measured against
-//    the skinned horse mesh: the nearest horse vertex (a uniform grid over the posed vertices) and its
-//    normal give the signed distance, depth = dot(horse vertex - rider vertex, normal) when the rider
-//    vertex is within 3 cm of the surface. The thin tack the rider holds or stands in (reins and
+//    the skinned horse mesh: the nearest horse vertex within kSearchRadiusCm (a grid over the posed
+//    vertices searched shell by shell, so the radius is guaranteed) and its normal give the signed
+//    distance, depth = dot(horse vertex - rider vertex, normal). The thin tack the rider holds or stands in (reins and
 //    stirrup irons, the vertices bound to lRein, rRein, lStirrup, rStirrup) is left out.
 #include <algorithm>
 #include <cmath>
@@ -35,16 +35,74 @@ constexpr float kSeatHalfWidthCm = 8.0f;
 constexpr float kSeatMaxRiseCm = 22.0f;     // pelvis joint rests 10 cm above the seat centre
 constexpr float kFootOnTreadCm = 1.0f;
 constexpr float kMaxDepthCm = 4.0f;  // walk, trot, canter, gallop, stop: knees on the flaps, seat on the leather
-// Jump, rear and buck still press the knees 6-8 cm into the horse's shoulder and the saddle flaps where
-// the back arches: a known defect (docs/characters.md, "Contact"), guarded here so it gets no worse.
-constexpr float kMaxDepthAirborneCm = 9.0f;
+// Jump, rear and buck still press the knees 5-6.3 cm into the horse's shoulder and the saddle flaps
+// where the back arches: a known defect (docs/characters.md, "Contact"), guarded here so it gets no worse.
+constexpr float kMaxDepthAirborneCm = 7.0f;
 
-struct Grid {
-  float cell = 4.0f;
-  std::unordered_map<long long, std::vector<int>> cells;
-  long long key(glm::ivec3 c) const { return (static_cast<long long>(c.x) * 73856093LL) ^ (static_cast<long long>(c.y) * 19349663LL) ^ (static_cast<long long>(c.z) * 83492791LL); }
-  glm::ivec3 at(glm::vec3 p) const { return glm::ivec3(glm::floor(p / cell)); }
+// The posed horse's surface vertices in a dense grid of 4 cm cells (cell lists in one array), searched
+// shell by shell outward from a query point: the nearest vertex within a guaranteed radius, whatever the
+// vertex density. A rider vertex deeper inside the horse than that radius would have to be reached by
+// the rider's surface crossing the band above it, where its vertices (about 1 cm apart) are found.
+class NearestVertex {
+ public:
+  NearestVertex(const std::vector<glm::vec3>& points, const std::vector<bool>& skip, float cell) : points_(points), cell_(cell) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (std::size_t v = 0; v < points.size(); ++v)
+      if (!skip[v]) lo = glm::min(lo, points[v]), hi = glm::max(hi, points[v]);
+    origin_ = lo;
+    dims_ = glm::max(glm::ivec3(glm::floor((hi - lo) / cell)) + 1, glm::ivec3(1));
+    std::vector<int> count(cellCount() + 1, 0);
+    for (std::size_t v = 0; v < points.size(); ++v)
+      if (!skip[v]) ++count[index(cellOf(points[v])) + 1];
+    for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
+    start_ = count;
+    items_.resize(static_cast<std::size_t>(count.back()));
+    for (std::size_t v = 0; v < points.size(); ++v)
+      if (!skip[v]) items_[static_cast<std::size_t>(count[index(cellOf(points[v]))]++)] = static_cast<int>(v);
+  }
+
+  // The nearest vertex to q no farther than `radius` (-1 when there is none) and its distance.
+  int nearest(const glm::vec3& q, float radius, float& distance) const {
+    const glm::ivec3 c = glm::ivec3(glm::floor((q - origin_) / cell_));
+    const int shells = static_cast<int>(std::ceil(radius / cell_));
+    int best = -1;
+    float best_d2 = radius * radius;
+    for (int k = 0; k <= shells; ++k) {
+      for (int z = c.z - k; z <= c.z + k; ++z)
+        for (int y = c.y - k; y <= c.y + k; ++y)
+          for (int x = c.x - k; x <= c.x + k; ++x) {
+            if (std::max({std::abs(x - c.x), std::abs(y - c.y), std::abs(z - c.z)}) != k) continue;  // this shell only
+            if (x < 0 || y < 0 || z < 0 || x >= dims_.x || y >= dims_.y || z >= dims_.z) continue;
+            const std::size_t i = index({x, y, z});
+            for (int s = start_[i]; s < start_[i + 1]; ++s) {
+              const int v = items_[static_cast<std::size_t>(s)];
+              const glm::vec3 d = points_[static_cast<std::size_t>(v)] - q;
+              const float d2 = glm::dot(d, d);
+              if (d2 < best_d2) best_d2 = d2, best = v;
+            }
+          }
+      // Every cell of a later shell is at least k cells away: nothing there can be nearer.
+      if (best >= 0 && best_d2 <= (k * cell_) * (k * cell_)) break;
+    }
+    distance = std::sqrt(best_d2);
+    return best;
+  }
+
+ private:
+  std::size_t cellCount() const { return static_cast<std::size_t>(dims_.x) * dims_.y * dims_.z; }
+  glm::ivec3 cellOf(const glm::vec3& p) const { return glm::clamp(glm::ivec3(glm::floor((p - origin_) / cell_)), glm::ivec3(0), dims_ - 1); }
+  std::size_t index(const glm::ivec3& c) const { return (static_cast<std::size_t>(c.z) * dims_.y + c.y) * dims_.x + c.x; }
+
+  const std::vector<glm::vec3>& points_;
+  float cell_;
+  glm::vec3 origin_;
+  glm::ivec3 dims_;
+  std::vector<int> start_, items_;
 };
+
+// How far from the horse's surface a rider vertex is looked at: past the deepest allowed sinking, so
+// anything deeper than a limit is measured, not skipped.
+constexpr float kSearchRadiusCm = kMaxDepthAirborneCm + 6.0f;
 
 struct ClipContact {
   float seat_x = 0, seat_z = 0, seat_y_min = 1e9f, seat_y_max = -1e9f, foot = 0, depth = 0;
@@ -67,7 +125,7 @@ ClipContact measure(const std::string& scene_name) {
   ClipContact out;
   std::vector<glm::vec3> hp, hn, rp, rn;
   const std::vector<int> frames = parseFrameList(scene.frames, "frames");
-  for (std::size_t i = 0; i < frames.size(); i += 2) {
+  for (std::size_t i = 0; i < frames.size(); ++i) {
     const int frame = frames[i];
     const BakedFrame b = bakeFrame(*clip, profile, frame, render::frameTime(scene, frame));
     const MountedPose pose = poseMounted(horse, rider, b.horse, b.rider, profile.rider_unit_cm);
@@ -83,24 +141,11 @@ ClipContact measure(const std::string& scene_name) {
     // Depth of rider vertices inside the skinned horse.
     skinMesh(horse.mesh, horse.skeleton, pose.horse, hp, hn);
     skinMesh(rider.mesh, rider.skeleton, pose.rider, rp, rn);
-    Grid g;
-    for (std::size_t v = 0; v < hp.size(); ++v)
-      if (!tack[v]) g.cells[g.key(g.at(hp[v]))].push_back(static_cast<int>(v));
+    const NearestVertex surface(hp, tack, 4.0f);
     for (std::size_t v = 0; v < rp.size(); ++v) {
-      const glm::ivec3 c = g.at(rp[v]);
-      float best = 1e9f;
-      int nearest = -1;
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            const auto it = g.cells.find(g.key(c + glm::ivec3(dx, dy, dz)));
-            if (it == g.cells.end()) continue;
-            for (int h : it->second) {
-              const float dist = glm::length(hp[h] - rp[v]);
-              if (dist < best) best = dist, nearest = h;
-            }
-          }
-      if (nearest < 0 || best > 3.0f + kMaxDepthCm * 2.0f) continue;
+      float best = 0.0f;
+      const int nearest = surface.nearest(rp[v], kSearchRadiusCm, best);
+      if (nearest < 0) continue;
       const float depth = glm::dot(hp[nearest] - rp[v], hn[nearest]);
       if (depth > out.depth) {
         out.depth = depth;
