@@ -136,6 +136,9 @@ Character buildHorse(const HorseParams& p) {
                          p.points, 2.0f));
     } else {
       body.add(taperedCapsule(top + glm::vec3(-4.0f, 6.0f, 0.0f), upper, 17.0f, 11.0f, j_top, p.coat, 10.0f));
+      // Quarter: fills the junction of croup, thigh, gaskin and hamstring, which otherwise blends into
+      // a pit on the side of the thigh.
+      body.add(ellipsoid(mirrorZ(p.quarter_center, side), p.quarter_radii, j_top, p.coat, 8.0f));
       body.add(taperedCapsule(upper, middle + glm::vec3(2.0f, 3.0f, 0.0f), p.gaskin_radius, p.hock_radius * 0.9f,
                               j_upper, p.coat, 5.0f));
       // Hamstring: fills the gaskin from the point of the buttock down to the point of the hock.

@@ -39,6 +39,8 @@ struct HorseParams {
   glm::vec3 croup_radii{32.0f, 24.0f, 24.0f};
   glm::vec3 buttock_center{-76.0f, 118.0f, 10.0f};  // z mirrored per side
   glm::vec3 buttock_radii{18.0f, 24.0f, 13.0f};
+  glm::vec3 quarter_center{-60.0f, 102.0f, -16.0f};  // left side; the lateral thigh below the croup
+  glm::vec3 quarter_radii{15.0f, 16.0f, 12.0f};
   // Neck and head.
   glm::vec3 neck_base{62.0f, 132.0f, 0.0f};
   glm::vec3 neck_mid{88.0f, 154.0f, 0.0f};
