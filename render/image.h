@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +50,9 @@ struct Image {
 float linearToSrgb(float linear);
 // 8-bit sRGB code of a linear value, rounded to nearest: 0.5 -> 188, 0.18 -> 118.
 uint8_t linearToSrgb8(float linear);
+// linearToSrgb8 of the RGB of every pixel into `rgb` (3 bytes a pixel), the same bytes through a table
+// instead of a pow per channel.
+void encodeSrgb8(std::span<const glm::vec4> rgba, std::span<uint8_t> rgb);
 
 // Review image: opaque 8-bit sRGB RGB (the sky is part of the picture; alpha is left out so viewers
 // and movie encoders never show the sky as transparent). Throws std::runtime_error on failure.

@@ -1,6 +1,10 @@
 #include "render/image.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -39,6 +43,43 @@ TEST(Image, SrgbEncodesKnownValues) {
   EXPECT_EQ(linearToSrgb8(7.0f), 255);
   EXPECT_EQ(linearToSrgb8(std::nanf("")), 0);
   EXPECT_NEAR(linearToSrgb(0.214041f), 0.5f, 1e-5f);
+}
+
+// The table encoder gives the same byte as linearToSrgb8 for every float tried: a sweep of every 97th
+// float in [0, 1] (about 11 million), both sides of every code's step, and the edge cases.
+TEST(Image, TableSrgbEncoderMatchesThePowFormulaExactly) {
+  std::vector<float> values = {0.0f, -0.0f, -1.0f, 1.0f, 2.0f, 1e-30f, 0.0031308f, 0.5f, 0.18f,
+                               std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                               -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::denorm_min()};
+  const uint32_t one = std::bit_cast<uint32_t>(1.0f);
+  for (uint32_t bits = 0; bits <= one; bits += 97) values.push_back(std::bit_cast<float>(bits));
+  // Around each step: the last float of code k - 1 and the first of code k.
+  float previous = 0.0f;
+  int code = 0;
+  for (uint32_t bits = 0; bits <= one; bits += 4096) {
+    const float v = std::bit_cast<float>(bits);
+    const int c = linearToSrgb8(v);
+    if (c != code) {
+      for (uint32_t b = std::bit_cast<uint32_t>(previous); b <= bits; ++b) values.push_back(std::bit_cast<float>(b));
+      code = c;
+    }
+    previous = v;
+  }
+  std::vector<glm::vec4> rgba;
+  for (std::size_t i = 0; i < values.size(); i += 3)
+    rgba.emplace_back(values[i], i + 1 < values.size() ? values[i + 1] : 0.0f, i + 2 < values.size() ? values[i + 2] : 0.0f, 1.0f);
+  std::vector<uint8_t> bytes(rgba.size() * 3);
+  encodeSrgb8(rgba, bytes);
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < rgba.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (bytes[3 * i + c] != linearToSrgb8(rgba[i][c])) {
+        if (++mismatches <= 5) ADD_FAILURE() << "value " << rgba[i][c] << ": table " << int(bytes[3 * i + c]) << ", formula " << int(linearToSrgb8(rgba[i][c]));
+      }
+  EXPECT_EQ(mismatches, 0u) << "of " << rgba.size() * 3 << " values";
+  EXPECT_GT(rgba.size() * 3, 11000000u);
+  std::vector<uint8_t> wrong(5);
+  EXPECT_THROW(encodeSrgb8(rgba, wrong), std::invalid_argument);
 }
 
 TEST(Image, PngRoundTripsThroughOpenImageIO) {
