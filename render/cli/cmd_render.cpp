@@ -7,6 +7,7 @@
 
 #include "render/cli/commands.h"
 #include "render/cli/progress.h"
+#include "render/frame_writer.h"
 #include "render/cli/options.h"
 #include "render/image.h"
 #include "render/movie.h"
@@ -64,23 +65,28 @@ void runRender(const RenderOptions& o) {
   render::Shot shot(scene, profile, camera, o.threads);
   ProgressBar bar("render " + scene.name + "_" + camera.name, static_cast<int>(frames.size()), o.progress);
   std::vector<fs::path> written;
+  render::FrameWriter writer;
   int done = 0;
   for (int frame : frames) {
     const fs::path png_file = frameName(base, frame, o.padding, ".png");
     const fs::path exr_file = frameName(base, frame, o.padding, ".exr");
     const bool complete = (!png || fs::exists(png_file)) && (!exr || fs::exists(exr_file));
     if (!(o.resume && complete)) {
-      const render::Image image = shot.renderFrame(frame);
-      if (png) render::writePng(image, png_file);
-      if (exr) {
-        render::writeExr(image, exr_file,
-                         render::exrFrameMetadata(shot.cameraAtFrame(frame), camera.name, frame,
-                                                  render::frameTime(scene, frame), scene.name));
-      }
+      render::Image image = shot.renderFrame(frame);
+      const render::ExrMetadata metadata =
+          exr ? render::exrFrameMetadata(shot.cameraAtFrame(frame), camera.name, frame, render::frameTime(scene, frame),
+                                         scene.name)
+              : render::ExrMetadata{};
+      // Written while the next frame renders (render/frame_writer.h); still each to a temporary name.
+      writer.submit([image = std::move(image), metadata, png_file, exr_file, png, exr] {
+        if (png) render::writePng(image, png_file);
+        if (exr) render::writeExr(image, exr_file, metadata);
+      });
     }
     if (png) written.push_back(png_file);
     bar.step(++done);
   }
+  writer.wait();
   if (!o.movie.empty()) {
     render::encodeMovie({written, scene.fps, o.movie, 18});
     std::printf("%s\n", o.movie.c_str());
