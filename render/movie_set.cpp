@@ -11,6 +11,7 @@
 #include "render/burn_in.h"
 #include "render/channel_plot.h"
 #include "render/contact_sheet.h"
+#include "render/frame_writer.h"
 #include "render/image.h"
 #include "render/layer.h"
 #include "render/preset.h"
@@ -183,6 +184,9 @@ MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::f
   const std::vector<int> sheet_frames = contactFrames(frames, o.contact_count);
   std::vector<ContactFrame> sheet;
   std::vector<fs::path> files;
+  // Burn-ins and the PNG write of frame f happen on the writer's thread while f + 1 renders.
+  FrameWriter writer;
+  const bool side_by_side = style.mode == LayerMode::SideBySide;
   for (int f : frames) {
     Image image = shot.renderFrame(f);
     if (rigid) {
@@ -194,13 +198,16 @@ MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::f
       image = layerFrame(image, other, style);
     }
     if (std::find(sheet_frames.begin(), sheet_frames.end(), f) != sheet_frames.end()) sheet.push_back({f, image});
-    burnIn(image, facts, f);
-    if (style.mode == LayerMode::SideBySide) labelPanels(image, panel_labels);
     const fs::path file = frame_dir / (job.name + "." + padded(f) + ".png");
-    writePng(image, file);
+    writer.submit([image = std::move(image), &facts, &panel_labels, side_by_side, f, file]() mutable {
+      burnIn(image, facts, f);
+      if (side_by_side) labelPanels(image, panel_labels);
+      writePng(image, file);
+    });
     files.push_back(file);
     if (frame_done) frame_done();
   }
+  writer.wait();
   // The slate: one second before the first frame, at the frames' size.
   const int slate_frames = std::max(1, static_cast<int>(std::lround(scene.fps)));
   const fs::path slate_file = frame_dir / (job.name + ".slate.png");

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "render/cli/commands.h"
+#include "render/cli/options.h"
 #include "render/cli/progress.h"
 #include "render/frame_writer.h"
-#include "render/cli/options.h"
 #include "render/image.h"
 #include "render/movie.h"
 #include "render/preset.h"

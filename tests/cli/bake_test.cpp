@@ -80,7 +80,9 @@ TEST(Bake, HelpDocumentsTheCsv) {
 
 // stirrup bake -o: one glTF with both characters, their animation and the cameras.
 fs::path bakeGlb(const std::string& scene, const std::string& frames) {
-  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / (fs::path(scene).stem().string() + ".glb");
+  // A folder per scene: CTest runs the tests in parallel, and each clears only its own folder.
+  const std::string stem = fs::path(scene).stem().string();
+  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / stem / (stem + ".glb");
   fs::remove_all(out.parent_path());
   const CommandResult r = runStirrup("bake " + quote(std::string(STIRRUP_SOURCE_DIR "/scenes/") + scene) + " --frames " +
                                      frames + " -o " + quote(out.string()));
