@@ -60,7 +60,10 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
     : settings_(settings),
       characters_(scene.characters()),
       ground_(scene.ground()),
-      meshes_(meshes_by_geometry) {
+      meshes_(meshes_by_geometry),
+      pixel_layout_(uint32_t(settings.samples_per_pixel)),
+      sun_layout_(uint32_t(settings.samples_per_pixel * settings.light_samples)),
+      sky_layout_(uint32_t(settings.samples_per_pixel * settings.ao_samples)) {
   const RTCBounds& b = scene.characterBounds();
   bounds_lower_ = {b.lower_x, b.lower_y, b.lower_z};
   bounds_upper_ = {b.upper_x, b.upper_y, b.upper_z};
@@ -69,6 +72,7 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
   bounds_radius_ = empty ? -1.0f : 0.5f * glm::length(bounds_upper_ - bounds_lower_);
   const glm::vec3 sun = glm::normalize(glm::vec3(settings.sun_direction));
   sun_frame_ = Frame::around(sun);
+  inv_sun_dir_ = 1.0f / sun_frame_.z;  // inf for a zero component, which sunMayBeBlocked never uses
   sun_angle_ = float(std::max(0.0, settings.sun_angular_radius_deg) * std::numbers::pi / 180.0);
   sun_cos_max_ = std::cos(sun_angle_);
   sun_tan_ = std::tan(sun_angle_);
@@ -115,23 +119,6 @@ RTCRay makeRay(const glm::vec3& origin, const glm::vec3& direction, float t_far)
 
 }  // namespace
 
-unsigned Integrator::occluded4(const glm::vec3& origin, const glm::vec3* directions, const float* t_far,
-                               int count, RayTally& tally) const {
-  unsigned blocked = 0;
-  for (int k = 0; k < count; ++k) {
-    if (!(t_far[k] > 0.0f)) continue;
-    ++tally.rays;
-    if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, directions[k], t_far[k]));
-    if (!mayHitCharacters(origin, directions[k], t_far[k])) continue;
-    RTCRay ray = makeRay(origin, directions[k], t_far[k]);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcOccluded1(characters_, &context, &ray);
-    if (ray.tfar < 0.0f) blocked |= 1u << k;  // Embree sets tfar to -inf on a hit
-  }
-  return blocked;
-}
-
 // Whether any ray of the sun's cone from `origin` can meet the characters' bounding box. The cone is
 // covered by the axis ray against the box grown by the cone's radius at the box's far corner. When it
 // misses, the sun is certainly unblocked there and needs no shadow rays (most of the ground).
@@ -147,7 +134,7 @@ bool Integrator::sunMayBeBlocked(const glm::vec3& origin) const {
       if (origin[a] < lower[a] || origin[a] > upper[a]) return false;
       continue;
     }
-    float near = (lower[a] - origin[a]) / d[a], far = (upper[a] - origin[a]) / d[a];
+    float near = (lower[a] - origin[a]) * inv_sun_dir_[a], far = (upper[a] - origin[a]) * inv_sun_dir_[a];
     if (near > far) std::swap(near, far);
     t0 = std::max(t0, near);
     t1 = std::min(t1, far);
@@ -162,93 +149,214 @@ float Integrator::distanceToCharacters(const glm::vec3& p) const {
   return glm::length(d);
 }
 
-PixelResult Integrator::renderPixel(const CameraFrame& camera, int x, int y, int frame, RayTally& tally) const {
-  const PixelSampler sampler(x, y, frame);
-  const Stratified2D pixel_points(sampler, spp_, SampleDimension::PixelFilter);
-  const Stratified2D sun_points(sampler, spp_ * light_spp_, SampleDimension::SunCone);
-  const Stratified2D sky_points(sampler, spp_ * ao_spp_, SampleDimension::SkyHemisphere);
-  const PixelPoints points{sun_points, sky_points};
-  glm::vec3 sum(0.0f), normal_sum(0.0f);
-  uint32_t hits = 0, character_hits = 0;
-  float nearest = kInfinity;
-  // Votes for the object id pass: at most a handful of distinct ids can meet in one pixel.
-  constexpr int kMaxIds = 4;
-  uint32_t ids[kMaxIds], votes[kMaxIds];
-  int distinct = 0, sky_votes = 0;
-  for (uint32_t i = 0; i < spp_; ++i) {
-    const glm::vec2 u = pixel_points[i];
-    const float px = float(x) + 0.5f + tentOffset(u.x);
-    const float py = float(y) + 0.5f + tentOffset(u.y);
-    const Sample s = traceCameraSample(camera, px, py, i, points, tally);
-    sum += s.radiance;
-    if (!s.hit) {
-      ++sky_votes;
-      continue;
-    }
-    ++hits;
-    normal_sum += s.normal;
-    if (s.id != ObjectId::Ground) ++character_hits;
-    nearest = std::min(nearest, s.depth);
-    int k = 0;
-    while (k < distinct && ids[k] != uint32_t(s.id)) ++k;
-    if (k == distinct && distinct < kMaxIds) ids[distinct] = uint32_t(s.id), votes[distinct++] = 0;
-    if (k < distinct) ++votes[k];
+// A pixel of the batch: its sun and sky sequences, set up once and read by each of its samples.
+struct TileScratch::PixelState {
+  Stratified2D sun, sky;
+};
+
+// A camera sample of the batch, from its ray to the light it gathered.
+struct TileScratch::CameraSample {
+  glm::vec3 origin, dir;
+  float t_ground;       // the ground plane's distance along the ray, or infinity
+  int32_t ray;          // its index in camera_rays, or -1: the ray cannot reach the characters
+  // Set by the shading pass.
+  bool hit;
+  ObjectId id;
+  float depth;
+  glm::vec3 normal;
+  glm::vec3 radiance;   // of the sky, when nothing was hit
+  glm::vec3 sun, sky;   // light that needed no rays (when the matching *_traced is false)
+  glm::vec3 diffuse;    // scales the sky rays' sum
+  bool sun_traced, sky_traced;
+  uint32_t sun_pending, sky_pending;  // entries of the pending list: sun rays, then sky rays
+};
+
+// What an occlusion ray brings when it is open. `ray` indexes the sun or sky stream; -1 means the ray
+// was not traced because it cannot meet the characters' bounds (so it is open).
+struct TileScratch::PendingRay {
+  glm::vec3 weight;
+  int32_t ray;
+};
+
+TileScratch::TileScratch() = default;
+TileScratch::~TileScratch() = default;
+TileScratch::TileScratch(TileScratch&&) noexcept = default;
+TileScratch& TileScratch::operator=(TileScratch&&) noexcept = default;
+
+namespace {
+
+// Camera samples per batch: a batch's rays and results (about 200 bytes a sample) stay within the
+// core's L2 cache, and the streams are long enough for Embree to trace them as packets.
+constexpr int kBatchSamples = 1024;
+
+bool blocked(const RTCRay& ray) { return ray.tfar < 0.0f; }  // Embree sets tfar to -inf on a hit
+
+}  // namespace
+
+void Integrator::renderTile(const CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
+                            RayTally& tally, PixelResult* out) const {
+  const int width = x1 - x0, count = width * (y1 - y0);
+  const int batch = std::max(1, kBatchSamples / int(spp_));
+  for (int first = 0; first < count; first += batch) {
+    renderBatch(camera, x0, width, y0, first, std::min(batch, count - first), frame, scratch, tally, out + first);
   }
-  PixelResult r;
-  const float inv = 1.0f / float(spp_);
-  r.rgba = glm::vec4(sum * inv, float(hits) * inv);
-  r.depth = nearest;
-  r.matte = float(character_hits) * inv;
-  const float normal_length = glm::length(normal_sum);
-  if (normal_length > 0.0f) r.normal = normal_sum / normal_length;
-  // Most votes wins; on a tie the id seen first, and the sky only with more votes than any object.
-  r.object_id = kNoObject;
-  int best = -1;
-  for (int k = 0; k < distinct; ++k) {
-    if (int(votes[k]) > best) best = int(votes[k]), r.object_id = ids[k];
-  }
-  if (sky_votes > best) r.object_id = kNoObject;
-  return r;
 }
 
-Integrator::Sample Integrator::traceCameraSample(const CameraFrame& camera, float px, float py, uint32_t sample,
-                                                 const PixelPoints& points, RayTally& tally) const {
-  glm::vec3 origin, dir;
-  camera.rayFromPixel(px, py, origin, dir);
-  ++tally.rays;
-  if (tally.camera) tally.camera->push_back(makeRay(origin, dir, kInfinity));
-  // The ground is a square in the plane y = 0: intersected here, without a call into Embree. Its
-  // distance then bounds the search through the characters.
-  float t_ground = kInfinity;
-  if (dir.y != 0.0f) {
-    const float t = -origin.y / dir.y;
-    if (t > 0.0f) {
-      const float hx = origin.x + t * dir.x, hz = origin.z + t * dir.z;
-      if (std::abs(hx) <= ground_extent_ && std::abs(hz) <= ground_extent_) t_ground = t;
+void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, int y0, int first, int count,
+                             int frame, TileScratch& scratch, RayTally& tally, PixelResult* out) const {
+  scratch.pixels.clear();
+  scratch.samples.clear();
+  scratch.camera_rays.clear();
+  scratch.pending.clear();
+  scratch.sun_rays.clear();
+  scratch.sky_rays.clear();
+
+  // Pass 1: every camera ray of the batch. The ground is a square in the plane y = 0, intersected
+  // here without a call into Embree; its distance then bounds the search through the characters.
+  for (int p = 0; p < count; ++p) {
+    const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
+    const PixelSampler sampler(x, y, frame);
+    const Stratified2D pixel_points(sampler, pixel_layout_, SampleDimension::PixelFilter);
+    scratch.pixels.push_back({Stratified2D(sampler, sun_layout_, SampleDimension::SunCone),
+                              Stratified2D(sampler, sky_layout_, SampleDimension::SkyHemisphere)});
+    for (uint32_t i = 0; i < spp_; ++i) {
+      const glm::vec2 u = pixel_points[i];
+      const float px = float(x) + 0.5f + tentOffset(u.x);
+      const float py = float(y) + 0.5f + tentOffset(u.y);
+      TileScratch::CameraSample& c = scratch.samples.emplace_back();
+      camera.rayFromPixel(px, py, c.origin, c.dir);
+      ++tally.rays;
+      if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
+      c.t_ground = kInfinity;
+      if (c.dir.y != 0.0f) {
+        const float t = -c.origin.y / c.dir.y;
+        if (t > 0.0f) {
+          const float hx = c.origin.x + t * c.dir.x, hz = c.origin.z + t * c.dir.z;
+          if (std::abs(hx) <= ground_extent_ && std::abs(hz) <= ground_extent_) c.t_ground = t;
+        }
+      }
+      c.ray = -1;
+      // Most camera rays of a review view pass beside the characters' box: no call into Embree.
+      if (mayHitCharacters(c.origin, c.dir, c.t_ground)) {
+        c.ray = int32_t(scratch.camera_rays.size());
+        RTCRayHit& rh = scratch.camera_rays.emplace_back();
+        rh.ray = makeRay(c.origin, c.dir, c.t_ground);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      }
     }
   }
-  const bool ground_hit = t_ground < kInfinity;
-  RTCRayHit rh;
-  rh.ray = makeRay(origin, dir, t_ground);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  // Most camera rays of a review view pass beside the characters' box: no call into Embree.
-  if (mayHitCharacters(origin, dir, t_ground)) {
+
+  // Pass 2: the camera rays that may meet the characters, as one coherent stream.
+  if (!scratch.camera_rays.empty()) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect1(characters_, &context, &rh);
+    rtcIntersect1M(characters_, &context, scratch.camera_rays.data(), unsigned(scratch.camera_rays.size()),
+                   sizeof(RTCRayHit));
   }
-  const bool character_hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 
-  Sample result;
-  if (!ground_hit && !character_hit) {
-    result.radiance = settings_.sky.radiance(dir);
-    return result;
+  // Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
+  for (size_t j = 0; j < scratch.samples.size(); ++j) {
+    TileScratch::CameraSample& c = scratch.samples[j];
+    const RTCRayHit* rh = c.ray >= 0 ? &scratch.camera_rays[size_t(c.ray)] : nullptr;
+    Surface s;
+    if (!surfaceOf(camera, c, rh, s, c.id)) {
+      c.hit = false;
+      c.radiance = settings_.sky.radiance(c.dir);
+      continue;
+    }
+    c.hit = true;
+    c.depth = camera.viewDepthF(s.p);
+    c.normal = s.n;
+    const TileScratch::PixelState& pixel = scratch.pixels[j / spp_];
+    emitShading(s, pixel.sun, pixel.sky, uint32_t(j % spp_), c, scratch, tally);
   }
-  const float t = rh.ray.tfar;
-  Surface s;
-  s.p = origin + t * dir;
+
+  // Pass 4: the shadow rays (nearly parallel: one coherent stream) and the sky rays.
+  if (!scratch.sun_rays.empty()) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded1M(characters_, &context, scratch.sun_rays.data(), unsigned(scratch.sun_rays.size()), sizeof(RTCRay));
+  }
+  if (!scratch.sky_rays.empty()) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1M(characters_, &context, scratch.sky_rays.data(), unsigned(scratch.sky_rays.size()), sizeof(RTCRay));
+  }
+
+  // Pass 5: each sample's light from its open rays, and each pixel's samples into its result.
+  const TileScratch::PendingRay* pending = scratch.pending.data();
+  auto open = [](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
+    return r.ray < 0 || !blocked(stream[size_t(r.ray)]);
+  };
+  const TileScratch::CameraSample* c = scratch.samples.data();
+  for (int p = 0; p < count; ++p) {
+    glm::vec3 sum(0.0f), normal_sum(0.0f);
+    uint32_t hits = 0, character_hits = 0;
+    float nearest = kInfinity;
+    // Votes for the object id pass: at most a handful of distinct ids can meet in one pixel.
+    constexpr int kMaxIds = 4;
+    uint32_t ids[kMaxIds], votes[kMaxIds];
+    int distinct = 0, sky_votes = 0;
+    for (uint32_t i = 0; i < spp_; ++i, ++c) {
+      if (!c->hit) {
+        sum += c->radiance;
+        ++sky_votes;
+        continue;
+      }
+      glm::vec3 sun = c->sun;
+      if (c->sun_traced) {
+        sun = glm::vec3(0.0f);
+        for (uint32_t k = 0; k < c->sun_pending; ++k, ++pending)
+          if (open(*pending, scratch.sun_rays)) sun += pending->weight;
+        sun *= sun_radiance_ / float(light_spp_);
+      }
+      glm::vec3 radiance;
+      if (!c->sky_traced) {
+        radiance = sun + c->sky;
+      } else {
+        glm::vec3 sky(0.0f);
+        for (uint32_t k = 0; k < c->sky_pending; ++k, ++pending)
+          if (open(*pending, scratch.sky_rays)) sky += pending->weight;
+        sky *= c->diffuse / float(ao_spp_);
+        radiance = sun + sky;
+      }
+      sum += radiance;
+      ++hits;
+      normal_sum += c->normal;
+      if (c->id != ObjectId::Ground) ++character_hits;
+      nearest = std::min(nearest, c->depth);
+      int k = 0;
+      while (k < distinct && ids[k] != uint32_t(c->id)) ++k;
+      if (k == distinct && distinct < kMaxIds) ids[distinct] = uint32_t(c->id), votes[distinct++] = 0;
+      if (k < distinct) ++votes[k];
+    }
+    PixelResult& r = out[p];
+    const float inv = 1.0f / float(spp_);
+    r.rgba = glm::vec4(sum * inv, float(hits) * inv);
+    r.depth = nearest;
+    r.matte = float(character_hits) * inv;
+    const float normal_length = glm::length(normal_sum);
+    r.normal = normal_length > 0.0f ? normal_sum / normal_length : glm::vec3(0.0f);
+    // Most votes wins; on a tie the id seen first, and the sky only with more votes than any object.
+    r.object_id = kNoObject;
+    int best = -1;
+    for (int k = 0; k < distinct; ++k) {
+      if (int(votes[k]) > best) best = int(votes[k]), r.object_id = ids[k];
+    }
+    if (sky_votes > best) r.object_id = kNoObject;
+  }
+}
+
+bool Integrator::surfaceOf(const CameraFrame& camera, const TileScratch::CameraSample& c, const RTCRayHit* rh,
+                           Surface& s, ObjectId& id) const {
+  const bool character_hit = rh && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  if (!character_hit && c.t_ground == kInfinity) return false;
+  const float t = rh ? rh->ray.tfar : c.t_ground;
+  const glm::vec3& dir = c.dir;
+  s.p = c.origin + t * dir;
   s.wo = -dir;
   if (!character_hit) {
     s.p.y = 0.0f;  // exactly on the plane; the offset below then lifts it the same everywhere
@@ -261,39 +369,48 @@ Integrator::Sample Integrator::traceCameraSample(const CameraFrame& camera, floa
     s.albedo = glm::mix(settings_.ground_color_a, settings_.ground_color_b, odd);
     s.specular = 0.0f;
     s.on_ground = true;
-    result.id = ObjectId::Ground;
-  } else {
-    const ShadingMesh& mesh = *meshes_[rh.hit.geomID];
-    const uint32_t* tri = &mesh.indices[size_t(rh.hit.primID) * 3];
-    const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
-    s.ng = glm::normalize(glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-    if (glm::dot(s.ng, dir) > 0.0f) s.ng = -s.ng;
-    glm::vec3 n = b0 * mesh.normals[tri[0]] + b1 * mesh.normals[tri[1]] + b2 * mesh.normals[tri[2]];
-    const float len = glm::length(n);
-    n = len > 1e-12f ? n / len : s.ng;
-    if (glm::dot(n, s.ng) < 0.0f) n = -n;  // seeing the back of the surface
-    // Interpolated normals can face away from the camera at silhouettes; tilt them just enough
-    // toward the viewer so the edge does not turn black.
-    const float facing = glm::dot(n, s.wo);
-    if (facing < 0.01f) n = glm::normalize(n + (0.01f - facing) * s.wo);
-    s.n = n;
-    s.albedo = b0 * mesh.colors[tri[0]] + b1 * mesh.colors[tri[1]] + b2 * mesh.colors[tri[2]];
-    s.specular = settings_.specular;
-    s.on_ground = false;
-    result.id = mesh.id;
+    id = ObjectId::Ground;
+    return true;
   }
-  result.hit = true;
-  result.depth = camera.viewDepthF(s.p);
-  result.normal = s.n;
-  result.radiance = shade(s, sample, points, tally);
-  return result;
+  const ShadingMesh& mesh = *meshes_[rh->hit.geomID];
+  const uint32_t* tri = &mesh.indices[size_t(rh->hit.primID) * 3];
+  const float b1 = rh->hit.u, b2 = rh->hit.v, b0 = 1.0f - b1 - b2;
+  s.ng = glm::normalize(glm::vec3(rh->hit.Ng_x, rh->hit.Ng_y, rh->hit.Ng_z));
+  if (glm::dot(s.ng, dir) > 0.0f) s.ng = -s.ng;
+  glm::vec3 n = b0 * mesh.normals[tri[0]] + b1 * mesh.normals[tri[1]] + b2 * mesh.normals[tri[2]];
+  const float len = glm::length(n);
+  n = len > 1e-12f ? n / len : s.ng;
+  if (glm::dot(n, s.ng) < 0.0f) n = -n;  // seeing the back of the surface
+  // Interpolated normals can face away from the camera at silhouettes; tilt them just enough
+  // toward the viewer so the edge does not turn black.
+  const float facing = glm::dot(n, s.wo);
+  if (facing < 0.01f) n = glm::normalize(n + (0.01f - facing) * s.wo);
+  s.n = n;
+  s.albedo = b0 * mesh.colors[tri[0]] + b1 * mesh.colors[tri[1]] + b2 * mesh.colors[tri[2]];
+  s.specular = settings_.specular;
+  s.on_ground = false;
+  id = mesh.id;
+  return true;
 }
 
-glm::vec3 Integrator::shade(const Surface& s, uint32_t sample, const PixelPoints& points, RayTally& tally) const {
+int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far,
+                                  std::vector<RTCRay>& stream, RayTally& tally) const {
+  if (!(t_far > 0.0f)) return -1;
+  ++tally.rays;
+  if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, direction, t_far));
+  if (!mayHitCharacters(origin, direction, t_far)) return -1;
+  stream.push_back(makeRay(origin, direction, t_far));
+  return int32_t(stream.size() - 1);
+}
+
+void Integrator::emitShading(const Surface& s, const Stratified2D& sun_points, const Stratified2D& sky_points,
+                             uint32_t sample, TileScratch::CameraSample& c, TileScratch& scratch,
+                             RayTally& tally) const {
   // Secondary rays start off the surface along the geometric normal (not the shading normal,
   // which can point into neighbouring triangles): no acne, and contacts stay tight.
   const glm::vec3 origin = s.p + s.ng * originOffset(s.p);
   const glm::vec3 diffuse = s.albedo * (1.0f - s.specular);
+  c.diffuse = diffuse;
 
   // BRDF times cosine for light arriving from wi (0 from below the surface).
   auto reflected = [&](const glm::vec3& wi) {
@@ -310,56 +427,42 @@ glm::vec3 Integrator::shade(const Surface& s, uint32_t sample, const PixelPoints
   // Sun: shadow rays spread over the sun's disc, stratified over all of the pixel's sun rays. Where
   // no ray of the cone can reach the characters the sun is evaluated once along its axis: over a disc
   // of a few degrees the cosine barely changes, and the open ground gets no shadow noise at all.
-  glm::vec3 sun(0.0f);
-  if (!sunMayBeBlocked(origin)) {
-    sun = reflected(sun_frame_.z) * sun_radiance_;
+  c.sun_pending = 0;
+  c.sun_traced = sunMayBeBlocked(origin);
+  if (!c.sun_traced) {
+    c.sun = reflected(sun_frame_.z) * sun_radiance_;
   } else {
-    for (uint32_t first = 0; first < light_spp_; first += 4) {
-      const int n = int(std::min(4u, light_spp_ - first));
-      glm::vec3 wi[4], f[4];
-      float t_far[4];
-      for (int k = 0; k < n; ++k) {
-        wi[k] = sampleCone(sun_frame_, sun_cos_max_, points.sun[sample * light_spp_ + first + k]);
-        f[k] = reflected(wi[k]);
-        t_far[k] = f[k] == glm::vec3(0.0f) ? 0.0f : kInfinity;  // no light from below: skip the ray
-      }
-      const unsigned blocked = occluded4(origin, wi, t_far, n, tally);
-      for (int k = 0; k < n; ++k) {
-        if (!(blocked & (1u << k))) sun += f[k];
-      }
+    for (uint32_t k = 0; k < light_spp_; ++k) {
+      const glm::vec3 wi = sampleCone(sun_frame_, sun_cos_max_, sun_points[sample * light_spp_ + k]);
+      const glm::vec3 f = reflected(wi);
+      if (f == glm::vec3(0.0f)) continue;  // no light from below: no ray, and nothing to add
+      const int32_t ray = emitOcclusion(origin, wi, kInfinity, scratch.sun_rays, tally);
+      scratch.pending.push_back({f, ray});
+      ++c.sun_pending;
     }
-    sun *= sun_radiance_ / float(light_spp_);
   }
 
   // Sky: ambient occlusion against the gradient sky. Rays heading down from a character stop just
   // short of the ground: if nothing else is in the way they see the sunlit ground's bounce.
   // Open ground farther than ao_distance from the characters sees the whole sky: use its exact
   // cosine-weighted mean instead of rays.
-  if (s.on_ground && s.ng.y > 0.0f && distanceToCharacters(origin) > settings_.ao_distance_cm) {
-    return sun + diffuse * settings_.sky.upwardIrradianceOverPi();
+  c.sky_pending = 0;
+  c.sky_traced = !(s.on_ground && s.ng.y > 0.0f && distanceToCharacters(origin) > settings_.ao_distance_cm);
+  if (!c.sky_traced) {
+    c.sky = diffuse * settings_.sky.upwardIrradianceOverPi();
+    return;
   }
-  glm::vec3 sky(0.0f);
   const Frame around = Frame::around(s.n);
-  for (uint32_t first = 0; first < ao_spp_; first += 4) {
-    const int n = int(std::min(4u, ao_spp_ - first));
-    glm::vec3 wi[4];
-    float t_far[4];
-    bool open[4];
-    for (int k = 0; k < n; ++k) {
-      wi[k] = sampleCosineHemisphere(around, points.sky[sample * ao_spp_ + first + k]);
-      open[k] = glm::dot(s.ng, wi[k]) > 0.0f;  // below the real surface: blocked by it
-      t_far[k] = settings_.ao_distance_cm;
-      if (!s.on_ground && wi[k].y < 0.0f) t_far[k] = std::min(t_far[k], 0.999f * origin.y / -wi[k].y);
-      if (!open[k]) t_far[k] = 0.0f;
-    }
-    const unsigned blocked = occluded4(origin, wi, t_far, n, tally);
-    for (int k = 0; k < n; ++k) {
-      if (!open[k] || (blocked & (1u << k))) continue;
-      sky += (!s.on_ground && wi[k].y < 0.0f) ? ground_bounce_ : settings_.sky.radiance(wi[k]);
-    }
+  for (uint32_t k = 0; k < ao_spp_; ++k) {
+    const glm::vec3 wi = sampleCosineHemisphere(around, sky_points[sample * ao_spp_ + k]);
+    if (!(glm::dot(s.ng, wi) > 0.0f)) continue;  // below the real surface: blocked by it
+    const bool toward_ground = !s.on_ground && wi.y < 0.0f;
+    float t_far = settings_.ao_distance_cm;
+    if (toward_ground) t_far = std::min(t_far, 0.999f * origin.y / -wi.y);
+    const int32_t ray = emitOcclusion(origin, wi, t_far, scratch.sky_rays, tally);
+    scratch.pending.push_back({toward_ground ? ground_bounce_ : settings_.sky.radiance(wi), ray});
+    ++c.sky_pending;
   }
-  sky *= diffuse / float(ao_spp_);
-  return sun + sky;
 }
 
 }  // namespace stirrup::render

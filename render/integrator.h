@@ -52,6 +52,24 @@ struct RayTally {
 // box-filtered checkerboard).
 float filteredChecker(float s, float t, float width);
 
+// The reusable buffers of one thread's tiles. They grow to the largest batch on the first tile and are
+// then reused, so tracing allocates nothing per pixel or per tile.
+struct TileScratch {
+  struct PixelState;
+  struct CameraSample;
+  struct PendingRay;
+  TileScratch();
+  ~TileScratch();
+  TileScratch(TileScratch&&) noexcept;
+  TileScratch& operator=(TileScratch&&) noexcept;
+  std::vector<PixelState> pixels;
+  std::vector<CameraSample> samples;
+  std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
+  std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
+  std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
+  std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
+};
+
 class Integrator {
  public:
   // `meshes_by_geometry[geomID]` is the mesh of each geometry of the scene's character BVH. The
@@ -59,33 +77,30 @@ class Integrator {
   Integrator(const RenderSettings& settings, const EmbreeScene& scene,
              std::span<const ShadingMesh* const> meshes_by_geometry);
 
-  // All samples of pixel (x, y). Allocates nothing.
-  PixelResult renderPixel(const CameraFrame& camera, int x, int y, int frame, RayTally& tally) const;
+  // Every pixel of the tile [x0, x1) x [y0, y1), written row by row to `out` ((x1 - x0) * (y1 - y0)
+  // results). The tile is traced in batches of pixels as ray streams, in three passes: all camera
+  // samples of the batch (one rtcIntersect1M), then all shadow and sky rays their shading needs (one
+  // rtcOccluded1M each), then the sums. Each pixel's result depends on its own samples only, so it is
+  // the same whatever tile or batch the pixel falls in.
+  void renderTile(const CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
+                  RayTally& tally, PixelResult* out) const;
 
  private:
   struct Surface;
-  struct Sample {
-    glm::vec3 radiance{0.0f};
-    bool hit = false;
-    ObjectId id = ObjectId::Ground;
-    float depth = 0.0f;
-    glm::vec3 normal{0.0f};
-  };
-  // The stratified points of one pixel, set up once per pixel.
-  struct PixelPoints {
-    const Stratified2D& sun;
-    const Stratified2D& sky;
-  };
-  Sample traceCameraSample(const CameraFrame& camera, float px, float py, uint32_t sample,
-                           const PixelPoints& points, RayTally& tally) const;
-  glm::vec3 shade(const Surface& s, uint32_t sample, const PixelPoints& points, RayTally& tally) const;
+  // Traces the camera rays of pixels [first, first + count) of the tile and shades them into `out`.
+  void renderBatch(const CameraFrame& camera, int x0, int tile_width, int y0, int first, int count, int frame,
+                   TileScratch& scratch, RayTally& tally, PixelResult* out) const;
+  // The surface a camera sample sees (false: the sky).
+  bool surfaceOf(const CameraFrame& camera, const TileScratch::CameraSample& c, const RTCRayHit* hit,
+                 Surface& s, ObjectId& id) const;
+  // Direct light that needs no rays, and the shadow and sky rays the rest needs, appended to the
+  // scratch's pending list and streams.
+  void emitShading(const Surface& s, const Stratified2D& sun_points, const Stratified2D& sky_points, uint32_t sample,
+                   TileScratch::CameraSample& c, TileScratch& scratch, RayTally& tally) const;
+  // Appends an occlusion ray to `stream` unless it cannot reach the characters; returns its index or -1.
+  int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, std::vector<RTCRay>& stream,
+                        RayTally& tally) const;
   bool mayHitCharacters(const glm::vec3& origin, const glm::vec3& direction, float t_far) const;
-  // Occlusion of up to 4 rays from one origin: a bit per ray, set when blocked. Rays with t_far <= 0
-  // or that miss the characters' bounds are not traced and count as open. Single rtcOccluded1 rays:
-  // 4-wide rtcOccluded4 packets of the same rays measured no faster (2.99 vs 2.95 s CPU per
-  // review-quality frame of the 100k-triangle stand-in).
-  unsigned occluded4(const glm::vec3& origin, const glm::vec3* directions, const float* t_far, int count,
-                     RayTally& tally) const;
   bool sunMayBeBlocked(const glm::vec3& origin) const;
   float distanceToCharacters(const glm::vec3& p) const;
 
@@ -97,12 +112,14 @@ class Integrator {
   std::span<const ShadingMesh* const> meshes_;
   // Derived once per frame.
   Frame sun_frame_;
+  glm::vec3 inv_sun_dir_;      // 1 / the sun axis, per component: slab tests without divisions
   float sun_cos_max_, sun_angle_, sun_tan_;
   glm::vec3 sun_radiance_;     // of a white matte surface facing the sun
   glm::vec3 ground_bounce_;    // radiance of the lit ground, seen by downward sky rays
   float ground_extent_;        // the ground is the square |x|, |z| <= this at y = 0, hit analytically
   float blinn_norm_;           // (n + 8) / 8: Blinn-Phong lobe normalised for energy
   uint32_t spp_, light_spp_, ao_spp_;
+  Stratified2D::Layout pixel_layout_, sun_layout_, sky_layout_;  // spp, spp * light, spp * ao points
 };
 
 }  // namespace stirrup::render

@@ -125,6 +125,12 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
     std::vector<RTCRay> camera, occlusion;
   };
   tbb::enumerable_thread_specific<KeptRays> kept;
+  // Per thread: the integrator's batch buffers and one tile's results, reused from tile to tile.
+  struct TileBuffers {
+    TileScratch scratch;
+    std::vector<PixelResult> results;
+  };
+  tbb::enumerable_thread_specific<TileBuffers> buffers;
   const size_t stride = log ? size_t(std::max(1, log->pixel_stride)) : 0;
   std::atomic<uint64_t> rays{0};
   state_->arena.execute([&] {
@@ -140,20 +146,35 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
         [&](const tbb::blocked_range2d<int>& tile) {
           DenormalsAreZero ftz;
           RayTally tally;
-          KeptRays* keep = log ? &kept.local() : nullptr;
-          for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
-            for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+          TileBuffers& b = buffers.local();
+          const int x0 = tile.cols().begin(), x1 = tile.cols().end();
+          const int y0 = tile.rows().begin(), y1 = tile.rows().end();
+          b.results.resize(size_t(x1 - x0) * size_t(y1 - y0));
+          if (log) {
+            // Keeping rays (benchmarks only): pixel by pixel, so the log holds exactly the kept pixels' rays.
+            KeptRays& keep = kept.local();
+            for (int y = y0; y < y1; ++y) {
+              for (int x = x0; x < x1; ++x) {
+                const bool keep_pixel = (size_t(y) * size_t(w) + size_t(x)) % stride == 0;
+                tally.camera = keep_pixel ? &keep.camera : nullptr;
+                tally.occlusion = keep_pixel ? &keep.occlusion : nullptr;
+                integrator.renderTile(camera_frame, x, x + 1, y, y + 1, frame, b.scratch, tally,
+                                      &b.results[size_t(y - y0) * size_t(x1 - x0) + size_t(x - x0)]);
+              }
+            }
+          } else {
+            integrator.renderTile(camera_frame, x0, x1, y0, y1, frame, b.scratch, tally, b.results.data());
+          }
+          const PixelResult* p = b.results.data();
+          for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x, ++p) {
               const size_t i = size_t(y) * size_t(w) + size_t(x);
-              const bool keep_pixel = keep && i % stride == 0;
-              tally.camera = keep_pixel ? &keep->camera : nullptr;
-              tally.occlusion = keep_pixel ? &keep->occlusion : nullptr;
-              const PixelResult p = integrator.renderPixel(camera_frame, x, y, frame, tally);
-              image.rgba[i] = p.rgba;
+              image.rgba[i] = p->rgba;
               if (settings_.passes) {
-                image.depth[i] = p.depth;
-                image.matte[i] = p.matte;
-                image.normal[i] = p.normal;
-                image.object_id[i] = p.object_id;
+                image.depth[i] = p->depth;
+                image.matte[i] = p->matte;
+                image.normal[i] = p->normal;
+                image.object_id[i] = p->object_id;
               }
             }
           }
@@ -179,27 +200,35 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
 double Renderer::replay(const RayLog& log) {
   const RTCScene ground = state_->scene.ground(), characters = state_->scene.characters();
   std::atomic<uint64_t> hits{0};
-  constexpr size_t kChunk = 256;  // about one 16 x 16 tile of camera rays
+  // Streams of 256 rays, about one 16 x 16 tile of camera rays, through the same stream calls the
+  // integrator makes (camera rays coherent, occlusion rays not).
+  constexpr size_t kChunk = 256;
+  struct Chunks {
+    std::vector<RTCRayHit> camera;
+    std::vector<RTCRay> occlusion;
+  };
+  tbb::enumerable_thread_specific<Chunks> chunks;
   const auto t0 = Clock::now();
   state_->arena.execute([&] {
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, log.camera.size(), kChunk),
         [&](const tbb::blocked_range<size_t>& r) {
           DenormalsAreZero ftz;
-          uint64_t n = 0;
-          RTCIntersectContext context;
-          rtcInitIntersectContext(&context);
-          context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+          std::vector<RTCRayHit>& rays = chunks.local().camera;
+          rays.resize(r.size());
           for (size_t i = r.begin(); i < r.end(); ++i) {
-            RTCRayHit rh;
+            RTCRayHit& rh = rays[i - r.begin()];
             rh.ray = log.camera[i];
             rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(ground, &context, &rh);
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(characters, &context, &rh);
-            n += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
           }
+          RTCIntersectContext context;
+          rtcInitIntersectContext(&context);
+          context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+          rtcIntersect1M(ground, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRayHit));
+          rtcIntersect1M(characters, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRayHit));
+          uint64_t n = 0;
+          for (const RTCRayHit& rh : rays) n += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
           hits.fetch_add(n, std::memory_order_relaxed);
         },
         tbb::simple_partitioner());
@@ -207,14 +236,13 @@ double Renderer::replay(const RayLog& log) {
         tbb::blocked_range<size_t>(0, log.occlusion.size(), kChunk),
         [&](const tbb::blocked_range<size_t>& r) {
           DenormalsAreZero ftz;
-          uint64_t n = 0;
+          std::vector<RTCRay>& rays = chunks.local().occlusion;
+          rays.assign(log.occlusion.begin() + std::ptrdiff_t(r.begin()), log.occlusion.begin() + std::ptrdiff_t(r.end()));
           RTCIntersectContext context;
           rtcInitIntersectContext(&context);
-          for (size_t i = r.begin(); i < r.end(); ++i) {
-            RTCRay ray = log.occlusion[i];
-            rtcOccluded1(characters, &context, &ray);
-            n += ray.tfar < 0.0f;
-          }
+          rtcOccluded1M(characters, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
+          uint64_t n = 0;
+          for (const RTCRay& ray : rays) n += ray.tfar < 0.0f;
           hits.fetch_add(n, std::memory_order_relaxed);
         },
         tbb::simple_partitioner());

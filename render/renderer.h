@@ -106,8 +106,8 @@ class Renderer {
   // With `log`, also keeps the frame's rays in it (slower; for benchmarks only).
   Image render(const Camera& camera, int frame, RayLog* log = nullptr);
 
-  // Casts the logged rays through Embree alone on the renderer's threads, in tiles of consecutive
-  // rays with rtcIntersect1 / rtcOccluded1 as the integrator does, and returns the wall-clock
+  // Casts the logged rays through Embree alone on the renderer's threads, in streams of 256
+  // consecutive rays with rtcIntersect1M / rtcOccluded1M as the integrator does, and returns the wall-clock
   // seconds. The scene must be committed for the logged frame (call right after render()).
   double replay(const RayLog& log);
 

@@ -130,22 +130,40 @@ class PixelSampler {
 // permutation and one hash.
 class Stratified2D {
  public:
+  // What depends on the count only (the grid's side, the permutation's mask): worked out once per
+  // frame for each count, so setting up a pixel's sequence costs hashes and no square roots.
+  struct Layout {
+    explicit Layout(uint32_t count)
+        : count(count), mask(permutationMask(count)), inv_count(count > 0 ? 1.0f / float(count) : 0.0f) {
+      const auto s = uint32_t(std::lround(std::sqrt(double(count))));
+      side = s * s == count ? s : 0;
+      inv_side = side ? 1.0f / float(side) : 0.0f;
+      side_shift = 0;
+      while (side && (1u << side_shift) < side) ++side_shift;
+      if (side && (1u << side_shift) != side) side_shift = -1;  // not a power of two: divide
+    }
+    uint32_t count, mask;
+    float inv_count;
+    uint32_t side;
+    float inv_side;
+    int side_shift;
+  };
+
+  Stratified2D() = default;  // no points; assign a real sequence before use
   Stratified2D(const PixelSampler& sampler, uint32_t count, SampleDimension dim)
+      : Stratified2D(sampler, Layout(count), dim) {}
+  Stratified2D(const PixelSampler& sampler, const Layout& layout, SampleDimension dim)
       : pixel_hash_(sampler.pixelHash2D(dim)),
-        count_(count),
-        seed_(sampler.seed(dim)),
+        count_(layout.count),
+        seed_(layout.count > 1 ? sampler.seed(dim) : 0),  // one point needs no permutation
         row_seed_(seed_ ^ 0x5bd1e995u),
-        mask_(permutationMask(count)),
-        offset_(count > 0 ? seed_ % count : 0),
-        row_offset_(count > 0 ? row_seed_ % count : 0),
-        inv_count_(count > 0 ? 1.0f / float(count) : 0.0f) {
-    const auto side = uint32_t(std::lround(std::sqrt(double(count))));
-    side_ = side * side == count ? side : 0;
-    inv_side_ = side_ ? 1.0f / float(side_) : 0.0f;
-    side_shift_ = 0;
-    while (side_ && (1u << side_shift_) < side_) ++side_shift_;
-    if (side_ && (1u << side_shift_) != side_) side_shift_ = -1;  // not a power of two: divide
-  }
+        mask_(layout.mask),
+        offset_(layout.count > 1 ? seed_ % layout.count : 0),
+        row_offset_(layout.count > 1 ? row_seed_ % layout.count : 0),
+        inv_count_(layout.inv_count),
+        side_(layout.side),
+        inv_side_(layout.inv_side),
+        side_shift_(layout.side_shift) {}
 
   glm::vec2 operator[](uint32_t index) const {
     const uint32_t cell = permuteIndex(index, count_, seed_, mask_, offset_);
@@ -163,12 +181,12 @@ class Stratified2D {
   // (cell + jitter) / n can round up to exactly 1 in float; keep the half-open range.
   static constexpr float belowOne(float v) { return v < 0x1.fffffep-1f ? v : 0x1.fffffep-1f; }
 
-  uint64_t pixel_hash_;  // hashed once per pixel and dimension
-  uint32_t count_, seed_, row_seed_, mask_, offset_, row_offset_;
-  float inv_count_;
-  uint32_t side_;
-  float inv_side_;
-  int side_shift_;
+  uint64_t pixel_hash_ = 0;  // hashed once per pixel and dimension
+  uint32_t count_ = 0, seed_ = 0, row_seed_ = 0, mask_ = 0, offset_ = 0, row_offset_ = 0;
+  float inv_count_ = 0.0f;
+  uint32_t side_ = 0;
+  float inv_side_ = 0.0f;
+  int side_shift_ = 0;
 };
 
 inline glm::vec2 PixelSampler::stratified2D(uint32_t index, uint32_t count, SampleDimension dim) const {
