@@ -323,6 +323,11 @@ RiderChannels limitRiderChannels(RiderChannels r, const RiderPoseParams& params,
   for (C c : {C::lFootTx, C::rFootTx}) r[c] = std::clamp(r[c], -swing, swing);
   for (C c : {C::lFootRz, C::rFootRz})
     r[c] = std::clamp(r[c], -double(params.max_foot_turn_deg), double(params.max_foot_turn_deg));
+  const double unit = std::max(rider_unit_cm, 1e-9);
+  for (C c : {C::lFootTz, C::rFootTz}) r[c] = std::max(r[c], -params.max_foot_in_cm / unit);  // − is in
+  for (C c : {C::lFootRy, C::rFootRy})
+    r[c] = std::clamp(r[c], -double(params.max_foot_twist_deg), double(params.max_foot_twist_deg));
+  r[C::cogTx] = std::max(r[C::cogTx], -params.max_seat_back_cm / unit);  // − is back
   return r;
 }
 

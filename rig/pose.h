@@ -63,6 +63,16 @@ struct RiderPoseParams {
   float max_lean_deg = 45.0f;
   float max_foot_swing_cm = 15.0f;
   float max_foot_turn_deg = 30.0f;
+  // Contact (docs/rider-rig.md, "Posing limits"; tests/rig/contact_test.cpp): on jump and rear Eq 17
+  // brings the feet 7.5 cm in against the belly and Eq 16 turns the heels 26° in, which put the
+  // calves 6 cm into the saddle flaps; and Eq 8's seat shift back to 10 cm put the seat and the
+  // coat's skirt 5 cm into the cantle. The stirrup leather hangs against the flap, so the foot
+  // (foot tz, toward the belly) comes in at most max_foot_in_cm and the heel turns in (foot ry)
+  // at most max_foot_twist_deg; the pelvis slides back (cog tx) at most max_seat_back_cm, where the
+  // buttocks meet the cantle.
+  float max_foot_in_cm = 3.0f;
+  float max_foot_twist_deg = 15.0f;
+  float max_seat_back_cm = 6.0f;
 };
 
 // The rider channels within the posing limits above (poseMounted applies this).

@@ -401,7 +401,8 @@ TEST(PoseMounted, ReinsEndInTheRidersHands) {
 }
 
 // The posing limits (docs/rider-rig.md): the torso's forward lean is scaled to at most max_lean_deg
-// keeping its proportions; stirrup swing and toe turn are clamped; small values pass unchanged.
+// keeping its proportions; stirrup swing, toe turn, the feet in toward the belly, the heels' twist and
+// the seat's slide back are clamped; small values pass unchanged.
 TEST(PoseMounted, LimitsScaleTheLeanAndClampTheFeet) {
   RiderPoseParams params;
   RiderChannels ch;
@@ -410,15 +411,24 @@ TEST(PoseMounted, LimitsScaleTheLeanAndClampTheFeet) {
   ch[RiderChannel::waistRz] = 67.0;
   ch[RiderChannel::lFootTx] = -13.0;
   ch[RiderChannel::rFootRz] = -158.0;
+  ch[RiderChannel::lFootTz] = -0.75;  // Eq 17 on the jump: 7.5 cm in against the belly
+  ch[RiderChannel::rFootRy] = -26.5;  // Eq 16: heel in
+  ch[RiderChannel::cogTx] = -1.0;     // Eq 8: 10 cm back
   const RiderChannels l = limitRiderChannels(ch, params, 10.0);
   const double lean = l[RiderChannel::hipRz] + l[RiderChannel::lowerBackRz] + l[RiderChannel::waistRz] * (1.0 + params.chest_follow);
   EXPECT_NEAR(lean, params.max_lean_deg, 1e-9);
   EXPECT_NEAR(l[RiderChannel::waistRz] / l[RiderChannel::hipRz], 67.0 / 31.0, 1e-9);
   EXPECT_DOUBLE_EQ(l[RiderChannel::lFootTx], -params.max_foot_swing_cm / 10.0);
   EXPECT_DOUBLE_EQ(l[RiderChannel::rFootRz], -params.max_foot_turn_deg);
+  EXPECT_DOUBLE_EQ(l[RiderChannel::lFootTz], -params.max_foot_in_cm / 10.0);
+  EXPECT_DOUBLE_EQ(l[RiderChannel::rFootRy], -params.max_foot_twist_deg);
+  EXPECT_DOUBLE_EQ(l[RiderChannel::cogTx], -params.max_seat_back_cm / 10.0);
   RiderChannels small;
   small[RiderChannel::lowerBackRz] = 5.0;
   small[RiderChannel::lFootTx] = 0.5;
+  small[RiderChannel::lFootTz] = -0.2;
+  small[RiderChannel::lFootRy] = -9.0;
+  small[RiderChannel::cogTx] = -0.5;
   const RiderChannels same = limitRiderChannels(small, params, 10.0);
   EXPECT_EQ(same.value, small.value);
 }
