@@ -77,6 +77,7 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
   sun_cos_max_ = std::cos(sun_angle_);
   sun_tan_ = std::tan(sun_angle_);
   sun_radiance_ = settings.sun_color * settings.sun_strength;
+  setGroundSunRegion();
   const glm::vec3 ground_albedo = 0.5f * (settings.ground_color_a + settings.ground_color_b);
   ground_bounce_ = ground_albedo * (sun_radiance_ * std::max(0.0f, sun.y) + settings.sky.upwardIrradianceOverPi());
   blinn_norm_ = (settings.shininess + 8.0f) / 8.0f;
@@ -141,6 +142,41 @@ bool Integrator::sunMayBeBlocked(const glm::vec3& origin) const {
     if (t0 > t1) return false;
   }
   return true;
+}
+
+// sunMayBeBlocked(o) is true only when the sun's axis from o meets the characters' box grown by a
+// margin M(o) = |far corner| tan(sun radius) 1.01 + 0.1 (above). For a point o on the ground, hitting
+// it at q (in the grown box) means o = q - t d with t = (q.y - o.y) / d.y <= (H + M) / d.y, H the box's
+// top, and the far corner is at most t + |box extent| + sqrt(3) M from o. So M <= k ((H + M) / d.y +
+// |extent| + sqrt(3) M) + 0.1 with k = 1.01 tan: a bound on M, and with it a rectangle of the ground
+// outside which sunMayBeBlocked is certainly false. The rectangle answers most of the ground in four
+// comparisons, with the same answer the full test gives there.
+void Integrator::setGroundSunRegion() {
+  ground_sun_region_ = false;
+  const glm::vec3& d = sun_frame_.z;
+  if (bounds_radius_ < 0.0f || !(d.y > 0.0f)) return;
+  const float k = 1.01f * sun_tan_;
+  const float denominator = 1.0f - k / d.y - 1.7320508f * k;
+  if (!(denominator > 0.1f)) return;  // a low or very wide sun: no useful bound, always run the test
+  const float top = std::max(bounds_upper_.y, 0.0f);
+  const float extent = glm::length(bounds_upper_ - bounds_lower_);
+  const float margin = (k * (top / d.y + extent) + 0.1f) / denominator * 1.01f + 1.0f;  // + rounding slack
+  const float t_max = (top + margin) / d.y;
+  ground_sun_lower_ = {bounds_lower_.x - margin - std::max(0.0f, t_max * d.x),
+                       bounds_lower_.z - margin - std::max(0.0f, t_max * d.z)};
+  ground_sun_upper_ = {bounds_upper_.x + margin - std::min(0.0f, t_max * d.x),
+                       bounds_upper_.z + margin - std::min(0.0f, t_max * d.z)};
+  ground_sun_region_ = true;
+}
+
+bool Integrator::groundSunRegionExcludes(const glm::vec3& origin) const {
+  return ground_sun_region_ && origin.y >= 0.0f &&
+         (origin.x < ground_sun_lower_.x || origin.x > ground_sun_upper_.x || origin.z < ground_sun_lower_.y ||
+          origin.z > ground_sun_upper_.y);
+}
+
+bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const {
+  return !groundSunRegionExcludes(origin) && sunMayBeBlocked(origin);
 }
 
 float Integrator::distanceToCharacters(const glm::vec3& p) const {
@@ -428,7 +464,7 @@ void Integrator::emitShading(const Surface& s, const Stratified2D& sun_points, c
   // no ray of the cone can reach the characters the sun is evaluated once along its axis: over a disc
   // of a few degrees the cosine barely changes, and the open ground gets no shadow noise at all.
   c.sun_pending = 0;
-  c.sun_traced = sunMayBeBlocked(origin);
+  c.sun_traced = s.on_ground ? groundSunMayBeBlocked(origin) : sunMayBeBlocked(origin);
   if (!c.sun_traced) {
     c.sun = reflected(sun_frame_.z) * sun_radiance_;
   } else {

@@ -85,6 +85,15 @@ class Integrator {
   void renderTile(const CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
                   RayTally& tally, PixelResult* out) const;
 
+  // Whether any ray of the sun's cone from `origin` can meet the characters' box (false: the sun is
+  // certainly unblocked there and needs no shadow rays).
+  bool sunMayBeBlocked(const glm::vec3& origin) const;
+  // The same answer for a point on or just above the ground, mostly from a rectangle worked out once
+  // per frame.
+  bool groundSunMayBeBlocked(const glm::vec3& origin) const;
+  // True when the point is outside that rectangle (so the sun is certainly unblocked there).
+  bool groundSunRegionExcludes(const glm::vec3& origin) const;
+
  private:
   struct Surface;
   // Traces the camera rays of pixels [first, first + count) of the tile and shades them into `out`.
@@ -101,7 +110,7 @@ class Integrator {
   int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, std::vector<RTCRay>& stream,
                         RayTally& tally) const;
   bool mayHitCharacters(const glm::vec3& origin, const glm::vec3& direction, float t_far) const;
-  bool sunMayBeBlocked(const glm::vec3& origin) const;
+  void setGroundSunRegion();
   float distanceToCharacters(const glm::vec3& p) const;
 
   const RenderSettings& settings_;
@@ -114,6 +123,8 @@ class Integrator {
   Frame sun_frame_;
   glm::vec3 inv_sun_dir_;      // 1 / the sun axis, per component: slab tests without divisions
   float sun_cos_max_, sun_angle_, sun_tan_;
+  bool ground_sun_region_;     // ground points outside [lower, upper] (x, z) see the sun unblocked
+  glm::vec2 ground_sun_lower_, ground_sun_upper_;
   glm::vec3 sun_radiance_;     // of a white matte surface facing the sun
   glm::vec3 ground_bounce_;    // radiance of the lit ground, seen by downward sky rays
   float ground_extent_;        // the ground is the square |x|, |z| <= this at y = 0, hit analytically

@@ -114,5 +114,37 @@ TEST(Integrator, TheSceneHoldsEveryKindOfPixel) {
   EXPECT_GT(rays, camera_rays);  // shadow and sky rays were cast too
 }
 
+TEST(Integrator, TheGroundSunShortcutAgreesWithTheFullTest) {
+  // The rectangle must be exact where it answers: on random ground points, over suns high and low,
+  // narrow and wide, both tests give the same answer. It must also answer for most of the open ground,
+  // or it is no use.
+  StreamScene scene(1);
+  uint32_t state = 12345u;
+  auto uniform = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) * 0x1p-24f;
+  };
+  int blocked = 0, open = 0, excluded = 0;
+  for (const glm::dvec3 sun : {glm::dvec3(0.3, 0.8, 0.5), glm::dvec3(-0.7, 0.35, 0.1), glm::dvec3(0.0, 1.0, 0.0),
+                               glm::dvec3(0.2, 0.05, -0.9)}) {
+    for (double radius : {0.0, 2.0, 12.0}) {
+      scene.settings.sun_direction = sun;
+      scene.settings.sun_angular_radius_deg = radius;
+      const Integrator integrator(scene.settings, scene.scene, scene.by_geometry);
+      for (int i = 0; i < 20000; ++i) {
+        const glm::vec3 p(1200.0f * uniform() - 600.0f, 0.004f * uniform(), 1200.0f * uniform() - 600.0f);
+        const bool full = integrator.sunMayBeBlocked(p);
+        ASSERT_EQ(integrator.groundSunMayBeBlocked(p), full) << "sun " << sun.x << " " << sun.y << " " << sun.z
+                                                             << " radius " << radius << " at " << p.x << " " << p.z;
+        (full ? blocked : open) += 1;
+        excluded += integrator.groundSunRegionExcludes(p);
+      }
+    }
+  }
+  EXPECT_GT(blocked, 1000);
+  EXPECT_GT(open, 100000);
+  EXPECT_GT(excluded, open / 2);  // the rectangle answers most open ground without the full test
+}
+
 }  // namespace
 }  // namespace stirrup::render
