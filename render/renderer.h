@@ -8,7 +8,8 @@
 //
 // Cost: `stirrup bench` measures it per quality preset (README "Speed"). Per camera sample there is
 // 1 camera ray plus up to light_samples + ao_samples occlusion rays; the ground is intersected
-// analytically and rays that cannot reach the characters' box never call into Embree.
+// analytically and rays that cannot reach the characters' box never call into Embree. The rest go to
+// Embree as streams, a batch of a tile at a time (integrator.h).
 #pragma once
 
 #include <cstdint>
