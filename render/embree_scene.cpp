@@ -99,7 +99,9 @@ unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint3
   }
   std::memset(vertices, 0, vertex_count * 3 * sizeof(float));
   if (!indices.empty()) std::memcpy(tris, indices.data(), indices.size_bytes());
-  rtcSetGeometryBuildQuality(g, update_ == BvhUpdate::Refit ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetGeometryBuildQuality(g, update_ == BvhUpdate::Refit              ? RTC_BUILD_QUALITY_REFIT
+                                : update_ == BvhUpdate::RebuildPerMeshLow ? RTC_BUILD_QUALITY_LOW
+                                                                          : RTC_BUILD_QUALITY_MEDIUM);
   rtcCommitGeometry(g);
   const unsigned id = rtcAttachGeometry(scene_, g);
   throwOnDeviceError(device_, "rtcAttachGeometry", last_error_);

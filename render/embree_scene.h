@@ -16,15 +16,18 @@
 
 namespace stirrup::render {
 
-// How the acceleration structure follows deforming meshes. On the trot (117k triangles) a MEDIUM
-// rebuild measured 90-170 ms a frame and a refit 3-5 ms with no visible trace slowdown, so Refit over
-// the rest pose is the renderer's default (README "Speed").
+// How the acceleration structure follows deforming meshes. Refit over the rest pose is the renderer's
+// default: on the trot it measured fastest per frame, BVH update and trace together, against a
+// LOW-quality and a MEDIUM rebuild (README "Speed", BM_TrotFrameBvh).
 enum class BvhUpdate {
   // One MEDIUM-quality (SAH) BVH over every triangle, rebuilt at each commit. Deterministic: the BVH
   // is a function of the current vertices only, never of earlier frames.
   Rebuild,
   // Two-level: each mesh has its own BVH, rebuilt (MEDIUM) only when that mesh changed.
   RebuildPerMesh,
+  // Two-level, each changed mesh rebuilt with Embree's fast LOW-quality (Morton) builder: the cheap
+  // rebuild, against which Refit is measured (tests/bench/render_bench.cpp, BM_TrotFrameBvh).
+  RebuildPerMeshLow,
   // Two-level, and deforming meshes keep the topology of one build and only refit bounds each frame.
   // Cheapest commit; traversal slows as the pose moves away from the built one. A mesh given rest
   // positions is built once over those, so the tree (and so the order ties are broken in) is the

@@ -23,7 +23,8 @@ glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
 }  // namespace
 
-Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads)
+Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
+           BvhUpdate bvh)
     : scene_(scene),
       profile_(profile),
       camera_(camera),
@@ -37,6 +38,7 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
   settings.light_samples = scene.light_samples;
   settings.ao_samples = scene.ao_samples;
   settings.threads = threads;
+  settings.bvh_update = bvh;
   settings.sun_direction = glm::normalize(toVec(scene.sun_direction));
   settings.sun_angular_radius_deg = scene.sun_angular_radius_deg;
   renderer_ = std::make_unique<Renderer>(settings);

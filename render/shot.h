@@ -24,7 +24,9 @@ struct FrameTimings {
 class Shot {
  public:
   // threads: 0 = all cores. The profile is resolved by the caller (name, file and overrides).
-  Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads);
+  // `bvh`: how the BVH follows the characters (the default is the renderer's; others for benchmarks).
+  Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
+       BvhUpdate bvh = RenderSettings{}.bvh_update);
   ~Shot();
 
   // With `log`, the frame's rays are also kept in it (see Renderer::render).

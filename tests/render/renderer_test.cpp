@@ -214,7 +214,7 @@ TEST(Renderer, MovingAMeshMovesItsPixels) {
 TEST(Renderer, AllBvhUpdateModesSeeTheSameScene) {
   SmallScene scene;
   const Image reference = scene.render(0);
-  for (BvhUpdate mode : {BvhUpdate::RebuildPerMesh, BvhUpdate::Refit}) {
+  for (BvhUpdate mode : {BvhUpdate::RebuildPerMesh, BvhUpdate::RebuildPerMeshLow, BvhUpdate::Refit}) {
     scene.settings.bvh_update = mode;
     const Image img = scene.render(0);
     EXPECT_EQ(img.object_id, reference.object_id);
