@@ -83,6 +83,21 @@ void writeClipGltf(const Clip& clip, const std::filesystem::path& file, const Gl
   tinygltf::Value::Object extras;
   extras["clip"] = tinygltf::Value(clip.name());
   extras["contract"] = tinygltf::Value(std::string("../shared/rig-channels.md: cm, Y up, +X travel, +Z right"));
+  // What the horse must clear (the jump's fence), in the root's travel frame: a shot of the clip read
+  // back shows it where the clip put it (GltfClip::obstacles).
+  const std::vector<Obstacle> obstacles = clip.obstacles();
+  if (!obstacles.empty()) {
+    tinygltf::Value::Array list;
+    for (const Obstacle& o : obstacles) {
+      tinygltf::Value::Object fence;
+      fence["travel_cm"] = tinygltf::Value(o.travel_cm);
+      fence["height_cm"] = tinygltf::Value(o.height_cm);
+      fence["width_cm"] = tinygltf::Value(o.width_cm);
+      fence["depth_cm"] = tinygltf::Value(o.depth_cm);
+      list.push_back(tinygltf::Value(fence));
+    }
+    extras["obstacles"] = tinygltf::Value(list);
+  }
   model.nodes[0].extras = tinygltf::Value(extras);
   tinygltf::Scene scene;
   scene.nodes = {0};
@@ -221,6 +236,41 @@ struct GltfClip::Impl {
   std::map<std::string, glm::dvec3> rest_position;
   std::map<std::string, glm::dquat> rest_rotation;
   std::map<std::string, double> ground;
+  std::vector<Obstacle> obstacles;  // from the root control's extras (clips written by stirrup)
+
+  // `extras.obstacles` of the node bound to the root control: an array of objects with travel_cm,
+  // height_cm (> 0), and optionally width_cm and depth_cm (> 0). Absent: no obstacles.
+  void readObstacles() {
+    const int root = control_node.at("horse");
+    const tinygltf::Value& extras = model.nodes[static_cast<std::size_t>(root)].extras;
+    if (!extras.IsObject() || !extras.Has("obstacles")) return;
+    const std::string where = file + ": node \"" + model.nodes[static_cast<std::size_t>(root)].name + "\": extras.obstacles";
+    const tinygltf::Value& list = extras.Get("obstacles");
+    if (!list.IsArray()) throw InputError(where + ": expected an array of obstacles");
+    for (std::size_t i = 0; i < list.ArrayLen(); ++i) {
+      const tinygltf::Value& o = list.Get(static_cast<int>(i));
+      const std::string at = where + "[" + std::to_string(i) + "]";
+      if (!o.IsObject()) throw InputError(at + ": expected an object");
+      Obstacle fence;
+      const auto number = [&](const char* key, double& out, bool required, bool positive) {
+        if (!o.Has(key)) {
+          if (required) throw InputError(at + "." + key + ": missing (expected a number)");
+          return;
+        }
+        const tinygltf::Value& v = o.Get(key);
+        if (!v.IsNumber()) throw InputError(at + "." + key + ": expected a number");
+        out = v.GetNumberAsDouble();
+        if (!std::isfinite(out) || (positive && !(out > 0.0)))
+          throw InputError(at + "." + key + ": expected a " + (positive ? "number > 0" : "finite number") +
+                           ", got " + std::to_string(out));
+      };
+      number("travel_cm", fence.travel_cm, true, false);
+      number("height_cm", fence.height_cm, true, true);
+      number("width_cm", fence.width_cm, false, true);
+      number("depth_cm", fence.depth_cm, false, true);
+      obstacles.push_back(fence);
+    }
+  }
 
   // An accessor's elements as floats: float data, or normalised integers (glTF allows them for
   // rotations), dense or sparse (a sparse accessor replaces some elements of its base, or of zeros).
@@ -452,6 +502,7 @@ GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping
     Impl::Drive& d = m.drive.at(ch.target_node);
     (ch.target_path == "translation" ? d.translation : ch.target_path == "rotation" ? d.rotation : d.scale) = k;
   }
+  if (mapping.mode == ClipMapping::Mode::Controls && m.control_node.count("horse")) m.readObstacles();
   if (mapping.mode == ClipMapping::Mode::Skeleton) {
     const glm::dvec3 fwd = glm::normalize(glm::dvec3(mapping.forward[0], mapping.forward[1], mapping.forward[2]));
     const glm::dvec3 up = glm::normalize(glm::dvec3(mapping.up[0], mapping.up[1], mapping.up[2]));
@@ -506,6 +557,8 @@ std::string GltfClip::name() const {
 }
 
 double GltfClip::duration() const { return impl_->duration; }
+
+std::vector<Obstacle> GltfClip::obstacles() const { return impl_->obstacles; }
 
 HorseFrame GltfClip::sample(double seconds) const {
   const Impl& m = *impl_;

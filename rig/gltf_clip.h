@@ -4,7 +4,8 @@
 // animation through a ClipMapping from its node names to the contract's controls, either as control
 // nodes (a clip written here, perhaps renamed in another tool) or as a skeleton, whose leg-tip joints'
 // world positions relative to the rest pose become the hoof controls (a clip authored on another
-// quadruped, such as the Khronos Fox).
+// quadruped, such as the Khronos Fox). A clip's obstacles (the jump's fence) travel with it in the root
+// node's extras.
 #pragma once
 
 #include <array>
@@ -66,6 +67,8 @@ class GltfClip final : public Clip {
   std::string name() const override;
   double duration() const override;
   HorseFrame sample(double seconds) const override;
+  // The fences a stirrup clip was written with (the root control's extras.obstacles); none otherwise.
+  std::vector<Obstacle> obstacles() const override;
 
  private:
   struct Impl;

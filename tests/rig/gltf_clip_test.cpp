@@ -9,6 +9,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "rig/clip_factory.h"
@@ -298,6 +299,52 @@ TEST(GltfClip, RenamedThroughAMappingDrivesTheRiderTheSameWay) {
       EXPECT_NEAR(ra.value[c], rj.value[c], 0.05 + 0.02 * std::abs(rj.value[c])) << kRiderChannelNames[c] << " at " << t;
     }
   }
+}
+
+TEST(GltfClip, TheJumpsFenceTravelsWithTheClip) {
+  const MovementClip jump(makeJump(JumpParams{}));
+  ASSERT_EQ(jump.obstacles().size(), 1u);
+  const fs::path file = tempFile("jump_fence.glb");
+  writeClipGltf(jump, file, {24.0});
+  const GltfClip back(file, contractMapping());
+  ASSERT_EQ(back.obstacles().size(), 1u);
+  const Obstacle& a = jump.obstacles()[0];
+  const Obstacle& b = back.obstacles()[0];
+  EXPECT_DOUBLE_EQ(b.travel_cm, a.travel_cm);
+  EXPECT_DOUBLE_EQ(b.height_cm, a.height_cm);
+  EXPECT_DOUBLE_EQ(b.width_cm, a.width_cm);
+  EXPECT_DOUBLE_EQ(b.depth_cm, a.depth_cm);
+  // A clip with nothing to clear reads back with nothing.
+  const fs::path trot = tempFile("trot_nofence.glb");
+  writeClipGltf(ProceduralGait(trotParams(), 1.0), trot);
+  EXPECT_TRUE(GltfClip(trot, contractMapping()).obstacles().empty());
+}
+
+TEST(GltfClip, ABadObstacleIsAOneLineErrorNamingTheField) {
+  const fs::path file = tempFile("jump_fence.gltf");
+  writeClipGltf(MovementClip(makeJump(JumpParams{})), file, {24.0});
+  nlohmann::json gltf;
+  std::ifstream(file) >> gltf;
+  ASSERT_TRUE(gltf["nodes"][0]["extras"].contains("obstacles"));
+  const nlohmann::json good = gltf;
+  gltf["nodes"][0]["extras"]["obstacles"][0]["height_cm"] = "tall";
+  std::ofstream(file) << gltf.dump();
+  try {
+    GltfClip clip(file, contractMapping());
+    FAIL() << "a fence height that is not a number was accepted";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("node \"horse\": extras.obstacles[0].height_cm: expected a number"), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos);
+  }
+  gltf = good;
+  gltf["nodes"][0]["extras"]["obstacles"][0].erase("travel_cm");
+  std::ofstream(file) << gltf.dump();
+  EXPECT_THROW(GltfClip(file, contractMapping()), InputError);
+  gltf = good;
+  gltf["nodes"][0]["extras"]["obstacles"][0]["width_cm"] = -3;
+  std::ofstream(file) << gltf.dump();
+  EXPECT_THROW(GltfClip(file, contractMapping()), InputError);
 }
 
 TEST(GltfClip, AMissingNodeIsAOneLineErrorNamingIt) {
