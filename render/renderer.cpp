@@ -59,6 +59,17 @@ void validate(const RenderSettings& s) {
 
 }  // namespace
 
+namespace {
+
+// Per thread: the integrator's batch buffers and one tile's results, reused from tile to tile and
+// from frame to frame (they grow on a thread's first tile and are not allocated again).
+struct TileBuffers {
+  TileScratch scratch;
+  std::vector<PixelResult> results;
+};
+
+}  // namespace
+
 struct Renderer::State {
   explicit State(const RenderSettings& s)
       : scene(s.bvh_update), arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic) {}
@@ -68,6 +79,7 @@ struct Renderer::State {
   std::vector<std::unique_ptr<ShadingMesh>> meshes;  // by handle
   std::vector<unsigned> geometry_of_mesh;             // by handle
   std::vector<const ShadingMesh*> by_geometry;        // by geomID in the character scene
+  tbb::enumerable_thread_specific<TileBuffers> tile_buffers;
 };
 
 Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
@@ -125,12 +137,7 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
     std::vector<RTCRay> camera, occlusion;
   };
   tbb::enumerable_thread_specific<KeptRays> kept;
-  // Per thread: the integrator's batch buffers and one tile's results, reused from tile to tile.
-  struct TileBuffers {
-    TileScratch scratch;
-    std::vector<PixelResult> results;
-  };
-  tbb::enumerable_thread_specific<TileBuffers> buffers;
+  auto& buffers = state_->tile_buffers;
   const size_t stride = log ? size_t(std::max(1, log->pixel_stride)) : 0;
   std::atomic<uint64_t> rays{0};
   state_->arena.execute([&] {
