@@ -59,7 +59,6 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
                        std::span<const ShadingMesh* const> meshes_by_geometry)
     : settings_(settings),
       characters_(scene.characters()),
-      ground_(scene.ground()),
       meshes_(meshes_by_geometry),
       pixel_layout_(uint32_t(settings.samples_per_pixel)),
       sun_layout_(uint32_t(settings.samples_per_pixel * settings.light_samples)),
@@ -68,14 +67,13 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
   bounds_lower_ = {b.lower_x, b.lower_y, b.lower_z};
   bounds_upper_ = {b.upper_x, b.upper_y, b.upper_z};
   const bool empty = !(b.lower_x <= b.upper_x && b.lower_y <= b.upper_y && b.lower_z <= b.upper_z);
-  bounds_centre_ = 0.5f * (bounds_lower_ + bounds_upper_);
   bounds_radius_ = empty ? -1.0f : 0.5f * glm::length(bounds_upper_ - bounds_lower_);
   const glm::vec3 sun = glm::normalize(glm::vec3(settings.sun_direction));
   sun_frame_ = Frame::around(sun);
   inv_sun_dir_ = 1.0f / sun_frame_.z;  // inf for a zero component, which sunMayBeBlocked never uses
-  sun_angle_ = float(std::max(0.0, settings.sun_angular_radius_deg) * std::numbers::pi / 180.0);
-  sun_cos_max_ = std::cos(sun_angle_);
-  sun_tan_ = std::tan(sun_angle_);
+  const float sun_angle = float(std::max(0.0, settings.sun_angular_radius_deg) * std::numbers::pi / 180.0);
+  sun_cos_max_ = std::cos(sun_angle);
+  sun_tan_ = std::tan(sun_angle);
   sun_radiance_ = settings.sun_color * settings.sun_strength;
   setGroundSunRegion();
   const glm::vec3 ground_albedo = 0.5f * (settings.ground_color_a + settings.ground_color_b);
@@ -293,20 +291,21 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
   }
 
   // Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
-  for (size_t j = 0; j < scratch.samples.size(); ++j) {
-    TileScratch::CameraSample& c = scratch.samples[j];
-    const RTCRayHit* rh = c.ray >= 0 ? &scratch.camera_rays[size_t(c.ray)] : nullptr;
-    Surface s;
-    if (!surfaceOf(camera, c, rh, s, c.id)) {
-      c.hit = false;
-      c.radiance = settings_.sky.radiance(c.dir);
-      continue;
+  TileScratch::CameraSample* c = scratch.samples.data();
+  for (const TileScratch::PixelState& pixel : scratch.pixels) {
+    for (uint32_t i = 0; i < spp_; ++i, ++c) {
+      const RTCRayHit* rh = c->ray >= 0 ? &scratch.camera_rays[size_t(c->ray)] : nullptr;
+      Surface s;
+      if (!surfaceOf(camera, *c, rh, s, c->id)) {
+        c->hit = false;
+        c->radiance = settings_.sky.radiance(c->dir);
+        continue;
+      }
+      c->hit = true;
+      c->depth = camera.viewDepthF(s.p);
+      c->normal = s.n;
+      emitShading(s, pixel.sun, pixel.sky, i, *c, scratch, tally);
     }
-    c.hit = true;
-    c.depth = camera.viewDepthF(s.p);
-    c.normal = s.n;
-    const TileScratch::PixelState& pixel = scratch.pixels[j / spp_];
-    emitShading(s, pixel.sun, pixel.sky, uint32_t(j % spp_), c, scratch, tally);
   }
 
   // Pass 4: the shadow rays (nearly parallel: one coherent stream) and the sky rays.
@@ -327,7 +326,7 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
   auto open = [](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
     return r.ray < 0 || !blocked(stream[size_t(r.ray)]);
   };
-  const TileScratch::CameraSample* c = scratch.samples.data();
+  c = scratch.samples.data();
   for (int p = 0; p < count; ++p) {
     glm::vec3 sum(0.0f), normal_sum(0.0f);
     uint32_t hits = 0, character_hits = 0;

@@ -114,15 +114,14 @@ class Integrator {
   float distanceToCharacters(const glm::vec3& p) const;
 
   const RenderSettings& settings_;
-  RTCScene characters_, ground_;
+  RTCScene characters_;
   glm::vec3 bounds_lower_, bounds_upper_;  // of the characters: occlusion rays missing it skip Embree
-  glm::vec3 bounds_centre_;
   float bounds_radius_;                    // of the sphere around the bounds; < 0: no characters
   std::span<const ShadingMesh* const> meshes_;
   // Derived once per frame.
   Frame sun_frame_;
   glm::vec3 inv_sun_dir_;      // 1 / the sun axis, per component: slab tests without divisions
-  float sun_cos_max_, sun_angle_, sun_tan_;
+  float sun_cos_max_, sun_tan_;
   bool ground_sun_region_;     // ground points outside [lower, upper] (x, z) see the sun unblocked
   glm::vec2 ground_sun_lower_, ground_sun_upper_;
   glm::vec3 sun_radiance_;     // of a white matte surface facing the sun
