@@ -2,12 +2,12 @@
 
 #include <cmath>
 
-#include "render/footage.h"
+#include "render/review/footage.h"
 #include "render/preset.h"
 
 #include "rig/error.h"
-#include "rig/frame_range.h"
-#include "rig/json_fields.h"
+#include "rig/io/frame_range.h"
+#include "rig/io/json_fields.h"
 
 namespace stirrup::render {
 namespace {
@@ -196,7 +196,7 @@ double frameTime(const SceneSpec& scene, int frame) { return (frame - 1) / scene
 
 }  // namespace stirrup::render
 
-#include "rig/rig_profile.h"
+#include "rig/io/rig_profile_json.h"
 
 namespace stirrup::render {
 

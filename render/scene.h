@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/layer.h"
-#include "rig/clip_factory.h"
-#include "rig/procedural_gait.h"
+#include "render/review/layer.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/motion/procedural_gait.h"
 
 namespace stirrup::render {
 
@@ -65,7 +65,7 @@ struct SceneSpec {
   double sun_angular_radius_deg = 2.0;
   std::vector<CameraSpec> cameras = {CameraSpec{}};
   std::filesystem::path output = "out/trot";
-  // Reference footage for the layered view ("reference": {...}, render/layer.h ReferenceSpec); its
+  // Reference footage for the layered view ("reference": {...}, render/review/layer.h ReferenceSpec); its
   // file is resolved against the scene file. Absent: the layered view compares with the rigid rider.
   std::optional<ReferenceSpec> reference;
 };

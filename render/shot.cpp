@@ -6,8 +6,8 @@
 #include "render/camera_motion.h"
 #include "render/fence.h"
 #include "render/view.h"
-#include "rig/clip_factory.h"
-#include "rig/gltf_character.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/io/gltf_character.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
 

@@ -10,7 +10,7 @@
 #include "render/scene.h"
 #include "rig/bake.h"
 #include "rig/character.h"
-#include "rig/procedural_gait.h"
+#include "rig/motion/procedural_gait.h"
 
 namespace stirrup::render {
 
@@ -45,7 +45,7 @@ class Shot {
   // is shown (a treadmill camera removes the travel, a held pose holds its frame).
   void characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
   // The rider rigidly fixed to the saddle (every rider channel at rest): what the rig adds, for the
-  // layered comparison (render/layer.h).
+  // layered comparison (render/review/layer.h).
   void setRigidRider(bool rigid) { rigid_rider_ = rigid; }
 
  private:

@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/camera_motion.h"
-#include "rig/frame_range.h"
+#include "rig/io/frame_range.h"
 
 namespace stirrup::render {
 namespace {

@@ -29,8 +29,8 @@
 #include "rig/character.h"
 #include "rig/clip.h"
 #include "rig/curve_spine.h"
-#include "rig/horse_character.h"  // the characters these jobs pose, for callers that include only pose.h
-#include "rig/rider_character.h"
+#include "rig/characters/horse_character.h"  // the characters these jobs pose, for callers that include only pose.h
+#include "rig/characters/rider_character.h"
 
 namespace stirrup::rig {
 

@@ -1,13 +1,6 @@
 #include "rig/rig_profile.h"
 
-#include <algorithm>
 #include <array>
-#include <cmath>
-#include <set>
-#include <sstream>
-
-#include "rig/error.h"
-#include "rig/json_fields.h"
 
 namespace stirrup::rig {
 namespace {
@@ -101,26 +94,6 @@ const std::array kParameters = {
 };
 #undef STIRRUP_RIG_PARAM
 
-std::string knownKeysHint() { return "see docs/rider-rig.md for the parameter keys"; }
-
-// Units divide and multiply translations: zero or negative would silently flip or blow up the rig.
-void checkUnits(const RigProfile& p, const std::string& context) {
-  for (const auto& [key, value] : {std::pair{"horse_unit_cm", p.horse_unit_cm}, std::pair{"rider_unit_cm", p.rider_unit_cm}}) {
-    if (value > 0) continue;
-    std::ostringstream got;
-    got << value;
-    throw InputError(context + ": " + key + ": expected a positive number, got " + got.str());
-  }
-}
-
-void setParameter(RigProfile& p, const std::string& key, const nlohmann::json& value, const std::string& context) {
-  const RigParameter* param = findRigParameter(key);
-  if (!param) throw InputError(context + ": " + key + ": unknown rig profile parameter (" + knownKeysHint() + ")");
-  if (!value.is_number())
-    throw InputError(context + ": " + key + ": expected a number, got " + describeJson(value));
-  param->field(p) = value.get<double>();
-}
-
 }  // namespace
 
 std::span<const RigParameter> rigParameters() { return kParameters; }
@@ -144,69 +117,6 @@ RigProfile RigProfile::rigidRider() {
   p.doc = "A rider rigidly fixed to the saddle: every rider channel at rest (what the rig adds, by contrast)";
   p.rigid = true;
   return p;
-}
-
-RigProfile loadRigProfile(const std::string& nameOrPath, const std::filesystem::path& profilesDir) {
-  namespace fs = std::filesystem;
-  const bool is_path = fs::path(nameOrPath).extension() == ".json" || nameOrPath.find('/') != std::string::npos;
-  if (nameOrPath.empty()) throw InputError("rig profile: expected a profile name or a .json path, got \"\"");
-  const fs::path file = is_path ? fs::path(nameOrPath) : profilesDir / (nameOrPath + ".json");
-  if (!is_path && nameOrPath == "rigid" && !fs::exists(file)) return RigProfile::rigidRider();
-  if (!fs::exists(file)) {
-    std::string names;
-    std::error_code ec;
-    std::set<std::string> found;
-    for (const auto& e : fs::directory_iterator(profilesDir, ec))
-      if (e.path().extension() == ".json") found.insert(e.path().stem().string());
-    for (const std::string& n : found) names += (names.empty() ? "" : ", ") + n;
-    throw InputError(file.string() + ": no such rig profile" +
-                     (names.empty() ? std::string() : " (expected one of " + names + ")"));
-  }
-  const nlohmann::json j = readJsonFile(file);
-  if (!j.is_object()) throw InputError(file.string() + ": expected a JSON object, got " + describeJson(j));
-
-  RigProfile p = RigProfile::thesis();
-  p.name = file.stem().string();
-  p.doc.clear();
-  for (const auto& [key, value] : j.items()) {
-    if (key == "rigid") {
-      if (!value.is_boolean()) throw InputError(file.string() + ": rigid: expected true or false, got " + describeJson(value));
-      p.rigid = value.get<bool>();
-    } else if (key == "name" || key == "doc") {
-      if (!value.is_string()) throw InputError(file.string() + ": " + key + ": expected a string, got " + describeJson(value));
-      (key == "name" ? p.name : p.doc) = value.get<std::string>();
-    } else if (key == "notes") {
-      // Why each value is what it is: documentation, but it must name real parameters.
-      if (!value.is_object()) throw InputError(file.string() + ": notes: expected an object, got " + describeJson(value));
-      for (const auto& [note_key, note] : value.items()) {
-        if (!findRigParameter(note_key))
-          throw InputError(file.string() + ": notes." + note_key + ": unknown rig profile parameter (" + knownKeysHint() + ")");
-        if (!note.is_string())
-          throw InputError(file.string() + ": notes." + note_key + ": expected a string, got " + describeJson(note));
-      }
-    } else {
-      setParameter(p, key, value, file.string());
-    }
-  }
-  checkUnits(p, file.string());
-  return p;
-}
-
-void applyProfileOverrides(RigProfile& p, const nlohmann::json& overrides, const std::string& context) {
-  if (overrides.is_null()) return;
-  if (!overrides.is_object())
-    throw InputError(context + ": expected an object of parameter keys and numbers, got " + describeJson(overrides));
-  for (const auto& [key, value] : overrides.items()) setParameter(p, key, value, context);
-  checkUnits(p, context);
-}
-
-nlohmann::json profileToJson(const RigProfile& p) {
-  nlohmann::json j = nlohmann::json::object();
-  j["name"] = p.name;
-  j["doc"] = p.doc;
-  if (p.rigid) j["rigid"] = true;
-  for (const RigParameter& param : kParameters) j[std::string(param.key)] = param.get(p);
-  return j;
 }
 
 }  // namespace stirrup::rig

@@ -6,12 +6,9 @@
 // contradictions between prose and code decided as that document's table says.
 #pragma once
 
-#include <filesystem>
 #include <span>
 #include <string>
 #include <string_view>
-
-#include <nlohmann/json.hpp>
 
 namespace stirrup::rig {
 
@@ -147,13 +144,5 @@ struct RigParameter {
 // Every parameter, in equation order (horse_unit_cm and rider_unit_cm first).
 std::span<const RigParameter> rigParameters();
 const RigParameter* findRigParameter(std::string_view key);
-
-// nameOrPath: a name ("thesis") looked up as profilesDir/NAME.json, or a path to a .json file.
-// Parameters the file does not name keep the thesis value.
-RigProfile loadRigProfile(const std::string& nameOrPath, const std::filesystem::path& profilesDir);
-// Overrides single parameters by their JSON key; unknown key or wrong type -> InputError naming `context` and the key.
-void applyProfileOverrides(RigProfile& p, const nlohmann::json& overrides, const std::string& context);
-// The JSON form of a profile: name, doc and every parameter by key.
-nlohmann::json profileToJson(const RigProfile& p);
 
 }  // namespace stirrup::rig

@@ -12,9 +12,9 @@
 
 #include "render/cli/commands.h"
 #include "rig/error.h"
-#include "rig/gltf_character.h"
-#include "rig/horse_character.h"
-#include "rig/rider_character.h"
+#include "rig/io/gltf_character.h"
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
 
 namespace stirrup::cli {
 namespace {
@@ -158,7 +158,7 @@ void addCharacterCommand(CLI::App& app) {
   CLI::App* mk = cmd->add_subcommand("make", "Build a character from its parameters and write it as .glb");
   mk->footer("Parameters (centimetres; colours linear RGB; vectors x,y,z in the bind pose):\n  horse:" +
              paramList(horseParams()) + "\n  rider:" + paramList(riderParams()) +
-             "\nThe stirrup and rein places are the horse's mount (rig/horse_character.h), shared by both.\n"
+             "\nThe stirrup and rein places are the horse's mount (rig/characters/horse_character.h), shared by both.\n"
              "Example: stirrup character make horse -o scenes/characters/horse.glb");
   mk->add_option("kind", make->kind, "horse or rider")->required();
   mk->add_option("-o,--output", make->output, "Output file (.glb)")->required();

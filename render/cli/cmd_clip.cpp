@@ -11,11 +11,11 @@
 #include <nlohmann/json.hpp>
 
 #include "render/cli/commands.h"
-#include "rig/clip_factory.h"
-#include "rig/clip_info.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/motion/clip_info.h"
 #include "rig/error.h"
-#include "rig/gltf_clip.h"
-#include "rig/json_fields.h"
+#include "rig/io/gltf_clip.h"
+#include "rig/io/json_fields.h"
 
 namespace stirrup::cli {
 namespace {

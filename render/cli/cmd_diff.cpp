@@ -6,7 +6,7 @@
 #include <map>
 
 #include "render/cli/commands.h"
-#include "render/image_diff.h"
+#include "render/review/image_diff.h"
 #include "rig/error.h"
 
 namespace stirrup::cli {

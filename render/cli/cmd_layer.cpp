@@ -1,6 +1,6 @@
 // stirrup layer A B -o OUT: composites two image sequences frame by frame (side by side, over,
 // difference, onion skin), with B mapped onto A's frames by an offset and a rate and placed by a crop,
-// a scale and a position: the layered view of the review movies on its own (render/layer.h).
+// a scale and a position: the layered view of the review movies on its own (render/review/layer.h).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -12,10 +12,10 @@
 
 #include "render/cli/commands.h"
 #include "render/image.h"
-#include "render/layer.h"
+#include "render/review/layer.h"
 #include "render/scene.h"
 #include "rig/error.h"
-#include "rig/frame_range.h"
+#include "rig/io/frame_range.h"
 
 namespace stirrup::cli {
 namespace {

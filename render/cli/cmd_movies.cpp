@@ -11,8 +11,8 @@
 #include "render/cli/commands.h"
 #include "render/cli/progress.h"
 #include "render/cli/options.h"
-#include "render/index_page.h"
-#include "render/movie_set.h"
+#include "render/review/index_page.h"
+#include "render/review/movie_set.h"
 #include "render/preset.h"
 #include "rig/error.h"
 

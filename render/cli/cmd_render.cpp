@@ -10,13 +10,13 @@
 #include "render/cli/progress.h"
 #include "render/frame_writer.h"
 #include "render/image.h"
-#include "render/movie.h"
+#include "render/review/movie.h"
 #include "render/preset.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/error.h"
-#include "rig/frame_range.h"
-#include "rig/rig_profile.h"
+#include "rig/io/frame_range.h"
+#include "rig/io/rig_profile_json.h"
 
 namespace stirrup::cli {
 namespace {

@@ -11,10 +11,10 @@
 
 #include "render/cli/commands.h"
 #include "render/cli/options.h"
-#include "rig/channel_csv.h"
+#include "rig/io/channel_csv.h"
 #include "rig/error.h"
 #include "rig/rider_rig.h"
-#include "rig/rig_profile.h"
+#include "rig/io/rig_profile_json.h"
 
 namespace stirrup::cli {
 namespace {

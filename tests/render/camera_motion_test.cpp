@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "render/scene.h"
-#include "rig/clip_factory.h"
+#include "rig/motion/clip_factory.h"
 #include "rig/rig_profile.h"
 
 namespace stirrup::render {

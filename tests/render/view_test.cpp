@@ -11,7 +11,7 @@
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/shot.h"
-#include "rig/frame_range.h"
+#include "rig/io/frame_range.h"
 #include "rig/rig_profile.h"
 
 namespace stirrup::render {

@@ -19,11 +19,11 @@
 
 #include "render/scene.h"
 #include "rig/bake.h"
-#include "rig/clip_factory.h"
-#include "rig/frame_range.h"
-#include "rig/horse_character.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/io/frame_range.h"
+#include "rig/characters/horse_character.h"
 #include "rig/pose.h"
-#include "rig/rider_character.h"
+#include "rig/characters/rider_character.h"
 #include "rig/rig_profile.h"
 #include "rig/skin.h"
 

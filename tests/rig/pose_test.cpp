@@ -9,21 +9,19 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
-#include "rig/horse_character.h"
-#include "rig/rider_character.h"
+#include "tests/rig/default_characters.h"
+
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
 #include "rig/skin.h"
 
 namespace stirrup::rig {
 namespace {
 
-const Character& horse() {
-  static const Character c = buildDefaultHorse();
-  return c;
-}
-const Character& rider() {
-  static const Character c = buildDefaultRider();
-  return c;
-}
+using test::defaultHorse;
+using test::defaultRider;
+const Character& horse() { return defaultHorse(); }
+const Character& rider() { return defaultRider(); }
 glm::vec3 pos(const std::vector<glm::mat4>& w, int j) { return glm::vec3(w[j][3]); }
 glm::vec3 at(const Character& c, const std::vector<glm::mat4>& w, const char* role) { return pos(w, c.role(role)); }
 bool finite(const std::vector<glm::mat4>& w) {

@@ -6,23 +6,21 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "tests/rig/default_characters.h"
+
 #include "rig/bake.h"
 #include "rig/pose.h"
-#include "rig/procedural_gait.h"
+#include "rig/motion/procedural_gait.h"
 #include "rig/rider_rig.h"
-#include "rig/rig_profile.h"
+#include "rig/io/rig_profile_json.h"
 
 namespace stirrup::rig {
 namespace {
 
-const Character& horse() {
-  static const Character c = buildDefaultHorse();
-  return c;
-}
-const Character& rider() {
-  static const Character c = buildDefaultRider();
-  return c;
-}
+using test::defaultHorse;
+using test::defaultRider;
+const Character& horse() { return defaultHorse(); }
+const Character& rider() { return defaultRider(); }
 
 // The rider's pelvis in the posed saddle's frame.
 glm::mat4 pelvisInSaddle(const ProceduralGait& clip, const RigProfile& profile, double seconds) {

@@ -5,8 +5,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "rig/horse_character.h"
-#include "rig/rider_character.h"
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
 
 namespace stirrup::rig {
 namespace {

@@ -1,0 +1,241 @@
+#include "render/review/movie_set.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <optional>
+
+#include "render/review/burn_in.h"
+#include "render/review/channel_plot.h"
+#include "render/review/contact_sheet.h"
+#include "render/frame_writer.h"
+#include "render/image.h"
+#include "render/review/layer.h"
+#include "render/preset.h"
+#include "render/scene.h"
+#include "render/shot.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/error.h"
+#include "rig/io/frame_range.h"
+#include "rig/rig_profile.h"
+
+namespace stirrup::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string padded(int frame) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%04d", frame);
+  return buf;
+}
+
+// The scene's own reference block, when the scene format has one (render/review/layer.h ReferenceSpec).
+template <typename S>
+std::optional<ReferenceSpec> sceneReference(const S& scene) {
+  if constexpr (requires { scene.reference; }) {
+    if constexpr (requires { scene.reference.has_value(); }) {
+      if (scene.reference.has_value()) return ReferenceSpec(*scene.reference);
+    } else {
+      return ReferenceSpec(scene.reference);
+    }
+  }
+  return std::nullopt;
+}
+
+// Muybridge's horse-and-rider plate (2872x1008, 6x2 cells), laid beside the render.
+ReferenceSpec muybridgePlate(const fs::path& reference_dir) {
+  ReferenceSpec r;
+  r.file = reference_dir / "muybridge" / "horse-and-rider-gallop-plate.jpg";
+  PlateGrid grid;
+  grid.rows = 2;
+  grid.columns = 6;
+  r.grid = grid;
+  r.edge = FootageEdge::Loop;
+  r.mode = LayerMode::SideBySide;
+  r.label = "MUYBRIDGE 1887";
+  return r;
+}
+
+std::vector<int> movieFrames(const MovieJob& job, const SceneSpec& scene, const MovieOptions& o) {
+  std::vector<int> frames = rig::parseFrameList(job.frames.empty() ? scene.frames : job.frames,
+                                                job.scene.string() + ": frames");
+  if (o.frames_limit > 0 && static_cast<int>(frames.size()) > o.frames_limit) frames.resize(std::size_t(o.frames_limit));
+  return frames;
+}
+
+SceneSpec loadForMovie(const MovieJob& job, const MovieOptions& o) {
+  SceneSpec scene = loadScene(job.scene);
+  applyPreset(scene, findPreset(o.preset));
+  if (o.width > 0) scene.width = o.width;
+  if (o.height > 0) scene.height = o.height;
+  return scene;
+}
+
+}  // namespace
+
+fs::path sharedDir(const fs::path& source_dir) {
+  if (const char* env = std::getenv("STIRRUP_SHARED_DIR"); env && *env) return env;
+  return source_dir.parent_path() / "shared";
+}
+
+std::vector<MovieJob> defaultMovieSet(const fs::path& scenes_dir, const fs::path& reference_dir) {
+  auto s = [&](const std::string& n) { return scenes_dir / (n + ".json"); };
+  std::vector<MovieJob> set = {
+      {"jump_side", s("jump"), "side", "", ""},     {"jump_persp", s("jump"), "persp", "", ""},
+      {"rear_side", s("rear"), "side", "", ""},     {"rear_persp", s("rear"), "persp", "", ""},
+      {"stop_side", s("stop"), "side", "", ""},     {"stop_persp", s("stop"), "persp", "", ""},
+      {"stop_close", s("stop"), "close", "", ""},   {"stop_layered", s("stop"), "side", "", "rigid"},
+      {"trot_side", s("trot"), "side", "", ""},     {"trot_persp", s("trot"), "persp", "", ""},
+      {"trot_close", s("trot"), "close", "", ""},   {"trot_layered", s("trot"), "side", "", "rigid"},
+      {"walk_side", s("walk"), "side", "", ""},     {"walk_persp", s("walk"), "persp", "", ""},
+      {"walk_close", s("walk"), "close", "", ""},   {"walk_layered", s("walk"), "side", "", "rigid"},
+      {"buck_side", s("buck"), "side", "", ""},     {"buck_persp", s("buck"), "persp", "", ""},
+      {"canter_side", s("canter"), "side", "", ""}, {"gallop_side", s("gallop"), "side", "", ""},
+      // The characters turning: horse and rider together (the rider rig rides the horse; neither is
+      // shown alone), once holding a pose and once trotting in place.
+      {"turntable_pose", s("trot"), "turntable_pose", "1-96", ""},
+      {"turntable_trot", s("trot"), "turntable", "1-96", ""},
+  };
+  if (fs::is_regular_file(reference_dir / "muybridge" / "horse-and-rider-gallop-plate.jpg"))
+    set.push_back({"gallop_layered", s("gallop"), "side", "", "reference"});
+  return set;
+}
+
+int movieFrameCount(const MovieJob& job, const MovieOptions& o) {
+  return static_cast<int>(movieFrames(job, loadScene(job.scene), o).size());
+}
+
+fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out) {
+  const SceneSpec scene = loadScene(scene_file);
+  const rig::RigProfile profile = resolveProfile(scene);
+  const std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
+  std::vector<rig::BakedFrame> baked;
+  for (int f : rig::parseFrameList(scene.frames, scene_file.string() + ": frames"))
+    baked.push_back(rig::bakeFrame(*clip, profile, f, frameTime(scene, f)));
+  const fs::path file = out / (scene.name + "_plot.png");
+  writeChannelPlot(movementPlot(scene.name + " (" + clip->name() + ", profile " + scene.profile +
+                                    "): horse and rider channels",
+                                baked, profile.rider_unit_cm),
+                   file);
+  return file;
+}
+
+MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::function<void()>& frame_done) {
+  const auto start = std::chrono::steady_clock::now();
+  const SceneSpec scene = loadForMovie(job, o);
+  const CameraSpec& camera = findCamera(scene, job.camera);
+  const rig::RigProfile profile = resolveProfile(scene);
+  const std::vector<int> frames = movieFrames(job, scene, o);
+  if (frames.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
+
+  Shot shot(scene, profile, camera, o.threads);
+  std::unique_ptr<Shot> rigid;
+  std::optional<FootageSequence> footage;
+  LayerStyle style;
+  std::vector<std::string> panel_labels;
+  if (job.layered == "rigid") {
+    CameraSpec same = shot.camera();  // exactly the rigged shot's framed camera
+    same.view.clear();
+    rigid = std::make_unique<Shot>(scene, profile, same, o.threads);
+    rigid->setRigidRider(true);
+    panel_labels = {"rigged rider (stirrup)", "rider fixed to the saddle"};
+    style.mode = LayerMode::SideBySide;
+    style.labels = false;  // labelled below the burn-in band instead (labelPanels)
+  } else if (job.layered == "reference") {
+    const ReferenceSpec ref = sceneReference(scene).value_or(muybridgePlate(o.reference_dir));
+    if (!referenceAvailable(ref)) throw InputError(job.scene.string() + ": reference: " + ref.file.string() + ": not found");
+    footage = openReference(ref, job.scene.string() + ": reference");
+    style = referenceStyle(ref, "STIRRUP");
+    if (style.mode == LayerMode::SideBySide) {
+      panel_labels = {"stirrup", ref.label};
+      style.labels = false;
+    }
+  } else if (!job.layered.empty()) {
+    throw InputError(job.name + ": layered: expected \"rigid\" or \"reference\", got \"" + job.layered + "\"");
+  }
+
+  MovieResult result;
+  result.name = job.name;
+  result.scene = scene.name;
+  result.view = job.layered.empty() ? job.camera : "layered (" + job.camera + ")";
+  result.movement = rig::makeClip(scene.clip)->name();
+  result.profile = scene.profile;
+  result.fps = scene.fps;
+  result.frames = static_cast<int>(frames.size());
+
+  BurnInFacts facts;
+  facts.scene = scene.name;
+  facts.movement = result.movement;
+  facts.view = result.view;
+  facts.profile = scene.profile;
+  facts.fps = scene.fps;
+  facts.frames = std::to_string(frames.front()) + "-" + std::to_string(frames.back());
+  facts.frame_count = result.frames;
+  const QualityPreset& preset = findPreset(o.preset);
+  facts.quality = std::string(preset.name) + " (samples a pixel: " + std::to_string(preset.samples) + ")";
+  facts.date = o.date.empty() ? todayUtc() : o.date;
+
+  const fs::path frame_dir = o.out / "frames" / job.name;
+  fs::create_directories(frame_dir);
+  const std::vector<int> sheet_frames = contactFrames(frames, o.contact_count);
+  std::vector<ContactFrame> sheet;
+  std::vector<fs::path> files;
+  // Burn-ins and the PNG write of frame f happen on the writer's thread while f + 1 renders.
+  FrameWriter writer;
+  const bool side_by_side = style.mode == LayerMode::SideBySide;
+  for (int f : frames) {
+    Image image = shot.renderFrame(f);
+    if (rigid) {
+      image = layerFrame(image, rigid->renderFrame(f), style);
+    } else if (footage) {
+      const std::optional<int> theirs = footage->theirFrame(f);
+      const Image other = style.mode == LayerMode::SideBySide && theirs ? footage->source(*theirs)
+                                                                        : footage->frame(f, image.width, image.height);
+      image = layerFrame(image, other, style);
+    }
+    if (std::find(sheet_frames.begin(), sheet_frames.end(), f) != sheet_frames.end()) sheet.push_back({f, image});
+    const fs::path file = frame_dir / (job.name + "." + padded(f) + ".png");
+    writer.submit([image = std::move(image), &facts, &panel_labels, side_by_side, f, file]() mutable {
+      burnIn(image, facts, f);
+      if (side_by_side) labelPanels(image, panel_labels);
+      writePng(image, file);
+    });
+    files.push_back(file);
+    if (frame_done) frame_done();
+  }
+  writer.wait();
+  // The slate: one second before the first frame, at the frames' size.
+  const int slate_frames = std::max(1, static_cast<int>(std::lround(scene.fps)));
+  const fs::path slate_file = frame_dir / (job.name + ".slate.png");
+  writePng(makeSlate(sheet.front().image.width, sheet.front().image.height, facts), slate_file);
+  std::vector<fs::path> playlist(static_cast<std::size_t>(slate_frames), slate_file);
+  playlist.insert(playlist.end(), files.begin(), files.end());
+  result.slate_frames = slate_frames;
+
+  if (o.mp4) {
+    const fs::path movie = o.out / (job.name + ".mp4");
+    encodeMovie({playlist, scene.fps, movie, 18, MovieCodec::H264});
+    result.movies.push_back(movie);
+  }
+  if (o.mov) {
+    const fs::path movie = o.out / (job.name + ".mov");
+    encodeMovie({playlist, scene.fps, movie, 18, o.mov_codec});
+    result.movies.push_back(movie);
+  }
+  result.contact_sheet = o.out / (job.name + "_sheet.png");
+  writeContactSheet(job.name + "  (" + scene.name + ", " + result.view + ", profile " + scene.profile + ")", sheet,
+                    result.contact_sheet);
+  if (!o.keep_frames) {
+    std::error_code ec;
+    fs::remove_all(frame_dir, ec);
+    fs::remove(frame_dir.parent_path(), ec);  // only when empty
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace stirrup::render

@@ -1,0 +1,71 @@
+// Review movies of scenes: each movie renders a scene through one of its cameras (a view), burns in
+// the facts on every frame, puts a one-second slate first, encodes .mp4 (H.264) and/or .mov (ProRes
+// 422 HQ or H.264), and writes a contact sheet; each movement also gets a channel plot. The default
+// set (`stirrup movies`) is the thesis's Appendix A movies plus buck, canter, gallop and turntables.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "render/review/movie.h"
+
+namespace stirrup::render {
+
+struct MovieJob {
+  std::string name;             // e.g. "trot_side": files NAME.mp4, NAME_sheet.png
+  std::filesystem::path scene;  // scene file
+  std::string camera;           // the scene's camera (a view)
+  std::string frames;           // empty: the scene's frames
+  // Layered: "" (a plain movie), "rigid" (the rigged rider beside the rider rigidly fixed to the
+  // saddle) or "reference" (the scene's reference footage, or Muybridge's gallop plate).
+  std::string layered;
+};
+
+// ../shared beside the repository: $STIRRUP_SHARED_DIR when set, else SOURCE_DIR/../shared.
+std::filesystem::path sharedDir(const std::filesystem::path& source_dir);
+
+// The default set for the scenes in `scenes_dir`; gallop_layered only when `reference_dir` (the shared
+// reference folder) holds Muybridge's plate.
+std::vector<MovieJob> defaultMovieSet(const std::filesystem::path& scenes_dir,
+                                      const std::filesystem::path& reference_dir);
+
+struct MovieOptions {
+  std::filesystem::path out = "out/movies";
+  std::string preset = "review";  // render/preset.h
+  int width = 0, height = 0;      // 0: the scene's resolution
+  int frames_limit = 0;           // > 0: only the first N frames of each movie (quick looks, tests)
+  bool mp4 = true;                // NAME.mp4, H.264 yuv420p CRF 18
+  bool mov = false;               // NAME.mov as well
+  MovieCodec mov_codec = MovieCodec::ProRes;
+  bool keep_frames = false;       // keep OUT/frames/NAME/NAME.####.png
+  int threads = 0;
+  std::string date;               // the slate's date; empty: today (UTC)
+  std::filesystem::path reference_dir;  // Muybridge's plate for reference layering
+  int contact_count = 12;
+};
+
+struct MovieResult {
+  std::string name, scene, view, movement, profile;
+  std::vector<std::filesystem::path> movies;  // encoded files
+  std::filesystem::path contact_sheet;
+  std::filesystem::path plot;                 // the movement's channel plot
+  int frames = 0;                             // rendered frames (without the slate)
+  int slate_frames = 0;
+  double fps = 24.0;
+  double seconds = 0.0;                       // wall time to render and encode
+};
+
+// The number of frames `job` renders with `options` (for progress bars).
+int movieFrameCount(const MovieJob& job, const MovieOptions& options);
+
+// Renders one movie; `frame_done` is called after each frame. Throws stirrup::InputError on bad
+// input and std::runtime_error when encoding fails (no movie is left then).
+MovieResult renderMovie(const MovieJob& job, const MovieOptions& options,
+                        const std::function<void()>& frame_done = {});
+
+// The movement's channel plot: OUT/SCENE_plot.png (the scene's frames). Returns the file.
+std::filesystem::path writeMovementPlot(const std::filesystem::path& scene_file, const std::filesystem::path& out);
+
+}  // namespace stirrup::render

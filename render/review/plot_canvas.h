@@ -1,0 +1,66 @@
+// A small drawing surface for diagrams (spine plots, channel plots, contact sheets): antialiased
+// lines and disks, filled rectangles, images and DejaVu text, in a float RGB buffer written as an
+// 8-bit PNG by OpenImageIO (via FILE.tmp.EXT and a rename).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "render/review/text.h"
+
+namespace stirrup::render {
+
+using Color = std::array<float, 3>;  // display-referred (written as is to 8 bits)
+
+// The charts' palette: paper, ink and grid greys, and the Okabe-Ito colours, which stay apart for
+// colour-blind readers. Shared by the channel plots and any chart that draws curves with a legend.
+namespace plot_palette {
+inline const Color kBackground = {0.98f, 0.98f, 0.97f};
+inline const Color kPanel = {1.0f, 1.0f, 1.0f};
+inline const Color kFrameLine = {0.55f, 0.55f, 0.55f};
+inline const Color kGrid = {0.88f, 0.88f, 0.88f};
+inline const Color kZero = {0.70f, 0.70f, 0.70f};
+inline const Color kInk = {0.12f, 0.12f, 0.12f};
+inline const Color kMuted = {0.40f, 0.40f, 0.40f};
+
+// Colour-blind-safe (Okabe-Ito).
+inline const Color kBlue = {0.0f, 0.45f, 0.70f};
+inline const Color kOrange = {0.90f, 0.62f, 0.0f};
+inline const Color kGreen = {0.0f, 0.62f, 0.45f};
+inline const Color kVermilion = {0.84f, 0.37f, 0.0f};
+inline const Color kPurple = {0.80f, 0.47f, 0.65f};
+inline const Color kSky = {0.34f, 0.71f, 0.91f};
+}  // namespace plot_palette
+
+class Canvas {
+ public:
+  Canvas(int width, int height, const Color& background);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  // A segment of the given width: each pixel is covered by its distance to the segment, with a
+  // one-pixel ramp at the edge, which is enough antialiasing for diagrams.
+  void line(glm::dvec2 a, glm::dvec2 b, double width, const Color& c);
+  void disk(glm::dvec2 centre, double radius, const Color& c) { line(centre, centre, 2.0 * radius, c); }
+  void fill(int x0, int y0, int x1, int y1, const Color& c);  // [x0, x1) x [y0, y1)
+  // Text with its baseline at y; x is the left edge, centre or right edge.
+  void text(int x, int y, const std::string& s, int size, const Color& c, TextAlign align = TextAlign::Left,
+            FontStyle style = FontStyle::Sans);
+  // Pastes an RGB image (display-referred, row-major, w*h*3) with its top-left at (x, y).
+  void paste(int x, int y, int w, int h, const std::vector<float>& rgb);
+  // Writes an 8-bit PNG; throws stirrup::InputError naming the file on failure.
+  void write(const std::filesystem::path& file) const;
+
+  void blend(int x, int y, double coverage, const Color& c);
+
+ private:
+  int width_, height_;
+  std::vector<float> rgb_;
+};
+
+}  // namespace stirrup::render

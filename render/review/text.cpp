@@ -1,0 +1,81 @@
+#include "render/review/text.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <mutex>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include "rig/error.h"
+
+namespace stirrup::render {
+namespace {
+
+const char* fileName(FontStyle style) {
+  switch (style) {
+    case FontStyle::SansBold: return "DejaVuSans-Bold.ttf";
+    case FontStyle::Mono: return "DejaVuSansMono.ttf";
+    default: return "DejaVuSans.ttf";
+  }
+}
+
+std::filesystem::path locate(FontStyle style) {
+  namespace fs = std::filesystem;
+  const std::string name = fileName(style);
+  if (const char* env = std::getenv("STIRRUP_FONT"); env && *env) {
+    if (fs::is_regular_file(env)) return env;
+    throw InputError(std::string("STIRRUP_FONT: ") + env + ": no such font file (expected a .ttf file)");
+  }
+  for (const char* dir : {"/usr/share/fonts/truetype/dejavu", "/usr/share/fonts/dejavu", "/usr/share/fonts/TTF",
+                          "/usr/local/share/fonts", "/usr/share/fonts/truetype"}) {
+    const fs::path p = fs::path(dir) / name;
+    if (fs::is_regular_file(p)) return p;
+  }
+  // fontconfig, when present: fc-match prints the file of the closest font.
+  const std::string family = style == FontStyle::Mono ? "DejaVu Sans Mono" : style == FontStyle::SansBold ? "DejaVu Sans:bold" : "DejaVu Sans";
+  if (FILE* pipe = popen(("fc-match -f '%{file}' '" + family + "' 2>/dev/null").c_str(), "r")) {
+    char buf[1024] = {};
+    const std::size_t n = fread(buf, 1, sizeof buf - 1, pipe);
+    pclose(pipe);
+    const fs::path p(std::string(buf, n));
+    if (n > 0 && p.filename().string().find("DejaVu") != std::string::npos && fs::is_regular_file(p)) return p;
+  }
+  throw InputError(std::string("font: ") + name +
+                   " not found (install fonts-dejavu-core, run scripts/setup, or set STIRRUP_FONT to a .ttf file)");
+}
+
+}  // namespace
+
+std::filesystem::path findFont(FontStyle style) {
+  if (const char* env = std::getenv("STIRRUP_FONT"); env && *env) return locate(style);
+  static std::mutex m;
+  static std::map<FontStyle, std::filesystem::path> found;
+  std::lock_guard<std::mutex> lock(m);
+  auto it = found.find(style);
+  if (it == found.end()) it = found.emplace(style, locate(style)).first;
+  return it->second;
+}
+
+std::array<int, 2> textSize(const std::string& text, int size, FontStyle style) {
+  const OIIO::ROI r = OIIO::ImageBufAlgo::text_size(text, size, findFont(style).string());
+  if (!r.defined()) return {0, 0};
+  return {r.width(), r.height()};
+}
+
+void drawTextMask(std::vector<float>& mask, int width, int height, int x, int y, const std::string& text,
+                  int size, FontStyle style, TextAlign align) {
+  if (text.empty()) return;
+  OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageBuf buf(spec, mask.data());
+  const float white[1] = {1.0f};
+  const auto ax = align == TextAlign::Left     ? OIIO::ImageBufAlgo::TextAlignX::Left
+                  : align == TextAlign::Center ? OIIO::ImageBufAlgo::TextAlignX::Center
+                                               : OIIO::ImageBufAlgo::TextAlignX::Right;
+  if (!OIIO::ImageBufAlgo::render_text(buf, x, y, text, size, findFont(style).string(), white, ax,
+                                       OIIO::ImageBufAlgo::TextAlignY::Baseline, 0, {}, 1))
+    throw std::runtime_error("render_text: " + buf.geterror());
+}
+
+}  // namespace stirrup::render

@@ -1,0 +1,237 @@
+#include "rig/characters/rider_character.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "rig/ik.h"
+#include "rig/characters/implicit_body.h"
+#include "rig/characters/joint_placement.h"
+
+namespace stirrup::rig {
+namespace {
+
+// Linear blend weights along the spine chain. Each vertex keeps its weights on other joints (pelvis,
+// shoulders, neck); the share it has on the chain is moved onto the two chain bones whose middles
+// bracket its height, linearly (bone i's middle is at y0 + (i + ½)·bone, the tip joint's half a
+// bone above the chain), so a bent chain bends the torso smoothly instead of at a few joints.
+void spreadTorsoWeights(SkinnedMesh& mesh, std::span<const int> chain, float y0, float bone) {
+  const int n = static_cast<int>(chain.size()) - 1;
+  const auto on_chain = [&](int j) { return std::find(chain.begin(), chain.end(), j) != chain.end(); };
+  std::vector<std::pair<float, int>> w;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    w.clear();
+    float torso = 0.0f;
+    for (int k = 0; k < kMaxInfluences; ++k) {
+      const float wk = mesh.weights[v][k];
+      if (wk <= 0.0f) continue;
+      const int j = mesh.joints[v][k];
+      if (on_chain(j))
+        torso += wk;
+      else
+        w.emplace_back(wk, j);
+    }
+    if (torso <= 0.0f) continue;
+    const float u = std::clamp((mesh.positions[v].y - y0) / bone - 0.5f, 0.0f, static_cast<float>(n));
+    const int i = std::min(static_cast<int>(u), n - 1);
+    const float f = u - static_cast<float>(i);
+    w.emplace_back(torso * (1.0f - f), chain[i]);
+    w.emplace_back(torso * f, chain[i + 1]);
+    std::sort(w.begin(), w.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    const int count = std::min<int>(kMaxInfluences, static_cast<int>(w.size()));
+    float total = 0.0f;
+    for (int k = 0; k < count; ++k) total += w[k].first;
+    mesh.joints[v] = glm::u16vec4(0);
+    mesh.weights[v] = glm::vec4(0.0f);
+    for (int k = 0; k < count; ++k) {
+      mesh.joints[v][k] = static_cast<std::uint16_t>(w[k].second);
+      mesh.weights[v][k] = w[k].first / total;
+    }
+  }
+}
+
+// The middle joint of a limb at rest: the same IK the posing job runs, so rest is reproduced exactly.
+glm::vec3 restMiddle(glm::vec3 root, glm::vec3 end, float upper, float lower, glm::vec3 pole_dir) {
+  TwoBoneIkInput in;
+  in.root = root;
+  in.target = end;
+  in.upper_length = upper;
+  in.lower_length = lower;
+  in.pole = 0.5f * (root + end) + glm::normalize(pole_dir) * 50.0f;
+  return solveTwoBoneIk(in).middle;
+}
+
+}  // namespace
+
+Character buildRider(const RiderParams& p, const MountParams& mount) {
+  Character c;
+  c.name = "rider";
+  Skeleton& s = c.skeleton;
+  ImplicitBody body;
+
+  const int pelvis = addJointAt(s, "pelvis", -1, p.pelvis);
+  // The curve spine's FK controllers, straight up from the lower back (the curve spine's rest pose),
+  // then the chain of equal bones the torso is skinned to, over the same length.
+  const auto above_lower_back = [&](float y) { return glm::vec3(p.lower_back.x, y, p.lower_back.z); };
+  const int lower_back = addJointAt(s, "lowerBack", pelvis, p.lower_back);
+  const int waist = addJointAt(s, "waist", lower_back, above_lower_back(p.waist.y));
+  const int chest = addJointAt(s, "chest", waist, above_lower_back(p.chest.y));
+  constexpr int kN = kRiderSpineSegments;
+  const float chain_bone = (p.upper_chest.y - p.lower_back.y) / kN;
+  std::array<int, kN + 1> chain{};
+  for (int i = 0; i <= kN; ++i)
+    chain[i] = addJointAt(s, "spine" + std::to_string(i), i == 0 ? pelvis : chain[i - 1],
+                          above_lower_back(p.lower_back.y + chain_bone * static_cast<float>(i)));
+  // The chain joint nearest a height: where a primitive or a child at that height hangs.
+  const auto chain_at = [&](float y) {
+    const int i = static_cast<int>(std::lround((y - p.lower_back.y) / chain_bone));
+    return chain[std::clamp(i, 0, kN)];
+  };
+  const int upper_chest = chain[kN];
+  const int neck = addJointAt(s, "neck", upper_chest, p.neck);
+  const int head = addJointAt(s, "head", neck, p.head);
+  const glm::vec3 skull = p.head + glm::vec3(1.5f, p.head_height * 0.45f, 0.0f);  // cranium centre
+  const glm::vec3 braid_root = skull + glm::vec3(-8.5f, -2.0f, 0.0f);
+  const glm::vec3 braid_dir = glm::normalize(glm::vec3(-0.15f, -1.0f, 0.0f));
+  const int braid1 = addJointAt(s, "braid1", head, braid_root);
+  const int braid2 = addJointAt(s, "braid2", braid1, braid_root + braid_dir * (p.braid_length / 3.0f));
+  const int braid3 = addJointAt(s, "braid3", braid2, braid_root + braid_dir * (2.0f * p.braid_length / 3.0f));
+  const int coat_tail = addJointAt(s, "coatTail", chain_at(p.waist.y), p.waist + glm::vec3(-10.0f, -4.0f, 0.0f));
+  c.roles = {{"pelvis", pelvis}, {"lowerBack", lower_back}, {"waist", waist}, {"chest", chest},
+             {"upperChest", upper_chest}, {"neck", neck}, {"head", head}, {"braid1", braid1},
+             {"braid2", braid2}, {"braid3", braid3}, {"coatTail", coat_tail}};
+  for (int i = 0; i <= kN; ++i) c.roles["spine" + std::to_string(i)] = chain[i];
+
+  // Torso: coat over the chest and waist, breeches over the hips.
+  body.add(ellipsoid(p.pelvis + glm::vec3(-0.5f, 0.0f, 0.0f), p.hips_radii, pelvis, p.breeches, 4.0f));
+  // (Each is attached to the chain joint at its height; spreadTorsoWeights then spreads the torso's
+  // share of every vertex's weight along the chain.)
+  body.add(ellipsoid(p.lower_back + glm::vec3(1.0f, 3.0f, 0.0f), {10.5f, 9.0f, p.waist_radius + 1.0f},
+                     chain_at(p.lower_back.y + 3.0f), p.coat, 6.0f));
+  body.add(ellipsoid(p.waist + glm::vec3(1.0f, 2.0f, 0.0f), {9.5f, 9.0f, p.waist_radius}, chain_at(p.waist.y + 2.0f),
+                     p.coat, 6.0f));
+  body.add(ellipsoid(p.chest + glm::vec3(1.0f, 3.0f, 0.0f), p.chest_radii, chain_at(p.chest.y + 3.0f), p.coat, 6.0f));
+  body.add(ellipsoid(p.upper_chest + glm::vec3(-0.5f, 1.0f, 0.0f), {9.0f, 6.5f, 18.5f}, upper_chest, p.coat, 5.0f));
+  // Neck and head.
+  body.add(taperedCapsule(p.neck + glm::vec3(0.0f, -2.0f, 0.0f), p.head + glm::vec3(0.5f, 3.0f, 0.0f), 5.6f, 5.0f,
+                          neck, p.skin, 3.0f));
+  body.add(ellipsoid(skull, {10.0f, 11.5f, 8.6f}, head, p.skin, 3.0f));
+  body.add(ellipsoid(p.head + glm::vec3(4.0f, 4.0f, 0.0f), {6.5f, 5.5f, 6.0f}, head, p.skin, 4.0f));
+  body.add(taperedCapsule(skull + glm::vec3(8.5f, 1.0f, 0.0f), skull + glm::vec3(10.8f, -2.5f, 0.0f), 1.3f, 1.7f, head,
+                          p.skin, 1.5f));
+  for (float side : {-1.0f, 1.0f}) {
+    body.add(ellipsoid(skull + glm::vec3(8.6f, 2.5f, 3.3f * side), glm::vec3(1.1f), head, p.eyes, 0.3f));
+    body.add(ellipsoid(skull + glm::vec3(-0.5f, 0.0f, 8.4f * side), {2.0f, 3.0f, 1.2f}, head, p.skin, 1.0f));
+  }
+  ImplicitPrimitive cap = ellipsoid(skull + glm::vec3(-1.2f, 1.2f, 0.0f), {10.6f, 11.8f, 9.3f}, head, p.hair, 0.6f);
+  cap.clip_min.y = skull.y + 3.0f;
+  body.add(cap);
+  ImplicitPrimitive back_hair = ellipsoid(skull + glm::vec3(-3.0f, -1.0f, 0.0f), {8.5f, 10.5f, 9.2f}, head, p.hair, 0.6f);
+  back_hair.clip_max.x = skull.x - 3.0f;
+  body.add(back_hair);
+  // Braid: three tapering segments that the hair channels swing.
+  const glm::vec3 b1 = s.restPosition(braid1), b2 = s.restPosition(braid2), b3 = s.restPosition(braid3);
+  const glm::vec3 btip = braid_root + braid_dir * p.braid_length;
+  body.add(taperedCapsule(b1, b2, p.braid_radius, p.braid_radius * 0.9f, braid1, p.hair, 1.5f));
+  body.add(taperedCapsule(b2, b3, p.braid_radius * 0.9f, p.braid_radius * 0.75f, braid2, p.hair, 1.0f));
+  body.add(taperedCapsule(b3, btip, p.braid_radius * 0.75f, p.braid_radius * 0.5f, braid3, p.hair, 1.0f));
+  // Coat tail, draped over the cantle behind the seat.
+  const glm::vec3 ct = s.restPosition(coat_tail);
+  // A shell around the hips cut to its back half: the coat's skirt, lying over the seat's back.
+  ImplicitPrimitive skirt = ellipsoid(p.pelvis + glm::vec3(-0.5f, 4.0f, 0.0f), p.hips_radii + glm::vec3(1.5f, 4.0f, 1.5f),
+                                      coat_tail, p.coat, 1.0f);
+  skirt.clip_max = glm::vec3(p.pelvis.x - 4.0f, ct.y + 2.0f, 1e3f);
+  skirt.clip_min.y = ct.y - p.coat_tail_length;
+  body.add(skirt);
+
+  for (float side : {-1.0f, 1.0f}) {  // parameters describe the left side (z < 0)
+    const std::string n = side < 0 ? "l" : "r";
+    const float m = -side;  // mirror factor applied to left-side parameters
+    // Arm: shoulder -> elbow -> wrist, the wrist at the rein.
+    const glm::vec3 shoulder = mirrorZ(p.shoulder, m);
+    const glm::vec3 wrist = mirrorZ(mount.rein_grip + p.wrist_from_grip, m);
+    const glm::vec3 elbow = restMiddle(shoulder, wrist, p.upper_arm, p.forearm, mirrorZ(p.elbow_pole_dir, m));
+    const int j_shoulder = addJointAt(s, n + "Shoulder", upper_chest, shoulder);
+    const int j_elbow = addJointAt(s, n + "Elbow", j_shoulder, elbow);
+    const int j_wrist = addJointAt(s, n + "Wrist", j_elbow, wrist);
+    const int j_hand = addJointAt(s, n + "Hand", j_wrist, mirrorZ(mount.rein_grip, m));
+    // Leg: hip -> knee -> ankle, the ball of the foot on the stirrup tread.
+    const glm::vec3 hip = mirrorZ(p.hip, m);
+    const glm::vec3 ball = mirrorZ(mount.stirrup, m);
+    const glm::vec3 ankle = ball + mirrorZ(p.ankle_from_ball, m);
+    const glm::vec3 knee = restMiddle(hip, ankle, p.thigh, p.shin, mirrorZ(p.knee_pole_dir, m));
+    const int j_hip = addJointAt(s, n + "Hip", pelvis, hip);
+    const int j_knee = addJointAt(s, n + "Knee", j_hip, knee);
+    const int j_ankle = addJointAt(s, n + "Ankle", j_knee, ankle);
+    const int j_ball = addJointAt(s, n + "Ball", j_ankle, ball);
+    for (const auto& [role, j] : {std::pair{"Shoulder", j_shoulder}, {"Elbow", j_elbow}, {"Wrist", j_wrist}, {"Hand", j_hand},
+                                  {"Hip", j_hip}, {"Knee", j_knee}, {"Ankle", j_ankle}, {"Ball", j_ball}})
+      c.roles[n + role] = j;
+
+    const glm::vec3 out(0.0f, 0.0f, side);
+    body.add(ellipsoid(shoulder + glm::vec3(0.0f, 0.5f, -1.5f * side), {6.0f, 5.5f, 6.0f}, j_shoulder, p.coat, 4.0f));
+    body.add(taperedCapsule(shoulder, elbow, p.shoulder_radius, 4.2f, j_shoulder, p.coat, 3.0f));
+    body.add(taperedCapsule(elbow, wrist, 4.2f, p.wrist_radius, j_elbow, p.coat, 2.0f));
+    const glm::vec3 fwd = glm::normalize(wrist - elbow);
+    body.add(ellipsoid(wrist + fwd * 4.5f + glm::vec3(0.0f, -0.5f, 0.0f), {5.0f, 3.8f, 2.8f}, j_wrist, p.skin, 2.0f,
+                       fwd));
+    body.add(taperedCapsule(wrist + fwd * 5.0f + out * 1.5f, wrist + fwd * 5.0f + glm::vec3(0.0f, 3.0f, 0.0f) + out * 1.5f,
+                            1.2f, 1.1f, j_wrist, p.skin, 1.5f));  // thumb on top of the rein
+
+    body.add(taperedCapsule(hip + glm::vec3(0.0f, 0.0f, 1.0f * side), knee, p.thigh_radius, p.knee_radius, j_hip,
+                            p.breeches, 4.0f));
+    const glm::vec3 boot_top = knee + (ankle - knee) * 0.12f;
+    body.add(taperedCapsule(knee, boot_top, p.knee_radius, p.knee_radius, j_knee, p.breeches, 2.0f));
+    body.add(taperedCapsule(boot_top, ankle, p.calf_radius + 0.4f, p.ankle_radius + 0.4f, j_knee, p.boots, 1.0f));
+    const glm::vec3 heel = ankle + glm::vec3(-3.0f, -4.0f, 0.0f);
+    const glm::vec3 toe = ball + glm::vec3(7.0f, 3.3f, 0.0f);
+    ImplicitPrimitive foot = taperedCapsule(heel, toe, 4.2f, 3.4f, j_ankle, p.boots, 2.0f);
+    body.add(foot);
+  }
+
+  PolygonizeParams poly;
+  poly.cell = p.cell;
+  poly.skin_falloff = 2.0f;
+  c.mesh = polygonize(body, poly);
+  spreadTorsoWeights(c.mesh, chain, p.lower_back.y, chain_bone);
+  groupTrianglesByColor(c.mesh);
+  return c;
+}
+
+Character buildDefaultRider() { return buildRider(RiderParams{}, HorseParams{}.mount); }
+
+RiderSpine riderSpine(const Character& rider) {
+  const Skeleton& s = rider.skeleton;
+  RiderSpine spine;
+  spine.controllers = {rider.role("lowerBack"), rider.role("waist"), rider.role("chest")};
+  for (int i = 0; i <= kRiderSpineSegments; ++i) spine.chain[i] = rider.role("spine" + std::to_string(i));
+  const int pelvis = rider.role("pelvis");
+  const bool parents_ok = s.joints[spine.controllers[0]].parent == pelvis &&
+                          s.joints[spine.controllers[1]].parent == spine.controllers[0] &&
+                          s.joints[spine.controllers[2]].parent == spine.controllers[1] &&
+                          s.joints[spine.chain[0]].parent == pelvis &&
+                          rider.role("upperChest") == spine.chain[kRiderSpineSegments];
+  if (!parents_ok) throw std::invalid_argument("riderSpine: " + rider.name + "'s spine joints are not parented as built");
+  const std::array<int, 4> fk = {spine.controllers[0], spine.controllers[1], spine.controllers[2],
+                                 spine.chain[kRiderSpineSegments]};
+  const glm::vec3 base = s.restPosition(fk[0]);
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec3 d = s.restPosition(fk[k + 1]) - s.restPosition(fk[k]);
+    spine.fk_lengths[k] = d.y;
+    if (!(d.y > 0.0f) || std::abs(d.x) > 1e-3f || std::abs(d.z) > 1e-3f)
+      throw std::invalid_argument("riderSpine: " + rider.name + "'s spine controllers are not straight up at rest");
+  }
+  if (glm::length(s.restPosition(spine.chain[0]) - base) > 1e-3f)
+    throw std::invalid_argument("riderSpine: " + rider.name + "'s chain does not start at the lower back");
+  spine.root = base - s.restPosition(pelvis);
+  return spine;
+}
+
+}  // namespace stirrup::rig

@@ -1,0 +1,44 @@
+// Which joint of a user's glTF character plays which role of the rig (docs/characters.md), like
+// rig/io/gltf_clip.h's ClipMapping does for clips: a JSON file
+//
+//   {"character": "horse", "scale_cm": 1, "forward": [1, 0, 0], "up": [0, 1, 0], "offset_cm": [0, 0, 0],
+//    "roles": {"root": "Hips", "saddle": "Saddle", ...}}
+//
+// "roles" maps every role of the character kind (requiredRoles) to a joint name in the file; two
+// roles may name one joint. scale_cm, forward and up convert the file's units and axes to stirrup's
+// (cm, +X travel, +Y up, +Z right); offset_cm is added after (a rider is built in saddle space, with
+// the seat centre at the origin). Unknown fields are errors.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace stirrup::rig {
+
+enum class CharacterKind { Horse, Rider };
+
+std::string_view characterKindName(CharacterKind kind);  // "horse" / "rider"
+
+// Every role posing looks up, in a stable order: for the horse the trunk, neck, head, tail, tack and
+// four legs; for the rider the pelvis, curve-spine controllers and chain, neck, head, braid, coat
+// tail and both arms and legs (rig/characters/horse_character.h, rig/characters/rider_character.h).
+const std::vector<std::string>& requiredRoles(CharacterKind kind);
+
+struct CharacterMapping {
+  std::map<std::string, std::string> roles;  // role -> joint name in the file
+  double scale_cm = 1.0;
+  std::array<double, 3> forward = {1, 0, 0};
+  std::array<double, 3> up = {0, 1, 0};
+  std::array<double, 3> offset_cm = {0, 0, 0};
+  std::filesystem::path file;  // where the mapping was read from, for messages (empty: built in)
+};
+
+// Reads a mapping file for a character of `kind` ("character" in the file, when present, must
+// match). A role missing from "roles" is a one-line InputError naming the file and the role.
+CharacterMapping loadCharacterMapping(const std::filesystem::path& file, CharacterKind kind);
+
+}  // namespace stirrup::rig

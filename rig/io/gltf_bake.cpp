@@ -1,0 +1,149 @@
+#include "rig/io/gltf_bake.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <tiny_gltf.h>
+
+#include "rig/io/gltf_character.h"
+
+namespace stirrup::rig {
+
+glm::mat4 lookAtWorld(glm::dvec3 position, glm::dvec3 target) {
+  return glm::mat4(glm::inverse(glm::lookAt(position, target, glm::dvec3(0.0, 1.0, 0.0))));
+}
+
+std::vector<glm::mat4> worldToLocal(const Skeleton& s, const std::vector<glm::mat4>& world) {
+  if (world.size() != s.size()) throw std::invalid_argument("worldToLocal: expected one matrix per joint");
+  std::vector<glm::mat4> local(s.size());
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int p = s.joints[j].parent;
+    local[j] = p < 0 ? world[j] : glm::mat4(glm::inverse(glm::dmat4(world[p])) * glm::dmat4(world[j]));
+  }
+  return local;
+}
+
+namespace {
+
+// Translation and rotation tracks of a sequence of rigid transforms; quaternions kept in one
+// hemisphere from key to key so LINEAR interpolation takes the short way.
+struct Tracks {
+  std::vector<float> t, r;
+  void push(const glm::mat4& m) {
+    t.insert(t.end(), {m[3][0], m[3][1], m[3][2]});
+    glm::mat3 rot(m);
+    for (int k = 0; k < 3; ++k) rot[k] = glm::normalize(rot[k]);
+    glm::quat q = glm::normalize(glm::quat_cast(rot));
+    if (r.size() >= 4) {
+      const glm::quat prev(r[r.size() - 1], r[r.size() - 4], r[r.size() - 3], r[r.size() - 2]);
+      if (glm::dot(prev, q) < 0.0f) q = -q;
+    }
+    r.insert(r.end(), {q.x, q.y, q.z, q.w});
+  }
+  bool moves() const {
+    for (std::size_t i = 3; i < t.size(); ++i)
+      if (t[i] != t[i % 3]) return true;
+    for (std::size_t i = 4; i < r.size(); ++i)
+      if (r[i] != r[i % 4]) return true;
+    return false;
+  }
+};
+
+void setRest(tinygltf::Node& n, const Tracks& tr) {
+  n.translation = {tr.t[0], tr.t[1], tr.t[2]};
+  n.rotation = {tr.r[0], tr.r[1], tr.r[2], tr.r[3]};
+}
+
+}  // namespace
+
+std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character& rider, const BakedShot& shot) {
+  const std::size_t frames = shot.seconds.size();
+  if (frames == 0 || shot.poses.size() != frames) throw std::invalid_argument("bakedShotGlb: expected one pose per frame");
+  for (std::size_t i = 1; i < frames; ++i)
+    if (!(shot.seconds[i] > shot.seconds[i - 1])) throw std::invalid_argument("bakedShotGlb: times must increase");
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "stirrup bake";
+  std::vector<unsigned char> bin;
+  const int cm = addCentimetreRoot(model);
+  const GltfCharacterNodes h = appendCharacterGltf(model, bin, horse, "horse:");
+  const GltfCharacterNodes r = appendCharacterGltf(model, bin, rider, "rider:");
+  for (const auto* c : {&horse, &rider}) {
+    const GltfCharacterNodes& n = c == &horse ? h : r;
+    for (std::size_t j = 0; j < c->skeleton.size(); ++j)
+      if (c->skeleton.joints[j].parent < 0) model.nodes[cm].children.push_back(n.joint_nodes[j]);
+  }
+
+  tinygltf::Animation anim;
+  anim.name = shot.name;
+  const int input = appendFloatAccessor(model, bin, shot.seconds, 1, true);
+  const auto channel = [&](int node, const std::vector<float>& values, int components, const char* path) {
+    tinygltf::AnimationSampler s;
+    s.input = input;
+    s.output = appendFloatAccessor(model, bin, values, components, false);
+    s.interpolation = "LINEAR";
+    anim.samplers.push_back(s);
+    tinygltf::AnimationChannel ch;
+    ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
+    ch.target_node = node;
+    ch.target_path = path;
+    anim.channels.push_back(ch);
+  };
+  const auto animate = [&](int node, const Tracks& tr) {
+    setRest(model.nodes[node], tr);  // the first frame is the node's own transform
+    if (!tr.moves() || frames < 2) return;
+    channel(node, tr.t, 3, "translation");
+    channel(node, tr.r, 4, "rotation");
+  };
+  for (int which = 0; which < 2; ++which) {
+    const Character& c = which == 0 ? horse : rider;
+    const GltfCharacterNodes& n = which == 0 ? h : r;
+    std::vector<Tracks> tracks(c.skeleton.size());
+    for (const MountedPose& p : shot.poses) {
+      const std::vector<glm::mat4> local = worldToLocal(c.skeleton, which == 0 ? p.horse : p.rider);
+      for (std::size_t j = 0; j < local.size(); ++j) tracks[j].push(local[j]);
+    }
+    for (std::size_t j = 0; j < tracks.size(); ++j) animate(n.joint_nodes[j], tracks[j]);
+  }
+  for (const BakedCamera& bc : shot.cameras) {
+    if (bc.world.size() != frames) throw std::invalid_argument("bakedShotGlb: expected one camera transform per frame");
+    tinygltf::Camera cam;
+    cam.name = bc.name;
+    if (bc.orthographic) {
+      cam.type = "orthographic";
+      // Magnifications in metres: viewers apply them in the camera's own space, not through the
+      // centimetre node's scale.
+      cam.orthographic.ymag = bc.ortho_height_cm * 0.5 * 0.01;
+      cam.orthographic.xmag = cam.orthographic.ymag * bc.aspect;
+      cam.orthographic.znear = 0.01;
+      cam.orthographic.zfar = 1000.0;
+    } else {
+      cam.type = "perspective";
+      cam.perspective.yfov = bc.fov_deg * 3.14159265358979323846 / 180.0;
+      cam.perspective.aspectRatio = bc.aspect;
+      cam.perspective.znear = 0.01;
+      cam.perspective.zfar = 1000.0;
+    }
+    model.cameras.push_back(cam);
+    tinygltf::Node node;
+    node.name = "camera:" + bc.name;
+    node.camera = static_cast<int>(model.cameras.size()) - 1;
+    model.nodes.push_back(node);
+    const int ni = static_cast<int>(model.nodes.size()) - 1;
+    model.nodes[cm].children.push_back(ni);
+    Tracks tr;
+    for (const glm::mat4& w : bc.world) tr.push(w);
+    animate(ni, tr);
+  }
+  if (!anim.channels.empty()) model.animations.push_back(anim);
+  tinygltf::Scene scene;
+  scene.name = shot.name;
+  scene.nodes = {cm, h.mesh_node, r.mesh_node};
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  return glbBytes(model, std::move(bin));
+}
+
+}  // namespace stirrup::rig

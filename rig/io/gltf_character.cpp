@@ -1,0 +1,531 @@
+#include "rig/io/gltf_character.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "rig/error.h"
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
+
+namespace stirrup::rig {
+namespace {
+
+int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const void* data, std::size_t size,
+                int target) {
+  while (bin.size() % 4) bin.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = bin.size();
+  view.byteLength = size;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  bin.insert(bin.end(), p, p + size);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int accessorType(int components) {
+  switch (components) {
+    case 1: return TINYGLTF_TYPE_SCALAR;
+    case 3: return TINYGLTF_TYPE_VEC3;
+    case 4: return TINYGLTF_TYPE_VEC4;
+    case 16: return TINYGLTF_TYPE_MAT4;
+    default: throw std::invalid_argument("glTF: unsupported component count");
+  }
+}
+
+// The name a joint's node gets: its role (the first, with "upperChest" and the like preferred over
+// the chain names), else its skeleton name.
+std::vector<std::string> jointNodeNames(const Character& c) {
+  std::vector<std::string> names(c.skeleton.size());
+  for (std::size_t j = 0; j < c.skeleton.size(); ++j) names[j] = c.skeleton.joints[j].name;
+  std::vector<bool> named(c.skeleton.size(), false);
+  for (int pass = 0; pass < 2; ++pass)
+    for (const auto& [role, j] : c.roles) {
+      const bool chain = role.rfind("spine", 0) == 0;
+      if (named[j] || chain != (pass == 1)) continue;
+      names[j] = role;
+      named[j] = true;
+    }
+  return names;
+}
+
+// Reads an accessor as floats (float, or normalised/unnormalised integers), `components` per element.
+std::vector<float> readAccessor(const tinygltf::Model& model, int index, int components, const std::string& where) {
+  if (index < 0 || index >= static_cast<int>(model.accessors.size())) throw InputError(where + ": no such accessor");
+  const tinygltf::Accessor& a = model.accessors[index];
+  if (a.sparse.isSparse) throw InputError(where + ": sparse accessors are not supported");
+  if (tinygltf::GetNumComponentsInType(a.type) != components)
+    throw InputError(where + ": expected " + std::to_string(components) + " components per element");
+  std::vector<float> out(a.count * components, 0.0f);
+  if (a.bufferView < 0) return out;
+  const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
+  const tinygltf::Buffer& b = model.buffers.at(v.buffer);
+  const int csize = tinygltf::GetComponentSizeInBytes(a.componentType);
+  if (csize <= 0) throw InputError(where + ": unknown component type");
+  const std::size_t stride = v.byteStride ? v.byteStride : static_cast<std::size_t>(csize * components);
+  const std::size_t base = v.byteOffset + a.byteOffset;
+  if (a.count > 0 && base + stride * (a.count - 1) + csize * components > b.data.size())
+    throw InputError(where + ": accessor runs past its buffer");
+  for (std::size_t i = 0; i < a.count; ++i)
+    for (int k = 0; k < components; ++k) {
+      const unsigned char* p = b.data.data() + base + stride * i + static_cast<std::size_t>(csize) * k;
+      float value = 0.0f;
+      switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = *p; if (a.normalized) value /= 255.0f; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+          std::uint16_t u;
+          std::memcpy(&u, p, 2);
+          value = u;
+          if (a.normalized) value /= 65535.0f;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+          std::uint32_t u;
+          std::memcpy(&u, p, 4);
+          value = static_cast<float>(u);
+          break;
+        }
+        default: throw InputError(where + ": unsupported component type");
+      }
+      out[i * components + k] = value;
+    }
+  return out;
+}
+
+std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index, const std::string& where) {
+  const tinygltf::Accessor& a = model.accessors.at(index);
+  const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
+  const tinygltf::Buffer& b = model.buffers.at(v.buffer);
+  const int csize = tinygltf::GetComponentSizeInBytes(a.componentType);
+  const std::size_t base = v.byteOffset + a.byteOffset;
+  if (base + a.count * static_cast<std::size_t>(csize) > b.data.size()) throw InputError(where + ": indices run past the buffer");
+  std::vector<std::uint32_t> out(a.count);
+  for (std::size_t i = 0; i < a.count; ++i) {
+    const unsigned char* p = b.data.data() + base + i * csize;
+    if (csize == 1) out[i] = *p;
+    else if (csize == 2) { std::uint16_t u; std::memcpy(&u, p, 2); out[i] = u; }
+    else { std::memcpy(&out[i], p, 4); }
+  }
+  return out;
+}
+
+}  // namespace
+
+int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<float>& values,
+                        int components, bool minmax, int target) {
+  tinygltf::Accessor a;
+  a.bufferView = appendBytes(model, bin, values.data(), values.size() * sizeof(float), target);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.count = values.size() / components;
+  a.type = accessorType(components);
+  if (minmax) {
+    a.minValues.assign(components, std::numeric_limits<double>::infinity());
+    a.maxValues.assign(components, -std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const int k = static_cast<int>(i % components);
+      a.minValues[k] = std::min<double>(a.minValues[k], values[i]);
+      a.maxValues[k] = std::max<double>(a.maxValues[k], values[i]);
+    }
+  }
+  model.accessors.push_back(a);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
+GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsigned char>& bin,
+                                       const Character& c, const std::string& prefix) {
+  const Skeleton& s = c.skeleton;
+  const SkinnedMesh& m = c.mesh;
+  GltfCharacterNodes out;
+  const std::vector<std::string> names = jointNodeNames(c);
+  const int first = static_cast<int>(model.nodes.size());
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    tinygltf::Node n;
+    n.name = prefix + names[j];
+    const glm::mat4& l = s.joints[j].rest_local;
+    const glm::vec3 t(l[3]);
+    const glm::quat q = glm::normalize(glm::quat_cast(glm::mat3(l)));
+    if (t != glm::vec3(0.0f)) n.translation = {t.x, t.y, t.z};
+    if (q != glm::quat(1.0f, 0.0f, 0.0f, 0.0f)) n.rotation = {q.x, q.y, q.z, q.w};
+    model.nodes.push_back(n);
+    out.joint_nodes.push_back(first + static_cast<int>(j));
+  }
+  for (std::size_t j = 0; j < s.size(); ++j)
+    if (s.joints[j].parent >= 0) model.nodes[first + s.joints[j].parent].children.push_back(first + static_cast<int>(j));
+
+  // Vertex attributes, shared by every primitive.
+  const std::size_t nv = m.vertexCount();
+  std::vector<float> pos(nv * 3), nor(nv * 3), col(nv * 3), wts(nv * 4);
+  std::vector<std::uint16_t> jts(nv * 4);
+  for (std::size_t v = 0; v < nv; ++v) {
+    for (int k = 0; k < 3; ++k) {
+      pos[v * 3 + k] = m.positions[v][k];
+      nor[v * 3 + k] = m.normals[v][k];
+      col[v * 3 + k] = m.colors[v][k];
+    }
+    for (int k = 0; k < 4; ++k) {
+      wts[v * 4 + k] = m.weights[v][k];
+      jts[v * 4 + k] = m.weights[v][k] > 0.0f ? m.joints[v][k] : 0;
+    }
+  }
+  tinygltf::Primitive proto;
+  proto.mode = TINYGLTF_MODE_TRIANGLES;
+  proto.attributes["POSITION"] = appendFloatAccessor(model, bin, pos, 3, true, TINYGLTF_TARGET_ARRAY_BUFFER);
+  proto.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+  proto.attributes["_COLOR"] = appendFloatAccessor(model, bin, col, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+  proto.attributes["WEIGHTS_0"] = appendFloatAccessor(model, bin, wts, 4, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+  {
+    tinygltf::Accessor a;
+    a.bufferView = appendBytes(model, bin, jts.data(), jts.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    a.count = nv;
+    a.type = TINYGLTF_TYPE_VEC4;
+    model.accessors.push_back(a);
+    proto.attributes["JOINTS_0"] = static_cast<int>(model.accessors.size()) - 1;
+  }
+
+  // One primitive per run of triangles of one base colour (a triangle's colour is its first
+  // vertex's), in the order the colours first appear.
+  tinygltf::Mesh mesh;
+  mesh.name = prefix + c.name;
+  const std::size_t nt = m.triangleCount();
+  std::size_t t = 0;
+  std::map<std::tuple<float, float, float>, int> materials;
+  while (t < nt) {
+    const glm::vec3 color = m.colors[m.indices[t * 3]];
+    std::size_t end = t + 1;
+    while (end < nt && m.colors[m.indices[end * 3]] == color) ++end;
+    const auto key = std::make_tuple(color.x, color.y, color.z);
+    auto it = materials.find(key);
+    if (it == materials.end()) {
+      tinygltf::Material mat;
+      mat.name = prefix + c.name + "_" + std::to_string(materials.size());
+      mat.pbrMetallicRoughness.baseColorFactor = {color.x, color.y, color.z, 1.0};
+      mat.pbrMetallicRoughness.metallicFactor = 0.0;
+      mat.pbrMetallicRoughness.roughnessFactor = 0.7;
+      model.materials.push_back(mat);
+      it = materials.emplace(key, static_cast<int>(model.materials.size()) - 1).first;
+    }
+    tinygltf::Primitive prim = proto;
+    prim.material = it->second;
+    tinygltf::Accessor a;
+    a.bufferView = appendBytes(model, bin, m.indices.data() + t * 3, (end - t) * 3 * sizeof(std::uint32_t),
+                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    a.count = (end - t) * 3;
+    a.type = TINYGLTF_TYPE_SCALAR;
+    model.accessors.push_back(a);
+    prim.indices = static_cast<int>(model.accessors.size()) - 1;
+    mesh.primitives.push_back(prim);
+    t = end;
+  }
+  model.meshes.push_back(mesh);
+
+  tinygltf::Skin skin;
+  skin.name = prefix + c.name;
+  skin.joints = out.joint_nodes;
+  std::vector<float> ibm;
+  for (const Joint& j : s.joints) ibm.insert(ibm.end(), glm::value_ptr(j.inverse_bind), glm::value_ptr(j.inverse_bind) + 16);
+  skin.inverseBindMatrices = appendFloatAccessor(model, bin, ibm, 16, false);
+  tinygltf::Value::Object roles;
+  for (const auto& [role, j] : c.roles) roles[role] = tinygltf::Value(j);
+  tinygltf::Value::Object extras;
+  extras["stirrup_roles"] = tinygltf::Value(roles);
+  extras["stirrup_character"] = tinygltf::Value(c.name);
+  for (std::size_t j = 0; j < s.size(); ++j)
+    if (s.joints[j].parent < 0) {
+      skin.skeleton = first + static_cast<int>(j);
+      break;
+    }
+  model.skins.push_back(skin);
+  out.skin = static_cast<int>(model.skins.size()) - 1;
+
+  tinygltf::Node mesh_node;
+  mesh_node.name = prefix + c.name + "_mesh";
+  mesh_node.mesh = static_cast<int>(model.meshes.size()) - 1;
+  mesh_node.skin = out.skin;
+  mesh_node.extras = tinygltf::Value(extras);  // (tinygltf 2.7 does not write a skin's extras)
+  model.nodes.push_back(mesh_node);
+  out.mesh_node = static_cast<int>(model.nodes.size()) - 1;
+  return out;
+}
+
+std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned char> bin) {
+  while (bin.size() % 4) bin.push_back(0);
+  tinygltf::Buffer buffer;
+  buffer.data = std::move(bin);
+  model.buffers = {buffer};
+  tinygltf::TinyGLTF gltf;
+  std::ostringstream os;
+  if (!gltf.WriteGltfSceneToStream(&model, os, false, true)) throw std::runtime_error("glTF: cannot serialise the model");
+  const std::string s = os.str();
+  return std::vector<unsigned char>(s.begin(), s.end());
+}
+
+void writeFileAtomically(const std::filesystem::path& file, const std::vector<unsigned char>& bytes) {
+  namespace fs = std::filesystem;
+  if (!file.parent_path().empty()) fs::create_directories(file.parent_path());
+  fs::path tmp = file;
+  tmp += ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError(file.string() + ": cannot write");
+    }
+  }
+  fs::rename(tmp, file);
+}
+
+int addCentimetreRoot(tinygltf::Model& model) {
+  tinygltf::Node n;
+  n.name = "stirrup_cm";
+  n.scale = {0.01, 0.01, 0.01};
+  model.nodes.push_back(n);
+  return static_cast<int>(model.nodes.size()) - 1;
+}
+
+std::vector<unsigned char> characterGlb(const Character& c) {
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "stirrup character make";
+  std::vector<unsigned char> bin;
+  const GltfCharacterNodes nodes = appendCharacterGltf(model, bin, c);
+  const int cm = addCentimetreRoot(model);
+  for (std::size_t j = 0; j < c.skeleton.size(); ++j)
+    if (c.skeleton.joints[j].parent < 0) model.nodes[cm].children.push_back(nodes.joint_nodes[j]);
+  tinygltf::Scene scene;
+  scene.name = c.name;
+  scene.nodes = {cm, nodes.mesh_node};
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  return glbBytes(model, std::move(bin));
+}
+
+void writeCharacterGlb(const Character& c, const std::filesystem::path& file) { writeFileAtomically(file, characterGlb(c)); }
+
+Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping) {
+  const std::string f = file.string();
+  const std::string kind_name(characterKindName(kind));
+  if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool ok = file.extension() == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, f)
+                                             : loader.LoadASCIIFromFile(&model, &err, &warn, f);
+  if (!ok) {
+    std::replace(err.begin(), err.end(), '\n', ' ');
+    throw InputError(f + ": not a readable glTF file (" + err + ")");
+  }
+  if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned " + kind_name + ")");
+  const tinygltf::Skin& skin = model.skins[0];
+  const int nj = static_cast<int>(skin.joints.size());
+  if (nj == 0) throw InputError(f + ": skins[0] has no joints");
+
+  // Role -> index into skin.joints.
+  std::map<std::string, int> role_joint;
+  std::string where = f;
+  if (mapping) {
+    where = mapping->file.empty() ? f : mapping->file.string();
+    for (const std::string& role : requiredRoles(kind)) {
+      const auto it = mapping->roles.find(role);
+      if (it == mapping->roles.end())
+        throw InputError(where + ": roles." + role + ": missing (expected the name of the " + kind_name + "'s " + role + " joint in " + f + ")");
+      int found = -1;
+      for (int j = 0; j < nj; ++j)
+        if (model.nodes.at(skin.joints[j]).name == it->second) found = j;
+      if (found < 0)
+        throw InputError(where + ": roles." + role + ": no joint named \"" + it->second + "\" in " + f);
+      role_joint[role] = found;
+    }
+  } else {
+    tinygltf::Value roles;
+    for (const tinygltf::Node& n : model.nodes)
+      if (n.skin == 0 && n.extras.Has("stirrup_roles")) roles = n.extras.Get("stirrup_roles");
+    if (!roles.IsObject())
+      throw InputError(f + ": no role table in the file (expected a mapping file from its joint names to the " + kind_name + " roles)");
+    for (const std::string& role : requiredRoles(kind)) {
+      const tinygltf::Value& v = roles.Get(role);
+      if (!v.IsInt() || v.Get<int>() < 0 || v.Get<int>() >= nj)
+        throw InputError(f + ": role " + role + ": missing from the file's role table (expected a joint of the " + kind_name + ")");
+      role_joint[role] = v.Get<int>();
+    }
+  }
+
+  // Axes: file -> stirrup (cm, +X forward, +Y up, +Z right).
+  glm::mat4 convert(1.0f);
+  glm::vec3 offset(0.0f);
+  if (mapping) {
+    const glm::vec3 fw = glm::normalize(glm::vec3(mapping->forward[0], mapping->forward[1], mapping->forward[2]));
+    const glm::vec3 up = glm::normalize(glm::vec3(mapping->up[0], mapping->up[1], mapping->up[2]));
+    const glm::vec3 right = glm::cross(fw, up);
+    glm::mat3 rows(fw, up, right);  // columns; transpose gives rows
+    convert = glm::mat4(glm::transpose(rows)) * static_cast<float>(mapping->scale_cm);
+    convert[3][3] = 1.0f;
+    offset = glm::vec3(float(mapping->offset_cm[0]), float(mapping->offset_cm[1]), float(mapping->offset_cm[2]));
+  }
+  const auto toRig = [&](glm::vec3 p) { return glm::vec3(convert * glm::vec4(p, 1.0f)) + offset; };
+
+  // Joint bind positions from the inverse bind matrices (identity when absent).
+  std::vector<glm::mat4> ibm(nj, glm::mat4(1.0f));
+  if (skin.inverseBindMatrices >= 0) {
+    const std::vector<float> v = readAccessor(model, skin.inverseBindMatrices, 16, f + ": skins[0].inverseBindMatrices");
+    if (static_cast<int>(v.size()) != nj * 16) throw InputError(f + ": skins[0].inverseBindMatrices: expected one per joint");
+    for (int j = 0; j < nj; ++j) std::memcpy(glm::value_ptr(ibm[j]), v.data() + j * 16, 64);
+  }
+  // Parents: the nearest ancestor node that is a joint.
+  std::vector<int> node_parent(model.nodes.size(), -1);
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    for (int ch : model.nodes[n].children) node_parent.at(ch) = static_cast<int>(n);
+  std::map<int, int> node_joint;
+  for (int j = 0; j < nj; ++j) node_joint[skin.joints[j]] = j;
+  std::vector<int> parent(nj, -1);
+  for (int j = 0; j < nj; ++j)
+    for (int n = node_parent.at(skin.joints[j]); n >= 0; n = node_parent[n])
+      if (node_joint.count(n)) {
+        parent[j] = node_joint[n];
+        break;
+      }
+  // Parents first: depth order, stable.
+  std::vector<int> depth(nj, 0), order(nj);
+  for (int j = 0; j < nj; ++j)
+    for (int p = parent[j]; p >= 0; p = parent[p]) ++depth[j];
+  for (int j = 0; j < nj; ++j) order[j] = j;
+  // Kept as they are when the file lists parents first (as written here), else sorted by depth.
+  bool parents_first = true;
+  for (int j = 0; j < nj; ++j) parents_first = parents_first && parent[j] < j;
+  if (!parents_first) std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] < depth[b]; });
+  std::vector<int> new_index(nj);
+  for (int i = 0; i < nj; ++i) new_index[order[i]] = i;
+
+  Character c;
+  c.name = kind_name;
+  std::vector<glm::vec3> bind_pos(nj);
+  for (int j = 0; j < nj; ++j) bind_pos[j] = toRig(glm::vec3(glm::inverse(ibm[j])[3]));
+  for (int i = 0; i < nj; ++i) {
+    const int j = order[i];
+    std::string name = model.nodes.at(skin.joints[j]).name;
+    if (name.empty() || c.skeleton.find(name) >= 0) name = "joint" + std::to_string(j);
+    const int p = parent[j] < 0 ? -1 : new_index[parent[j]];
+    const glm::vec3 pp = p < 0 ? glm::vec3(0.0f) : bind_pos[parent[j]];
+    c.skeleton.addJoint(name, p, glm::translate(glm::mat4(1.0f), bind_pos[j] - pp));
+  }
+  for (const auto& [role, j] : role_joint) c.roles[role] = new_index[j];
+
+  // Mesh: every primitive of every node skinned by skins[0].
+  SkinnedMesh& m = c.mesh;
+  const glm::mat3 rot = glm::mat3(convert) / static_cast<float>(mapping ? mapping->scale_cm : 1.0);
+  // Primitives that share their attributes (as written here) share their vertices.
+  std::map<std::map<std::string, int>, std::uint32_t> first_vertices;
+  for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
+    const tinygltf::Node& node = model.nodes[ni];
+    if (node.mesh < 0 || node.skin != 0) continue;
+    const tinygltf::Mesh& mesh = model.meshes.at(node.mesh);
+    for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+      const tinygltf::Primitive& prim = mesh.primitives[pi];
+      const std::string pw = f + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) throw InputError(pw + ": expected triangles");
+      for (const char* a : {"POSITION", "JOINTS_0", "WEIGHTS_0"})
+        if (!prim.attributes.count(a)) throw InputError(pw + ": expected a " + std::string(a) + " attribute");
+      const int pos_acc = prim.attributes.at("POSITION");
+      const std::vector<float> pos = readAccessor(model, pos_acc, 3, pw + ".POSITION");
+      const bool has_normals = prim.attributes.count("NORMAL") > 0;
+      std::vector<float> nor = has_normals ? readAccessor(model, prim.attributes.at("NORMAL"), 3, pw + ".NORMAL")
+                                           : std::vector<float>(pos.size(), 0.0f);
+      const std::vector<float> jts = readAccessor(model, prim.attributes.at("JOINTS_0"), 4, pw + ".JOINTS_0");
+      const std::vector<float> wts = readAccessor(model, prim.attributes.at("WEIGHTS_0"), 4, pw + ".WEIGHTS_0");
+      const std::size_t n = pos.size() / 3;
+      if (nor.size() != n * 3 || jts.size() != n * 4 || wts.size() != n * 4) throw InputError(pw + ": attribute counts differ");
+      glm::vec3 base(0.8f);
+      if (prim.material >= 0) {
+        const auto& bc = model.materials.at(prim.material).pbrMetallicRoughness.baseColorFactor;
+        if (bc.size() >= 3) base = glm::vec3(float(bc[0]), float(bc[1]), float(bc[2]));
+      }
+      std::vector<float> col;
+      if (prim.attributes.count("_COLOR")) col = readAccessor(model, prim.attributes.at("_COLOR"), 3, pw + "._COLOR");
+      else if (prim.attributes.count("COLOR_0")) {
+        const int ca = prim.attributes.at("COLOR_0");
+        const int comps = tinygltf::GetNumComponentsInType(model.accessors.at(ca).type);
+        const std::vector<float> c0 = readAccessor(model, ca, comps, pw + ".COLOR_0");
+        col.resize(n * 3);
+        for (std::size_t v = 0; v < n; ++v)
+          for (int k = 0; k < 3; ++k) col[v * 3 + k] = c0[v * comps + k] * base[k];
+      }
+      // Vertices already taken from an earlier primitive with the same attributes are reused.
+      const auto [seen, fresh] = first_vertices.emplace(prim.attributes, static_cast<std::uint32_t>(m.positions.size()));
+      const std::uint32_t first_vertex = seen->second;
+      if (fresh) {
+        for (std::size_t v = 0; v < n; ++v) {
+          m.positions.push_back(toRig({pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]}));
+          glm::vec3 nn = rot * glm::vec3(nor[v * 3], nor[v * 3 + 1], nor[v * 3 + 2]);
+          if (std::abs(glm::length(nn) - 1.0f) > 1e-3f) nn = glm::length(nn) > 0.0f ? glm::normalize(nn) : glm::vec3(0.0f);
+          m.normals.push_back(nn);  // zero: computed from the faces below
+          m.colors.push_back(col.empty() ? base : glm::vec3(col[v * 3], col[v * 3 + 1], col[v * 3 + 2]));
+          glm::u16vec4 jv(0);
+          glm::vec4 wv(0.0f);
+          for (int k = 0; k < 4; ++k) {
+            const int j = static_cast<int>(jts[v * 4 + k]);
+            wv[k] = wts[v * 4 + k];
+            if (wv[k] > 0.0f) {
+              if (j < 0 || j >= nj) throw InputError(pw + ".JOINTS_0: joint index " + std::to_string(j) + " outside skins[0]");
+              jv[k] = static_cast<std::uint16_t>(new_index[j]);
+            }
+          }
+          const float sum = wv.x + wv.y + wv.z + wv.w;
+          if (!(sum > 0.0f)) throw InputError(pw + ".WEIGHTS_0: vertex " + std::to_string(v) + " has no weight");
+          m.joints.push_back(jv);
+          m.weights.push_back(std::abs(sum - 1.0f) > 1e-4f ? wv / sum : wv);
+        }
+      }
+      if (prim.indices >= 0) {
+        for (std::uint32_t i : readIndices(model, prim.indices, pw + ".indices")) {
+          if (i >= n) throw InputError(pw + ".indices: index " + std::to_string(i) + " outside the vertices");
+          m.indices.push_back(first_vertex + i);
+        }
+      } else {
+        for (std::uint32_t i = 0; i < n; ++i) m.indices.push_back(first_vertex + i);
+      }
+    }
+  }
+  if (m.indices.empty()) throw InputError(f + ": no triangles skinned by skins[0]");
+  // Smooth normals (area-weighted face normals) where the file has none.
+  std::vector<glm::vec3> acc(m.positions.size(), glm::vec3(0.0f));
+  bool missing = false;
+  for (const glm::vec3& n : m.normals) missing = missing || n == glm::vec3(0.0f);
+  if (missing) {
+    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+      const std::uint32_t a = m.indices[t], b = m.indices[t + 1], c2 = m.indices[t + 2];
+      const glm::vec3 fn = glm::cross(m.positions[b] - m.positions[a], m.positions[c2] - m.positions[a]);
+      acc[a] += fn;
+      acc[b] += fn;
+      acc[c2] += fn;
+    }
+    for (std::size_t v = 0; v < m.normals.size(); ++v)
+      if (m.normals[v] == glm::vec3(0.0f))
+        m.normals[v] = glm::length(acc[v]) > 0.0f ? glm::normalize(acc[v]) : glm::vec3(0.0f, 1.0f, 0.0f);
+  }
+  return c;
+}
+
+Character resolveCharacter(CharacterKind kind, const std::string& file, const std::string& mapping_file) {
+  if (file == "default") return kind == CharacterKind::Horse ? buildDefaultHorse() : buildDefaultRider();
+  if (mapping_file.empty()) return loadCharacterGltf(file, kind);
+  const CharacterMapping mapping = loadCharacterMapping(mapping_file, kind);
+  return loadCharacterGltf(file, kind, &mapping);
+}
+
+}  // namespace stirrup::rig

@@ -1,0 +1,66 @@
+// Characters as skinned glTF 2.0 (docs/characters.md). Offline jobs: writing a built character, and
+// importing one (ours or a user's) into a rig::Character the posing jobs can drive.
+//
+// Writing: under a node "stirrup_cm" scaling centimetres to glTF's metres, the joints as nodes (named by their role where they have one), one skinned mesh with
+// smooth normals, triangles grouped into one primitive per base colour (one material each), at most
+// four joints per vertex, inverse bind matrices; the exact per-vertex colour in `_COLOR` and the role
+// table in the skinned mesh node's extras ("stirrup_roles": role -> index into skin.joints), so a file written
+// here loads back without a mapping file. Bytes are reproducible: the same character gives the same
+// file.
+//
+// Reading: the first skin's joints and every mesh primitive bound to it. Joints are re-based to
+// translation-only rest transforms at their bind positions (the posing jobs work in world terms),
+// which leaves the bind-pose mesh unchanged.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rig/character.h"
+#include "rig/io/character_mapping.h"
+
+namespace tinygltf {
+class Model;
+}
+
+namespace stirrup::rig {
+
+// Where a character landed in a model being written.
+struct GltfCharacterNodes {
+  std::vector<int> joint_nodes;  // one node per skeleton joint, in skeleton order
+  int mesh_node = -1;
+  int skin = -1;
+};
+
+// Appends `character` to `model`: nodes, mesh, materials, skin. Binary data goes to `bin` (which
+// becomes buffer 0 when the model is written); the caller adds the returned root nodes to a scene.
+// `prefix` is prepended to node names (for two characters in one file).
+GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsigned char>& bin,
+                                       const Character& character, const std::string& prefix = "");
+// Appends float data as a tightly packed buffer view and accessor; returns the accessor.
+int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<float>& values,
+                        int components, bool minmax, int target = 0);
+// Adds the node "stirrup_cm" (scale 0.01): stirrup works in centimetres, glTF in metres, so joints
+// and cameras hang under it. Returns the node.
+int addCentimetreRoot(tinygltf::Model& model);
+// Serialises a model whose binary data is `bin` as .glb bytes.
+std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned char> bin);
+// Writes bytes to a temporary name beside `file` and renames it when complete.
+void writeFileAtomically(const std::filesystem::path& file, const std::vector<unsigned char>& bytes);
+
+// The .glb bytes of one character.
+std::vector<unsigned char> characterGlb(const Character& character);
+void writeCharacterGlb(const Character& character, const std::filesystem::path& file);
+
+// Loads a skinned glTF (.glb or .gltf) as a character of `kind`. With `mapping` null, the role table
+// the file carries (written by writeCharacterGlb) is used. Errors are one-line InputErrors naming the
+// file (and, for a missing role, the role).
+Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind,
+                            const CharacterMapping* mapping = nullptr);
+
+// What a scene's "characters" entry names: "default" (the built-in generator), or a glTF file with
+// an optional mapping file (empty: the file's own role table).
+Character resolveCharacter(CharacterKind kind, const std::string& file, const std::string& mapping_file);
+
+}  // namespace stirrup::rig

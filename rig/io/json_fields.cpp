@@ -1,0 +1,102 @@
+#include "rig/io/json_fields.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "rig/error.h"
+
+namespace stirrup {
+
+nlohmann::json readJsonFile(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string() + ": cannot open the file (expected a readable JSON file)");
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann's message carries the line and column; keep only that part.
+    std::string what = e.what();
+    if (const auto pos = what.find("parse error"); pos != std::string::npos) what = what.substr(pos);
+    throw InputError(file.string() + ": not valid JSON: " + what);
+  }
+}
+
+std::string describeJson(const nlohmann::json& value) {
+  if (value.is_object()) return "an object";
+  if (value.is_array()) return "an array of " + std::to_string(value.size());
+  if (value.is_null()) return "null";
+  std::string s = value.dump();
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  return s;
+}
+
+JsonObjectReader::JsonObjectReader(std::string file, std::string path, const nlohmann::json& object)
+    : file_(std::move(file)), path_(std::move(path)), object_(object) {
+  if (!object_.is_object()) {
+    throw InputError(file_ + ": " + (path_.empty() ? std::string("top level") : path_) +
+                     ": expected an object, got " + describeJson(object_));
+  }
+}
+
+std::string JsonObjectReader::fieldPath(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+void JsonObjectReader::fail(const std::string& key, const std::string& expected) const {
+  throw InputError(file_ + ": " + fieldPath(key) + ": " + expected);
+}
+
+bool JsonObjectReader::has(const std::string& key) const { return object_.contains(key); }
+
+const nlohmann::json* JsonObjectReader::value(const std::string& key) {
+  known_.insert(key);
+  auto it = object_.find(key);
+  return it == object_.end() ? nullptr : &*it;
+}
+
+double JsonObjectReader::number(const std::string& key, double fallback) {
+  const nlohmann::json* v = value(key);
+  if (!v) return fallback;
+  if (!v->is_number()) fail(key, "expected a number, got " + describeJson(*v));
+  const double d = v->get<double>();
+  if (!std::isfinite(d)) fail(key, "expected a finite number");
+  return d;
+}
+
+int JsonObjectReader::integer(const std::string& key, int fallback) {
+  const nlohmann::json* v = value(key);
+  if (!v) return fallback;
+  if (!v->is_number_integer()) fail(key, "expected a whole number, got " + describeJson(*v));
+  return v->get<int>();
+}
+
+bool JsonObjectReader::boolean(const std::string& key, bool fallback) {
+  const nlohmann::json* v = value(key);
+  if (!v) return fallback;
+  if (!v->is_boolean()) fail(key, "expected true or false, got " + describeJson(*v));
+  return v->get<bool>();
+}
+
+std::string JsonObjectReader::string(const std::string& key, const std::string& fallback) {
+  const nlohmann::json* v = value(key);
+  if (!v) return fallback;
+  if (!v->is_string()) fail(key, "expected a string, got " + describeJson(*v));
+  return v->get<std::string>();
+}
+
+JsonObjectReader JsonObjectReader::object(const std::string& key) {
+  const nlohmann::json* v = value(key);
+  if (!v) fail(key, "missing (expected an object)");
+  if (!v->is_object()) fail(key, "expected an object, got " + describeJson(*v));
+  return JsonObjectReader(file_, fieldPath(key), *v);
+}
+
+void JsonObjectReader::finish() const {
+  for (auto it = object_.begin(); it != object_.end(); ++it) {
+    if (!known_.count(it.key())) {
+      throw InputError(file_ + ": " + fieldPath(it.key()) + ": unknown field");
+    }
+  }
+}
+
+}  // namespace stirrup

@@ -1,0 +1,44 @@
+// Which clip to play: a named generator with its parameters ({"generator": "jump",
+// "fence_height_cm": 90}) or a glTF file read through a mapping ({"file": "clips/x.glb", "mapping":
+// "fox-mapping.json", "animation": "Walk"}). Parsed and checked once, so a typo is a one-line error
+// naming the file and the field before anything is rendered; made into a Clip by makeClip().
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "rig/clip.h"
+#include "rig/io/json_fields.h"
+#include "rig/motion/procedural_gait.h"
+
+namespace stirrup::rig {
+
+struct ClipSpec {
+  std::string generator = "trot";     // empty when the clip is a file
+  nlohmann::json params = nlohmann::json::object();  // the generator's parameters, as given (checked)
+  std::filesystem::path file;         // glTF clip (resolved against the scene's folder)
+  std::filesystem::path mapping;      // empty: the file's nodes are named as the contract's controls
+  std::string animation;
+  std::string source = "clip";        // "FILE: clip" for messages
+};
+
+// The generators makeClip knows, for help texts.
+const std::vector<std::string>& clipGenerators();
+// The parameters a generator accepts (empty for an unknown generator).
+std::vector<std::string> clipGeneratorParameters(const std::string& generator);
+
+// Reads a clip object; unknown generators, unknown parameters and bad values fail through `r` (one
+// line naming the file and field). Relative paths resolve against base_dir.
+ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_dir);
+
+// The gait a steady-gait spec plays (walk, trot, canter, gallop), else nullopt.
+std::optional<GaitParams> steadyGaitParams(const ClipSpec& spec);
+
+std::unique_ptr<Clip> makeClip(const ClipSpec& spec);
+
+}  // namespace stirrup::rig

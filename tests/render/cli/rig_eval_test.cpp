@@ -1,0 +1,169 @@
+// stirrup rig eval / rig params, end to end through the program.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "rig/io/channel_csv.h"
+#include "rig/rider_rig.h"
+#include "rig/rig_profile.h"
+#include "tests/render/cli/run_command.h"
+
+namespace stirrup::test {
+namespace {
+
+namespace fs = std::filesystem;
+using rig::HorseChannel;
+using rig::RiderChannel;
+
+class RigEval : public ::testing::Test {
+ protected:
+  fs::path dir_ = fs::path(STIRRUP_BINARY_DIR) / "test_out" /
+                  ("rig_eval_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  void SetUp() override {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path f = dir_ / name;
+    std::ofstream(f) << text;
+    return f;
+  }
+  const std::string horse_ =
+      "frame,lfHoof.tx,rfHoof.tx,lbHoof.tx,rbHoof.tx,lfHoof.ty,rbHoof.ty,rearPivot.rz,rearPivot.rx\n"
+      "1,70,-70,70,-70,0,0,0,0\n"
+      "2,0,0,0,0,12,12,2,3\n"
+      "3,-70,70,-70,70,0,0,-1,-2\n";
+};
+
+std::vector<std::vector<double>> readRows(const fs::path& file, std::string* header) {
+  std::ifstream in(file);
+  std::getline(in, *header);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream ss(line);
+    std::string field;
+    while (std::getline(ss, field, ',')) row.push_back(std::stod(field));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(RigEval, WritesFrameAndEveryRiderChannel) {
+  const fs::path in = write("horse.csv", horse_);
+  const fs::path out = dir_ / "rider.csv";
+  const CommandResult r = runStirrup("rig eval " + quote(in.string()) + " -o " + quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string header;
+  const auto rows = readRows(out, &header);
+  std::string expected = "frame";
+  for (std::string_view n : rig::kRiderChannelNames) {
+    expected += ',';
+    expected += n;
+  }
+  EXPECT_EQ(header, expected);
+  ASSERT_EQ(rows.size(), 3u);
+  const rig::HorseTrack track = rig::readHorseCsv(in);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), rig::kRiderChannelCount + 1);
+    EXPECT_EQ(rows[i][0], track.frames[i]);
+    const rig::RiderChannels want = rig::evaluateRider(track.horse[i], rig::RigProfile::thesis());
+    for (std::size_t c = 0; c < rig::kRiderChannelCount; ++c) EXPECT_EQ(rows[i][c + 1], want.value[c]) << c;
+  }
+  EXPECT_FALSE(fs::exists(out.string() + ".tmp"));
+}
+
+TEST_F(RigEval, ProfileAndSetChangeTheRider) {
+  const fs::path in = write("horse.csv", horse_);
+  std::string h;
+  ASSERT_EQ(runStirrup("rig eval " + quote(in.string()) + " -o " + quote((dir_ / "t.csv").string())).exit_code, 0);
+  ASSERT_EQ(runStirrup("rig eval " + quote(in.string()) + " -o " + quote((dir_ / "n.csv").string()) +
+                       " --profile novice")
+                .exit_code,
+            0);
+  const CommandResult set = runStirrup("rig eval " + quote(in.string()) + " -o " + quote((dir_ / "s.csv").string()) +
+                                       " --set eq7.w2_scale=0.02 --set eq7.lift_limit=0.2");
+  ASSERT_EQ(set.exit_code, 0) << set.err;
+  const std::size_t lift = static_cast<std::size_t>(RiderChannel::cogTy) + 1;
+  const auto t = readRows(dir_ / "t.csv", &h), n = readRows(dir_ / "n.csv", &h), s = readRows(dir_ / "s.csv", &h);
+  EXPECT_GT(n[0][lift], t[0][lift]);                // novice bounces more at the widest trot spread
+  EXPECT_NEAR(t[0][lift], 0.28, 1e-12);             // (14 + 14) * 0.01
+  EXPECT_NEAR(s[0][lift], 0.2, 1e-12);              // 0.56 clamped to the overridden limit
+}
+
+TEST_F(RigEval, ProfilesFolderFromTheEnvironment) {
+  fs::create_directories(dir_ / "profiles");
+  write("profiles/steady.json", R"({"doc": "test", "eq7.w2_scale": 0, "notes": {"eq7.w2_scale": "no lift"}})");
+  const fs::path in = write("horse.csv", horse_);
+  const CommandResult r = runCommand("STIRRUP_PROFILES=" + quote((dir_ / "profiles").string()) + " " +
+                                     quote(STIRRUP_EXE) + " rig eval " + quote(in.string()) + " -o " +
+                                     quote((dir_ / "o.csv").string()) + " --profile steady");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string h;
+  EXPECT_EQ(readRows(dir_ / "o.csv", &h)[0][static_cast<std::size_t>(RiderChannel::cogTy) + 1], 0);
+}
+
+// Bad input: exit 1, one line on stderr, and no output file.
+void expectFails(const CommandResult& r, const std::string& message, const fs::path& out) {
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: " + message + "\n");
+  EXPECT_EQ(lineCount(r.err), 1u);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(out.string() + ".tmp"));
+}
+
+TEST_F(RigEval, BadInputIsOneLineAndLeavesNoOutput) {
+  const fs::path out = dir_ / "rider.csv";
+  const auto eval = [&](const fs::path& in, const std::string& extra = "") {
+    return runStirrup("rig eval " + quote(in.string()) + " -o " + quote(out.string()) + extra);
+  };
+  const fs::path bad_value = write("v.csv", "frame,lfHoof.ty\n1,0\n2,high\n");
+  expectFails(eval(bad_value), bad_value.string() + ": row 3, column lfHoof.ty: expected a number, got \"high\"", out);
+  const fs::path nan = write("n.csv", "frame,lfHoof.ty\n1,nan\n");
+  expectFails(eval(nan), nan.string() + ": row 2, column lfHoof.ty: expected a finite number, got \"nan\"", out);
+  const fs::path ragged = write("r.csv", "frame,lfHoof.ty\n1,0,0\n");
+  expectFails(eval(ragged), ragged.string() + ": row 2, column 3: expected 2 columns as in the header, got 3", out);
+  const fs::path unknown = write("u.csv", "frame,lfHoof.y\n1,0\n");
+  expectFails(eval(unknown),
+              unknown.string() + ": row 1, column lfHoof.y: expected `frame` or a horse channel name (lfHoof.tx ... "
+                                 "backMid.rz), got \"lfHoof.y\"",
+              out);
+  const fs::path no_frame = write("f.csv", "lfHoof.ty\n1\n");
+  expectFails(eval(no_frame),
+              no_frame.string() + ": row 1, column frame: expected a `frame` column in the header, got \"lfHoof.ty\"", out);
+  const fs::path good = write("g.csv", horse_);
+  expectFails(eval(good, " --set eq1.w9=1"),
+              "--set: eq1.w9: unknown rig profile parameter (see docs/rider-rig.md for the parameter keys)", out);
+  expectFails(eval(good, " --set eq1.w1_pivot_pitch=big"), "--set: eq1.w1_pivot_pitch: expected a number, got \"big\"",
+              out);
+  expectFails(eval(good, " --set eq1.w1_pivot_pitch"),
+              "--set: expected key=value (e.g. eq1.w1_pivot_pitch=0.05), got \"eq1.w1_pivot_pitch\"", out);
+  expectFails(eval(good, " --profile cowboy"),
+              std::string(STIRRUP_SOURCE_DIR) +
+                  "/scenes/profiles/cowboy.json: no such rig profile (expected one of english, novice, thesis)",
+              out);
+}
+
+TEST(RigEvalHelp, DocumentsTheCsvFormat) {
+  const CommandResult r = runStirrup("rig eval --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* s : {"frame", "Absent channels are 0", "cm", "degrees", "rider units", "row", "--profile", "--set"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
+}
+
+TEST(RigParams, ListsEveryParameterWithItsCitation) {
+  const CommandResult r = runStirrup("rig params --profile english --set eq1.w1_pivot_pitch=0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const rig::RigParameter& p : rig::rigParameters())
+    EXPECT_NE(r.out.find(std::string(p.key) + " = "), std::string::npos) << p.key;
+  EXPECT_NE(r.out.find("eq1.w1_pivot_pitch = 0.5  # Eq 1"), std::string::npos);
+  EXPECT_NE(r.out.find("eq4.w1_lower_back = 1.3"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace stirrup::test

@@ -1,0 +1,79 @@
+// Bad scene files through the program: a one-line error naming the file and the field, a non-zero
+// exit, and no frames written.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "tests/render/cli/run_command.h"
+
+namespace stirrup::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SceneErrors : public ::testing::Test {
+ protected:
+  // One folder per test: CTest runs tests in parallel processes.
+  fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_scene_errors" /
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  void SetUp() override {
+    fs::remove_all(dir);
+    fs::create_directories(dir / "profiles");
+    fs::copy_file(fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json", dir / "profiles/thesis.json");
+  }
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path f = dir / name;
+    std::ofstream(f) << text;
+    return f;
+  }
+  void expectError(const std::string& args, const std::string& message) {
+    const CommandResult r = runStirrup(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err, "stirrup: " + message + "\n");
+    EXPECT_FALSE(fs::exists(dir / "out")) << "output written despite the error";
+  }
+};
+
+TEST_F(SceneErrors, WrongType) {
+  const fs::path f = write("x.json", R"({"output": "out", "cameras": [{}, {"fov": "wide"}]})");
+  expectError("render " + quote(f.string()), f.string() + ": cameras[1].fov: expected a number, got \"wide\"");
+}
+
+TEST_F(SceneErrors, UnknownField) {
+  const fs::path f = write("x.json", R"({"output": "out", "resolutoin": [64, 36]})");
+  expectError("bake " + quote(f.string()) + " --channels " + quote((dir / "out/c.csv").string()),
+              f.string() + ": resolutoin: unknown field");
+}
+
+TEST_F(SceneErrors, MissingSceneFile) {
+  const std::string f = (dir / "absent.json").string();
+  expectError("render " + quote(f), f + ": cannot open the file (expected a readable JSON file)");
+}
+
+TEST_F(SceneErrors, MissingProfileFileNamesIt) {
+  const fs::path f = write("x.json", R"({"output": "out", "profile": "nosuch"})");
+  const CommandResult r = runStirrup("render " + quote(f.string()));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("nosuch"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_F(SceneErrors, InvalidJson) {
+  const fs::path f = write("x.json", "{\"fps\": 24,,}");
+  const CommandResult r = runStirrup("render " + quote(f.string()));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("stirrup: " + f.string() + ": not valid JSON", 0), 0u) << r.err;
+}
+
+TEST_F(SceneErrors, BadFrameRangeOnTheCommandLine) {
+  expectError("bake " + quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes/trot.json").string()) +
+                  " --frames 5-1 --channels " + quote((dir / "out/c.csv").string()),
+              "--frames: \"5-1\": expected FIRST <= LAST");
+}
+
+}  // namespace
+}  // namespace stirrup::test

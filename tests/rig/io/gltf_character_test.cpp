@@ -1,0 +1,185 @@
+// Characters as glTF: the shipped files load back as the generator's characters; a user's skinned
+// glTF loads through a mapping from its joint names to the rig's roles; a missing role is a one-line
+// error naming the role and the file.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "tests/rig/default_characters.h"
+#include <nlohmann/json.hpp>
+
+#include "rig/io/character_mapping.h"
+#include "rig/error.h"
+#include "rig/io/gltf_character.h"
+#include "rig/characters/horse_character.h"
+#include "rig/pose.h"
+#include "rig/characters/rider_character.h"
+#include "rig/skin.h"
+
+namespace stirrup::rig {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCharacters = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "characters";
+
+using test::defaultHorse;
+using test::defaultRider;
+
+fs::path tempDir(const std::string& name) {
+  const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_gltf_character" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+fs::path writeJson(const fs::path& file, const nlohmann::json& j) {
+  std::ofstream(file) << j.dump(2);
+  return file;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expectSameCharacter(const Character& a, const Character& b) {
+  ASSERT_EQ(a.skeleton.size(), b.skeleton.size());
+  for (std::size_t j = 0; j < a.skeleton.size(); ++j) {
+    EXPECT_EQ(a.skeleton.joints[j].parent, b.skeleton.joints[j].parent) << j;
+    EXPECT_LT(glm::length(a.skeleton.restPosition(static_cast<int>(j)) - b.skeleton.restPosition(static_cast<int>(j))), 1e-4f) << j;
+  }
+  EXPECT_EQ(a.roles, b.roles);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.normals, b.mesh.normals);
+  EXPECT_EQ(a.mesh.colors, b.mesh.colors);
+  EXPECT_EQ(a.mesh.indices, b.mesh.indices);
+  EXPECT_EQ(a.mesh.weights, b.mesh.weights);
+  ASSERT_EQ(a.mesh.joints.size(), b.mesh.joints.size());
+  std::size_t differ = 0;  // joints that carry weight (unused slots are written as joint 0)
+  for (std::size_t v = 0; v < a.mesh.joints.size(); ++v)
+    for (int k = 0; k < 4; ++k) differ += b.mesh.weights[v][k] > 0.0f && a.mesh.joints[v][k] != b.mesh.joints[v][k];
+  EXPECT_EQ(differ, 0u);
+}
+
+TEST(GltfCharacter, ShippedHorseLoadsAsTheGeneratorsHorse) {
+  expectSameCharacter(loadCharacterGltf(kCharacters / "horse.glb", CharacterKind::Horse), defaultHorse());
+}
+
+TEST(GltfCharacter, ShippedRiderLoadsAsTheGeneratorsRider) {
+  expectSameCharacter(loadCharacterGltf(kCharacters / "rider.glb", CharacterKind::Rider), defaultRider());
+}
+
+TEST(GltfCharacter, WritesAtMostFourWeightsSummingToOne) {
+  for (const Character* c : {&defaultHorse(), &defaultRider()})
+    for (std::size_t v = 0; v < c->mesh.vertexCount(); ++v) {
+      const glm::vec4 w = c->mesh.weights[v];
+      ASSERT_NEAR(w.x + w.y + w.z + w.w, 1.0f, 1e-5f) << c->name << " vertex " << v;
+    }
+}
+
+// The shipped files read as a user's characters, through the explicit mapping files beside them:
+// posed and skinned at a trot frame they land where the built-in characters land.
+TEST(GltfCharacter, UserCharactersThroughMappingFilesPoseLikeTheDefaults) {
+  const CharacterMapping hm = loadCharacterMapping(kCharacters / "horse-mapping.json", CharacterKind::Horse);
+  const CharacterMapping rm = loadCharacterMapping(kCharacters / "rider-mapping.json", CharacterKind::Rider);
+  const Character horse = loadCharacterGltf(kCharacters / "horse.glb", CharacterKind::Horse, &hm);
+  const Character rider = loadCharacterGltf(kCharacters / "rider.glb", CharacterKind::Rider, &rm);
+  for (const auto& [role, j] : defaultHorse().roles) EXPECT_EQ(horse.roles.at(role), j) << role;
+  for (const auto& [role, j] : defaultRider().roles) EXPECT_EQ(rider.roles.at(role), j) << role;
+
+  HorseFrame f;
+  f.travel_cm = 50.0;
+  f.controls[HorseChannel::rearPivotRz] = 8.0;
+  f.controls[HorseChannel::lfHoofTy] = 12.0;
+  f.neck_rz = -5.0;
+  RiderChannels r;
+  r[RiderChannel::lowerBackRz] = 6.0;
+  r[RiderChannel::cogTy] = 1.0;
+  const MountedPose a = poseMounted(horse, rider, f, r, 2.54);
+  const MountedPose b = poseMounted(defaultHorse(), defaultRider(), f, r, 2.54);
+  std::vector<glm::vec3> pa, na, pb, nb;
+  skinMesh(horse.mesh, horse.skeleton, a.horse, pa, na);
+  skinMesh(defaultHorse().mesh, defaultHorse().skeleton, b.horse, pb, nb);
+  float worst = 0.0f;
+  for (std::size_t v = 0; v < pa.size(); ++v) worst = std::max(worst, glm::length(pa[v] - pb[v]));
+  skinMesh(rider.mesh, rider.skeleton, a.rider, pa, na);
+  skinMesh(defaultRider().mesh, defaultRider().skeleton, b.rider, pb, nb);
+  for (std::size_t v = 0; v < pa.size(); ++v) worst = std::max(worst, glm::length(pa[v] - pb[v]));
+  EXPECT_LT(worst, 1e-3f);  // cm
+}
+
+TEST(GltfCharacter, MissingRoleNamesTheRoleAndTheMappingFile) {
+  const fs::path dir = tempDir("missing_role");
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(kCharacters / "horse-mapping.json"));
+  j["roles"].erase("saddle");
+  const fs::path m = writeJson(dir / "mapping.json", j);
+  const std::string e = errorOf([&] { loadCharacterMapping(m, CharacterKind::Horse); });
+  EXPECT_EQ(e.rfind(m.string() + ": roles.saddle: missing", 0), 0u) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
+
+TEST(GltfCharacter, UnknownJointNamesTheRoleTheJointAndTheFile) {
+  const fs::path dir = tempDir("unknown_joint");
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(kCharacters / "rider-mapping.json"));
+  j["roles"]["lHand"] = "LeftHandGrip";
+  const fs::path m = writeJson(dir / "mapping.json", j);
+  const std::string e = errorOf([&] { resolveCharacter(CharacterKind::Rider, (kCharacters / "rider.glb").string(), m.string()); });
+  EXPECT_NE(e.find("roles.lHand: no joint named \"LeftHandGrip\""), std::string::npos) << e;
+  EXPECT_NE(e.find("rider.glb"), std::string::npos) << e;
+}
+
+TEST(GltfCharacter, FileWithoutRoleTableAsksForAMapping) {
+  const fs::path simple = fs::path(STIRRUP_SHARED_DIR) / "assets" / "SimpleSkin.gltf";
+  if (!fs::exists(simple)) GTEST_SKIP() << "no " << simple;
+  const std::string e = errorOf([&] { loadCharacterGltf(simple, CharacterKind::Horse); });
+  EXPECT_EQ(e.rfind(simple.string() + ": no role table", 0), 0u) << e;
+}
+
+// The Khronos Fox as a horse: every horse role mapped onto its 24 joints (several roles share a
+// joint), converted from its units and axes. It loads, keeps its joints' bind places, and posed at
+// rest its hooves stay where they were built.
+TEST(GltfCharacter, FoxMapsOntoHorseRoles) {
+  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
+  nlohmann::json roles = {
+      {"root", "b_Hip_01"},        {"backMid", "b_Spine01_02"},  {"chest", "b_Spine02_03"},
+      {"withers", "b_Spine02_03"}, {"neck1", "b_Neck_04"},       {"neck2", "b_Neck_04"},
+      {"head", "b_Head_05"},       {"saddle", "b_Spine01_02"},   {"lStirrup", "b_Spine01_02"},
+      {"rStirrup", "b_Spine01_02"}, {"lRein", "b_Head_05"},      {"rRein", "b_Head_05"},
+      {"tail1", "b_Tail01_012"},   {"tail2", "b_Tail02_013"},    {"tail3", "b_Tail03_014"},
+      {"lfUpper", "b_LeftUpperArm_09"}, {"lfMiddle", "b_LeftForeArm_010"}, {"lfFetlock", "b_LeftHand_011"},
+      {"lfHoof", "b_LeftHand_011"},     {"rfUpper", "b_RightUpperArm_06"}, {"rfMiddle", "b_RightForeArm_07"},
+      {"rfFetlock", "b_RightHand_08"},  {"rfHoof", "b_RightHand_08"},      {"lbUpper", "b_LeftLeg01_015"},
+      {"lbMiddle", "b_LeftLeg02_016"},  {"lbFetlock", "b_LeftFoot01_017"}, {"lbHoof", "b_LeftFoot02_018"},
+      {"rbUpper", "b_RightLeg01_019"},  {"rbMiddle", "b_RightLeg02_020"},  {"rbFetlock", "b_RightFoot01_021"},
+      {"rbHoof", "b_RightFoot02_022"}};
+  const fs::path dir = tempDir("fox");
+  nlohmann::json j = {{"character", "horse"}, {"scale_cm", 3.5}, {"forward", {0, 0, 1}}, {"up", {0, 1, 0}}, {"roles", roles}};
+  const fs::path m = writeJson(dir / "fox-horse.json", j);
+  const Character c = resolveCharacter(CharacterKind::Horse, fox.string(), m.string());
+  EXPECT_EQ(c.skeleton.size(), 24u);
+  EXPECT_EQ(c.skeleton.joints[c.role("lfHoof")].name, "b_LeftHand_011");
+  EXPECT_EQ(c.role("lfFetlock"), c.role("lfHoof"));
+  EXPECT_GT(c.mesh.triangleCount(), 500u);  // the Fox has 576
+  // Converted: the fox faces +X now; its head is ahead of its hips and above the ground.
+  const glm::vec3 head = c.skeleton.restPosition(c.role("head")), hip = c.skeleton.restPosition(c.role("root"));
+  EXPECT_GT(head.x, hip.x + 20.0f);
+  EXPECT_GT(hip.y, 100.0f);
+  const std::vector<glm::mat4> w = poseHorse(c, HorseFrame{});
+  for (const char* hoof : {"lbHoof", "rbHoof"})
+    EXPECT_LT(glm::length(glm::vec3(w[c.role(hoof)][3]) - c.skeleton.restPosition(c.role(hoof))), 0.5f) << hoof;
+
+  j["roles"].erase("tail2");
+  writeJson(m, j);
+  const std::string e = errorOf([&] { resolveCharacter(CharacterKind::Horse, fox.string(), m.string()); });
+  EXPECT_EQ(e, m.string() + ": roles.tail2: missing: expected the name of the horse's tail2 joint") << e;
+}
+
+}  // namespace
+}  // namespace stirrup::rig
