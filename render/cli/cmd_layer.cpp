@@ -198,37 +198,8 @@ void runLayer(const LayerOptions& o) {
     b.validate("B (" + o.b + ")");
   }
 
-  // Our frame f shows B's frame for f - a.first + 1, so the mapping counts from A's first frame.
   for (int f : frames) {
-    const render::Image ours = a.source(f);
-    const int mapped = f - a.first + 1;
-    render::Image other;
-    if (placed) {
-      other = b.frame(mapped, ours.width, ours.height);
-    } else if (const std::optional<int> their = b.theirFrame(mapped)) {
-      const render::Image src = b.source(*their);
-      const render::PixelRect c = b.crop.empty() ? render::PixelRect{0, 0, src.width, src.height} : b.crop;
-      render::FootageSequence one;
-      one.images = {src};
-      one.crop = c;
-      one.name = b.name;
-      other = one.frame(1, c.width, c.height);
-    } else {
-      other = render::Image(crop_w, crop_h);
-    }
-    render::Image out;
-    if (style.mode == render::LayerMode::OnionSkin) {
-      const int last = a.first + a.frameCount() - 1;
-      std::vector<render::Image> ghosts;
-      std::vector<int> offsets;
-      for (int g : render::onionGhostFrames(f, style, a.first, last)) {
-        ghosts.push_back(a.source(g));
-        offsets.push_back(g - f);
-      }
-      out = render::onionSkin(ours, ghosts, offsets, other, style);
-    } else {
-      out = render::layerFrame(ours, other, style);
-    }
+    const render::Image out = render::layeredFrame(a, b, f, style, placed, crop_w, crop_h);
     const fs::path file = frameFile(o.out, f);
     if (ext == ".exr")
       render::writeExr(out, file, {{"stirrup:frame", std::to_string(f)}, {"stirrup:layer", render::layerModeName(style.mode)}});

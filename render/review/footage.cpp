@@ -461,4 +461,33 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
   return ref;
 }
 
+Image layeredFrame(const FootageSequence& a, const FootageSequence& b, int frame, const LayerStyle& style, bool placed,
+                   int blank_width, int blank_height) {
+  const Image ours = a.source(frame);
+  const int mapped = frame - a.first + 1;
+  Image other;
+  if (placed) {
+    other = b.frame(mapped, ours.width, ours.height);
+  } else if (const std::optional<int> their = b.theirFrame(mapped)) {
+    const Image src = b.source(*their);
+    const PixelRect c = b.crop.empty() ? PixelRect{0, 0, src.width, src.height} : b.crop;
+    FootageSequence one;
+    one.images = {src};
+    one.crop = c;
+    one.name = b.name;
+    other = one.frame(1, c.width, c.height);
+  } else {
+    other = Image(blank_width, blank_height);
+  }
+  if (style.mode != LayerMode::OnionSkin) return layerFrame(ours, other, style);
+  const int last = a.first + a.frameCount() - 1;
+  std::vector<Image> ghosts;
+  std::vector<int> offsets;
+  for (int g : onionGhostFrames(frame, style, a.first, last)) {
+    ghosts.push_back(a.source(g));
+    offsets.push_back(g - frame);
+  }
+  return onionSkin(ours, ghosts, offsets, other, style);
+}
+
 }  // namespace stirrup::render

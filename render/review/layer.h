@@ -208,4 +208,11 @@ FootageSequence openReference(const ReferenceSpec& ref, const std::string& conte
 // A LayerStyle from the spec's mode, opacity and label (ours labelled `ours_label`).
 LayerStyle referenceStyle(const ReferenceSpec& ref, const std::string& ours_label = "STIRRUP");
 
+// Frame `frame` of A composited with B, as `stirrup layer` writes it: B's frame is the one for A's
+// frame counted from A's first frame (b.theirFrame(frame - a.first + 1)). `placed`: B is placed on A's
+// canvas (FootageSequence::frame); otherwise B is shown as it is, cropped, beside A, and a frame B does
+// not have is blank at blank_width x blank_height. Onion skin takes its ghosts from A.
+Image layeredFrame(const FootageSequence& a, const FootageSequence& b, int frame, const LayerStyle& style, bool placed,
+                   int blank_width, int blank_height);
+
 }  // namespace stirrup::render

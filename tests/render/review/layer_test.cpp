@@ -8,6 +8,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "tests/input_error.h"
 #include <nlohmann/json.hpp>
 
 #include "render/scene.h"
@@ -31,15 +33,7 @@ void expectRgb(const Image& img, int x, int y, glm::vec3 want, float tol = 1e-5f
   EXPECT_NEAR(p.z, want.z, tol) << "B at " << x << "," << y;
 }
 
-template <typename F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::errorOf;
 
 fs::path freshDir(const std::string& name) {
   const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "layer_test" / name;
@@ -387,6 +381,32 @@ TEST(Footage, SequencesOnDisk) {
 }
 
 // --- Plates ----------------------------------------------------------------------------------------
+
+TEST(Footage, LayeredFrameMapsBFromAsFirstFrameAndBlanksMissingFrames) {
+  // A numbered 5..7, B 1..2 with edge Blank: A's frame 5 shows B's 1, 6 shows 2, 7 has no B.
+  FootageSequence a, b;
+  a.first = 5;
+  a.images = {solid(2, 1, {0.1f, 0, 0, 1}), solid(2, 1, {0.2f, 0, 0, 1}), solid(2, 1, {0.3f, 0, 0, 1})};
+  b.images = {solid(2, 1, {0, 0.5f, 0, 1}), solid(2, 1, {0, 0.7f, 0, 1})};
+  b.edge = FootageEdge::Blank;
+  LayerStyle s;
+  s.mode = LayerMode::Over;
+  s.coverage = LayerCoverage::Full;
+  s.opacity = 0.5f;
+  // Over at full coverage: 0.5 ours + 0.5 other.
+  expectRgb(layeredFrame(a, b, 5, s, true, 2, 1), 0, 0, {0.05f, 0.25f, 0.0f});
+  expectRgb(layeredFrame(a, b, 6, s, true, 2, 1), 1, 0, {0.10f, 0.35f, 0.0f});
+  // Unplaced side by side: B shown as it is; past its end, a blank of the given size.
+  LayerStyle side;
+  side.labels = false;
+  side.gap = 0;
+  const Image last = layeredFrame(a, b, 7, side, false, 2, 1);
+  ASSERT_EQ(last.width, 4);
+  expectRgb(last, 0, 0, {0.3f, 0.0f, 0.0f});
+  expectRgb(last, 3, 0, {0.0f, 0.0f, 0.0f});
+  const Image first = layeredFrame(a, b, 5, side, false, 2, 1);
+  expectRgb(first, 2, 0, {0.0f, 0.5f, 0.0f});
+}
 
 TEST(Plate, UniformGridCellsInReadingOrder) {
   // 2 rows x 3 columns of 10x10 cells inside margins left 2, top 1, right 0, bottom 1; each cell's

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/input_error.h"
+
 #include "rig/error.h"
 #include "rig/io/json_fields.h"
 #include "rig/rider_rig.h"
@@ -21,14 +23,7 @@ using R = RiderChannel;
 
 const fs::path kProfiles = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "profiles";
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::errorOf;
 
 // A scratch JSON file in the test's own folder, removed with the fixture.
 class ProfileFiles : public ::testing::Test {

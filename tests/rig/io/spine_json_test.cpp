@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/input_error.h"
+
 #include "rig/error.h"
 
 namespace stirrup::rig {
@@ -15,14 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::errorOf;
 
 class SpineJson : public ::testing::Test {
  protected:

@@ -1,0 +1,72 @@
+// The character generators' parameters by name (`stirrup character make horse --withers_height 150`):
+// each names a number or an x,y,z vector of HorseParams or RiderParams (cm, or linear RGB for colours).
+// One table per character, so the command line and any scene or crowd that sets proportions read the
+// same names.
+#pragma once
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
+#include "rig/error.h"
+
+namespace stirrup::rig {
+
+template <class P>
+struct CharacterParam {
+  const char* name;
+  std::variant<float P::*, glm::vec3 P::*> member;
+};
+
+const std::vector<CharacterParam<HorseParams>>& horseParameters();
+const std::vector<CharacterParam<RiderParams>>& riderParameters();
+
+// " --name --vector x,y,z ..." for messages.
+template <class P>
+std::string characterParameterList(const std::vector<CharacterParam<P>>& params) {
+  std::string s;
+  for (const auto& p : params) s += " --" + std::string(p.name) + (std::holds_alternative<float P::*>(p.member) ? "" : " x,y,z");
+  return s;
+}
+
+// Sets the parameter `key` (its name) from `value`, one number > 0 or three numbers "x,y,z". Errors are
+// one line: "<context>: --key: expected ...".
+template <class P>
+void setCharacterParameter(const std::vector<CharacterParam<P>>& table, const std::string& key, const std::string& value,
+                           const std::string& context, P& out) {
+  const CharacterParam<P>* found = nullptr;
+  for (const auto& p : table)
+    if (key == p.name) found = &p;
+  if (!found)
+    throw InputError(context + ": --" + key + ": unknown parameter (expected one of" + characterParameterList(table) + ")");
+  std::vector<float> numbers;
+  std::size_t start = 0;
+  while (start <= value.size()) {
+    const std::size_t comma = value.find(',', start);
+    const std::string part = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (part.empty() || !end || *end != '\0' || !std::isfinite(v))
+      throw InputError(context + ": --" + key + ": expected a number" +
+                       (std::holds_alternative<float P::*>(found->member) ? "" : "s x,y,z") + ", got \"" + value + "\"");
+    numbers.push_back(static_cast<float>(v));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (auto* f = std::get_if<float P::*>(&found->member)) {
+    if (numbers.size() != 1) throw InputError(context + ": --" + key + ": expected one number, got \"" + value + "\"");
+    if (!(numbers[0] > 0.0f)) throw InputError(context + ": --" + key + ": expected a number > 0, got \"" + value + "\"");
+    out.*(*f) = numbers[0];
+  } else {
+    if (numbers.size() != 3) throw InputError(context + ": --" + key + ": expected three numbers x,y,z, got \"" + value + "\"");
+    out.*std::get<glm::vec3 P::*>(found->member) = glm::vec3(numbers[0], numbers[1], numbers[2]);
+  }
+}
+
+}  // namespace stirrup::rig
