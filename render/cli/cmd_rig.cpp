@@ -52,10 +52,13 @@ void runParams(const RigOptions& o) {
   std::printf("# profile %s: %s\n", profile.name.c_str(), profile.doc.c_str());
   for (const rig::RigParameter& param : rig::rigParameters()) {
     const std::string key(param.key), cites(param.cites);
-    char value[32];
-    const auto [end, ec] = std::to_chars(value, value + sizeof value - 1, param.get(profile));
-    *(ec == std::errc() ? end : value) = '\0';
-    std::printf("%s = %s  # %s\n", key.c_str(), value, cites.c_str());
+    const auto text = [](double v) {
+      char buf[32];
+      const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+      return ec == std::errc() ? std::string(buf, end) : std::string("?");
+    };
+    std::printf("%s = %s  # %s (valid %s to %s)\n", key.c_str(), text(param.get(profile)).c_str(), cites.c_str(),
+                text(param.min).c_str(), text(param.max).c_str());
   }
 }
 

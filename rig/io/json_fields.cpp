@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "rig/error.h"
@@ -9,10 +10,14 @@
 namespace stirrup {
 
 nlohmann::json readJsonFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open the file (expected a readable JSON file)");
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw InputError(file.string() + ": read failed");
+  // Editors and spreadsheets on Windows save "UTF-8" with a byte-order mark; it is not part of the JSON.
+  if (text.starts_with(kUtf8ByteOrderMark)) text.erase(0, kUtf8ByteOrderMark.size());
   try {
-    return nlohmann::json::parse(in);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann's message carries the line and column; keep only that part.
     std::string what = e.what();
