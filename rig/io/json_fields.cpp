@@ -30,7 +30,8 @@ std::string describeJson(const nlohmann::json& value) {
   if (value.is_object()) return "an object";
   if (value.is_array()) return "an array of " + std::to_string(value.size());
   if (value.is_null()) return "null";
-  std::string s = value.dump();
+  // Text from the command line (--set) need not be UTF-8: replace bad bytes rather than throw.
+  std::string s = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   if (s.size() > 40) s = s.substr(0, 37) + "...";
   return s;
 }

@@ -61,5 +61,12 @@ TEST_F(JsonFile, MissingFileAndSyntaxErrorsNameTheFile) {
   }
 }
 
+// Found by fuzzing (tests/fuzz/regressions/profile_sets/set_value_not_utf8): `--set KEY=b\xE9g` (Latin-1
+// from a shell) made nlohmann's dump throw its own type_error instead of the one-line InputError.
+TEST(DescribeJson, TextThatIsNotUtf8IsDescribedNotThrown) {
+  EXPECT_EQ(describeJson(nlohmann::json("b\xE9g")), "\"b\xEF\xBF\xBDg\"");  // U+FFFD for the bad byte
+  EXPECT_EQ(describeJson(nlohmann::json("big")), "\"big\"");
+}
+
 }  // namespace
 }  // namespace stirrup
