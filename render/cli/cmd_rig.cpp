@@ -11,6 +11,7 @@
 
 #include "render/cli/commands.h"
 #include "render/cli/options.h"
+#include "render/data_dir.h"
 #include "rig/io/channel_csv.h"
 #include "rig/error.h"
 #include "rig/rider_rig.h"
@@ -28,7 +29,7 @@ struct RigOptions {
 
 std::filesystem::path profilesDir() {
   if (const char* env = std::getenv("STIRRUP_PROFILES"); env && *env) return env;
-  return STIRRUP_SOURCE_DIR "/scenes/profiles";
+  return render::dataDir() / "scenes" / "profiles";
 }
 
 rig::RigProfile resolveProfile(const RigOptions& o) {
@@ -65,7 +66,7 @@ void runParams(const RigOptions& o) {
 void addProfileOptions(CLI::App* cmd, const std::shared_ptr<RigOptions>& opts) {
   cmd->add_option("--profile,-p", opts->profile,
                   "Rig profile: a name looked up in the profiles folder (thesis, english, novice; folder: "
-                  "$STIRRUP_PROFILES or the project's scenes/profiles) or a path to a .json file")
+                  "$STIRRUP_PROFILES or scenes/profiles in stirrup's data folder) or a path to a .json file")
       ->capture_default_str();
   cmd->add_option("--set,-s", opts->sets,
                   "Override one profile parameter, KEY=NUMBER (repeatable), e.g. --set eq7.w2_scale=0.015; "

@@ -18,10 +18,13 @@ nlohmann::json readJsonFile(const std::filesystem::path& file) {
   if (text.starts_with(kUtf8ByteOrderMark)) text.erase(0, kUtf8ByteOrderMark.size());
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's message carries the line and column; keep only that part.
+  } catch (const nlohmann::json::exception& e) {
+    // A syntax error (nlohmann's message carries the line and column; keep only that part), or a number
+    // too large for a double, 1e400 (out_of_range.406, found by fuzzing): drop the "[json.exception...]" tag.
     std::string what = e.what();
     if (const auto pos = what.find("parse error"); pos != std::string::npos) what = what.substr(pos);
+    else if (const auto tag = what.find("] "); what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos)
+      what = what.substr(tag + 2);
     throw InputError(file.string() + ": not valid JSON: " + what);
   }
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,11 @@
 #include "tests/fuzz/targets.h"
 
 namespace stirrup::fuzz {
+
+// Test names show the target's name (found by ADL, so outside the anonymous namespace).
+void PrintTo(const NamedTarget& t, std::ostream* os);
+void PrintTo(const NamedTarget& t, std::ostream* os) { *os << t.name; }
+
 namespace {
 
 namespace fs = std::filesystem;

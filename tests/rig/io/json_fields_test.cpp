@@ -50,6 +50,12 @@ TEST_F(JsonFile, APartialByteOrderMarkOrOneInsideIsAnError) {
   EXPECT_EQ(errorOf("{\"a\": \xEF\xBB\xBF 1}").rfind(file + ": not valid JSON: parse error", 0), 0u);
 }
 
+// Found by fuzzing (tests/fuzz/regressions/scene_json/number_overflow): nlohmann throws out_of_range,
+// not parse_error, for a number past a double; it escaped as "stirrup: error: [json.exception...".
+TEST_F(JsonFile, ANumberPastADoubleIsOneLineNamingTheFile) {
+  EXPECT_EQ(errorOf("{\"fps\": 1e400}"), (dir_ / "file.json").string() + ": not valid JSON: number overflow parsing '1e400'");
+}
+
 TEST_F(JsonFile, MissingFileAndSyntaxErrorsNameTheFile) {
   EXPECT_EQ(errorOf("{\"a\": }").rfind((dir_ / "file.json").string() + ": not valid JSON: parse error at line 1, column 7", 0), 0u)
       << errorOf("{\"a\": }");
