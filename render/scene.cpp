@@ -1,7 +1,10 @@
 #include "render/scene.h"
 
 #include <cmath>
+#include <optional>
+#include <system_error>
 
+#include "render/data_dir.h"
 #include "render/review/footage.h"
 #include "render/preset.h"
 
@@ -179,7 +182,14 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
 }
 
 SceneSpec loadScene(const std::filesystem::path& file) {
-  return parseScene(readJsonFile(file), file.string());
+  // `stirrup render scenes/trot.json` from any folder: a relative path that is not there is looked up in
+  // the data folder (render/data_dir.h), which holds the default scenes.
+  std::filesystem::path f = file;
+  std::error_code ec;
+  if (f.is_relative() && !std::filesystem::exists(f, ec))
+    if (const std::optional<std::filesystem::path> data = findDataDir(); data && std::filesystem::exists(*data / f, ec))
+      f = *data / f;
+  return parseScene(readJsonFile(f), f.string());
 }
 
 const CameraSpec& findCamera(const SceneSpec& scene, const std::string& name) {
@@ -203,8 +213,16 @@ namespace stirrup::render {
 rig::RigProfile resolveProfile(const SceneSpec& scene) {
   const std::filesystem::path scene_dir = scene.file.parent_path();
   const bool is_path = std::filesystem::path(scene.profile).extension() == ".json";
+  // A profile name is looked up beside the scene (SCENE_DIR/profiles/NAME.json), then among the data
+  // folder's profiles, so a user's scene in a folder of its own can say "profile": "english".
+  std::filesystem::path profiles = scene_dir / "profiles";
+  std::error_code ec;
+  if (!is_path && !std::filesystem::exists(profiles / (scene.profile + ".json"), ec))
+    if (const std::optional<std::filesystem::path> data = findDataDir();
+        data && std::filesystem::exists(*data / "scenes" / "profiles" / (scene.profile + ".json"), ec))
+      profiles = *data / "scenes" / "profiles";
   rig::RigProfile p = is_path ? rig::loadRigProfile((scene_dir / scene.profile).string(), scene_dir)
-                              : rig::loadRigProfile(scene.profile, scene_dir / "profiles");
+                              : rig::loadRigProfile(scene.profile, profiles);
   rig::applyProfileOverrides(p, scene.profile_overrides, scene.file.string() + ": profile_overrides");
   return p;
 }

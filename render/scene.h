@@ -71,6 +71,8 @@ struct SceneSpec {
 };
 
 // Reads a scene file; throws stirrup::InputError "FILE: FIELD: expected ..., got ..." on bad input.
+// A relative path that does not exist from the working folder is looked up in stirrup's data folder
+// (render/data_dir.h), so `stirrup render scenes/trot.json` works from anywhere once installed.
 SceneSpec loadScene(const std::filesystem::path& file);
 // Parses scene JSON already in memory; `file` names it in errors.
 SceneSpec parseScene(const nlohmann::json& json, const std::string& file);
@@ -90,8 +92,9 @@ struct RigProfile;
 namespace stirrup::render {
 
 // The scene's rig profile: a name is looked up as profiles/NAME.json beside the scene file (so
-// scenes/trot.json finds scenes/profiles/thesis.json from any working directory), a path ending in
-// .json is read as it is; then the scene's profile_overrides are applied.
+// scenes/trot.json finds scenes/profiles/thesis.json from any working directory), else in the data
+// folder's scenes/profiles; a path ending in .json is read as it is; then the scene's profile_overrides
+// are applied.
 rig::RigProfile resolveProfile(const SceneSpec& scene);
 
 }  // namespace stirrup::render

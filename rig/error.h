@@ -2,13 +2,39 @@
 // the file, the field or row, and what was expected; the command line prints it and exits non-zero.
 #pragma once
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace stirrup {
 
+// The message with its control characters written as escapes (a newline as \n, others as \xNN), so a
+// message quoting the user's own text (a key, a field, a frame list holding a newline) stays one line
+// and cannot drive the terminal. Idempotent: backslashes are left as they are.
+inline std::string oneLineMessage(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) {
+      out.push_back(c);
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", u);
+      out += buf;
+    }
+  }
+  return out;
+}
+
 struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit InputError(const std::string& message) : std::runtime_error(oneLineMessage(message)) {}
 };
 
 }  // namespace stirrup

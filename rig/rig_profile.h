@@ -133,13 +133,31 @@ struct RigProfile {
   static RigProfile rigidRider();
 };
 
-// One tunable parameter: its JSON key, where it lives, and the thesis passage it comes from.
+// Why a parameter's valid range is what it is (docs/rider-rig.md, "Valid ranges"). A profile file,
+// a scene's profile_overrides and `--set` reject a value outside its parameter's range.
+enum class RangeKind {
+  Unit,        // cm per unit: 0.1 (a millimetre) to 1000 (10 m)
+  Weight,      // a multiplier: -10 to +10 times the thesis value
+  Divisor,     // a divisor: a tenth to ten times the thesis value, never 0 or negative
+  Limit,       // a clamp on a sum of hoof heights or a channel, in units: 0 to 1000
+  AngleLimit,  // a clamp on an angle, in degrees: up to a half turn, on its own side of 0
+  Angle,       // an offset in degrees: -90 to 90
+  Length,      // an offset in units: -100 to 100 (10 m at 10 cm a unit)
+};
+// The kind's name as the docs' table writes it ("weight", "unit", ...).
+std::string_view rangeKindName(RangeKind kind);
+
+// One tunable parameter: its JSON key, where it lives, the thesis passage it comes from, and the
+// closed range [min, max] of values a profile may give it.
 struct RigParameter {
   std::string_view key;
   double& (*field)(RigProfile&);
   std::string_view cites;
+  RangeKind kind;
+  double min, max;
   // Read-only access through the same accessor; nothing is written through the cast.
   const double& get(const RigProfile& p) const { return field(const_cast<RigProfile&>(p)); }
+  bool accepts(double value) const { return value >= min && value <= max; }  // false for NaN
 };
 // Every parameter, in equation order (horse_unit_cm and rider_unit_cm first).
 std::span<const RigParameter> rigParameters();

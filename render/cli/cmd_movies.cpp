@@ -5,12 +5,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 
 #include "render/cli/commands.h"
 #include "render/cli/progress.h"
 #include "render/cli/options.h"
+#include "render/data_dir.h"
 #include "render/review/index_page.h"
 #include "render/review/movie_set.h"
 #include "render/preset.h"
@@ -53,10 +55,12 @@ void runMovies(const MoviesOptions& o) {
   }
   if (!mo.mp4 && !mo.mov) throw InputError("--no-mp4: expected --mov as well (there would be no movie)");
   if (!o.resolution.empty()) std::tie(mo.width, mo.height) = parseResolution(o.resolution);
-  const fs::path source = STIRRUP_SOURCE_DIR;
-  const fs::path scenes = o.scenes.empty() ? source / "scenes" : fs::path(o.scenes);
+  // The default scenes are the data folder's (render/data_dir.h); Muybridge's plate is in ../shared beside
+  // it (the repository's, in a build tree) or $STIRRUP_SHARED_DIR.
+  const fs::path scenes = o.scenes.empty() ? render::dataDir() / "scenes" : fs::path(o.scenes);
   if (!fs::is_directory(scenes)) throw InputError("--scenes: " + scenes.string() + ": no such folder");
-  mo.reference_dir = render::sharedDir(source) / "reference";
+  const std::optional<fs::path> data = render::findDataDir();
+  mo.reference_dir = render::sharedDir(data ? *data : fs::weakly_canonical(scenes).parent_path()) / "reference";
 
   std::vector<render::MovieJob> jobs = render::defaultMovieSet(scenes, mo.reference_dir);
   if (!o.only.empty()) {
@@ -116,7 +120,7 @@ void addMoviesCommand(CLI::App& app) {
   cmd->add_option("--frames-limit", opts->frames_limit, "Render at most the first N frames of each movie")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--resolution", opts->resolution, "WIDTHxHEIGHT instead of the scenes' (e.g. 640x360)");
-  cmd->add_option("--scenes", opts->scenes, "Folder of scene files (default: the repository's scenes/)");
+  cmd->add_option("--scenes", opts->scenes, "Folder of scene files (default: scenes/ in stirrup's data folder, docs/install.md)");
   cmd->add_option("--mov", opts->mov, "Also write QuickTime NAME.mov: prores (ProRes 422 HQ) or h264");
   cmd->add_flag("--no-mp4", opts->no_mp4, "Write no .mp4 (with --mov)");
   cmd->add_flag("--keep-frames", opts->keep_frames, "Keep the frames as OUT/frames/NAME/NAME.####.png");

@@ -11,6 +11,7 @@
 
 #include "render/cli/commands.h"
 #include "render/cli/options.h"
+#include "render/data_dir.h"
 #include "rig/io/channel_csv.h"
 #include "rig/error.h"
 #include "rig/rider_rig.h"
@@ -28,7 +29,7 @@ struct RigOptions {
 
 std::filesystem::path profilesDir() {
   if (const char* env = std::getenv("STIRRUP_PROFILES"); env && *env) return env;
-  return STIRRUP_SOURCE_DIR "/scenes/profiles";
+  return render::dataDir() / "scenes" / "profiles";
 }
 
 rig::RigProfile resolveProfile(const RigOptions& o) {
@@ -52,17 +53,20 @@ void runParams(const RigOptions& o) {
   std::printf("# profile %s: %s\n", profile.name.c_str(), profile.doc.c_str());
   for (const rig::RigParameter& param : rig::rigParameters()) {
     const std::string key(param.key), cites(param.cites);
-    char value[32];
-    const auto [end, ec] = std::to_chars(value, value + sizeof value - 1, param.get(profile));
-    *(ec == std::errc() ? end : value) = '\0';
-    std::printf("%s = %s  # %s\n", key.c_str(), value, cites.c_str());
+    const auto text = [](double v) {
+      char buf[32];
+      const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+      return ec == std::errc() ? std::string(buf, end) : std::string("?");
+    };
+    std::printf("%s = %s  # %s (valid %s to %s)\n", key.c_str(), text(param.get(profile)).c_str(), cites.c_str(),
+                text(param.min).c_str(), text(param.max).c_str());
   }
 }
 
 void addProfileOptions(CLI::App* cmd, const std::shared_ptr<RigOptions>& opts) {
   cmd->add_option("--profile,-p", opts->profile,
                   "Rig profile: a name looked up in the profiles folder (thesis, english, novice; folder: "
-                  "$STIRRUP_PROFILES or the project's scenes/profiles) or a path to a .json file")
+                  "$STIRRUP_PROFILES or scenes/profiles in stirrup's data folder) or a path to a .json file")
       ->capture_default_str();
   cmd->add_option("--set,-s", opts->sets,
                   "Override one profile parameter, KEY=NUMBER (repeatable), e.g. --set eq7.w2_scale=0.015; "

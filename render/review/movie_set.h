@@ -23,7 +23,8 @@ struct MovieJob {
   std::string layered;
 };
 
-// ../shared beside the repository: $STIRRUP_SHARED_DIR when set, else SOURCE_DIR/../shared.
+// ../shared beside the repository: $STIRRUP_SHARED_DIR when set, else DATA_DIR/../shared (in a build
+// tree the data folder is the source tree, render/data_dir.h; an installed stirrup needs the variable).
 std::filesystem::path sharedDir(const std::filesystem::path& source_dir);
 
 // The default set for the scenes in `scenes_dir`; gallop_layered only when `reference_dir` (the shared

@@ -13,6 +13,8 @@
 namespace stirrup::rig {
 namespace {
 
+constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
+
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
@@ -76,6 +78,8 @@ HorseTrack readHorseCsv(const std::filesystem::path& file) {
   bool have_header = false;
   while (std::getline(in, line)) {
     ++row;
+    // A spreadsheet's "CSV UTF-8" starts with a byte-order mark; it is not part of the header.
+    if (row == 1 && line.starts_with(kUtf8ByteOrderMark)) line.erase(0, kUtf8ByteOrderMark.size());
     if (!trim(line).empty()) {
       have_header = true;
       break;

@@ -2,7 +2,8 @@
 //
 // Reading (horse channels): the header holds `frame` and any subset of the horse channel names of
 // ../shared/rig-channels.md (lfHoof.tx ... backMid.rz), in any order; absent channels are 0 (rest).
-// Values are plain decimal numbers (cm and degrees). Blank lines are skipped; spaces around a field
+// Values are plain decimal numbers (cm and degrees). A UTF-8 byte-order mark before the header (a
+// spreadsheet's "CSV UTF-8") is skipped. Blank lines are skipped; spaces around a field
 // are ignored. Every problem is one InputError line "FILE: row N, column NAME: expected ..., got ...",
 // where row N is the line number in the file (the header is row 1).
 //

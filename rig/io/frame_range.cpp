@@ -45,9 +45,19 @@ std::vector<int> parseFrameList(const std::string& spec, const std::string& cont
     } else if (!parseInt(range.substr(0, dash), first) || !parseInt(range.substr(dash + 1), last)) {
       fail(context, part, "expected a range FIRST-LAST[xSTEP] of whole numbers");
     }
+    for (const int f : {first, last})
+      if (f < -kMaxFrameNumber || f > kMaxFrameNumber)
+        fail(context, part, "expected frame numbers from " + std::to_string(-kMaxFrameNumber) + " to " +
+                                std::to_string(kMaxFrameNumber) + ", got " + std::to_string(f));
     if (last < first) fail(context, part, "expected FIRST <= LAST");
-    for (long f = first; f <= last; f += step)
-      if (seen.insert(static_cast<int>(f)).second) frames.push_back(static_cast<int>(f));
+    const std::string too_many = "expected at most " + std::to_string(kMaxFrameCount) + " frames in the list";
+    if ((static_cast<long>(last) - first) / step + 1 > kMaxFrameCount) fail(context, part, too_many);
+    for (long f = first; f <= last; f += step) {
+      if (!seen.insert(static_cast<int>(f)).second) continue;
+      if (frames.size() == static_cast<std::size_t>(kMaxFrameCount))
+        fail(context, part, too_many);
+      frames.push_back(static_cast<int>(f));
+    }
     if (comma == std::string_view::npos) break;
     rest = rest.substr(comma + 1);
   }

@@ -1,11 +1,22 @@
 // Frame lists as render farms and ffmpeg users write them: "1-120", "1-120x2", "1-10,20-30", "7".
 // Frames keep the order given, and a frame listed twice is rendered once.
+//
+// Limits (docs/install.md, "Input limits"): frame numbers are whole numbers from -kMaxFrameNumber to
+// kMaxFrameNumber, and a list expands to at most kMaxFrameCount frames. Past either the list is a
+// one-line InputError, checked before any frame is stored, so a typo such as 1-100000000 never
+// allocates a hundred million frames.
 #pragma once
 
 #include <string>
 #include <vector>
 
 namespace stirrup::rig {
+
+// 999999: six digits, the widest frame number a render farm's ###### padding writes.
+inline constexpr int kMaxFrameNumber = 999999;
+// 100000 frames: 69 minutes at 24 fps, far past any shot (the longest shipped scene has 96 frames);
+// a baked glTF of that many frames is already ~100 MB.
+inline constexpr int kMaxFrameCount = 100000;
 
 // Parses a frame list; throws stirrup::InputError naming `context` (for example "--frames") and the
 // part of the list that is wrong.

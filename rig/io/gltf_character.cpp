@@ -15,6 +15,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/error.h"
+#include "rig/io/gltf_nodes.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
 
@@ -318,7 +319,9 @@ std::vector<unsigned char> characterGlb(const Character& c) {
 
 void writeCharacterGlb(const Character& c, const std::filesystem::path& file) { writeFileAtomically(file, characterGlb(c)); }
 
-Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping) {
+namespace {
+
+Character loadCharacterGltfUnchecked(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping) {
   const std::string f = file.string();
   const std::string kind_name(characterKindName(kind));
   if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
@@ -335,6 +338,10 @@ Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kin
   const tinygltf::Skin& skin = model.skins[0];
   const int nj = static_cast<int>(skin.joints.size());
   if (nj == 0) throw InputError(f + ": skins[0] has no joints");
+  for (int j = 0; j < nj; ++j)
+    if (skin.joints[j] < 0 || skin.joints[j] >= static_cast<int>(model.nodes.size()))
+      throw InputError(f + ": skins[0].joints[" + std::to_string(j) + "]: expected a node index 0.." +
+                       std::to_string(static_cast<int>(model.nodes.size()) - 1) + ", got " + std::to_string(skin.joints[j]));
 
   // Role -> index into skin.joints.
   std::map<std::string, int> role_joint;
@@ -388,9 +395,7 @@ Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kin
     for (int j = 0; j < nj; ++j) std::memcpy(glm::value_ptr(ibm[j]), v.data() + j * 16, 64);
   }
   // Parents: the nearest ancestor node that is a joint.
-  std::vector<int> node_parent(model.nodes.size(), -1);
-  for (std::size_t n = 0; n < model.nodes.size(); ++n)
-    for (int ch : model.nodes[n].children) node_parent.at(ch) = static_cast<int>(n);
+  const std::vector<int> node_parent = gltfNodeParents(model, f);
   std::map<int, int> node_joint;
   for (int j = 0; j < nj; ++j) node_joint[skin.joints[j]] = j;
   std::vector<int> parent(nj, -1);
@@ -519,6 +524,18 @@ Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kin
         m.normals[v] = glm::length(acc[v]) > 0.0f ? glm::normalize(acc[v]) : glm::vec3(0.0f, 1.0f, 0.0f);
   }
   return c;
+}
+
+}  // namespace
+
+Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping) {
+  try {
+    return loadCharacterGltfUnchecked(file, kind, mapping);
+  } catch (const std::out_of_range&) {
+    // An index the checks above do not cover (a mesh, material or accessor index past its array): the
+    // .at() lookups throw, and the user gets one line naming the file (found by fuzzing).
+    throw InputError(file.string() + ": not a valid glTF file (an index points past the end of its array)");
+  }
 }
 
 Character resolveCharacter(CharacterKind kind, const std::string& file, const std::string& mapping_file) {

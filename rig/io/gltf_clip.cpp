@@ -14,6 +14,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/error.h"
+#include "rig/io/gltf_nodes.h"
 #include "rig/io/json_fields.h"
 
 namespace stirrup::rig {
@@ -196,8 +197,8 @@ ClipMapping loadClipMapping(const std::filesystem::path& file) {
   const nlohmann::json* nodes = r.value("nodes");
   if (!nodes->is_object()) r.fail("nodes", "expected an object from control names to node names, got " + describeJson(*nodes));
   for (const auto& [control, node] : nodes->items()) {
-    if (std::find_if(kClipControlNames.begin(), kClipControlNames.end(), [&](const char* n) { return control == n; }) ==
-        kClipControlNames.end())
+    // (std::find, not a lambda: clang 14, the fuzz build's compiler, cannot capture a structured binding.)
+    if (std::find(kClipControlNames.begin(), kClipControlNames.end(), std::string_view(control)) == kClipControlNames.end())
       r.fail("nodes." + control, "unknown control (expected horse, lfHoof, rfHoof, lbHoof, rbHoof, rearPivot, backMid, neck, head or tail)");
     if (!node.is_string()) r.fail("nodes." + control, "expected a node name, got " + describeJson(node));
     m.nodes[control] = node.get<std::string>();
@@ -435,7 +436,7 @@ glm::dquat rotationOf(const glm::dmat4& m) {
 }
 }  // namespace
 
-GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping) : impl_(std::make_unique<Impl>()) {
+GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping) try : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.file = file.string();
   m.mapping = mapping;
@@ -450,9 +451,7 @@ GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping
   }
   const std::string where = mapping.file.empty() ? m.file : mapping.file.string();
   // Nodes by name, and their parents.
-  m.parent.assign(m.model.nodes.size(), -1);
-  for (std::size_t i = 0; i < m.model.nodes.size(); ++i)
-    for (int c : m.model.nodes[i].children) m.parent.at(c) = static_cast<int>(i);
+  m.parent = gltfNodeParents(m.model, m.file);
   for (const auto& [control, node_name] : mapping.nodes) {
     int found = -1;
     for (std::size_t i = 0; i < m.model.nodes.size(); ++i)
@@ -547,6 +546,10 @@ GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping
       m.mapping.speed_cm_s = std::max(0.0, back / m.duration * mapping.scale_cm);
     }
   }
+} catch (const std::out_of_range&) {
+  // An index the checks above do not cover (an accessor, buffer view or node index past its array): the
+  // .at() lookups throw, and the user gets one line naming the file (found by fuzzing).
+  throw InputError(file.string() + ": not a valid glTF file (an index points past the end of its array)");
 }
 
 GltfClip::~GltfClip() = default;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "rig/error.h"
@@ -9,14 +10,21 @@
 namespace stirrup {
 
 nlohmann::json readJsonFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open the file (expected a readable JSON file)");
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw InputError(file.string() + ": read failed");
+  // Editors and spreadsheets on Windows save "UTF-8" with a byte-order mark; it is not part of the JSON.
+  if (text.starts_with(kUtf8ByteOrderMark)) text.erase(0, kUtf8ByteOrderMark.size());
   try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's message carries the line and column; keep only that part.
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    // A syntax error (nlohmann's message carries the line and column; keep only that part), or a number
+    // too large for a double, 1e400 (out_of_range.406, found by fuzzing): drop the "[json.exception...]" tag.
     std::string what = e.what();
     if (const auto pos = what.find("parse error"); pos != std::string::npos) what = what.substr(pos);
+    else if (const auto tag = what.find("] "); what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos)
+      what = what.substr(tag + 2);
     throw InputError(file.string() + ": not valid JSON: " + what);
   }
 }
@@ -25,7 +33,8 @@ std::string describeJson(const nlohmann::json& value) {
   if (value.is_object()) return "an object";
   if (value.is_array()) return "an array of " + std::to_string(value.size());
   if (value.is_null()) return "null";
-  std::string s = value.dump();
+  // Text from the command line (--set) need not be UTF-8: replace bad bytes rather than throw.
+  std::string s = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   if (s.size() > 40) s = s.substr(0, 37) + "...";
   return s;
 }

@@ -6,12 +6,18 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
 namespace stirrup {
 
-// Reads and parses a JSON file; a missing file or a syntax error is an InputError naming the file.
+// The UTF-8 byte-order mark some editors put first in a file ("CSV UTF-8", "UTF-8 with BOM"). JSON and
+// channel CSV readers skip it.
+inline constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
+
+// Reads and parses a JSON file (a leading UTF-8 byte-order mark is skipped); a missing file or a
+// syntax error is an InputError naming the file.
 nlohmann::json readJsonFile(const std::filesystem::path& file);
 
 // A short rendering of a JSON value for error messages: "wide", 12, [1,2], {...}.

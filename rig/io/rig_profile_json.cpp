@@ -1,8 +1,8 @@
 // Rig profile files: reading a profile from JSON, single overrides by key, and the JSON form.
 #include "rig/io/rig_profile_json.h"
 
+#include <charconv>
 #include <set>
-#include <sstream>
 
 #include "rig/error.h"
 #include "rig/io/json_fields.h"
@@ -12,14 +12,11 @@ namespace {
 
 std::string knownKeysHint() { return "see docs/rider-rig.md for the parameter keys"; }
 
-// Units divide and multiply translations: zero or negative would silently flip or blow up the rig.
-void checkUnits(const RigProfile& p, const std::string& context) {
-  for (const auto& [key, value] : {std::pair{"horse_unit_cm", p.horse_unit_cm}, std::pair{"rider_unit_cm", p.rider_unit_cm}}) {
-    if (value > 0) continue;
-    std::ostringstream got;
-    got << value;
-    throw InputError(context + ": " + key + ": expected a positive number, got " + got.str());
-  }
+// Shortest round-trip text of a number for messages: 1e+300, 0.1, -20.
+std::string formatValue(double v) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return ec == std::errc() ? std::string(buf, end) : std::to_string(v);
 }
 
 void setParameter(RigProfile& p, const std::string& key, const nlohmann::json& value, const std::string& context) {
@@ -27,7 +24,13 @@ void setParameter(RigProfile& p, const std::string& key, const nlohmann::json& v
   if (!param) throw InputError(context + ": " + key + ": unknown rig profile parameter (" + knownKeysHint() + ")");
   if (!value.is_number())
     throw InputError(context + ": " + key + ": expected a number, got " + describeJson(value));
-  param->field(p) = value.get<double>();
+  const double v = value.get<double>();
+  // Every parameter has a documented range (docs/rider-rig.md, "Valid ranges"): a value past it is a
+  // typo or a unit slip that would render a broken rider, or divide by zero.
+  if (!param->accepts(v))
+    throw InputError(context + ": " + key + ": expected a number from " + formatValue(param->min) + " to " +
+                     formatValue(param->max) + " (docs/rider-rig.md, valid ranges), got " + formatValue(v));
+  param->field(p) = v;
 }
 
 }  // namespace
@@ -74,7 +77,6 @@ RigProfile loadRigProfile(const std::string& nameOrPath, const std::filesystem::
       setParameter(p, key, value, file.string());
     }
   }
-  checkUnits(p, file.string());
   return p;
 }
 
@@ -83,7 +85,6 @@ void applyProfileOverrides(RigProfile& p, const nlohmann::json& overrides, const
   if (!overrides.is_object())
     throw InputError(context + ": expected an object of parameter keys and numbers, got " + describeJson(overrides));
   for (const auto& [key, value] : overrides.items()) setParameter(p, key, value, context);
-  checkUnits(p, context);
 }
 
 nlohmann::json profileToJson(const RigProfile& p) {

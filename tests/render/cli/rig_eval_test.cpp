@@ -141,6 +141,12 @@ TEST_F(RigEval, BadInputIsOneLineAndLeavesNoOutput) {
               "--set: eq1.w9: unknown rig profile parameter (see docs/rider-rig.md for the parameter keys)", out);
   expectFails(eval(good, " --set eq1.w1_pivot_pitch=big"), "--set: eq1.w1_pivot_pitch: expected a number, got \"big\"",
               out);
+  // The example: a value past the parameter's range (docs/rider-rig.md, valid ranges).
+  expectFails(eval(good, " --set eq7.w2_scale=1e300"),
+              "--set: eq7.w2_scale: expected a number from -0.1 to 0.1 (docs/rider-rig.md, valid ranges), got 1e+300", out);
+  // Found by fuzzing (tests/fuzz/regressions/profile_sets): a value that is not UTF-8 (Latin-1 from a shell).
+  expectFails(eval(good, " --set 'eq1.w1_pivot_pitch=b\xE9g'"),
+              "--set: eq1.w1_pivot_pitch: expected a number, got \"b\xEF\xBF\xBDg\"", out);
   expectFails(eval(good, " --set eq1.w1_pivot_pitch"),
               "--set: expected key=value (e.g. eq1.w1_pivot_pitch=0.05), got \"eq1.w1_pivot_pitch\"", out);
   expectFails(eval(good, " --profile cowboy"),
@@ -163,6 +169,7 @@ TEST(RigParams, ListsEveryParameterWithItsCitation) {
     EXPECT_NE(r.out.find(std::string(p.key) + " = "), std::string::npos) << p.key;
   EXPECT_NE(r.out.find("eq1.w1_pivot_pitch = 0.5  # Eq 1"), std::string::npos);
   EXPECT_NE(r.out.find("eq4.w1_lower_back = 1.3"), std::string::npos);
+  EXPECT_NE(r.out.find("(valid -0.7 to 0.7)\n"), std::string::npos) << "eq1.w1_pivot_pitch's range";
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // exit, and no frames written.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -73,6 +74,30 @@ TEST_F(SceneErrors, BadFrameRangeOnTheCommandLine) {
   expectError("bake " + quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes/trot.json").string()) +
                   " --frames 5-1 --channels " + quote((dir / "out/c.csv").string()),
               "--frames: \"5-1\": expected FIRST <= LAST");
+}
+
+// The issue's example: this failed with std::bad_alloc. Frame numbers have a documented maximum
+// (rig/io/frame_range.h, docs/install.md "Input limits").
+TEST_F(SceneErrors, AFrameRangePastTheMaximumIsOneLineNotBadAlloc) {
+  const std::string trot = quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes/trot.json").string());
+  expectError("bake " + trot + " --frames 1-100000000 -o " + quote((dir / "out/t.glb").string()),
+              "--frames: \"1-100000000\": expected frame numbers from -999999 to 999999, got 100000000");
+  expectError("render " + trot + " --frames 1-200000 --out " + quote((dir / "out").string()),
+              "--frames: \"1-200000\": expected at most 100000 frames in the list");
+  const fs::path f = write("x.json", R"({"output": "out", "frames": "1-100000000"})");
+  expectError("render " + quote(f.string()),
+              f.string() + ": frames: \"1-100000000\": expected frame numbers from -999999 to 999999, got 100000000");
+}
+
+// Notepad's "UTF-8 with BOM": the scene (and the profile it names) read as without.
+TEST_F(SceneErrors, AByteOrderMarkIsNotAnError) {
+  std::ifstream in(fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json", std::ios::binary);
+  const std::string profile{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  write("profiles/bom.json", "\xEF\xBB\xBF" + profile);
+  const fs::path f = write("x.json", "\xEF\xBB\xBF" R"({"clip": {"generator": "trot"}, "profile": "bom", "frames": "1-3", "output": "out"})");
+  const CommandResult r = runStirrup("bake " + quote(f.string()) + " --channels " + quote((dir / "c.csv").string()));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "c.csv"));
 }
 
 }  // namespace

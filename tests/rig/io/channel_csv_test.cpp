@@ -54,6 +54,17 @@ TEST_F(ChannelCsv, ReadsAnySubsetInAnyOrderAbsentIsZero) {
   EXPECT_EQ(t.horse[1][H::backMidRz], 0);
 }
 
+// A spreadsheet's "CSV UTF-8" (Excel, LibreOffice) writes a byte-order mark before the header.
+TEST_F(ChannelCsv, AUtf8ByteOrderMarkBeforeTheHeaderIsSkipped) {
+  const HorseTrack t = readHorseCsv(write("\xEF\xBB\xBF" "frame,lfHoof.ty\r\n1,12.5\r\n2,3\r\n"));
+  ASSERT_EQ(t.frames.size(), 2u);
+  EXPECT_EQ(t.frames[1], 2);
+  EXPECT_EQ(t.horse[0][H::lfHoofTy], 12.5);
+  // Only before the header: a mark inside the data is still not a number.
+  EXPECT_EQ(errorOf("frame,lfHoof.ty\n\xEF\xBB\xBF" "1,2\n"),
+            (dir_ / "horse.csv").string() + ": row 2, column frame: expected a number, got \"\xEF\xBB\xBF" "1\"");
+}
+
 TEST_F(ChannelCsv, HeaderOnlyIsNoFrames) { EXPECT_TRUE(readHorseCsv(write("frame,lfHoof.tx\n")).frames.empty()); }
 
 TEST_F(ChannelCsv, ErrorsAreOneLineNamingFileRowAndColumn) {

@@ -40,5 +40,36 @@ TEST(FrameRange, ErrorsNameTheContextAndThePart) {
   }
 }
 
+std::string errorOf(const std::string& spec) {
+  try {
+    parseFrameList(spec, "--frames");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+// The example: a typo of a hundred million frames is a one-line error, not std::bad_alloc.
+TEST(FrameRange, FrameNumbersPastTheMaximumAreOneLineErrors) {
+  EXPECT_EQ(errorOf("1-100000000"), "--frames: \"1-100000000\": expected frame numbers from -999999 to 999999, got 100000000");
+  EXPECT_EQ(errorOf("-1000000-1"), "--frames: \"-1000000-1\": expected frame numbers from -999999 to 999999, got -1000000");
+  EXPECT_EQ(errorOf("5,1000000"), "--frames: \"1000000\": expected frame numbers from -999999 to 999999, got 1000000");
+  // Past int: from_chars reports out of range, still one line naming the part.
+  EXPECT_EQ(errorOf("1-99999999999"), "--frames: \"1-99999999999\": expected a range FIRST-LAST[xSTEP] of whole numbers");
+  // The largest frame numbers themselves are fine.
+  EXPECT_EQ(parseFrameList("999999", "f"), (std::vector<int>{999999}));
+  EXPECT_EQ(parseFrameList("-999999--999998", "f"), (std::vector<int>{-999999, -999998}));
+}
+
+TEST(FrameRange, ListsPastTheMaximumCountAreOneLineErrors) {
+  EXPECT_EQ(parseFrameList("1-100000", "f").size(), 100000u);
+  EXPECT_EQ(parseFrameList("1-200000x2", "f").size(), 100000u);
+  EXPECT_EQ(errorOf("1-100001"), "--frames: \"1-100001\": expected at most 100000 frames in the list");
+  EXPECT_EQ(errorOf("-999999-999999"), "--frames: \"-999999-999999\": expected at most 100000 frames in the list");
+  // Two ranges that fit alone but not together; a repeated frame counts once.
+  EXPECT_EQ(errorOf("1-60000,100001-160000"), "--frames: \"100001-160000\": expected at most 100000 frames in the list");
+  EXPECT_EQ(parseFrameList("1-100000,1-100000", "f").size(), 100000u);
+}
+
 }  // namespace
 }  // namespace stirrup::rig

@@ -4,7 +4,10 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <charconv>
+#include <map>
 #include <set>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -156,7 +159,7 @@ TEST(RigProfile, OverrideErrorsNameTheContextAndTheKey) {
   EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"eq8.shift_limit", true}}, "--set"); }),
             "--set: eq8.shift_limit: expected a number, got true");
   EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"horse_unit_cm", 0}}, "--set"); }),
-            "--set: horse_unit_cm: expected a positive number, got 0");
+            "--set: horse_unit_cm: expected a number from 0.1 to 1000 (docs/rider-rig.md, valid ranges), got 0");
   EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, nlohmann::json::array({1, 2}), "--set"); }),
             "--set: expected an object of parameter keys and numbers, got an array of 2");
 }
@@ -185,6 +188,94 @@ TEST_F(ProfileFiles, FileErrorsNameTheFileAndTheKey) {
   // A syntax error names the file (readJsonFile's message).
   write("s.json", "{\"eq1.w1_pivot_pitch\": ");
   EXPECT_NE(errorOf([&] { loadRigProfile("s", dir_); }).find("s.json"), std::string::npos);
+}
+
+// The issue's example: --set eq7.w2_scale=1e300 rendered a broken rider. Every parameter has a range.
+TEST(RigProfileRanges, AValuePastItsRangeIsOneLineNamingKeyValueAndRange) {
+  RigProfile p = RigProfile::thesis();
+  EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"eq7.w2_scale", 1e300}}, "--set"); }),
+            "--set: eq7.w2_scale: expected a number from -0.1 to 0.1 (docs/rider-rig.md, valid ranges), got 1e+300");
+  EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"eq9.w1_spine_divisor", 0}}, "scene.json: profile_overrides"); }),
+            "scene.json: profile_overrides: eq9.w1_spine_divisor: expected a number from 0.6 to 60 (docs/rider-rig.md, "
+            "valid ranges), got 0");
+  EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"eq8.shift_limit", -1}}, "--set"); }),
+            "--set: eq8.shift_limit: expected a number from 0 to 1000 (docs/rider-rig.md, valid ranges), got -1");
+  EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"eq10.lower_back_min", 5}}, "--set"); }),
+            "--set: eq10.lower_back_min: expected a number from -180 to 0 (docs/rider-rig.md, valid ranges), got 5");
+  // A rejected value leaves the profile as it was.
+  EXPECT_EQ(p.eq7.w2_scale, 0.01);
+  // The ends of a range are valid.
+  applyProfileOverrides(p, {{"eq7.w2_scale", -0.1}, {"eq9.w1_spine_divisor", 60}, {"horse_unit_cm", 0.1}}, "--set");
+  EXPECT_EQ(p.eq7.w2_scale, -0.1);
+}
+
+TEST_F(ProfileFiles, AFileValuePastItsRangeNamesTheFile) {
+  const fs::path f = write("huge.json", R"({"doc": "d", "eq4.w1_lower_back": 170})");
+  EXPECT_EQ(errorOf([&] { loadRigProfile("huge", dir_); }),
+            f.string() + ": eq4.w1_lower_back: expected a number from -17 to 17 (docs/rider-rig.md, valid ranges), got 170");
+}
+
+// The ranges hold every value the project ships or tests: the thesis's, the shipped profiles', the golden
+// sensitivity test's 10% perturbations (tests/render/cli/golden_sensitivity_test.cpp) and the prose's
+// alternatives the thesis's code overrides (docs/rider-rig.md, decisions).
+TEST(RigProfileRanges, HoldEveryShippedAndTestedValue) {
+  for (const RigParameter& param : rigParameters()) {
+    const double thesis = param.get(RigProfile::thesis());
+    EXPECT_TRUE(param.accepts(thesis)) << param.key << " = " << thesis;
+    EXPECT_TRUE(param.accepts(thesis * 1.1)) << param.key;
+    EXPECT_TRUE(param.accepts(thesis * 0.9)) << param.key;
+    EXPECT_LT(param.min, param.max) << param.key;
+    if (param.kind == RangeKind::Weight) {
+      EXPECT_DOUBLE_EQ(param.max, 10 * std::abs(thesis)) << param.key;
+      EXPECT_DOUBLE_EQ(param.min, -10 * std::abs(thesis)) << param.key;
+    }
+  }
+  std::set<std::string> files;
+  for (const auto& e : fs::directory_iterator(kProfiles)) {
+    if (e.path().extension() != ".json") continue;
+    files.insert(e.path().stem().string());
+    const nlohmann::json j = readJsonFile(e.path());
+    for (const auto& [key, value] : j.items()) {
+      const RigParameter* param = findRigParameter(key);
+      if (param) {
+        EXPECT_TRUE(param->accepts(value.get<double>())) << e.path() << ": " << key;
+      }
+    }
+    EXPECT_NO_THROW(loadRigProfile(e.path().stem().string(), kProfiles)) << e.path();
+  }
+  EXPECT_EQ(files, (std::set<std::string>{"english", "novice", "thesis"}));
+  // The prose's and the thesis code's alternatives (docs/rider-rig.md, decisions): a user restoring them
+  // must not be refused.
+  for (const auto& [key, value] : std::initializer_list<std::pair<const char*, double>>{
+           {"eq14.h1_reach_gain", 0.8}, {"eq11.w1_pivot_roll", -1}, {"eq1.front_limited_lf_tx_offset", 2.5},
+           {"eq12.rear_pivot_rz_rest", 0.572}, {"eq15.foot_tx_rest", 3}, {"eq15.w2_rig_scale", -6},
+           {"eq17.rest_offset", 2}, {"knee.rest_offset", -1}, {"eq10.lower_back_min", -17}})
+    EXPECT_TRUE(findRigParameter(key)->accepts(value)) << key << " = " << value;
+}
+
+// docs/rider-rig.md's "Valid ranges" table lists every key with the range the code checks.
+TEST(RigProfileRanges, DocumentedInTheRiderRigDoc) {
+  std::ifstream in(fs::path(STIRRUP_SOURCE_DIR) / "docs" / "rider-rig.md");
+  ASSERT_TRUE(in) << "docs/rider-rig.md";
+  std::map<std::string, std::string> rows;  // key -> the rest of the row
+  bool in_section = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("#", 0) == 0) in_section = line.find("Valid ranges") != std::string::npos;
+    if (!in_section || line.rfind("| `", 0) != 0) continue;
+    const std::size_t end = line.find('`', 3);
+    rows[line.substr(3, end - 3)] = line.substr(end + 1);
+  }
+  const auto text = [](double v) {
+    char buf[32];
+    const auto [e, ec] = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, e);
+  };
+  for (const RigParameter& param : rigParameters()) {
+    ASSERT_TRUE(rows.count(std::string(param.key))) << param.key << " has no row in docs/rider-rig.md";
+    const std::string& row = rows[std::string(param.key)];
+    const std::string range = "| " + text(param.min) + " to " + text(param.max) + " | " + std::string(rangeKindName(param.kind)) + " |";
+    EXPECT_NE(row.find(range), std::string::npos) << param.key << ": expected \"" << range << "\" in its row:" << row;
+  }
 }
 
 TEST_F(ProfileFiles, PartialProfileKeepsThesisValues) {

@@ -1,0 +1,9 @@
+// libFuzzer target rig_profile_json (tests/fuzz/targets.h, docs/fuzzing.md): scripts/fuzz rig_profile_json SECONDS.
+#include <cstddef>
+#include <cstdint>
+
+#include "tests/fuzz/targets.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return stirrup::fuzz::rigProfileJson(data, size);
+}

@@ -1,0 +1,177 @@
+#include "tests/fuzz/targets.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/cli/options.h"
+#include "render/scene.h"
+#include "rig/bake.h"
+#include "rig/curve_spine.h"
+#include "rig/error.h"
+#include "rig/io/channel_csv.h"
+#include "rig/io/character_mapping.h"
+#include "rig/io/frame_range.h"
+#include "rig/io/gltf_character.h"
+#include "rig/io/gltf_clip.h"
+#include "rig/io/rig_profile_json.h"
+#include "rig/io/spine_json.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/rider_rig.h"
+
+namespace stirrup::fuzz {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One scratch folder per process (libFuzzer's -jobs run several), with the shipped thesis profile in
+// profiles/ so a scene's "profile": "thesis" resolves as it does beside the shipped scenes.
+const fs::path& scratch() {
+  static const fs::path dir = [] {
+    const fs::path d = fs::temp_directory_path() / ("stirrup_fuzz_" + std::to_string(::getpid()));
+    fs::create_directories(d / "profiles");
+    std::ofstream(d / "profiles" / "thesis.json") << rig::profileToJson(rig::RigProfile::thesis()).dump();
+    std::atexit([] {
+      std::error_code ec;
+      fs::remove_all(fs::temp_directory_path() / ("stirrup_fuzz_" + std::to_string(::getpid())), ec);
+    });
+    return d;
+  }();
+  return dir;
+}
+
+fs::path writeInput(const std::uint8_t* data, std::size_t size, const std::string& name) {
+  const fs::path file = scratch() / name;
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  return file;
+}
+
+// glTF readers pick the container by extension; the bytes say which one a user would have saved.
+std::string gltfName(const std::uint8_t* data, std::size_t size, const char* stem) {
+  const bool glb = size >= 4 && std::equal(data, data + 4, "glTF");
+  return std::string(stem) + (glb ? ".glb" : ".gltf");
+}
+
+// The oracle (targets.h): InputError with a one-line message is a correct rejection.
+template <typename F>
+int expectOnlyInputErrors(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.empty() || what.find('\n') != std::string::npos) {
+      std::fprintf(stderr, "InputError message is not one line: \"%s\"\n", what.c_str());
+      std::abort();
+    }
+  }
+  return 0;
+}
+
+// A clip is sampled where a render samples it: start, middle, end and past the end.
+void sampleClip(const rig::Clip& clip) {
+  const double d = clip.duration();
+  if (!std::isfinite(d) || d < 0) {
+    std::fprintf(stderr, "clip duration %g\n", d);
+    std::abort();
+  }
+  for (const double t : {0.0, d * 0.5, d, d + 1.0}) (void)clip.sample(t);
+  (void)clip.obstacles();
+}
+
+}  // namespace
+
+int sceneJson(const std::uint8_t* data, std::size_t size) {
+  return expectOnlyInputErrors([&] {
+    const render::SceneSpec scene = render::loadScene(writeInput(data, size, "scene.json"));
+    // What every command does next: the profile with its overrides, the clip, the first frames baked.
+    const rig::RigProfile profile = render::resolveProfile(scene);
+    const std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
+    const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+    for (std::size_t i = 0; i < std::min<std::size_t>(frames.size(), 2); ++i)
+      (void)rig::bakeFrame(*clip, profile, frames[i], render::frameTime(scene, frames[i]));
+  });
+}
+
+int rigProfileJson(const std::uint8_t* data, std::size_t size) {
+  return expectOnlyInputErrors([&] {
+    const rig::RigProfile p = rig::loadRigProfile(writeInput(data, size, "p.json").string(), scratch() / "profiles");
+    (void)rig::evaluateRider(rig::HorseChannels{}, p);
+    (void)rig::profileToJson(p).dump();
+  });
+}
+
+int profileSets(const std::uint8_t* data, std::size_t size) {
+  return expectOnlyInputErrors([&] {
+    // One --set argument per line, as a shell would pass them.
+    std::vector<std::string> sets;
+    std::string text(reinterpret_cast<const char*>(data), size);
+    for (std::size_t start = 0; start <= text.size();) {
+      const std::size_t nl = std::min(text.find('\n', start), text.size());
+      sets.push_back(text.substr(start, nl - start));
+      start = nl + 1;
+    }
+    rig::RigProfile p = rig::RigProfile::thesis();
+    rig::applyProfileOverrides(p, cli::parseSets(sets), "--set");
+    (void)rig::evaluateRider(rig::HorseChannels{}, p);
+  });
+}
+
+int horseCsv(const std::uint8_t* data, std::size_t size) {
+  return expectOnlyInputErrors([&] {
+    const rig::HorseTrack track = rig::readHorseCsv(writeInput(data, size, "horse.csv"));
+    // rig eval evaluates every row.
+    for (const rig::HorseChannels& h : track.horse) (void)rig::evaluateRider(h, rig::RigProfile::thesis());
+  });
+}
+
+int spineJson(const std::uint8_t* data, std::size_t size) {
+  return expectOnlyInputErrors([&] {
+    const rig::SpineFile spine = rig::readSpineFile(writeInput(data, size, "spine.json").string());
+    // What stirrup spine does with it.
+    const rig::CurveSpine curve(spine.bones, spine.segments, spine.layout);
+    for (std::size_t i = 0; i < std::min<std::size_t>(spine.poses.size(), 4); ++i)
+      (void)rig::spineResultToJson(curve.solve(spine.poses[i].controllers, spine.poses[i].stretch), spine.poses[i].stretch)
+          .dump();
+  });
+}
+
+int gltfClip(const std::uint8_t* data, std::size_t size) {
+  return expectOnlyInputErrors([&] {
+    const rig::GltfClip clip(writeInput(data, size, gltfName(data, size, "clip")), rig::contractMapping());
+    sampleClip(clip);
+  });
+}
+
+int gltfCharacter(const std::uint8_t* data, std::size_t size) {
+  const fs::path file = writeInput(data, size, gltfName(data, size, "character"));
+  for (const rig::CharacterKind kind : {rig::CharacterKind::Horse, rig::CharacterKind::Rider})
+    expectOnlyInputErrors([&] { (void)rig::loadCharacterGltf(file, kind); });
+  return 0;
+}
+
+int mappingJson(const std::uint8_t* data, std::size_t size) {
+  const fs::path file = writeInput(data, size, "mapping.json");
+  // The same file as a character mapping of either kind and as a clip mapping.
+  for (const rig::CharacterKind kind : {rig::CharacterKind::Horse, rig::CharacterKind::Rider})
+    expectOnlyInputErrors([&] { (void)rig::loadCharacterMapping(file, kind); });
+  expectOnlyInputErrors([&] { (void)rig::loadClipMapping(file); });
+  return 0;
+}
+
+int frameSpec(const std::uint8_t* data, std::size_t size) {
+  return expectOnlyInputErrors([&] {
+    const std::vector<int> frames = rig::parseFrameList(std::string(reinterpret_cast<const char*>(data), size), "--frames");
+    if (frames.size() > static_cast<std::size_t>(rig::kMaxFrameCount)) std::abort();
+  });
+}
+
+}  // namespace stirrup::fuzz

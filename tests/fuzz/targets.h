@@ -1,0 +1,38 @@
+// The fuzz targets: one function per reader of user input, each taking raw bytes exactly as a user's
+// file or argument would hold them. tests/fuzz/fuzz_NAME.cpp wraps one as a libFuzzer target (clang,
+// STIRRUP_FUZZ=ON, docs/fuzzing.md); tests/fuzz/replay_test.cpp replays the checked-in corpora and
+// every regression input through the same functions in the normal build.
+//
+// The oracle: a reader may reject input only with stirrup::InputError, whose message is one line
+// (rig/error.h). Any other exception, a crash, a hang or a sanitizer report is a finding.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace stirrup::fuzz {
+
+using Target = int (*)(const std::uint8_t* data, std::size_t size);
+
+int sceneJson(const std::uint8_t* data, std::size_t size);       // render/scene.* (+ its profile and clip)
+int rigProfileJson(const std::uint8_t* data, std::size_t size);  // rig/io/rig_profile_json.*
+int profileSets(const std::uint8_t* data, std::size_t size);     // --set lines: render/cli/options.h parseSets
+int horseCsv(const std::uint8_t* data, std::size_t size);        // rig/io/channel_csv.*
+int spineJson(const std::uint8_t* data, std::size_t size);       // rig/io/spine_json.* (+ laying the spine)
+int gltfClip(const std::uint8_t* data, std::size_t size);        // rig/io/gltf_clip.* (.glb or .gltf)
+int gltfCharacter(const std::uint8_t* data, std::size_t size);   // rig/io/gltf_character.* (.glb or .gltf)
+int mappingJson(const std::uint8_t* data, std::size_t size);     // rig/io/character_mapping.*, clip mappings
+int frameSpec(const std::uint8_t* data, std::size_t size);       // rig/io/frame_range.*
+
+struct NamedTarget {
+  std::string_view name;  // the corpus folder: tests/fuzz/corpus/NAME, tests/fuzz/regressions/NAME
+  Target run;
+};
+inline constexpr NamedTarget kTargets[] = {
+    {"scene_json", sceneJson},     {"rig_profile_json", rigProfileJson}, {"profile_sets", profileSets},
+    {"horse_csv", horseCsv},       {"spine_json", spineJson},            {"gltf_clip", gltfClip},
+    {"gltf_character", gltfCharacter}, {"mapping_json", mappingJson},    {"frame_spec", frameSpec},
+};
+
+}  // namespace stirrup::fuzz
