@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/cli/commands.h"
+#include "render/cli/options.h"
 #include "rig/error.h"
 #include "rig/io/gltf_character.h"
 #include "rig/characters/character_params.h"
@@ -29,21 +30,7 @@ template <class P>
 void applyParams(const std::vector<rig::CharacterParam<P>>& table, const std::vector<std::string>& args,
                  const std::string& kind, P& out) {
   const std::string cmd = "character make " + kind;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a.rfind("--", 0) != 0 || a.size() < 3) throw InputError(cmd + ": expected --parameter value, got \"" + a + "\"");
-    std::string key = a.substr(2), value;
-    if (const auto eq = key.find('='); eq != std::string::npos) {
-      value = key.substr(eq + 1);
-      key = key.substr(0, eq);
-    } else {
-      if (i + 1 >= args.size()) throw InputError(cmd + ": --" + key + ": expected a value");
-      value = args[++i];
-    }
-    for (char& c : key)
-      if (c == '-') c = '_';
-    rig::setCharacterParameter(table, key, value, cmd, out);
-  }
+  for (const auto& [key, value] : namedParameters(cmd, args)) rig::setCharacterParameter(table, key, value, cmd, out);
 }
 
 void runMake(const CharacterOptions& o) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/cli/commands.h"
+#include "render/cli/options.h"
 #include "rig/motion/clip_factory.h"
 #include "rig/motion/clip_info.h"
 #include "rig/error.h"
@@ -41,21 +42,7 @@ bool isGltf(const std::string& s) {
 // "--fence-height-cm 90 --lead left" -> {"fence_height_cm": 90, "lead": "left"}.
 nlohmann::json paramsJson(const std::string& command, const std::vector<std::string>& args) {
   nlohmann::json j = nlohmann::json::object();
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a.rfind("--", 0) != 0 || a.size() < 3)
-      throw InputError(command + ": expected --parameter value, got \"" + a + "\"");
-    std::string key = a.substr(2);
-    std::string value;
-    if (const auto eq = key.find('='); eq != std::string::npos) {
-      value = key.substr(eq + 1);
-      key = key.substr(0, eq);
-    } else {
-      if (i + 1 >= args.size()) throw InputError(command + ": --" + key + ": expected a value");
-      value = args[++i];
-    }
-    for (char& c : key)
-      if (c == '-') c = '_';
+  for (const auto& [key, value] : namedParameters(command, args)) {
     char* end = nullptr;
     const double number = std::strtod(value.c_str(), &end);
     if (!value.empty() && end && *end == '\0') j[key] = number;

@@ -1,4 +1,5 @@
-// Option parsers shared by subcommands: --resolution (render, movies) and --set (rig eval, render).
+// Option parsers shared by subcommands: --resolution (render, movies), --set (rig eval, render) and the
+// free "--name value" parameters of clip make and character make.
 #pragma once
 
 #include <charconv>
@@ -43,6 +44,32 @@ inline nlohmann::json parseSets(const std::vector<std::string>& sets) {
     else j[key] = text;
   }
   return j;
+}
+
+// "--fence-height 90 --lead=left" -> {{"fence_height", "90"}, {"lead", "left"}}: each name without its
+// dashes, with '-' read as '_'. A word that is not "--name", or a name with no value, is a one-line error
+// naming `command`.
+inline std::vector<std::pair<std::string, std::string>> namedParameters(const std::string& command,
+                                                                        const std::vector<std::string>& args) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("--", 0) != 0 || a.size() < 3)
+      throw InputError(command + ": expected --parameter value, got \"" + a + "\"");
+    std::string key = a.substr(2);
+    std::string value;
+    if (const auto eq = key.find('='); eq != std::string::npos) {
+      value = key.substr(eq + 1);
+      key = key.substr(0, eq);
+    } else {
+      if (i + 1 >= args.size()) throw InputError(command + ": --" + key + ": expected a value");
+      value = args[++i];
+    }
+    for (char& c : key)
+      if (c == '-') c = '_';
+    out.emplace_back(std::move(key), std::move(value));
+  }
+  return out;
 }
 
 }  // namespace stirrup::cli

@@ -1,5 +1,8 @@
 #include "rig/characters/character_params.h"
 
+#include <cmath>
+#include <cstdlib>
+
 namespace stirrup::rig {
 
 const std::vector<CharacterParam<HorseParams>>& horseParameters() {
@@ -43,6 +46,28 @@ const std::vector<CharacterParam<RiderParams>>& riderParameters() {
       {"skin", &R::skin},               {"coat", &R::coat},               {"breeches", &R::breeches},
       {"boots", &R::boots},             {"hair", &R::hair},               {"cell", &R::cell}};
   return p;
+}
+
+std::vector<float> parseCharacterNumbers(const std::string& key, const std::string& value, bool scalar,
+                                         const std::string& context) {
+  const std::string where = context + ": --" + key + ": ";
+  std::vector<float> numbers;
+  std::size_t start = 0;
+  while (start <= value.size()) {
+    const std::size_t comma = value.find(',', start);
+    const std::string part = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (part.empty() || !end || *end != '\0' || !std::isfinite(v))
+      throw InputError(where + "expected a number" + (scalar ? "" : "s x,y,z") + ", got \"" + value + "\"");
+    numbers.push_back(static_cast<float>(v));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (scalar && numbers.size() != 1) throw InputError(where + "expected one number, got \"" + value + "\"");
+  if (scalar && !(numbers[0] > 0.0f)) throw InputError(where + "expected a number > 0, got \"" + value + "\"");
+  if (!scalar && numbers.size() != 3) throw InputError(where + "expected three numbers x,y,z, got \"" + value + "\"");
+  return numbers;
 }
 
 }  // namespace stirrup::rig

@@ -4,8 +4,6 @@
 // same names.
 #pragma once
 
-#include <cmath>
-#include <cstdlib>
 #include <string>
 #include <variant>
 #include <vector>
@@ -35,6 +33,11 @@ std::string characterParameterList(const std::vector<CharacterParam<P>>& params)
   return s;
 }
 
+// `value` as one number > 0 (scalar) or three numbers "x,y,z"; anything else is a one-line InputError
+// "<context>: --key: expected ...".
+std::vector<float> parseCharacterNumbers(const std::string& key, const std::string& value, bool scalar,
+                                         const std::string& context);
+
 // Sets the parameter `key` (its name) from `value`, one number > 0 or three numbers "x,y,z". Errors are
 // one line: "<context>: --key: expected ...".
 template <class P>
@@ -45,28 +48,10 @@ void setCharacterParameter(const std::vector<CharacterParam<P>>& table, const st
     if (key == p.name) found = &p;
   if (!found)
     throw InputError(context + ": --" + key + ": unknown parameter (expected one of" + characterParameterList(table) + ")");
-  std::vector<float> numbers;
-  std::size_t start = 0;
-  while (start <= value.size()) {
-    const std::size_t comma = value.find(',', start);
-    const std::string part = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    char* end = nullptr;
-    const double v = std::strtod(part.c_str(), &end);
-    if (part.empty() || !end || *end != '\0' || !std::isfinite(v))
-      throw InputError(context + ": --" + key + ": expected a number" +
-                       (std::holds_alternative<float P::*>(found->member) ? "" : "s x,y,z") + ", got \"" + value + "\"");
-    numbers.push_back(static_cast<float>(v));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  if (auto* f = std::get_if<float P::*>(&found->member)) {
-    if (numbers.size() != 1) throw InputError(context + ": --" + key + ": expected one number, got \"" + value + "\"");
-    if (!(numbers[0] > 0.0f)) throw InputError(context + ": --" + key + ": expected a number > 0, got \"" + value + "\"");
-    out.*(*f) = numbers[0];
-  } else {
-    if (numbers.size() != 3) throw InputError(context + ": --" + key + ": expected three numbers x,y,z, got \"" + value + "\"");
-    out.*std::get<glm::vec3 P::*>(found->member) = glm::vec3(numbers[0], numbers[1], numbers[2]);
-  }
+  const bool scalar = std::holds_alternative<float P::*>(found->member);
+  const std::vector<float> numbers = parseCharacterNumbers(key, value, scalar, context);
+  if (scalar) out.*std::get<float P::*>(found->member) = numbers[0];
+  else out.*std::get<glm::vec3 P::*>(found->member) = glm::vec3(numbers[0], numbers[1], numbers[2]);
 }
 
 }  // namespace stirrup::rig
