@@ -24,6 +24,14 @@ struct DiffOptions {
 
 bool isSequence(const std::string& s) { return s.find('#') != std::string::npos; }
 
+// NAME.####.png with the #s replaced by `frame`, zero-padded to their count.
+fs::path framePath(const std::string& pattern, int frame) {
+  const std::size_t first = pattern.find('#'), last = pattern.rfind('#');
+  std::string number = std::to_string(frame);
+  if (number.size() < last - first + 1) number.insert(0, last - first + 1 - number.size(), '0');
+  return pattern.substr(0, first) + number + pattern.substr(last + 1);
+}
+
 // Frames of a sequence pattern NAME.####.png found on disk, by frame number.
 std::map<int, fs::path> findFrames(const std::string& pattern) {
   const fs::path p(pattern);
@@ -64,8 +72,11 @@ void compareAll(const DiffOptions& o) {
   t.warn_fraction = o.warnpercent / 100.0;
   t.hardfail = o.hardfail;
 
-  std::vector<std::pair<fs::path, fs::path>> pairs;
-  std::vector<fs::path> diffs;
+  struct FramePair {
+    int frame;
+    fs::path a, b;
+  };
+  std::vector<FramePair> pairs;
   if (isSequence(o.a) != isSequence(o.b))
     throw InputError("diff: expected two images or two sequences (NAME.####.png), got one of each");
   if (isSequence(o.a)) {
@@ -73,21 +84,25 @@ void compareAll(const DiffOptions& o) {
     for (const auto& [frame, file] : fa) {
       auto it = fb.find(frame);
       if (it == fb.end()) throw InputError(o.b + ": frame " + std::to_string(frame) + " is missing");
-      pairs.emplace_back(file, it->second);
+      pairs.push_back({frame, file, it->second});
     }
     for (const auto& [frame, file] : fb)
       if (!fa.count(frame)) throw InputError(o.a + ": frame " + std::to_string(frame) + " is missing");
   } else {
-    pairs.emplace_back(o.a, o.b);
+    pairs.push_back({0, o.a, o.b});
   }
 
   render::DiffVerdict worst = render::DiffVerdict::Pass;
-  for (const auto& [a, b] : pairs) {
+  for (const auto& [frame, a, b] : pairs) {
     fs::path diff_image;
     if (!o.diff_image.empty()) {
       diff_image = o.diff_image;
-      if (pairs.size() > 1)  // one diff image per frame: OUT.ext -> OUT.<frame file name>
+      if (isSequence(o.a) && isSequence(o.diff_image))  // OUT.####.png: the frame number in the #s
+        diff_image = framePath(o.diff_image, frame);
+      else if (pairs.size() > 1)  // one diff image per frame: OUT.ext -> OUT.<frame file name>
         diff_image = fs::path(o.diff_image).replace_extension("").string() + "." + b.filename().string();
+      std::error_code ec;  // a failure here shows as the write's own one-line error
+      if (diff_image.has_parent_path()) fs::create_directories(diff_image.parent_path(), ec);
     }
     const render::DiffResult r = render::compareImageFiles(a, b, t, diff_image, o.scale);
     std::printf("%s vs %s: %s: %s\n", a.string().c_str(), b.string().c_str(), verdictName(r.verdict).c_str(),
@@ -128,7 +143,7 @@ void addDiffCommand(CLI::App& app) {
       ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--hardfail", o->hardfail, "No pixel may exceed this (default: none)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--diff-image,-o", o->diff_image, "Write |A - B| scaled by --scale (per frame for sequences)");
+  cmd->add_option("--diff-image,-o", o->diff_image, "Write |A - B| scaled by --scale; for sequences a pattern OUT.####.png (one file per frame)");
   cmd->add_option("--scale", o->scale, "Diff image scale (default 16)")->check(CLI::PositiveNumber);
   cmd->callback([o] { runDiff(*o); });
 }

@@ -99,5 +99,25 @@ TEST_F(Diff, ComparesSequencesFrameByFrame) {
   EXPECT_NE(missing.err.find("frame 2 is missing"), std::string::npos) << missing.err;
 }
 
+TEST_F(Diff, WritesOneDiffImagePerFrameThroughAPattern) {
+  writeImage(dir / "a/s.0007.png", 0);
+  writeImage(dir / "a/s.0009.png", 0);
+  writeImage(dir / "b/s.0007.png", 0);
+  writeImage(dir / "b/s.0009.png", 3);
+  const CommandResult r = runStirrup("diff " + quote((dir / "a/s.####.png").string()) + " " +
+                                     quote((dir / "b/s.####.png").string()) + " --fail 0.3 -o " +
+                                     quote((dir / "d/diff.###.png").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  // The frame number takes the place of the #s, padded to their count.
+  EXPECT_TRUE(fs::exists(dir / "d/diff.007.png"));
+  ASSERT_TRUE(fs::exists(dir / "d/diff.009.png"));
+  auto in = OIIO::ImageInput::open((dir / "d/diff.009.png").string());
+  ASSERT_TRUE(in);
+  std::vector<unsigned char> px(10 * 10 * 3);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
+  EXPECT_EQ(px[1], 255);  // frame 9 differs at (0, 0)
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "d"), fs::directory_iterator{}), 2);
+}
+
 }  // namespace
 }  // namespace stirrup::test
