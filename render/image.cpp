@@ -11,6 +11,8 @@
 #include <glm/geometric.hpp>
 #include <OpenImageIO/imageio.h>
 
+#include "rig/error.h"
+
 namespace stirrup::render {
 namespace {
 
@@ -215,6 +217,27 @@ ExrMetadata exrFrameMetadata(const Camera& camera, const std::string& camera_nam
     md.push_back({"stirrup:camera:fov", float(camera.fov_deg)});
   }
   return md;
+}
+
+void writeRgbaExr(const Image& image, const fs::path& file) {
+  if (image.rgba.size() != image.pixelCount() || image.pixelCount() == 0)
+    throw std::invalid_argument("writeRgbaExr: image has no pixels");
+  OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
+  spec.alpha_channel = 3;
+  spec.attribute("compression", "zip");
+  writeAtomically(file, "openexr", spec, OIIO::TypeDesc::FLOAT, image.rgba.data());
+}
+
+Image readRgbaExr(const fs::path& file) {
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) throw InputError(file.string() + ": cannot read (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.nchannels != 4 || spec.width <= 0 || spec.height <= 0)
+    throw InputError(file.string() + ": expected an RGBA image, got " + std::to_string(spec.nchannels) + " channels");
+  Image image(spec.width, spec.height);
+  if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, image.rgba.data()))
+    throw InputError(file.string() + ": cannot read (" + in->geterror() + ")");
+  return image;
 }
 
 }  // namespace stirrup::render

@@ -71,6 +71,12 @@ using ExrMetadata = std::vector<ExrAttribute>;
 // header attributes (e.g. {"stirrup:frame", 12}).
 void writeExr(const Image& image, const std::filesystem::path& file, const ExrMetadata& metadata = {});
 
+// RGBA as 32-bit float EXR: the exact linear pixels, for work handed from one process to another (a
+// farm task's contact-sheet frames, read back by the job that makes the sheet). Written atomically like
+// the others. readRgbaExr reads such a file back bit for bit; InputError naming the file when it cannot.
+void writeRgbaExr(const Image& image, const std::filesystem::path& file);
+Image readRgbaExr(const std::filesystem::path& file);
+
 // The header attributes that let a compositor line up a frame: the camera (projection, position,
 // target, vertical fov in degrees or ortho height in cm, and the standard worldToCamera matrix),
 // the frame, its time in seconds and the scene's name, under "stirrup:" names.

@@ -36,6 +36,7 @@ struct RenderOptions {
   int padding = 4;
   bool progress = false;
   bool resume = false;
+  bool encode_only = false;
 };
 
 std::string frameName(const std::string& base, int frame, int padding, const char* extension) {
@@ -51,6 +52,7 @@ void runRender(const RenderOptions& o) {
   const std::string format = o.exr ? "both" : o.format;
   const bool png = format != "exr", exr = format != "png";
   if (!o.movie.empty() && !png) throw InputError("--movie: needs PNG frames; use --format png or both");
+  if (o.encode_only && o.movie.empty()) throw InputError("--encode-only: expected --movie FILE.mp4 to encode");
   render::SceneSpec scene = render::loadScene(o.scene);
   if (!o.preset.empty()) render::applyPreset(scene, render::findPreset(o.preset));
   if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
@@ -61,6 +63,19 @@ void runRender(const RenderOptions& o) {
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
   fs::create_directories(dir);
   const std::string base = (dir / (scene.name + "_" + camera.name)).string();
+
+  if (o.encode_only) {
+    // A farm's last step: every frame must already be there; render nothing, encode.
+    std::vector<fs::path> written;
+    for (int frame : frames) {
+      written.push_back(frameName(base, frame, o.padding, ".png"));
+      if (!fs::is_regular_file(written.back()))
+        throw InputError("--encode-only: frame " + std::to_string(frame) + " is missing (" + written.back().string() + ")");
+    }
+    render::encodeMovie({written, scene.fps, o.movie, 18});
+    std::printf("%s\n", o.movie.c_str());
+    return;
+  }
 
   render::Shot shot(scene, profile, camera, o.threads);
   ProgressBar bar("render " + scene.name + "_" + camera.name, static_cast<int>(frames.size()), o.progress);
@@ -120,6 +135,9 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, 9));
   cmd->add_flag("--resume", opts->resume, "Skip frames whose file already exists");
+  cmd->add_flag("--encode-only", opts->encode_only,
+                "Render nothing: encode --movie from the frames already written (a farm's last step); an error "
+                "names the first missing frame");
   cmd->add_flag("--progress", opts->progress, "Show the progress bar even when stderr is not a terminal");
   cmd->callback([opts] { runRender(*opts); });
 }

@@ -15,6 +15,7 @@ struct ExitStatus {
 void addBakeCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
+void addFarmCommand(CLI::App& app);
 void addLayerCommand(CLI::App& app);
 void addMoviesCommand(CLI::App& app);
 void addCharacterCommand(CLI::App& app);

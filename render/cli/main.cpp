@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   stirrup::cli::addCharacterCommand(app);
   stirrup::cli::addClipCommand(app);
   stirrup::cli::addDiffCommand(app);
+  stirrup::cli::addFarmCommand(app);
   stirrup::cli::addLayerCommand(app);
   stirrup::cli::addMoviesCommand(app);
   stirrup::cli::addRenderCommand(app);

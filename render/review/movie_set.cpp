@@ -105,9 +105,11 @@ std::vector<MovieJob> defaultMovieSet(const fs::path& scenes_dir, const fs::path
   return set;
 }
 
-int movieFrameCount(const MovieJob& job, const MovieOptions& o) {
-  return static_cast<int>(movieFrames(job, loadScene(job.scene), o).size());
+std::vector<int> movieFrameList(const MovieJob& job, const MovieOptions& o) {
+  return movieFrames(job, loadScene(job.scene), o);
 }
+
+int movieFrameCount(const MovieJob& job, const MovieOptions& o) { return static_cast<int>(movieFrameList(job, o).size()); }
 
 fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out) {
   const SceneSpec scene = loadScene(scene_file);
@@ -124,13 +126,76 @@ fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out) {
   return file;
 }
 
-MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::function<void()>& frame_done) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+fs::path frameDir(const MovieJob& job, const MovieOptions& o) { return o.out / "frames" / job.name; }
+fs::path framePng(const MovieJob& job, const MovieOptions& o, int f) {
+  return frameDir(job, o) / (job.name + "." + padded(f) + ".png");
+}
+fs::path sheetExr(const MovieJob& job, const MovieOptions& o, int f) {
+  return frameDir(job, o) / (job.name + "." + padded(f) + ".sheet.exr");
+}
+
+std::string movieView(const MovieJob& job) { return job.layered.empty() ? job.camera : "layered (" + job.camera + ")"; }
+
+// What the slate and the burn-ins say: a function of the job, the options and the movie's frames only,
+// so every farm task burns in the same facts.
+BurnInFacts movieFacts(const MovieJob& job, const MovieOptions& o, const SceneSpec& scene, const std::vector<int>& frames) {
+  BurnInFacts facts;
+  facts.scene = scene.name;
+  facts.movement = rig::makeClip(scene.clip)->name();
+  facts.view = movieView(job);
+  facts.profile = scene.profile;
+  facts.fps = scene.fps;
+  facts.frames = std::to_string(frames.front()) + "-" + std::to_string(frames.back());
+  facts.frame_count = static_cast<int>(frames.size());
+  const QualityPreset& preset = findPreset(o.preset);
+  facts.quality = std::string(preset.name) + " (samples a pixel: " + std::to_string(preset.samples) + ")";
+  facts.date = o.date.empty() ? todayUtc() : o.date;
+  return facts;
+}
+
+bool onSheet(const std::vector<int>& sheet_frames, int f) {
+  return std::find(sheet_frames.begin(), sheet_frames.end(), f) != sheet_frames.end();
+}
+
+}  // namespace
+
+fs::path movieFrameDir(const MovieJob& job, const MovieOptions& o) { return frameDir(job, o); }
+
+std::vector<fs::path> movieOutputs(const MovieJob& job, const MovieOptions& o) {
+  std::vector<fs::path> files;
+  if (o.mp4) files.push_back(o.out / (job.name + ".mp4"));
+  if (o.mov) files.push_back(o.out / (job.name + ".mov"));
+  files.push_back(o.out / (job.name + "_sheet.png"));
+  return files;
+}
+
+std::vector<fs::path> movieFrameFiles(const MovieJob& job, const MovieOptions& o, int frame) {
+  std::vector<fs::path> files = {framePng(job, o, frame)};
+  if (onSheet(contactFrames(movieFrameList(job, o), o.contact_count), frame)) files.push_back(sheetExr(job, o, frame));
+  return files;
+}
+
+int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vector<int>& wanted, bool resume,
+                      const std::function<void()>& frame_done) {
   const SceneSpec scene = loadForMovie(job, o);
   const CameraSpec& camera = findCamera(scene, job.camera);
   const rig::RigProfile profile = resolveProfile(scene);
-  const std::vector<int> frames = movieFrames(job, scene, o);
-  if (frames.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
+  const std::vector<int> all = movieFrames(job, scene, o);
+  if (all.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
+  for (int f : wanted)
+    if (std::find(all.begin(), all.end(), f) == all.end())
+      throw InputError(job.name + ": frame " + std::to_string(f) + " is not one of the movie's frames (" +
+                       std::to_string(all.front()) + "-" + std::to_string(all.back()) + ")");
+  const std::vector<int> sheet_frames = contactFrames(all, o.contact_count);
+  std::vector<int> frames;
+  for (int f : wanted.empty() ? all : wanted) {
+    bool done = resume && fs::is_regular_file(framePng(job, o, f));
+    if (done && onSheet(sheet_frames, f)) done = fs::is_regular_file(sheetExr(job, o, f));
+    if (!done) frames.push_back(f);
+  }
+  if (frames.empty()) return 0;
 
   Shot shot(scene, profile, camera, o.threads);
   std::unique_ptr<Shot> rigid;
@@ -158,33 +223,9 @@ MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::f
     throw InputError(job.name + ": layered: expected \"rigid\" or \"reference\", got \"" + job.layered + "\"");
   }
 
-  MovieResult result;
-  result.name = job.name;
-  result.scene = scene.name;
-  result.view = job.layered.empty() ? job.camera : "layered (" + job.camera + ")";
-  result.movement = rig::makeClip(scene.clip)->name();
-  result.profile = scene.profile;
-  result.fps = scene.fps;
-  result.frames = static_cast<int>(frames.size());
-
-  BurnInFacts facts;
-  facts.scene = scene.name;
-  facts.movement = result.movement;
-  facts.view = result.view;
-  facts.profile = scene.profile;
-  facts.fps = scene.fps;
-  facts.frames = std::to_string(frames.front()) + "-" + std::to_string(frames.back());
-  facts.frame_count = result.frames;
-  const QualityPreset& preset = findPreset(o.preset);
-  facts.quality = std::string(preset.name) + " (samples a pixel: " + std::to_string(preset.samples) + ")";
-  facts.date = o.date.empty() ? todayUtc() : o.date;
-
-  const fs::path frame_dir = o.out / "frames" / job.name;
-  fs::create_directories(frame_dir);
-  const std::vector<int> sheet_frames = contactFrames(frames, o.contact_count);
-  std::vector<ContactFrame> sheet;
-  std::vector<fs::path> files;
-  // Burn-ins and the PNG write of frame f happen on the writer's thread while f + 1 renders.
+  const BurnInFacts facts = movieFacts(job, o, scene, all);
+  fs::create_directories(frameDir(job, o));
+  // Burn-ins and the writes of frame f happen on the writer's thread while f + 1 renders.
   FrameWriter writer;
   const bool side_by_side = style.mode == LayerMode::SideBySide;
   for (int f : frames) {
@@ -197,20 +238,48 @@ MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::f
                                                                         : footage->frame(f, image.width, image.height);
       image = layerFrame(image, other, style);
     }
-    if (std::find(sheet_frames.begin(), sheet_frames.end(), f) != sheet_frames.end()) sheet.push_back({f, image});
-    const fs::path file = frame_dir / (job.name + "." + padded(f) + ".png");
-    writer.submit([image = std::move(image), &facts, &panel_labels, side_by_side, f, file]() mutable {
+    const bool sheet = onSheet(sheet_frames, f);
+    writer.submit([image = std::move(image), &facts, &panel_labels, side_by_side, f, sheet,
+                   png = framePng(job, o, f), exr = sheetExr(job, o, f)]() mutable {
+      if (sheet) writeRgbaExr(image, exr);  // before the PNG: a PNG present means the frame is whole
       burnIn(image, facts, f);
       if (side_by_side) labelPanels(image, panel_labels);
-      writePng(image, file);
+      writePng(image, png);
     });
-    files.push_back(file);
     if (frame_done) frame_done();
   }
   writer.wait();
+  return static_cast<int>(frames.size());
+}
+
+MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
+  const SceneSpec scene = loadForMovie(job, o);
+  const std::vector<int> frames = movieFrames(job, scene, o);
+  if (frames.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
+  const std::vector<int> sheet_frames = contactFrames(frames, o.contact_count);
+  std::vector<fs::path> files;
+  for (int f : frames) {
+    for (const fs::path& file : movieFrameFiles(job, o, f))
+      if (!fs::is_regular_file(file))
+        throw InputError(job.name + ": frame " + std::to_string(f) + " is missing (" + file.string() + ")");
+    files.push_back(framePng(job, o, f));
+  }
+  std::vector<ContactFrame> sheet;
+  for (int f : sheet_frames) sheet.push_back({f, readRgbaExr(sheetExr(job, o, f))});
+
+  const BurnInFacts facts = movieFacts(job, o, scene, frames);
+  MovieResult result;
+  result.name = job.name;
+  result.scene = scene.name;
+  result.view = facts.view;
+  result.movement = facts.movement;
+  result.profile = scene.profile;
+  result.fps = scene.fps;
+  result.frames = static_cast<int>(frames.size());
+
   // The slate: one second before the first frame, at the frames' size.
   const int slate_frames = std::max(1, static_cast<int>(std::lround(scene.fps)));
-  const fs::path slate_file = frame_dir / (job.name + ".slate.png");
+  const fs::path slate_file = frameDir(job, o) / (job.name + ".slate.png");
   writePng(makeSlate(sheet.front().image.width, sheet.front().image.height, facts), slate_file);
   std::vector<fs::path> playlist(static_cast<std::size_t>(slate_frames), slate_file);
   playlist.insert(playlist.end(), files.begin(), files.end());
@@ -231,9 +300,18 @@ MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::f
                     result.contact_sheet);
   if (!o.keep_frames) {
     std::error_code ec;
-    fs::remove_all(frame_dir, ec);
-    fs::remove(frame_dir.parent_path(), ec);  // only when empty
+    fs::remove_all(frameDir(job, o), ec);
+    fs::remove(frameDir(job, o).parent_path(), ec);  // only when empty
+  } else {
+    for (int f : sheet_frames) fs::remove(sheetExr(job, o, f));  // kept frames are the PNGs
   }
+  return result;
+}
+
+MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::function<void()>& frame_done) {
+  const auto start = std::chrono::steady_clock::now();
+  renderMovieFrames(job, o, {}, false, frame_done);
+  MovieResult result = finishMovie(job, o);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

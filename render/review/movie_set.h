@@ -58,11 +58,36 @@ struct MovieResult {
   double seconds = 0.0;                       // wall time to render and encode
 };
 
-// The number of frames `job` renders with `options` (for progress bars).
+// The frames `job` renders with `options`, in playing order (the scene's or the job's frames, cut to
+// frames_limit).
+std::vector<int> movieFrameList(const MovieJob& job, const MovieOptions& options);
+// Its length (for progress bars).
 int movieFrameCount(const MovieJob& job, const MovieOptions& options);
 
-// Renders one movie; `frame_done` is called after each frame. Throws stirrup::InputError on bad
-// input and std::runtime_error when encoding fails (no movie is left then).
+// A movie is made in two stages, so a farm can split the first across many tasks and run the second
+// once (render/farm/): `stirrup movies` runs both, one after the other, through the same functions.
+//
+// Stage 1 renders `frames` (any of movieFrameList; empty: all of them) into OUT/frames/NAME/: each frame
+// with its burn-ins as NAME.####.png, and the contact sheet's frames also without burn-ins as
+// NAME.####.sheet.exr (the exact linear pixels the sheet is made from). Every file is written to a
+// temporary name and renamed, so a task killed mid-frame leaves no truncated frame. With `resume`, a
+// frame whose files are all there is skipped. Returns the number of frames rendered. InputError for a
+// frame that is not one of the movie's.
+int renderMovieFrames(const MovieJob& job, const MovieOptions& options, const std::vector<int>& frames, bool resume,
+                      const std::function<void()>& frame_done = {});
+// The folder stage 1 writes into, OUT/frames/NAME.
+std::filesystem::path movieFrameDir(const MovieJob& job, const MovieOptions& options);
+// What stage 2 writes for the movie: NAME.mp4 and/or NAME.mov, and NAME_sheet.png.
+std::vector<std::filesystem::path> movieOutputs(const MovieJob& job, const MovieOptions& options);
+// The files stage 1 writes for `frame` (the PNG, and the EXR when the frame is on the contact sheet).
+std::vector<std::filesystem::path> movieFrameFiles(const MovieJob& job, const MovieOptions& options, int frame);
+
+// Stage 2, from stage 1's files: the slate, the encoded movies and the contact sheet; then the frames are
+// removed unless keep_frames. InputError naming the first missing frame (nothing is encoded then).
+MovieResult finishMovie(const MovieJob& job, const MovieOptions& options);
+
+// Both stages: renders one movie; `frame_done` is called after each frame. Throws stirrup::InputError on
+// bad input and std::runtime_error when encoding fails (no movie is left then).
 MovieResult renderMovie(const MovieJob& job, const MovieOptions& options,
                         const std::function<void()>& frame_done = {});
 

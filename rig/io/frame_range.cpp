@@ -68,4 +68,27 @@ std::string formatFrameRange(int first, int last) {
   return std::to_string(first) + "-" + std::to_string(last);
 }
 
+std::string formatFrameList(const std::vector<int>& frames) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < frames.size()) {
+    if (!out.empty()) out += ',';
+    // The longest run from i with one positive step; two frames a step apart only make a run at step 1
+    // ("4-5" is no shorter than "4,5", but "4,6" is shorter than "4-6x2").
+    std::size_t j = i;
+    const long step = i + 1 < frames.size() ? static_cast<long>(frames[i + 1]) - frames[i] : 0;
+    if (step > 0)
+      while (j + 1 < frames.size() && static_cast<long>(frames[j + 1]) - frames[j] == step) ++j;
+    if (j == i || (j == i + 1 && step != 1)) {
+      out += std::to_string(frames[i]);
+      ++i;
+      continue;
+    }
+    out += formatFrameRange(frames[i], frames[j]);
+    if (step != 1) out += "x" + std::to_string(step);
+    i = j + 1;
+  }
+  return out;
+}
+
 }  // namespace stirrup::rig

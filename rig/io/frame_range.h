@@ -25,4 +25,9 @@ std::vector<int> parseFrameList(const std::string& spec, const std::string& cont
 // The canonical text of a contiguous range, "first-last".
 std::string formatFrameRange(int first, int last);
 
+// The shortest text parseFrameList reads back as exactly `frames`, in the same order: runs of a constant
+// positive step become FIRST-LAST or FIRST-LASTxSTEP, the rest single frames ("1-9x2,12,20-24"). How a
+// render farm writes a chunk of a shot into a job script. Frames must not repeat.
+std::string formatFrameList(const std::vector<int>& frames);
+
 }  // namespace stirrup::rig

@@ -143,5 +143,51 @@ TEST(MoviesList, ListsTheThesisSetAndMore) {
   EXPECT_EQ(r.out.find("gallop_layered\t") != std::string::npos, plate);
 }
 
+// The two stages a farm runs apart (render/review/movie_set.h): --frames renders a share of one movie's
+// frames, --finish makes the movie from them. Together they make what one `stirrup movies` makes.
+TEST(MoviesStages, FramesThenFinishMakeTheSameMovieAsOneRun) {
+  const fs::path one = fs::path(STIRRUP_BINARY_DIR) / ("test_movies_one_" + std::to_string(::getpid()));
+  const fs::path two = fs::path(STIRRUP_BINARY_DIR) / ("test_movies_two_" + std::to_string(::getpid()));
+  const std::string set = "--only trot_side --frames-limit 5 --preset draft --resolution 96x54 --date 2026-01-01 --keep-frames";
+  ASSERT_EQ(runStirrupHere("movies " + set + " --out " + quote(one.string())).exit_code, 0);
+  CommandResult r = runStirrupHere("movies " + set + " --frames 4-5 --out " + quote(two.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");  // a share of frames, no movie yet
+  EXPECT_FALSE(fs::exists(two / "trot_side.mp4"));
+  // Finishing before every frame is there names the first missing one and encodes nothing.
+  r = runStirrupHere("movies " + set + " --finish --out " + quote(two.string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: trot_side: frame 1 is missing (" + (two / "frames/trot_side/trot_side.0001.png").string() + ")\n");
+  EXPECT_FALSE(fs::exists(two / "trot_side.mp4"));
+  // --resume renders only what is missing (frames 1-3), then the movie is made as one run makes it.
+  const auto written = fs::last_write_time(two / "frames/trot_side/trot_side.0004.png");
+  ASSERT_EQ(runStirrupHere("movies " + set + " --frames 1-5 --resume --out " + quote(two.string())).exit_code, 0);
+  EXPECT_EQ(fs::last_write_time(two / "frames/trot_side/trot_side.0004.png"), written);
+  r = runStirrupHere("movies " + set + " --finish --out " + quote(two.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, (two / "index.html").string() + "\n");
+  for (const char* file : {"trot_side_sheet.png", "trot_plot.png", "frames/trot_side/trot_side.0001.png",
+                           "frames/trot_side/trot_side.0005.png", "frames/trot_side/trot_side.slate.png"})
+    EXPECT_TRUE(readText(one / file) == readText(two / file)) << file;
+  EXPECT_EQ(probe(two / "trot_side.mp4"), probe(one / "trot_side.mp4"));
+  EXPECT_FALSE(fs::exists(two / "frames/trot_side/trot_side.0001.sheet.exr"));  // kept frames are the PNGs
+  fs::remove_all(one);
+  fs::remove_all(two);
+}
+
+TEST(MoviesStages, MisusedStageOptionsAreOneLineErrors) {
+  CommandResult r = runStirrupHere("movies --only trot_side,jump_side --frames 1-2 --out /tmp/never");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: --frames: expected exactly one movie with --only NAME, got 2\n");
+  r = runStirrupHere("movies --only trot_side --frames 1-2 --finish --out /tmp/never");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  r = runStirrupHere("movies --only trot_side --frames-limit 4 --frames 9 --out /tmp/never_frames");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: trot_side: frame 9 is not one of the movie's frames (1-4)\n");
+  EXPECT_FALSE(fs::exists("/tmp/never"));
+  fs::remove_all("/tmp/never_frames");
+}
+
 }  // namespace
 }  // namespace stirrup::test

@@ -172,5 +172,26 @@ TEST(RenderExr, APresetChangesTheSamples) {
   EXPECT_NE(readText(dir / "draft/small_cam.0002.png"), readText(dir / "review/small_cam.0002.png"));
 }
 
+TEST(RenderEncodeOnly, EncodesTheFramesThereAndNamesAMissingOne) {
+  // A farm's last step: render nothing, encode what the tasks wrote.
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "render_exr_test" / "encode_only";
+  fs::remove_all(dir);
+  const fs::path scene = writeSmallScene(dir);
+  const std::string base = "render " + quote(scene.string()) + " --out " + quote(dir.string());
+  ASSERT_EQ(runStirrup(base + " --frames 1-2").exit_code, 0);
+  const fs::path movie = dir / "small.mp4";
+  CommandResult r = runStirrup(base + " --frames 1-3 --encode-only --movie " + quote(movie.string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: --encode-only: frame 3 is missing (" + (dir / "small_cam.0003.png").string() + ")\n");
+  EXPECT_FALSE(fs::exists(movie));
+  EXPECT_FALSE(fs::exists(dir / "small_cam.0003.png"));  // nothing rendered
+  r = runStirrup(base + " --frames 1-2 --encode-only --movie " + quote(movie.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(runCommand("ffprobe -v error -count_frames -show_entries stream=nb_read_frames -of csv=p=0 " +
+                       quote(movie.string())).out, "2\n");
+  r = runStirrup(base + " --encode-only");
+  EXPECT_EQ(r.err, "stirrup: --encode-only: expected --movie FILE.mp4 to encode\n");
+}
+
 }  // namespace
 }  // namespace stirrup::test

@@ -71,5 +71,23 @@ TEST(FrameRange, ListsPastTheMaximumCountAreOneLineErrors) {
   EXPECT_EQ(parseFrameList("1-100000,1-100000", "f").size(), 100000u);
 }
 
+TEST(FrameRange, FormatFrameListWritesTheShortestText) {
+  EXPECT_EQ(formatFrameList({1, 2, 3, 4}), "1-4");
+  EXPECT_EQ(formatFrameList({1, 3, 5, 7}), "1-7x2");
+  EXPECT_EQ(formatFrameList({7}), "7");
+  EXPECT_EQ(formatFrameList({4, 5}), "4-5");
+  EXPECT_EQ(formatFrameList({4, 6}), "4,6");
+  EXPECT_EQ(formatFrameList({1, 2, 3, 10, 20, 30, 31}), "1-3,10-30x10,31");
+  EXPECT_EQ(formatFrameList({-3, -1, 1}), "-3-1x2");
+  EXPECT_EQ(formatFrameList({9, 5, 1}), "9,5,1");  // order kept: no run with a negative step
+  EXPECT_EQ(formatFrameList({}), "");
+}
+
+TEST(FrameRange, FormatFrameListReadsBackAsTheSameFrames) {
+  const std::vector<std::vector<int>> lists = {
+      {1, 2, 3, 10, 20, 30, 31}, {5, 3, 1, 2}, {-7, -5, -3, 0, 1}, {100}, {1, 4, 7, 8, 9, 13}, {999999, -999999}};
+  for (const auto& frames : lists) EXPECT_EQ(parseFrameList(formatFrameList(frames), "test"), frames);
+}
+
 }  // namespace
 }  // namespace stirrup::rig
