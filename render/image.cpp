@@ -229,14 +229,21 @@ void writeRgbaExr(const Image& image, const fs::path& file) {
 }
 
 Image readRgbaExr(const fs::path& file) {
+  // OpenImageIO's messages can run over several lines; an InputError is one.
+  auto oneLine = [](std::string text) {
+    for (char& c : text)
+      if (c == '\n' || c == '\r') c = ' ';
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+  };
   auto in = OIIO::ImageInput::open(file.string());
-  if (!in) throw InputError(file.string() + ": cannot read (" + OIIO::geterror() + ")");
+  if (!in) throw InputError(file.string() + ": cannot read (" + oneLine(OIIO::geterror()) + ")");
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.nchannels != 4 || spec.width <= 0 || spec.height <= 0)
     throw InputError(file.string() + ": expected an RGBA image, got " + std::to_string(spec.nchannels) + " channels");
   Image image(spec.width, spec.height);
   if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, image.rgba.data()))
-    throw InputError(file.string() + ": cannot read (" + in->geterror() + ")");
+    throw InputError(file.string() + ": cannot read (" + oneLine(in->geterror()) + ")");
   return image;
 }
 

@@ -159,8 +159,9 @@ std::string describeStatus(const FarmPlan& plan, const FarmStatus& status) {
       s << "\n";
     }
   }
-  s << "  finish" << std::string(width - 6 + 2, ' ') << "job " << status.finish_job << ": "
-    << (status.finish_state.empty() ? "no longer queued" : status.finish_state) << "\n";
+  s << "  finish" << std::string(width - 6 + 2, ' ');
+  if (status.finish_job.empty()) s << "not submitted (--dry-run)\n";
+  else s << "job " << status.finish_job << ": " << (status.finish_state.empty() ? "no longer queued" : status.finish_state) << "\n";
   if (status.complete) s << "complete\n";
   else if (status.active) s << "in progress\n";
   else s << "incomplete: stirrup farm resume " << plan.out.string() << " redoes what is missing\n";
@@ -193,6 +194,7 @@ ResumeResult resumePlan(FarmPlan& plan) {
       }
     still_active.insert(still_active.end(), active_arrays.begin(), active_arrays.end());
     if (tasks.empty()) continue;
+    // Slurm's --array takes a comma list (its step is ":", not the frame lists' "x").
     const std::string id = sbatch(scriptFile(plan, shot.name), {"--array=" + join(tasks, ",")});
     shot.array_jobs.push_back(id);
     new_jobs.push_back(id);

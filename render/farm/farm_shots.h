@@ -15,7 +15,7 @@ namespace stirrup::render::farm {
 // What every plan needs: where, how finely cut, which program, which scheduler settings.
 struct FarmRequest {
   std::filesystem::path out;          // absolute
-  int chunk = 8;                      // frames a task
+  int chunk = 48;                     // frames a task
   std::filesystem::path stirrup;      // the program every node runs (same path everywhere)
   SbatchSettings sbatch;
   std::string submitted;              // UTC time stamp for the manifest

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "render/cli/options.h"
+#include "render/farm/farm_plan.h"
 #include "render/scene.h"
 #include "rig/bake.h"
 #include "rig/curve_spine.h"
@@ -172,6 +173,12 @@ int frameSpec(const std::uint8_t* data, std::size_t size) {
     const std::vector<int> frames = rig::parseFrameList(std::string(reinterpret_cast<const char*>(data), size), "--frames");
     if (frames.size() > static_cast<std::size_t>(rig::kMaxFrameCount)) std::abort();
   });
+}
+
+int farmManifest(const std::uint8_t* data, std::size_t size) {
+  // farm status and resume read OUT/farm.json back; a hand-edited or damaged one must be a one-line error.
+  const fs::path file = writeInput(data, size, "farm.json");
+  return expectOnlyInputErrors([&] { (void)render::farm::readManifest(file.parent_path()); });
 }
 
 }  // namespace stirrup::fuzz

@@ -24,6 +24,7 @@ int gltfClip(const std::uint8_t* data, std::size_t size);        // rig/io/gltf_
 int gltfCharacter(const std::uint8_t* data, std::size_t size);   // rig/io/gltf_character.* (.glb or .gltf)
 int mappingJson(const std::uint8_t* data, std::size_t size);     // rig/io/character_mapping.*, clip mappings
 int frameSpec(const std::uint8_t* data, std::size_t size);       // rig/io/frame_range.*
+int farmManifest(const std::uint8_t* data, std::size_t size);    // render/farm/farm_plan.* (OUT/farm.json)
 
 struct NamedTarget {
   std::string_view name;  // the corpus folder: tests/fuzz/corpus/NAME, tests/fuzz/regressions/NAME
@@ -33,6 +34,7 @@ inline constexpr NamedTarget kTargets[] = {
     {"scene_json", sceneJson},     {"rig_profile_json", rigProfileJson}, {"profile_sets", profileSets},
     {"horse_csv", horseCsv},       {"spine_json", spineJson},            {"gltf_clip", gltfClip},
     {"gltf_character", gltfCharacter}, {"mapping_json", mappingJson},    {"frame_spec", frameSpec},
+    {"farm_manifest", farmManifest},
 };
 
 }  // namespace stirrup::fuzz

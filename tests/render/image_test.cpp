@@ -14,6 +14,8 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "rig/error.h"
+
 namespace stirrup::render {
 namespace {
 
@@ -199,6 +201,33 @@ TEST(Image, WriteReplacesAnExistingFileWhole) {
   auto in = OIIO::ImageInput::open(file.string());
   ASSERT_TRUE(in);
   EXPECT_EQ(in->spec().width, 8);
+}
+
+TEST(Image, RgbaExrReadsBackBitForBit) {
+  // The contact sheet's frames cross from a farm task to the finishing job through these files: any
+  // rounding would make a farm's sheet differ from a local one.
+  Image im(5, 3);
+  for (std::size_t i = 0; i < im.rgba.size(); ++i)
+    im.rgba[i] = glm::vec4(0.1f * float(i) + 1e-7f, std::nextafter(0.5f, 1.0f), 1e-30f * float(i), 1.0f / 3.0f);
+  const fs::path file = tempDir() / "sheet.exr";
+  writeRgbaExr(im, file);
+  const Image back = readRgbaExr(file);
+  ASSERT_EQ(back.width, 5);
+  ASSERT_EQ(back.height, 3);
+  for (std::size_t i = 0; i < im.rgba.size(); ++i)
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(std::bit_cast<std::uint32_t>(back.rgba[i][c]), std::bit_cast<std::uint32_t>(im.rgba[i][c]));
+  EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
+}
+
+TEST(Image, ReadRgbaExrNamesAMissingFile) {
+  const fs::path file = tempDir() / "missing.exr";
+  try {
+    readRgbaExr(file);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
 }
 
 }  // namespace
