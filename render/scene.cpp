@@ -181,14 +181,18 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
   return s;
 }
 
-SceneSpec loadScene(const std::filesystem::path& file) {
+std::filesystem::path findSceneFile(const std::filesystem::path& file) {
   // `stirrup render scenes/trot.json` from any folder: a relative path that is not there is looked up in
   // the data folder (render/data_dir.h), which holds the default scenes.
-  std::filesystem::path f = file;
   std::error_code ec;
-  if (f.is_relative() && !std::filesystem::exists(f, ec))
-    if (const std::optional<std::filesystem::path> data = findDataDir(); data && std::filesystem::exists(*data / f, ec))
-      f = *data / f;
+  if (file.is_relative() && !std::filesystem::exists(file, ec))
+    if (const std::optional<std::filesystem::path> data = findDataDir(); data && std::filesystem::exists(*data / file, ec))
+      return *data / file;
+  return file;
+}
+
+SceneSpec loadScene(const std::filesystem::path& file) {
+  const std::filesystem::path f = findSceneFile(file);
   return parseScene(readJsonFile(f), f.string());
 }
 

@@ -74,6 +74,8 @@ struct SceneSpec {
 // A relative path that does not exist from the working folder is looked up in stirrup's data folder
 // (render/data_dir.h), so `stirrup render scenes/trot.json` works from anywhere once installed.
 SceneSpec loadScene(const std::filesystem::path& file);
+// Where loadScene reads `file` from: the path itself, or the data folder's file of that relative path.
+std::filesystem::path findSceneFile(const std::filesystem::path& file);
 // Parses scene JSON already in memory; `file` names it in errors.
 SceneSpec parseScene(const nlohmann::json& json, const std::string& file);
 

@@ -16,6 +16,7 @@
 #include "render/farm/farm_shots.h"
 #include "render/farm/slurm.h"
 #include "render/review/burn_in.h"
+#include "render/scene.h"
 #include "rig/error.h"
 
 namespace stirrup::cli {
@@ -118,7 +119,8 @@ void runSubmit(const SubmitOptions& o, const CLI::App& cmd) {
       args.insert(args.end(), {"--resolution", o.set.resolution});
     }
     for (const std::string& s : o.sets) args.insert(args.end(), {"--set", s});
-    plan = render::farm::planRender(request, fs::absolute(o.scene), o.camera, o.frames, args);
+    // The scene as the tasks must find it: absolute, after the data-folder lookup of a relative path.
+    plan = render::farm::planRender(request, fs::absolute(render::findSceneFile(o.scene)), o.camera, o.frames, args);
   }
 
   if (o.dry_run) {

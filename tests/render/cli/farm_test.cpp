@@ -205,6 +205,44 @@ TEST(Farm, BadInputIsAOneLineErrorAndSubmitsNothing) {
   fs::remove(dead);
 }
 
+TEST(Farm, TheInstalledProgramRendersOnTheFarmFromAnyFolder) {
+  // A studio submits with the installed stirrup (docs/install.md), from a folder of its own: the scripts
+  // must run that program, which finds its scenes beside itself, not in the source tree.
+  if (!clusterAnswers()) GTEST_SKIP() << "no Slurm cluster answers (scripts/slurm-local up needs root)";
+  const fs::path root = fs::temp_directory_path() / ("stirrup_farm_install_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const fs::path prefix = root / "prefix", work = root / "work", farm = scratch("installed");
+  fs::create_directories(work);
+  const CommandResult install = runCommand(quote(STIRRUP_CMAKE) + " --install " + quote(STIRRUP_BINARY_DIR) + " --prefix " +
+                                           quote(prefix.string()));
+  ASSERT_EQ(install.exit_code, 0) << install.err << install.out;
+  const std::string installed = (prefix / "bin/stirrup").string();
+  const CommandResult s = runCommand("cd " + quote(work.string()) + " && " + quote(installed) +
+                                     " farm submit scenes/walk.json --camera persp --frames 1-4 --preset draft "
+                                     "--resolution 96x54 --chunk 2 --out " + quote(farm.string()));
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_NE(readText(farm / "farm/walk_persp.sbatch").find("exec '" + installed + "' 'render' '" +
+                                                           (prefix / "share/stirrup/scenes/walk.json").string() + "'"),
+            std::string::npos)
+      << readText(farm / "farm/walk_persp.sbatch");
+  const CommandResult st = runStirrup("farm status --wait " + quote(farm.string()));
+  EXPECT_NE(st.out.find("\ncomplete\n"), std::string::npos) << st.out << st.err;
+  // The same frames as the build tree's program renders.
+  const fs::path local = scratch("installed_local");
+  ASSERT_EQ(runStirrup("render " + quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes/walk.json").string()) +
+                       " --camera persp --frames 1-4 --preset draft --resolution 96x54 --out " + quote(local.string()))
+                .exit_code,
+            0);
+  for (int f = 1; f <= 4; ++f) {
+    const std::string name = "walk_persp.000" + std::to_string(f) + ".png";
+    EXPECT_TRUE(fs::exists(farm / name) && bytes(local / name) == bytes(farm / name)) << name;
+  }
+  EXPECT_EQ(probeFrames(farm / "walk_persp.mp4"), "4\n");
+  fs::remove_all(root);
+  fs::remove_all(farm);
+  fs::remove_all(local);
+}
+
 TEST(Farm, StatusOfAFolderWithoutAFarmIsAOneLineError) {
   const fs::path out = scratch("none");
   fs::create_directories(out);
