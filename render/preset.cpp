@@ -8,7 +8,7 @@
 namespace stirrup::render {
 namespace {
 
-// Numbers chosen by measurement on the 2-core development machine (README "Speed").
+// Numbers chosen by measurement on the 2-core development machine (docs/performance.md).
 constexpr std::array<QualityPreset, 3> kPresets = {{
     {"draft", 1, 1, 1},
     {"review", 4, 1, 1},

@@ -6,7 +6,7 @@
 // splatted) and draws its random numbers from a hash of (pixel, frame, sample, dimension), so the same
 // scene and frame give the same bytes at any thread count and tile order.
 //
-// Cost: `stirrup bench` measures it per quality preset (README "Speed"). Per camera sample there is
+// Cost: `stirrup bench` measures it per quality preset (docs/performance.md). Per camera sample there is
 // 1 camera ray plus up to light_samples + ao_samples occlusion rays; the ground is intersected
 // analytically and rays that cannot reach the characters' box never call into Embree. The rest go to
 // Embree as streams, a batch of a tile at a time (integrator.h).
