@@ -1,5 +1,6 @@
 // stirrup bake SCENE: evaluates the clip and the rider rig for every frame of the scene; --channels
-// writes them as CSV, -o writes the posed characters, their animation and the cameras as glTF 2.0.
+// writes them as CSV, -o writes the posed characters, their animation and the cameras as glTF 2.0
+// (docs/round-trip.md), or with --rider-only the rider's motion alone, for the user's rider rig.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
