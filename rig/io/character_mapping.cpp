@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
 #include "rig/error.h"
 #include "rig/io/json_fields.h"
 #include "rig/characters/rider_character.h"
@@ -66,6 +69,15 @@ CharacterMapping loadCharacterMapping(const std::filesystem::path& file, Charact
     if (!m.roles.count(role)) r.fail("roles." + role, "missing: expected the name of the " + expected + "'s " + role + " joint");
   r.finish();
   return m;
+}
+
+glm::dmat4 mappingToRig(const CharacterMapping& m) {
+  const glm::dvec3 fw = glm::normalize(glm::dvec3(m.forward[0], m.forward[1], m.forward[2]));
+  const glm::dvec3 up = glm::normalize(glm::dvec3(m.up[0], m.up[1], m.up[2]));
+  const glm::dmat3 rows(fw, up, glm::cross(fw, up));  // columns; transposed, the rows
+  glm::dmat4 to_rig(glm::transpose(rows) * m.scale_cm);
+  to_rig[3] = glm::dvec4(m.offset_cm[0], m.offset_cm[1], m.offset_cm[2], 1.0);
+  return to_rig;
 }
 
 }  // namespace stirrup::rig

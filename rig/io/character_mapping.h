@@ -17,6 +17,8 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
+
 namespace stirrup::rig {
 
 enum class CharacterKind { Horse, Rider };
@@ -40,5 +42,9 @@ struct CharacterMapping {
 // Reads a mapping file for a character of `kind` ("character" in the file, when present, must
 // match). A role missing from "roles" is a one-line InputError naming the file and the role.
 CharacterMapping loadCharacterMapping(const std::filesystem::path& file, CharacterKind kind);
+
+// The file's space to stirrup's: axes from forward and up (right = forward x up), times scale_cm,
+// then offset_cm. Joints and vertices of a mapped character are read through it.
+glm::dmat4 mappingToRig(const CharacterMapping& mapping);
 
 }  // namespace stirrup::rig

@@ -11,10 +11,6 @@
 
 namespace stirrup::rig {
 
-glm::mat4 lookAtWorld(glm::dvec3 position, glm::dvec3 target) {
-  return glm::mat4(glm::inverse(glm::lookAt(position, target, glm::dvec3(0.0, 1.0, 0.0))));
-}
-
 std::vector<glm::mat4> worldToLocal(const Skeleton& s, const std::vector<glm::mat4>& world) {
   if (world.size() != s.size()) throw std::invalid_argument("worldToLocal: expected one matrix per joint");
   std::vector<glm::mat4> local(s.size());
@@ -31,11 +27,12 @@ namespace {
 // hemisphere from key to key so LINEAR interpolation takes the short way.
 struct Tracks {
   std::vector<float> t, r;
-  void push(const glm::mat4& m) {
-    t.insert(t.end(), {m[3][0], m[3][1], m[3][2]});
-    glm::mat3 rot(m);
+  // `unit` scales the translation (centimetres to metres for the camera nodes).
+  void push(const glm::dmat4& m, double unit = 1.0) {
+    t.insert(t.end(), {float(m[3][0] * unit), float(m[3][1] * unit), float(m[3][2] * unit)});
+    glm::dmat3 rot(m);
     for (int k = 0; k < 3; ++k) rot[k] = glm::normalize(rot[k]);
-    glm::quat q = glm::normalize(glm::quat_cast(rot));
+    glm::quat q = glm::normalize(glm::quat(glm::quat_cast(rot)));
     if (r.size() >= 4) {
       const glm::quat prev(r[r.size() - 1], r[r.size() - 4], r[r.size() - 3], r[r.size() - 2]);
       if (glm::dot(prev, q) < 0.0f) q = -q;
@@ -67,13 +64,17 @@ std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character&
   model.asset.version = "2.0";
   model.asset.generator = "stirrup bake";
   std::vector<unsigned char> bin;
-  const int cm = addCentimetreRoot(model);
   const GltfCharacterNodes h = appendCharacterGltf(model, bin, horse, "horse:");
   const GltfCharacterNodes r = appendCharacterGltf(model, bin, rider, "rider:");
+  // One root per character, in metres, as its skin's skeleton: one armature per character in a DCC.
+  std::vector<int> roots;
   for (const auto* c : {&horse, &rider}) {
     const GltfCharacterNodes& n = c == &horse ? h : r;
+    const int root = addCentimetreRoot(model, c == &horse ? "horse" : "rider");
     for (std::size_t j = 0; j < c->skeleton.size(); ++j)
-      if (c->skeleton.joints[j].parent < 0) model.nodes[cm].children.push_back(n.joint_nodes[j]);
+      if (c->skeleton.joints[j].parent < 0) model.nodes[root].children.push_back(n.joint_nodes[j]);
+    model.skins[n.skin].skeleton = root;
+    roots.push_back(root);
   }
 
   tinygltf::Animation anim;
@@ -103,44 +104,59 @@ std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character&
     std::vector<Tracks> tracks(c.skeleton.size());
     for (const MountedPose& p : shot.poses) {
       const std::vector<glm::mat4> local = worldToLocal(c.skeleton, which == 0 ? p.horse : p.rider);
-      for (std::size_t j = 0; j < local.size(); ++j) tracks[j].push(local[j]);
+      for (std::size_t j = 0; j < local.size(); ++j) tracks[j].push(glm::dmat4(local[j]));
     }
     for (std::size_t j = 0; j < tracks.size(); ++j) animate(n.joint_nodes[j], tracks[j]);
   }
+  std::vector<int> camera_nodes;
   for (const BakedCamera& bc : shot.cameras) {
     if (bc.world.size() != frames) throw std::invalid_argument("bakedShotGlb: expected one camera transform per frame");
+    if (bc.width <= 0 || bc.height <= 0) throw std::invalid_argument("bakedShotGlb: expected a positive image size");
+    const double aspect = double(bc.width) / double(bc.height);
     tinygltf::Camera cam;
     cam.name = bc.name;
+    // stirrup's film: half height ortho_height / 2 (or tan(fov / 2)), half width that times the aspect,
+    // which is glTF's ymag / xmag (in metres) and yfov / aspectRatio.
     if (bc.orthographic) {
       cam.type = "orthographic";
-      // Magnifications in metres: viewers apply them in the camera's own space, not through the
-      // centimetre node's scale.
       cam.orthographic.ymag = bc.ortho_height_cm * 0.5 * 0.01;
-      cam.orthographic.xmag = cam.orthographic.ymag * bc.aspect;
+      cam.orthographic.xmag = cam.orthographic.ymag * aspect;
       cam.orthographic.znear = 0.01;
       cam.orthographic.zfar = 1000.0;
     } else {
       cam.type = "perspective";
       cam.perspective.yfov = bc.fov_deg * 3.14159265358979323846 / 180.0;
-      cam.perspective.aspectRatio = bc.aspect;
+      cam.perspective.aspectRatio = aspect;
       cam.perspective.znear = 0.01;
       cam.perspective.zfar = 1000.0;
     }
+    tinygltf::Value::Object extras;
+    extras["width"] = tinygltf::Value(bc.width);
+    extras["height"] = tinygltf::Value(bc.height);
+    if (!bc.view.empty()) extras["stirrup_view"] = tinygltf::Value(bc.view);
+    if (bc.hold_frame > 0) extras["hold_frame"] = tinygltf::Value(bc.hold_frame);
+    cam.extras = tinygltf::Value(extras);
     model.cameras.push_back(cam);
     tinygltf::Node node;
     node.name = "camera:" + bc.name;
     node.camera = static_cast<int>(model.cameras.size()) - 1;
+    node.extras = tinygltf::Value(extras);  // also on the node: importers keep node extras more often
     model.nodes.push_back(node);
     const int ni = static_cast<int>(model.nodes.size()) - 1;
-    model.nodes[cm].children.push_back(ni);
+    camera_nodes.push_back(ni);
     Tracks tr;
-    for (const glm::mat4& w : bc.world) tr.push(w);
+    for (const glm::dmat4& w : bc.world) tr.push(w, 0.01);
     animate(ni, tr);
   }
   if (!anim.channels.empty()) model.animations.push_back(anim);
   tinygltf::Scene scene;
   scene.name = shot.name;
-  scene.nodes = {cm, h.mesh_node, r.mesh_node};
+  scene.nodes = {roots[0], roots[1], h.mesh_node, r.mesh_node};
+  scene.nodes.insert(scene.nodes.end(), camera_nodes.begin(), camera_nodes.end());
+  tinygltf::Value::Object extras;
+  extras["fps"] = tinygltf::Value(shot.fps);
+  extras["frame_time"] = tinygltf::Value(std::string("seconds = (frame - 1) / fps: frame 1 at t = 0"));
+  scene.extras = tinygltf::Value(extras);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   return glbBytes(model, std::move(bin));

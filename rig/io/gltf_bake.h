@@ -1,7 +1,14 @@
 // A baked shot as one glTF 2.0 file (stirrup bake SCENE -o BAKED.glb): both characters as skinned
 // meshes, their joints' local translation and rotation at every frame (LINEAR samplers, one key per
-// frame), and the scene's cameras as glTF cameras on nodes, animated where they move. Everything hangs
-// under "stirrup_cm" (scale 0.01), so the file opens at true size in metres.
+// frame), and the cameras as glTF cameras on nodes, animated where they move.
+//
+// Layout (docs/round-trip.md): each character's joints hang under its own root node ("horse",
+// "rider", scale 0.01: stirrup works in centimetres, glTF in metres), which is its skin's `skeleton`,
+// so a DCC builds one armature per character. Camera nodes are roots, in metres, unscaled, so no
+// viewer has to decide whether a parent's scale changes an orthographic magnification. One glTF
+// animation holds every channel, grouped horse, rider, cameras: Blender 3.4 makes one action per
+// object from it (one per armature and per camera) and plays them all, whereas it would mute every
+// animation but the first. Time: a frame's key is at seconds = (frame - 1) / fps, for every track.
 #pragma once
 
 #include <string>
@@ -17,22 +24,23 @@ namespace stirrup::rig {
 struct BakedCamera {
   std::string name;
   bool orthographic = true;
-  double fov_deg = 30.0;           // vertical (perspective)
-  double ortho_height_cm = 320.0;  // (orthographic)
-  double aspect = 16.0 / 9.0;      // width / height
-  // Camera to world, one per frame (the camera looks down its -Z with +Y up, as in glTF).
-  std::vector<glm::mat4> world;
+  double fov_deg = 30.0;           // vertical field of view (perspective)
+  double ortho_height_cm = 320.0;  // full height of the view (orthographic)
+  int width = 640, height = 360;   // the image in pixels; the aspect is width / height
+  // Camera to world in centimetres, one per frame: columns right, up, back (the camera looks down
+  // its -Z with +Y up, as in glTF) and the position.
+  std::vector<glm::dmat4> world;
+  std::string view;   // the named view it was framed as (empty: the scene's own camera)
+  int hold_frame = 0;  // > 0: stirrup shows this frame's pose at every frame (recorded in extras)
 };
 
 struct BakedShot {
   std::string name;
-  std::vector<float> seconds;      // one per frame, strictly increasing
+  double fps = 24.0;
+  std::vector<float> seconds;      // one per frame, strictly increasing: (frame - 1) / fps
   std::vector<MountedPose> poses;  // one per frame: world matrices of both skeletons
   std::vector<BakedCamera> cameras;
 };
-
-// Camera-to-world of a camera at `position` looking at `target`, +Y up.
-glm::mat4 lookAtWorld(glm::dvec3 position, glm::dvec3 target);
 
 // Joint locals from world matrices: local[i] = inverse(world[parent]) * world[i].
 std::vector<glm::mat4> worldToLocal(const Skeleton& skeleton, const std::vector<glm::mat4>& world);

@@ -292,9 +292,9 @@ void writeFileAtomically(const std::filesystem::path& file, const std::vector<un
   fs::rename(tmp, file);
 }
 
-int addCentimetreRoot(tinygltf::Model& model) {
+int addCentimetreRoot(tinygltf::Model& model, const std::string& name) {
   tinygltf::Node n;
-  n.name = "stirrup_cm";
+  n.name = name;
   n.scale = {0.01, 0.01, 0.01};
   model.nodes.push_back(n);
   return static_cast<int>(model.nodes.size()) - 1;
@@ -377,13 +377,9 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   glm::mat4 convert(1.0f);
   glm::vec3 offset(0.0f);
   if (mapping) {
-    const glm::vec3 fw = glm::normalize(glm::vec3(mapping->forward[0], mapping->forward[1], mapping->forward[2]));
-    const glm::vec3 up = glm::normalize(glm::vec3(mapping->up[0], mapping->up[1], mapping->up[2]));
-    const glm::vec3 right = glm::cross(fw, up);
-    glm::mat3 rows(fw, up, right);  // columns; transpose gives rows
-    convert = glm::mat4(glm::transpose(rows)) * static_cast<float>(mapping->scale_cm);
-    convert[3][3] = 1.0f;
-    offset = glm::vec3(float(mapping->offset_cm[0]), float(mapping->offset_cm[1]), float(mapping->offset_cm[2]));
+    convert = glm::mat4(mappingToRig(*mapping));
+    offset = glm::vec3(convert[3]);
+    convert[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   }
   const auto toRig = [&](glm::vec3 p) { return glm::vec3(convert * glm::vec4(p, 1.0f)) + offset; };
 

@@ -41,9 +41,9 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
 // Appends float data as a tightly packed buffer view and accessor; returns the accessor.
 int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<float>& values,
                         int components, bool minmax, int target = 0);
-// Adds the node "stirrup_cm" (scale 0.01): stirrup works in centimetres, glTF in metres, so joints
-// and cameras hang under it. Returns the node.
-int addCentimetreRoot(tinygltf::Model& model);
+// Adds a node `name` (scale 0.01): stirrup works in centimetres, glTF in metres, so joints hang
+// under it. Returns the node.
+int addCentimetreRoot(tinygltf::Model& model, const std::string& name = "stirrup_cm");
 // Serialises a model whose binary data is `bin` as .glb bytes.
 std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned char> bin);
 // Writes bytes to a temporary name beside `file` and renames it when complete.

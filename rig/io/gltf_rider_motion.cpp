@@ -1,0 +1,198 @@
+#include "rig/io/gltf_rider_motion.h"
+
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "rig/error.h"
+#include "rig/io/character_mapping.h"
+#include "rig/io/gltf_character.h"
+#include "rig/io/gltf_nodes.h"
+
+namespace stirrup::rig {
+namespace {
+
+// The rider's skeleton as it stands in the file it came from, joint for joint with the Character.
+struct FileRig {
+  std::vector<std::string> names;
+  std::vector<glm::dmat4> bind;    // joint world at bind, file space (inverse of the inverse bind matrix)
+  std::vector<glm::dmat4> rest;    // joint world at rest, file space (the nodes' own transforms)
+  glm::dmat4 root_parent{1.0};     // rest world of the node the root joint hangs from
+  glm::dmat4 to_rig{1.0};          // file space -> stirrup space (cm, +X forward, +Y up)
+};
+
+glm::dmat4 nodeLocal(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
+  glm::dmat4 m(1.0);
+  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4) m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
+  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  return m;
+}
+
+FileRig builtInRig(const Character& rider) {
+  // Metres, stirrup's axes: the skeleton's own binds, which are its rest.
+  FileRig r;
+  r.to_rig = glm::scale(glm::dmat4(1.0), glm::dvec3(100.0));
+  const glm::dmat4 from_rig = glm::inverse(r.to_rig);
+  for (const Joint& j : rider.skeleton.joints) {
+    r.names.push_back(j.name);
+    r.bind.push_back(from_rig * glm::inverse(glm::dmat4(j.inverse_bind)));
+  }
+  r.rest = r.bind;
+  return r;
+}
+
+FileRig userRig(const Character& rider, const std::string& file, const std::string& mapping_file) {
+  FileRig r;
+  if (!mapping_file.empty()) r.to_rig = mappingToRig(loadCharacterMapping(mapping_file, CharacterKind::Rider));
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool ok = file.ends_with(".glb") ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
+                                         : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+  if (!ok || model.skins.empty()) throw InputError(file + ": not a readable skinned glTF file");
+  const tinygltf::Skin& skin = model.skins[0];
+  const std::vector<int> parent = gltfNodeParents(model, file);
+  std::vector<glm::dmat4> world(model.nodes.size());
+  const auto worldOf = [&](int n) {
+    glm::dmat4 m = nodeLocal(model.nodes[n]);
+    for (int p = parent[n]; p >= 0; p = parent[p]) m = nodeLocal(model.nodes[p]) * m;
+    return m;
+  };
+  std::vector<float> ibm;
+  if (skin.inverseBindMatrices >= 0) {
+    const tinygltf::Accessor& a = model.accessors.at(skin.inverseBindMatrices);
+    const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
+    ibm.resize(a.count * 16);
+    std::memcpy(ibm.data(), model.buffers.at(v.buffer).data.data() + v.byteOffset + a.byteOffset, ibm.size() * 4);
+  }
+  // The loader names a joint after its node, or "jointN" (N its index in the skin) when the name is
+  // empty or taken.
+  for (const Joint& j : rider.skeleton.joints) {
+    int found = -1;
+    for (std::size_t k = 0; k < skin.joints.size() && found < 0; ++k)
+      if (model.nodes.at(skin.joints[k]).name == j.name) found = static_cast<int>(k);
+    if (found < 0 && j.name.starts_with("joint")) found = std::stoi(j.name.substr(5));
+    if (found < 0 || found >= static_cast<int>(skin.joints.size()))
+      throw std::logic_error("riderMotionGlb: joint " + j.name + " is not in " + file);
+    const int node = skin.joints[found];
+    r.names.push_back(model.nodes[node].name.empty() ? j.name : model.nodes[node].name);
+    r.rest.push_back(worldOf(node));
+    r.bind.push_back(ibm.empty() ? glm::dmat4(1.0) : glm::inverse(glm::dmat4(glm::make_mat4(ibm.data() + 16 * found))));
+    if (j.parent < 0 && parent[node] >= 0) r.root_parent = worldOf(parent[node]);
+  }
+  return r;
+}
+
+// Translation and rotation of a rigid local transform (its scale kept apart).
+void decompose(const glm::dmat4& m, glm::dvec3& t, glm::dquat& q, glm::dvec3& s) {
+  t = glm::dvec3(m[3]);
+  glm::dmat3 rot(m);
+  for (int k = 0; k < 3; ++k) s[k] = glm::length(rot[k]), rot[k] /= s[k];
+  q = glm::normalize(glm::quat_cast(rot));
+}
+
+}  // namespace
+
+std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::string& file,
+                                          const std::string& mapping_file, const RiderMotion& motion) {
+  const std::size_t frames = motion.seconds.size();
+  if (frames == 0 || motion.world.size() != frames) throw std::invalid_argument("riderMotionGlb: expected one pose per frame");
+  const FileRig f = file == "default" ? builtInRig(rider) : userRig(rider, file, mapping_file);
+  const Skeleton& s = rider.skeleton;
+  const glm::dmat4 from_rig = glm::inverse(f.to_rig);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "stirrup bake --rider-only";
+  std::vector<unsigned char> bin;
+  tinygltf::Node holder;  // the root joint's parent in the user's file, at rest
+  holder.name = "rider";
+  if (f.root_parent != glm::dmat4(1.0))
+    holder.matrix = std::vector<double>(glm::value_ptr(f.root_parent), glm::value_ptr(f.root_parent) + 16);
+  model.nodes.push_back(holder);
+  const int first = 1;
+  const auto localAtRest = [&](std::size_t j) {
+    const int p = s.joints[j].parent;
+    return glm::inverse(p < 0 ? f.root_parent : f.rest[p]) * f.rest[j];
+  };
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    tinygltf::Node n;
+    n.name = f.names[j];
+    glm::dvec3 t, sc;
+    glm::dquat q;
+    decompose(localAtRest(j), t, q, sc);
+    n.translation = {t.x, t.y, t.z};
+    n.rotation = {q.x, q.y, q.z, q.w};
+    if (glm::length(sc - glm::dvec3(1.0)) > 1e-6) n.scale = {sc.x, sc.y, sc.z};
+    model.nodes.push_back(n);
+    const int p = s.joints[j].parent;
+    model.nodes[p < 0 ? 0 : first + p].children.push_back(first + static_cast<int>(j));
+  }
+  tinygltf::Skin skin;
+  skin.name = "rider";
+  skin.skeleton = 0;
+  std::vector<float> ibm;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    skin.joints.push_back(first + static_cast<int>(j));
+    const glm::mat4 m(glm::inverse(f.bind[j]));
+    ibm.insert(ibm.end(), glm::value_ptr(m), glm::value_ptr(m) + 16);
+  }
+  skin.inverseBindMatrices = appendFloatAccessor(model, bin, ibm, 16, false);
+  model.skins.push_back(skin);
+
+  // The user's joint world that skins the user's mesh as stirrup's joint skins its copy:
+  //   skin matrix in stirrup space  S = W * inverse_bind, in file space  to_rig^-1 S to_rig,
+  //   and the joint world is that times the joint's bind.
+  std::vector<std::vector<float>> tr(s.size()), rot(s.size());
+  std::vector<glm::dmat4> posed(s.size());
+  for (std::size_t k = 0; k < frames; ++k) {
+    if (motion.world[k].size() != s.size()) throw std::invalid_argument("riderMotionGlb: expected one matrix per joint");
+    for (std::size_t j = 0; j < s.size(); ++j) {
+      const glm::dmat4 skin_rig = glm::dmat4(motion.world[k][j]) * glm::dmat4(s.joints[j].inverse_bind);
+      posed[j] = from_rig * skin_rig * f.to_rig * f.bind[j];
+      const int p = s.joints[j].parent;
+      glm::dvec3 t, sc;
+      glm::dquat q;
+      decompose(glm::inverse(p < 0 ? f.root_parent : posed[p]) * posed[j], t, q, sc);
+      if (rot[j].size() >= 4) {
+        const std::vector<float>& r = rot[j];
+        const glm::dquat prev(r[r.size() - 1], r[r.size() - 4], r[r.size() - 3], r[r.size() - 2]);
+        if (glm::dot(prev, q) < 0.0) q = -q;  // the short way between keys
+      }
+      tr[j].insert(tr[j].end(), {float(t.x), float(t.y), float(t.z)});
+      rot[j].insert(rot[j].end(), {float(q.x), float(q.y), float(q.z), float(q.w)});
+    }
+  }
+  tinygltf::Animation anim;
+  anim.name = motion.name;
+  const int input = appendFloatAccessor(model, bin, motion.seconds, 1, true);
+  for (std::size_t j = 0; j < s.size(); ++j)
+    for (const auto& [path, values, comps] : {std::tuple{"translation", &tr[j], 3}, std::tuple{"rotation", &rot[j], 4}}) {
+      tinygltf::AnimationSampler sm;
+      sm.input = input;
+      sm.output = appendFloatAccessor(model, bin, *values, comps, false);
+      sm.interpolation = "LINEAR";
+      anim.samplers.push_back(sm);
+      tinygltf::AnimationChannel ch;
+      ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
+      ch.target_node = first + static_cast<int>(j);
+      ch.target_path = path;
+      anim.channels.push_back(ch);
+    }
+  model.animations.push_back(anim);
+  tinygltf::Scene scene;
+  scene.name = motion.name;
+  scene.nodes = {0};
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  return glbBytes(model, std::move(bin));
+}
+
+}  // namespace stirrup::rig

@@ -1,0 +1,34 @@
+// The rider's motion alone, for the user's own rider rig (stirrup bake SCENE --rider-only -o FILE.glb).
+//
+// The file holds the rider's joints (with a skin, so a DCC builds an armature, but no mesh) and one
+// animation keying every joint's local translation and rotation at every frame, at seconds =
+// (frame - 1) / fps. When the rider is a user's glTF character read through a mapping, everything is
+// in the user's file: its joint names, its units and axes (the mapping's scale_cm, forward, up and
+// offset undone), its joints' own rest orientations and inverse bind matrices, and the root joint
+// hanging from a node holding the rest transform of its parent in the user's file. Keys are the user's
+// joint locals that skin the user's mesh as stirrup's pose skins stirrup's copy of it, so the action
+// applies to the user's rig by joint name. Nodes between two joints in the user's file are folded into
+// the child joint's local. The built-in rider is written in metres with stirrup's axes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "rig/character.h"
+
+namespace stirrup::rig {
+
+struct RiderMotion {
+  std::string name;                           // the animation's name
+  std::vector<float> seconds;                 // one per frame, strictly increasing
+  std::vector<std::vector<glm::mat4>> world;  // one per frame: the rider's joint world matrices (posing)
+};
+
+// `rider` is the character as resolveCharacter(Rider, file, mapping_file) made it; `file` and
+// `mapping_file` are the scene's rider entries ("default" for the built-in rider).
+std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::string& file,
+                                          const std::string& mapping_file, const RiderMotion& motion);
+
+}  // namespace stirrup::rig
