@@ -457,11 +457,17 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
         if (bc.size() >= 3) base = glm::vec3(float(bc[0]), float(bc[1]), float(bc[2]));
       }
       std::vector<float> col;
-      if (prim.attributes.count("_COLOR")) col = readAccessor(model, prim.attributes.at("_COLOR"), 3, pw + "._COLOR");
+      if (prim.attributes.count("_COLOR")) {
+        col = readAccessor(model, prim.attributes.at("_COLOR"), 3, pw + "._COLOR");
+        // A fuzzing finding: fewer colours than vertices read past the end.
+        if (col.size() != n * 3) throw InputError(pw + "._COLOR: expected one colour a vertex");
+      }
       else if (prim.attributes.count("COLOR_0")) {
         const int ca = prim.attributes.at("COLOR_0");
         const int comps = tinygltf::GetNumComponentsInType(model.accessors.at(ca).type);
+        if (comps != 3 && comps != 4) throw InputError(pw + ".COLOR_0: expected a VEC3 or VEC4 accessor");
         const std::vector<float> c0 = readAccessor(model, ca, comps, pw + ".COLOR_0");
+        if (c0.size() != n * static_cast<std::size_t>(comps)) throw InputError(pw + ".COLOR_0: expected one colour a vertex");
         col.resize(n * 3);
         for (std::size_t v = 0; v < n; ++v)
           for (int k = 0; k < 3; ++k) col[v * 3 + k] = c0[v * comps + k] * base[k];
