@@ -51,6 +51,9 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
     // A named view: framed from the characters' vertices over every frame it shows (render/view.h).
     CameraSpec preset = camera_;
     applyViewPreset(preset);
+    const glm::vec3 lever = horse_.skeleton.restPosition(horse_.role("saddle")) -
+                            horse_.skeleton.restPosition(horse_.role("root"));
+    preset.seat_from_pivot_cm = {lever.x, lever.y, lever.z};
     camera_ = preset;  // treadmill / hold apply while sampling the points
     camera_ = frameView(preset, scene_, *clip_, profile_, framingFrames(preset, scene_),
                         [this](int f, std::vector<glm::dvec3>& h, std::vector<glm::dvec3>& r) {
