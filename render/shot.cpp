@@ -64,6 +64,16 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
 
 Shot::~Shot() = default;
 
+const rig::RigProfile& Shot::poseProfile() const {
+  if (!rigid_rider_) return profile_;
+  // The rigid rider rides like a statue: her channels at rest and no balance stage either.
+  if (!rigid_profile_) {
+    rigid_profile_ = std::make_unique<rig::RigProfile>(profile_);
+    rigid_profile_->rigid = true;
+  }
+  return *rigid_profile_;
+}
+
 // The clip's fences, standing in the world: each under the middle of the horse (halfway between its
 // rest fore and hind hooves) where the clip says, in the travel frame. A treadmill shot, which takes
 // the travel out, has nothing to stand still against, so it shows no fence. Props are ground-like in
@@ -104,7 +114,7 @@ rig::BakedFrame Shot::bakeShown(int frame) const {
 void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse,
                            std::vector<glm::dvec3>& rider) {
   const rig::BakedFrame baked = bakeShown(frame);
-  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, profile_.rider_unit_cm);
+  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, poseProfile());
   const std::vector<glm::mat4>& horse_world = pose.horse;
   const std::vector<glm::mat4>& rider_world = pose.rider;
   const std::size_t step = static_cast<std::size_t>(std::max(1, stride));
@@ -120,7 +130,7 @@ Image Shot::renderFrame(int frame, RayLog* log) {
   const rig::BakedFrame baked = bakeShown(frame);
 
   auto t0 = Clock::now();
-  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, profile_.rider_unit_cm);
+  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, poseProfile());
   const std::vector<glm::mat4>& horse_world = pose.horse;
   const std::vector<glm::mat4>& rider_world = pose.rider;
   timings_.pose_ms = msSince(t0);
