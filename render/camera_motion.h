@@ -2,10 +2,12 @@
 // any frame renders alone, in any order, on any machine.
 //   fixed  - position and target in the world.
 //   follow - position and target relative to a followed point: the horse's travel ((travel, 0, 0))
-//            or the rider's seat (travel plus the rear pivot and the rider's cog offsets). With
-//            damping_s > 0 the followed point is smoothed by a critically damped filter of that time
-//            constant with velocity feed-forward (see dampedFollow), evaluated by resampling the clip
-//            over the preceding 10 time constants: no state is carried from one frame to the next.
+//            or the rider's seat (the saddle turned about the rear pivot as the body pitches and
+//            rolls, plus the rider's cog offsets). Across the frame (x, z) the point is followed
+//            exactly, so the subject holds its place however the horse speeds up, slows down or rears;
+//            with damping_s > 0 its height (the bob) is smoothed by a critically damped filter of that
+//            time constant with velocity feed-forward (see dampedFollow), evaluated by resampling the
+//            clip over the preceding 10 time constants: no state is carried from one frame to the next.
 //   orbit  - the follow camera (undamped, horse's travel) turned about the vertical through its
 //            target by orbit_deg_per_frame (or 360 / orbit_frames) per frame after frame 1.
 // A treadmill camera follows nothing along X (the horse moves in place); a held pose camera follows
@@ -33,6 +35,12 @@ glm::dvec3 dampedFollow(const std::function<glm::dvec3(double)>& path, double t,
 // The point a follow camera follows, in the world, at `seconds` (before damping).
 glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
                        double seconds);
+// The horse's travel frame's origin ((travel, 0, 0); 0 on a treadmill) at `seconds`.
+glm::dvec3 travelPoint(const CameraSpec& spec, const rig::Clip& clip, double seconds);
+// Where a follow camera is moved to at `seconds`: the followed point, its height damped by
+// dampedFollow with time constant tau.
+glm::dvec3 followOffset(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
+                        double seconds, double tau);
 
 // The render camera of `spec` at `frame` of `scene`.
 Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,

@@ -40,6 +40,11 @@ struct CameraSpec {
   double frame_margin = 0.12;        // view framing: fraction of the image kept free at each border
   bool treadmill = false;            // the horse moves in place: travel removed (turntables)
   int hold_frame = 0;                // > 0: every frame shows the pose of this frame (held-pose turntable)
+  // Not a scene field: set by the shot from its horse when it resolves the camera. The saddle's rest
+  // place relative to the horse's rear pivot (its root joint), cm, world axes, so a camera following
+  // the rider's seat sees the seat swing about the pivot as the body pitches and rolls (a rear lifts
+  // the saddle 60 cm). Zero: the seat moves with the pivot's translation only.
+  std::array<double, 3> seat_from_pivot_cm = {0.0, 0.0, 0.0};
 };
 
 struct SceneSpec {

@@ -51,6 +51,9 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
     // A named view: framed from the characters' vertices over every frame it shows (render/view.h).
     CameraSpec preset = camera_;
     applyViewPreset(preset);
+    const glm::vec3 lever = horse_.skeleton.restPosition(horse_.role("saddle")) -
+                            horse_.skeleton.restPosition(horse_.role("root"));
+    preset.seat_from_pivot_cm = {lever.x, lever.y, lever.z};
     camera_ = preset;  // treadmill / hold apply while sampling the points
     camera_ = frameView(preset, scene_, *clip_, profile_, framingFrames(preset, scene_),
                         [this](int f, std::vector<glm::dvec3>& h, std::vector<glm::dvec3>& r) {
@@ -60,6 +63,16 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
 }
 
 Shot::~Shot() = default;
+
+const rig::RigProfile& Shot::poseProfile() const {
+  if (!rigid_rider_) return profile_;
+  // The rigid rider rides like a statue: her channels at rest and no balance stage either.
+  if (!rigid_profile_) {
+    rigid_profile_ = std::make_unique<rig::RigProfile>(profile_);
+    rigid_profile_->rigid = true;
+  }
+  return *rigid_profile_;
+}
 
 // The clip's fences, standing in the world: each under the middle of the horse (halfway between its
 // rest fore and hind hooves) where the clip says, in the travel frame. A treadmill shot, which takes
@@ -101,7 +114,7 @@ rig::BakedFrame Shot::bakeShown(int frame) const {
 void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse,
                            std::vector<glm::dvec3>& rider) {
   const rig::BakedFrame baked = bakeShown(frame);
-  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, profile_.rider_unit_cm);
+  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, poseProfile());
   const std::vector<glm::mat4>& horse_world = pose.horse;
   const std::vector<glm::mat4>& rider_world = pose.rider;
   const std::size_t step = static_cast<std::size_t>(std::max(1, stride));
@@ -117,7 +130,7 @@ Image Shot::renderFrame(int frame, RayLog* log) {
   const rig::BakedFrame baked = bakeShown(frame);
 
   auto t0 = Clock::now();
-  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, profile_.rider_unit_cm);
+  const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, poseProfile());
   const std::vector<glm::mat4>& horse_world = pose.horse;
   const std::vector<glm::mat4>& rider_world = pose.rider;
   timings_.pose_ms = msSince(t0);

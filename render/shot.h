@@ -61,6 +61,9 @@ class Shot {
   std::vector<glm::vec3> positions_, normals_;
   FrameTimings timings_;
   bool rigid_rider_ = false;
+  // The profile posing uses: the scene's, or with the rigid rider, the same marked rigid.
+  const rig::RigProfile& poseProfile() const;
+  mutable std::unique_ptr<rig::RigProfile> rigid_profile_;
   // The baked frame shown at `frame`: the held pose, and no travel on a treadmill.
   rig::BakedFrame bakeShown(int frame) const;
 };

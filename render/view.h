@@ -1,7 +1,7 @@
 // Named camera views a scene can use without writing positions ("view": "side" in a camera block):
-//   side      - orthographic, square to the horse's right side, travelling with the horse (damped).
-//   persp     - a three-quarter perspective from the front right (50 mm), following the horse (damped).
-//   close     - 85 mm on the rider's upper body and the saddle, following the rider's seat (damped),
+//   side      - orthographic, square to the horse's right side, travelling with the horse.
+//   persp     - a three-quarter perspective from the front right (50 mm), following the horse.
+//   close     - 85 mm on the rider's upper body and the saddle, following the rider's seat (its height damped),
 //               so the rider's bounce reads against a steady frame.
 //   turntable - 50 mm orbiting 360 degrees over orbit_frames (default 96) around horse and rider;
 //               with `treadmill` the horse moves in place, with `hold_frame` it holds one pose.

@@ -14,6 +14,13 @@ struct BakedFrame {
   RiderChannels rider;
 };
 
+// Samples the clip at `seconds` (with the travel's acceleration, travelAcceleration) and evaluates
+// the rider channels.
 BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, double seconds);
+
+// The clip's travel acceleration at `seconds` (cm/s²), by a second difference of its travel over
+// kAccelerationWindowS each side: smoothed, so a lean that follows it never jumps between frames.
+inline constexpr double kAccelerationWindowS = 0.2;
+double travelAcceleration(const Clip& clip, double seconds);
 
 }  // namespace stirrup::rig

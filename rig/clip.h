@@ -13,6 +13,9 @@ namespace stirrup::rig {
 struct HorseFrame {
   HorseChannels controls;   // contract channels (cm, degrees), offsets from rest in the travel frame
   double travel_cm = 0.0;   // how far the travel frame has moved along world +X since t = 0
+  // The travel frame's acceleration along its direction (cm/s²), for the balance stage (rig/balance.h:
+  // the rider leans against it). Clips leave it 0; bakeFrame measures it from the travel.
+  double travel_accel_cm_s2 = 0.0;
   // Body follow-through beyond the contract (degrees, + = up / to the right), for posing only.
   double neck_rz = 0.0;
   double head_rz = 0.0;

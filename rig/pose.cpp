@@ -16,6 +16,9 @@ namespace stirrup::rig {
 namespace {
 
 constexpr glm::vec3 kX{1.0f, 0.0f, 0.0f}, kY{0.0f, 1.0f, 0.0f}, kZ{0.0f, 0.0f, 1.0f};
+// How far the neck turns back at most to counter the balance stage's turn: a choice, well inside the
+// extension range of a neck, so the head never tips back past where a rider looking ahead holds it.
+constexpr float kNeckCounterRangeDeg = 45.0f;
 
 glm::mat4 rot(double degrees, glm::vec3 axis) {
   return glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(degrees)), axis);
@@ -243,7 +246,8 @@ void placeReins(const Character& horse, std::span<glm::mat4> horseWorld, const C
 }
 
 std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse, std::span<const glm::mat4> horseWorld,
-                                 const RiderChannels& r, double rider_unit_cm, const RiderPoseParams& params) {
+                                 const RiderChannels& r, double rider_unit_cm, const RiderPoseParams& params,
+                                 const BalanceStage* balance, BalanceResult* balance_result) {
   checkSize(horse, horseWorld);
   using C = RiderChannel;
   const Skeleton& s = rider.skeleton;
@@ -261,9 +265,40 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
   const int coat_tail = rider.role("coatTail");
   local[coat_tail] = s.joints[coat_tail].rest_local * rot(-r[C::clothSide] * params.cloth_deg_per_unit, kX) *
                      rot(-r[C::clothUp] * params.cloth_deg_per_unit, kZ);
-  local[rider.role("pelvis")] = saddle * local[rider.role("pelvis")];
+  const int pelvis = rider.role("pelvis");
+  local[pelvis] = saddle * local[pelvis];
   std::vector<glm::mat4> world(s.size());
   localToWorld(s, local, world);
+
+  if (balance) {
+    // The balance stage (rig/balance.h): measure the trunk as the channels pose it, turn it about the
+    // hips to the lean the stage decides, and turn the neck back so she keeps looking ahead.
+    BalanceInput in;
+    in.saddle = saddle;
+    in.seat = position(world[pelvis]);
+    in.stirrups = 0.5f * (stirrupTarget(horse, horseWorld, r, rider_unit_cm, 0) + stirrupTarget(horse, horseWorld, r, rider_unit_cm, 1));
+    in.trunk = position(world[rider.role("neck")]) - in.seat;
+    in.com_height_cm = trunkComHeight(rider);
+    in.fold_scale = balance->fold_scale;
+    in.seat_rise_cm = (glm::inverse(saddle) * glm::vec4(in.seat, 1.0f)).y - s.restPosition(pelvis).y;
+    in.accel_cm_s2 = balance->accel_cm_s2;
+    const BalanceResult decided = balanceTrunk(in, balance->params);
+    if (balance_result) *balance_result = decided;
+    if (decided.turn_deg != 0.0 || decided.seat_lift_cm != 0.0) {
+      // Forward is a turn taking the vertical toward the heading: about up x heading. The seat rises
+      // along the saddle's up.
+      const glm::vec3 axis = glm::normalize(glm::cross(kY, saddleHeading(saddle)));
+      const glm::vec3 lift = glm::normalize(glm::vec3(saddle[1])) * float(decided.seat_lift_cm);
+      const glm::mat4 turn = translate(in.seat + lift) *
+                             glm::rotate(glm::mat4(1.0f), glm::radians(float(decided.turn_deg)), axis) * translate(-in.seat);
+      local[pelvis] = turn * local[pelvis];
+      const float counter = std::clamp(float(decided.turn_deg * balance->params.head_counter), -kNeckCounterRangeDeg,
+                                       kNeckCounterRangeDeg);
+      const int neck = rider.role("neck");
+      local[neck] = local[neck] * rot(counter, kZ);
+      localToWorld(s, local, world);
+    }
+  }
 
   for (int side = 0; side < 2; ++side) {
     const std::string n = side == 0 ? "l" : "r";
@@ -312,9 +347,14 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
   return world;
 }
 
+double torsoFold(const RiderChannels& r, const RiderPoseParams& params) {
+  using C = RiderChannel;
+  return r[C::hipRz] + r[C::lowerBackRz] + r[C::waistRz] * (1.0 + params.chest_follow);
+}
+
 RiderChannels limitRiderChannels(RiderChannels r, const RiderPoseParams& params, double rider_unit_cm) {
   using C = RiderChannel;
-  const double lean = r[C::hipRz] + r[C::lowerBackRz] + r[C::waistRz] * (1.0 + params.chest_follow);
+  const double lean = torsoFold(r, params);
   if (std::abs(lean) > params.max_lean_deg) {
     const double s = params.max_lean_deg / std::abs(lean);
     for (C c : {C::hipRz, C::lowerBackRz, C::waistRz}) r[c] *= s;
@@ -332,12 +372,23 @@ RiderChannels limitRiderChannels(RiderChannels r, const RiderPoseParams& params,
 }
 
 MountedPose poseMounted(const Character& horse, const Character& rider, const HorseFrame& frame,
-                        const RiderChannels& channels, double rider_unit_cm) {
-  const RiderChannels r = limitRiderChannels(channels, RiderPoseParams{}, rider_unit_cm);
+                        const RiderChannels& channels, const RigProfile& profile) {
+  const double unit = profile.rider_unit_cm;
+  const RiderPoseParams params;
+  const RiderChannels r = limitRiderChannels(channels, params, unit);
   MountedPose p;
   p.horse = poseHorse(horse, frame);
-  placeStirrups(horse, p.horse, r, rider_unit_cm);
-  p.rider = poseRider(rider, horse, p.horse, r, rider_unit_cm);
+  placeStirrups(horse, p.horse, r, unit);
+  if (profile.rigid) {
+    p.rider = poseRider(rider, horse, p.horse, r, unit, params);
+  } else {
+    BalanceStage stage;
+    stage.params = profile.balance;
+    const double asked = std::abs(torsoFold(channels, params)), allowed = std::abs(torsoFold(r, params));
+    stage.fold_scale = allowed > 1e-9 ? std::max(asked / allowed, 1.0) : 1.0;
+    stage.accel_cm_s2 = frame.travel_accel_cm_s2;
+    p.rider = poseRider(rider, horse, p.horse, r, unit, params, &stage, &p.balance);
+  }
   placeReins(horse, p.horse, rider, p.rider);
   return p;
 }

@@ -25,10 +25,12 @@
 
 #include <glm/glm.hpp>
 
+#include "rig/balance.h"
 #include "rig/channels.h"
 #include "rig/character.h"
 #include "rig/clip.h"
 #include "rig/curve_spine.h"
+#include "rig/rig_profile.h"
 #include "rig/characters/horse_character.h"  // the characters these jobs pose, for callers that include only pose.h
 #include "rig/characters/rider_character.h"
 
@@ -75,6 +77,10 @@ struct RiderPoseParams {
   float max_seat_back_cm = 6.0f;
 };
 
+// The torso's fold relative to the saddle the channels ask for: hip.rz + lowerBack.rz + waist.rz ·
+// (1 + chest_follow), degrees forward.
+double torsoFold(const RiderChannels& r, const RiderPoseParams& params);
+
 // The rider channels within the posing limits above (poseMounted applies this).
 RiderChannels limitRiderChannels(RiderChannels r, const RiderPoseParams& params, double rider_unit_cm);
 
@@ -96,11 +102,22 @@ double riderSpineStretch(const CurveSpine& spine, const RiderChannels& r, double
 void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider_unit_cm,
                     const RiderPoseParams& params, std::span<glm::mat4> local);
 
+// The balance stage as poseRider runs it (rig/balance.h): its parameters, and how many times larger
+// the channels' fold was than the posing limit let through (limitRiderChannels; 1 when it did not act).
+struct BalanceStage {
+  RigProfile::Balance params;
+  double fold_scale = 1;
+  double accel_cm_s2 = 0;  // the horse's travel acceleration (HorseFrame::travel_accel_cm_s2)
+};
+
 // The rider seated in the posed horse's saddle, moved by the rider channels (translations in rider
-// units; rider_unit_cm converts them). Hands reach for the reins, feet for the stirrups.
+// units; rider_unit_cm converts them). Hands reach for the reins, feet for the stirrups. With
+// `balance`, the balance stage turns her trunk about her hips after the spine is laid out (and
+// `balance_result`, when given, receives what it decided); without, the channels' pose as it is.
 std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
                                  std::span<const glm::mat4> horseWorld, const RiderChannels& r,
-                                 double rider_unit_cm, const RiderPoseParams& params = {});
+                                 double rider_unit_cm, const RiderPoseParams& params = {},
+                                 const BalanceStage* balance = nullptr, BalanceResult* balance_result = nullptr);
 
 // Where the ball of each foot goes, in world: the horse's stirrup rest place (hanging from the posed
 // saddle) moved by lFoot/rFoot tx (forward) and tz (away from the belly). index 0 = left, 1 = right.
@@ -117,11 +134,13 @@ void placeReins(const Character& horse, std::span<glm::mat4> horseWorld, const C
                 std::span<const glm::mat4> riderWorld);
 
 // Both characters at one frame, the way every consumer (shot, bake, tests) poses them: poseHorse,
-// placeStirrups, poseRider, placeReins. World matrices, one per joint of each skeleton.
+// placeStirrups, poseRider with the profile's balance stage, placeReins. World matrices, one per joint
+// of each skeleton. The rigid rider (profile.rigid) has no balance stage: she rides like a statue.
 struct MountedPose {
   std::vector<glm::mat4> horse, rider;
+  BalanceResult balance;  // what the balance stage decided (all zero for the rigid rider)
 };
 MountedPose poseMounted(const Character& horse, const Character& rider, const HorseFrame& frame,
-                        const RiderChannels& r, double rider_unit_cm);
+                        const RiderChannels& r, const RigProfile& profile);
 
 }  // namespace stirrup::rig

@@ -94,6 +94,24 @@ const std::array kParameters = {
     STIRRUP_RIG_PARAM("cloth.side_w1_pivot_roll", cloth.side_w1_pivot_roll, RangeKind::Weight, -5, 5, "8.9, Appendix B: cloth.side = rearPivot.rx x -0.5 + ..."),
     STIRRUP_RIG_PARAM("cloth.side_w2_hind_height_difference", cloth.side_w2_hind_height_difference, RangeKind::Weight, -20, 20,
                       "8.9, Appendix B: ... + (rbHoof.ty - lbHoof.ty) x -2"),
+    STIRRUP_RIG_PARAM("balance", balance.amount, RangeKind::Fraction, 0, 1,
+                      "Balance (docs/rider-rig.md): 0 the thesis pose, 1 the balanced pose"),
+    STIRRUP_RIG_PARAM("balance.stirrup_share", balance.stirrup_share, RangeKind::Fraction, 0, 1,
+                      "Balance: share of her weight over the stirrups; the jumping seat (Caprilli) keeps her centred over her feet, Kuhnel 5.4 raises her seat in the rear"),
+    STIRRUP_RIG_PARAM("balance.inertia_share", balance.inertia_share, RangeKind::Fraction, 0, 1,
+                      "Balance: share of the horse's travel acceleration she leans against; Kuhnel 5.5, in the stop she leans back to compensate for the backward shift in centre of gravity"),
+    STIRRUP_RIG_PARAM("balance.band_forward_deg", balance.band_forward_deg, RangeKind::AngleLimit, 0, 90,
+                      "Balance: the trunk's lean ahead of the vertical approaches this softly"),
+    STIRRUP_RIG_PARAM("balance.band_back_deg", balance.band_back_deg, RangeKind::AngleLimit, 0, 90,
+                      "Balance: the trunk's lean behind the vertical approaches this softly"),
+    STIRRUP_RIG_PARAM("balance.max_fold_deg", balance.max_fold_deg, RangeKind::AngleLimit, 0, 120,
+                      "Balance: the trunk ahead of the saddle's upright at most this; measured on the meshes, the chest stops short of the horse's neck"),
+    STIRRUP_RIG_PARAM("balance.max_extension_deg", balance.max_extension_deg, RangeKind::AngleLimit, 0, 90,
+                      "Balance: the trunk behind the saddle's upright at most this, short of the croup"),
+    STIRRUP_RIG_PARAM("balance.head_counter", balance.head_counter, RangeKind::Fraction, 0, 1,
+                      "Balance: the neck turns back this share of the stage's turn; Kuhnel 5.1, the rider keeps looking forward"),
+    STIRRUP_RIG_PARAM("balance.seat_rise_cm", balance.seat_rise_cm, RangeKind::Length, 0, 30,
+                      "Balance: at the full fold her seat is at least this far (cm) above where she sits, Eq 7's lift included; Kuhnel 5.1 and 5.4, as she leans forward she raises out of the saddle"),
 };
 #undef STIRRUP_RIG_PARAM
 
@@ -110,6 +128,7 @@ std::string_view rangeKindName(RangeKind kind) {
     case RangeKind::AngleLimit: return "angle limit";
     case RangeKind::Angle: return "angle";
     case RangeKind::Length: return "length";
+    case RangeKind::Fraction: return "fraction";
   }
   return "?";
 }

@@ -120,6 +120,24 @@ struct RigProfile {
     double side_w2_hind_height_difference = 2;
   } cloth;
 
+  // The balance stage (rig/balance.h; docs/rider-rig.md, "Balance"): how the channels' fold becomes
+  // the trunk's pose in world space. Not a thesis equation: the channels above stay exactly Appendix
+  // B's; this decides where the trunk goes when the horse pitches far from level, where the thesis's
+  // expressions grow without bound (a 170° fold on the 55° rear) or fold the rider the wrong way (the
+  // buck's kick). amount 0 is the thesis pose as posing limits it (rig::RiderPoseParams), 1 the
+  // balanced pose.
+  struct Balance {
+    double amount = 1;                // "balance": 0 the thesis pose .. 1 balanced
+    double stirrup_share = 0.25;      // of her weight over the stirrups (the rest over the seat)
+    double inertia_share = 0.3;       // of the horse's travel acceleration she leans against
+    double band_forward_deg = 35;     // soft band around the vertical the channels move her through
+    double band_back_deg = 25;
+    double max_fold_deg = 75;         // trunk ahead of the saddle's upright: the chest stops short of the neck
+    double max_extension_deg = 45;    // trunk behind the saddle's upright: the back stops short of the croup
+    double head_counter = 1;          // of the stage's turn the neck turns back, so she keeps looking ahead
+    double seat_rise_cm = 5.5;        // at the full fold her seat is at least this far above where she sits
+  } balance;
+
   // A rider rigidly fixed to the saddle: evaluateRider returns every rider channel at its rest value
   // (0), whatever the horse does, so she rides the saddle like a statue. The layered review movies
   // compare the rigged rider with this one to show what the rig adds (docs/rider-rig.md, "The rigid
@@ -143,6 +161,7 @@ enum class RangeKind {
   AngleLimit,  // a clamp on an angle, in degrees: up to a half turn, on its own side of 0
   Angle,       // an offset in degrees: -90 to 90
   Length,      // an offset in units: -100 to 100 (10 m at 10 cm a unit)
+  Fraction,    // a share or a blend: 0 to 1
 };
 // The kind's name as the docs' table writes it ("weight", "unit", ...).
 std::string_view rangeKindName(RangeKind kind);

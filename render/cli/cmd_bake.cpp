@@ -59,7 +59,7 @@ void writeBakedGlb(const render::SceneSpec& scene, const rig::RigProfile& profil
   for (int frame : frames) {
     const rig::BakedFrame b = rig::bakeFrame(clip, profile, frame, render::frameTime(scene, frame));
     shot.seconds.push_back(static_cast<float>(b.seconds));
-    shot.poses.push_back(rig::poseMounted(horse, rider, b.horse, b.rider, profile.rider_unit_cm));
+    shot.poses.push_back(rig::poseMounted(horse, rider, b.horse, b.rider, profile));
     baked.push_back(b);
   }
   for (const render::CameraSpec& spec : scene.cameras) {
@@ -103,7 +103,7 @@ void writeRiderGlb(const render::SceneSpec& scene, const rig::RigProfile& profil
   for (int frame : frames) {
     const rig::BakedFrame b = rig::bakeFrame(clip, profile, frame, render::frameTime(scene, frame));
     motion.seconds.push_back(static_cast<float>(b.seconds));
-    motion.world.push_back(rig::poseMounted(horse, rider, b.horse, b.rider, profile.rider_unit_cm).rider);
+    motion.world.push_back(rig::poseMounted(horse, rider, b.horse, b.rider, profile).rider);
   }
   rig::writeFileAtomically(output, rig::riderMotionGlb(rider, scene.rider, scene.rider_mapping, motion));
 }

@@ -1,10 +1,13 @@
 // stirrup rig eval HORSE.csv -o RIDER.csv: evaluates the rider rig on every row of a horse channel CSV.
 // stirrup rig params: lists a profile's parameters, their values and the thesis passages they cite.
+// stirrup rig balance SCENE: what the balance stage (rig/balance.h) decides on every frame of a scene.
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +15,12 @@
 #include "render/cli/commands.h"
 #include "render/cli/options.h"
 #include "render/data_dir.h"
+#include "render/scene.h"
+#include "rig/bake.h"
+#include "rig/io/frame_range.h"
+#include "rig/io/gltf_character.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/pose.h"
 #include "rig/io/channel_csv.h"
 #include "rig/error.h"
 #include "rig/rider_rig.h"
@@ -21,6 +30,7 @@ namespace stirrup::cli {
 namespace {
 
 struct RigOptions {
+  std::string scene;
   std::string horse_csv;
   std::string rider_csv;
   std::string profile = "thesis";
@@ -63,6 +73,46 @@ void runParams(const RigOptions& o) {
   }
 }
 
+// One row a frame: the horse's back above level, the trunk's world lean as the channels pose it and
+// as the stage leaves it (measured from the posed pelvis and neck joints), and the stage's terms.
+void runBalance(const RigOptions& o) {
+  const render::SceneSpec scene = render::loadScene(o.scene);
+  rig::RigProfile profile = render::resolveProfile(scene);
+  rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
+  const auto clip = rig::makeClip(scene.clip);
+  const rig::Character horse = rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping);
+  const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping);
+  std::ostringstream out;
+  out << "frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,"
+         "turn_deg,seat_lift_cm,limited\n";
+  char row[320];
+  for (int f : rig::parseFrameList(scene.frames, "frames")) {
+    const rig::BakedFrame b = rig::bakeFrame(*clip, profile, f, render::frameTime(scene, f));
+    const rig::MountedPose pose = rig::poseMounted(horse, rider, b.horse, b.rider, profile);
+    const glm::mat4& saddle = pose.horse[horse.role("saddle")];
+    const glm::vec3 heading = rig::saddleHeading(saddle);
+    const glm::vec3 x(saddle[0]);
+    const double back = std::atan2(double(x.y), double(glm::dot(x, heading))) * 180.0 / 3.14159265358979323846;
+    const double lean = rig::leanDegrees(glm::vec3(pose.rider[rider.role("neck")][3]) - glm::vec3(pose.rider[rider.role("pelvis")][3]), heading);
+    const rig::BalanceResult& r = pose.balance;
+    std::snprintf(row, sizeof row, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d\n", f, back, r.pose_lean_deg,
+                  r.channel_lean_deg, r.support_lean_deg, r.inertia_lean_deg, lean, r.turn_deg, r.seat_lift_cm,
+                  int(r.limited));
+    out << row;
+  }
+  if (o.rider_csv.empty()) {
+    std::fputs(out.str().c_str(), stdout);
+    return;
+  }
+  const std::filesystem::path file(o.rider_csv), tmp(o.rider_csv + ".tmp");
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f << out.str();
+    if (!f.flush()) throw InputError(o.rider_csv + ": cannot write");
+  }
+  std::filesystem::rename(tmp, file);
+}
+
 void addProfileOptions(CLI::App* cmd, const std::shared_ptr<RigOptions>& opts) {
   cmd->add_option("--profile,-p", opts->profile,
                   "Rig profile: a name looked up in the profiles folder (thesis, english, novice; folder: "
@@ -98,6 +148,19 @@ void addRigCommand(CLI::App& app) {
   eval->add_option("--out,-o", opts->rider_csv, "Rider channel CSV (output)")->required();
   addProfileOptions(eval, opts);
   eval->callback([opts] { runEval(*opts); });
+
+  CLI::App* balance = rig_cmd->add_subcommand("balance", "Print what the balance stage decides on every frame of a scene");
+  balance->footer(
+      "CSV, one row a frame (docs/rider-rig.md, \"Balance\"): back_pitch_deg (the horse's back above level),\n"
+      "  thesis_lean_deg (her trunk's world lean, pelvis to neck, as the channels pose it: balance 0),\n"
+      "  the stage's terms channel_lean_deg, support_lean_deg, inertia_lean_deg, then lean_deg (measured on\n"
+      "  the posed joints), turn_deg, seat_lift_cm and limited (1: a body limit held her). Leans are + toward\n"
+      "  the horse's head. The scene's profile applies, then --set.\n"
+      "Example: stirrup rig balance scenes/rear.json --set balance.max_fold_deg=60 -o rear_balance.csv");
+  balance->add_option("scene", opts->scene, "Scene file")->required();
+  balance->add_option("--out,-o", opts->rider_csv, "CSV file (default: standard output)");
+  balance->add_option("--set,-s", opts->sets, "Override one profile parameter, KEY=NUMBER (repeatable)");
+  balance->callback([opts] { runBalance(*opts); });
 
   CLI::App* params = rig_cmd->add_subcommand("params", "List a rig profile's parameters, values and citations");
   addProfileOptions(params, opts);

@@ -1,12 +1,17 @@
 #include "render/camera_motion.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <complex>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "render/renderer.h"
 #include "render/scene.h"
+#include "render/shot.h"
+#include "rig/io/frame_range.h"
 #include "rig/motion/clip_factory.h"
 #include "rig/rig_profile.h"
 
@@ -104,6 +109,65 @@ TEST_F(MotionFixture, OrbitGoesOnceAroundOverItsFrames) {
   EXPECT_NEAR(quarter.position.x, 500.0, 1e-6);
   EXPECT_NEAR(quarter.position.z, 0.0, 1e-6);
   EXPECT_NEAR(quarter.position.y, 150.0, 1e-9);
+}
+
+
+// A horse decelerating from 9 m/s to a halt (the stop): along the travel the close camera follows the
+// rider's seat exactly instead of overshooting it (the old filter, damping the travel too, ran 140 cm
+// past her seat and came back); only its height is damped.
+TEST(FollowCamera, StaysOverTheSeatWhileTheHorseStops) {
+  const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/stop.json");
+  const rig::RigProfile profile = resolveProfile(scene);
+  const auto clip = rig::makeClip(scene.clip);
+  CameraSpec spec;
+  spec.follow_target = "rider";
+  spec.damping_s = 0.3;
+  spec.position = {0.0, 0.0, 500.0};
+  spec.target = {0.0, 0.0, 0.0};
+  double worst = 0.0, travel_lo = 1e9, travel_hi = -1e9;
+  for (int f : rig::parseFrameList(scene.frames, "frames")) {
+    const double t = frameTime(scene, f);
+    const double seat = followPoint(spec, *clip, profile, t).x;
+    worst = std::max(worst, std::abs(cameraAtFrame(spec, scene, *clip, profile, f).target.x - seat));
+    const double travel = clip->sample(t).travel_cm;
+    travel_lo = std::min(travel_lo, travel), travel_hi = std::max(travel_hi, travel);
+  }
+  EXPECT_GT(travel_hi - travel_lo, 1000.0);  // the horse does travel, and stops
+  EXPECT_LT(worst, 1e-6) << "cm between the camera's aim and the rider's seat along the travel";
+}
+
+// Every scene's close view (the movie set's stop_close, trot_close and walk_close among them), rendered
+// small: the rider's matte centroid (the pixels whose object id is the rider) stays within 5% of the
+// frame's width of where the first frame puts it, on every other frame of the clip.
+TEST(FollowCamera, RiderHoldsHerPlaceInEveryCloseView) {
+  for (const char* name : {"stop", "trot", "walk", "canter", "gallop", "jump", "rear", "buck"}) {
+    SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
+    scene.width = 160;
+    scene.height = 90;
+    scene.samples = 1;
+    const auto close = std::find_if(scene.cameras.begin(), scene.cameras.end(),
+                                    [](const CameraSpec& c) { return c.view == "close"; });
+    ASSERT_NE(close, scene.cameras.end()) << name;
+    Shot shot(scene, resolveProfile(scene), *close, 0);
+    const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+    double first = 0.0, worst = 0.0;
+    int worst_frame = 0;
+    for (std::size_t i = 0; i < frames.size(); i += 2) {
+      const Image image = shot.renderFrame(frames[i]);
+      double sum = 0.0;
+      int count = 0;
+      for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+          if (image.object_id[std::size_t(y) * image.width + x] == uint32_t(ObjectId::Rider)) sum += x + 0.5, ++count;
+      ASSERT_GT(count, 200) << name << " frame " << frames[i] << ": the rider is in the close view";
+      const double centroid = sum / count / image.width;  // fraction of the width
+      if (i == 0) first = centroid;
+      if (std::abs(centroid - first) > worst) worst = std::abs(centroid - first), worst_frame = frames[i];
+    }
+    std::printf("%-7s close: the rider's matte centroid moves at most %.1f%% of the width (frame %d)\n", name,
+                100.0 * worst, worst_frame);
+    EXPECT_LE(worst, 0.05) << name << " frame " << worst_frame;
+  }
 }
 
 }  // namespace

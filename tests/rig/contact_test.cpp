@@ -37,8 +37,8 @@ constexpr float kSeatHalfWidthCm = 8.0f;
 constexpr float kSeatMaxRiseCm = 22.0f;     // pelvis joint rests 10 cm above the seat centre
 constexpr float kFootOnTreadCm = 1.0f;
 // Every clip: knees and calves on the flaps, seat and coat skirt against the cantle. Measured deepest
-// (docs/characters.md, "Contact"): walk 2.7, trot 2.4, canter 2.6, gallop 2.3, stop 2.3, jump 3.5,
-// rear 3.6, buck 3.2 cm.
+// (docs/characters.md, "Contact"): walk 2.7, trot 2.4, canter 2.6, gallop 2.3, stop 2.3, jump 3.9,
+// rear 3.0, buck 3.2 cm.
 constexpr float kMaxDepthCm = 4.0f;
 
 // The closest point to p on triangle abc, as barycentric weights of a, b, c (Ericson, Real-Time
@@ -252,7 +252,7 @@ ClipContact measure(const std::string& scene_name) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const int frame = frames[i];
     const BakedFrame b = bakeFrame(*clip, profile, frame, render::frameTime(scene, frame));
-    const MountedPose pose = poseMounted(horse, rider, b.horse, b.rider, profile.rider_unit_cm);
+    const MountedPose pose = poseMounted(horse, rider, b.horse, b.rider, profile);
     // Seat, in the saddle's frame (the rider is built in saddle space, so rest = rest_pelvis).
     const glm::vec3 pelvis = glm::vec3(glm::inverse(pose.horse[horse.role("saddle")]) * pose.rider[rider.role("pelvis")][3]);
     const glm::vec3 d = pelvis - glm::vec3(rest_pelvis.x, 0.0f, rest_pelvis.z);

@@ -389,7 +389,7 @@ TEST(PoseMounted, ReinsEndInTheRidersHands) {
   RiderChannels ch;
   ch[RiderChannel::lWristTx] = 1.5;
   ch[RiderChannel::rWristTy] = -1.0;
-  const MountedPose p = poseMounted(h, r, f, ch, 10.0);
+  const MountedPose p = poseMounted(h, r, f, ch, RigProfile::thesis());
   for (const char* side : {"l", "r"}) {
     const glm::vec3 rein = glm::vec3(p.horse[h.role(std::string(side) + "Rein")][3]);
     const glm::vec3 hand = glm::vec3(p.rider[r.role(std::string(side) + "Hand")][3]);

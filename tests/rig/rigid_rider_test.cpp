@@ -25,7 +25,7 @@ const Character& rider() { return defaultRider(); }
 // The rider's pelvis in the posed saddle's frame.
 glm::mat4 pelvisInSaddle(const ProceduralGait& clip, const RigProfile& profile, double seconds) {
   const BakedFrame b = bakeFrame(clip, profile, 1, seconds);
-  const MountedPose pose = poseMounted(horse(), rider(), b.horse, b.rider, profile.rider_unit_cm);
+  const MountedPose pose = poseMounted(horse(), rider(), b.horse, b.rider, profile);
   return glm::inverse(pose.horse[size_t(horse().role("saddle"))]) * pose.rider[size_t(rider().role("pelvis"))];
 }
 
@@ -68,14 +68,14 @@ TEST(RigidRider, PelvisFollowsTheSaddleExactlyWhileTheThesisRidersDoesNot) {
   float rigid_motion = 0, thesis_motion = 0, saddle_motion = 0;
   const BakedFrame b0 = bakeFrame(clip, rigid, 1, 0.0);
   const glm::vec3 saddle0 =
-      glm::vec3(poseMounted(horse(), rider(), b0.horse, b0.rider, rigid.rider_unit_cm).horse[size_t(horse().role("saddle"))][3]);
+      glm::vec3(poseMounted(horse(), rider(), b0.horse, b0.rider, rigid).horse[size_t(horse().role("saddle"))][3]);
   for (int f = 1; f <= 12; ++f) {
     const double t = f / 24.0;
     rigid_motion = std::max(rigid_motion, maxDifference(pelvisInSaddle(clip, rigid, t), rigid0));
     thesis_motion = std::max(thesis_motion, maxDifference(pelvisInSaddle(clip, thesis, t), thesis0));
     const BakedFrame b = bakeFrame(clip, rigid, 1, t);
     const glm::vec3 saddle = glm::vec3(
-        poseMounted(horse(), rider(), b.horse, b.rider, rigid.rider_unit_cm).horse[size_t(horse().role("saddle"))][3]);
+        poseMounted(horse(), rider(), b.horse, b.rider, rigid).horse[size_t(horse().role("saddle"))][3]);
     saddle_motion = std::max(saddle_motion, std::abs(saddle.y - saddle0.y));
   }
   EXPECT_GT(saddle_motion, 2.0f) << "the saddle should move over a gallop stride";

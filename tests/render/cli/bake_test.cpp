@@ -155,7 +155,7 @@ TEST(BakeGltf, RoundTripsTheJointTransforms) {
   for (std::size_t k = 0; k < list.size(); k += 3) {
     const rig::BakedFrame b = rig::bakeFrame(*clip, profile, list[k], render::frameTime(scene, list[k]));
     EXPECT_FLOAT_EQ(times[k], static_cast<float>(b.seconds));
-    const rig::MountedPose pose = rig::poseMounted(horse, rider, b.horse, b.rider, profile.rider_unit_cm);
+    const rig::MountedPose pose = rig::poseMounted(horse, rider, b.horse, b.rider, profile);
     for (int which = 0; which < 2; ++which) {
       const rig::Character& c = which == 0 ? horse : rider;
       const std::vector<glm::mat4> local = rig::worldToLocal(c.skeleton, which == 0 ? pose.horse : pose.rider);

@@ -1,4 +1,4 @@
-// stirrup rig eval / rig params, end to end through the program.
+// stirrup rig eval / rig params / rig balance, end to end through the program.
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -153,6 +153,34 @@ TEST_F(RigEval, BadInputIsOneLineAndLeavesNoOutput) {
               std::string(STIRRUP_SOURCE_DIR) +
                   "/scenes/profiles/cowboy.json: no such rig profile (expected one of english, novice, thesis)",
               out);
+}
+
+// rig balance: one row a frame of the rear (127), the stage's terms and her measured lean; at the top
+// of the rear she leans toward the neck, and with balance 0 her lean is the thesis pose's.
+TEST_F(RigEval, BalanceWritesTheStageOnEveryFrame) {
+  const fs::path out = dir_ / "rear.csv";
+  const std::string scene = quote(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
+  CommandResult r = runStirrup("rig balance " + scene + " -o " + quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string header;
+  std::vector<std::vector<double>> rows = readRows(out, &header);
+  EXPECT_EQ(header,
+            "frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,turn_deg,"
+            "seat_lift_cm,limited");
+  ASSERT_EQ(rows.size(), 127u);
+  const std::vector<double>& top = rows[57];  // frame 58: the back 55° up
+  EXPECT_EQ(top[0], 58);
+  EXPECT_GT(top[1], 50);
+  EXPECT_LT(top[2], -15) << "the thesis pose: behind the vertical";
+  EXPECT_GT(top[6], 5) << "balanced: toward the neck";
+  EXPECT_NEAR(top[6], top[2] + top[7], 0.01) << "her lean is the thesis pose's turned by the stage";
+  r = runStirrup("rig balance " + scene + " --set balance=0 -o " + quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  rows = readRows(out, &header);
+  for (const auto& row : rows) EXPECT_NEAR(row[6], row[2], 0.01) << "frame " << row[0];
+  fs::remove(out);
+  expectFails(runStirrup("rig balance " + scene + " --set balance=2 -o " + quote(out.string())),
+              "--set: balance: expected a number from 0 to 1 (docs/rider-rig.md, valid ranges), got 2", out);
 }
 
 TEST(RigEvalHelp, DocumentsTheCsvFormat) {

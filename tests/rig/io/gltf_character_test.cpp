@@ -101,8 +101,10 @@ TEST(GltfCharacter, UserCharactersThroughMappingFilesPoseLikeTheDefaults) {
   RiderChannels r;
   r[RiderChannel::lowerBackRz] = 6.0;
   r[RiderChannel::cogTy] = 1.0;
-  const MountedPose a = poseMounted(horse, rider, f, r, 2.54);
-  const MountedPose b = poseMounted(defaultHorse(), defaultRider(), f, r, 2.54);
+  RigProfile profile = RigProfile::thesis();
+  profile.rider_unit_cm = 2.54;
+  const MountedPose a = poseMounted(horse, rider, f, r, profile);
+  const MountedPose b = poseMounted(defaultHorse(), defaultRider(), f, r, profile);
   std::vector<glm::vec3> pa, na, pb, nb;
   skinMesh(horse.mesh, horse.skeleton, a.horse, pa, na);
   skinMesh(defaultHorse().mesh, defaultHorse().skeleton, b.horse, pb, nb);

@@ -152,7 +152,7 @@ TEST(GltfRiderMotion, RoundTripsOntoTheUsersRider) {
   motion.name = "trot";
   for (int frame = 1; frame <= 24; frame += 5) {
     const BakedFrame b = bakeFrame(gait, profile, frame, (frame - 1) / 24.0);
-    const MountedPose p = poseMounted(test::defaultHorse(), rider, b.horse, b.rider, profile.rider_unit_cm);
+    const MountedPose p = poseMounted(test::defaultHorse(), rider, b.horse, b.rider, profile);
     motion.seconds.push_back(static_cast<float>(b.seconds));
     motion.world.push_back(p.rider);
   }

@@ -1,0 +1,409 @@
+// The balance stage (rig/balance.h): the stage alone, then the rider as the shot poses her on every
+// movement, measured in world space from posed joints, one test for each sentence of Kuhnel's
+// sections 5 and 9 that says which way the rider leans. Lean: the line from her pelvis joint to her
+// neck joint, degrees from the vertical, + toward the horse's head.
+#include "rig/balance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "default_characters.h"
+#include "render/scene.h"
+#include "rig/bake.h"
+#include "rig/io/frame_range.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/pose.h"
+#include "rig/skin.h"
+
+namespace stirrup::rig {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+glm::mat4 pitched(double nose_up_deg) {
+  return glm::rotate(glm::mat4(1.0f), glm::radians(float(nose_up_deg)), glm::vec3(0, 0, 1));
+}
+
+// A seated rider on a saddle pitched nose-up by `pitch`: seat 10 cm above the saddle, stirrups 84 cm
+// below the seat, the trunk as the saddle carries it (upright in the saddle).
+BalanceInput seated(double pitch) {
+  BalanceInput in;
+  in.saddle = pitched(pitch);
+  in.seat = glm::vec3(in.saddle * glm::vec4(-3, 10, 0, 1));
+  in.stirrups = glm::vec3(in.saddle * glm::vec4(0, -74, 0, 1));
+  in.trunk = glm::vec3(in.saddle * glm::vec4(0, 47, 0, 0));
+  in.com_height_cm = 26;
+  return in;
+}
+
+TEST(BalanceTrunk, LevelAndSteadyItChangesNothing) {
+  const BalanceResult r = balanceTrunk(seated(0), RigProfile::Balance{});
+  EXPECT_NEAR(r.saddle_pitch_deg, 0.0, 1e-9);
+  EXPECT_NEAR(r.support_lean_deg, 0.0, 1e-6);
+  EXPECT_EQ(r.inertia_lean_deg, 0.0);
+  EXPECT_NEAR(r.turn_deg, 0.0, 1e-6);
+  EXPECT_FALSE(r.limited);
+}
+
+TEST(BalanceTrunk, AmountZeroKeepsTheChannelsPose) {
+  RigProfile::Balance p;
+  p.amount = 0;
+  for (double pitch : {-30.0, 0.0, 55.0}) {
+    BalanceInput in = seated(pitch);
+    in.fold_scale = 3;
+    in.accel_cm_s2 = -500;
+    const BalanceResult r = balanceTrunk(in, p);
+    EXPECT_EQ(r.turn_deg, 0.0) << pitch;
+    EXPECT_EQ(r.lean_deg, r.pose_lean_deg) << pitch;
+  }
+}
+
+// The stirrups swing ahead of her seat as the forehand rises, behind it as the croup rises: her base
+// of support moves, and so does the lean that keeps her over it.
+TEST(BalanceTrunk, SupportLeanFollowsTheStirrups) {
+  const RigProfile::Balance p;
+  EXPECT_GT(balanceTrunk(seated(20), p).support_lean_deg, 5.0);
+  EXPECT_LT(balanceTrunk(seated(-20), p).support_lean_deg, -5.0);
+  // Nose-up 20°: the base is stirrup_share of the way to the stirrups, which swing 84 sin 20° ahead.
+  const double ahead = p.stirrup_share * (std::sin(20 * kPi / 180) * 84.0 + (std::cos(20 * kPi / 180) - 1.0) * 3.0);
+  EXPECT_NEAR(balanceTrunk(seated(20), p).support_lean_deg,
+              (std::atan2(ahead + p.stirrup_share * 3.0, 26.0) - std::atan2(p.stirrup_share * 3.0, 26.0)) * 180 / kPi, 0.5);
+}
+
+TEST(BalanceTrunk, BrakingLeansHerBack) {
+  const RigProfile::Balance p;
+  BalanceInput in = seated(0);
+  in.accel_cm_s2 = -560;  // the stop: 9 m/s to a halt in 1.6 s
+  const BalanceResult r = balanceTrunk(in, p);
+  EXPECT_NEAR(r.inertia_lean_deg, std::atan2(-560 * p.inertia_share, 980.665) * 180 / kPi, 1e-9);
+  EXPECT_LT(r.lean_deg, -5.0);
+}
+
+TEST(BalanceTrunk, TheBandSaturatesSoftlyAndTheBodyLimitsHold) {
+  RigProfile::Balance p;
+  BalanceInput in = seated(0);
+  in.trunk = glm::vec3(std::sin(0.5), std::cos(0.5), 0.0f);  // 28.6° forward
+  const BalanceResult small = balanceTrunk(in, p);
+  EXPECT_NEAR(small.lean_deg, p.band_forward_deg * std::tanh(small.channel_lean_deg / p.band_forward_deg), 1e-6);
+  in.fold_scale = 6;  // the channels asked for six times the fold the posing limit let through
+  const BalanceResult big = balanceTrunk(in, p);
+  EXPECT_LT(big.lean_deg, p.band_forward_deg);
+  EXPECT_GT(big.lean_deg, 0.95 * p.band_forward_deg);
+  // On a 55° rear the fold relative to the saddle stops at max_fold_deg (the channels fold her 30°
+  // in the saddle and asked for four times that).
+  in = seated(55);
+  in.trunk = glm::vec3(in.saddle * glm::vec4(std::sin(30 * kPi / 180), std::cos(30 * kPi / 180), 0, 0));
+  in.fold_scale = 4;
+  const BalanceResult rear = balanceTrunk(in, p);
+  EXPECT_TRUE(rear.limited);
+  EXPECT_NEAR(rear.lean_deg - rear.saddle_pitch_deg, p.max_fold_deg, 1e-4);
+  EXPECT_NEAR(rear.seat_lift_cm, p.seat_rise_cm, 1e-9);  // at the full fold she stands in her stirrups
+  in.seat_rise_cm = 4;  // the channels lift her part of the way (Eq 7)
+  EXPECT_NEAR(balanceTrunk(in, p).seat_lift_cm, p.seat_rise_cm - 4, 1e-9);
+  // Far back, max_extension_deg behind the saddle's upright.
+  in = seated(-40);
+  in.trunk = glm::vec3(in.saddle * glm::vec4(-std::sin(1.0f), std::cos(1.0f), 0, 0));
+  in.fold_scale = 2;
+  const BalanceResult back = balanceTrunk(in, p);
+  EXPECT_TRUE(back.limited);
+  EXPECT_NEAR(back.lean_deg - back.saddle_pitch_deg, -p.max_extension_deg, 1e-4);
+  EXPECT_EQ(back.seat_lift_cm, 0.0);
+}
+
+// Plagenhoef et al.'s segment masses on the default rider's skeleton: the centre of mass of her head,
+// arms and trunk sits a little above the middle of her trunk.
+TEST(BalanceTrunk, TrunkCentreOfMassOfTheDefaultRider) {
+  const Character& r = test::defaultRider();
+  const double pelvis = r.skeleton.restPosition(r.role("pelvis")).y;
+  const double shoulders = r.skeleton.restPosition(r.role("lShoulder")).y;
+  const double h = trunkComHeight(r);
+  EXPECT_GT(h, 0.5 * (shoulders - pelvis));
+  EXPECT_LT(h, 0.75 * (shoulders - pelvis));
+}
+
+// ---- The rider on the movements, as the shot poses her ----
+
+struct Sample {
+  int frame = 0;
+  double lean = 0;        // her trunk's world lean, + toward the horse's head
+  double back_up = 0;     // the horse's back (the saddle's forward axis) above level, degrees
+  double seat_rise = 0;   // her pelvis joint above its rest place, in the saddle's frame, cm
+  double accel = 0;       // the horse's travel acceleration, cm/s²
+  double hoof[4] = {};    // lf, rf, lb, rb heights, cm
+  BalanceResult balance;
+};
+
+std::vector<Sample> ride(const std::string& scene_name, const RigProfile* profile_override = nullptr) {
+  const Character& horse = test::defaultHorse();
+  const Character& rider = test::defaultRider();
+  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
+  const RigProfile profile = profile_override ? *profile_override : render::resolveProfile(scene);
+  const auto clip = makeClip(scene.clip);
+  const glm::vec3 rest_pelvis = rider.skeleton.restPosition(rider.role("pelvis"));
+  std::vector<Sample> out;
+  for (int f : parseFrameList(scene.frames, "frames")) {
+    const BakedFrame b = bakeFrame(*clip, profile, f, render::frameTime(scene, f));
+    const MountedPose pose = poseMounted(horse, rider, b.horse, b.rider, profile);
+    const glm::mat4& saddle = pose.horse[horse.role("saddle")];
+    const glm::vec3 pelvis(pose.rider[rider.role("pelvis")][3]), neck(pose.rider[rider.role("neck")][3]);
+    Sample s;
+    s.frame = f;
+    const glm::vec3 heading = saddleHeading(saddle);
+    s.lean = leanDegrees(neck - pelvis, heading);
+    const glm::vec3 x(saddle[0]);
+    s.back_up = std::atan2(double(x.y), double(glm::dot(x, heading))) * 180 / kPi;
+    s.seat_rise = (glm::inverse(saddle) * glm::vec4(pelvis, 1.0f)).y - rest_pelvis.y;
+    s.accel = b.horse.travel_accel_cm_s2;
+    using H = HorseChannel;
+    const H hooves[4] = {H::lfHoofTy, H::rfHoofTy, H::lbHoofTy, H::rbHoofTy};
+    for (int k = 0; k < 4; ++k) s.hoof[k] = b.horse.controls[hooves[k]];
+    s.balance = pose.balance;
+    out.push_back(s);
+  }
+  return out;
+}
+
+// Kuhnel 5.4, 9.5: "the rider leaned forward closer to the horse's neck, raising her seat from the
+// saddle"; "each time the horse lifts his front legs the rider compensates by leaning forward and
+// lifting his seat". While the back is at least 40° up: at least 5° forward of the vertical, her seat
+// at least 5 cm above its standing height.
+TEST(RiderLeans, ForwardWithHerSeatRaisedInTheRear) {
+  int high = 0;
+  double least = 90, lowest_seat = 100;
+  for (const Sample& s : ride("rear")) {
+    if (s.back_up < 40) continue;
+    ++high;
+    least = std::min(least, s.lean);
+    lowest_seat = std::min(lowest_seat, s.seat_rise);
+    EXPECT_GE(s.lean, 5.0) << "frame " << s.frame << ", back " << s.back_up << "° up";
+    EXPECT_GE(s.seat_rise, 5.0) << "frame " << s.frame;
+  }
+  std::printf("rear: %d frames with the back 40° up or more; lean at least %.1f° forward, seat at least %.1f cm up\n",
+              high, least, lowest_seat);
+  EXPECT_GE(high, 20);
+}
+
+// The chest stops short of the horse's neck: on every frame of the rear, no vertex of her trunk, neck,
+// head or shoulders is inside the skinned horse's neck or head (signed by the nearest horse vertex's
+// normal), and at the top of the rear she comes within a hand's width of it.
+TEST(RiderLeans, ChestNeverInsideTheNeckInTheRear) {
+  const Character& horse = test::defaultHorse();
+  const Character& rider = test::defaultRider();
+  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
+  const RigProfile profile = render::resolveProfile(scene);
+  const auto clip = makeClip(scene.clip);
+  auto dominant = [](const SkinnedMesh& m, std::size_t v) {
+    int k = 0;
+    for (int q = 1; q < 4; ++q)
+      if (m.weights[v][q] > m.weights[v][k]) k = q;
+    return int(m.joints[v][k]);
+  };
+  std::vector<bool> upper(rider.mesh.vertexCount()), neck(horse.mesh.vertexCount());
+  for (std::size_t v = 0; v < upper.size(); ++v) {
+    const std::string& name = rider.skeleton.joints[dominant(rider.mesh, v)].name;
+    const int j = dominant(rider.mesh, v);
+    upper[v] = name.rfind("spine", 0) == 0 || j == rider.role("neck") || j == rider.role("head") ||
+               j == rider.role("lShoulder") || j == rider.role("rShoulder") || j == rider.role("chest") ||
+               j == rider.role("upperChest") || j == rider.role("waist");
+  }
+  for (std::size_t v = 0; v < neck.size(); ++v) {
+    const int j = dominant(horse.mesh, v);
+    neck[v] = j == horse.role("neck1") || j == horse.role("neck2") || j == horse.role("head");
+  }
+  std::vector<glm::vec3> hp, hn, rp, rn;
+  double closest = 1e9;
+  for (int f : parseFrameList(scene.frames, "frames")) {
+    if (f % 2) continue;
+    const BakedFrame b = bakeFrame(*clip, profile, f, render::frameTime(scene, f));
+    const MountedPose pose = poseMounted(horse, rider, b.horse, b.rider, profile);
+    skinMesh(horse.mesh, horse.skeleton, pose.horse, hp, hn);
+    skinMesh(rider.mesh, rider.skeleton, pose.rider, rp, rn);
+    double frame_closest = 1e9;
+    for (std::size_t v = 0; v < rp.size(); ++v) {
+      if (!upper[v]) continue;
+      float best = 1e30f;
+      std::size_t at = 0;
+      for (std::size_t u = 0; u < hp.size(); ++u) {
+        if (!neck[u]) continue;
+        const float d = glm::length(rp[v] - hp[u]);
+        if (d < best) best = d, at = u;
+      }
+      const double signed_distance = glm::dot(rp[v] - hp[at], hn[at]) >= 0.0f ? best : -best;
+      frame_closest = std::min(frame_closest, signed_distance);
+    }
+    EXPECT_GT(frame_closest, 0.0) << "frame " << f << ": her chest is inside the horse's neck";
+    closest = std::min(closest, frame_closest);
+  }
+  std::printf("rear: her chest comes within %.1f cm of the horse's neck\n", closest);
+  EXPECT_LT(closest, 12.0);  // she does lean toward the neck
+}
+
+// Kuhnel 5.6: "As the horse lifts his forelegs and rotates its back upwards, the rider leans forward.
+// As the horse lifts his rear legs and rotates its back downwards the rider leans backwards."
+TEST(RiderLeans, BackInTheBucksKickForwardAsTheForehandRises) {
+  int kicks = 0, rises = 0;
+  for (const Sample& s : ride("buck")) {
+    const bool kick = std::min(s.hoof[2], s.hoof[3]) >= 20 && s.back_up <= -15;
+    const bool rise = 0.5 * (s.hoof[0] + s.hoof[1]) >= 20 && s.back_up >= 5;
+    if (kick) {
+      ++kicks;
+      EXPECT_LE(s.lean, -5.0) << "frame " << s.frame << " (kick, back " << s.back_up << "°)";
+    }
+    if (rise) {
+      ++rises;
+      EXPECT_GE(s.lean, 5.0) << "frame " << s.frame << " (forehand rising, back " << s.back_up << "°)";
+    }
+  }
+  EXPECT_GE(kicks, 6);
+  EXPECT_GE(rises, 6);
+}
+
+// Kuhnel 5.5: "the rider leans back to compensate for the backward shift in center of gravity" as
+// the horse slides: while the horse brakes (at least 3 m/s²), at least 5° back.
+TEST(RiderLeans, BackInTheSlidingStop) {
+  int sliding = 0;
+  double most = 0;
+  for (const Sample& s : ride("stop")) {
+    if (s.accel > -300) continue;
+    ++sliding;
+    most = std::min(most, s.lean);
+    EXPECT_LE(s.lean, -5.0) << "frame " << s.frame;
+  }
+  std::printf("stop: %d frames braking, leaning back up to %.1f°\n", sliding, -most);
+  EXPECT_GE(sliding, 24);
+}
+
+// Kuhnel 5.1: "As the horse's fore legs lift up for the jump the rider leans forward"; 9.2: "the
+// rider correctly leans forward in the jump as the horse rises". At take-off (the last frames a hind
+// hoof is down before the flight): at least 5° forward, and forward over the fence.
+TEST(RiderLeans, ForwardAtTheJumpsTakeOff) {
+  const std::vector<Sample> jump = ride("jump");
+  const auto apex = std::max_element(jump.begin(), jump.end(), [](const Sample& a, const Sample& b) {
+    return std::min(a.hoof[2], a.hoof[3]) < std::min(b.hoof[2], b.hoof[3]);
+  });
+  ASSERT_GT(std::min(apex->hoof[2], apex->hoof[3]), 60.0) << "the jump's flight";
+  auto takeoff = apex;
+  while (takeoff != jump.begin() && std::min(takeoff->hoof[2], takeoff->hoof[3]) > 1.0) --takeoff;
+  ASSERT_NE(takeoff, jump.begin());
+  for (auto s = takeoff - 2; s <= apex; ++s) EXPECT_GE(s->lean, 5.0) << "frame " << s->frame;
+  std::printf("jump: take-off at frame %d, leaning %.1f° forward\n", takeoff->frame, takeoff->lean);
+}
+
+// Kuhnel 5.2 (gallop): "The rider leans back as the horse's hind legs thrust its body into the air
+// and leans forward as the hind legs start to land. The rider makes this change from leaning slightly
+// back to forward when the horse is in mid air." Each stride: back at least 5° as the body goes into
+// the air (the suspension's first frame), turning forward through it, and at least 5° forward while
+// the hind legs are down.
+TEST(RiderLeans, GallopBackIntoTheAirForwardAsTheHindLegsLand) {
+  const std::vector<Sample> gallop = ride("gallop");
+  auto airborne = [](const Sample& s) { return *std::min_element(s.hoof, s.hoof + 4) > 0.5; };
+  int strides = 0;
+  for (std::size_t i = 1; i + 1 < gallop.size(); ++i) {
+    if (!airborne(gallop[i]) || airborne(gallop[i - 1])) continue;
+    std::size_t end = i;
+    while (end + 1 < gallop.size() && airborne(gallop[end + 1])) ++end;
+    if (end + 6 >= gallop.size()) break;
+    ++strides;
+    EXPECT_LE(gallop[i].lean, -5.0) << "frame " << gallop[i].frame << ": into the air";
+    EXPECT_GT(gallop[end].lean, gallop[i].lean) << "frame " << gallop[end].frame << ": turning forward in the air";
+    // From the landing of the first hind hoof until both hind hooves are up again.
+    double forward = -90;
+    for (std::size_t k = end + 1; k < gallop.size() && std::min(gallop[k].hoof[2], gallop[k].hoof[3]) < 1.0; ++k)
+      forward = std::max(forward, gallop[k].lean);
+    EXPECT_GE(forward, 5.0) << "after frame " << gallop[end].frame << ": as the hind legs land";
+  }
+  EXPECT_GE(strides, 3);
+}
+
+// Kuhnel 5.3 (walk): "the rider will lean forward as one of the horse's front legs is lifted and set
+// on the ground in front of him": over each fore swing her lean goes forward, by at least 2° each
+// time and 3° on average.
+TEST(RiderLeans, WalkForwardAsAFrontLegLifts) {
+  const std::vector<Sample> walk = ride("walk");
+  int swings = 0;
+  double sum = 0;
+  for (int leg = 0; leg < 2; ++leg) {
+    for (std::size_t i = 1; i < walk.size(); ++i) {
+      if (!(walk[i].hoof[leg] > 0.5 && walk[i - 1].hoof[leg] <= 0.5)) continue;
+      std::size_t down = i;
+      while (down < walk.size() && walk[down].hoof[leg] > 0.5) ++down;
+      if (down == walk.size()) break;
+      ++swings;
+      sum += walk[down].lean - walk[i - 1].lean;
+      EXPECT_GE(walk[down].lean - walk[i - 1].lean, 2.0) << "fore swing from frame " << walk[i - 1].frame;
+    }
+  }
+  EXPECT_GE(swings, 4);
+  std::printf("walk: %d fore swings, her lean goes forward %.1f° on average over each\n", swings, sum / std::max(swings, 1));
+  EXPECT_GE(sum / std::max(swings, 1), 3.0);
+}
+
+// The stage keeps the steady gaits as the channels make them: at a trot it turns her trunk by at most
+// 2°, and on every clip the balance 0 pose is the thesis pose exactly (poseRider without the stage).
+TEST(RiderLeans, BalanceZeroIsTheThesisPose) {
+  for (const Sample& s : ride("trot")) EXPECT_LT(std::abs(s.balance.turn_deg), 2.0) << "frame " << s.frame;
+  const Character& horse = test::defaultHorse();
+  const Character& rider = test::defaultRider();
+  RigProfile off = RigProfile::thesis();
+  off.balance.amount = 0;
+  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
+  const auto clip = makeClip(scene.clip);
+  for (int f : {1, 45, 80}) {
+    const BakedFrame b = bakeFrame(*clip, off, f, render::frameTime(scene, f));
+    const MountedPose balanced_off = poseMounted(horse, rider, b.horse, b.rider, off);
+    const RiderChannels limited = limitRiderChannels(b.rider, RiderPoseParams{}, off.rider_unit_cm);
+    std::vector<glm::mat4> h = poseHorse(horse, b.horse);
+    placeStirrups(horse, h, limited, off.rider_unit_cm);
+    const std::vector<glm::mat4> thesis = poseRider(rider, horse, h, limited, off.rider_unit_cm);
+    for (std::size_t j = 0; j < thesis.size(); ++j) EXPECT_EQ(balanced_off.rider[j], thesis[j]) << "frame " << f << " joint " << j;
+  }
+}
+
+// Profiles differ where riders differ. An experienced (english) rider stays closer to the vertical:
+// her widest lean over the buck and the jump is smaller than the thesis rider's. A novice lags the
+// horse: her lean follows its pitch over the buck (the slope of a least-squares line) less than half
+// as much; and she overshoots: at the jump she folds further forward.
+TEST(RiderLeans, ProfilesDifferInHowFarTheyLean) {
+  auto under = [&](const char* scene_name, const char* profile_name) {
+    render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
+    scene.profile = profile_name;
+    const RigProfile p = render::resolveProfile(scene);
+    return ride(scene_name, &p);
+  };
+  auto widest = [](const std::vector<Sample>& v) {
+    double w = 0;
+    for (const Sample& s : v) w = std::max(w, std::abs(s.lean));
+    return w;
+  };
+  auto forward = [](const std::vector<Sample>& v) {
+    double w = -90;
+    for (const Sample& s : v) w = std::max(w, s.lean);
+    return w;
+  };
+  auto slope = [](const std::vector<Sample>& v) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (const Sample& s : v) sx += s.back_up, sy += s.lean, sxx += s.back_up * s.back_up, sxy += s.back_up * s.lean;
+    const double n = double(v.size());
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  };
+  const auto buck_thesis = under("buck", "thesis"), buck_english = under("buck", "english"), buck_novice = under("buck", "novice");
+  const auto jump_thesis = under("jump", "thesis"), jump_english = under("jump", "english"), jump_novice = under("jump", "novice");
+  std::printf("buck, widest lean: english %.1f°, thesis %.1f°; slope on the pitch: thesis %.2f, novice %.2f\n",
+              widest(buck_english), widest(buck_thesis), slope(buck_thesis), slope(buck_novice));
+  std::printf("jump, furthest forward: english %.1f°, thesis %.1f°, novice %.1f°\n", forward(jump_english),
+              forward(jump_thesis), forward(jump_novice));
+  EXPECT_LT(widest(buck_english), widest(buck_thesis) - 1.0);
+  EXPECT_LT(widest(jump_english), widest(jump_thesis) - 5.0);
+  EXPECT_GT(slope(buck_thesis), 0.3);
+  EXPECT_LT(slope(buck_novice), 0.5 * slope(buck_thesis));
+  EXPECT_GT(forward(jump_novice), forward(jump_thesis) + 3.0);
+}
+
+}  // namespace
+}  // namespace stirrup::rig
