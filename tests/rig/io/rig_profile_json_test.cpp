@@ -224,7 +224,9 @@ TEST(RigProfileRanges, HoldEveryShippedAndTestedValue) {
     const double thesis = param.get(RigProfile::thesis());
     EXPECT_TRUE(param.accepts(thesis)) << param.key << " = " << thesis;
     // A share or a blend (balance 1, the default) has no 10% headroom above 1.
-    if (param.kind != RangeKind::Fraction) EXPECT_TRUE(param.accepts(thesis * 1.1)) << param.key;
+    if (param.kind != RangeKind::Fraction) {
+      EXPECT_TRUE(param.accepts(thesis * 1.1)) << param.key;
+    }
     EXPECT_TRUE(param.accepts(thesis * 0.9)) << param.key;
     EXPECT_LT(param.min, param.max) << param.key;
     if (param.kind == RangeKind::Weight) {

@@ -1,0 +1,87 @@
+#include "rig/motion/terrain.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+
+#include "rig/error.h"
+#include "rig/motion/noise.h"
+
+namespace stirrup::rig {
+namespace {
+
+double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
+double fadeDerivative(double t) { return 30.0 * t * t * (t * (t - 2.0) + 1.0); }
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// One octave of 2-D value noise in [-1, 1] with its gradient (per lattice unit).
+double noise2(std::uint32_t seed, double x, double z, double& gx, double& gz) {
+  const double ix = std::floor(x), iz = std::floor(z);
+  const double fx = x - ix, fz = z - iz;
+  const auto i = static_cast<std::int64_t>(ix), k = static_cast<std::int64_t>(iz);
+  auto at = [&](std::int64_t a, std::int64_t b) { return hashSigned(seed, a, b); };
+  const double v00 = at(i, k), v10 = at(i + 1, k), v01 = at(i, k + 1), v11 = at(i + 1, k + 1);
+  const double u = fade(fx), w = fade(fz), du = fadeDerivative(fx), dw = fadeDerivative(fz);
+  const double a = v00 + (v10 - v00) * u, b = v01 + (v11 - v01) * u;
+  gx = du * ((v10 - v00) + ((v11 - v01) - (v10 - v00)) * w);
+  gz = dw * (b - a);
+  return a + (b - a) * w;
+}
+
+}  // namespace
+
+Terrain Terrain::hills(const HillsParams& p, const std::string& source) {
+  if (!(std::isfinite(p.amplitude_cm) && p.amplitude_cm >= 0.0 && p.amplitude_cm <= 5000.0))
+    throw InputError(source + ": terrain.amplitude_cm: expected a height from 0 to 5000 cm, got " + number(p.amplitude_cm));
+  if (!(std::isfinite(p.wavelength_cm) && p.wavelength_cm >= 100.0 && p.wavelength_cm <= 1e6))
+    throw InputError(source + ": terrain.wavelength_cm: expected a length from 100 to 1000000 cm, got " +
+                     number(p.wavelength_cm));
+  if (p.octaves < 1 || p.octaves > 6)
+    throw InputError(source + ": terrain.octaves: expected a whole number from 1 to 6, got " + std::to_string(p.octaves));
+  Terrain t;
+  t.hills_ = true;
+  t.params_ = p;
+  double sum = 0.0;
+  for (int o = 0; o < p.octaves; ++o) sum += std::ldexp(1.0, -o);
+  t.scale_ = 1.0 / sum;
+  return t;
+}
+
+double Terrain::height(double x, double z) const {
+  if (!hills_) return 0.0;
+  double dx = 0.0, dz = 0.0;
+  double h = 0.0;
+  for (int o = 0; o < params_.octaves; ++o) {
+    const double f = std::ldexp(1.0, o) / params_.wavelength_cm;
+    h += std::ldexp(1.0, -o) * noise2(params_.seed + std::uint32_t(o) * 7919u, x * f, z * f, dx, dz);
+  }
+  return params_.amplitude_cm * scale_ * h;
+}
+
+void Terrain::gradient(double x, double z, double& gx, double& gz) const {
+  gx = gz = 0.0;
+  if (!hills_) return;
+  for (int o = 0; o < params_.octaves; ++o) {
+    const double f = std::ldexp(1.0, o) / params_.wavelength_cm;
+    double dx = 0.0, dz = 0.0;
+    noise2(params_.seed + std::uint32_t(o) * 7919u, x * f, z * f, dx, dz);
+    gx += std::ldexp(1.0, -o) * dx * f;
+    gz += std::ldexp(1.0, -o) * dz * f;
+  }
+  gx *= params_.amplitude_cm * scale_;
+  gz *= params_.amplitude_cm * scale_;
+}
+
+glm::dvec3 Terrain::normal(double x, double z) const {
+  double gx = 0.0, gz = 0.0;
+  gradient(x, z, gx, gz);
+  return glm::normalize(glm::dvec3(-gx, 1.0, -gz));
+}
+
+}  // namespace stirrup::rig

@@ -1,0 +1,44 @@
+// The ground a path crosses (issue 15): flat, or rolling hills from a seed, an amplitude and a
+// wavelength. Heights are a pure function of (x, z), cm, so a clip, the renderer and a test all see the
+// same ground on any machine, in any frame order.
+//
+// Hills: 2-D value noise on a square lattice of `wavelength_cm` spacing, blended with the quintic fade
+// 6t⁵ − 15t⁴ + 10t³ (Perlin 2002, "Improving noise", SIGGRAPH), so slope and curvature are continuous
+// and a horse's pitch over the ground never jumps; `octaves` halve the wavelength and the amplitude
+// each, and the sum is scaled so the height stays within ±amplitude_cm.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+namespace stirrup::rig {
+
+struct HillsParams {
+  std::uint32_t seed = 1;
+  double amplitude_cm = 100;    // the highest hill top (and deepest hollow) from 0
+  double wavelength_cm = 4000;  // lattice spacing of the first octave: hills about this far apart
+  int octaves = 2;
+};
+
+class Terrain {
+ public:
+  Terrain() = default;  // flat, at height 0
+  // Rolling hills. Throws stirrup::InputError "SOURCE: terrain.FIELD: expected ..., got ..." for an
+  // amplitude outside 0-5000 cm, a wavelength outside 100-1 000 000 cm, or octaves outside 1-6.
+  static Terrain hills(const HillsParams& params, const std::string& source);
+
+  bool flat() const { return !hills_; }
+  double height(double x, double z) const;          // cm
+  // (d height / dx, d height / dz): the slope, analytic.
+  void gradient(double x, double z, double& dx, double& dz) const;
+  glm::dvec3 normal(double x, double z) const;       // unit, up
+
+ private:
+  bool hills_ = false;
+  HillsParams params_;
+  double scale_ = 1;  // 1 / the sum of the octaves' amplitudes
+};
+
+}  // namespace stirrup::rig
