@@ -46,7 +46,8 @@ glm::dvec3 dampedFollow(const std::function<glm::dvec3(double)>& path, double t,
 
 glm::dvec3 travelPoint(const CameraSpec& spec, const rig::Clip& clip, double seconds) {
   if (spec.treadmill) return glm::dvec3(0.0);
-  return {clip.sample(seconds).travel_cm, 0.0, 0.0};
+  const rig::HorseFrame f = clip.sample(seconds);
+  return {f.travel_cm, 0.0, f.travel_z_cm};
 }
 
 glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
@@ -64,8 +65,11 @@ glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig:
     const glm::dvec3 lever = toVec(spec.seat_from_pivot_cm);
     const glm::dvec3 cog(b.rider[R::cogTx] * profile.rider_unit_cm, b.rider[R::cogTy] * profile.rider_unit_cm, 0.0);
     const glm::dvec3 pivot(h[H::rearPivotTx], h[H::rearPivotTy], h[H::rearPivotTz]);
+    // In the travel frame (along and up: the seat's sway to the side is not followed), then turned
+    // by its heading (about -Y, as rig::travelMatrix).
     const glm::dvec3 seat = pivot + turn * (lever + cog) - lever;
-    return travelPoint(spec, clip, seconds) + glm::dvec3(seat.x, seat.y, 0.0);
+    const double a = glm::radians(b.horse.heading_deg);
+    return travelPoint(spec, clip, seconds) + glm::dvec3(seat.x * std::cos(a), seat.y, seat.x * std::sin(a));
   }
   return travelPoint(spec, clip, seconds);
 }

@@ -106,7 +106,7 @@ Camera Shot::cameraAtFrame(int frame) const {
 rig::BakedFrame Shot::bakeShown(int frame) const {
   rig::BakedFrame baked = bake(camera_.hold_frame > 0 ? camera_.hold_frame : frame);
   baked.frame = frame;
-  if (camera_.treadmill) baked.horse.travel_cm = 0.0;
+  if (camera_.treadmill) baked.horse.travel_cm = baked.horse.travel_z_cm = 0.0;
   if (rigid_rider_) baked.rider = rig::RiderChannels{};
   return baked;
 }

@@ -1,18 +1,25 @@
 #include "rig/bake.h"
 
+#include <cmath>
+
 #include "rig/rider_rig.h"
 
 namespace stirrup::rig {
 
 double travelAcceleration(const Clip& clip, double seconds) {
+  // Along the heading at `seconds`: the second difference of the travel frame's ground position,
+  // projected on the heading (a path clip's turn adds a sideways part, which this leaves out).
   // A second difference over kAccelerationWindowS: the acceleration averaged under a triangle of that
   // half-width, so a braking that starts at once (the stop) eases the rider's lean in over a fifth of
   // a second instead of snapping it in one frame. Before t = 0 a clip may clamp (a movement starting
   // at a gallop would seem to jump from rest), so the stencil starts at t = 0 there.
   constexpr double h = kAccelerationWindowS;
   const double t0 = seconds - h >= 0.0 ? seconds - h : seconds;
-  const double a = clip.sample(t0).travel_cm, b = clip.sample(t0 + h).travel_cm, c = clip.sample(t0 + 2.0 * h).travel_cm;
-  return (a - 2.0 * b + c) / (h * h);
+  const HorseFrame a = clip.sample(t0), b = clip.sample(t0 + h), c = clip.sample(t0 + 2.0 * h);
+  const double ax = (a.travel_cm - 2.0 * b.travel_cm + c.travel_cm) / (h * h);
+  const double az = (a.travel_z_cm - 2.0 * b.travel_z_cm + c.travel_z_cm) / (h * h);
+  const double heading = clip.sample(seconds).heading_deg * 3.14159265358979323846 / 180.0;
+  return ax * std::cos(heading) + az * std::sin(heading);
 }
 
 BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, double seconds) {

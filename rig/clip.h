@@ -12,8 +12,13 @@ namespace stirrup::rig {
 
 struct HorseFrame {
   HorseChannels controls;   // contract channels (cm, degrees), offsets from rest in the travel frame
-  double travel_cm = 0.0;   // how far the travel frame has moved along world +X since t = 0
-  // The travel frame's acceleration along its direction (cm/s²), for the balance stage (rig/balance.h:
+  // The travel frame: its origin on the ground at world (travel_cm, 0, travel_z_cm) and its heading,
+  // degrees from +X toward +Z (+ turns right, the sense of rearPivot.ry). Straight clips move along
+  // +X only; a path clip (issue 15) moves in both and turns.
+  double travel_cm = 0.0;
+  double travel_z_cm = 0.0;
+  double heading_deg = 0.0;
+  // The travel frame's acceleration along its heading (cm/s²), for the balance stage (rig/balance.h:
   // the rider leans against it). Clips leave it 0; bakeFrame measures it from the travel.
   double travel_accel_cm_s2 = 0.0;
   // Body follow-through beyond the contract (degrees, + = up / to the right), for posing only.

@@ -86,6 +86,11 @@ void checkSize(const Character& c, std::span<const glm::mat4> world) {
 
 }  // namespace
 
+glm::mat4 travelMatrix(const HorseFrame& frame) {
+  // Heading + turns right: from +X toward +Z, a turn about -Y.
+  return translate({float(frame.travel_cm), 0.0f, float(frame.travel_z_cm)}) * rot(-frame.heading_deg, kY);
+}
+
 std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params) {
   const Skeleton& s = horse.skeleton;
   const HorseChannels& h = frame.controls;
@@ -93,7 +98,7 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
   std::vector<glm::mat4> local = restLocals(s);
 
   // Body: the travel frame carries the rear pivot; rearPivot moves and turns it.
-  const glm::mat4 travel = translate({static_cast<float>(frame.travel_cm), 0.0f, 0.0f});
+  const glm::mat4 travel = travelMatrix(frame);
   const int root = horse.role("root");
   local[root] = travel * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]), float(h[C::rearPivotTz])}) *
                 s.joints[root].rest_local * rot(-h[C::rearPivotRy], kY) * rot(h[C::rearPivotRz], kZ) *
@@ -134,7 +139,8 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     const glm::vec3 hoof_target = transformPoint(travel, rest_hoof + offset);
     const float lift = std::clamp(offset.y / params.hoof_flex_full_lift, 0.0f, 1.0f);
     const float flex = params.hoof_flex_deg * lift * lift * (3.0f - 2.0f * lift);
-    const glm::mat4 fold = rot(-flex, kZ);  // hoof sole turns to face backward
+    // The hoof sole turns to face backward, about the travel frame's sideways axis.
+    const glm::mat4 fold = glm::mat4(glm::mat3(travel)) * rot(-flex, kZ);
     const glm::vec3 fetlock_target = hoof_target + glm::vec3(fold * glm::vec4(rest_fetlock - rest_hoof, 0.0f));
 
     const glm::vec3 rest_pole = restPole(rest_upper, rest_middle, rest_fetlock, 40.0f);

@@ -42,7 +42,11 @@ struct HorsePoseParams {
   float leg_soften = 0.3f;            // IK reach softening (cm), so a leg never snaps straight
 };
 
-// The horse at one frame: travel frame at world x = travel_cm; the body (root at the hips) moved and
+// The travel frame of a horse frame: world from travel-frame coordinates (its origin at (travel_cm, 0,
+// travel_z_cm), turned by heading_deg).
+glm::mat4 travelMatrix(const HorseFrame& frame);
+
+// The horse at one frame: in its travel frame (travelMatrix); the body (root at the hips) moved and
 // turned by rearPivot, the front half turned at backMid, neck/head/tail by the frame's follow-through,
 // each leg solved by two-bone IK to its hoof target (rest hoof place + hoof tx/ty/tz), knees bending
 // forward in front and hocks backward behind, the pastern folding as the hoof lifts.

@@ -79,7 +79,7 @@ void writeBakedGlb(const render::SceneSpec& scene, const rig::RigProfile& profil
       // A treadmill render takes the travel out of the horse; the file's horse travels, so the camera
       // travels with it instead (the same picture: both move by the same vector).
       if (c.treadmill) {
-        const glm::dvec3 travel(baked[i].horse.travel_cm, 0.0, 0.0);
+        const glm::dvec3 travel(baked[i].horse.travel_cm, 0.0, baked[i].horse.travel_z_cm);
         cam.position += travel;
         cam.target += travel;
       }

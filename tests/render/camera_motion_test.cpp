@@ -112,6 +112,47 @@ TEST_F(MotionFixture, OrbitGoesOnceAroundOverItsFrames) {
 }
 
 
+// A clip heading along world +Z (a path clip's travel frame turned 90° right): the follow point moves
+// with the travel frame in x and z, and the rider's seat, ahead of the rear pivot, is ahead along +Z.
+struct AlongZ : rig::Clip {
+  std::string name() const override { return "along_z"; }
+  double duration() const override { return 4.0; }
+  rig::HorseFrame sample(double t) const override {
+    rig::HorseFrame f;
+    f.travel_cm = 50.0;
+    f.travel_z_cm = 300.0 * t;
+    f.heading_deg = 90.0;
+    return f;
+  }
+};
+
+TEST(FollowCamera, FollowsATravelFrameThatTurned) {
+  const AlongZ clip;
+  SceneSpec scene;
+  // The rigid rider: her channels at rest, so the seat is the saddle's and nothing else.
+  const rig::RigProfile profile = rig::RigProfile::rigidRider();
+  CameraSpec spec;
+  EXPECT_NEAR(glm::length(followPoint(spec, clip, profile, 2.0) - glm::dvec3(50.0, 0.0, 600.0)), 0.0, 1e-9);
+  spec.follow_target = "rider";
+  spec.seat_from_pivot_cm = {70.0, 30.0, 0.0};
+  // At rest the seat is where the lever puts it, so the point is the travel frame's origin; pitch the
+  // body 10° up and the seat swings back along the heading (-Z) and up.
+  EXPECT_NEAR(glm::length(followPoint(spec, clip, profile, 2.0) - glm::dvec3(50.0, 0.0, 600.0)), 0.0, 1e-6);
+  struct Pitched : AlongZ {
+    rig::HorseFrame sample(double t) const override {
+      rig::HorseFrame f = AlongZ::sample(t);
+      f.controls[rig::HorseChannel::rearPivotRz] = 10.0;
+      return f;
+    }
+  } pitched;
+  const glm::dvec3 p = followPoint(spec, pitched, profile, 2.0) - glm::dvec3(50.0, 0.0, 600.0);
+  // The lever (70, 30) turned 10° up: 70 cos 10° - 30 sin 10° - 70 back, 70 sin 10° + 30 cos 10° - 30 up.
+  const double c = std::cos(10.0 * kPi / 180.0), sn = std::sin(10.0 * kPi / 180.0);
+  EXPECT_NEAR(p.x, 0.0, 1e-6);
+  EXPECT_NEAR(p.z, 70.0 * c - 30.0 * sn - 70.0, 1e-6);
+  EXPECT_NEAR(p.y, 70.0 * sn + 30.0 * c - 30.0, 1e-6);
+}
+
 // A horse decelerating from 9 m/s to a halt (the stop): along the travel the close camera follows the
 // rider's seat exactly instead of overshooting it (the old filter, damping the travel too, ran 140 cm
 // past her seat and came back); only its height is damped.

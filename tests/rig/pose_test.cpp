@@ -119,6 +119,40 @@ TEST(PoseHorse, BodyChannelsFollowTheContractSigns) {
   EXPECT_GT(at(h, poseHorse(h, f), "head").y, at(h, rest, "head").y);
 }
 
+// The travel frame moves and turns the whole horse rigidly: heading 90° (toward +Z, a right turn) at
+// (100, 0, 250) poses every joint as the same frame at the origin, turned about -Y and moved there.
+TEST(PoseHorse, TheTravelFrameMovesAndTurnsTheHorseRigidly) {
+  HorseFrame f;
+  f.controls[HorseChannel::rearPivotRz] = 6.0;
+  f.controls[HorseChannel::lfHoofTy] = 15.0;
+  f.controls[HorseChannel::rbHoofTx] = -20.0;
+  const std::vector<glm::mat4> at_origin = poseHorse(horse(), f);
+  f.travel_cm = 100.0;
+  f.travel_z_cm = 250.0;
+  f.heading_deg = 90.0;
+  const std::vector<glm::mat4> turned = poseHorse(horse(), f);
+  const glm::mat4 frame = travelMatrix(f);
+  // Heading 90°: the horse's forward (+X in its frame) points along world +Z, its right along -X.
+  EXPECT_NEAR(glm::length(glm::vec3(frame * glm::vec4(1, 0, 0, 0)) - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(glm::vec3(frame * glm::vec4(0, 0, 1, 0)) - glm::vec3(-1, 0, 0)), 0.0f, 1e-6f);
+  for (std::size_t j = 0; j < turned.size(); ++j) {
+    const glm::vec3 expected(frame * at_origin[j][3]);
+    EXPECT_NEAR(glm::length(glm::vec3(turned[j][3]) - expected), 0.0f, 1e-3f) << horse().skeleton.joints[j].name;
+  }
+  // The rider with her, the balance stage included (it measures her lean against the saddle's own
+  // heading, so a turned travel frame changes nothing in it).
+  RiderChannels ch;
+  ch[RiderChannel::lowerBackRz] = 12.0;
+  HorseFrame f0 = f;
+  f0.travel_cm = f0.travel_z_cm = f0.heading_deg = 0.0;
+  const MountedPose a = poseMounted(horse(), rider(), f0, ch, RigProfile::thesis());
+  const MountedPose b = poseMounted(horse(), rider(), f, ch, RigProfile::thesis());
+  EXPECT_NEAR(a.balance.turn_deg, b.balance.turn_deg, 1e-4);
+  for (std::size_t j = 0; j < a.rider.size(); ++j)
+    EXPECT_NEAR(glm::length(glm::vec3(b.rider[j][3]) - glm::vec3(frame * a.rider[j][3])), 0.0f, 1e-3f)
+        << rider().skeleton.joints[j].name;
+}
+
 TEST(PoseHorse, ExtremeValuesStayFinite) {
   HorseFrame f;
   for (std::size_t i = 0; i < kHorseChannelCount; ++i) f.controls.value[i] = (i % 2 ? 1 : -1) * 400.0;
