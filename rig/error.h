@@ -33,6 +33,14 @@ inline std::string oneLineMessage(const std::string& text) {
   return out;
 }
 
+// A number as an error message quotes it: shortest of %g's forms, six significant digits ("0.5",
+// "1e+300", "nan").
+inline std::string numberText(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 struct InputError : std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(oneLineMessage(message)) {}
 };

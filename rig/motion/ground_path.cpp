@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -17,11 +16,6 @@ std::string index(const std::string& source, std::size_t i) {
   return source + ": points[" + std::to_string(i) + "]";
 }
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 }  // namespace
 
@@ -34,7 +28,7 @@ GroundPath::GroundPath(std::vector<glm::dvec2> points, const std::string& source
     if (i > 0 && glm::length(points_[i] - points_[i - 1]) < kMinSegmentCm)
       throw InputError(index(source, i) + ": expected a point at least 1 cm from points[" + std::to_string(i - 1) +
                        "] (a zero-length segment has no heading), got one " +
-                       number(glm::length(points_[i] - points_[i - 1])) + " cm away");
+                       numberText(glm::length(points_[i] - points_[i - 1])) + " cm away");
   }
   // Reflected end points, then centripetal knots (alpha = 1/2).
   control_.reserve(points_.size() + 2);
@@ -61,33 +55,29 @@ GroundPath::GroundPath(std::vector<glm::dvec2> points, const std::string& source
 // Segment `segment` runs from points_[segment] to points_[segment + 1], i.e. control_[segment + 1] to
 // control_[segment + 2]. As a cubic Hermite on u in [0, 1] with the centripetal Catmull-Rom tangents
 // (the Barry-Goldman pyramid written out), scaled by the segment's knot span.
-glm::dvec2 GroundPath::position(int segment, double u) const {
+GroundPath::Hermite GroundPath::hermite(int segment) const {
   const int i = segment + 1;
   const glm::dvec2 &p0 = control_[i - 1], &p1 = control_[i], &p2 = control_[i + 1], &p3 = control_[i + 2];
   const double t0 = knots_[i - 1], t1 = knots_[i], t2 = knots_[i + 1], t3 = knots_[i + 2];
-  const glm::dvec2 m1 = ((p1 - p0) / (t1 - t0) - (p2 - p0) / (t2 - t0) + (p2 - p1) / (t2 - t1)) * (t2 - t1);
-  const glm::dvec2 m2 = ((p2 - p1) / (t2 - t1) - (p3 - p1) / (t3 - t1) + (p3 - p2) / (t3 - t2)) * (t2 - t1);
+  return {p1, ((p1 - p0) / (t1 - t0) - (p2 - p0) / (t2 - t0) + (p2 - p1) / (t2 - t1)) * (t2 - t1), p2,
+          ((p2 - p1) / (t2 - t1) - (p3 - p1) / (t3 - t1) + (p3 - p2) / (t3 - t2)) * (t2 - t1)};
+}
+
+glm::dvec2 GroundPath::position(int segment, double u) const {
+  const Hermite c = hermite(segment);
   const double u2 = u * u, u3 = u2 * u;
-  return (2 * u3 - 3 * u2 + 1) * p1 + (u3 - 2 * u2 + u) * m1 + (-2 * u3 + 3 * u2) * p2 + (u3 - u2) * m2;
+  return (2 * u3 - 3 * u2 + 1) * c.p1 + (u3 - 2 * u2 + u) * c.m1 + (-2 * u3 + 3 * u2) * c.p2 + (u3 - u2) * c.m2;
 }
 
 glm::dvec2 GroundPath::derivative(int segment, double u) const {
-  const int i = segment + 1;
-  const glm::dvec2 &p0 = control_[i - 1], &p1 = control_[i], &p2 = control_[i + 1], &p3 = control_[i + 2];
-  const double t0 = knots_[i - 1], t1 = knots_[i], t2 = knots_[i + 1], t3 = knots_[i + 2];
-  const glm::dvec2 m1 = ((p1 - p0) / (t1 - t0) - (p2 - p0) / (t2 - t0) + (p2 - p1) / (t2 - t1)) * (t2 - t1);
-  const glm::dvec2 m2 = ((p2 - p1) / (t2 - t1) - (p3 - p1) / (t3 - t1) + (p3 - p2) / (t3 - t2)) * (t2 - t1);
+  const Hermite c = hermite(segment);
   const double u2 = u * u;
-  return (6 * u2 - 6 * u) * p1 + (3 * u2 - 4 * u + 1) * m1 + (-6 * u2 + 6 * u) * p2 + (3 * u2 - 2 * u) * m2;
+  return (6 * u2 - 6 * u) * c.p1 + (3 * u2 - 4 * u + 1) * c.m1 + (-6 * u2 + 6 * u) * c.p2 + (3 * u2 - 2 * u) * c.m2;
 }
 
 glm::dvec2 GroundPath::second(int segment, double u) const {
-  const int i = segment + 1;
-  const glm::dvec2 &p0 = control_[i - 1], &p1 = control_[i], &p2 = control_[i + 1], &p3 = control_[i + 2];
-  const double t0 = knots_[i - 1], t1 = knots_[i], t2 = knots_[i + 1], t3 = knots_[i + 2];
-  const glm::dvec2 m1 = ((p1 - p0) / (t1 - t0) - (p2 - p0) / (t2 - t0) + (p2 - p1) / (t2 - t1)) * (t2 - t1);
-  const glm::dvec2 m2 = ((p2 - p1) / (t2 - t1) - (p3 - p1) / (t3 - t1) + (p3 - p2) / (t3 - t2)) * (t2 - t1);
-  return (12 * u - 6) * p1 + (6 * u - 4) * m1 + (-12 * u + 6) * p2 + (6 * u - 2) * m2;
+  const Hermite c = hermite(segment);
+  return (12 * u - 6) * c.p1 + (6 * u - 4) * c.m1 + (-12 * u + 6) * c.p2 + (6 * u - 2) * c.m2;
 }
 
 GroundPath::Sample GroundPath::at(double s) const {

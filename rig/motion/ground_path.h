@@ -45,6 +45,10 @@ class GroundPath {
   const std::vector<glm::dvec2>& points() const { return points_; }
 
  private:
+  struct Hermite {
+    glm::dvec2 p1, m1, p2, m2;  // end points and end tangents over u in [0, 1]
+  };
+  Hermite hermite(int segment) const;
   glm::dvec2 position(int segment, double u) const;      // u in [0, 1] within segment
   glm::dvec2 derivative(int segment, double u) const;    // d position / du
   glm::dvec2 second(int segment, double u) const;        // d² position / du²

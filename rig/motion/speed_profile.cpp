@@ -2,18 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "rig/error.h"
 
 namespace stirrup::rig {
 namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 }  // namespace
 
@@ -25,10 +19,10 @@ SpeedProfile::SpeedProfile(std::vector<Key> keys, Over over, double duration_s, 
     const std::string field = source + ": speed[" + std::to_string(i) + "]";
     if (!std::isfinite(keys_[i].at)) throw InputError(field + ": expected a finite " + (over == Over::Time ? "time" : "distance"));
     if (!(std::isfinite(keys_[i].speed) && keys_[i].speed > 0.0))
-      throw InputError(field + ": expected a speed > 0 (cm/s), got " + number(keys_[i].speed));
+      throw InputError(field + ": expected a speed > 0 (cm/s), got " + numberText(keys_[i].speed));
     if (i > 0 && !(keys_[i].at > keys_[i - 1].at))
       throw InputError(field + ": expected a " + (over == Over::Time ? "time" : "distance") + " after speed[" +
-                       std::to_string(i - 1) + "]'s " + number(keys_[i - 1].at) + ", got " + number(keys_[i].at));
+                       std::to_string(i - 1) + "]'s " + numberText(keys_[i - 1].at) + ", got " + numberText(keys_[i].at));
   }
   if (!(std::isfinite(duration_s) && duration_s >= 0.0)) throw InputError(source + ": duration: expected a time >= 0");
   // Fritsch-Carlson: secant slopes, averaged at the inner keys, zero where the secants change sign,

@@ -1,7 +1,6 @@
 #include "rig/motion/terrain.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -14,11 +13,6 @@ namespace {
 double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 double fadeDerivative(double t) { return 30.0 * t * t * (t * (t - 2.0) + 1.0); }
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // One octave of 2-D value noise in [-1, 1] with its gradient (per lattice unit).
 double noise2(std::uint32_t seed, double x, double z, double& gx, double& gz) {
@@ -38,10 +32,10 @@ double noise2(std::uint32_t seed, double x, double z, double& gx, double& gz) {
 
 Terrain Terrain::hills(const HillsParams& p, const std::string& source) {
   if (!(std::isfinite(p.amplitude_cm) && p.amplitude_cm >= 0.0 && p.amplitude_cm <= 5000.0))
-    throw InputError(source + ": terrain.amplitude_cm: expected a height from 0 to 5000 cm, got " + number(p.amplitude_cm));
+    throw InputError(source + ": terrain.amplitude_cm: expected a height from 0 to 5000 cm, got " + numberText(p.amplitude_cm));
   if (!(std::isfinite(p.wavelength_cm) && p.wavelength_cm >= 100.0 && p.wavelength_cm <= 1e6))
     throw InputError(source + ": terrain.wavelength_cm: expected a length from 100 to 1000000 cm, got " +
-                     number(p.wavelength_cm));
+                     numberText(p.wavelength_cm));
   if (p.octaves < 1 || p.octaves > 6)
     throw InputError(source + ": terrain.octaves: expected a whole number from 1 to 6, got " + std::to_string(p.octaves));
   Terrain t;
