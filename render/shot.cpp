@@ -46,6 +46,8 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
                                             horse_.mesh.positions.size(), horse_.mesh.positions});
   rider_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Rider, rider_.mesh.indices, rider_.mesh.colors,
                                             rider_.mesh.positions.size(), rider_.mesh.positions});
+  rigid_profile_ = profile_;
+  rigid_profile_.rigid = true;
   addObstacles();
   if (!camera_.view.empty()) {
     // A named view: framed from the characters' vertices over every frame it shows (render/view.h).
@@ -64,15 +66,7 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
 
 Shot::~Shot() = default;
 
-const rig::RigProfile& Shot::poseProfile() const {
-  if (!rigid_rider_) return profile_;
-  // The rigid rider rides like a statue: her channels at rest and no balance stage either.
-  if (!rigid_profile_) {
-    rigid_profile_ = std::make_unique<rig::RigProfile>(profile_);
-    rigid_profile_->rigid = true;
-  }
-  return *rigid_profile_;
-}
+const rig::RigProfile& Shot::poseProfile() const { return rigid_rider_ ? rigid_profile_ : profile_; }
 
 // The clip's fences, standing in the world: each under the middle of the horse (halfway between its
 // rest fore and hind hooves) where the clip says, in the travel frame. A treadmill shot, which takes

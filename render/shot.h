@@ -61,9 +61,10 @@ class Shot {
   std::vector<glm::vec3> positions_, normals_;
   FrameTimings timings_;
   bool rigid_rider_ = false;
-  // The profile posing uses: the scene's, or with the rigid rider, the same marked rigid.
+  // The profile posing uses: the scene's, or with the rigid rider the same marked rigid (her channels
+  // at rest and no balance stage either: she rides like a statue).
   const rig::RigProfile& poseProfile() const;
-  mutable std::unique_ptr<rig::RigProfile> rigid_profile_;
+  rig::RigProfile rigid_profile_;
   // The baked frame shown at `frame`: the held pose, and no travel on a treadmill.
   rig::BakedFrame bakeShown(int frame) const;
 };

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <memory>
 #include <string>
@@ -104,13 +103,8 @@ void runBalance(const RigOptions& o) {
     std::fputs(out.str().c_str(), stdout);
     return;
   }
-  const std::filesystem::path file(o.rider_csv), tmp(o.rider_csv + ".tmp");
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << out.str();
-    if (!f.flush()) throw InputError(o.rider_csv + ": cannot write");
-  }
-  std::filesystem::rename(tmp, file);
+  const std::string text = out.str();
+  rig::writeFileAtomically(o.rider_csv, std::vector<unsigned char>(text.begin(), text.end()));
 }
 
 void addProfileOptions(CLI::App* cmd, const std::shared_ptr<RigOptions>& opts) {
