@@ -5,7 +5,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "rig/bake.h"
+#include "rig/rider_rig.h"
 
 namespace stirrup::render {
 namespace {
@@ -53,22 +53,25 @@ glm::dvec3 travelPoint(const CameraSpec& spec, const rig::Clip& clip, double sec
 glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
                        double seconds) {
   if (spec.follow_target == "rider") {
-    const rig::BakedFrame b = rig::bakeFrame(clip, profile, 0, seconds);
+    // The horse and the rider channels only (not bakeFrame: the follow filter calls this hundreds of
+    // times a frame, and the travel acceleration bakeFrame adds costs four more clip samples).
+    const rig::HorseFrame horse = clip.sample(seconds);
+    const rig::RiderChannels rider = rig::evaluateRider(horse.controls, profile);
     using H = rig::HorseChannel;
     using R = rig::RiderChannel;
-    const rig::HorseChannels& h = b.horse.controls;
+    const rig::HorseChannels& h = horse.controls;
     // The seat: the saddle's rest place turned about the rear pivot as rig::poseHorse turns the body
     // (about -Y by ry, then +Z by rz, then +X by rx), plus the rider's cog offsets in the saddle's frame.
     const glm::dmat3 turn = glm::dmat3(glm::rotate(glm::dmat4(1.0), glm::radians(-h[H::rearPivotRy]), glm::dvec3(0, 1, 0)) *
                                        glm::rotate(glm::dmat4(1.0), glm::radians(h[H::rearPivotRz]), glm::dvec3(0, 0, 1)) *
                                        glm::rotate(glm::dmat4(1.0), glm::radians(h[H::rearPivotRx]), glm::dvec3(1, 0, 0)));
     const glm::dvec3 lever = toVec(spec.seat_from_pivot_cm);
-    const glm::dvec3 cog(b.rider[R::cogTx] * profile.rider_unit_cm, b.rider[R::cogTy] * profile.rider_unit_cm, 0.0);
+    const glm::dvec3 cog(rider[R::cogTx] * profile.rider_unit_cm, rider[R::cogTy] * profile.rider_unit_cm, 0.0);
     const glm::dvec3 pivot(h[H::rearPivotTx], h[H::rearPivotTy], h[H::rearPivotTz]);
     // In the travel frame (along and up: the seat's sway to the side is not followed), then turned
     // by its heading (about -Y, as rig::travelMatrix).
     const glm::dvec3 seat = pivot + turn * (lever + cog) - lever;
-    const double a = glm::radians(b.horse.heading_deg);
+    const double a = glm::radians(horse.heading_deg);
     return travelPoint(spec, clip, seconds) + glm::dvec3(seat.x * std::cos(a), seat.y, seat.x * std::sin(a));
   }
   return travelPoint(spec, clip, seconds);

@@ -6,7 +6,9 @@
 
 namespace stirrup::rig {
 
-double travelAcceleration(const Clip& clip, double seconds) {
+namespace {
+
+double accelerationAlong(const Clip& clip, double seconds, double heading_deg) {
   // Along the heading at `seconds`: the second difference of the travel frame's ground position,
   // projected on the heading (a path clip's turn adds a sideways part, which this leaves out).
   // A second difference over kAccelerationWindowS: the acceleration averaged under a triangle of that
@@ -18,8 +20,14 @@ double travelAcceleration(const Clip& clip, double seconds) {
   const HorseFrame a = clip.sample(t0), b = clip.sample(t0 + h), c = clip.sample(t0 + 2.0 * h);
   const double ax = (a.travel_cm - 2.0 * b.travel_cm + c.travel_cm) / (h * h);
   const double az = (a.travel_z_cm - 2.0 * b.travel_z_cm + c.travel_z_cm) / (h * h);
-  const double heading = clip.sample(seconds).heading_deg * 3.14159265358979323846 / 180.0;
+  const double heading = heading_deg * 3.14159265358979323846 / 180.0;
   return ax * std::cos(heading) + az * std::sin(heading);
+}
+
+}  // namespace
+
+double travelAcceleration(const Clip& clip, double seconds) {
+  return accelerationAlong(clip, seconds, clip.sample(seconds).heading_deg);
 }
 
 BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, double seconds) {
@@ -27,7 +35,7 @@ BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, dou
   b.frame = frame;
   b.seconds = seconds;
   b.horse = clip.sample(seconds);
-  b.horse.travel_accel_cm_s2 = travelAcceleration(clip, seconds);
+  b.horse.travel_accel_cm_s2 = accelerationAlong(clip, seconds, b.horse.heading_deg);
   b.rider = evaluateRider(b.horse.controls, profile);
   return b;
 }
