@@ -11,6 +11,7 @@
 #include "rig/error.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/json_fields.h"
+#include "rig/io/terrain_json.h"
 
 namespace stirrup::render {
 namespace {
@@ -87,6 +88,11 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
   s.file = file;
   s.name = r.string("name", std::filesystem::path(file).stem().string());
   if (r.has("clip")) s.clip = parseClip(r.object("clip"), std::filesystem::path(file).parent_path(), s.gait);
+  if (r.has("terrain")) {
+    JsonObjectReader t = r.object("terrain");
+    s.terrain = rig::parseTerrain(t, std::filesystem::path(file).parent_path());
+  }
+  s.clip.terrain = s.terrain;
   if (r.has("characters")) {
     JsonObjectReader c = r.object("characters");
     // "default" (the built-in generator), a glTF file (relative to the scene file) carrying its role

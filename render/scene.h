@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +53,8 @@ struct SceneSpec {
   std::string name = "trot";
   rig::GaitParams gait = rig::trotParams();  // the steady gait when clip is one (walk/trot/canter/gallop)
   rig::ClipSpec clip;                         // what plays: a generator and its parameters, or a glTF file
+  // The ground (rig/io/terrain_json.h); null = the flat plane. The same object is clip.terrain.
+  std::shared_ptr<const rig::Terrain> terrain;
   // "default" (the built-in generator) or a glTF file (resolved against the scene's folder), with an
   // optional mapping file (empty: the file's own role table). See rig::resolveCharacter.
   std::string horse = "default";

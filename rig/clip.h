@@ -3,6 +3,7 @@
 // frame can be evaluated alone (a farm renders frames out of order).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,14 @@ struct HorseFrame {
   // The travel frame's acceleration along its heading (cm/s²), for the balance stage (rig/balance.h:
   // the rider leans against it). Clips leave it 0; bakeFrame measures it from the travel.
   double travel_accel_cm_s2 = 0.0;
+  // Uneven ground (issue 15): the travel frame's origin stands at height ground_y_cm and pitches by
+  // ground_pitch_deg (+ nose up, the sense of rearPivot.rz) with the ground under the hooves, and
+  // hoof_ground_cm holds the ground under each hoof (indexed lf, rf, lb, rb) as a height above that
+  // pitched frame. The channels stay relative to the ground: a hoof's ty is its lift above the ground
+  // under it, so a horse standing on a slope does not make the rider bounce. Flat ground: all zero.
+  double ground_y_cm = 0.0;
+  double ground_pitch_deg = 0.0;
+  std::array<double, 4> hoof_ground_cm{};
   // Body follow-through beyond the contract (degrees, + = up / to the right), for posing only.
   double neck_rz = 0.0;
   double head_rz = 0.0;

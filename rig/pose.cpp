@@ -87,8 +87,9 @@ void checkSize(const Character& c, std::span<const glm::mat4> world) {
 }  // namespace
 
 glm::mat4 travelMatrix(const HorseFrame& frame) {
-  // Heading + turns right: from +X toward +Z, a turn about -Y.
-  return translate({float(frame.travel_cm), 0.0f, float(frame.travel_z_cm)}) * rot(-frame.heading_deg, kY);
+  // Heading + turns right: from +X toward +Z, a turn about -Y; then the ground's pitch, nose up.
+  return translate({float(frame.travel_cm), float(frame.ground_y_cm), float(frame.travel_z_cm)}) *
+         rot(-frame.heading_deg, kY) * rot(frame.ground_pitch_deg, kZ);
 }
 
 std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params) {
@@ -136,7 +137,9 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     const glm::vec3 rest_fetlock = s.restPosition(fetlock), rest_hoof = s.restPosition(hoof);
     const auto& ch = kHoofChannels[leg];
     const glm::vec3 offset{static_cast<float>(h[ch[0]]), static_cast<float>(h[ch[1]]), static_cast<float>(h[ch[2]])};
-    const glm::vec3 hoof_target = transformPoint(travel, rest_hoof + offset);
+    // The ground under the hoof lifts its target; the lift above it (the channel) folds the pastern.
+    const glm::vec3 ground{0.0f, static_cast<float>(frame.hoof_ground_cm[leg]), 0.0f};
+    const glm::vec3 hoof_target = transformPoint(travel, rest_hoof + offset + ground);
     const float lift = std::clamp(offset.y / params.hoof_flex_full_lift, 0.0f, 1.0f);
     const float flex = params.hoof_flex_deg * lift * lift * (3.0f - 2.0f * lift);
     // The hoof sole turns to face backward, about the travel frame's sideways axis.

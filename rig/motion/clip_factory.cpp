@@ -10,6 +10,7 @@
 #include "rig/error.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/motion/movement_clips.h"
+#include "rig/motion/path_clip.h"
 
 namespace stirrup::rig {
 namespace {
@@ -146,6 +147,7 @@ const std::map<std::string, std::vector<std::string>> kParameters = {
     {"jump", keysOf<JumpParams>(kJumpFields)},
     {"rear", keysOf<RearParams>(kRearFields)},
     {"buck", keysOf<BuckParams>(kBuckFields)},
+    {"path", {"points", "speed", "speed_over", "segment_gaits", "roll_limit_deg"}},
 };
 
 GaitParams steadyFrom(const std::string& generator, const ParamReader& r) {
@@ -192,7 +194,77 @@ std::vector<GaitParams> gaitList(const ParamReader& r, Lead lead) {
   return out;
 }
 
-std::unique_ptr<Clip> buildGenerator(const std::string& gen, const ParamReader& r) {
+// A path's points: [[x, z], ...] in cm.
+std::vector<glm::dvec2> pathPoints(const ParamReader& r) {
+  if (!r.p.contains("points")) r.fail("points", "expected the path's points [[x, z], ...] (cm)");
+  const nlohmann::json& v = r.p.at("points");
+  if (!v.is_array()) r.fail("points", "expected an array of points [x, z] (cm), got " + describeJson(v));
+  std::vector<glm::dvec2> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const nlohmann::json& q = v[i];
+    if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+      r.fail("points[" + std::to_string(i) + "]", "expected a point [x, z] (cm), got " + describeJson(q));
+    out.push_back({q[0].get<double>(), q[1].get<double>()});
+  }
+  return out;
+}
+
+// The path's speed: "speed": [[time s or distance cm, cm/s], ...] with "speed_over": "time" (default)
+// or "distance"; or "segment_gaits": one gait name per segment between points, each at its gait's
+// reference speed over the middle half of its segment.
+void pathSpeed(const ParamReader& r, PathClipParams& p) {
+  const bool keys = r.p.contains("speed"), gaits = r.p.contains("segment_gaits");
+  if (keys == gaits) r.fail("speed", "expected either \"speed\" keys or \"segment_gaits\", one of the two");
+  const std::string over = r.p.value("speed_over", std::string("time"));
+  if (r.p.contains("speed_over") && !r.p.at("speed_over").is_string())
+    r.fail("speed_over", "expected \"time\" or \"distance\", got " + describeJson(r.p.at("speed_over")));
+  if (over != "time" && over != "distance") r.fail("speed_over", "expected \"time\" or \"distance\", got \"" + over + "\"");
+  p.over = over == "time" ? SpeedProfile::Over::Time : SpeedProfile::Over::Distance;
+  if (keys) {
+    const nlohmann::json& v = r.p.at("speed");
+    if (!v.is_array()) r.fail("speed", "expected speed keys [[at, cm/s], ...], got " + describeJson(v));
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const nlohmann::json& q = v[i];
+      if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+        r.fail("speed[" + std::to_string(i) + "]", "expected a key [" + std::string(over == "time" ? "seconds" : "cm") +
+                                                       ", cm/s], got " + describeJson(q));
+      p.speed.push_back({q[0].get<double>(), q[1].get<double>()});
+    }
+    return;
+  }
+  const nlohmann::json& v = r.p.at("segment_gaits");
+  if (!v.is_array() || v.size() + 1 != p.points.size())
+    r.fail("segment_gaits", "expected one gait name per segment (" + std::to_string(p.points.size() - 1) + "), got " +
+                                describeJson(v));
+  const GroundPath path(p.points, "");
+  p.over = SpeedProfile::Over::Distance;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const auto g = v[i].is_string() ? gaitParamsByName(v[i].get<std::string>()) : std::nullopt;
+    if (!g) r.fail("segment_gaits[" + std::to_string(i) + "]", "expected walk, trot, canter or gallop, got " + describeJson(v[i]));
+    const double a = path.distanceAtPoint(i), b = path.distanceAtPoint(i + 1);
+    p.speed.push_back({a + 0.25 * (b - a), g->speed_cm_s});
+    p.speed.push_back({a + 0.75 * (b - a), g->speed_cm_s});
+  }
+}
+
+std::unique_ptr<Clip> buildPath(const ParamReader& r, const ClipSpec& spec) {
+  PathClipParams p;
+  p.points = pathPoints(r);
+  if (r.p.contains("duration_s")) p.max_duration_s = r.number("duration_s", 600.0, 0.1, 600.0);
+  p.first_lead = r.lead();
+  p.roll_limit_deg = r.number("roll_limit_deg", p.roll_limit_deg, 0.0, 45.0);
+  const Variation v = r.variation(0.0);
+  p.variation = v.amount;
+  p.seed = v.seed;
+  if (spec.hoof_rest) p.hoof_rest = *spec.hoof_rest;
+  // Points first: the segment gaits need a valid path to place their speeds.
+  (void)GroundPath(p.points, spec.source);
+  pathSpeed(r, p);
+  return std::make_unique<PathClip>(std::move(p), spec.terrain, spec.source);
+}
+
+std::unique_ptr<Clip> buildGenerator(const std::string& gen, const ParamReader& r, const ClipSpec& spec) {
+  if (gen == "path") return buildPath(r, spec);
   const double duration = r.number("duration_s", 10.0, 0.1, 600.0);
   if (gen == "walk" || gen == "trot" || gen == "canter" || gen == "gallop") {
     const GaitParams g = steadyFrom(gen, r);
@@ -236,7 +308,7 @@ std::unique_ptr<Clip> buildGenerator(const std::string& gen, const ParamReader& 
 
 const std::vector<std::string>& clipGenerators() {
   static const std::vector<std::string> names = {"walk", "trot", "canter", "gallop", "sequence",
-                                                 "stop", "jump", "rear", "buck"};
+                                                 "stop", "jump", "rear", "buck", "path"};
   return names;
 }
 
@@ -278,7 +350,7 @@ ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_di
   // Check the values now by building once (cheap), with errors naming the field.
   ParamReader pr{spec.params, [&r](const std::string& key, const std::string& what) { r.fail(key, what); }};
   try {
-    buildGenerator(spec.generator, pr);
+    buildGenerator(spec.generator, pr, spec);
   } catch (const InputError& e) {
     if (std::string(e.what()).rfind(r.file() + ": ", 0) == 0) throw;  // already names file and field
     throw InputError(r.file() + ": " + r.fieldPath("generator") + ": " + e.what());
@@ -304,7 +376,7 @@ std::unique_ptr<Clip> makeClip(const ClipSpec& spec) {
   ParamReader pr{spec.params, [&spec](const std::string& key, const std::string& what) {
                    throw InputError(spec.source + "." + key + ": " + what);
                  }};
-  return buildGenerator(spec.generator, pr);
+  return buildGenerator(spec.generator, pr, spec);
 }
 
 }  // namespace stirrup::rig

@@ -4,17 +4,20 @@
 // naming the file and the field before anything is rendered; made into a Clip by makeClip().
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <nlohmann/json.hpp>
 
 #include "rig/clip.h"
 #include "rig/io/json_fields.h"
 #include "rig/motion/procedural_gait.h"
+#include "rig/motion/terrain.h"
 
 namespace stirrup::rig {
 
@@ -25,6 +28,12 @@ struct ClipSpec {
   std::filesystem::path mapping;      // empty: the file's nodes are named as the contract's controls
   std::string animation;
   std::string source = "clip";        // "FILE: clip" for messages
+  // The ground the clip moves over (the scene's "terrain"); null = flat. A path clip plants its hooves
+  // on it; the other generators move on flat ground.
+  std::shared_ptr<const Terrain> terrain;
+  // The horse's rest hoof places (x forward, z right, cm), lf rf lb rb, for a path clip (it turns
+  // planted hooves about them); unset = the default horse's (rig/motion/path_clip.h).
+  std::optional<std::array<glm::dvec2, 4>> hoof_rest;
 };
 
 // The generators makeClip knows, for help texts.

@@ -39,6 +39,8 @@ class GroundPath {
   };
 
   double length() const { return length_; }
+  // Arc length at points()[i].
+  double distanceAtPoint(std::size_t i) const { return table_s_[i * kSamplesPerSegment]; }
   // The path at arc length s (cm from the first point), clamped to [0, length]: beyond the ends the
   // horse stands at the end, heading along the end tangent.
   Sample at(double s) const;

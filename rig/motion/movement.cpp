@@ -85,7 +85,19 @@ HoofPlace hoofAt(const Movement& m, const HoofSchedule& steps, double t) {
 
 }  // namespace
 
-void Ramp::add(double t, double v) { keys_.push_back({t, v}); }
+void Ramp::add(double t, double v) {
+  keys_.push_back({t, v});
+  // The area from 0 (or from the key before) to this key; keys at or before 0 have none.
+  if (t <= 0.0) {
+    area_to_key_.push_back(0.0);
+    return;
+  }
+  const std::size_t i = keys_.size() - 1;
+  const bool first_after_zero = i == 0 || keys_[i - 1].first <= 0.0;
+  const double from = first_after_zero ? 0.0 : keys_[i - 1].first;
+  const double before = first_after_zero ? 0.0 : area_to_key_[i - 1];
+  area_to_key_.push_back(t > from ? before + piece(from, t) : before);
+}
 
 double Ramp::at(double t) const {
   if (keys_.empty()) return 0.0;
@@ -98,21 +110,25 @@ double Ramp::at(double t) const {
 }
 
 double Ramp::integral(double t) const {
-  // ∫_0^t: integrate from the first key (or 0) piece by piece; the value is constant outside the keys.
-  const auto area = [this](double a, double b) {  // ∫_a^b, a <= b
-    double sum = 0.0;
-    double x = a;
-    for (std::size_t i = 0; i <= keys_.size() && x < b; ++i) {
-      const double edge = i < keys_.size() ? std::min(keys_[i].first, b) : b;
+  if (keys_.empty()) return 0.0;
+  if (t < 0.0) {
+    // ∫_t^0, piece by piece from t (rare: only a scan before the clip starts asks).
+    double sum = 0.0, x = t;
+    for (std::size_t i = 0; i <= keys_.size() && x < 0.0; ++i) {
+      const double edge = i < keys_.size() ? std::min(keys_[i].first, 0.0) : 0.0;
       if (edge > x) {
-        sum += 0.5 * (at(x) + at(edge)) * (edge - x);
+        sum += piece(x, edge);
         x = edge;
       }
     }
-    return sum;
-  };
-  if (keys_.empty()) return 0.0;
-  return t >= 0.0 ? area(0.0, t) : -area(t, 0.0);
+    return -sum;
+  }
+  // The last key in (0, t], then the piece from it to t.
+  auto it = std::upper_bound(keys_.begin(), keys_.end(), t, [](double v, const auto& k) { return v < k.first; });
+  const std::size_t n = static_cast<std::size_t>(it - keys_.begin());
+  if (n == 0 || keys_[n - 1].first <= 0.0) return t > 0.0 ? piece(0.0, t) : 0.0;
+  const double from = keys_[n - 1].first;
+  return t > from ? area_to_key_[n - 1] + piece(from, t) : area_to_key_[n - 1];
 }
 
 Keys& Keys::add(double t, double v) {

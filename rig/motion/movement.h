@@ -30,7 +30,12 @@ class Ramp {
   double integral(double t) const;  // ∫_0^t at(u) du (negative for t < 0)
 
  private:
+  double piece(double a, double b) const { return 0.5 * (at(a) + at(b)) * (b - a); }
   std::vector<std::pair<double, double>> keys_;
+  // ∫_0^key at each key after 0, summed piece by piece in time order (so a lookup gives the same bits
+  // as summing the pieces up to t one by one): a path clip's ramps have a key every few frames and
+  // its footfall scan asks for thousands of integrals.
+  std::vector<double> area_to_key_;
 };
 
 // A smooth keyed curve: values at times, eased between keys (smoothstep, zero slope at each key), so

@@ -32,12 +32,12 @@ double noise2(std::uint32_t seed, double x, double z, double& gx, double& gz) {
 
 Terrain Terrain::hills(const HillsParams& p, const std::string& source) {
   if (!(std::isfinite(p.amplitude_cm) && p.amplitude_cm >= 0.0 && p.amplitude_cm <= 5000.0))
-    throw InputError(source + ": terrain.amplitude_cm: expected a height from 0 to 5000 cm, got " + numberText(p.amplitude_cm));
+    throw InputError(source + ": terrain.hills.amplitude_cm: expected a height from 0 to 5000 cm, got " + numberText(p.amplitude_cm));
   if (!(std::isfinite(p.wavelength_cm) && p.wavelength_cm >= 100.0 && p.wavelength_cm <= 1e6))
-    throw InputError(source + ": terrain.wavelength_cm: expected a length from 100 to 1000000 cm, got " +
+    throw InputError(source + ": terrain.hills.wavelength_cm: expected a length from 100 to 1000000 cm, got " +
                      numberText(p.wavelength_cm));
   if (p.octaves < 1 || p.octaves > 6)
-    throw InputError(source + ": terrain.octaves: expected a whole number from 1 to 6, got " + std::to_string(p.octaves));
+    throw InputError(source + ": terrain.hills.octaves: expected a whole number from 1 to 6, got " + std::to_string(p.octaves));
   Terrain t;
   t.hills_ = true;
   t.params_ = p;

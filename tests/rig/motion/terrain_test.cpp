@@ -78,16 +78,16 @@ TEST(Terrain, SlopeIsTheHeightsDerivativeAndContinuous) {
 TEST(Terrain, BadParametersAreOneLineErrorsNamingTheField) {
   HillsParams p;
   p.amplitude_cm = -1;
-  EXPECT_EQ(errorOf(p), "scene.json: terrain.amplitude_cm: expected a height from 0 to 5000 cm, got -1");
+  EXPECT_EQ(errorOf(p), "scene.json: terrain.hills.amplitude_cm: expected a height from 0 to 5000 cm, got -1");
   p = {};
   p.amplitude_cm = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(errorOf(p), "scene.json: terrain.amplitude_cm: expected a height from 0 to 5000 cm, got nan");
+  EXPECT_EQ(errorOf(p), "scene.json: terrain.hills.amplitude_cm: expected a height from 0 to 5000 cm, got nan");
   p = {};
   p.wavelength_cm = 10;
-  EXPECT_EQ(errorOf(p), "scene.json: terrain.wavelength_cm: expected a length from 100 to 1000000 cm, got 10");
+  EXPECT_EQ(errorOf(p), "scene.json: terrain.hills.wavelength_cm: expected a length from 100 to 1000000 cm, got 10");
   p = {};
   p.octaves = 0;
-  EXPECT_EQ(errorOf(p), "scene.json: terrain.octaves: expected a whole number from 1 to 6, got 0");
+  EXPECT_EQ(errorOf(p), "scene.json: terrain.hills.octaves: expected a whole number from 1 to 6, got 0");
   EXPECT_EQ(errorOf(HillsParams{}), "");
 }
 

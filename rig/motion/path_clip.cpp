@@ -1,0 +1,264 @@
+#include "rig/motion/path_clip.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "rig/error.h"
+#include "rig/motion/gaits.h"
+
+namespace stirrup::rig {
+namespace {
+
+constexpr double kGravityCmS2 = 981.0;
+constexpr double kDeg = 180.0 / std::numbers::pi;
+// The movement's speed and stride frequency are sampled this often into its piecewise-linear ramps:
+// fine enough that the ramps follow the smooth speed profile to well under a millimetre of travel.
+constexpr double kRampStepS = 1.0 / 60.0;
+// The turn direction for the lead is read along the path this often, and curvature is averaged over
+// this much path either side, so a wobble between two points does not count as a turn.
+constexpr double kTurnStepCm = 10.0;
+constexpr double kTurnSmoothingCm = 100.0;
+// The rear pivot's height above the ground in the default horse (its root joint, 128 cm): the body
+// leans into a turn about the ground under it, so the pivot moves in by this times sin(roll).
+constexpr double kPivotHeightCm = 128.0;
+
+bool hasLead(PathGait g) { return g == PathGait::Canter || g == PathGait::Gallop; }
+
+GaitParams gaitParams(PathGait g, Lead lead, double speed_cm_s) {
+  switch (g) {
+    case PathGait::Walk: return walkParams();
+    case PathGait::Trot: return trotParams();
+    case PathGait::Canter: return canterParams(lead);
+    case PathGait::Gallop: return gallopParams(std::max(speed_cm_s, 900.0), lead);
+  }
+  return trotParams();
+}
+
+struct Event {
+  double time = 0;
+  bool is_gait = true;
+  PathGait gait = PathGait::Walk;
+  Lead lead = Lead::Right;
+};
+
+}  // namespace
+
+PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain, const std::string& source)
+    : params_(std::move(params)), terrain_(std::move(terrain)), path_(params_.points, source) {
+  const double length = path_.length();
+  // How long the speed profile needs to be tabled: the path at the slowest key's speed, and a margin.
+  double slowest = 0.0;
+  for (const auto& k : params_.speed) slowest = slowest == 0.0 ? k.speed : std::min(slowest, k.speed);
+  const double table_s = slowest > 0.0 && std::isfinite(slowest)
+                             ? std::min(params_.max_duration_s, length / slowest + 1.0)
+                             : 1.0;
+  const SpeedProfile speed(params_.speed, params_.over, table_s, source);
+
+  // The ramps: speed sampled from the profile; travel is their exact integral.
+  Movement& m = movement_;
+  m.name = "path";
+  m.speed_cm_s = Ramp();
+  const auto steps = static_cast<std::size_t>(std::ceil(table_s / kRampStepS));
+  for (std::size_t i = 0; i <= steps; ++i) {
+    const double t = double(i) * kRampStepS;
+    m.speed_cm_s.add(t, speed.speedAtTime(t));
+  }
+  if (m.travelCm(double(steps) * kRampStepS) < length)
+    throw InputError(source + ": speed: expected speeds that ride the whole path (" + numberText(length) +
+                     " cm) within " + numberText(params_.max_duration_s) + " s");
+  const auto timeAtDistance = [&m](double s) {
+    double a = 0.0, b = 1.0;
+    while (m.travelCm(b) < s) b *= 2.0;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (a + b);
+      (m.travelCm(mid) < s ? a : b) = mid;
+    }
+    return 0.5 * (a + b);
+  };
+  const double end_s = std::min(timeAtDistance(length), params_.max_duration_s);
+  m.duration_s = end_s;
+
+  // Turns along the path, for the lead: runs of one curvature sign above the threshold.
+  struct Turn {
+    double from_cm, to_cm;
+    Lead lead;
+  };
+  std::vector<Turn> turns;
+  for (double s = 0.0; s <= length; s += kTurnStepCm) {
+    const double k = meanCurvature(s, kTurnSmoothingCm);
+    if (std::abs(k) < params_.turn_curvature) continue;
+    const Lead lead = k > 0.0 ? Lead::Right : Lead::Left;
+    if (!turns.empty() && turns.back().lead == lead && s - turns.back().to_cm <= kTurnStepCm * 1.5)
+      turns.back().to_cm = s;
+    else
+      turns.push_back({s, s, lead});
+  }
+
+  // Events in time: gait changes from the schedule, lead changes on the straights between turns that
+  // go opposite ways (centred half a stride after the first ends, or mid-straight if it is shorter).
+  const GaitSchedule schedule(speed, params_.thresholds);
+  std::vector<Event> events;
+  for (const auto& c : schedule.changes())
+    if (c.time < end_s) events.push_back({c.time, true, c.to, Lead::Right});
+  Lead lead = turns.empty() ? params_.first_lead : turns.front().lead;
+  const Lead first_lead = lead;
+  for (std::size_t i = 1; i < turns.size(); ++i) {
+    if (turns[i].lead == turns[i - 1].lead) continue;
+    const double exit_s = timeAtDistance(turns[i - 1].to_cm), entry_s = timeAtDistance(turns[i].from_cm);
+    const double stride_s = 1.0 / gaitParams(schedule.gaitAt(exit_s), turns[i].lead, speed.speedAtTime(exit_s)).stride_hz;
+    double centre = exit_s + 0.5 * stride_s;
+    if (centre + 0.5 * stride_s > entry_s) centre = 0.5 * (exit_s + entry_s);
+    if (centre < end_s) events.push_back({centre, false, PathGait::Walk, turns[i].lead});
+  }
+  std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.time < b.time; });
+
+  // Sections: a new one wherever the gait changes, or the lead changes at the canter or gallop.
+  PathGait gait = schedule.gaitAt(0.0);
+  lead = first_lead;
+  sections_.push_back({0.0, end_s, gait, lead, 0.0, 0.0});
+  for (const Event& e : events) {
+    const PathGait new_gait = e.is_gait ? e.gait : gait;
+    const Lead new_lead = e.is_gait ? lead : e.lead;
+    const bool split = new_gait != gait || (hasLead(new_gait) && new_lead != lead);
+    gait = new_gait;
+    lead = new_lead;
+    if (!split) {
+      sections_.back().lead = hasLead(sections_.back().gait) ? sections_.back().lead : lead;
+      continue;
+    }
+    // About one stride of the slower of the two gaits.
+    const double f0 = gaitParams(sections_.back().gait, sections_.back().lead, speed.speedAtTime(e.time)).stride_hz;
+    const double f1 = gaitParams(gait, lead, speed.speedAtTime(e.time)).stride_hz;
+    const double blend = 1.0 / std::min(f0, f1);
+    sections_.back().end_s = e.time;
+    sections_.back().blend_out_s = blend;
+    sections_.push_back({e.time, end_s, gait, lead, blend, 0.0});
+  }
+  // Blends never overlap: each takes at most 45% of the sections on either side.
+  for (std::size_t i = 1; i < sections_.size(); ++i) {
+    const double room = 0.9 * std::min(sections_[i - 1].end_s - sections_[i - 1].start_s,
+                                       sections_[i].end_s - sections_[i].start_s);
+    const double blend = std::min(sections_[i].blend_in_s, room);
+    sections_[i].blend_in_s = sections_[i - 1].blend_out_s = blend;
+  }
+
+  // One oscillation entry per section, weighted in and out across its blends.
+  m.oscillation.clear();
+  for (std::size_t i = 0; i < sections_.size(); ++i) {
+    const Section& sec = sections_[i];
+    const double mid_speed = speed.speedAtTime(0.5 * (sec.start_s + sec.end_s));
+    Keys w;
+    if (i == 0) w.add(sec.start_s, 1.0);
+    else w.add(sec.start_s - 0.5 * sec.blend_in_s, 0.0).add(sec.start_s + 0.5 * sec.blend_in_s, 1.0);
+    if (i + 1 < sections_.size())
+      w.add(sec.end_s - 0.5 * sec.blend_out_s, 1.0).add(sec.end_s + 0.5 * sec.blend_out_s, 0.0);
+    m.oscillation.push_back({gaitParams(sec.gait, sec.lead, mid_speed), w});
+  }
+  // Stride frequency: the sections' frequencies blended with the same weights.
+  m.stride_hz = Ramp();
+  for (std::size_t i = 0; i <= steps; ++i) {
+    const double t = double(i) * kRampStepS;
+    double sum = 0.0, total = 0.0;
+    for (const auto& [g, w] : m.oscillation) {
+      const double x = w.at(t);
+      sum += x * g.stride_hz;
+      total += x;
+    }
+    m.stride_hz.add(t, total > 0.0 ? sum / total : m.oscillation.front().first.stride_hz);
+  }
+  m.variation = params_.variation;
+  m.seed = params_.seed;
+
+  GaitTimeline timeline;
+  timeline.variation = params_.variation;
+  timeline.seed = params_.seed;
+  for (int hoof = 0; hoof < 4; ++hoof)
+    m.hooves[std::size_t(hoof)] = scanFootfalls(m, timeline, hoof, -2.0, end_s + 2.0, 1e9);
+}
+
+const Terrain& PathClip::terrain() const {
+  static const Terrain flat;
+  return terrain_ ? *terrain_ : flat;
+}
+
+GroundPath::Sample PathClip::extended(double s) const {
+  const double length = path_.length();
+  GroundPath::Sample p = path_.at(std::clamp(s, 0.0, length));
+  if (s < 0.0 || s > length) {
+    p.position += p.tangent * (s < 0.0 ? s : s - length);
+    p.curvature = 0.0;
+  }
+  return p;
+}
+
+double PathClip::meanCurvature(double s, double half_window_cm) const {
+  constexpr int kSamples = 9;
+  double sum = 0.0;
+  for (int i = 0; i < kSamples; ++i)
+    sum += extended(s + half_window_cm * (2.0 * i / (kSamples - 1) - 1.0)).curvature;
+  return sum / kSamples;
+}
+
+double PathClip::turnRollDeg(double t) const {
+  const double v = movement_.speed_cm_s.at(t), f = movement_.stride_hz.at(t);
+  const double k = meanCurvature(movement_.travelCm(t), 0.5 * v / f);
+  const double roll = std::atan(v * v * k / kGravityCmS2) * kDeg;
+  const double limit = params_.roll_limit_deg;
+  return limit > 0.0 ? limit * std::tanh(roll / limit) : 0.0;
+}
+
+HorseFrame PathClip::sample(double t) const {
+  HorseFrame f = sampleMovement(movement_, t);
+  const double s = f.travel_cm;
+  const GroundPath::Sample here = extended(s);
+  const glm::dvec2 ahead = here.tangent, right{-here.tangent.y, here.tangent.x};
+  const Terrain& ground = terrain();
+
+  // The travel frame over the ground: height and pitch from the ground under the rest hoof places.
+  double fore_h = 0, hind_h = 0, fore_x = 0, hind_x = 0;
+  for (int i = 0; i < 4; ++i) {
+    const glm::dvec2 r = params_.hoof_rest[std::size_t(i)];
+    const glm::dvec2 w = here.position + ahead * r.x + right * r.y;
+    const double h = ground.height(w.x, w.y);
+    (i < 2 ? fore_h : hind_h) += 0.5 * h;
+    (i < 2 ? fore_x : hind_x) += 0.5 * r.x;
+  }
+  const double pitch = std::atan2(fore_h - hind_h, fore_x - hind_x);
+  f.travel_cm = here.position.x;
+  f.travel_z_cm = here.position.y;
+  f.heading_deg = here.heading_deg;
+  f.ground_pitch_deg = pitch * kDeg;
+  f.ground_y_cm = hind_h + (fore_h - hind_h) * (0.0 - hind_x) / (fore_x - hind_x);
+  const double cp = std::cos(pitch), sp = std::sin(pitch);
+
+  // Each hoof at its place along the path, seen from the travel frame.
+  using C = HorseChannel;
+  static constexpr std::array<std::array<C, 2>, 4> kTxTz = {{{C::lfHoofTx, C::lfHoofTz},
+                                                              {C::rfHoofTx, C::rfHoofTz},
+                                                              {C::lbHoofTx, C::lbHoofTz},
+                                                              {C::rbHoofTx, C::rbHoofTz}}};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const glm::dvec2 r = params_.hoof_rest[i];
+    const GroundPath::Sample at = extended(s + r.x + f.controls[kTxTz[i][0]]);
+    const glm::dvec2 place = at.position + glm::dvec2{-at.tangent.y, at.tangent.x} * r.y;
+    const glm::dvec2 d = place - here.position;
+    const double lx = glm::dot(d, ahead), lz = glm::dot(d, right);
+    const double ly = ground.height(place.x, place.y) - f.ground_y_cm;
+    f.controls[kTxTz[i][0]] = lx * cp + ly * sp - r.x;
+    f.controls[kTxTz[i][1]] = lz - r.y;
+    f.hoof_ground_cm[i] = -lx * sp + ly * cp;
+  }
+
+  // Lean into the turn about the ground under the pivot.
+  const double roll = turnRollDeg(t);
+  const double roll_rad = roll / kDeg;
+  f.controls[C::rearPivotRx] += roll;
+  f.controls[C::rearPivotTz] += kPivotHeightCm * std::sin(roll_rad);
+  f.controls[C::rearPivotTy] -= kPivotHeightCm * (1.0 - std::cos(roll_rad));
+  return f;
+}
+
+}  // namespace stirrup::rig
