@@ -58,7 +58,9 @@ BalanceResult balanceTrunk(const BalanceInput& in, const RigProfile::Balance& p)
   // 2b. Balanced against gravity and the travel's acceleration.
   out.inertia_lean_deg = std::atan2(p.inertia_share * in.accel_cm_s2, kGravityCmS2) * kDeg;
   // 3. The band.
-  const double request = out.channel_lean_deg + out.support_lean_deg + out.inertia_lean_deg;
+  // 2c. Against the ground's slope.
+  out.slope_lean_deg = p.slope_response * in.ground_pitch_deg;
+  const double request = out.channel_lean_deg + out.support_lean_deg + out.inertia_lean_deg + out.slope_lean_deg;
   double lean = request >= 0.0 ? soft(request, p.band_forward_deg) : soft(request, p.band_back_deg);
   // 4. The body's limits, relative to the saddle's upright.
   const double fold = std::clamp(lean - out.saddle_pitch_deg, -p.max_extension_deg, p.max_fold_deg);

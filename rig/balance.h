@@ -20,6 +20,11 @@
 //  2b. inertia lean: the lean toward the vertical of gravity less inertia_share of the horse's travel
 //      acceleration, so she sits back as the horse brakes and forward as it speeds up (the rest she
 //      takes in her legs); a turn's centripetal acceleration will enter here the same way;
+//  2c. slope lean: slope_response of the ground's pitch, forward uphill and back downhill. The horse
+//      pitches with the ground and the channels (which see only the horse's own motion, relative to
+//      the ground) fold her relative to the saddle as on the flat, so she would tilt back with the
+//      horse going up a hill; riders keep their trunk near the vertical instead, which relative to
+//      the horse is leaning forward uphill and back downhill (docs/paths-and-terrain.md);
 //   3. band: their sum approaches band_forward_deg / band_back_deg softly (tanh), so small leans pass
 //      as the channels make them and large ones saturate;
 //   4. body limits, relative to the saddle: at most max_fold_deg forward (the chest stops short of the
@@ -50,6 +55,7 @@ struct BalanceInput {
   double fold_scale = 1;       // how many times larger the channels' fold is than the posing limit let through (>= 1)
   double seat_rise_cm = 0;     // how far the channels raise her pelvis joint above its rest place, in the saddle's frame
   double accel_cm_s2 = 0;      // the horse's travel acceleration along its heading (HorseFrame::travel_accel_cm_s2)
+  double ground_pitch_deg = 0; // the ground's slope under the horse, + uphill (HorseFrame::ground_pitch_deg)
 };
 
 struct BalanceResult {
@@ -58,6 +64,7 @@ struct BalanceResult {
   double channel_lean_deg = 0;   // 1. the lean the channels ask for
   double support_lean_deg = 0;   // 2.
   double inertia_lean_deg = 0;   // 2b.
+  double slope_lean_deg = 0;     // 2c.
   double lean_deg = 0;           // the trunk's world lean after the stage
   double turn_deg = 0;           // lean_deg - pose_lean_deg: the turn about the hips, + forward
   double seat_lift_cm = 0;       // how far the stage raises her seat beyond the channels' (along the saddle's up)

@@ -7,9 +7,18 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "rig/channels.h"
 
 namespace stirrup::rig {
+
+// The default horse's rest hoof places in its travel frame, (x forward, z right) cm, indexed lf, rf,
+// lb, rb (rig/characters/horse_character.cpp; tests/rig/motion/path_clip_test.cpp checks them against
+// the built horse). A path clip needs its horse's rest places: a planted hoof stays put only if the
+// clip turns it about the same place the horse's skeleton does.
+inline constexpr std::array<glm::dvec2, 4> kDefaultHoofRest = {
+    glm::dvec2{52.0, -13.0}, glm::dvec2{52.0, 13.0}, glm::dvec2{-69.0, -14.0}, glm::dvec2{-69.0, 14.0}};
 
 struct HorseFrame {
   HorseChannels controls;   // contract channels (cm, degrees), offsets from rest in the travel frame

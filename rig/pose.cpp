@@ -291,6 +291,7 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
     in.fold_scale = balance->fold_scale;
     in.seat_rise_cm = (glm::inverse(saddle) * glm::vec4(in.seat, 1.0f)).y - s.restPosition(pelvis).y;
     in.accel_cm_s2 = balance->accel_cm_s2;
+    in.ground_pitch_deg = balance->ground_pitch_deg;
     const BalanceResult decided = balanceTrunk(in, balance->params);
     if (balance_result) *balance_result = decided;
     if (decided.turn_deg != 0.0 || decided.seat_lift_cm != 0.0) {
@@ -396,6 +397,7 @@ MountedPose poseMounted(const Character& horse, const Character& rider, const Ho
     const double asked = std::abs(torsoFold(channels, params)), allowed = std::abs(torsoFold(r, params));
     stage.fold_scale = allowed > 1e-9 ? std::max(asked / allowed, 1.0) : 1.0;
     stage.accel_cm_s2 = frame.travel_accel_cm_s2;
+    stage.ground_pitch_deg = frame.ground_pitch_deg;
     p.rider = poseRider(rider, horse, p.horse, r, unit, params, &stage, &p.balance);
   }
   placeReins(horse, p.horse, rider, p.rider);

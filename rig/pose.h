@@ -112,6 +112,7 @@ struct BalanceStage {
   RigProfile::Balance params;
   double fold_scale = 1;
   double accel_cm_s2 = 0;  // the horse's travel acceleration (HorseFrame::travel_accel_cm_s2)
+  double ground_pitch_deg = 0;  // the ground's slope under the horse (HorseFrame::ground_pitch_deg, + uphill)
 };
 
 // The rider seated in the posed horse's saddle, moved by the rider channels (translations in rider

@@ -100,6 +100,8 @@ const std::array kParameters = {
                       "Balance: share of her weight over the stirrups; the jumping seat (Caprilli) keeps her centred over her feet, Kuhnel 5.4 raises her seat in the rear"),
     STIRRUP_RIG_PARAM("balance.inertia_share", balance.inertia_share, RangeKind::Fraction, 0, 1,
                       "Balance: share of the horse's travel acceleration she leans against; Kuhnel 5.5, in the stop she leans back to compensate for the backward shift in centre of gravity"),
+    STIRRUP_RIG_PARAM("balance.slope_response", balance.slope_response, RangeKind::Fraction, 0, 1,
+                      "Balance: share of the ground's slope she leans against (forward uphill, back downhill); 1 keeps her trunk as near the vertical as on the flat (our decision, docs/paths-and-terrain.md)"),
     STIRRUP_RIG_PARAM("balance.band_forward_deg", balance.band_forward_deg, RangeKind::AngleLimit, 0, 90,
                       "Balance: the trunk's lean ahead of the vertical approaches this softly"),
     STIRRUP_RIG_PARAM("balance.band_back_deg", balance.band_back_deg, RangeKind::AngleLimit, 0, 90,

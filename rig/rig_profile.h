@@ -130,6 +130,7 @@ struct RigProfile {
     double amount = 1;                // "balance": 0 the thesis pose .. 1 balanced
     double stirrup_share = 0.25;      // of her weight over the stirrups (the rest over the seat)
     double inertia_share = 0.3;       // of the horse's travel acceleration she leans against
+    double slope_response = 1;        // of the ground's slope she takes out of her lean (1: trunk as near vertical as on the flat)
     double band_forward_deg = 35;     // soft band around the vertical the channels move her through
     double band_back_deg = 25;
     double max_fold_deg = 75;         // trunk ahead of the saddle's upright: the chest stops short of the neck

@@ -1,6 +1,6 @@
 // stirrup clip make GAIT [--param value ...] -o CLIP.glb: writes a generated horse clip as glTF 2.0.
-// stirrup clip info CLIP [--json]: measures a clip (a .glb/.gltf file or a generator name) and prints
-// it beside the ranges of ../shared/gait-reference.md.
+// stirrup clip info CLIP [--json]: measures a clip (a .glb/.gltf file, a generator name, or a scene's
+// clip; a path clip section by section) and prints it beside the ranges of ../shared/gait-reference.md.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +14,8 @@
 #include "render/cli/options.h"
 #include "rig/motion/clip_factory.h"
 #include "rig/motion/clip_info.h"
+#include "rig/motion/path_clip.h"
+#include "render/scene.h"
 #include "rig/error.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/io/json_fields.h"
@@ -69,11 +71,73 @@ void runMake(const ClipOptions& o) {
   std::printf("wrote %s: %s, %.2f s at %g fps\n", o.output.c_str(), clip->name().c_str(), clip->duration(), o.fps);
 }
 
+// A path clip measured section by section: each stretch of steady gait (between its blends) against
+// that gait's reference, measured on the path's straight form (gait timing does not depend on the
+// bends), then the whole clip on the path for slides, which are measured in the world.
+void runPathInfo(const std::string& scene_file, const rig::PathClip& clip, const ClipOptions& o) {
+  const rig::MovementClip straight(clip.movement());
+  nlohmann::json sections = nlohmann::json::array();
+  std::string text;
+  int index = 0;
+  for (const rig::PathClip::Section& sec : clip.sections()) {
+    ++index;
+    const double from = sec.start_s + 0.5 * sec.blend_in_s, to = sec.end_s - 0.5 * sec.blend_out_s;
+    const std::string gait = rig::pathGaitName(sec.gait);
+    const bool leads = sec.gait == rig::PathGait::Canter || sec.gait == rig::PathGait::Gallop;
+    const std::string lead = leads ? (sec.lead == rig::Lead::Right ? "right" : "left") : "";
+    char head[160];
+    std::snprintf(head, sizeof head, "section %d: %s%s%s, %.2f-%.2f s (steady %.2f-%.2f s)%s\n", index, gait.c_str(),
+                  leads ? ", " : "", leads ? (lead + " lead").c_str() : "", sec.start_s, sec.end_s, from, to,
+                  leads && sec.lead == rig::Lead::Left ? ", measured mirrored (the reference is the right lead)" : "");
+    nlohmann::json j = {{"gait", gait}, {"start_s", sec.start_s}, {"end_s", sec.end_s}, {"steady_from_s", from},
+                        {"steady_to_s", to}};
+    if (leads) j["lead"] = lead;
+    if (leads && sec.lead == rig::Lead::Left) j["measured_mirrored"] = true;
+    const auto ref = rig::gaitReference(gait);
+    rig::ClipInfoOptions io;
+    io.start_s = from;
+    io.end_s = to;
+    // The reference gives right-lead footfalls: a left lead is measured mirrored.
+    io.mirror = leads && sec.lead == rig::Lead::Left;
+    if (o.ground_cm >= 0.0) io.ground_cm = o.ground_cm;
+    // Two strides at least, or the stride measures mean nothing.
+    const double stride_s = 1.0 / clip.movement().stride_hz.at(0.5 * (from + to));
+    text += head;
+    if (to - from >= 2.0 * stride_s) {
+      const rig::ClipInfo info = rig::measureClip(straight, io);
+      j["info"] = rig::clipInfoJson(info, ref ? &*ref : nullptr);
+      text += rig::formatClipInfo(info, ref ? &*ref : nullptr);
+    } else {
+      j["info"] = nullptr;
+      text += "  (shorter than two strides: not measured)\n";
+    }
+    text += "\n";
+    sections.push_back(j);
+  }
+  rig::ClipInfoOptions whole_options;
+  if (o.ground_cm >= 0.0) whole_options.ground_cm = o.ground_cm;
+  const rig::ClipInfo whole = rig::measureClip(clip, whole_options);
+  if (o.json) {
+    const nlohmann::json out = {{"scene", scene_file}, {"sections", sections}, {"path", rig::clipInfoJson(whole, nullptr)}};
+    std::printf("%s\n", out.dump(2).c_str());
+    return;
+  }
+  std::printf("%s: path, %.2f s, %zu sections\n\n%swhole path, on the ground:\n%s", scene_file.c_str(), clip.duration(),
+              clip.sections().size(), text.c_str(), rig::formatClipInfo(whole, nullptr).c_str());
+}
+
 void runInfo(const ClipOptions& o) {
   std::unique_ptr<rig::Clip> clip;
   rig::ClipInfoOptions io;
   std::string reference = o.reference;
-  if (isGltf(o.clip)) {
+  if (std::filesystem::path(o.clip).extension() == ".json") {
+    // A scene: its clip, over its terrain. A path clip is measured section by section.
+    if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a scene: " + o.params[0]);
+    const render::SceneSpec scene = render::loadScene(o.clip);
+    clip = rig::makeClip(scene.clip);
+    if (const auto* path = dynamic_cast<const rig::PathClip*>(clip.get())) return runPathInfo(o.clip, *path, o);
+    if (reference.empty()) reference = scene.clip.generator;  // empty for a glTF clip
+  } else if (isGltf(o.clip)) {
     if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a file: " + o.params[0]);
     if (!std::filesystem::exists(o.clip)) throw InputError(o.clip + ": no such file");
     rig::ClipMapping m = o.mapping.empty() ? rig::contractMapping() : rig::loadClipMapping(o.mapping);
@@ -129,7 +193,7 @@ void addClipCommand(CLI::App& app) {
       "CLIP is a .glb/.gltf file or a generator name (" + generators + ") with its --parameters.\n"
       "Example: stirrup clip info gallop --speed_cm_s 1200\n"
       "         stirrup clip info ../shared/assets/fox/Fox.glb --mapping scenes/fox-mapping.json --animation Run");
-  in->add_option("clip", info->clip, "A .glb/.gltf file or a generator name")->required();
+  in->add_option("clip", info->clip, "A .glb/.gltf file, a generator name, or a scene (.json: its clip; a path section by section)")->required();
   in->add_flag("--json", info->json, "Print JSON instead of a table");
   in->add_option("--mapping", info->mapping, "Mapping file from the clip's nodes to the contract's controls");
   in->add_option("--animation", info->animation, "Animation in the file (default: the first)");

@@ -8,6 +8,8 @@
 
 #include "rig/error.h"
 
+#include <glm/vec3.hpp>
+
 namespace stirrup::rig {
 namespace {
 
@@ -22,6 +24,17 @@ constexpr int kLeftHind = 2;
 // A stance whose place moves at least this far (cm) is a sliding stance (float noise is far less).
 constexpr double kSlidingStanceCm = 1.0;
 
+// A hoof's place in the world (cm): its channels about its rest place in the travel frame, carried by
+// the travel frame's heading, ground height and pitch as rig::travelMatrix does (in double). On a
+// straight clip over flat ground this is (travel + rest.x + tx, ty, rest.z + tz).
+glm::dvec3 hoofWorld(const HorseFrame& f, int h, const std::array<glm::dvec2, 4>& rest) {
+  const double x = rest[h].x + f.controls[kTx[h]], y = f.controls[kTy[h]] + f.hoof_ground_cm[h],
+               z = rest[h].y + f.controls[kTz[h]];
+  const double p = f.ground_pitch_deg * std::numbers::pi / 180.0, a = f.heading_deg * std::numbers::pi / 180.0;
+  const double px = x * std::cos(p) - y * std::sin(p), py = x * std::sin(p) + y * std::cos(p);
+  return {f.travel_cm + px * std::cos(a) - z * std::sin(a), f.ground_y_cm + py, f.travel_z_cm + px * std::sin(a) + z * std::cos(a)};
+}
+
 std::string fmt(const char* f, double a) {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, a);
@@ -29,6 +42,21 @@ std::string fmt(const char* f, double a) {
 }
 
 }  // namespace
+
+HorseFrame mirrorLeftRight(const HorseFrame& f) {
+  using C = HorseChannel;
+  HorseFrame m = f;
+  for (const auto& [l, r] : {std::pair{0, 1}, std::pair{2, 3}}) {
+    m.controls[kTx[l]] = f.controls[kTx[r]], m.controls[kTx[r]] = f.controls[kTx[l]];
+    m.controls[kTy[l]] = f.controls[kTy[r]], m.controls[kTy[r]] = f.controls[kTy[l]];
+    m.controls[kTz[l]] = -f.controls[kTz[r]], m.controls[kTz[r]] = -f.controls[kTz[l]];
+    m.hoof_ground_cm[l] = f.hoof_ground_cm[r], m.hoof_ground_cm[r] = f.hoof_ground_cm[l];
+  }
+  for (C c : {C::rearPivotTz, C::rearPivotRx, C::rearPivotRy, C::backMidRx, C::backMidRy}) m.controls[c] = -f.controls[c];
+  m.travel_z_cm = -f.travel_z_cm;
+  m.heading_deg = -f.heading_deg;
+  return m;
+}
 
 ClipInfo measureClip(const Clip& clip, const ClipInfoOptions& o) {
   ClipInfo info;
@@ -47,6 +75,7 @@ ClipInfo measureClip(const Clip& clip, const ClipInfoOptions& o) {
   std::vector<std::array<bool, 4>> down(n);
   for (int i = 0; i < n; ++i) {
     frames[i] = clip.sample(info.start_s + i * dt);
+    if (o.mirror) frames[i] = mirrorLeftRight(frames[i]);
     for (int h = 0; h < 4; ++h) down[i][h] = frames[i].controls[kTy[h]] <= o.ground_cm;
   }
   const auto time = [&](int i) { return info.start_s + i * dt; };
@@ -113,7 +142,11 @@ ClipInfo measureClip(const Clip& clip, const ClipInfoOptions& o) {
     info.suspension_ms = runs ? 1000.0 * airborne * dt / runs : 0.0;
   }
   const int s0 = info.strides > 0 ? i0 : 0, s1 = info.strides > 0 ? i1 : n - 1;
-  info.speed_cm_s = (frames[s1].travel_cm - frames[s0].travel_cm) / std::max(dt, (s1 - s0) * dt);
+  // Distance along the ground track (a path turns): the sum of the travel frame's steps.
+  double track = 0.0;
+  for (int i = s0; i < s1; ++i)
+    track += std::hypot(frames[i + 1].travel_cm - frames[i].travel_cm, frames[i + 1].travel_z_cm - frames[i].travel_z_cm);
+  info.speed_cm_s = track / std::max(dt, (s1 - s0) * dt);
   if (info.stride_hz > 0.0) info.stride_length_cm = info.speed_cm_s / info.stride_hz;
 
   // Rear pivot: height peak to peak, and how many times per stride it rises through its middle.
@@ -198,7 +231,8 @@ ClipInfo measureClip(const Clip& clip, const ClipInfoOptions& o) {
     for (int i = 0; i <= n; ++i) {
       const bool d = i < n && down[i][h];
       if (d) {
-        const double x = frames[i].travel_cm + frames[i].controls[kTx[h]], z = frames[i].controls[kTz[h]];
+        const glm::dvec3 w = hoofWorld(frames[i], h, o.hoof_rest);
+        const double x = w.x, z = w.z;
         if (run < 0) run = i, x0 = x, z0 = z, run_max = 0.0;
         run_max = std::max(run_max, std::hypot(x - x0, z - z0));
       } else if (run >= 0) {
@@ -224,11 +258,12 @@ ClipInfo measureClip(const Clip& clip, const ClipInfoOptions& o) {
   const int frame_count = static_cast<int>(std::floor((info.end_s - info.start_s) * o.fps));
   for (int k = 0; k < frame_count; ++k) {
     const double t = info.start_s + k * frame_dt;
-    const HorseFrame a = clip.sample(t), b = clip.sample(t + frame_dt);
+    HorseFrame a = clip.sample(t), b = clip.sample(t + frame_dt);
+    if (o.mirror) a = mirrorLeftRight(a), b = mirrorLeftRight(b);
     for (int h = 0; h < 4; ++h) {
       if (a.controls[kTy[h]] > o.ground_cm || b.controls[kTy[h]] > o.ground_cm) continue;
-      const double dx = (b.travel_cm + b.controls[kTx[h]]) - (a.travel_cm + a.controls[kTx[h]]);
-      const double dz = b.controls[kTz[h]] - a.controls[kTz[h]];
+      const glm::dvec3 wa = hoofWorld(a, h, o.hoof_rest), wb = hoofWorld(b, h, o.hoof_rest);
+      const double dx = wb.x - wa.x, dz = wb.z - wa.z;
       const double mm = 10.0 * std::hypot(dx, dz);
       HoofInfo& hi = info.hooves[h];
       if (mm > hi.max_slide_mm) {

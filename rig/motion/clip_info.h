@@ -29,7 +29,17 @@ struct ClipInfoOptions {
   double held_pitch_lo_deg = 40.0, held_pitch_hi_deg = 70.0;
   // A croup-up counts when rearPivot.rz falls below this and ends when it rises above half of it.
   double croup_up_deg = -10.0;
+  // The horse's rest hoof places in its travel frame ((x, z) cm; lf, rf, lb, rb): where a turning clip
+  // swings a hoof from. Slides are measured in the world through the travel frame.
+  std::array<glm::dvec2, 4> hoof_rest = kDefaultHoofRest;
+  // Measure the clip mirrored left for right (mirrorLeftRight): a left-lead canter or gallop then
+  // reads against gait-reference.md's right-lead footfalls.
+  bool mirror = false;
 };
+
+// The frame mirrored left for right: left and right hooves swap, and sideways moves and rolls and
+// yaws change sign. A left-lead canter mirrored is a right-lead canter.
+HorseFrame mirrorLeftRight(const HorseFrame& f);
 
 struct HoofInfo {
   double touchdown_phase = 0.0;  // fraction of the stride after the left hind's touchdown

@@ -6,7 +6,7 @@
 // How it is built. Everything is first laid out along the path's arc length, as a straight movement
 // (rig/motion/movement.h): travel is the distance along the path, stride phase is the integral of
 // stride frequency, each gait and canter lead is one oscillation entry blended into the next over
-// about a stride, and footfalls are found where each hoof's blended phase crosses a whole stride
+// a stride and a half, and footfalls are found where each hoof's blended phase crosses a whole stride
 // (rig/motion/gaits.h), so a transition keeps every hoof planted through its stance and the stride
 // phase continuous. Sampling then bends that straight movement onto the path:
 //   - the travel frame stands at the path's point at the travelled distance, heading along its tangent;
@@ -38,13 +38,6 @@
 #include "rig/motion/terrain.h"
 
 namespace stirrup::rig {
-
-// The default horse's rest hoof places in its travel frame, (x forward, z right) cm, indexed lf, rf,
-// lb, rb (rig/characters/horse_character.cpp; tests/rig/motion/path_clip_test.cpp checks them against
-// the built horse). A path clip needs its horse's rest places: a planted hoof stays put only if the
-// clip turns it about the same place the horse's skeleton does.
-inline constexpr std::array<glm::dvec2, 4> kDefaultHoofRest = {
-    glm::dvec2{52.0, -13.0}, glm::dvec2{52.0, 13.0}, glm::dvec2{-69.0, -14.0}, glm::dvec2{-69.0, 14.0}};
 
 struct PathClipParams {
   std::vector<glm::dvec2> points;               // cm, (world x, world z)

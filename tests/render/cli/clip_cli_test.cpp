@@ -1,6 +1,7 @@
 // stirrup clip make / clip info, end to end.
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -79,6 +80,35 @@ TEST(ClipCli, InfoPrintsVerdicts) {
   ASSERT_EQ(jump.exit_code, 0) << jump.err;
   EXPECT_NE(jump.out.find("jump: take-off pitch (deg)"), std::string::npos) << jump.out;
   EXPECT_NE(jump.out.find("reference 18.9–23.9  ok"), std::string::npos) << jump.out;
+}
+
+// A path scene measured section by section: each steady stretch against its gait's reference (a left
+// lead mirrored), and the whole path on the ground for slides.
+TEST(ClipCli, InfoOnAPathSceneMeasuresEachSection) {
+  const fs::path scene = outDir() / "path.json";
+  {
+    std::ofstream(scene) << R"({"output": "out", "clip": {"generator": "path",
+      "points": [[0, 0], [2500, 0], [4500, 1500], [4500, 4000], [3000, 5500], [0, 5500]],
+      "speed": [[0, 180], [5, 180], [7, 360], [13, 360], [15, 560], [60, 560]]},
+      "terrain": {"hills": {"seed": 2, "amplitude_cm": 60, "wavelength_cm": 3000}}})";
+  }
+  const CommandResult r = runStirrup("clip info " + quote(scene.string()) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  std::vector<std::string> gaits;
+  for (const auto& s : j["sections"]) {
+    gaits.push_back(s["gait"]);
+    ASSERT_FALSE(s["info"].is_null()) << s;
+    EXPECT_TRUE(s["info"]["all_ok"].get<bool>()) << s["gait"] << ": " << s["info"]["verdict_details"];
+    EXPECT_GT(s["info"]["verdict_details"].size(), 8u);
+  }
+  EXPECT_EQ(gaits, (std::vector<std::string>{"walk", "trot", "canter"}));
+  EXPECT_EQ(j["sections"][2]["lead"], "right") << "the path turns right after the canter begins";
+  EXPECT_TRUE(j["path"]["problems"].empty()) << j["path"]["problems"];
+  const CommandResult text = runStirrup("clip info " + quote(scene.string()));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("section 2: trot"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("whole path, on the ground:"), std::string::npos) << text.out;
 }
 
 TEST(ClipCli, BadInputIsOneLine) {

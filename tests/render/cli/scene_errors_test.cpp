@@ -100,5 +100,33 @@ TEST_F(SceneErrors, AByteOrderMarkIsNotAnError) {
   EXPECT_TRUE(fs::exists(dir / "c.csv"));
 }
 
+// Paths and terrain (issue 15): a path with fewer than two points, a repeated point (a zero-length
+// segment), a speed <= 0, a heightfield parameter out of range or of the wrong type.
+TEST_F(SceneErrors, BadPathsAndTerrainsAreOneLine) {
+  const auto scene = [this](const std::string& clip, const std::string& terrain = "") {
+    return write("x.json", R"({"output": "out", "clip": {"generator": "path", )" + clip + "}" +
+                               (terrain.empty() ? "" : R"(, "terrain": )" + terrain) + "}");
+  };
+  fs::path f = scene(R"("points": [[0, 0]], "speed": [[0, 300]])");
+  expectError("render " + quote(f.string()), f.string() + ": clip: points: expected at least two points [x, z] (cm), got 1");
+  f = scene(R"("points": [[0, 0], [500, 0], [500, 0], [900, 0]], "speed": [[0, 300]])");
+  expectError("render " + quote(f.string()), f.string() +
+              ": clip: points[2]: expected a point at least 1 cm from points[1] (a zero-length segment has no heading), got one 0 cm away");
+  f = scene(R"("points": [[0, 0], [500, 0]], "speed": [[0, 0]])");
+  expectError("render " + quote(f.string()), f.string() + ": clip: speed[0]: expected a speed > 0 (cm/s), got 0");
+  f = scene(R"("points": [[0, 0], [500, 0]], "speed": [[0, -3]])");
+  expectError("bake " + quote(f.string()) + " --channels " + quote((dir / "out/c.csv").string()),
+              f.string() + ": clip: speed[0]: expected a speed > 0 (cm/s), got -3");
+  f = scene(R"("points": [[0, 0], [500, "a"]], "speed": [[0, 300]])");
+  expectError("render " + quote(f.string()), f.string() + ": clip.points[1]: expected a point [x, z] (cm), got an array of 2");
+  const std::string path = R"("points": [[0, 0], [900, 0]], "speed": [[0, 300]])";
+  f = scene(path, R"({"hills": {"amplitude_cm": -4}})");
+  expectError("render " + quote(f.string()), f.string() + ": terrain.hills.amplitude_cm: expected a height from 0 to 5000 cm, got -4");
+  f = scene(path, R"({"hills": {"wavelength_cm": 10}})");
+  expectError("render " + quote(f.string()), f.string() + ": terrain.hills.wavelength_cm: expected a length from 100 to 1000000 cm, got 10");
+  f = scene(path, R"({"hills": {"octaves": "many"}})");
+  expectError("render " + quote(f.string()), f.string() + ": terrain.hills.octaves: expected a whole number, got \"many\"");
+}
+
 }  // namespace
 }  // namespace stirrup::test
