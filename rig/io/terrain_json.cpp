@@ -1,12 +1,19 @@
 #include "rig/io/terrain_json.h"
 
 #include "rig/error.h"
+#include "rig/io/gltf_terrain.h"
 
 namespace stirrup::rig {
 
 std::shared_ptr<const Terrain> parseTerrain(JsonObjectReader& r, const std::filesystem::path& base_dir) {
-  (void)base_dir;
   const std::string source = r.file();
+  if (r.has("file") && r.has("hills")) r.fail("file", "expected either \"file\" or \"hills\", not both");
+  if (r.has("file")) {
+    const std::string file = r.string("file", "");
+    r.finish();
+    const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
+    return std::make_shared<const Terrain>(Terrain::mesh(loadTerrainGltf(path, source + ": " + r.fieldPath("file"))));
+  }
   if (r.has("hills")) {
     JsonObjectReader h = r.object("hills");
     HillsParams p;
@@ -21,7 +28,7 @@ std::shared_ptr<const Terrain> parseTerrain(JsonObjectReader& r, const std::file
     return std::make_shared<const Terrain>(Terrain::hills(p, source));
   }
   r.finish();
-  r.fail("hills", "expected \"hills\": {\"seed\", \"amplitude_cm\", \"wavelength_cm\", \"octaves\"}");
+  r.fail("hills", "expected \"hills\": {\"seed\", \"amplitude_cm\", \"wavelength_cm\", \"octaves\"} or \"file\": a glTF mesh");
 }
 
 }  // namespace stirrup::rig

@@ -26,6 +26,11 @@ constexpr double kTurnSmoothingCm = 100.0;
 // speed keeps rising while the duty factor is still the walk's), at a stride and a half 17%
 // (tests/rig/motion/path_clip_test.cpp, TransitionsAreNoFasterThanTheSteadyGaits).
 constexpr double kBlendStrides = 1.5;
+// A mesh terrain is checked under the path every kCoverageStepCm, out to the hooves' reach ahead of,
+// behind and beside the travel frame (the default horse's hooves, with room for a stride's swing).
+constexpr double kCoverageStepCm = 25.0;
+constexpr double kHoofReachCm = 150.0;
+constexpr double kHoofReachSideCm = 30.0;
 // A turn the lead follows changes the heading by at least this much (degrees).
 constexpr double kMinTurnDeg = 20.0;
 // The rear pivot's height above the ground in the default horse (its root joint, 128 cm): the body
@@ -56,6 +61,17 @@ struct Event {
 PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain, const std::string& source)
     : params_(std::move(params)), terrain_(std::move(terrain)), path_(params_.points, source) {
   const double length = path_.length();
+  // A mesh terrain must be under every hoof the whole way: check the path and its hooves' reach.
+  if (terrain_ && terrain_->triangles()) {
+    for (double d = -kHoofReachCm; d <= length + kHoofReachCm; d += kCoverageStepCm)
+      for (const double side : {-kHoofReachSideCm, 0.0, kHoofReachSideCm}) {
+        const GroundPath::Sample at = extended(d);
+        const glm::dvec2 q = at.position + glm::dvec2{-at.tangent.y, at.tangent.x} * side;
+        if (!terrain_->covers(q.x, q.y))
+          throw InputError(source + ": points: expected the path over the terrain mesh, but it leaves it near (" +
+                           numberText(std::round(q.x)) + ", " + numberText(std::round(q.y)) + ") cm");
+      }
+  }
   // How long the speed profile needs to be tabled: the path at the slowest key's speed, and a margin.
   double slowest = 0.0;
   for (const auto& k : params_.speed) slowest = slowest == 0.0 ? k.speed : std::min(slowest, k.speed);

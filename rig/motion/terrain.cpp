@@ -47,7 +47,17 @@ Terrain Terrain::hills(const HillsParams& p, const std::string& source) {
   return t;
 }
 
+Terrain Terrain::mesh(std::shared_ptr<const TerrainMesh> mesh) {
+  Terrain t;
+  t.mesh_ = std::move(mesh);
+  return t;
+}
+
 double Terrain::height(double x, double z) const {
+  if (mesh_) {
+    const auto hit = mesh_->at(x, z);
+    return hit ? hit->height_cm : mesh_->lowest();
+  }
   if (!hills_) return 0.0;
   double dx = 0.0, dz = 0.0;
   double h = 0.0;
@@ -60,6 +70,11 @@ double Terrain::height(double x, double z) const {
 
 void Terrain::gradient(double x, double z, double& gx, double& gz) const {
   gx = gz = 0.0;
+  if (mesh_) {
+    // The triangle's plane: flat between its edges, so the slope steps at them.
+    if (const auto hit = mesh_->at(x, z)) gx = -hit->normal.x / hit->normal.y, gz = -hit->normal.z / hit->normal.y;
+    return;
+  }
   if (!hills_) return;
   for (int o = 0; o < params_.octaves; ++o) {
     const double f = std::ldexp(1.0, o) / params_.wavelength_cm;

@@ -1,5 +1,5 @@
-// The ground a path crosses (issue 15): flat, or rolling hills from a seed, an amplitude and a
-// wavelength. Heights are a pure function of (x, z), cm, so a clip, the renderer and a test all see the
+// The ground a path crosses (issue 15): flat, rolling hills from a seed, an amplitude and a
+// wavelength, or a triangle mesh (rig/motion/terrain_mesh.h, read from glTF by rig/io/gltf_terrain.h). Heights are a pure function of (x, z), cm, so a clip, the renderer and a test all see the
 // same ground on any machine, in any frame order.
 //
 // Hills: 2-D value noise on a square lattice of `wavelength_cm` spacing, blended with the quintic fade
@@ -9,9 +9,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include <glm/vec3.hpp>
+
+#include "rig/motion/terrain_mesh.h"
 
 namespace stirrup::rig {
 
@@ -28,8 +31,13 @@ class Terrain {
   // Rolling hills. Throws stirrup::InputError "SOURCE: terrain.FIELD: expected ..., got ..." for an
   // amplitude outside 0-5000 cm, a wavelength outside 100-1 000 000 cm, or octaves outside 1-6.
   static Terrain hills(const HillsParams& params, const std::string& source);
+  // A mesh. Off it (or over a hole) the ground is at the mesh's lowest vertex; covers() says where it is.
+  static Terrain mesh(std::shared_ptr<const TerrainMesh> mesh);
 
-  bool flat() const { return !hills_; }
+  bool flat() const { return !hills_ && !mesh_; }
+  const TerrainMesh* triangles() const { return mesh_.get(); }  // null unless a mesh
+  // Whether (x, z) is on the ground the terrain describes (always, but for a mesh: over a triangle).
+  bool covers(double x, double z) const { return !mesh_ || mesh_->at(x, z).has_value(); }
   double height(double x, double z) const;          // cm
   // (d height / dx, d height / dz): the slope, analytic.
   void gradient(double x, double z, double& dx, double& dz) const;
@@ -37,6 +45,7 @@ class Terrain {
 
  private:
   bool hills_ = false;
+  std::shared_ptr<const TerrainMesh> mesh_;
   HillsParams params_;
   double scale_ = 1;  // 1 / the sum of the octaves' amplitudes
 };

@@ -124,6 +124,12 @@ TEST_F(SceneErrors, BadPathsAndTerrainsAreOneLine) {
   expectError("render " + quote(f.string()), f.string() + ": terrain.hills.amplitude_cm: expected a height from 0 to 5000 cm, got -4");
   f = scene(path, R"({"hills": {"wavelength_cm": 10}})");
   expectError("render " + quote(f.string()), f.string() + ": terrain.hills.wavelength_cm: expected a length from 100 to 1000000 cm, got 10");
+  f = scene(path, R"({"file": "ground.glb"})");
+  expectError("render " + quote(f.string()),
+              f.string() + ": terrain.file: " + (dir / "ground.glb").string() + ": no such file (expected a glTF terrain mesh)");
+  write("ground.glb", "not a glb");
+  f = scene(path, R"({"file": "ground.glb", "hills": {}})");
+  expectError("render " + quote(f.string()), f.string() + ": terrain.file: expected either \"file\" or \"hills\", not both");
   f = scene(path, R"({"hills": {"octaves": "many"}})");
   expectError("render " + quote(f.string()), f.string() + ": terrain.hills.octaves: expected a whole number, got \"many\"");
 }

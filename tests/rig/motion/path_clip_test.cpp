@@ -56,6 +56,33 @@ std::shared_ptr<const Terrain> hills(double amplitude_cm, double wavelength_cm) 
   return std::make_shared<const Terrain>(Terrain::hills(h, "test"));
 }
 
+// The hills sampled every 25 cm into a triangle mesh over [x0, x1] x [z0, z1]: a glTF terrain's kind
+// of ground, with heights the test knows.
+std::shared_ptr<const Terrain> meshOfHills(double x0, double x1, double z0, double z1) {
+  const std::shared_ptr<const Terrain> h = hills(120, 2500);
+  const double step = 25.0;
+  const int nx = int((x1 - x0) / step), nz = int((z1 - z0) / step);
+  std::vector<glm::dvec3> v;
+  std::vector<std::uint32_t> idx;
+  for (int z = 0; z <= nz; ++z)
+    for (int x = 0; x <= nx; ++x) v.push_back({x0 + x * step, h->height(x0 + x * step, z0 + z * step), z0 + z * step});
+  for (int z = 0; z < nz; ++z)
+    for (int x = 0; x < nx; ++x) {
+      const auto k = std::uint32_t(z * (nx + 1) + x), row = std::uint32_t(nx + 1);
+      idx.insert(idx.end(), {k, k + 1, k + row + 1, k, k + row + 1, k + row});
+    }
+  return std::make_shared<const Terrain>(Terrain::mesh(std::make_shared<const TerrainMesh>(v, idx, "mesh")));
+}
+
+std::string errorOf(PathClipParams p, std::shared_ptr<const Terrain> terrain = nullptr) {
+  try {
+    (void)PathClip(std::move(p), std::move(terrain), "scene.json: clip");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 glm::dvec3 hoofWorld(const std::vector<glm::mat4>& w, int h) {
   return glm::dvec3(w[std::size_t(defaultHorse().role(kHoofRoles[std::size_t(h)]))][3]);
 }
@@ -205,6 +232,32 @@ TEST(PathClip, HoovesStandOnTheTerrain) {
   EXPECT_GE(deepest, -0.5);
 }
 
+// The same over a mesh terrain (a glTF file's kind of ground): planted hooves on its triangles, none
+// sliding; and a path that leaves the mesh is an error naming where.
+TEST(PathClip, HoovesStandOnAMeshTerrain) {
+  const std::shared_ptr<const Terrain> ground = meshOfHills(-400, 7000, -400, 4400);
+  const PathClip clip(turnsAndTransitions(), ground, "test");
+  double worst_planted = 0, deepest = 0;
+  for (int k = 0; k / 60.0 <= clip.duration(); ++k) {
+    const HorseFrame f = clip.sample(k / 60.0);
+    for (int h = 0; h < 4; ++h) {
+      const glm::dvec3 p = hoofTarget(f, h);
+      const double above = p.y - restHoofHeight(h) - ground->height(p.x, p.z);
+      deepest = std::min(deepest, above);
+      if (f.controls[kTy[h]] <= kDownCm) worst_planted = std::max(worst_planted, std::abs(above));
+    }
+  }
+  EXPECT_LE(worst_planted, 0.5);
+  EXPECT_GE(deepest, -0.5);
+  const StanceSlides s = measureStances(clip);
+  EXPECT_LE(std::max({s.straight, s.turn, s.transition}), 0.5);
+  PathClipParams off = turnsAndTransitions();
+  off.points.push_back({9000, 4000});
+  EXPECT_NE(errorOf(off, meshOfHills(-400, 7000, -400, 4400)).find("scene.json: clip: points: expected the path over the terrain mesh, but it leaves it near ("),
+            std::string::npos)
+      << errorOf(off, meshOfHills(-400, 7000, -400, 4400));
+}
+
 // The body follows the ground: its height over the hills, and its pitch (nose up climbing).
 TEST(PathClip, BodyPitchesWithTheGround) {
   const std::shared_ptr<const Terrain> ground = hills(150, 2500);
@@ -352,15 +405,6 @@ TEST(PathClip, SteadySectionsPassTheGaitReference) {
                           << v.value << " outside " << v.range.lo << ".." << v.range.hi;
     }
   }
-}
-
-std::string errorOf(PathClipParams p) {
-  try {
-    (void)PathClip(std::move(p), nullptr, "scene.json: clip");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(PathClip, BadPathsAndSpeedsAreOneLineErrors) {

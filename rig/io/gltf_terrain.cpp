@@ -1,0 +1,110 @@
+#include "rig/io/gltf_terrain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+#include <tiny_gltf.h>
+
+#include "rig/error.h"
+#include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_nodes.h"
+
+namespace stirrup::rig {
+namespace {
+
+constexpr double kCmPerMetre = 100.0;  // glTF 2.0 (section 3.4): linear distances are metres
+
+glm::dmat4 localMatrix(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) {
+    glm::dmat4 m(1.0);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[std::size_t(c * 4 + r)];
+    return m;
+  }
+  glm::dmat4 m(1.0);
+  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4) m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
+  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  return m;
+}
+
+std::shared_ptr<const TerrainMesh> load(const std::filesystem::path& file, const std::string& where) {
+  const std::string f = file.string();
+  if (!std::filesystem::is_regular_file(file)) throw InputError(where + ": no such file (expected a glTF terrain mesh)");
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool ok = file.extension() == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, f)
+                                             : loader.LoadASCIIFromFile(&model, &err, &warn, f);
+  if (!ok) {
+    std::replace(err.begin(), err.end(), '\n', ' ');
+    throw InputError(where + ": not a readable glTF file (" + err + ")");
+  }
+  const std::vector<int> parent = gltfNodeParents(model, where);
+  std::vector<glm::dmat4> world(model.nodes.size(), glm::dmat4(1.0));
+  std::vector<bool> done(model.nodes.size(), false);
+  // Parents before children: the hierarchy is checked acyclic, so following parents ends.
+  const auto worldOf = [&](int i, const auto& self) -> const glm::dmat4& {
+    if (!done[std::size_t(i)]) {
+      const glm::dmat4 local = localMatrix(model.nodes[std::size_t(i)]);
+      world[std::size_t(i)] = parent[std::size_t(i)] < 0 ? local : self(parent[std::size_t(i)], self) * local;
+      done[std::size_t(i)] = true;
+    }
+    return world[std::size_t(i)];
+  };
+
+  std::vector<glm::dvec3> vertices;
+  std::vector<std::uint32_t> indices;
+  for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
+    const tinygltf::Node& node = model.nodes[ni];
+    if (node.mesh < 0) continue;
+    const glm::dmat4& m = worldOf(int(ni), worldOf);
+    const std::string mw = where + ": meshes[" + std::to_string(node.mesh) + "]";
+    const tinygltf::Mesh& mesh = model.meshes.at(std::size_t(node.mesh));
+    for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+      const tinygltf::Primitive& prim = mesh.primitives[pi];
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;  // points and lines carry no ground
+      const auto pos = prim.attributes.find("POSITION");
+      if (pos == prim.attributes.end()) continue;
+      const std::string pw = mw + ".primitives[" + std::to_string(pi) + "]";
+      const std::vector<float> p = readAccessor(model, pos->second, 3, pw + ".POSITION");
+      const auto base = static_cast<std::uint32_t>(vertices.size());
+      const std::size_t count = p.size() / 3;
+      for (std::size_t i = 0; i < count; ++i) {
+        // Checked before the transform: a NaN would spread to the whole vertex.
+        if (!std::isfinite(p[3 * i]) || !std::isfinite(p[3 * i + 1]) || !std::isfinite(p[3 * i + 2]))
+          throw InputError(pw + ".POSITION: vertex " + std::to_string(i) + ": expected finite coordinates, got (" +
+                           numberText(p[3 * i]) + ", " + numberText(p[3 * i + 1]) + ", " + numberText(p[3 * i + 2]) + ") m");
+        vertices.push_back(glm::dvec3(m * glm::dvec4(p[3 * i], p[3 * i + 1], p[3 * i + 2], 1.0)) * kCmPerMetre);
+      }
+      std::vector<std::uint32_t> idx;
+      if (prim.indices >= 0) idx = readIndices(model, prim.indices, pw + ".indices");
+      else for (std::uint32_t i = 0; i < count; ++i) idx.push_back(i);
+      for (std::size_t i = 0; i + 2 < idx.size(); i += 3)
+        for (int k = 0; k < 3; ++k) {
+          if (idx[i + std::size_t(k)] >= count)
+            throw InputError(pw + ".indices: expected vertex indices below " + std::to_string(count) + ", got " +
+                             std::to_string(idx[i + std::size_t(k)]));
+          indices.push_back(base + idx[i + std::size_t(k)]);
+        }
+    }
+  }
+  return std::make_shared<const TerrainMesh>(std::move(vertices), std::move(indices), where);
+}
+
+}  // namespace
+
+std::shared_ptr<const TerrainMesh> loadTerrainGltf(const std::filesystem::path& file, const std::string& field) {
+  const std::string where = field + ": " + file.string();
+  try {
+    return load(file, where);
+  } catch (const std::out_of_range&) {
+    throw InputError(where + ": not a valid glTF file (an index points past the end of its array)");
+  }
+}
+
+}  // namespace stirrup::rig
