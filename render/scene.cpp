@@ -10,6 +10,7 @@
 
 #include "rig/error.h"
 #include "rig/io/frame_range.h"
+#include "rig/io/gltf_character.h"
 #include "rig/io/json_fields.h"
 #include "rig/io/terrain_json.h"
 
@@ -81,6 +82,11 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
 }
 
 }  // namespace
+
+std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
+  if (scene.horse == "default" || scene.clip.generator != "path") return rig::makeClip(scene.clip);
+  return rig::makeClip(scene.clip, rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping));
+}
 
 SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
   JsonObjectReader r(file, "", json);

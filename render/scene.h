@@ -87,6 +87,10 @@ std::filesystem::path findSceneFile(const std::filesystem::path& file);
 // Parses scene JSON already in memory; `file` names it in errors.
 SceneSpec parseScene(const nlohmann::json& json, const std::string& file);
 
+// The scene's clip, for its horse: a path clip turns the hooves about the horse's own rest places (a
+// glTF horse is read for them; the default horse's are built in).
+std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene);
+
 // The camera of the scene named `name` (or the first when empty); InputError if there is none.
 const CameraSpec& findCamera(const SceneSpec& scene, const std::string& name);
 

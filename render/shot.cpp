@@ -28,9 +28,9 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
     : scene_(scene),
       profile_(profile),
       camera_(camera),
-      clip_(rig::makeClip(scene.clip)),
       horse_(rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping)),
       rider_(rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping)) {
+  clip_ = rig::makeClip(scene.clip, horse_);  // a path clip turns hooves about this horse's rest places
   RenderSettings settings;
   settings.width = scene.width;
   settings.height = scene.height;

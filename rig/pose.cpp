@@ -86,6 +86,16 @@ void checkSize(const Character& c, std::span<const glm::mat4> world) {
 
 }  // namespace
 
+std::array<glm::dvec2, 4> restHoofPlaces(const Character& horse) {
+  std::array<glm::dvec2, 4> out{};
+  static constexpr std::array<const char*, 4> kRoles = {"lfHoof", "rfHoof", "lbHoof", "rbHoof"};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const glm::vec3 p = horse.skeleton.restPosition(horse.role(kRoles[i]));
+    out[i] = {p.x, p.z};
+  }
+  return out;
+}
+
 glm::mat4 travelMatrix(const HorseFrame& frame) {
   // Heading + turns right: from +X toward +Z, a turn about -Y; then the ground's pitch, nose up.
   return translate({float(frame.travel_cm), float(frame.ground_y_cm), float(frame.travel_z_cm)}) *

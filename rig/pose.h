@@ -45,6 +45,9 @@ struct HorsePoseParams {
 // The travel frame of a horse frame: world from travel-frame coordinates (its origin at (travel_cm, 0,
 // travel_z_cm), turned by heading_deg).
 glm::mat4 travelMatrix(const HorseFrame& frame);
+// The horse's hooves standing square, in its travel frame: (x forward, z right) cm, lf rf lb rb. A
+// path clip turns planted hooves about these (rig::ClipSpec::hoof_rest).
+std::array<glm::dvec2, 4> restHoofPlaces(const Character& horse);
 
 // The horse at one frame: in its travel frame (travelMatrix); the body (root at the hips) moved and
 // turned by rearPivot, the front half turned at backMid, neck/head/tail by the frame's follow-through,

@@ -113,7 +113,7 @@ void runBake(const BakeOptions& o) {
   const render::SceneSpec scene = render::loadScene(o.scene);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
   const rig::RigProfile profile = render::resolveProfile(scene);
-  const std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
+  const std::unique_ptr<rig::Clip> clip = render::makeSceneClip(scene);
 
   if (o.channels.empty() && o.output.empty()) throw InputError("bake: nothing to write (expected --channels FILE or -o FILE.glb)");
   if (o.rider_only && o.output.empty()) throw InputError("bake: --rider-only: expected -o FILE.glb to write the rider's motion to");

@@ -134,7 +134,7 @@ void runInfo(const ClipOptions& o) {
     // A scene: its clip, over its terrain. A path clip is measured section by section.
     if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a scene: " + o.params[0]);
     const render::SceneSpec scene = render::loadScene(o.clip);
-    clip = rig::makeClip(scene.clip);
+    clip = render::makeSceneClip(scene);
     if (const auto* path = dynamic_cast<const rig::PathClip*>(clip.get())) return runPathInfo(o.clip, *path, o);
     if (reference.empty()) reference = scene.clip.generator;  // empty for a glTF clip
   } else if (isGltf(o.clip)) {

@@ -78,7 +78,7 @@ void runBalance(const RigOptions& o) {
   const render::SceneSpec scene = render::loadScene(o.scene);
   rig::RigProfile profile = render::resolveProfile(scene);
   rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
-  const auto clip = rig::makeClip(scene.clip);
+  const auto clip = render::makeSceneClip(scene);
   const rig::Character horse = rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping);
   const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping);
   std::ostringstream out;

@@ -114,7 +114,7 @@ int movieFrameCount(const MovieJob& job, const MovieOptions& o) { return static_
 fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out) {
   const SceneSpec scene = loadScene(scene_file);
   const rig::RigProfile profile = resolveProfile(scene);
-  const std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
+  const std::unique_ptr<rig::Clip> clip = makeSceneClip(scene);
   std::vector<rig::BakedFrame> baked;
   for (int f : rig::parseFrameList(scene.frames, scene_file.string() + ": frames"))
     baked.push_back(rig::bakeFrame(*clip, profile, f, frameTime(scene, f)));
@@ -143,7 +143,7 @@ std::string movieView(const MovieJob& job) { return job.layered.empty() ? job.ca
 BurnInFacts movieFacts(const MovieJob& job, const MovieOptions& o, const SceneSpec& scene, const std::vector<int>& frames) {
   BurnInFacts facts;
   facts.scene = scene.name;
-  facts.movement = rig::makeClip(scene.clip)->name();
+  facts.movement = makeSceneClip(scene)->name();
   facts.view = movieView(job);
   facts.profile = scene.profile;
   facts.fps = scene.fps;

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "rig/error.h"
+#include "rig/pose.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/motion/movement_clips.h"
 #include "rig/motion/path_clip.h"
@@ -377,6 +378,12 @@ std::unique_ptr<Clip> makeClip(const ClipSpec& spec) {
                    throw InputError(spec.source + "." + key + ": " + what);
                  }};
   return buildGenerator(spec.generator, pr, spec);
+}
+
+std::unique_ptr<Clip> makeClip(const ClipSpec& spec, const Character& horse) {
+  ClipSpec own = spec;
+  own.hoof_rest = restHoofPlaces(horse);
+  return makeClip(own);
 }
 
 }  // namespace stirrup::rig

@@ -14,6 +14,7 @@
 #include <glm/vec2.hpp>
 #include <nlohmann/json.hpp>
 
+#include "rig/character.h"
 #include "rig/clip.h"
 #include "rig/io/json_fields.h"
 #include "rig/motion/procedural_gait.h"
@@ -49,5 +50,7 @@ ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_di
 std::optional<GaitParams> steadyGaitParams(const ClipSpec& spec);
 
 std::unique_ptr<Clip> makeClip(const ClipSpec& spec);
+// The clip for this horse: a path clip turns its hooves about the horse's own rest places.
+std::unique_ptr<Clip> makeClip(const ClipSpec& spec, const Character& horse);
 
 }  // namespace stirrup::rig
