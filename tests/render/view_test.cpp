@@ -100,6 +100,38 @@ TEST(ViewPreset, SetsTheLensAndMotionOfEachView) {
   EXPECT_EQ(top.motion, "fixed");
 }
 
+// Through the turns and over the hills of a path clip the follow views, turning with the horse, still
+// keep horse and rider whole in frame (the framing measures them in the camera's turning frame).
+TEST(PathViewFraming, FollowViewsKeepAHorseOnAPathInFrame) {
+  const SceneSpec scene = parseScene(nlohmann::json::parse(R"({
+    "name": "path1",
+    "clip": {"generator": "path", "points": [[0,0],[2000,0],[3500,1000],[3500,3000],[2000,4000],[0,4000]],
+             "speed": [[0,150],[4,150],[7,380],[12,380],[15,520],[40,520]]},
+    "terrain": {"hills": {"seed": 3, "amplitude_cm": 80, "wavelength_cm": 3000, "octaves": 2}},
+    "fps": 24, "frames": "1-480x8", "resolution": [96, 54], "quality": {"samples": 1},
+    "cameras": [{"name": "side", "view": "side"}, {"name": "persp", "view": "persp"},
+                {"name": "close", "view": "close"}]})"),
+                                     "path1.json");
+  const rig::RigProfile profile = resolveProfile(scene);
+  const auto clip = rig::makeClip(scene.clip);
+  const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  double turned = 0.0;
+  for (int f : frames) turned = std::max(turned, std::abs(clip->sample(frameTime(scene, f)).heading_deg));
+  ASSERT_GT(turned, 90.0) << "the clip does turn";
+  for (const char* name : {"side", "persp", "close"}) {
+    Shot shot(scene, profile, findCamera(scene, name), 0);
+    for (std::size_t k = 0; k < frames.size(); k += 3) {
+      const BorderCount c = countBorder(shot.renderFrame(frames[k]));
+      if (std::string(name) == "close") {
+        EXPECT_GT(c.rider, 0) << "close frame " << frames[k];
+        EXPECT_EQ(c.rider_top, 0) << "close frame " << frames[k] << ": the rider touches the top";
+      } else {
+        EXPECT_EQ(c.matte, 0) << name << " frame " << frames[k] << ": horse or rider on the image border";
+      }
+    }
+  }
+}
+
 // A figure eight (issue 15): two loops of a path clip, 48 m by 20 m, over hills.
 SceneSpec figureEight() {
   return parseScene(nlohmann::json::parse(R"({
