@@ -44,18 +44,19 @@ glm::dvec3 dampedFollow(const std::function<glm::dvec3(double)>& path, double t,
   return sum / weight;
 }
 
-glm::dvec3 travelPoint(const CameraSpec& spec, const rig::Clip& clip, double seconds) {
+namespace {
+
+glm::dvec3 travelPointOf(const CameraSpec& spec, const rig::HorseFrame& f) {
   if (spec.treadmill) return glm::dvec3(0.0);
-  const rig::HorseFrame f = clip.sample(seconds);
-  return {f.travel_cm, 0.0, f.travel_z_cm};
+  return {f.travel_cm, f.ground_y_cm, f.travel_z_cm};
 }
 
-glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
-                       double seconds) {
+// followPoint of an already sampled frame (the follow filter samples each time once for the point and
+// the heading both).
+glm::dvec3 followPointOf(const CameraSpec& spec, const rig::HorseFrame& horse, const rig::RigProfile& profile) {
   if (spec.follow_target == "rider") {
     // The horse and the rider channels only (not bakeFrame: the follow filter calls this hundreds of
     // times a frame, and the travel acceleration bakeFrame adds costs four more clip samples).
-    const rig::HorseFrame horse = clip.sample(seconds);
     const rig::RiderChannels rider = rig::evaluateRider(horse.controls, profile);
     using H = rig::HorseChannel;
     using R = rig::RiderChannel;
@@ -72,21 +73,67 @@ glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig:
     // by its heading (about -Y, as rig::travelMatrix).
     const glm::dvec3 seat = pivot + turn * (lever + cog) - lever;
     const double a = glm::radians(horse.heading_deg);
-    return travelPoint(spec, clip, seconds) + glm::dvec3(seat.x * std::cos(a), seat.y, seat.x * std::sin(a));
+    return travelPointOf(spec, horse) + glm::dvec3(seat.x * std::cos(a), seat.y, seat.x * std::sin(a));
   }
-  return travelPoint(spec, clip, seconds);
+  return travelPointOf(spec, horse);
+}
+
+}  // namespace
+
+glm::dvec3 travelPoint(const CameraSpec& spec, const rig::Clip& clip, double seconds) {
+  return travelPointOf(spec, clip.sample(seconds));
+}
+
+glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
+                       double seconds) {
+  return followPointOf(spec, clip.sample(seconds), profile);
 }
 
 glm::dvec3 followOffset(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
+                        double seconds, double tau) {
+  return followFrame(spec, clip, profile, seconds, tau).point;
+}
+
+FollowFrame followFrame(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
                         double seconds, double tau) {
   // Only the height is damped (the bob); across the frame the followed point is followed exactly.
   // Damping the travel too made the camera overshoot where the horse decelerates (the filter is
   // lag-free only for constant speed): in stop_close the rider drifted from 76% to 18% of the frame's
   // width, and in the rear, where the seat swings 30 cm back as the body rises, by 21%.
-  const glm::dvec3 point = followPoint(spec, clip, profile, seconds);
-  if (!(tau > 0.0)) return point;
-  const double height = dampedFollow([&](double u) { return followPoint(spec, clip, profile, u); }, seconds, tau).y;
-  return {point.x, height, point.z};
+  const rig::HorseFrame now = clip.sample(seconds);
+  const glm::dvec3 point = followPointOf(spec, now, profile);
+  FollowFrame out;
+  if (!(tau > 0.0)) {
+    out.point = point;
+    out.heading_deg = now.heading_deg;
+    return out;
+  }
+  // One filter pass for the height (y) and the heading's direction (x = cos, z = sin): the filter
+  // works on each component alone, so the height is exactly what it is filtered alone.
+  const glm::dvec3 damped = dampedFollow(
+      [&](double u) {
+        const rig::HorseFrame f = clip.sample(u);
+        const double a = glm::radians(f.heading_deg);
+        return glm::dvec3(std::cos(a), followPointOf(spec, f, profile).y, std::sin(a));
+      },
+      seconds, tau);
+  out.point = {point.x, damped.y, point.z};
+  out.heading_deg = glm::degrees(std::atan2(damped.z, damped.x));
+  return out;
+}
+
+glm::dvec3 turnByHeading(const glm::dvec3& v, double heading_deg) {
+  if (heading_deg == 0.0) return v;  // exactly: straight clips keep the frames they had
+  const double a = glm::radians(heading_deg), c = std::cos(a), s = std::sin(a);
+  return {v.x * c - v.z * s, v.y, v.x * s + v.z * c};
+}
+
+double cameraHeadingAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
+                            const rig::RigProfile& profile, int frame) {
+  if (spec.motion != "follow") return 0.0;
+  const int shown = spec.hold_frame > 0 ? spec.hold_frame : frame;
+  return followFrame(spec, clip, profile, frameTime(scene, shown), spec.hold_frame > 0 ? 0.0 : spec.damping_s)
+      .heading_deg;
 }
 
 Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
@@ -95,7 +142,7 @@ Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::
   c.projection = spec.orthographic ? Camera::Projection::Orthographic : Camera::Projection::Perspective;
   c.fov_deg = spec.fov_deg;
   c.ortho_height_cm = spec.ortho_height_cm;
-  c.up = {0.0, 1.0, 0.0};
+  c.up = toVec(spec.up);
   glm::dvec3 position = toVec(spec.position);
   glm::dvec3 target = toVec(spec.target);
   if (spec.motion == "fixed") {
@@ -115,7 +162,10 @@ Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::
     position = target + glm::dvec3(rel.x * std::cos(a) + rel.z * std::sin(a), rel.y,
                                    -rel.x * std::sin(a) + rel.z * std::cos(a));
   } else {
-    offset = followOffset(spec, clip, profile, t, spec.hold_frame > 0 ? 0.0 : spec.damping_s);
+    const FollowFrame follow = followFrame(spec, clip, profile, t, spec.hold_frame > 0 ? 0.0 : spec.damping_s);
+    offset = follow.point;
+    position = turnByHeading(position, follow.heading_deg);
+    target = turnByHeading(target, follow.heading_deg);
   }
   c.position = position + offset;
   c.target = target + offset;

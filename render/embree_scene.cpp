@@ -77,6 +77,30 @@ void EmbreeScene::setGround(float half_extent_cm) {
   throwOnDeviceError(device_, "ground commit", last_error_);
 }
 
+void EmbreeScene::setGroundMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices) {
+  if (indices.size() % 3 != 0) throw std::invalid_argument("ground mesh: index count is not a multiple of 3");
+  for (uint32_t i : indices)
+    if (i >= positions.size()) throw std::invalid_argument("ground mesh: index " + std::to_string(i) + " out of range");
+  if (ground_quad_) {
+    rtcDetachGeometry(ground_, 0);
+    rtcReleaseGeometry(ground_quad_);
+  }
+  ground_quad_ = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(ground_quad_, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), positions.size()));
+  auto* t = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(ground_quad_, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                           3 * sizeof(uint32_t), indices.size() / 3));
+  throwOnDeviceError(device_, "ground mesh buffers", last_error_);
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+  std::memcpy(v, positions.data(), positions.size_bytes());
+  std::memcpy(t, indices.data(), indices.size_bytes());
+  rtcSetGeometryBuildQuality(ground_quad_, RTC_BUILD_QUALITY_MEDIUM);
+  rtcCommitGeometry(ground_quad_);
+  rtcAttachGeometryByID(ground_, ground_quad_, 0);
+  rtcCommitScene(ground_);
+  throwOnDeviceError(device_, "ground mesh commit", last_error_);
+}
+
 unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint32_t> indices,
                                       std::span<const glm::vec3> rest_positions) {
   if (!rest_positions.empty() && rest_positions.size() != vertex_count)

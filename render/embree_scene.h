@@ -1,9 +1,11 @@
-// The Embree side of the renderer: one device and two scenes. The ground scene holds a static quad,
+// The Embree side of the renderer: one device and two scenes. The ground scene holds a static quad
+// (or, for uneven ground, a static heightfield mesh that camera rays are traced against),
 // committed once and never touched again. The character scene holds triangle meshes whose vertex
 // buffers are overwritten in place every frame (rtcUpdateGeometryBuffer + rtcCommitGeometry, then
 // one rtcCommitScene before tracing). Keeping the ground out of the character BVH means shadow and
-// sky rays, which can never be blocked by the ground (see integrator.cpp), traverse only the
-// characters, and the huge ground triangles never inflate the character BVH's nodes.
+// sky rays, which the ground is taken never to block (see integrator.cpp; on hills, a hill's own
+// shadow is left out), traverse only the characters, and the huge ground triangles never inflate the
+// character BVH's nodes.
 #pragma once
 
 #include <cstdint>
@@ -47,6 +49,9 @@ class EmbreeScene {
   // Sets the ground scene to a horizontal square at y = 0 centred on the origin, 2 * half_extent_cm
   // wide, and commits it.
   void setGround(float half_extent_cm);
+  // Sets the ground scene to a triangle mesh instead (the heightfield of uneven ground,
+  // render/terrain_mesh.h), built once (MEDIUM, static) and committed. Throws like addTriangleMesh.
+  void setGroundMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices);
   // A character triangle mesh with fixed topology; its vertices start at the origin until
   // setVertices. Returns its geomID in the character scene.
   // Throws std::invalid_argument for a partial triangle or an index out of range.

@@ -56,10 +56,14 @@ struct Integrator::Surface {
 };
 
 Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
-                       std::span<const ShadingMesh* const> meshes_by_geometry)
+                       std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain,
+                       float ground_floor)
     : settings_(settings),
       characters_(scene.characters()),
       meshes_(meshes_by_geometry),
+      terrain_(terrain),
+      ground_(scene.ground()),
+      ground_floor_(terrain ? ground_floor : 0.0f),
       pixel_layout_(uint32_t(settings.samples_per_pixel)),
       sun_layout_(uint32_t(settings.samples_per_pixel * settings.light_samples)),
       sky_layout_(uint32_t(settings.samples_per_pixel * settings.ao_samples)) {
@@ -156,7 +160,8 @@ void Integrator::setGroundSunRegion() {
   const float k = 1.01f * sun_tan_;
   const float denominator = 1.0f - k / d.y - 1.7320508f * k;
   if (!(denominator > 0.1f)) return;  // a low or very wide sun: no useful bound, always run the test
-  const float top = std::max(bounds_upper_.y, 0.0f);
+  // Heights from the lowest ground (0 on the plane: then exactly the plane's bound).
+  const float top = std::max(bounds_upper_.y - ground_floor_, 0.0f);
   const float extent = glm::length(bounds_upper_ - bounds_lower_);
   const float margin = (k * (top / d.y + extent) + 0.1f) / denominator * 1.01f + 1.0f;  // + rounding slack
   const float t_max = (top + margin) / d.y;
@@ -168,7 +173,7 @@ void Integrator::setGroundSunRegion() {
 }
 
 bool Integrator::groundSunRegionExcludes(const glm::vec3& origin) const {
-  return ground_sun_region_ && origin.y >= 0.0f &&
+  return ground_sun_region_ && origin.y >= ground_floor_ &&
          (origin.x < ground_sun_lower_.x || origin.x > ground_sun_upper_.x || origin.z < ground_sun_lower_.y ||
           origin.z > ground_sun_upper_.y);
 }
@@ -241,12 +246,25 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
   scratch.pixels.clear();
   scratch.samples.clear();
   scratch.camera_rays.clear();
+  scratch.ground_rays.clear();
   scratch.pending.clear();
   scratch.sun_rays.clear();
   scratch.sky_rays.clear();
 
-  // Pass 1: every camera ray of the batch. The ground is a square in the plane y = 0, intersected
+  // Pass 1: every camera ray of the batch. Flat ground is a square in the plane y = 0, intersected
   // here without a call into Embree; its distance then bounds the search through the characters.
+  // Uneven ground is traced below (pass 1b) before the characters' rays are set up.
+  auto queueCharacterRay = [&](TileScratch::CameraSample& c) {
+    c.ray = -1;
+    // Most camera rays of a review view pass beside the characters' box: no call into Embree.
+    if (mayHitCharacters(c.origin, c.dir, c.t_ground)) {
+      c.ray = int32_t(scratch.camera_rays.size());
+      RTCRayHit& rh = scratch.camera_rays.emplace_back();
+      rh.ray = makeRay(c.origin, c.dir, c.t_ground);
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+  };
   for (int p = 0; p < count; ++p) {
     const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
     const PixelSampler sampler(x, y, frame);
@@ -262,6 +280,13 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
       ++tally.rays;
       if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
       c.t_ground = kInfinity;
+      if (terrain_) {
+        RTCRayHit& rh = scratch.ground_rays.emplace_back();
+        rh.ray = makeRay(c.origin, c.dir, kInfinity);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        continue;
+      }
       if (c.dir.y != 0.0f) {
         const float t = -c.origin.y / c.dir.y;
         if (t > 0.0f) {
@@ -269,15 +294,23 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
           if (std::abs(hx) <= ground_extent_ && std::abs(hz) <= ground_extent_) c.t_ground = t;
         }
       }
-      c.ray = -1;
-      // Most camera rays of a review view pass beside the characters' box: no call into Embree.
-      if (mayHitCharacters(c.origin, c.dir, c.t_ground)) {
-        c.ray = int32_t(scratch.camera_rays.size());
-        RTCRayHit& rh = scratch.camera_rays.emplace_back();
-        rh.ray = makeRay(c.origin, c.dir, c.t_ground);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      }
+      queueCharacterRay(c);
+    }
+  }
+
+  // Pass 1b (uneven ground): every camera ray against the heightfield as one coherent stream; its
+  // distance then bounds the search through the characters as the plane's does.
+  if (terrain_ && !scratch.ground_rays.empty()) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(ground_, &context, scratch.ground_rays.data(), unsigned(scratch.ground_rays.size()),
+                   sizeof(RTCRayHit));
+    for (std::size_t i = 0; i < scratch.samples.size(); ++i) {
+      TileScratch::CameraSample& c = scratch.samples[i];
+      const RTCRayHit& rh = scratch.ground_rays[i];
+      c.t_ground = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kInfinity;
+      queueCharacterRay(c);
     }
   }
 
@@ -394,11 +427,22 @@ bool Integrator::surfaceOf(const CameraFrame& camera, const TileScratch::CameraS
   s.p = c.origin + t * dir;
   s.wo = -dir;
   if (!character_hit) {
-    s.p.y = 0.0f;  // exactly on the plane; the offset below then lifts it the same everywhere
-    s.ng = s.n = glm::vec3(0.0f, dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
+    float cos_view;
+    if (terrain_) {
+      // On the heightfield mesh as hit; shaded with the terrain's own (smooth, upward) normal, which
+      // is also the geometric one the secondary rays leave along (they meet only the characters).
+      // Never flipped toward the camera: at a hill's grazing far side a ray can meet a facet whose
+      // smooth normal already faces away, and flipping it there left black specks on the horizon.
+      const glm::vec3 n(terrain_->normal(double(s.p.x), double(s.p.z)));
+      s.ng = s.n = n;
+      cos_view = std::max(std::abs(glm::dot(n, dir)), 0.02f);
+    } else {
+      s.p.y = 0.0f;  // exactly on the plane; the offset below then lifts it the same everywhere
+      s.ng = s.n = glm::vec3(0.0f, dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
+      cos_view = std::max(std::abs(dir.y), 0.02f);
+    }
     // The sample's footprint on the ground: a pixel's width at this distance, stretched by the
     // grazing angle (isotropically, which blurs a little more than needed across the view).
-    const float cos_view = std::max(std::abs(dir.y), 0.02f);
     const float width = camera.pixelFootprintF(t) / cos_view / settings_.ground_square_cm;
     const float odd = filteredChecker(s.p.x / settings_.ground_square_cm, s.p.z / settings_.ground_square_cm, width);
     s.albedo = glm::mix(settings_.ground_color_a, settings_.ground_color_b, odd);
@@ -488,12 +532,15 @@ void Integrator::emitShading(const Surface& s, const Stratified2D& sun_points, c
     return;
   }
   const Frame around = Frame::around(s.n);
+  // How high the surface is above the ground under it (on the plane: its height).
+  const float above_ground =
+      terrain_ && !s.on_ground ? origin.y - float(terrain_->height(double(origin.x), double(origin.z))) : origin.y;
   for (uint32_t k = 0; k < ao_spp_; ++k) {
     const glm::vec3 wi = sampleCosineHemisphere(around, sky_points[sample * ao_spp_ + k]);
     if (!(glm::dot(s.ng, wi) > 0.0f)) continue;  // below the real surface: blocked by it
     const bool toward_ground = !s.on_ground && wi.y < 0.0f;
     float t_far = settings_.ao_distance_cm;
-    if (toward_ground) t_far = std::min(t_far, 0.999f * origin.y / -wi.y);
+    if (toward_ground) t_far = std::min(t_far, 0.999f * above_ground / -wi.y);
     const int32_t ray = emitOcclusion(origin, wi, t_far, scratch.sky_rays, tally);
     scratch.pending.push_back({toward_ground ? ground_bounce_ : settings_.sky.radiance(wi), ray});
     ++c.sky_pending;

@@ -18,6 +18,7 @@
 #include "render/lights.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
+#include "rig/motion/terrain.h"
 
 namespace stirrup::render {
 
@@ -65,6 +66,7 @@ struct TileScratch {
   std::vector<PixelState> pixels;
   std::vector<CameraSample> samples;
   std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
+  std::vector<RTCRayHit> ground_rays;  // uneven ground: every camera sample against the heightfield
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
@@ -73,9 +75,13 @@ struct TileScratch {
 class Integrator {
  public:
   // `meshes_by_geometry[geomID]` is the mesh of each geometry of the scene's character BVH. The
-  // scene must be committed.
+  // scene must be committed. With `terrain` (uneven ground) the scene's ground is its heightfield mesh:
+  // camera rays are traced against it, the ground is shaded with the terrain's normal, and
+  // `ground_floor` is its lowest height. Without, the ground is the plane y = 0, hit analytically.
+  // (The hills cast no shadows of their own: shadow and sky rays still meet only the characters.)
   Integrator(const RenderSettings& settings, const EmbreeScene& scene,
-             std::span<const ShadingMesh* const> meshes_by_geometry);
+             std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain = nullptr,
+             float ground_floor = 0.0f);
 
   // Every pixel of the tile [x0, x1) x [y0, y1), written row by row to `out` ((x1 - x0) * (y1 - y0)
   // results). The tile is traced in batches of pixels as ray streams, in three passes: all camera
@@ -127,6 +133,9 @@ class Integrator {
   glm::vec3 sun_radiance_;     // of a white matte surface facing the sun
   glm::vec3 ground_bounce_;    // radiance of the lit ground, seen by downward sky rays
   float ground_extent_;        // the ground is the square |x|, |z| <= this at y = 0, hit analytically
+  const rig::Terrain* terrain_;  // or, when set, this terrain's mesh in ground_
+  RTCScene ground_;
+  float ground_floor_;         // no ground point lies below this height
   float blinn_norm_;           // (n + 8) / 8: Blinn-Phong lobe normalised for energy
   uint32_t spp_, light_spp_, ao_spp_;
   Stratified2D::Layout pixel_layout_, sun_layout_, sky_layout_;  // spp, spp * light, spp * ao points

@@ -79,6 +79,8 @@ struct Renderer::State {
   std::vector<std::unique_ptr<ShadingMesh>> meshes;  // by handle
   std::vector<unsigned> geometry_of_mesh;             // by handle
   std::vector<const ShadingMesh*> by_geometry;        // by geomID in the character scene
+  std::shared_ptr<const rig::Terrain> terrain;        // null: the flat plane
+  float ground_floor = 0.0f;                          // the lowest ground height
   tbb::enumerable_thread_specific<TileBuffers> tile_buffers;
 };
 
@@ -89,6 +91,15 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
 }
 
 Renderer::~Renderer() = default;
+
+void Renderer::setTerrain(std::shared_ptr<const rig::Terrain> terrain, const GroundRegion& region,
+                          const TerrainMeshParams& params) {
+  if (!terrain || terrain->flat()) return;
+  const TerrainMesh mesh = makeTerrainMesh(*terrain, region, params);
+  state_->arena.execute([&] { state_->scene.setGroundMesh(mesh.positions, mesh.indices); });
+  state_->terrain = std::move(terrain);
+  state_->ground_floor = mesh.min_height;
+}
 
 int Renderer::addMesh(const MeshDesc& desc) {
   if (!desc.colors.empty() && desc.colors.size() != desc.vertex_count) {
@@ -144,7 +155,8 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
     const auto t0 = Clock::now();
     state_->scene.commit();
     stats_.commit_ms = msSince(t0);
-    const Integrator integrator(settings_, state_->scene, state_->by_geometry);
+    const Integrator integrator(settings_, state_->scene, state_->by_geometry, state_->terrain.get(),
+                                state_->ground_floor);
 
     const auto t1 = Clock::now();
     // simple_partitioner: tiles of at most 16 x 16, whatever the thread count.

@@ -7,8 +7,8 @@
 // scene and frame give the same bytes at any thread count and tile order.
 //
 // Cost: `stirrup bench` measures it per quality preset (docs/performance.md). Per camera sample there is
-// 1 camera ray plus up to light_samples + ao_samples occlusion rays; the ground is intersected
-// analytically and rays that cannot reach the characters' box never call into Embree. The rest go to
+// 1 camera ray plus up to light_samples + ao_samples occlusion rays; flat ground is intersected
+// analytically (uneven ground, a heightfield mesh, through Embree) and rays that cannot reach the characters' box never call into Embree. The rest go to
 // Embree as streams, a batch of a tile at a time (integrator.h).
 #pragma once
 
@@ -23,6 +23,8 @@
 #include "render/embree_scene.h"
 #include "render/image.h"
 #include "render/lights.h"
+#include "render/terrain_mesh.h"
+#include "rig/motion/terrain.h"
 
 namespace stirrup::render {
 
@@ -97,6 +99,12 @@ class Renderer {
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
+
+  // Uneven ground (issue 15): the ground becomes `terrain`'s heightfield mesh, fine over `region` (the
+  // horse's track; render/terrain_mesh.h), in place of the flat plane. Build once per shot, before
+  // rendering. Null or flat terrain keeps the analytic plane (and so the frames of before).
+  void setTerrain(std::shared_ptr<const rig::Terrain> terrain, const GroundRegion& region,
+                  const TerrainMeshParams& params = {});
 
   // Adds a mesh (once per mesh). Returns its handle for updateMesh.
   int addMesh(const MeshDesc& mesh);

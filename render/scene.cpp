@@ -69,8 +69,9 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
     c.fov_deg = 2.0 * std::atan(12.0 / c.focal_length_mm) * 180.0 / 3.14159265358979323846;
   }
   c.view = r.string("view", c.view);
-  if (!c.view.empty() && c.view != "side" && c.view != "persp" && c.view != "close" && c.view != "turntable")
-    r.fail("view", "expected \"side\", \"persp\", \"close\" or \"turntable\", got \"" + c.view + "\"");
+  if (!c.view.empty() && c.view != "side" && c.view != "persp" && c.view != "close" && c.view != "turntable" &&
+      c.view != "top")
+    r.fail("view", "expected \"side\", \"persp\", \"close\", \"turntable\" or \"top\", got \"" + c.view + "\"");
   c.frame_margin = r.number("frame_margin", c.frame_margin);
   if (!(c.frame_margin >= 0.0 && c.frame_margin < 0.45)) r.fail("frame_margin", "expected a fraction in [0, 0.45)");
   c.treadmill = r.boolean("treadmill", c.treadmill);

@@ -26,6 +26,8 @@ struct CameraSpec {
   // else in the world. Centimetres, Y up, +X the horse's direction of travel, +Z its right side.
   std::array<double, 3> position = {20.0, 255.0, 900.0};
   std::array<double, 3> target = {20.0, 100.0, 0.0};
+  // The camera's up direction (world): Y, except for a camera looking straight down (the top view).
+  std::array<double, 3> up = {0.0, 1.0, 0.0};
   bool follow = true;
   // How the camera moves (render/camera_motion.h). "follow" with damping_s 0 and target "travel" is
   // the camera rigidly in the horse's travel frame (the old `follow: true`); "fixed" is in the world.

@@ -7,6 +7,7 @@
 #include "render/fence.h"
 #include "render/view.h"
 #include "rig/motion/clip_factory.h"
+#include "rig/io/frame_range.h"
 #include "rig/io/gltf_character.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
@@ -20,6 +21,22 @@ double msSince(Clock::time_point t0) {
 }
 
 glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// Uneven ground is meshed finely this far around the horse's track: the horse's length and more, so
+// its hooves and the ground around it in every view stand on the fine grid.
+constexpr double kFineGroundMarginCm = 1000.0;
+
+// The box (x, z) the horse's travel frame crosses over the scene's frames, grown by the margin.
+GroundRegion trackRegion(const SceneSpec& scene, const rig::Clip& clip) {
+  GroundRegion r{1e300, 1e300, -1e300, -1e300};
+  for (int f : rig::parseFrameList(scene.frames, "frames")) {
+    const rig::HorseFrame h = clip.sample(frameTime(scene, f));
+    r.x0 = std::min(r.x0, h.travel_cm), r.x1 = std::max(r.x1, h.travel_cm);
+    r.z0 = std::min(r.z0, h.travel_z_cm), r.z1 = std::max(r.z1, h.travel_z_cm);
+  }
+  return {r.x0 - kFineGroundMarginCm, r.z0 - kFineGroundMarginCm, r.x1 + kFineGroundMarginCm,
+          r.z1 + kFineGroundMarginCm};
+}
 
 }  // namespace
 
@@ -42,6 +59,7 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
   settings.sun_direction = glm::normalize(toVec(scene.sun_direction));
   settings.sun_angular_radius_deg = scene.sun_angular_radius_deg;
   renderer_ = std::make_unique<Renderer>(settings);
+  if (scene.terrain && !scene.terrain->flat()) renderer_->setTerrain(scene.terrain, trackRegion(scene_, *clip_));
   horse_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Horse, horse_.mesh.indices, horse_.mesh.colors,
                                             horse_.mesh.positions.size(), horse_.mesh.positions});
   rider_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Rider, rider_.mesh.indices, rider_.mesh.colors,

@@ -59,6 +59,36 @@ std::vector<glm::dvec3> viewPoints(const CameraSpec& spec, const CharacterPoints
 glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 std::array<double, 3> toArray(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
+// How far above the highest point the top camera stands: any height works for an orthographic camera
+// (rays start at its film); this keeps it clear of the characters and the hills.
+constexpr double kTopCameraClearanceCm = 1000.0;
+// The top view's image up is world -Z (so +X runs to the right and the horse's right side, +Z, down).
+constexpr std::array<double, 3> kTopUp = {0.0, 0.0, -1.0};
+
+// The top view: straight down, fixed, over the bounds (x, z) of the travel and of the characters'
+// points over every frame, so the whole ground track (a figure eight, a circle) is in the picture
+// with frame_margin free at each border.
+CameraSpec frameTopView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& clip,
+                        const std::vector<std::vector<glm::dvec3>>& pts) {
+  glm::dvec3 lo(kInf), hi(-kInf);
+  for (int f : rig::parseFrameList(scene.frames, "frames")) {
+    const rig::HorseFrame h = clip.sample(frameTime(scene, f));
+    const glm::dvec3 travel(h.travel_cm, h.ground_y_cm, h.travel_z_cm);
+    lo = glm::min(lo, travel), hi = glm::max(hi, travel);
+  }
+  for (const std::vector<glm::dvec3>& frame : pts)
+    for (const glm::dvec3& p : frame) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  spec.target = toArray({centre.x, lo.y, centre.z});
+  spec.position = toArray({centre.x, hi.y + kTopCameraClearanceCm, centre.z});
+  spec.up = kTopUp;
+  const double aspect = double(scene.width) / double(scene.height);
+  const double keep = 1.0 - 2.0 * spec.frame_margin;
+  // Image width is world x, image height world z.
+  spec.ortho_height_cm = std::max(hi.z - lo.z, (hi.x - lo.x) / aspect) / keep;
+  return spec;
+}
+
 }  // namespace
 
 void applyViewPreset(CameraSpec& spec) {
@@ -79,6 +109,10 @@ void applyViewPreset(CameraSpec& spec) {
     spec.motion = "follow";
     spec.follow_target = "rider";
     spec.damping_s = 0.3;
+  } else if (spec.view == "top") {
+    spec.orthographic = true;
+    spec.motion = "fixed";
+    spec.damping_s = 0.0;
   } else if (spec.view == "turntable") {
     spec.orthographic = false;
     spec.focal_length_mm = 50.0;
@@ -89,6 +123,7 @@ void applyViewPreset(CameraSpec& spec) {
   }
   if (!spec.orthographic) spec.fov_deg = fovFromFocal(spec.focal_length_mm);
   spec.follow = spec.motion == "follow";
+  spec.up = spec.view == "top" ? kTopUp : std::array<double, 3>{0.0, 1.0, 0.0};
 }
 
 std::vector<int> framingFrames(const CameraSpec& spec, const SceneSpec& scene) {
@@ -114,13 +149,20 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
   pts.reserve(frames.size());
   for (int f : frames) pts.push_back(viewPoints(spec, points, f));
 
-  // 1. Aim at the centre of the points' bounds in the followed frame.
+  if (spec.view == "top") return frameTopView(spec, scene, clip, pts);
+
+  // 1. Aim at the centre of the points' bounds in the followed frame (turned back by the heading the
+  //    camera turns with, so a path clip's points are seen from the horse's side).
   glm::dvec3 lo(kInf), hi(-kInf);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const int shown = spec.hold_frame > 0 ? spec.hold_frame : frames[i];
     const glm::dvec3 follow = spec.motion == "fixed" ? glm::dvec3(0.0)
                                                      : followPoint(spec, clip, profile, frameTime(scene, shown));
-    for (const glm::dvec3& p : pts[i]) lo = glm::min(lo, p - follow), hi = glm::max(hi, p - follow);
+    const double heading = cameraHeadingAtFrame(spec, scene, clip, profile, frames[i]);
+    for (const glm::dvec3& p : pts[i]) {
+      const glm::dvec3 q = turnByHeading(p - follow, -heading);
+      lo = glm::min(lo, q), hi = glm::max(hi, q);
+    }
   }
   if (!(lo.x <= hi.x)) throw std::invalid_argument("frameView: the characters have no vertices");
   const glm::dvec3 centre = 0.5 * (lo + hi);
@@ -158,8 +200,11 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
         }
       }
     }
-    // Centre: truck along the first frame's right/up (constant for follow cameras); an orbit only
-    // rises or sinks, along the world vertical.
+    // Centre: truck along the first frame's right/up (constant for follow cameras, in their own
+    // turning frame: turned back by the first frame's heading); an orbit only rises or sinks, along
+    // the world vertical.
+    const double heading0 = cameraHeadingAtFrame(spec, scene, clip, profile, frames[0]);
+    right0 = turnByHeading(right0, -heading0), up0 = turnByHeading(up0, -heading0);
     const double cu = 0.5 * (umin + umax), cv = 0.5 * (vmin + vmax);
     glm::dvec3 shift = orbit ? glm::dvec3(0.0, cv / std::max(0.2, up0.y), 0.0) : right0 * cu + up0 * cv;
     spec.position = toArray(toVec(spec.position) + shift);

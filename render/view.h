@@ -5,6 +5,10 @@
 //               so the rider's bounce reads against a steady frame.
 //   turntable - 50 mm orbiting 360 degrees over orbit_frames (default 96) around horse and rider;
 //               with `treadmill` the horse moves in place, with `hold_frame` it holds one pose.
+//   top       - orthographic, fixed, straight down (image right = world +X, image up = world -Z), over
+//               the whole ground track of the scene's frames: the travel and the characters, bounded
+//               in (x, z), with frame_margin free at each border.
+// The follow views (side, persp, close) turn with the horse's heading (render/camera_motion.h).
 // Each view is framed from the characters' skinned vertices over every frame it will show, seen
 // through the camera's own motion: the camera is trucked so the extents are centred and then sized
 // (orthographic height, or dollied back at a fixed lens) so that every point stays frame_margin inside
@@ -23,7 +27,7 @@
 
 namespace stirrup::render {
 
-// Sets projection, lens, motion and direction of `spec` from its view (no-op when view is empty).
+// Sets projection, lens, motion, up and direction of `spec` from its view (no-op when view is empty).
 void applyViewPreset(CameraSpec& spec);
 
 // The frames a view is framed over: the scene's frames, and 1..orbit_frames for an orbit.

@@ -211,5 +211,117 @@ TEST(FollowCamera, RiderHoldsHerPlaceInEveryCloseView) {
   }
 }
 
+// A horse circling to the right over rolling ground (issue 15): a circle of kCircleRadiusCm at
+// kTurnRadPerS, so its heading (wrapped to ±180° as a path clip's is) is kTurnRadPerS t; the ground
+// under it rises and falls kGroundAmplitudeCm slowly, with a fast gait-like ripple on top that a
+// follow camera must not pass on.
+constexpr double kCircleRadiusCm = 1000.0;
+constexpr double kTurnRadPerS = 0.5;
+constexpr double kGroundAmplitudeCm = 40.0;
+constexpr double kGroundRadPerS = 0.5;
+constexpr double kRippleCm = 4.0;
+constexpr double kRippleHz = 3.0;
+
+struct CircleOverHills : rig::Clip {
+  std::string name() const override { return "circle"; }
+  double duration() const override { return 30.0; }
+  static double ground(double t) { return kGroundAmplitudeCm * std::sin(kGroundRadPerS * t); }
+  static double ripple(double t) { return kRippleCm * std::sin(2.0 * kPi * kRippleHz * t); }
+  rig::HorseFrame sample(double t) const override {
+    rig::HorseFrame f;
+    const double a = kTurnRadPerS * t;
+    f.travel_cm = kCircleRadiusCm * std::sin(a);
+    f.travel_z_cm = kCircleRadiusCm * (1.0 - std::cos(a));
+    f.heading_deg = std::remainder(a * 180.0 / kPi, 360.0);
+    f.ground_y_cm = ground(t) + ripple(t);
+    return f;
+  }
+};
+
+// The damped follower's gain at angular frequency w (DampedFollow's transfer function, camera_motion.h).
+std::complex<double> followGain(double w, double tau) {
+  return std::complex<double>(1.0, 3.0 * w * tau) / std::pow(std::complex<double>(1.0, w * tau), 3);
+}
+
+// The difference of two headings, degrees in (-180, 180].
+double headingDifference(double a, double b) { return std::remainder(a - b, 360.0); }
+
+// A side camera (on the horse's right, +Z of its travel frame) stays on the horse's right through a
+// whole circle and more: the direction from its target to it is the horse's right, turned by the
+// heading, as late as the filter's phase at the turn rate makes it (1.4° here) and no later.
+TEST(FollowCamera, TurnsWithTheHorseThroughACircle) {
+  const CircleOverHills clip;
+  SceneSpec scene;
+  const rig::RigProfile profile = rig::RigProfile::rigidRider();
+  CameraSpec spec;
+  spec.damping_s = 0.3;
+  spec.position = {0.0, 100.0, 600.0};
+  spec.target = {0.0, 100.0, 0.0};
+  constexpr double kSettleS = 3.0;  // 10 tau: the filter no longer sees before t = 0
+  double worst = 0.0;
+  for (int frame = 1 + int(kSettleS * scene.fps); frame <= int(16.0 * scene.fps); ++frame) {
+    const double t = frameTime(scene, frame);
+    const Camera c = cameraAtFrame(spec, scene, clip, profile, frame);
+    const glm::dvec3 out = c.position - c.target;
+    // Seen from above, the horse's right side is its heading turned 90° further right.
+    const double camera_deg = std::atan2(out.z, out.x) * 180.0 / kPi - 90.0;
+    worst = std::max(worst, std::abs(headingDifference(camera_deg, clip.sample(t).heading_deg)));
+    // The target stays at the horse's travel across the ground.
+    EXPECT_NEAR(c.target.x, clip.sample(t).travel_cm, 1e-6);
+    EXPECT_NEAR(c.target.z, clip.sample(t).travel_z_cm, 1e-6);
+  }
+  const double lag_deg = std::abs(std::arg(followGain(kTurnRadPerS, spec.damping_s))) * 180.0 / kPi;
+  EXPECT_LT(worst, lag_deg + 0.1) << "degrees between the camera's side and the horse's";
+  EXPECT_LT(lag_deg, 2.0);
+}
+
+// Its height rides the ground: off the slow hills by no more than the filter's transfer function
+// allows (the ripple damped to 9%), and with a per-frame change bounded likewise, well under the
+// ripple's own per-frame change.
+TEST(FollowCamera, RidesOverHillsWithoutTheRipple) {
+  const CircleOverHills clip;
+  SceneSpec scene;
+  const rig::RigProfile profile = rig::RigProfile::rigidRider();
+  CameraSpec spec;
+  spec.damping_s = 0.3;
+  spec.position = {0.0, 100.0, 600.0};
+  spec.target = {0.0, 100.0, 0.0};
+  const double dt = 1.0 / scene.fps;
+  const double hills_per_frame = kGroundAmplitudeCm * kGroundRadPerS * dt;
+  const double ripple_per_frame = kRippleCm * 2.0 * kPi * kRippleHz * dt;  // 3.1 cm
+  double previous = 0.0, worst_step = 0.0, worst_off = 0.0;
+  for (int frame = 72; frame <= 480; ++frame) {
+    const double t = frameTime(scene, frame);
+    const double height = cameraAtFrame(spec, scene, clip, profile, frame).target.y - spec.target[1];
+    if (frame > 72) worst_step = std::max(worst_step, std::abs(height - previous));
+    previous = height;
+    worst_off = std::max(worst_off, std::abs(height - CircleOverHills::ground(t)));
+  }
+  const double w_hills = kGroundRadPerS, w_ripple = 2.0 * kPi * kRippleHz, tau = spec.damping_s;
+  constexpr double kSlackCm = 0.2;  // the filter's discrete sum and the frames' sampling of the peaks
+  EXPECT_LT(worst_off, std::abs(followGain(w_hills, tau) - 1.0) * kGroundAmplitudeCm +
+                           std::abs(followGain(w_ripple, tau)) * kRippleCm + kSlackCm)
+      << "cm from the slow ground";
+  EXPECT_LT(worst_step, std::abs(followGain(w_hills, tau)) * hills_per_frame +
+                            std::abs(followGain(w_ripple, tau)) * ripple_per_frame + kSlackCm / 4.0)
+      << "cm a frame";
+  EXPECT_GT(ripple_per_frame, 2.0 * hills_per_frame);  // the bound above does exclude the raw ripple
+}
+
+// A straight clip turns nothing: the camera of a follow view is the one in the travel frame, bit for
+// bit (the golden frames rely on it).
+TEST_F(MotionFixture, StraightClipCameraIsNotTurned) {
+  CameraSpec spec;
+  spec.damping_s = 0.4;
+  spec.position = {130.0, 210.0, 640.0};
+  spec.target = {20.0, 100.0, 0.0};
+  for (int frame : {1, 17, 40}) {
+    const Camera c = cameraAtFrame(spec, scene, *clip, profile, frame);
+    const glm::dvec3 offset = followOffset(spec, *clip, profile, frameTime(scene, frame), spec.damping_s);
+    EXPECT_EQ(c.position, glm::dvec3(130.0, 210.0, 640.0) + offset);
+    EXPECT_EQ(c.target, glm::dvec3(20.0, 100.0, 0.0) + offset);
+  }
+}
+
 }  // namespace
 }  // namespace stirrup::render

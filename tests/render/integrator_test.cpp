@@ -146,5 +146,34 @@ TEST(Integrator, TheGroundSunShortcutAgreesWithTheFullTest) {
   EXPECT_GT(excluded, open / 2);  // the rectangle answers most open ground without the full test
 }
 
+// On uneven ground the points lie anywhere between the lowest ground and the hill tops; the rectangle,
+// measured from the lowest ground, must still agree with the full test everywhere it answers.
+TEST(Integrator, TheGroundSunShortcutHoldsOverHills) {
+  StreamScene scene(1);
+  rig::HillsParams hills;
+  hills.amplitude_cm = 80.0;
+  const rig::Terrain terrain = rig::Terrain::hills(hills, "test");
+  constexpr float kFloorCm = -80.0f;  // the hills' lowest possible point
+  uint32_t state = 777u;
+  auto uniform = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) * 0x1p-24f;
+  };
+  int blocked = 0, excluded = 0;
+  for (const glm::dvec3 sun : {glm::dvec3(0.3, 0.8, 0.5), glm::dvec3(-0.7, 0.35, 0.1), glm::dvec3(0.2, 0.05, -0.9)}) {
+    scene.settings.sun_direction = sun;
+    const Integrator integrator(scene.settings, scene.scene, scene.by_geometry, &terrain, kFloorCm);
+    for (int i = 0; i < 20000; ++i) {
+      const glm::vec3 p(1200.0f * uniform() - 600.0f, kFloorCm + 160.0f * uniform(), 1200.0f * uniform() - 600.0f);
+      const bool full = integrator.sunMayBeBlocked(p);
+      ASSERT_EQ(integrator.groundSunMayBeBlocked(p), full) << "at " << p.x << " " << p.y << " " << p.z;
+      blocked += full;
+      excluded += integrator.groundSunRegionExcludes(p);
+    }
+  }
+  EXPECT_GT(blocked, 300);      // both answers are exercised
+  EXPECT_GT(excluded, 20000);
+}
+
 }  // namespace
 }  // namespace stirrup::render

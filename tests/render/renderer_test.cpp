@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -86,6 +87,120 @@ bool sameBytes(const Image& a, const Image& b) {
          a.normal.size() == b.normal.size() &&
          std::memcmp(a.normal.data(), b.normal.data(), a.normal.size() * sizeof(glm::vec3)) == 0 &&
          a.object_id == b.object_id;
+}
+
+// Uneven ground (issue 15): the rolling hills of a path scene, meshed fine around the origin.
+rig::Terrain testHills() {
+  rig::HillsParams p;
+  p.seed = 3;
+  p.amplitude_cm = 80.0;
+  p.wavelength_cm = 3000.0;
+  p.octaves = 2;
+  return rig::Terrain::hills(p, "test");
+}
+const GroundRegion kHillsRegion{-2000.0, -2000.0, 2000.0, 2000.0};
+
+// A top-down orthographic camera over (x, z), `size` cm across.
+Camera lookingDownAt(double x, double z, double size) {
+  Camera c;
+  c.projection = Camera::Projection::Orthographic;
+  c.position = {x, 1000.0, z};
+  c.target = {x, 0.0, z};
+  c.up = {0.0, 0.0, -1.0};
+  c.ortho_height_cm = size;
+  return c;
+}
+
+// Where the ground is in the depth pass is where the heightfield is: straight down at hill tops and
+// hollows the ground pixels lie within half a centimetre (plus the slope times the sample's jitter
+// inside its pixel) of Terrain::height, and not on the plane y = 0.
+TEST(Renderer, UnevenGroundPixelsLieOnTheHeightfield) {
+  auto terrain = std::make_shared<const rig::Terrain>(testHills());
+  RenderSettings s;
+  s.width = s.height = 32;
+  s.samples_per_pixel = 1;
+  s.light_samples = s.ao_samples = 1;
+  constexpr double kViewCm = 16.0;                       // 0.5 cm pixels
+  constexpr double kJitterCm = 2.0 * kViewCm / 32.0;     // the tent filter reaches a pixel either side
+  constexpr double kOnSurfaceCm = 0.5;
+  Renderer r(s);
+  r.setTerrain(terrain, kHillsRegion);
+  int spots = 0;
+  for (double x = -1800.0; x <= 1800.0 && spots < 4; x += 97.0) {
+    for (double z = -1800.0; z <= 1800.0 && spots < 4; z += 101.0) {
+      if (std::abs(terrain->height(x, z)) < 30.0) continue;  // well off the plane, so the plane would fail
+      ++spots;
+      const Image img = r.render(lookingDownAt(x, z, kViewCm), 1);
+      const double cm_per_px = kViewCm / s.height;
+      for (int py = 0; py < s.height; ++py) {
+        for (int px = 0; px < s.width; ++px) {
+          const std::size_t i = std::size_t(py) * s.width + px;
+          ASSERT_EQ(img.object_id[i], uint32_t(ObjectId::Ground));
+          // Image right is +X, image down is +Z.
+          const double wx = x + (px + 0.5 - 0.5 * s.width) * cm_per_px, wz = z + (py + 0.5 - 0.5 * s.height) * cm_per_px;
+          double dx = 0.0, dz = 0.0;
+          terrain->gradient(wx, wz, dx, dz);
+          const double tolerance = kOnSurfaceCm + std::hypot(dx, dz) * kJitterCm;
+          EXPECT_NEAR(1000.0 - img.depth[i], terrain->height(wx, wz), tolerance) << "at " << wx << ", " << wz;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(spots, 4);
+}
+
+// A sphere over the hills casts its shadow on them: where the sun ray through its centre meets the
+// heightfield the ground is darker than beside it.
+TEST(Renderer, ACharacterShadowsUnevenGround) {
+  const rig::Terrain terrain = testHills();
+  SmallScene scene;
+  const glm::dvec3 centre(0.0, terrain.height(0.0, 0.0) + 45.0, 0.0);
+  scene.sphere = makeSphere(glm::vec3(centre), 30.0f, 24, 48, {0.6f, 0.35f, 0.2f});
+  scene.camera.target = {0.0, centre.y - 25.0, 0.0};
+  scene.camera.position = {0.0, centre.y + 280.0, 500.0};
+  // The shadow of the centre: march down the sun's ray to the ground (bisection on the height above it).
+  const glm::dvec3 sun = glm::normalize(scene.settings.sun_direction);
+  auto above = [&](double t) { const glm::dvec3 p = centre - sun * t; return p.y - terrain.height(p.x, p.z); };
+  double lo = 0.0, hi = 1000.0;
+  for (int i = 0; i < 60; ++i) (above(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  const glm::dvec3 shadow = centre - sun * lo;
+  const glm::dvec3 beside(-shadow.x - 100.0, terrain.height(-shadow.x - 100.0, shadow.z), shadow.z);
+  RenderSettings s = scene.settings;
+  Renderer r(s);
+  r.setTerrain(std::make_shared<const rig::Terrain>(terrain), kHillsRegion);
+  const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+  const Image img = r.render(scene.camera, 1);
+  const glm::ivec2 in_shadow = scene.pixelOf(shadow), in_sun = scene.pixelOf(beside);
+  ASSERT_EQ(img.object_id[in_shadow.y * 64 + in_shadow.x], uint32_t(ObjectId::Ground));
+  ASSERT_EQ(img.object_id[in_sun.y * 64 + in_sun.x], uint32_t(ObjectId::Ground));
+  EXPECT_LT(blockLuminance(img, in_shadow), 0.5f * blockLuminance(img, in_sun));
+}
+
+TEST(Renderer, UnevenGroundBytesDoNotDependOnTheThreadCount) {
+  SmallScene scene;
+  auto terrain = std::make_shared<const rig::Terrain>(testHills());
+  auto renderWith = [&](int threads) {
+    RenderSettings s = scene.settings;
+    s.threads = threads;
+    Renderer r(s);
+    r.setTerrain(terrain, kHillsRegion);
+    const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
+    r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+    return r.render(scene.camera, 3);
+  };
+  EXPECT_TRUE(sameBytes(renderWith(1), renderWith(2)));
+}
+
+// Flat terrain keeps the analytic plane: the same bytes as no terrain at all.
+TEST(Renderer, FlatTerrainIsThePlaneOfBefore) {
+  SmallScene scene;
+  RenderSettings s = scene.settings;
+  Renderer r(s);
+  r.setTerrain(std::make_shared<const rig::Terrain>(), kHillsRegion);
+  const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+  EXPECT_TRUE(sameBytes(r.render(scene.camera, 1), scene.render(0)));
 }
 
 TEST(Renderer, TheSphereCoversTheExpectedPixels) {

@@ -12,6 +12,7 @@
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/io/frame_range.h"
+#include "rig/motion/clip_factory.h"
 #include "rig/rig_profile.h"
 
 namespace stirrup::render {
@@ -92,6 +93,84 @@ TEST(ViewPreset, SetsTheLensAndMotionOfEachView) {
   applyViewPreset(turn);
   EXPECT_EQ(turn.motion, "orbit");
   EXPECT_EQ(turn.orbit_frames, 96);
+  CameraSpec top;
+  top.view = "top";
+  applyViewPreset(top);
+  EXPECT_TRUE(top.orthographic);
+  EXPECT_EQ(top.motion, "fixed");
+}
+
+// Through the turns and over the hills of a path clip the follow views, turning with the horse, still
+// keep horse and rider whole in frame (the framing measures them in the camera's turning frame).
+TEST(PathViewFraming, FollowViewsKeepAHorseOnAPathInFrame) {
+  const SceneSpec scene = parseScene(nlohmann::json::parse(R"({
+    "name": "path1",
+    "clip": {"generator": "path", "points": [[0,0],[2000,0],[3500,1000],[3500,3000],[2000,4000],[0,4000]],
+             "speed": [[0,150],[4,150],[7,380],[12,380],[15,520],[40,520]]},
+    "terrain": {"hills": {"seed": 3, "amplitude_cm": 80, "wavelength_cm": 3000, "octaves": 2}},
+    "fps": 24, "frames": "1-480x8", "resolution": [96, 54], "quality": {"samples": 1},
+    "cameras": [{"name": "side", "view": "side"}, {"name": "persp", "view": "persp"},
+                {"name": "close", "view": "close"}]})"),
+                                     "path1.json");
+  const rig::RigProfile profile = resolveProfile(scene);
+  const auto clip = rig::makeClip(scene.clip);
+  const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  double turned = 0.0;
+  for (int f : frames) turned = std::max(turned, std::abs(clip->sample(frameTime(scene, f)).heading_deg));
+  ASSERT_GT(turned, 90.0) << "the clip does turn";
+  for (const char* name : {"side", "persp", "close"}) {
+    Shot shot(scene, profile, findCamera(scene, name), 0);
+    for (std::size_t k = 0; k < frames.size(); k += 3) {
+      const BorderCount c = countBorder(shot.renderFrame(frames[k]));
+      if (std::string(name) == "close") {
+        EXPECT_GT(c.rider, 0) << "close frame " << frames[k];
+        EXPECT_EQ(c.rider_top, 0) << "close frame " << frames[k] << ": the rider touches the top";
+      } else {
+        EXPECT_EQ(c.matte, 0) << name << " frame " << frames[k] << ": horse or rider on the image border";
+      }
+    }
+  }
+}
+
+// A figure eight (issue 15): two loops of a path clip, 48 m by 20 m, over hills.
+SceneSpec figureEight() {
+  return parseScene(nlohmann::json::parse(R"({
+    "name": "eight",
+    "clip": {"generator": "path",
+             "points": [[0,0],[1200,-1000],[2400,0],[1200,1000],[0,0],[-1200,-1000],[-2400,0],[-1200,1000],[0,0]],
+             "speed": [[0,380],[40,380]]},
+    "terrain": {"hills": {"seed": 5, "amplitude_cm": 60, "wavelength_cm": 2500, "octaves": 2}},
+    "fps": 24, "frames": "1-720x8", "resolution": [160, 90], "quality": {"samples": 1},
+    "cameras": [{"name": "top", "view": "top"}]})"),
+                    "eight.json");
+}
+
+// The top view looks straight down with +X to the right and +Z down, and holds the whole ground track
+// of the scene's frames: every frame's travel (sampled here from the clip, every frame, not only the
+// framed ones) is inside the picture with most of the margin to spare, and the track fills it.
+TEST(TopView, FramesTheWholeTrackFromAbove) {
+  const SceneSpec scene = figureEight();
+  const rig::RigProfile profile = resolveProfile(scene);
+  Shot shot(scene, profile, findCamera(scene, "top"), 0);
+  const auto clip = rig::makeClip(scene.clip);
+  const CameraFrame first(shot.cameraAtFrame(1), scene.width, scene.height);
+  EXPECT_NEAR(glm::length(first.forward() - glm::dvec3(0.0, -1.0, 0.0)), 0.0, 1e-9);
+  EXPECT_NEAR(glm::length(first.right() - glm::dvec3(1.0, 0.0, 0.0)), 0.0, 1e-9);
+  EXPECT_NEAR(glm::length(first.upward() - glm::dvec3(0.0, 0.0, -1.0)), 0.0, 1e-9);
+  const Camera cam = shot.cameraAtFrame(1);
+  const double half_h = 0.5 * cam.ortho_height_cm, half_w = half_h * scene.width / scene.height;
+  double u_lo = 1.0, u_hi = 0.0;
+  const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  for (int f = frames.front(); f <= frames.back(); ++f) {
+    EXPECT_EQ(shot.cameraAtFrame(f).position, cam.position) << "the top view is fixed";
+    const rig::HorseFrame h = clip->sample(frameTime(scene, f));
+    const double u = 0.5 + 0.5 * (h.travel_cm - cam.target.x) / half_w;     // 0 left, 1 right
+    const double v = 0.5 + 0.5 * (h.travel_z_cm - cam.target.z) / half_h;  // 0 top, 1 bottom
+    const double inside = 0.5 * shot.camera().frame_margin;
+    EXPECT_GT(std::min({u, v, 1.0 - u, 1.0 - v}), inside) << "frame " << f << " at " << h.travel_cm << ", " << h.travel_z_cm;
+    u_lo = std::min(u_lo, u), u_hi = std::max(u_hi, u);
+  }
+  EXPECT_GT(u_hi - u_lo, 0.6) << "the track fills the picture's width";
 }
 
 }  // namespace
