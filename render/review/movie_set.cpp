@@ -99,6 +99,11 @@ std::vector<MovieJob> defaultMovieSet(const fs::path& scenes_dir, const fs::path
       // shown alone), once holding a pose and once trotting in place.
       {"turntable_pose", s("trot"), "turntable_pose", "1-96", ""},
       {"turntable_trot", s("trot"), "turntable", "1-96", ""},
+      // A horse on a path (issue 15): turns, gait changes, lead changes and hills.
+      {"cross_country_persp", s("cross_country"), "persp", "", ""},
+      {"figure_eight_persp", s("figure_eight"), "persp", "", ""},
+      {"figure_eight_top", s("figure_eight"), "top", "", ""},
+      {"trail_persp", s("trail"), "persp", "", ""},
   };
   if (fs::is_regular_file(reference_dir / "muybridge" / "horse-and-rider-gallop-plate.jpg"))
     set.push_back({"gallop_layered", s("gallop"), "side", "", "reference"});

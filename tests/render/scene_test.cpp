@@ -1,6 +1,15 @@
 #include "render/scene.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include "rig/io/frame_range.h"
+#include "rig/motion/clip_info.h"
+#include "rig/motion/path_clip.h"
 
 #include "rig/error.h"
 
@@ -97,6 +106,53 @@ TEST(Scene, ShippedTrotSceneLoads) {
   EXPECT_EQ(s.cameras[0].name, "side");
   EXPECT_EQ(frameTime(s, 1), 0.0);
   EXPECT_DOUBLE_EQ(frameTime(s, 25), 1.0);
+}
+
+// Every shipped path scene (issue 15), as the renderer plays it (makeSceneClip, with its horse's rest
+// hoof places): the travel frame within 1 cm of the curve through the points and heading within 1° of
+// its direction of motion at every frame; every steady section inside gait-reference.md (a left lead
+// mirrored); no planted hoof sliding or sinking (clip info's measure, in the world); the frames cover
+// the whole clip.
+TEST(Scene, ShippedPathScenesFollowTheirPathsAndPassTheReference) {
+  int scenes = 0;
+  for (const char* name : {"cross_country", "figure_eight", "trail"}) {
+    const SceneSpec s = loadScene(std::string(STIRRUP_SOURCE_DIR "/scenes/") + name + ".json");
+    const std::unique_ptr<rig::Clip> clip = makeSceneClip(s);
+    const auto* path = dynamic_cast<const rig::PathClip*>(clip.get());
+    ASSERT_NE(path, nullptr) << name;
+    ++scenes;
+    std::vector<glm::dvec2> dense;
+    for (double d = 0; d <= path->path().length(); d += 1.0) dense.push_back(path->path().at(d).position);
+    const std::vector<int> frames = rig::parseFrameList(s.frames, name);
+    EXPECT_NEAR(frameTime(s, frames.back()), clip->duration(), 1.0 / s.fps) << name << ": the frames cover the clip";
+    double worst_cm = 0, worst_deg = 0;
+    for (int f : frames) {
+      const double t = frameTime(s, f);
+      const rig::HorseFrame h = clip->sample(t), a = clip->sample(t - 1e-3), b = clip->sample(t + 1e-3);
+      double nearest = 1e9;
+      for (const glm::dvec2& d : dense) nearest = std::min(nearest, glm::length(d - glm::dvec2(h.travel_cm, h.travel_z_cm)));
+      worst_cm = std::max(worst_cm, nearest);
+      const double moving = std::atan2(b.travel_z_cm - a.travel_z_cm, b.travel_cm - a.travel_cm) * 180.0 / std::numbers::pi;
+      if (t > 1e-3) worst_deg = std::max(worst_deg, std::abs(std::remainder(h.heading_deg - moving, 360.0)));
+    }
+    EXPECT_LT(worst_cm, 1.0) << name;
+    EXPECT_LT(worst_deg, 1.0) << name;
+    const rig::MovementClip straight(path->movement());
+    for (const rig::PathClip::Section& sec : path->sections()) {
+      rig::ClipInfoOptions o;
+      o.start_s = sec.start_s + 0.5 * sec.blend_in_s;
+      o.end_s = sec.end_s - 0.5 * sec.blend_out_s;
+      const bool leads = sec.gait == rig::PathGait::Canter || sec.gait == rig::PathGait::Gallop;
+      o.mirror = leads && sec.lead == rig::Lead::Left;
+      const auto ref = rig::gaitReference(rig::pathGaitName(sec.gait));
+      ASSERT_TRUE(ref);
+      for (const rig::Verdict& v : rig::clipVerdicts(rig::measureClip(straight, o), *ref))
+        EXPECT_TRUE(v.ok) << name << " " << rig::pathGaitName(sec.gait) << " " << o.start_s << "-" << o.end_s << " s: " << v.key
+                          << " = " << v.value;
+    }
+    EXPECT_TRUE(rig::measureClip(*clip).problems.empty()) << name;
+  }
+  EXPECT_EQ(scenes, 3);
 }
 
 }  // namespace

@@ -137,7 +137,8 @@ TEST(MoviesList, ListsTheThesisSetAndMore) {
   for (const char* name : {"jump_side", "jump_persp", "rear_side", "rear_persp", "stop_side", "stop_persp",
                            "stop_close", "stop_layered", "trot_side", "trot_persp", "trot_close", "trot_layered",
                            "walk_side", "walk_persp", "walk_close", "walk_layered", "buck_side", "buck_persp",
-                           "canter_side", "gallop_side", "turntable_pose", "turntable_trot"})
+                           "canter_side", "gallop_side", "turntable_pose", "turntable_trot", "cross_country_persp",
+                           "figure_eight_persp", "figure_eight_top", "trail_persp"})
     EXPECT_NE(r.out.find(std::string(name) + "\t"), std::string::npos) << name;
   const bool plate = fs::exists(fs::path(STIRRUP_SHARED_DIR) / "reference/muybridge/horse-and-rider-gallop-plate.jpg");
   EXPECT_EQ(r.out.find("gallop_layered\t") != std::string::npos, plate);
