@@ -70,6 +70,29 @@ ChannelPlot movementPlot(const std::string& title, const std::vector<rig::BakedF
   return plot;
 }
 
+std::vector<PlotPanel> pathPanels(const rig::PathClip& clip, const std::vector<rig::BakedFrame>& frames) {
+  PlotPanel speed{"Speed and gait", "m/s, gait",
+                  {{"speed (m/s)", kBlue, {}}, {"gait  1-4 walk-gallop, - left lead", kVermilion, {}}}};
+  PlotPanel turn{"Turn and slope", "degrees",
+                 {{"rearPivot.rx  roll (+ right)", kGreen, {}},
+                  {"ground pitch (+ uphill)", kOrange, {}},
+                  {"lowerBack.ry  rider (+ right)", kPurple, {}}}};
+  for (const rig::BakedFrame& b : frames) {
+    speed.series[0].values.push_back(clip.speedAt(b.seconds) / 100.0);
+    // The section the frame is in: the last that starts at or before it.
+    const rig::PathClip::Section* in = &clip.sections().front();
+    for (const rig::PathClip::Section& s : clip.sections())
+      if (s.start_s <= b.seconds) in = &s;
+    const double gait = 1.0 + static_cast<double>(in->gait);
+    const bool leads = in->gait == rig::PathGait::Canter || in->gait == rig::PathGait::Gallop;
+    speed.series[1].values.push_back(leads && in->lead == rig::Lead::Left ? -gait : gait);
+    turn.series[0].values.push_back(b.horse.controls[rig::HorseChannel::rearPivotRx]);
+    turn.series[1].values.push_back(b.horse.ground_pitch_deg);
+    turn.series[2].values.push_back(b.rider[rig::RiderChannel::lowerBackRy]);
+  }
+  return {speed, turn};
+}
+
 void writeChannelPlot(const ChannelPlot& plot, const std::filesystem::path& file, int width) {
   if (plot.seconds.size() < 2) throw std::invalid_argument(file.string() + ": a plot needs at least two frames");
   const int titleH = 84, panelH = 210, gap = 46, left = 78, legendW = 300, right = 24, bottom = 58;

@@ -10,6 +10,7 @@
 
 #include "render/review/plot_canvas.h"
 #include "rig/bake.h"
+#include "rig/motion/path_clip.h"
 
 namespace stirrup::render {
 
@@ -36,6 +37,11 @@ struct ChannelPlot {
 // pitch; the rider's lower-back rotation and lift (cog.ty in cm).
 ChannelPlot movementPlot(const std::string& title, const std::vector<rig::BakedFrame>& frames,
                          double rider_unit_cm);
+
+// The panels a path clip adds (issue 15), from the same baked frames: speed (m/s) with the gait as a
+// step (1 walk, 2 trot, 3 canter, 4 gallop; the lead as a sign, + right, at the canter and gallop),
+// and the body's roll into the turn (rearPivot.rx), the ground's pitch and the rider's lowerBack.ry.
+std::vector<PlotPanel> pathPanels(const rig::PathClip& clip, const std::vector<rig::BakedFrame>& frames);
 
 // Writes the plot as a PNG, `width` pixels wide (via FILE.tmp.png and a rename).
 void writeChannelPlot(const ChannelPlot& plot, const std::filesystem::path& file, int width = 1280);

@@ -124,10 +124,11 @@ fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out) {
   for (int f : rig::parseFrameList(scene.frames, scene_file.string() + ": frames"))
     baked.push_back(rig::bakeFrame(*clip, profile, f, frameTime(scene, f)));
   const fs::path file = out / (scene.name + "_plot.png");
-  writeChannelPlot(movementPlot(scene.name + " (" + clip->name() + ", profile " + scene.profile +
-                                    "): horse and rider channels",
-                                baked, profile.rider_unit_cm),
-                   file);
+  ChannelPlot plot = movementPlot(scene.name + " (" + clip->name() + ", profile " + scene.profile + "): horse and rider channels",
+                                  baked, profile.rider_unit_cm);
+  if (const auto* path = dynamic_cast<const rig::PathClip*>(clip.get()))
+    for (PlotPanel& p : pathPanels(*path, baked)) plot.panels.push_back(std::move(p));
+  writeChannelPlot(plot, file);
   return file;
 }
 

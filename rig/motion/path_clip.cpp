@@ -226,11 +226,10 @@ GroundPath::Sample PathClip::extended(double s) const {
 }
 
 double PathClip::meanCurvature(double s, double half_window_cm) const {
-  constexpr int kSamples = 9;
-  double sum = 0.0;
-  for (int i = 0; i < kSamples; ++i)
-    sum += extended(s + half_window_cm * (2.0 * i / (kSamples - 1) - 1.0)).curvature;
-  return sum / kSamples;
+  // Curvature is the heading's rate along the path, so its mean over the window is exactly the
+  // heading's change across it: continuous in s, though the spline's curvature steps at its points.
+  const double turn_deg = std::remainder(extended(s + half_window_cm).heading_deg - extended(s - half_window_cm).heading_deg, 360.0);
+  return turn_deg / kDeg / (2.0 * half_window_cm);
 }
 
 double PathClip::turnRollDeg(double t) const {

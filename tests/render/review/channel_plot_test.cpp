@@ -1,5 +1,6 @@
 #include "render/review/channel_plot.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include <OpenImageIO/imagebuf.h>
@@ -54,6 +55,32 @@ TEST(ChannelPlot, PlotsTheBakedChannelsOfTheMovement) {
           ++hits;
       EXPECT_GT(hits, 40) << s.label;
     }
+}
+
+// A path scene's plot adds speed and gait, and roll, slope and the rider's sideways lean: the gait
+// steps walk (1), trot (2), canter (3) on the cross-country ride, the lead's sign follows the turns,
+// and the roll is the clip's own rearPivot.rx.
+TEST(ChannelPlot, PathScenesAddSpeedGaitAndRoll) {
+  const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/cross_country.json");
+  const rig::RigProfile profile = resolveProfile(scene);
+  const auto clip = makeSceneClip(scene);
+  const auto* path = dynamic_cast<const rig::PathClip*>(clip.get());
+  ASSERT_NE(path, nullptr);
+  std::vector<rig::BakedFrame> baked;
+  for (int f = 1; f <= 687; f += 6) baked.push_back(rig::bakeFrame(*clip, profile, f, frameTime(scene, f)));
+  const std::vector<PlotPanel> panels = pathPanels(*path, baked);
+  ASSERT_EQ(panels.size(), 2u);
+  const std::vector<double>& gait = panels[0].series[1].values;
+  EXPECT_EQ(gait.front(), 1.0) << "a walk at the start";
+  EXPECT_NE(std::find(gait.begin(), gait.end(), 2.0), gait.end()) << "a trot";
+  EXPECT_NE(std::find(gait.begin(), gait.end(), 3.0), gait.end()) << "a canter on the right lead";
+  EXPECT_EQ(gait.back(), -3.0) << "a canter on the left lead at the end";
+  for (std::size_t i = 0; i < baked.size(); ++i) {
+    EXPECT_NEAR(panels[0].series[0].values[i], path->speedAt(baked[i].seconds) / 100.0, 1e-12);
+    EXPECT_EQ(panels[1].series[0].values[i], baked[i].horse.controls[rig::HorseChannel::rearPivotRx]);
+    EXPECT_EQ(panels[1].series[1].values[i], baked[i].horse.ground_pitch_deg);
+  }
+  EXPECT_GT(*std::max_element(panels[0].series[0].values.begin(), panels[0].series[0].values.end()), 5.0);
 }
 
 }  // namespace
