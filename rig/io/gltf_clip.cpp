@@ -114,12 +114,17 @@ void writeClipGltf(const Clip& clip, const std::filesystem::path& file, const Gl
   const auto pushR = [&](int node, const glm::dquat& q) {
     rotations[node].insert(rotations[node].end(), {float(q.x), float(q.y), float(q.z), float(q.w)});
   };
+  bool turns = false;
   for (int i = 0; i < frames; ++i) {
     const double t = o.start_s + i / o.fps;
     const HorseFrame f = clip.sample(t);
     const HorseChannels& c = f.controls;
     times.push_back(float(t - o.start_s));
-    pushT(0, f.travel_cm, 0, 0);
+    // The root carries the travel frame: along the ground (x, z) and, for a path, its heading (a
+    // turn about -Y, rig::travelMatrix), so another tool sees the horse go round its turns.
+    pushT(0, f.travel_cm, 0, f.travel_z_cm);
+    pushR(0, glm::angleAxis(glm::radians(-f.heading_deg), glm::dvec3(0, 1, 0)));
+    turns = turns || f.heading_deg != 0.0;
     pushT(1, c[H::lfHoofTx], c[H::lfHoofTy], c[H::lfHoofTz]);
     pushT(2, c[H::rfHoofTx], c[H::rfHoofTy], c[H::rfHoofTz]);
     pushT(3, c[H::lbHoofTx], c[H::lbHoofTy], c[H::lbHoofTz]);
@@ -131,6 +136,7 @@ void writeClipGltf(const Clip& clip, const std::filesystem::path& file, const Gl
     pushR(8, rotationFromChannels(0, 0, f.head_rz));
     pushR(9, rotationFromChannels(0, f.tail_ry, f.tail_rz));
   }
+  if (!turns) rotations[0].clear();  // a straight clip's root only translates, as before paths
   BinaryWriter bin;
   const int input = bin.addFloats(model, times, 1, true);
   tinygltf::Animation anim;
@@ -591,7 +597,13 @@ HorseFrame GltfClip::sample(double seconds) const {
     if (has("horse")) {
       const int root = m.control_node.at("horse");
       const double per_cycle = m.local(root, m.duration).t.x - m.local(root, 0.0).t.x;
-      f.travel_cm = trs("horse").t.x + cycles * per_cycle;
+      const auto root_trs = trs("horse");
+      f.travel_cm = root_trs.t.x + cycles * per_cycle;
+      // A root that moves sideways and turns drives the travel frame along its path (issue 15): its
+      // heading is where it points +X, + from +X toward +Z.
+      f.travel_z_cm = root_trs.t.z;
+      const glm::dvec3 ahead = root_trs.r * glm::dvec3(1, 0, 0);
+      if (std::abs(ahead.x) + std::abs(ahead.z) > 1e-9) f.heading_deg = glm::degrees(std::atan2(ahead.z, ahead.x));
     }
     for (const char* hoof : {"lfHoof", "rfHoof", "lbHoof", "rbHoof"}) {
       const glm::dvec3 p = trs(hoof).t;

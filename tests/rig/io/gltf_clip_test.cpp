@@ -16,6 +16,7 @@
 #include "rig/motion/clip_info.h"
 #include "rig/error.h"
 #include "rig/motion/movement_clips.h"
+#include "rig/motion/path_clip.h"
 #include "rig/motion/procedural_gait.h"
 #include "rig/rider_rig.h"
 #include "rig/rig_profile.h"
@@ -33,6 +34,8 @@ fs::path tempFile(const std::string& name) {
 
 const fs::path kFox = fs::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb";
 const fs::path kFoxMapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox-mapping.json";
+
+tinygltf::Model loadModel(const fs::path& file);
 
 void expectSameFrames(const Clip& a, const Clip& b, double fps, double duration) {
   for (int i = 0; i <= static_cast<int>(duration * fps); ++i) {
@@ -60,6 +63,41 @@ TEST(GltfClip, RoundTripGivesTheSameChannels) {
     EXPECT_NEAR(back.duration(), std::floor(buck.duration() * 30.0) / 30.0, 1e-5);
     expectSameFrames(buck, back, 30.0, back.duration());
   }
+}
+
+// A path clip (issue 15) round trips with its turns: the root node carries the travel frame along the
+// ground and its heading, so the file read back follows the same path, and the hoof channels (children
+// of the root) stay the same. A straight clip's root still has no rotation channel.
+TEST(GltfClip, APathClipsRootCarriesItsTurns) {
+  PathClipParams p;
+  p.points = {{0, 0}, {1200, 0}, {2000, 500}, {2400, 1300}, {2800, 2100}, {3200, 2900}, {4000, 3400}, {5200, 3400}};
+  p.speed = {{0, 560}};
+  const PathClip path(p, nullptr, "test");
+  const fs::path file = tempFile("path.glb");
+  writeClipGltf(path, file, {30.0});
+  const GltfClip back(file, contractMapping());
+  double turned = 0;
+  for (int i = 0; i <= static_cast<int>(back.duration() * 30.0); ++i) {
+    const double t = i / 30.0;
+    const HorseFrame x = path.sample(t), y = back.sample(t);
+    EXPECT_NEAR(x.travel_cm, y.travel_cm, 2e-3) << t;
+    EXPECT_NEAR(x.travel_z_cm, y.travel_z_cm, 2e-3) << t;
+    EXPECT_NEAR(std::remainder(x.heading_deg - y.heading_deg, 360.0), 0.0, 1e-3) << t;
+    for (std::size_t c = 0; c < kHorseChannelCount; ++c)
+      ASSERT_NEAR(x.controls.value[c], y.controls.value[c], 2e-3) << kHorseChannelNames[c] << " at " << t;
+    turned = std::max(turned, std::abs(y.heading_deg));
+  }
+  EXPECT_GT(turned, 45.0);
+  const tinygltf::Model turning = loadModel(file);
+  const auto rootRotations = [](const tinygltf::Model& m) {
+    int n = 0;
+    for (const auto& ch : m.animations[0].channels) n += ch.target_node == 0 && ch.target_path == "rotation";
+    return n;
+  };
+  EXPECT_EQ(rootRotations(turning), 1);
+  const fs::path straight_file = tempFile("trot_straight.glb");
+  writeClipGltf(MovementClip(makeBuck(BuckParams{})), straight_file, {30.0});
+  EXPECT_EQ(rootRotations(loadModel(straight_file)), 0);
 }
 
 // Helpers to rewrite an exported clip the way other tools write theirs.
