@@ -1,5 +1,6 @@
 #include "rig/io/gltf_accessors.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <tiny_gltf.h>
@@ -7,6 +8,19 @@
 #include "rig/error.h"
 
 namespace stirrup::rig {
+
+tinygltf::Model readGltfFile(const std::filesystem::path& file, const std::string& where) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool ok = file.extension() == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
+                                             : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+  if (!ok) {
+    std::replace(err.begin(), err.end(), '\n', ' ');
+    throw InputError(where + ": not a readable glTF file (" + err + ")");
+  }
+  return model;
+}
 
 std::vector<float> readAccessor(const tinygltf::Model& model, int index, int components, const std::string& where) {
   if (index < 0 || index >= static_cast<int>(model.accessors.size())) throw InputError(where + ": no such accessor");

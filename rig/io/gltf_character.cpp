@@ -265,15 +265,7 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   const std::string f = file.string();
   const std::string kind_name(characterKindName(kind));
   if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool ok = file.extension() == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, f)
-                                             : loader.LoadASCIIFromFile(&model, &err, &warn, f);
-  if (!ok) {
-    std::replace(err.begin(), err.end(), '\n', ' ');
-    throw InputError(f + ": not a readable glTF file (" + err + ")");
-  }
+  const tinygltf::Model model = readGltfFile(file, f);
   if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned " + kind_name + ")");
   const tinygltf::Skin& skin = model.skins[0];
   const int nj = static_cast<int>(skin.joints.size());

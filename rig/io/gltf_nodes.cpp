@@ -1,5 +1,8 @@
 #include "rig/io/gltf_nodes.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
 #include "rig/error.h"
@@ -39,6 +42,15 @@ std::vector<int> gltfNodeParents(const tinygltf::Model& model, const std::string
     for (const int q : path) state[static_cast<std::size_t>(q)] = Rooted;
   }
   return parent;
+}
+
+glm::dmat4 gltfNodeLocal(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
+  glm::dmat4 m(1.0);
+  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4) m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
+  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  return m;
 }
 
 }  // namespace stirrup::rig

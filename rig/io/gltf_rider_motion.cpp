@@ -26,15 +26,6 @@ struct FileRig {
   glm::dmat4 to_rig{1.0};          // file space -> stirrup space (cm, +X forward, +Y up)
 };
 
-glm::dmat4 nodeLocal(const tinygltf::Node& n) {
-  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
-  glm::dmat4 m(1.0);
-  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
-  if (n.rotation.size() == 4) m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
-  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
-  return m;
-}
-
 FileRig builtInRig(const Character& rider) {
   // Metres, stirrup's axes: the skeleton's own binds, which are its rest.
   FileRig r;
@@ -61,8 +52,8 @@ FileRig userRig(const Character& rider, const std::string& file, const std::stri
   const std::vector<int> parent = gltfNodeParents(model, file);
   std::vector<glm::dmat4> world(model.nodes.size());
   const auto worldOf = [&](int n) {
-    glm::dmat4 m = nodeLocal(model.nodes[n]);
-    for (int p = parent[n]; p >= 0; p = parent[p]) m = nodeLocal(model.nodes[p]) * m;
+    glm::dmat4 m = gltfNodeLocal(model.nodes[n]);
+    for (int p = parent[n]; p >= 0; p = parent[p]) m = gltfNodeLocal(model.nodes[p]) * m;
     return m;
   };
   std::vector<float> ibm;

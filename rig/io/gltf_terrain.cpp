@@ -18,39 +18,17 @@ namespace {
 
 constexpr double kCmPerMetre = 100.0;  // glTF 2.0 (section 3.4): linear distances are metres
 
-glm::dmat4 localMatrix(const tinygltf::Node& n) {
-  if (n.matrix.size() == 16) {
-    glm::dmat4 m(1.0);
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[std::size_t(c * 4 + r)];
-    return m;
-  }
-  glm::dmat4 m(1.0);
-  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
-  if (n.rotation.size() == 4) m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
-  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
-  return m;
-}
-
 std::shared_ptr<const TerrainMesh> load(const std::filesystem::path& file, const std::string& where) {
   const std::string f = file.string();
   if (!std::filesystem::is_regular_file(file)) throw InputError(where + ": no such file (expected a glTF terrain mesh)");
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool ok = file.extension() == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, f)
-                                             : loader.LoadASCIIFromFile(&model, &err, &warn, f);
-  if (!ok) {
-    std::replace(err.begin(), err.end(), '\n', ' ');
-    throw InputError(where + ": not a readable glTF file (" + err + ")");
-  }
+  const tinygltf::Model model = readGltfFile(file, where);
   const std::vector<int> parent = gltfNodeParents(model, where);
   std::vector<glm::dmat4> world(model.nodes.size(), glm::dmat4(1.0));
   std::vector<bool> done(model.nodes.size(), false);
   // Parents before children: the hierarchy is checked acyclic, so following parents ends.
   const auto worldOf = [&](int i, const auto& self) -> const glm::dmat4& {
     if (!done[std::size_t(i)]) {
-      const glm::dmat4 local = localMatrix(model.nodes[std::size_t(i)]);
+      const glm::dmat4 local = gltfNodeLocal(model.nodes[std::size_t(i)]);
       world[std::size_t(i)] = parent[std::size_t(i)] < 0 ? local : self(parent[std::size_t(i)], self) * local;
       done[std::size_t(i)] = true;
     }
