@@ -447,8 +447,8 @@ TEST(BakeGltf, CameraTestCoversEveryDefaultScene) {
   for (const auto& e : fs::directory_iterator(fs::path(STIRRUP_SOURCE_DIR) / "scenes"))
     if (e.path().extension() == ".json" && readText(e.path()).find("\"cameras\"") != std::string::npos)
       shipped.insert(e.path().stem().string());
-  EXPECT_EQ(shipped, (std::set<std::string>{"buck", "canter", "fox", "fox_run", "gallop", "gallop_layered", "jump",
-                                            "rear", "stop", "trot", "walk"}));
+  EXPECT_EQ(shipped, (std::set<std::string>{"buck", "canter", "cross_country", "figure_eight", "fox", "fox_run", "gallop",
+                                            "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"}));
 }
 
 // --rider-only writes the rider's skeleton and animation alone (rig/io/gltf_rider_motion.h has the
@@ -479,8 +479,8 @@ TEST(BakeGltf, RiderOnlyWritesTheRiderAlone) {
 }
 
 INSTANTIATE_TEST_SUITE_P(DefaultScenes, BakedCameras,
-                         testing::Values("buck", "canter", "fox", "fox_run", "gallop", "gallop_layered", "jump", "rear",
-                                         "stop", "trot", "walk"));
+                         testing::Values("buck", "canter", "cross_country", "figure_eight", "fox", "fox_run", "gallop",
+                                         "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"));
 
 }  // namespace
 }  // namespace stirrup::test
