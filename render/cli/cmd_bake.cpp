@@ -44,6 +44,12 @@ glm::dmat4 cameraToWorld(const render::Camera& camera, const render::SceneSpec& 
   return m;
 }
 
+// A baked terrain: 50 cm cells (the hooves sit on it to a few millimetres on rolling hills) over the
+// track and 20 m around it, coarser past 600 cells a side (a few MB at most).
+constexpr double kBakedGroundCellCm = 50.0;
+constexpr double kBakedGroundMarginCm = 2000.0;
+constexpr int kBakedGroundMaxCells = 600;
+
 // The whole shot as one glTF: both characters posed at every frame, and every camera of the scene as
 // `stirrup render` resolves it (render::Shot: views framed, follow and orbit motion) at every frame.
 void writeBakedGlb(const render::SceneSpec& scene, const rig::RigProfile& profile, const rig::Clip& clip,
@@ -61,6 +67,16 @@ void writeBakedGlb(const render::SceneSpec& scene, const rig::RigProfile& profil
     shot.seconds.push_back(static_cast<float>(b.seconds));
     shot.poses.push_back(rig::poseMounted(horse, rider, b.horse, b.rider, profile));
     baked.push_back(b);
+  }
+  if (scene.terrain && !scene.terrain->flat()) {
+    // The ground under the baked frames' track and well around it (kBakedGroundMarginCm).
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (const rig::BakedFrame& b : baked) {
+      lo = glm::min(lo, glm::dvec2(b.horse.travel_cm, b.horse.travel_z_cm));
+      hi = glm::max(hi, glm::dvec2(b.horse.travel_cm, b.horse.travel_z_cm));
+    }
+    scene.terrain->triangulate(lo - kBakedGroundMarginCm, hi + kBakedGroundMarginCm, kBakedGroundCellCm,
+                               kBakedGroundMaxCells, shot.ground_vertices, shot.ground_indices);
   }
   for (const render::CameraSpec& spec : scene.cameras) {
     const render::Shot view(scene, profile, spec, 1);

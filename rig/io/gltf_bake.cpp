@@ -77,6 +77,39 @@ std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character&
     roots.push_back(root);
   }
 
+  if (!shot.ground_indices.empty()) {
+    // Smooth normals: each vertex the area-weighted sum of its triangles' (facing up).
+    std::vector<glm::vec3> normals(shot.ground_vertices.size(), glm::vec3(0.0f));
+    for (std::size_t t = 0; t + 2 < shot.ground_indices.size(); t += 3) {
+      const std::uint32_t a = shot.ground_indices[t], b = shot.ground_indices[t + 1], c = shot.ground_indices[t + 2];
+      glm::vec3 n = glm::cross(shot.ground_vertices[b] - shot.ground_vertices[a], shot.ground_vertices[c] - shot.ground_vertices[a]);
+      if (n.y < 0.0f) n = -n;
+      normals[a] += n, normals[b] += n, normals[c] += n;
+    }
+    std::vector<float> pos, nor;
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+      const glm::vec3 n = glm::length(normals[i]) > 0.0f ? glm::normalize(normals[i]) : glm::vec3(0, 1, 0);
+      pos.insert(pos.end(), {shot.ground_vertices[i].x, shot.ground_vertices[i].y, shot.ground_vertices[i].z});
+      nor.insert(nor.end(), {n.x, n.y, n.z});
+    }
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.attributes["POSITION"] = appendFloatAccessor(model, bin, pos, 3, true, TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.indices = appendIndexAccessor(model, bin, shot.ground_indices);
+    tinygltf::Mesh mesh;
+    mesh.name = "ground";
+    mesh.primitives.push_back(prim);
+    model.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.name = "ground_mesh";
+    node.mesh = static_cast<int>(model.meshes.size()) - 1;
+    model.nodes.push_back(node);
+    const int root = addCentimetreRoot(model, "ground");
+    model.nodes[root].children.push_back(static_cast<int>(model.nodes.size()) - 2);
+    roots.push_back(root);
+  }
+
   tinygltf::Animation anim;
   anim.name = shot.name;
   const int input = appendFloatAccessor(model, bin, shot.seconds, 1, true);
@@ -153,6 +186,7 @@ std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character&
   scene.name = shot.name;
   scene.nodes = {roots[0], roots[1], h.mesh_node, r.mesh_node};
   scene.nodes.insert(scene.nodes.end(), camera_nodes.begin(), camera_nodes.end());
+  if (roots.size() > 2) scene.nodes.push_back(roots[2]);  // the ground
   tinygltf::Value::Object extras;
   extras["fps"] = tinygltf::Value(shot.fps);
   extras["frame_time"] = tinygltf::Value(std::string("seconds = (frame - 1) / fps: frame 1 at t = 0"));

@@ -2,7 +2,8 @@
 // meshes, their joints' local translation and rotation at every frame (LINEAR samplers, one key per
 // frame), and the cameras as glTF cameras on nodes, animated where they move.
 //
-// Layout (docs/round-trip.md): each character's joints hang under its own root node ("horse",
+// Over a terrain the file also holds the ground as a static mesh (node "ground"), so another tool shows
+// the hooves on it. Layout (docs/round-trip.md): each character's joints hang under its own root node ("horse",
 // "rider", scale 0.01: stirrup works in centimetres, glTF in metres), which is its skin's `skeleton`,
 // so a DCC builds one armature per character. Camera nodes are roots, in metres, unscaled, so no
 // viewer has to decide whether a parent's scale changes an orthographic magnification. One glTF
@@ -11,6 +12,7 @@
 // animation but the first. Time: a frame's key is at seconds = (frame - 1) / fps, for every track.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,10 @@ struct BakedShot {
   std::vector<float> seconds;      // one per frame, strictly increasing: (frame - 1) / fps
   std::vector<MountedPose> poses;  // one per frame: world matrices of both skeletons
   std::vector<BakedCamera> cameras;
+  // The ground the horse walks on (a scene's terrain), world cm, three indices a triangle; empty on
+  // flat ground. Written as a static mesh "ground" under its own centimetre root.
+  std::vector<glm::vec3> ground_vertices;
+  std::vector<std::uint32_t> ground_indices;
 };
 
 // Joint locals from world matrices: local[i] = inverse(world[parent]) * world[i].

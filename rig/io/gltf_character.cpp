@@ -85,6 +85,16 @@ int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin,
   return static_cast<int>(model.accessors.size()) - 1;
 }
 
+int appendIndexAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<std::uint32_t>& indices) {
+  tinygltf::Accessor a;
+  a.bufferView = appendBytes(model, bin, indices.data(), indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  a.count = indices.size();
+  a.type = TINYGLTF_TYPE_SCALAR;
+  model.accessors.push_back(a);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
 GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsigned char>& bin,
                                        const Character& c, const std::string& prefix) {
   const Skeleton& s = c.skeleton;

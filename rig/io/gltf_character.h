@@ -43,6 +43,8 @@ int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin,
                         int components, bool minmax, int target = 0);
 // Adds a node `name` (scale 0.01): stirrup works in centimetres, glTF in metres, so joints hang
 // under it. Returns the node.
+// Appends 32-bit indices as a SCALAR element-array accessor; returns its index.
+int appendIndexAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<std::uint32_t>& indices);
 int addCentimetreRoot(tinygltf::Model& model, const std::string& name = "stirrup_cm");
 // Serialises a model whose binary data is `bin` as .glb bytes.
 std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned char> bin);

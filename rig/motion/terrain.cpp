@@ -93,4 +93,31 @@ glm::dvec3 Terrain::normal(double x, double z) const {
   return glm::normalize(glm::dvec3(-gx, 1.0, -gz));
 }
 
+void Terrain::triangulate(glm::dvec2 lower, glm::dvec2 upper, double cell_cm, int max_cells,
+                          std::vector<glm::vec3>& vertices, std::vector<std::uint32_t>& indices) const {
+  vertices.clear();
+  indices.clear();
+  if (mesh_) {
+    for (const glm::dvec3& v : mesh_->vertices()) vertices.push_back(glm::vec3(v));
+    indices = mesh_->indices();
+    return;
+  }
+  if (flat()) return;
+  const glm::dvec2 size = glm::max(upper - lower, glm::dvec2(1.0));
+  const double cell = std::max(cell_cm, std::max(size.x, size.y) / std::max(max_cells, 1));
+  const int nx = std::max(1, int(std::ceil(size.x / cell))), nz = std::max(1, int(std::ceil(size.y / cell)));
+  for (int z = 0; z <= nz; ++z)
+    for (int x = 0; x <= nx; ++x) {
+      const double px = lower.x + x * cell, pz = lower.y + z * cell;
+      vertices.push_back(glm::vec3(float(px), float(height(px, pz)), float(pz)));
+    }
+  const auto row = std::uint32_t(nx + 1);
+  for (int z = 0; z < nz; ++z)
+    for (int x = 0; x < nx; ++x) {
+      const auto k = std::uint32_t(z) * row + std::uint32_t(x);
+      // Wound counter-clockwise seen from above (+Y): glTF's front face up.
+      indices.insert(indices.end(), {k, k + row, k + 1, k + 1, k + row, k + row + 1});
+    }
+}
+
 }  // namespace stirrup::rig

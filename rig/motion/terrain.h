@@ -11,6 +11,9 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
 
 #include <glm/vec3.hpp>
 
@@ -42,6 +45,12 @@ class Terrain {
   // (d height / dx, d height / dz): the slope, analytic.
   void gradient(double x, double z, double& dx, double& dz) const;
   glm::dvec3 normal(double x, double z) const;       // unit, up
+
+  // The ground as triangles, for a file another tool opens (stirrup bake): a mesh terrain's own
+  // triangles; hills sampled on a grid over [lower, upper] (x, z cm) of at most `max_cells` a side,
+  // cells of `cell_cm` or larger; nothing for flat ground. Vertices in cm, three indices a triangle.
+  void triangulate(glm::dvec2 lower, glm::dvec2 upper, double cell_cm, int max_cells, std::vector<glm::vec3>& vertices,
+                   std::vector<std::uint32_t>& indices) const;
 
  private:
   bool hills_ = false;

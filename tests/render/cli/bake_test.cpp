@@ -478,6 +478,51 @@ TEST(BakeGltf, RiderOnlyWritesTheRiderAlone) {
   EXPECT_NE(r.out.find("--rider-only"), std::string::npos);
 }
 
+// Over a terrain the baked file holds the ground (node "ground", scale 0.01, its mesh in cm): its
+// vertices on the scene's hills, covering the track, facing up; the Khronos validator passes it.
+TEST(BakeGltf, AShotOverHillsCarriesItsGround) {
+  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / "trail_ground" / "trail.glb";
+  fs::remove_all(out.parent_path());
+  const CommandResult r = runStirrup("bake " + quote(STIRRUP_SOURCE_DIR "/scenes/trail.json") + " --frames 1-609x60 -o " +
+                                     quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tinygltf::Model model = loadGlb(out);
+  const int root = nodeNamed(model, "ground"), mesh_node = nodeNamed(model, "ground_mesh");
+  ASSERT_GE(root, 0);
+  ASSERT_GE(mesh_node, 0);
+  EXPECT_EQ(model.nodes[root].scale, (std::vector<double>{0.01, 0.01, 0.01}));
+  EXPECT_EQ(model.nodes[root].children, std::vector<int>{mesh_node});
+  const tinygltf::Primitive& prim = model.meshes.at(std::size_t(model.nodes[mesh_node].mesh)).primitives.at(0);
+  const tinygltf::Accessor& pa = model.accessors.at(std::size_t(prim.attributes.at("POSITION")));
+  const tinygltf::BufferView& pv = model.bufferViews.at(std::size_t(pa.bufferView));
+  std::vector<float> p(pa.count * 3);
+  std::memcpy(p.data(), model.buffers[0].data.data() + pv.byteOffset + pa.byteOffset, p.size() * sizeof(float));
+  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trail.json");
+  ASSERT_TRUE(scene.terrain);
+  double worst = 0, lo_x = 1e30, hi_x = -1e30, lo_y = 1e30, hi_y = -1e30;
+  for (std::size_t i = 0; i < pa.count; ++i) {
+    worst = std::max(worst, std::abs(p[3 * i + 1] - scene.terrain->height(p[3 * i], p[3 * i + 2])));
+    lo_x = std::min<double>(lo_x, p[3 * i]), hi_x = std::max<double>(hi_x, p[3 * i]);
+    lo_y = std::min<double>(lo_y, p[3 * i + 1]), hi_y = std::max<double>(hi_y, p[3 * i + 1]);
+  }
+  EXPECT_LT(worst, 0.01) << "cm: the file's ground is the scene's";
+  EXPECT_GT(hi_y - lo_y, 200.0) << "the hills are in it";
+  const auto clip = render::makeSceneClip(scene);
+  EXPECT_LT(lo_x, clip->sample(0).travel_cm - 1000.0);
+  EXPECT_GT(hi_x, clip->sample(clip->duration()).travel_cm + 1000.0);
+  EXPECT_GT(model.accessors.at(std::size_t(prim.indices)).count, 30000u);
+
+  if (runCommand("command -v node >/dev/null").exit_code != 0) GTEST_SKIP() << "node is not installed";
+  fs::path modules = fs::path(STIRRUP_BINARY_DIR) / "tools" / "node_modules";
+  if (!fs::exists(modules / "gltf-validator")) modules = fs::path(STIRRUP_SOURCE_DIR) / "build" / "tools" / "node_modules";
+  ASSERT_TRUE(fs::exists(modules / "gltf-validator")) << "gltf-validator is not installed: run scripts/setup";
+  const CommandResult v = runCommand("node " + quote(STIRRUP_SOURCE_DIR "/tests/render/cli/validate_gltf.js") + " " +
+                                     quote(modules.string()) + " " + quote(out.string()));
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  EXPECT_NE(v.out.find("\"errors\":0,"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("\"warnings\":0,"), std::string::npos) << v.out;
+}
+
 INSTANTIATE_TEST_SUITE_P(DefaultScenes, BakedCameras,
                          testing::Values("buck", "canter", "cross_country", "figure_eight", "fox", "fox_run", "gallop",
                                          "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"));
