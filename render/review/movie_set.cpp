@@ -149,7 +149,7 @@ std::string movieView(const MovieJob& job) { return job.layered.empty() ? job.ca
 BurnInFacts movieFacts(const MovieJob& job, const MovieOptions& o, const SceneSpec& scene, const std::vector<int>& frames) {
   BurnInFacts facts;
   facts.scene = scene.name;
-  facts.movement = makeSceneClip(scene)->name();
+  facts.movement = rig::makeClip(scene.clip)->name();  // the name only: no need to read the horse for its hooves
   facts.view = movieView(job);
   facts.profile = scene.profile;
   facts.fps = scene.fps;
