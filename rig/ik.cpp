@@ -65,3 +65,43 @@ glm::mat3 boneRotation(glm::vec3 rest_dir, glm::vec3 rest_normal, glm::vec3 dir,
 }
 
 }  // namespace stirrup::rig
+
+namespace stirrup::rig {
+
+glm::vec3 restPole(glm::vec3 root, glm::vec3 middle, glm::vec3 end, float distance) {
+  const glm::vec3 chord = end - root;
+  const float t = glm::dot(middle - root, chord) / std::max(glm::dot(chord, chord), 1e-8f);
+  glm::vec3 bend = middle - (root + chord * t);
+  if (glm::length(bend) < 1e-5f) bend = glm::cross(chord, glm::vec3(0.0f, 0.0f, 1.0f));
+  return middle + glm::normalize(bend) * distance;
+}
+
+LimbPose solveLimb(glm::vec3 rest_root, glm::vec3 rest_middle, glm::vec3 rest_end, glm::vec3 rest_pole,
+                   glm::vec3 root, glm::vec3 target, glm::vec3 pole, float soften) {
+  TwoBoneIkInput rest;
+  rest.root = rest_root;
+  rest.upper_length = glm::length(rest_middle - rest_root);
+  rest.lower_length = glm::length(rest_end - rest_middle);
+  rest.target = rest_end;
+  rest.pole = rest_pole;
+  const glm::vec3 rest_normal = solveTwoBoneIk(rest).bend_normal;
+
+  TwoBoneIkInput in = rest;
+  in.root = root;
+  in.target = target;
+  in.pole = pole;
+  in.soften = soften;
+  const TwoBoneIkResult r = solveTwoBoneIk(in);
+  const auto place = [](glm::vec3 at, const glm::mat3& rotation) {
+    glm::mat4 m(rotation);
+    m[3] = glm::vec4(at, 1.0f);
+    return m;
+  };
+  LimbPose out;
+  out.upper = place(root, boneRotation(rest_middle - rest_root, rest_normal, r.middle - root, r.bend_normal));
+  out.middle = place(r.middle, boneRotation(rest_end - rest_middle, rest_normal, r.end - r.middle, r.bend_normal));
+  out.end = r.end;
+  return out;
+}
+
+}  // namespace stirrup::rig

@@ -34,4 +34,19 @@ TwoBoneIkResult solveTwoBoneIk(const TwoBoneIkInput& in);
 // to one along dir with normal normal. Used to orient IK bones without twisting them.
 glm::mat3 boneRotation(glm::vec3 rest_dir, glm::vec3 rest_normal, glm::vec3 dir, glm::vec3 normal);
 
+// A pole point at rest: the middle joint pushed `distance` away from the root-end chord, so the limb
+// keeps bending the way it bends at rest.
+glm::vec3 restPole(glm::vec3 root, glm::vec3 middle, glm::vec3 end, float distance);
+
+// A two-bone limb posed from its rest: world matrices of the chain's root and middle joints (joints
+// with identity bind orientation, so a world matrix is translate(position) * rotation from rest).
+struct LimbPose {
+  glm::mat4 upper, middle;
+  glm::vec3 end;  // where the end joint landed
+};
+// Rest positions (bind world) and rest pole given; the posed root, target and pole in world. Bones
+// turn from their rest orientation without twist.
+LimbPose solveLimb(glm::vec3 rest_root, glm::vec3 rest_middle, glm::vec3 rest_end, glm::vec3 rest_pole,
+                   glm::vec3 root, glm::vec3 target, glm::vec3 pole, float soften);
+
 }  // namespace stirrup::rig

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "rig/horse_leg.h"
 #include "rig/ik.h"
 #include "rig/skeleton.h"
 
@@ -30,48 +31,6 @@ glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m *
 // Rest local with an extra translation (in the parent's frame) and rotation.
 glm::mat4 offsetLocal(const Joint& j, glm::vec3 extra_translation, const glm::mat4& rotation) {
   return translate(extra_translation) * j.rest_local * rotation;
-}
-
-// A pole point at rest: the middle joint pushed away from the root-end chord, so the limb keeps
-// bending the way it bends at rest.
-glm::vec3 restPole(glm::vec3 root, glm::vec3 middle, glm::vec3 end, float distance) {
-  const glm::vec3 chord = end - root;
-  const float t = glm::dot(middle - root, chord) / std::max(glm::dot(chord, chord), 1e-8f);
-  glm::vec3 bend = middle - (root + chord * t);
-  if (glm::length(bend) < 1e-5f) bend = glm::cross(chord, kZ);
-  return middle + glm::normalize(bend) * distance;
-}
-
-struct LimbPose {
-  glm::mat4 upper, middle;  // world matrices of the chain root and middle joints
-  glm::vec3 end;            // where the end joint landed
-};
-
-// Two-bone IK for a chain whose rest positions (bind world) and rest pole are given; the posed
-// root, target and pole are in world. Bones are rotated from their rest orientation without twist.
-LimbPose solveLimb(glm::vec3 rest_root, glm::vec3 rest_middle, glm::vec3 rest_end, glm::vec3 rest_pole,
-                   glm::vec3 root, glm::vec3 target, glm::vec3 pole, float soften) {
-  TwoBoneIkInput rest;
-  rest.root = rest_root;
-  rest.upper_length = glm::length(rest_middle - rest_root);
-  rest.lower_length = glm::length(rest_end - rest_middle);
-  rest.target = rest_end;
-  rest.pole = rest_pole;
-  const glm::vec3 rest_normal = solveTwoBoneIk(rest).bend_normal;
-
-  TwoBoneIkInput in = rest;
-  in.root = root;
-  in.target = target;
-  in.pole = pole;
-  in.soften = soften;
-  const TwoBoneIkResult r = solveTwoBoneIk(in);
-  LimbPose out;
-  out.upper = translate(root) * glm::mat4(boneRotation(rest_middle - rest_root, rest_normal, r.middle - root,
-                                                       r.bend_normal));
-  out.middle = translate(r.middle) * glm::mat4(boneRotation(rest_end - rest_middle, rest_normal,
-                                                            r.end - r.middle, r.bend_normal));
-  out.end = r.end;
-  return out;
 }
 
 // The rigid motion a joint has made from its bind pose: world * inverse bind.
@@ -154,6 +113,19 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     const float flex = params.hoof_flex_deg * lift * lift * (3.0f - 2.0f * lift);
     // The hoof sole turns to face backward, about the travel frame's sideways axis.
     const glm::mat4 fold = glm::mat4(glm::mat3(travel)) * rot(-flex, kZ);
+    if (horse.roles.count(n + "Pivot")) {
+      // The whole limb reaches (rig/horse_leg.h): the default horse names its scapula and hip pivots.
+      HorseLegJoints joints;
+      joints.fore = leg < 2;
+      joints.pivot = horse.role(n + "Pivot");
+      joints.shoulder = s.joints[upper].parent == joints.pivot ? -1 : s.joints[upper].parent;
+      joints.upper = upper;
+      joints.middle = middle;
+      joints.fetlock = fetlock;
+      joints.hoof = hoof;
+      solveHorseLeg(s, joints, {hoof_target, fold}, params.leg, world);
+      continue;
+    }
     const glm::vec3 fetlock_target = hoof_target + glm::vec3(fold * glm::vec4(rest_fetlock - rest_hoof, 0.0f));
 
     const glm::vec3 rest_pole = restPole(rest_upper, rest_middle, rest_fetlock, 40.0f);

@@ -30,6 +30,7 @@
 #include "rig/character.h"
 #include "rig/clip.h"
 #include "rig/curve_spine.h"
+#include "rig/horse_leg.h"
 #include "rig/rig_profile.h"
 #include "rig/characters/horse_character.h"  // the characters these jobs pose, for callers that include only pose.h
 #include "rig/characters/rider_character.h"
@@ -40,6 +41,7 @@ struct HorsePoseParams {
   float hoof_flex_deg = 55.0f;        // pastern fold (hoof sole turning back) when a hoof is lifted
   float hoof_flex_full_lift = 18.0f;  // lift (cm) at which the fold is complete
   float leg_soften = 0.3f;            // IK reach softening (cm), so a leg never snaps straight
+  HorseLegParams leg;                 // whole-limb reach, for horses that name their leg pivots
 };
 
 // The travel frame of a horse frame: world from travel-frame coordinates (its origin at (travel_cm, 0,

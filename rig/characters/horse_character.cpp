@@ -109,11 +109,14 @@ Character buildHorse(const HorseParams& p) {
     const glm::vec3 middle = mirrorZ(fore ? p.fore_knee : p.hind_hock, side);
     const glm::vec3 fetlock = mirrorZ(fore ? p.fore_fetlock : p.hind_fetlock, side);
     const glm::vec3 hoof = mirrorZ(fore ? p.fore_hoof : p.hind_hoof, side);
-    const int j_top = addJointAt(s, n + (fore ? "Shoulder" : "Hip"), fore ? chest : root, top);
+    // The fore limb swings from the scapula's pivot, the shoulder joint below it; the hind from the hip.
+    const int j_scapula = fore ? addJointAt(s, n + "Scapula", chest, mirrorZ(p.fore_scapula, side)) : -1;
+    const int j_top = addJointAt(s, n + (fore ? "Shoulder" : "Hip"), fore ? j_scapula : root, top);
     const int j_upper = addJointAt(s, n + (fore ? "Elbow" : "Stifle"), j_top, upper);
     const int j_middle = addJointAt(s, n + (fore ? "Knee" : "Hock"), j_upper, middle);
     const int j_fetlock = addJointAt(s, n + "Fetlock", j_middle, fetlock);
     const int j_hoof = addJointAt(s, n + "Hoof", j_fetlock, hoof);
+    c.roles[n + "Pivot"] = fore ? j_scapula : j_top;
     c.roles[n + "Upper"] = j_upper;
     c.roles[n + "Middle"] = j_middle;
     c.roles[n + "Fetlock"] = j_fetlock;
@@ -121,7 +124,7 @@ Character buildHorse(const HorseParams& p) {
 
     if (fore) {
       const glm::vec3 scapula_top{p.withers_x - 2.0f, p.withers_height - 16.0f, top.z * 0.7f};
-      body.add(taperedCapsule(scapula_top, top, 9.0f, 11.0f, j_top, p.coat, 8.0f));
+      body.add(taperedCapsule(scapula_top, top, 9.0f, 11.0f, j_scapula, p.coat, 8.0f));
       body.add(taperedCapsule(top, upper + glm::vec3(2.0f, 4.0f, 0.0f), 11.0f, 9.5f, j_top, p.coat, 8.0f));
       body.add(taperedCapsule(upper, middle, p.forearm_radius, p.knee_radius * 0.85f, j_upper, p.coat, 4.0f));
       body.add(ellipsoid(middle, glm::vec3(p.knee_radius * 1.05f, p.knee_radius * 1.3f, p.knee_radius), j_middle,

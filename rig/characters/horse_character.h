@@ -5,7 +5,7 @@
 // Roles: "root" (rear pivot at the hips), "backMid", "chest", "withers", "neck1", "neck2", "head",
 // "saddle" (seat centre, the rider's attachment), "lStirrup", "rStirrup" (tread centres), "tail1".."tail3",
 // "lRein", "rRein" (the hand ends of the reins, moved to the rider's hands by placeReins),
-// per leg "<leg>Upper" (chain root: elbow or stifle), "<leg>Middle" (knee or hock),
+// per leg "<leg>Pivot" (where the limb swings: the scapula's pivot, the hip joint), "<leg>Upper" (two-bone chain root: elbow or stifle), "<leg>Middle" (knee or hock),
 // "<leg>Fetlock", "<leg>Hoof" (ground contact), leg = lf, rf, lb, rb.
 #pragma once
 
@@ -54,6 +54,7 @@ struct HorseParams {
   float ear_length = 13.0f;
   float mane_radius = 3.5f;
   // Legs: joint positions of the left legs (z is mirrored for the right).
+  glm::vec3 fore_scapula{40.0f, 138.0f, -13.0f};   // the scapula's pivot, a third down from its top
   glm::vec3 fore_shoulder{62.0f, 114.0f, -13.0f};  // point of the shoulder
   glm::vec3 fore_elbow{45.0f, 94.0f, -13.0f};
   glm::vec3 fore_knee{52.0f, 54.0f, -13.0f};       // carpus, slightly ahead of the line: bends forward

@@ -34,6 +34,12 @@ const std::vector<std::string>& requiredRoles(CharacterKind kind) {
   return kind == CharacterKind::Horse ? horse : rider;
 }
 
+const std::vector<std::string>& optionalRoles(CharacterKind kind) {
+  static const std::vector<std::string> horse = {"lfPivot", "rfPivot", "lbPivot", "rbPivot"};
+  static const std::vector<std::string> rider;
+  return kind == CharacterKind::Horse ? horse : rider;
+}
+
 CharacterMapping loadCharacterMapping(const std::filesystem::path& file, CharacterKind kind) {
   const nlohmann::json json = readJsonFile(file);
   JsonObjectReader r(file.string(), "", json);
@@ -59,8 +65,10 @@ CharacterMapping loadCharacterMapping(const std::filesystem::path& file, Charact
   if (!roles || !roles->is_object())
     r.fail("roles", "expected an object from role names to joint names, got " + (roles ? describeJson(*roles) : "nothing"));
   const std::vector<std::string>& needed = requiredRoles(kind);
+  const std::vector<std::string>& optional = optionalRoles(kind);
   for (const auto& [role, joint] : roles->items()) {
-    if (std::find(needed.begin(), needed.end(), role) == needed.end())
+    if (std::find(needed.begin(), needed.end(), role) == needed.end() &&
+        std::find(optional.begin(), optional.end(), role) == optional.end())
       r.fail("roles." + role, "unknown " + expected + " role (docs/characters.md lists them)");
     if (!joint.is_string()) r.fail("roles." + role, "expected a joint name, got " + describeJson(joint));
     m.roles[role] = joint.get<std::string>();

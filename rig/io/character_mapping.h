@@ -29,6 +29,10 @@ std::string_view characterKindName(CharacterKind kind);  // "horse" / "rider"
 // four legs; for the rider the pelvis, curve-spine controllers and chain, neck, head, braid, coat
 // tail and both arms and legs (rig/characters/horse_character.h, rig/characters/rider_character.h).
 const std::vector<std::string>& requiredRoles(CharacterKind kind);
+// Roles a character may name for more: a horse's leg pivots ("lfPivot".."rbPivot": the scapula's
+// pivot, the hip joint) let the whole limb reach (rig/horse_leg.h); without them a leg is solved
+// below the elbow or stifle only.
+const std::vector<std::string>& optionalRoles(CharacterKind kind);
 
 struct CharacterMapping {
   std::map<std::string, std::string> roles;  // role -> joint name in the file

@@ -290,17 +290,21 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   std::string where = f;
   if (mapping) {
     where = mapping->file.empty() ? f : mapping->file.string();
+    const auto mapRole = [&](const std::string& role, const std::string& joint_name) {
+      int found = -1;
+      for (int j = 0; j < nj; ++j)
+        if (model.nodes.at(skin.joints[j]).name == joint_name) found = j;
+      if (found < 0) throw InputError(where + ": roles." + role + ": no joint named \"" + joint_name + "\" in " + f);
+      role_joint[role] = found;
+    };
     for (const std::string& role : requiredRoles(kind)) {
       const auto it = mapping->roles.find(role);
       if (it == mapping->roles.end())
         throw InputError(where + ": roles." + role + ": missing (expected the name of the " + kind_name + "'s " + role + " joint in " + f + ")");
-      int found = -1;
-      for (int j = 0; j < nj; ++j)
-        if (model.nodes.at(skin.joints[j]).name == it->second) found = j;
-      if (found < 0)
-        throw InputError(where + ": roles." + role + ": no joint named \"" + it->second + "\" in " + f);
-      role_joint[role] = found;
+      mapRole(role, it->second);
     }
+    for (const std::string& role : optionalRoles(kind))
+      if (const auto it = mapping->roles.find(role); it != mapping->roles.end()) mapRole(role, it->second);
   } else {
     tinygltf::Value roles;
     for (const tinygltf::Node& n : model.nodes)
@@ -311,6 +315,13 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       const tinygltf::Value& v = roles.Get(role);
       if (!v.IsInt() || v.Get<int>() < 0 || v.Get<int>() >= nj)
         throw InputError(f + ": role " + role + ": missing from the file's role table (expected a joint of the " + kind_name + ")");
+      role_joint[role] = v.Get<int>();
+    }
+    for (const std::string& role : optionalRoles(kind)) {
+      if (!roles.Has(role)) continue;
+      const tinygltf::Value& v = roles.Get(role);
+      if (!v.IsInt() || v.Get<int>() < 0 || v.Get<int>() >= nj)
+        throw InputError(f + ": role " + role + ": expected a joint index 0.." + std::to_string(nj - 1) + " in the file's role table");
       role_joint[role] = v.Get<int>();
     }
   }
