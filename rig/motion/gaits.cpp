@@ -1,5 +1,6 @@
 #include "rig/motion/gaits.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "rig/error.h"
@@ -12,6 +13,8 @@ namespace {
 // unwrapped against the first gait so the blend takes the short way round the stride.
 struct HoofGait {
   double touchdown = 0.0, duty = 0.5, lift_cm = 10.0;
+  double lift_cm_s = 0.0;   // lift over the steady swing time, (1 - duty) / stride_hz
+  double top_lift_cm = 0.0; // the highest lift of the gaits playing
 };
 
 HoofGait blendedHoof(const Movement& m, int hoof, double t) {
@@ -26,13 +29,17 @@ HoofGait blendedHoof(const Movement& m, int hoof, double t) {
     if (w <= 0.0) continue;
     out.touchdown += w * td;
     out.duty += w * g.duty_factor[hoof];
-    out.lift_cm += w * g.hoof_lift_cm * (hoof < 2 ? g.fore_lift_scale : 1.0);
+    const double scale = hoof < 2 ? g.fore_lift_scale : 1.0, lift = g.hoof_lift_cm * scale;
+    out.lift_cm += w * g.hoof_lift_cm * scale;
+    out.lift_cm_s += w * lift * g.stride_hz / (1.0 - g.duty_factor[hoof]);
+    out.top_lift_cm = std::max(out.top_lift_cm, lift);
     total += w;
   }
   if (total > 0.0) {
     out.touchdown /= total;
     out.duty /= total;
     out.lift_cm /= total;
+    out.lift_cm_s /= total;
   }
   return out;
 }
@@ -90,11 +97,44 @@ HoofSchedule scanFootfalls(const Movement& m, const GaitTimeline& tl, int hoof, 
       k += 1.0;
       const double down = solve(t, t1, k);
       const HoofGait g = blendedHoof(m, hoof, down);
-      // Lift-off: the hoof phase has advanced by the duty factor.
+      // The next two touchdowns, which the phase fixes whatever this stance does (paced blends only).
+      double next = down, after = down;
+      if (m.paced_blends) {
+        // hoofPhase only increases, so coarse steps bracket each crossing for the bisection.
+        constexpr double kBracketStep = 0.05;
+        while (hoofPhase(next) < k + 1.0) next += kBracketStep;
+        next = solve(next - kBracketStep, next, k + 1.0);
+        after = next;
+        while (hoofPhase(after) < k + 2.0) after += kBracketStep;
+        after = solve(after - kBracketStep, after, k + 2.0);
+      }
+      // Lift-off: the hoof phase has advanced by the duty factor. Paced (gaits.h): by the duty factor
+      // d at the time, counting the phase from the earlier of the touchdown phases at touchdown and
+      // now, and within d of this cycle c (touchdown to next touchdown). The swing after covers half
+      // this stance s and half the next (at most d of the next cycle c'), plus the body's travel in the
+      // air: at the gait's pace when (s + d c') / 2 <= d / (1 - d) (c - s), so when c' > c the stance
+      // ends by d (2c - (1 - d) c') / (1 + d), and never before half of d c.
+      const auto inStance = [&](double x) {
+        if (!m.paced_blends) return hoofPhase(x) < k + g.duty;
+        const HoofGait now = blendedHoof(m, hoof, x);
+        const double d = now.duty, cycle = next - down, next_cycle = after - next;
+        const double pace = std::clamp((2.0 * cycle - (1.0 - d) * next_cycle) / (1.0 + d), 0.5 * cycle, cycle);
+        return m.stridePhase(x) - std::min(now.touchdown, g.touchdown) < k + d && x - down < d * pace;
+      };
       double b = down;
-      while (hoofPhase(b) < k + g.duty) b += kScanStep;
-      const double up = solve(b - kScanStep, b, k + g.duty);
+      while (inStance(b)) b += kScanStep;
+      double a = b - kScanStep;
+      for (int i = 0; i < 50; ++i) {
+        const double mid = 0.5 * (a + b);
+        (inStance(mid) ? a : b) = mid;
+      }
+      const double up = 0.5 * (a + b);
       if (up > lift_by_s) break;
+      double lift_cm = g.lift_cm;
+      if (m.paced_blends) {  // the swing's time at the gaits' blended lift rate, no higher than they lift
+        const HoofGait at_up = blendedHoof(m, hoof, up);
+        lift_cm = std::min(at_up.lift_cm_s * (next - up), at_up.top_lift_cm);
+      }
       Footfall f;
       f.down_s = down;
       f.up_s = up;
@@ -102,7 +142,7 @@ HoofSchedule scanFootfalls(const Movement& m, const GaitTimeline& tl, int hoof, 
       const auto stride = static_cast<std::int64_t>(k);
       const double jitter = tl.variation * hashSigned(tl.seed, stride, hoof);
       f.x_cm = 0.5 * (m.travelCm(down) + m.travelCm(up)) + 2.0 * jitter;
-      f.swing.lift_cm = g.lift_cm * (1.0 + 0.15 * tl.variation * hashSigned(tl.seed + 1, stride, hoof));
+      f.swing.lift_cm = lift_cm * (1.0 + 0.15 * tl.variation * hashSigned(tl.seed + 1, stride, hoof));
       out.push_back(f);
       t = down;
     }

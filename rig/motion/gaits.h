@@ -31,6 +31,24 @@ double applyGaitTimeline(const GaitTimeline& timeline, Movement& m);
 // The footfalls of hoof `hoof` under the gait state already in `m` (applyGaitTimeline), touching down
 // in [from_s, to_s). Touchdowns whose lift-off would come after `lift_by_s` are dropped, so a scripted
 // movement can take over the hoof.
+//
+// With m.paced_blends a blend moves no hoof faster than the steady gaits do (in a steady gait these
+// rules give the gait's own footfalls). Touchdowns stay where the phase puts them; what is paced is
+// where each stance ends and how high the swing after it goes:
+//   - the stance ends when the hoof has covered the duty factor the blend has reached by then, not the
+//     one at touchdown: speeding up, the duty factor falls while the stride frequency rises, and a
+//     stance timed at touchdown leaves a swing too short for its stride;
+//   - a stance lasts at most its duty factor of a stride: a hoof whose touchdown phase the blend moves
+//     later (a lead change, the fore pair from walk to trot) takes the delay in the air, where it
+//     lengthens the swing, not on the ground, where it would stretch the stance past both gaits' reach
+//     and leave the next swing a longer stride to cover;
+//   - and at most its duty factor of the time to the hoof's next touchdown, less when the cycle after
+//     is longer: a hoof whose touchdown the blend moves earlier shortens its stance as much as its
+//     swing, and the swing's ground (half of each stance on either side and the body's travel in the
+//     air) stays in the steady gait's proportion to its time;
+//   - a swing's lift is its duration times the gaits' blended lift per second of swing (each gait's lift
+//     over its steady swing time), so a quicker swing is a lower one and the hoof rises and falls no
+//     faster than in either gait; a longer one goes no higher than the higher of the two gaits.
 HoofSchedule scanFootfalls(const Movement& m, const GaitTimeline& timeline, int hoof, double from_s,
                            double to_s, double lift_by_s);
 

@@ -168,7 +168,8 @@ HorseFrame sampleMovement(const Movement& m, double t) {
   double gain = m.oscillation_gain.empty() ? 1.0 : m.oscillation_gain.at(t);
   if (m.variation > 0.0) gain *= 1.0 + 0.25 * m.variation * valueNoise(m.seed, phase, 1);
   for (const auto& [gait, weight] : m.oscillation) {
-    const double w = weight.empty() ? 1.0 : weight.at(t);
+    double w = weight.empty() ? 1.0 : weight.at(t);
+    if (m.paced_blends) w *= std::min(1.0, gait.stride_hz / m.stride_hz.at(t));
     if (w > 0.0) addTrunkMotion(gait, p, gain * w, f);
   }
   for (std::size_t c = 0; c < kHorseChannelCount; ++c) {

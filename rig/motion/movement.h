@@ -85,6 +85,12 @@ struct Movement {
   Keys oscillation_gain;                // scales all oscillation (empty = 1); fades it for a jump
   double variation = 0.0;               // 0..1: seeded, smooth amplitude variation of the trunk
   unsigned seed = 0;
+  // Blends paced to the steady gaits (a path clip's transitions, issue 15: no channel faster than in
+  // the steady gaits on either side). A gait playing above its own stride frequency, as the slower gait
+  // does through a blend, scales its trunk oscillation by its frequency over the one playing, so its
+  // channels keep their steady speed rather than their amplitude; footfalls pace their swings
+  // (scanFootfalls, rig/motion/gaits.h). Without it a blend mixes the gaits as they are.
+  bool paced_blends = false;
   // Keyed offsets added to channels (rearPivot, backMid; hoof channels are ignored) and body parts.
   std::array<Keys, kHorseChannelCount> channel_keys;
   Keys neck_rz, head_rz, tail_rz, tail_ry;

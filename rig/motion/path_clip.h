@@ -8,7 +8,9 @@
 // stride frequency, each gait and canter lead is one oscillation entry blended into the next over
 // a stride and a half, and footfalls are found where each hoof's blended phase crosses a whole stride
 // (rig/motion/gaits.h), so a transition keeps every hoof planted through its stance and the stride
-// phase continuous. Sampling then bends that straight movement onto the path:
+// phase continuous. The blends are paced (Movement::paced_blends): stances end, swings lift and the
+// trunk oscillates so that no channel moves faster than in the steady gaits on either side (issue 15).
+// Sampling then bends that straight movement onto the path:
 //   - the travel frame stands at the path's point at the travelled distance, heading along its tangent;
 //     over a terrain its height and pitch follow the ground under the four rest hoof places;
 //   - a hoof at distance a along the straight movement, with a rest place (x, z) in the travel frame,

@@ -401,15 +401,12 @@ TEST(PathClip, CanterTurnsAreOnTheInsideLead) {
 
 // Through a transition no channel changes faster (per frame at 24 fps) than it does in the steady
 // gaits on either side. Measured on the straight form of the path (the bends add their own motion).
-// Not yet met exactly: a hoof swings up to 17% faster through a transition (a stride and a half long), as the speed keeps
-// rising while the duty factor is still the slower gait's (a shorter swing over a longer stride).
-// kTransitionAllowance holds what is reached so it cannot get worse; the bound is 1.
-constexpr double kTransitionAllowance = 1.2;
-TEST(PathClip, TransitionsAreNoFasterThanTheSteadyGaits) {
-  const PathClip clip(turnsAndTransitions(), nullptr, "test");
+// Returns the worst ratio of a transition's step to the steady gaits'.
+double expectTransitionsNoFaster(const PathClipParams& p, double allowance) {
+  const PathClip clip(p, nullptr, "test");
   const MovementClip straight(clip.movement());
   const auto& secs = clip.sections();
-  ASSERT_GE(secs.size(), 3u);
+  EXPECT_GE(secs.size(), 2u);
   const double frame = 1.0 / 24.0;
   double worst = 0;
   const auto maxSteps = [&](double from, double to) {
@@ -430,11 +427,44 @@ TEST(PathClip, TransitionsAreNoFasterThanTheSteadyGaits) {
     for (std::size_t c = 0; c < kHorseChannelCount; ++c) {
       const double steady = std::max(before[c], after[c]);
       if (steady > 1e-6) worst = std::max(worst, during[c] / steady);
-      EXPECT_LE(during[c], kTransitionAllowance * steady + 1e-9)
-          << kHorseChannelNames[c] << " in the transition " << pathGaitName(a.gait) << " -> " << pathGaitName(b.gait);
+      EXPECT_LE(during[c], allowance * steady + 1e-9)
+          << kHorseChannelNames[c] << " in the transition " << pathGaitName(a.gait) << " -> " << pathGaitName(b.gait)
+          << " at " << b.start_s << " s";
     }
   }
-  std::printf("fastest channel change in a transition: %.3f of the steady gaits' fastest\n", worst);
+  return worst;
+}
+
+// The bound, met: the path clip paces its blends (Movement::paced_blends). Before, a hoof
+// swung up to 17% faster through a transition, as the speed kept rising while the duty factor was
+// still the slower gait's (a shorter swing over a longer stride). The blend's edges hold swings of
+// the steady gaits, so the worst ratio stays close to 1 (0.9998).
+constexpr double kTransitionAllowance = 1.0;
+TEST(PathClip, TransitionsAreNoFasterThanTheSteadyGaits) {
+  ASSERT_GE(PathClip(turnsAndTransitions(), nullptr, "test").sections().size(), 3u);
+  const double worst = expectTransitionsNoFaster(turnsAndTransitions(), kTransitionAllowance);
+  std::printf("fastest channel change in a transition: %.4f of the steady gaits' fastest\n", worst);
+}
+
+// The same on other paths: flying changes (an S, a figure eight of 8 m circles), slowing from canter
+// to walk, speeding up quickly from walk to gallop, and galloping down to a canter. Unpaced these
+// reached 1.23. Paced, the pitch from trot to walk steps 0.04% past the trot's; the rest stay under 1.
+constexpr double kOtherTransitionsAllowance = 1.001;
+TEST(PathClip, TransitionsOnOtherPathsAreNoFasterThanTheSteadyGaits) {
+  PathClipParams eight;
+  eight.points = {{0, 0},      {800, 0},      {1600, 800}, {800, 1600}, {0, 800}, {800, 0},
+                  {1600, -800}, {800, -1600}, {0, -800},   {800, 0},    {1600, 0}};
+  eight.speed = {{0, 560}};
+  PathClipParams straight;
+  straight.points = {{0, 0}, {20000, 0}};
+  PathClipParams slowing = straight, quick = straight, gallop_down = straight;
+  slowing.speed = {{0, 560}, {6, 560}, {8, 360}, {14, 360}, {16, 180}, {30, 180}};
+  quick.speed = {{0, 180}, {6, 180}, {7, 360}, {12, 360}, {13, 600}, {20, 600}, {22, 1000}, {30, 1000}};
+  gallop_down.speed = {{0, 1000}, {6, 1000}, {9, 600}, {16, 600}};
+  double worst = 0;
+  for (const PathClipParams& p : {canterEss(), eight, slowing, quick, gallop_down})
+    worst = std::max(worst, expectTransitionsNoFaster(p, kOtherTransitionsAllowance));
+  std::printf("fastest channel change in a transition on other paths: %.4f of the steady gaits' fastest\n", worst);
 }
 
 // Each steady section passes gait-reference.md as the straight clips do.
