@@ -303,8 +303,8 @@ TEST(PathClip, PosedHoovesHoldTheirGround) {
                 on_hills ? "hills" : "flat", slide, -deepest, highest, 100.0 * off / std::max(stance, 1));
     EXPECT_LE(slide, 0.5);
     EXPECT_GE(deepest, -0.5);
-    EXPECT_LE(highest, 12.0);
-    EXPECT_LE(off, 0.05 * stance);
+    EXPECT_LE(highest, 6.5);
+    EXPECT_LE(off, 0.03 * stance);
   }
 }
 
