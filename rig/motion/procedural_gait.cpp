@@ -43,7 +43,14 @@ HoofState hoofAt(double p, double touchdown, double duty, double stance_cm, doub
 
 }  // namespace
 
-GaitParams trotParams() { return GaitParams{}; }
+GaitParams trotParams() {
+  GaitParams g;
+  // Front end level as each fore lands (.04, .54: each diagonal's hind lands 30 ms first), highest
+  // between: a fore landing with the front end up falls short of the default horse's reach
+  // (docs/horse-clips.md, "Legs").
+  g.pitch_peak_after_low = 0.07;
+  return g;
+}
 
 GaitParams walkParams() {
   GaitParams g;
@@ -58,6 +65,7 @@ GaitParams walkParams() {
   g.trunk_cycles_per_stride = 2;        // one rise per hind step
   g.trunk_low_phase = 0.15;
   g.pitch_deg = 1.0;
+  g.pitch_peak_after_low = 0.35;        // highest at .5, level as the fores land (.25, .75), as at the trot
   g.roll_deg = 1.5;
   g.neck_nod_deg = 4.0;                 // the walk nods more than the trot
   g.tail_swing_deg = 5.0;
@@ -80,6 +88,12 @@ GaitParams canterParams(Lead lead) {
   g.trunk_cycles_per_stride = 1;
   g.trunk_low_phase = 0.33;             // lowest with three hooves down (LH, LF, RH)
   g.pitch_deg = 3.5;                    // gait-reference: pitch range ≈ 5–10° (7°)
+  // Front end highest at .83, as the leading fore pushes off into the suspension, lowest at .33 with
+  // three hooves down, and about level as the leading fore lands (.52). gait-reference gives the
+  // range only; with the peak at .58 (a quarter stride after the low point, as at the trot) the
+  // leading fore landed with the front end up, beyond the default horse's reach
+  // (docs/horse-clips.md, "Legs").
+  g.pitch_peak_after_low = 0.5;
   g.roll_deg = 1.5;
   g.neck_nod_deg = 6.0;
   g.tail_swing_deg = 8.0;
@@ -120,6 +134,7 @@ GaitParams gallopParams(double speed_cm_s, Lead lead) {
   g.trunk_cycles_per_stride = 1;
   g.trunk_low_phase = 0.30;
   g.pitch_deg = 4.0;                    // gait-reference: pitch range ≈ 5–10° (8°)
+  g.pitch_peak_after_low = 0.5;         // as at the canter: highest in the suspension after the fores
   g.roll_deg = 1.0;
   g.neck_nod_deg = 8.0;
   g.tail_swing_deg = 10.0;
@@ -146,7 +161,8 @@ void addTrunkMotion(const GaitParams& g, double p, double gain, HorseFrame& f) {
   const double bounce = -0.5 * g.trunk_bounce_cm * std::cos(2 * kPi * cycles * (p - g.trunk_low_phase));
   f.controls[HorseChannel::rearPivotTy] += gain * bounce;
   // Pitch once per stride, front end up as the fore pair pushes off.
-  f.controls[HorseChannel::rearPivotRz] += gain * g.pitch_deg * std::sin(2 * kPi * (p - g.trunk_low_phase));
+  f.controls[HorseChannel::rearPivotRz] +=
+      gain * g.pitch_deg * std::sin(2 * kPi * (p - g.trunk_low_phase - g.pitch_peak_after_low + 0.25));
   // Roll toward the side whose hind leg is in stance.
   f.controls[HorseChannel::rearPivotRx] += gain * g.roll_deg * std::sin(2 * kPi * (p - g.touchdown_phase[2]));
   f.controls[HorseChannel::backMidRz] += gain * 0.3 * bounce;

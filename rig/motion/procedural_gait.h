@@ -30,6 +30,9 @@ struct GaitParams {
   int trunk_cycles_per_stride = 2;
   double trunk_low_phase = 0.22;
   double pitch_deg = 1.5;            // amplitude; trot trunk pitch range ≈ 2–4°
+  // Where in the stride the front end is highest, after the lowest point of the trunk (fraction of a
+  // stride; the pitch rises through zero at the lowest point plus this, less a quarter).
+  double pitch_peak_after_low = 0.25;
   double roll_deg = 1.0;             // amplitude, once per stride
   double neck_nod_deg = 2.0;         // head and neck nod with the bounce
   double tail_swing_deg = 6.0;

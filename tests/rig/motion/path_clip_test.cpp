@@ -263,9 +263,9 @@ TEST(PathClip, HoovesStandOnAMeshTerrain) {
 // The posed horse (poseHorse, the whole-limb legs of rig/horse_leg.h) at 60 Hz in world space, not
 // only the hooves' aims: while the clip plants a hoof, the edge it stands on (the sole, or the toe or
 // heel it rolls over) keeps its place on the ground within 0.5 cm, and no edge sinks into the ground
-// by more than 0.5 cm, on turns, through transitions and over hills. A leading fore that the clip
-// plants beyond the default horse's reach lands late (tests/rig/horse_leg_test.cpp says why); the
-// bounds below hold what is reached.
+// by more than 0.5 cm, on turns, through transitions and over hills. A fore that the clip plants
+// beyond the default horse's reach lands a little late (tests/rig/horse_leg_test.cpp); the bounds
+// below hold what is reached (3.0 cm short, 0.4% of stance time).
 TEST(PathClip, PosedHoovesHoldTheirGround) {
   constexpr float kToe = 6.0f, kHeel = 5.0f, kOnGround = 0.5f;
   for (const bool on_hills : {false, true}) {
@@ -303,8 +303,8 @@ TEST(PathClip, PosedHoovesHoldTheirGround) {
                 on_hills ? "hills" : "flat", slide, -deepest, highest, 100.0 * off / std::max(stance, 1));
     EXPECT_LE(slide, 0.5);
     EXPECT_GE(deepest, -0.5);
-    EXPECT_LE(highest, 6.5);
-    EXPECT_LE(off, 0.03 * stance);
+    EXPECT_LE(highest, 3.5);
+    EXPECT_LE(off, 0.01 * stance);
   }
 }
 
