@@ -33,7 +33,7 @@ struct HorseLegParams {
   // Share of the leg's swing (the turn of the pivot–fetlock line) the scapula or femur takes; the
   // joints below take the rest (a choice: the whole swing at the hip throws the thigh out behind).
   float upper_swing = 0.5f;
-  float soften_cm = 0.3f;            // IK reach softening below the elbow or stifle
+  float soften_cm = 0.3f;            // IK reach softening below the elbow or stifle, so a leg never snaps straight
 };
 
 // One leg's joints. `shoulder` is -1 where the upper part is one bone (the hind's femur, pivoting

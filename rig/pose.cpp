@@ -132,7 +132,7 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     const int parent = s.joints[upper].parent;
     const glm::vec3 pole = transformPoint(motion(s, world, parent), rest_pole);
     const LimbPose limb = solveLimb(rest_upper, rest_middle, rest_fetlock, rest_pole, position(world[upper]),
-                                    fetlock_target, pole, params.leg_soften);
+                                    fetlock_target, pole, params.leg.soften_cm);
     world[upper] = limb.upper;
     world[middle] = limb.middle;
     world[fetlock] = translate(limb.end) * fold;

@@ -40,8 +40,7 @@ namespace stirrup::rig {
 struct HorsePoseParams {
   float hoof_flex_deg = 55.0f;        // pastern fold (hoof sole turning back) when a hoof is lifted
   float hoof_flex_full_lift = 18.0f;  // lift (cm) at which the fold is complete
-  float leg_soften = 0.3f;            // IK reach softening (cm), so a leg never snaps straight
-  HorseLegParams leg;                 // whole-limb reach, for horses that name their leg pivots
+  HorseLegParams leg;                 // the legs' reach (its soften_cm also softens two-bone legs)
 };
 
 // The travel frame of a horse frame: world from travel-frame coordinates (its origin at (travel_cm, 0,
