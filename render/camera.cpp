@@ -24,6 +24,7 @@ CameraFrame::CameraFrame(const Camera& camera, double aspect, int height) : proj
     throw std::invalid_argument("camera: position and target must be distinct, finite points");
   }
   forward_ = view / distance;
+  target_distance_f_ = float(distance);
   position_ = camera.position;
   // A view straight along `up` has no defined roll; fall back to another axis rather than fail.
   glm::dvec3 up_hint = glm::length(camera.up) > 0.0 ? glm::normalize(camera.up) : glm::dvec3(0, 1, 0);

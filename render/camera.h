@@ -63,6 +63,21 @@ class CameraFrame {
   // Distance of a point in front of the camera along the viewing axis (the depth pass).
   double viewDepth(const glm::dvec3& p) const;
 
+  bool perspective() const { return perspective_; }
+  // Distance from the camera to its target along the view (where an orthographic ground starts to fade).
+  float targetDistanceF() const { return target_distance_f_; }
+  float halfHeightF() const { return half_height_f_; }  // of the film: a tangent, or cm (orthographic)
+  const glm::vec3& positionF() const { return position_f_; }
+  const glm::vec3& forwardF() const { return forward_f_; }
+  const glm::vec3& upF() const { return up_f_; }
+  const glm::vec3& rightF() const { return right_f_; }
+  // What rayFromPixel and pixelFootprintF compute from, for the SIMD kernels (sample_lanes.h).
+  void laneView(bool& perspective, float& pixel_dx, float& pixel_dy, float& half_width, float& half_height,
+                float& footprint_at_0, float& footprint_per_cm) const {
+    perspective = perspective_, pixel_dx = pixel_dx_, pixel_dy = pixel_dy_, half_width = half_width_f_;
+    half_height = half_height_f_, footprint_at_0 = footprint_at_0_f_, footprint_per_cm = footprint_per_cm_f_;
+  }
+
   const glm::dvec3& forward() const { return forward_; }
   const glm::dvec3& right() const { return right_; }
   const glm::dvec3& upward() const { return up_; }
@@ -77,6 +92,7 @@ class CameraFrame {
   glm::vec3 position_f_, forward_f_, right_f_, up_f_;
   float half_width_f_, half_height_f_, pixel_dx_, pixel_dy_;
   float footprint_at_0_f_, footprint_per_cm_f_;
+  float target_distance_f_;
 };
 
 }  // namespace stirrup::render

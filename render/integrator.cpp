@@ -13,10 +13,6 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-// Inverse CDF of the tent filter of radius 1: warping stratified points through it keeps their
-// stratification and gives every sample the same weight, so no pixel reads another's samples.
-float tentOffset(float u) { return u < 0.5f ? std::sqrt(2.0f * u) - 1.0f : 1.0f - std::sqrt(2.0f - 2.0f * u); }
-
 // How far to push a secondary ray's origin off the surface: above the float error of a hit point
 // computed as origin + t * direction at these coordinates (a few ulps of the largest coordinate).
 float originOffset(const glm::vec3& p) {
@@ -28,8 +24,15 @@ float originOffset(const glm::vec3& p) {
 
 float filteredChecker(float s, float t, float width) {
   const float half = 0.5f * width;
-  if (half < 1e-4f) return float((int64_t(std::floor(s)) + int64_t(std::floor(t))) & 1);
-  if (half >= 1.0f) return 0.5f;  // the box spans whole pairs of squares: exactly the mean
+  if (half < 1e-4f) {  // sharp: the parity of floor(s) + floor(t), in floats as the SIMD lanes make it
+    auto parity = [](float v) { return v - 2.0f * std::floor(v * 0.5f); };
+    const float ps = parity(std::floor(s)), pt = parity(std::floor(t));
+    return ps + pt - 2.0f * ps * pt;
+  }
+  // A box filter's side lobes alias: a footprint of 1.5 squares still shows a third of the contrast,
+  // as bands that crawl when the camera moves. So the contrast also fades, from full where a square
+  // spans four footprints (width 0.25) to none where it spans one: no pattern finer than the pixels.
+  if (width >= kCheckerFadeEnd) return 0.5f;
   // Integral of the square wave that is 1 on [1, 2) mod 2. The wave has period 2, so each
   // coordinate is first reduced to [0, 2): the differences below then stay exact enough in floats
   // however far from the origin the point is.
@@ -42,7 +45,11 @@ float filteredChecker(float s, float t, float width) {
     return (integral(x + half) - integral(x - half)) / (2.0f * half);
   };
   const float ss = box(s), tt = box(t);
-  return ss + tt - 2.0f * ss * tt;  // odd in s xor odd in t
+  const float odd = ss + tt - 2.0f * ss * tt;  // odd in s xor odd in t
+  if (width <= kCheckerFadeStart) return odd;
+  const float x = (width - kCheckerFadeStart) * (1.0f / (kCheckerFadeEnd - kCheckerFadeStart));
+  const float contrast = 1.0f - x * x * (3.0f - 2.0f * x);
+  return 0.5f + (odd - 0.5f) * contrast;
 }
 
 struct Integrator::Surface {
@@ -52,6 +59,7 @@ struct Integrator::Surface {
   glm::vec3 wo;      // toward the camera
   glm::vec3 albedo;  // linear base colour
   float specular;    // Blinn-Phong weight
+  float haze;        // aerial perspective: the fraction of the surface's light that reaches the camera
   bool on_ground;
 };
 
@@ -196,17 +204,19 @@ struct TileScratch::PixelState {
 // A camera sample of the batch, from its ray to the light it gathered.
 struct TileScratch::CameraSample {
   glm::vec3 origin, dir;
-  float t_ground;       // the ground plane's distance along the ray, or infinity
+  float t_ground;       // the ground's distance along the ray (within the visible distance), or infinity
   int32_t ray;          // its index in camera_rays, or -1: the ray cannot reach the characters
   // Set by the shading pass.
   bool hit;
   ObjectId id;
   float depth;
   glm::vec3 normal;
-  glm::vec3 radiance;   // of the sky, when nothing was hit
+  glm::vec3 radiance;   // of the sky, when nothing was hit; of open ground, when resolved
   glm::vec3 sun, sky;   // light that needed no rays (when the matching *_traced is false)
   glm::vec3 diffuse;    // scales the sky rays' sum
+  float haze;           // aerial perspective (1: none)
   bool sun_traced, sky_traced;
+  bool resolved;        // open ground: `radiance` is its whole light, from the lanes
   uint32_t sun_pending, sky_pending;  // entries of the pending list: sun rays, then sky rays
 };
 
@@ -236,13 +246,46 @@ void Integrator::renderTile(const CameraFrame& camera, int x0, int x1, int y0, i
                             RayTally& tally, PixelResult* out) const {
   const int width = x1 - x0, count = width * (y1 - y0);
   const int batch = std::max(1, kBatchSamples / int(spp_));
+  const LaneConstants constants = laneConstants(camera);
   for (int first = 0; first < count; first += batch) {
-    renderBatch(camera, x0, width, y0, first, std::min(batch, count - first), frame, scratch, tally, out + first);
+    renderBatch(camera, constants, x0, width, y0, first, std::min(batch, count - first), frame, scratch, tally,
+                out + first);
   }
 }
 
-void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, int y0, int first, int count,
-                             int frame, TileScratch& scratch, RayTally& tally, PixelResult* out) const {
+LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
+  LaneConstants k;
+  camera.laneView(k.perspective, k.pixel_dx, k.pixel_dy, k.half_width, k.half_height, k.footprint_at_0,
+                  k.footprint_per_cm);
+  k.position = camera.positionF(), k.forward = camera.forwardF(), k.right = camera.rightF(), k.up = camera.upF();
+  k.target_distance = camera.targetDistanceF();
+  k.ground_extent = ground_extent_;
+  k.t_visible = visibleDistance(camera);
+  k.square_cm = settings_.ground_square_cm;
+  k.color_a = settings_.ground_color_a, k.color_b = settings_.ground_color_b;
+  k.haze_visibility = settings_.haze.visibility_cm, k.haze_ortho_depth = settings_.haze.ortho_depth_cm;
+  k.horizon = settings_.sky.horizon, k.zenith = settings_.sky.zenith, k.below = settings_.sky.below;
+  // An orthographic sky is graded from the ground's height under the camera's target.
+  if (terrain_ && !camera.perspective()) {
+    const glm::vec3 target = camera.positionF() + camera.forwardF() * camera.targetDistanceF();
+    k.sky_floor = float(terrain_->height(double(target.x), double(target.z)));
+  }
+  k.sun_y = sun_frame_.z.y;
+  k.sun_radiance = sun_radiance_;
+  k.sky_irradiance = settings_.sky.upwardIrradianceOverPi();
+  k.sun_region = ground_sun_region_;
+  k.ground_floor = ground_floor_;
+  k.sun_lower_x = ground_sun_lower_.x, k.sun_lower_z = ground_sun_lower_.y;
+  k.sun_upper_x = ground_sun_upper_.x, k.sun_upper_z = ground_sun_upper_.y;
+  k.ao_distance = settings_.ao_distance_cm;
+  k.box_lower = bounds_lower_, k.box_upper = bounds_upper_;
+  k.box_empty = bounds_radius_ < 0.0f;
+  return k;
+}
+
+void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& constants, int x0, int tile_width, int y0,
+                             int first, int count, int frame, TileScratch& scratch, RayTally& tally,
+                             PixelResult* out) const {
   scratch.pixels.clear();
   scratch.samples.clear();
   scratch.camera_rays.clear();
@@ -250,14 +293,33 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
   scratch.pending.clear();
   scratch.sun_rays.clear();
   scratch.sky_rays.clear();
+  CameraLanes& lanes = scratch.lanes;
+  const std::size_t n = std::size_t(count) * spp_;
+  lanes.resize(n);
+  scratch.samples.resize(n);
 
-  // Pass 1: every camera ray of the batch. Flat ground is a square in the plane y = 0, intersected
-  // here without a call into Embree; its distance then bounds the search through the characters.
-  // Uneven ground is traced below (pass 1b) before the characters' rays are set up.
-  auto queueCharacterRay = [&](TileScratch::CameraSample& c) {
+  // Pass 1: every camera ray of the batch. The sample sequences are hashed here, one pixel at a time;
+  // the rays, the flat ground (a square in the plane y = 0, intersected without a call into Embree:
+  // its distance then bounds the search through the characters) and the test against the characters'
+  // box run in SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+  std::size_t j = 0;
+  for (int p = 0; p < count; ++p) {
+    const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
+    const PixelSampler sampler(x, y, frame);
+    const Stratified2D pixel_points(sampler, pixel_layout_, SampleDimension::PixelFilter);
+    scratch.pixels.push_back({Stratified2D(sampler, sun_layout_, SampleDimension::SunCone),
+                              Stratified2D(sampler, sky_layout_, SampleDimension::SkyHemisphere)});
+    const float cx = float(x) + 0.5f, cy = float(y) + 0.5f;
+    for (uint32_t i = 0; i < spp_; ++i, ++j) {
+      const glm::vec2 u = pixel_points[i];
+      lanes.ux[j] = u.x, lanes.uy[j] = u.y, lanes.cx[j] = cx, lanes.cy[j] = cy;
+    }
+  }
+  cameraRayLanes(constants, lanes, !terrain_);
+  auto queueCharacterRay = [&](TileScratch::CameraSample& c, std::size_t k) {
     c.ray = -1;
     // Most camera rays of a review view pass beside the characters' box: no call into Embree.
-    if (mayHitCharacters(c.origin, c.dir, c.t_ground)) {
+    if (lanes.may_hit[k]) {
       c.ray = int32_t(scratch.camera_rays.size());
       RTCRayHit& rh = scratch.camera_rays.emplace_back();
       rh.ray = makeRay(c.origin, c.dir, c.t_ground);
@@ -265,53 +327,37 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
       rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     }
   };
-  for (int p = 0; p < count; ++p) {
-    const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
-    const PixelSampler sampler(x, y, frame);
-    const Stratified2D pixel_points(sampler, pixel_layout_, SampleDimension::PixelFilter);
-    scratch.pixels.push_back({Stratified2D(sampler, sun_layout_, SampleDimension::SunCone),
-                              Stratified2D(sampler, sky_layout_, SampleDimension::SkyHemisphere)});
-    for (uint32_t i = 0; i < spp_; ++i) {
-      const glm::vec2 u = pixel_points[i];
-      const float px = float(x) + 0.5f + tentOffset(u.x);
-      const float py = float(y) + 0.5f + tentOffset(u.y);
-      TileScratch::CameraSample& c = scratch.samples.emplace_back();
-      camera.rayFromPixel(px, py, c.origin, c.dir);
-      ++tally.rays;
-      if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
-      c.t_ground = kInfinity;
-      if (terrain_) {
-        RTCRayHit& rh = scratch.ground_rays.emplace_back();
-        rh.ray = makeRay(c.origin, c.dir, kInfinity);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        continue;
-      }
-      if (c.dir.y != 0.0f) {
-        const float t = -c.origin.y / c.dir.y;
-        if (t > 0.0f) {
-          const float hx = c.origin.x + t * c.dir.x, hz = c.origin.z + t * c.dir.z;
-          if (std::abs(hx) <= ground_extent_ && std::abs(hz) <= ground_extent_) c.t_ground = t;
-        }
-      }
-      queueCharacterRay(c);
+  for (std::size_t k = 0; k < n; ++k) {
+    TileScratch::CameraSample& c = scratch.samples[k];
+    c.origin = {lanes.ox[k], lanes.oy[k], lanes.oz[k]};
+    c.dir = {lanes.dx[k], lanes.dy[k], lanes.dz[k]};
+    c.t_ground = lanes.t_ground[k];
+    ++tally.rays;
+    if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
+    if (terrain_) {
+      RTCRayHit& rh = scratch.ground_rays.emplace_back();
+      rh.ray = makeRay(c.origin, c.dir, constants.t_visible);
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      continue;
     }
+    queueCharacterRay(c, k);
   }
 
   // Pass 1b (uneven ground): every camera ray against the heightfield as one coherent stream; its
   // distance then bounds the search through the characters as the plane's does.
-  if (terrain_ && !scratch.ground_rays.empty()) {
+  if (terrain_ && n > 0) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect1M(ground_, &context, scratch.ground_rays.data(), unsigned(scratch.ground_rays.size()),
                    sizeof(RTCRayHit));
-    for (std::size_t i = 0; i < scratch.samples.size(); ++i) {
-      TileScratch::CameraSample& c = scratch.samples[i];
-      const RTCRayHit& rh = scratch.ground_rays[i];
-      c.t_ground = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kInfinity;
-      queueCharacterRay(c);
+    for (std::size_t k = 0; k < n; ++k) {
+      const RTCRayHit& rh = scratch.ground_rays[k];
+      scratch.samples[k].t_ground = lanes.t_ground[k] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kInfinity;
     }
+    boxTestLanes(constants, lanes);
+    for (std::size_t k = 0; k < n; ++k) queueCharacterRay(scratch.samples[k], k);
   }
 
   // Pass 2: the camera rays that may meet the characters, as one coherent stream.
@@ -324,18 +370,38 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
   }
 
   // Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
+  // In lanes first: the flat ground's surface (and the whole light of open ground, most of a review
+  // frame) where no character is nearer, and the sky behind every sample.
+  for (std::size_t k = 0; k < n; ++k) {
+    const TileScratch::CameraSample& c = scratch.samples[k];
+    const bool character_hit = c.ray >= 0 && scratch.camera_rays[std::size_t(c.ray)].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    lanes.t_shade[k] = character_hit ? kInfinity : c.t_ground;
+  }
+  if (!terrain_) groundLanes(constants, lanes);
+  skyLanes(constants, lanes);
   TileScratch::CameraSample* c = scratch.samples.data();
+  j = 0;
   for (const TileScratch::PixelState& pixel : scratch.pixels) {
-    for (uint32_t i = 0; i < spp_; ++i, ++c) {
+    for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
+      c->resolved = false;
+      if (!terrain_ && lanes.open[j]) {  // open ground: its light is known
+        c->hit = c->resolved = true;
+        c->id = ObjectId::Ground;
+        c->depth = lanes.depth[j];
+        c->normal = glm::vec3(0.0f, 1.0f, 0.0f);
+        c->radiance = {lanes.radiance_r[j], lanes.radiance_g[j], lanes.radiance_b[j]};
+        continue;
+      }
       const RTCRayHit* rh = c->ray >= 0 ? &scratch.camera_rays[size_t(c->ray)] : nullptr;
       Surface s;
-      if (!surfaceOf(camera, *c, rh, s, c->id)) {
+      if (!surfaceOf(camera, *c, rh, lanes, j, s, c->id)) {
         c->hit = false;
-        c->radiance = settings_.sky.radiance(c->dir);
+        c->radiance = {lanes.sky_r[j], lanes.sky_g[j], lanes.sky_b[j]};
         continue;
       }
       c->hit = true;
-      c->depth = camera.viewDepthF(s.p);
+      c->haze = s.haze;
+      c->depth = s.on_ground && !terrain_ ? lanes.depth[j] : camera.viewDepthF(s.p);
       c->normal = s.n;
       emitShading(s, pixel.sun, pixel.sky, i, *c, scratch, tally);
     }
@@ -374,6 +440,10 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
         ++sky_votes;
         continue;
       }
+      glm::vec3 radiance;
+      if (c->resolved) {
+        radiance = c->radiance;
+      } else {
       glm::vec3 sun = c->sun;
       if (c->sun_traced) {
         sun = glm::vec3(0.0f);
@@ -381,7 +451,6 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
           if (open(*pending, scratch.sun_rays)) sun += pending->weight;
         sun *= sun_radiance_ / float(light_spp_);
       }
-      glm::vec3 radiance;
       if (!c->sky_traced) {
         radiance = sun + c->sky;
       } else {
@@ -390,6 +459,8 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
           if (open(*pending, scratch.sky_rays)) sky += pending->weight;
         sky *= c->diffuse / float(ao_spp_);
         radiance = sun + sky;
+      }
+      if (c->haze < 1.0f) radiance = radiance * c->haze + settings_.sky.horizon * (1.0f - c->haze);
       }
       sum += radiance;
       ++hits;
@@ -419,7 +490,7 @@ void Integrator::renderBatch(const CameraFrame& camera, int x0, int tile_width, 
 }
 
 bool Integrator::surfaceOf(const CameraFrame& camera, const TileScratch::CameraSample& c, const RTCRayHit* rh,
-                           Surface& s, ObjectId& id) const {
+                           const CameraLanes& lanes, std::size_t j, Surface& s, ObjectId& id) const {
   const bool character_hit = rh && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
   if (!character_hit && c.t_ground == kInfinity) return false;
   const float t = rh ? rh->ray.tfar : c.t_ground;
@@ -437,9 +508,15 @@ bool Integrator::surfaceOf(const CameraFrame& camera, const TileScratch::CameraS
       s.ng = s.n = n;
       cos_view = std::max(std::abs(glm::dot(n, dir)), 0.02f);
     } else {
+      // The plane's surface came from the lanes (groundLanes: the same expressions as below).
       s.p.y = 0.0f;  // exactly on the plane; the offset below then lifts it the same everywhere
       s.ng = s.n = glm::vec3(0.0f, dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
-      cos_view = std::max(std::abs(dir.y), 0.02f);
+      s.albedo = {lanes.albedo_r[j], lanes.albedo_g[j], lanes.albedo_b[j]};
+      s.specular = 0.0f;
+      s.haze = lanes.haze[j];
+      s.on_ground = true;
+      id = ObjectId::Ground;
+      return true;
     }
     // The sample's footprint on the ground: a pixel's width at this distance, stretched by the
     // grazing angle (isotropically, which blurs a little more than needed across the view).
@@ -447,6 +524,9 @@ bool Integrator::surfaceOf(const CameraFrame& camera, const TileScratch::CameraS
     const float odd = filteredChecker(s.p.x / settings_.ground_square_cm, s.p.z / settings_.ground_square_cm, width);
     s.albedo = glm::mix(settings_.ground_color_a, settings_.ground_color_b, odd);
     s.specular = 0.0f;
+    s.haze = camera.perspective()
+                 ? AerialPerspective::perspective(t, settings_.haze.visibility_cm)
+                 : AerialPerspective::orthographic(t - camera.targetDistanceF(), settings_.haze.ortho_depth_cm);
     s.on_ground = true;
     id = ObjectId::Ground;
     return true;
@@ -467,9 +547,15 @@ bool Integrator::surfaceOf(const CameraFrame& camera, const TileScratch::CameraS
   s.n = n;
   s.albedo = b0 * mesh.colors[tri[0]] + b1 * mesh.colors[tri[1]] + b2 * mesh.colors[tri[2]];
   s.specular = settings_.specular;
+  s.haze = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
   s.on_ground = false;
   id = mesh.id;
   return true;
+}
+
+float Integrator::visibleDistance(const CameraFrame& camera) const {
+  return camera.perspective() ? settings_.haze.visibility_cm
+                              : camera.targetDistanceF() + settings_.haze.ortho_depth_cm;
 }
 
 int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far,

@@ -17,6 +17,7 @@
 #include "render/embree_scene.h"
 #include "render/lights.h"
 #include "render/renderer.h"
+#include "render/sample_lanes.h"
 #include "render/sampler.h"
 #include "rig/motion/terrain.h"
 
@@ -70,6 +71,7 @@ struct TileScratch {
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
+  CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
 };
 
 class Integrator {
@@ -103,11 +105,14 @@ class Integrator {
  private:
   struct Surface;
   // Traces the camera rays of pixels [first, first + count) of the tile and shades them into `out`.
-  void renderBatch(const CameraFrame& camera, int x0, int tile_width, int y0, int first, int count, int frame,
-                   TileScratch& scratch, RayTally& tally, PixelResult* out) const;
+  void renderBatch(const CameraFrame& camera, const LaneConstants& constants, int x0, int tile_width, int y0, int first,
+                   int count, int frame, TileScratch& scratch, RayTally& tally, PixelResult* out) const;
+  // What the SIMD kernels read, for this frame's camera.
+  LaneConstants laneConstants(const CameraFrame& camera) const;
   // The surface a camera sample sees (false: the sky).
+  // The flat ground's surface is read from the lanes (sample j of the batch).
   bool surfaceOf(const CameraFrame& camera, const TileScratch::CameraSample& c, const RTCRayHit* hit,
-                 Surface& s, ObjectId& id) const;
+                 const CameraLanes& lanes, std::size_t j, Surface& s, ObjectId& id) const;
   // Direct light that needs no rays, and the shadow and sky rays the rest needs, appended to the
   // scratch's pending list and streams.
   void emitShading(const Surface& s, const Stratified2D& sun_points, const Stratified2D& sky_points, uint32_t sample,
@@ -115,6 +120,8 @@ class Integrator {
   // Appends an occlusion ray to `stream` unless it cannot reach the characters; returns its index or -1.
   int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, std::vector<RTCRay>& stream,
                         RayTally& tally) const;
+  // How far along a camera ray the ground is seen before the haze ends it.
+  float visibleDistance(const CameraFrame& camera) const;
   bool mayHitCharacters(const glm::vec3& origin, const glm::vec3& direction, float t_far) const;
   void setGroundSunRegion();
   float distanceToCharacters(const glm::vec3& p) const;

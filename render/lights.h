@@ -56,7 +56,7 @@ inline glm::vec3 sampleCosineHemisphere(const Frame& around, glm::vec2 u) {
 struct SkyGradient {
   glm::vec3 horizon{0.60f, 0.66f, 0.74f};  // linear radiance
   glm::vec3 zenith{0.22f, 0.34f, 0.62f};
-  glm::vec3 below{0.30f, 0.30f, 0.30f};     // seen past the edge of the ground only
+  glm::vec3 below{0.60f, 0.66f, 0.74f};     // below the horizon past the ground: the haze, as the horizon
 
   // Radiance from direction d (unit). The square root keeps the sky pale for the lower third, as a
   // clear sky is.
@@ -68,6 +68,28 @@ struct SkyGradient {
   // Irradiance / pi on an upward-facing surface under the full, unoccluded sky: the cosine-weighted
   // mean radiance. With t = sqrt(cos), E/pi = 2 * integral_0^1 mix(h, z, sqrt(c)) c dc = h + 0.8 (z - h).
   glm::vec3 upwardIrradianceOverPi() const { return horizon + 0.8f * (zenith - horizon); }
+};
+
+// Aerial perspective: the ground fades into the horizon's colour with distance, so every view has a
+// horizon where the hazed ground meets the sky instead of a checker running to the frame's top edge.
+// Transmittance is (1 - t / visibility)^3 along a perspective ray: 1 at the camera, 0.97 at 10 m,
+// exactly 0 at `visibility_cm` (a polynomial, not exp(): the same bits on every SIMD target, and the
+// ground ends seamlessly where it is fully hazed). An orthographic camera has no eye to measure from:
+// its ground fades the same way from the camera's target to `ortho_depth_cm` behind it, and its sky
+// above that line is graded by height on the film.
+struct AerialPerspective {
+  float visibility_cm = 60000.0f;  // perspective: the ground is fully hazed 600 m away
+  float ortho_depth_cm = 1500.0f;  // orthographic: ... this far behind the camera's target
+
+  // The fraction of the ground's own radiance that reaches the camera (the rest is the horizon's).
+  static float perspective(float t, float visibility) {
+    const float x = 1.0f - std::min(t / visibility, 1.0f);
+    return x * x * x;
+  }
+  static float orthographic(float behind_target, float depth) {
+    const float x = 1.0f - std::min(std::max(behind_target / depth, 0.0f), 1.0f);
+    return x * x * x;
+  }
 };
 
 }  // namespace stirrup::render

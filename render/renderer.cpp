@@ -55,6 +55,8 @@ void validate(const RenderSettings& s) {
   require(s.sun_angular_radius_deg >= 0.0 && s.sun_angular_radius_deg < 90.0, "sun_angular_radius_deg must be in [0, 90)");
   require(s.ground_square_cm > 0.0f, "ground_square_cm must be > 0");
   require(s.ao_distance_cm > 0.0f, "ao_distance_cm must be > 0");
+  require(s.haze.visibility_cm > 0.0f, "haze.visibility_cm must be > 0");
+  require(s.haze.ortho_depth_cm > 0.0f, "haze.ortho_depth_cm must be > 0");
 }
 
 }  // namespace

@@ -55,6 +55,7 @@ struct RenderSettings {
   glm::vec3 sun_color{1.0f, 0.96f, 0.88f};
   float sun_strength = 1.8f;  // radiance of a white matte surface facing the sun (linear units)
   SkyGradient sky;
+  AerialPerspective haze;  // the ground fading into the horizon with distance
 
   // Ground: a 50 cm checker of two close colours (low contrast: it should read, not distract),
   // box-filtered by each sample's footprint so it never crawls.

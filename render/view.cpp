@@ -21,9 +21,10 @@ double fovFromFocal(double mm) { return 2.0 * std::atan(12.0 / mm) * 180.0 / kPi
 // The direction from the target toward the camera, in the travel frame.
 glm::dvec3 viewDirection(const std::string& view) {
   if (view == "side") return glm::normalize(glm::dvec3(0.0, 0.12, 1.0));
-  if (view == "persp") return glm::normalize(glm::dvec3(0.75, 0.32, 1.0));
-  if (view == "close") return glm::normalize(glm::dvec3(0.45, 0.18, 1.0));
-  return glm::normalize(glm::dvec3(0.0, 0.22, 1.0));  // turntable: starts on the right side
+  // Perspective views look down less than half their field of view, so the horizon is in the frame.
+  if (view == "persp") return glm::normalize(glm::dvec3(0.75, 0.12, 1.0));
+  if (view == "close") return glm::normalize(glm::dvec3(0.45, 0.06, 1.0));
+  return glm::normalize(glm::dvec3(0.0, 0.12, 1.0));  // turntable: starts on the right side
 }
 
 struct Basis {

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/info.h>
 
+#include "render/sample_lanes.h"
 #include "render/cli/commands.h"
 #include "render/frame_writer.h"
 #include "render/image.h"
@@ -141,12 +142,13 @@ void runBench(const BenchOptions& o) {
                          {"bound_rays_per_second", r.bound_rays_per_second},
                          {"ms", {{"pose", r.pose}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write}}}};
     }
-    const nlohmann::json out = {{"presets", presets}, {"threads", threads}, {"resolution", {640, 360}}};
+    const nlohmann::json out = {{"presets", presets}, {"threads", threads}, {"resolution", {640, 360}},
+                                {"simd", render::simdTargetName()}};
     std::printf("%s\n", out.dump().c_str());
     return;
   }
-  std::printf("stirrup bench: trot side view, 640x360, %d thread%s, %d frame%s a preset (ms per frame)\n\n",
-              threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s");
+  std::printf("stirrup bench: trot side view, 640x360, %d thread%s, %d frame%s a preset, SIMD %s (ms per frame)\n\n",
+              threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s", render::simdTargetName().c_str());
   std::printf("%-7s %4s %7s %6s %6s %6s %8s %6s %9s %9s %10s %6s\n", "preset", "spp", "fps", "pose", "skin",
               "bvh", "trace", "write", "Mrays/f", "Mrays/s", "bound Mr/s", "ratio");
   for (const PresetResult& r : results) {

@@ -1,10 +1,14 @@
 // stirrup: animate a horse, and stirrup moves the rider.
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <stdexcept>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "render/cli/commands.h"
+#include "render/sample_lanes.h"
 #include "rig/error.h"
 
 int main(int argc, char** argv) {
@@ -24,6 +28,15 @@ int main(int argc, char** argv) {
   stirrup::cli::addRigCommand(app);
   stirrup::cli::addSpineCommand(app);
   try {
+    // STIRRUP_SIMD pins the integrator's SIMD kernels to one instruction set (SSE4, AVX2, AVX3 =
+    // AVX-512), as STIRRUP_EMBREE_CONFIG pins Embree's: every target gives the same bytes.
+    if (const char* simd = std::getenv("STIRRUP_SIMD"); simd && *simd) {
+      try {
+        stirrup::render::pinSimdTarget(simd);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string("STIRRUP_SIMD: ") + e.what());
+      }
+    }
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
