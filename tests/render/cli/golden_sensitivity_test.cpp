@@ -118,31 +118,40 @@ Rendered renderGoldenFrames(const Perturbation& p) {
   return r;
 }
 
-// A weight change also renders one shot of the shipped-scene set, the trot's close view at the lift
-// (tests/golden/scenes.json), through `stirrup render --set`: the close view shows the rider's upper
-// body four times larger than the fixed side camera, and its framing follows the rider, so the
-// weights of the head and waist that move only a few pixels of the small side view show there.
+// A weight change also renders two shots of the shipped-scene set (tests/golden/scenes.json) through
+// `stirrup render --set`: the trot's close view at the lift and the walk's at the lower back's largest
+// backward lean. The close view shows the rider's upper body four times larger than the fixed side
+// camera, and its framing follows the rider, so the weights of the head and waist that move only a few
+// pixels of the small side view show there; the walk's lean is where the head's answer to the lower
+// back (eq10.w1) is largest.
+struct WeightShot {
+  const char* scene;
+  int frame;
+};
+constexpr WeightShot kWeightShots[] = {{"trot", 28}, {"walk", 75}};
+
 struct ShotRender {
   fs::path image, reference;
   std::string error;
 };
 
-ShotRender renderTrotCloseWithWeight(const Perturbation& p) {
+ShotRender renderCloseWithWeight(const Perturbation& p, const WeightShot& shot) {
   const GoldenSet set = loadGoldenSet();
   const fs::path profile = fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json";
   const double value = readJson(profile).at(p.key).get<double>() * p.amount;
   ShotRender r;
-  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "golden_sensitivity" / p.name / "trot_close";
+  const std::string name = std::string(shot.scene) + "_close";
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "golden_sensitivity" / p.name / name;
   fs::remove_all(dir);
   char set_arg[128];
   std::snprintf(set_arg, sizeof set_arg, "%s=%.17g", p.key.c_str(), value);
   const CommandResult c =
-      runStirrup("render " + quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes/trot.json").string()) +
-                 " --camera close --frames 28 --resolution " + set.resolution + " --preset " + set.preset +
+      runStirrup("render " + quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (std::string(shot.scene) + ".json")).string()) +
+                 " --camera close --frames " + std::to_string(shot.frame) + " --resolution " + set.resolution + " --preset " + set.preset +
                  " --set " + quote(set_arg) + " --out " + quote(dir.string()));
   if (c.exit_code != 0) r.error = "stirrup render exited " + std::to_string(c.exit_code) + ": " + c.err;
-  r.image = dir / frameFileName("trot_close", 28);
-  r.reference = kSceneGoldenDir / frameFileName("trot_close", 28);
+  r.image = dir / frameFileName(name, shot.frame);
+  r.reference = kSceneGoldenDir / frameFileName(name, shot.frame);
   return r;
 }
 
@@ -165,11 +174,13 @@ TEST_P(GoldenSensitivity, APerturbedRenderFailsAGoldenComparison) {
     numbers += "\n  " + name + ": " + c.diff.summary();
   }
   if (p.change == Change::Weight) {
-    const ShotRender shot = renderTrotCloseWithWeight(p);
-    ASSERT_TRUE(shot.error.empty()) << shot.error;
-    const GoldenComparison c = compareWithGolden(shot.reference, shot.image);
-    failed += c.failed();
-    numbers += "\n  scenes/" + shot.image.filename().string() + ": " + c.diff.summary();
+    for (const WeightShot& ws : kWeightShots) {
+      const ShotRender shot = renderCloseWithWeight(p, ws);
+      ASSERT_TRUE(shot.error.empty()) << shot.error;
+      const GoldenComparison c = compareWithGolden(shot.reference, shot.image);
+      failed += c.failed();
+      numbers += "\n  scenes/" + shot.image.filename().string() + ": " + c.diff.summary();
+    }
   }
   RecordProperty("comparisons", numbers);
   EXPECT_GE(failed, 1) << p.name << " passed every golden comparison: the goldens do not see it" << numbers;
