@@ -46,6 +46,22 @@ TEST(Sampler, UniformNumbersAreInRangeWithTheRightMean) {
   EXPECT_NEAR(sum / n, 0.5, 0.01);
 }
 
+TEST(Sampler, FastModIsTheRemainder) {
+  uint64_t state = 12345;
+  auto next = [&] { return uint32_t((state = mixBits(state + 0x9e3779b97f4a7c15ull)) >> 32); };
+  int wrong = 0;
+  for (uint32_t d = 1; d <= 4100; ++d) {
+    const uint64_t m = fastModMultiplier(d);
+    for (uint32_t a : {0u, 1u, d - 1, d, d + 1, 0xffffffffu, 0xfffffffeu, next(), next(), next()})
+      wrong += fastMod(a, d, m) != a % d;
+  }
+  for (int k = 0; k < 20000; ++k) {
+    const uint32_t d = next() | 1u, a = next();
+    wrong += fastMod(a, d, fastModMultiplier(d)) != a % d;
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
 TEST(Sampler, PermutationIsABijection) {
   for (uint32_t count : {1u, 2u, 7u, 16u, 64u, 100u}) {
     std::set<uint32_t> seen;
