@@ -179,6 +179,17 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
       sun.fail("angular_radius", "expected degrees between 0 and 20");
     sun.finish();
   }
+  if (r.has("haze")) {
+    // At most the ground's 1 km extent: farther, its edge would show before the haze hides it.
+    JsonObjectReader haze = r.object("haze");
+    s.haze_visibility_cm = haze.number("visibility_cm", s.haze_visibility_cm);
+    if (!(s.haze_visibility_cm >= 100.0 && s.haze_visibility_cm <= 100000.0))
+      haze.fail("visibility_cm", "expected centimetres from 100 to 100000 (the ground ends 1 km out)");
+    s.haze_ortho_depth_cm = haze.number("ortho_depth_cm", s.haze_ortho_depth_cm);
+    if (!(s.haze_ortho_depth_cm >= 100.0 && s.haze_ortho_depth_cm <= 100000.0))
+      haze.fail("ortho_depth_cm", "expected centimetres from 100 to 100000");
+    haze.finish();
+  }
   if (const nlohmann::json* cams = r.value("cameras")) {
     if (!cams->is_array() || cams->empty())
       r.fail("cameras", "expected a non-empty array of cameras, got " + describeJson(*cams));

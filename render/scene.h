@@ -73,6 +73,10 @@ struct SceneSpec {
   int ao_samples = 1;               // sky rays per camera sample
   std::array<double, 3> sun_direction = {0.45, 0.75, 0.5};  // toward the sun, from the camera's side
   double sun_angular_radius_deg = 2.0;
+  // Aerial perspective ("haze": AerialPerspective in render/lights.h): the ground is wholly haze this
+  // far from a perspective camera, and this far behind an orthographic camera's target.
+  double haze_visibility_cm = 60000.0;
+  double haze_ortho_depth_cm = 1500.0;
   std::vector<CameraSpec> cameras = {CameraSpec{}};
   std::filesystem::path output = "out/trot";
   // Reference footage for the layered view ("reference": {...}, render/review/layer.h ReferenceSpec); its

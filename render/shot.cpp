@@ -58,6 +58,8 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
   settings.bvh_update = bvh;
   settings.sun_direction = glm::normalize(toVec(scene.sun_direction));
   settings.sun_angular_radius_deg = scene.sun_angular_radius_deg;
+  settings.haze.visibility_cm = float(scene.haze_visibility_cm);
+  settings.haze.ortho_depth_cm = float(scene.haze_ortho_depth_cm);
   renderer_ = std::make_unique<Renderer>(settings);
   if (scene.terrain && !scene.terrain->flat()) renderer_->setTerrain(scene.terrain, trackRegion(scene_, *clip_));
   horse_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Horse, horse_.mesh.indices, horse_.mesh.colors,

@@ -43,6 +43,7 @@ TEST(Scene, ReadsEveryField) {
     "profile": "novice", "profile_overrides": {"a": 1}, "fps": 30, "frames": "1-10x2",
     "resolution": [320, 180], "quality": {"samples": 4, "light_samples": 2, "ao_samples": 1},
     "sun": {"direction": [0, 1, 0], "angular_radius": 1},
+    "haze": {"visibility_cm": 30000, "ortho_depth_cm": 900},
     "cameras": [{"name": "a"}, {"name": "p", "type": "perspective", "fov": 40, "follow": false}],
     "output": "o"})"),
                                  "s.json");
@@ -55,6 +56,8 @@ TEST(Scene, ReadsEveryField) {
   EXPECT_EQ(s.width, 320);
   EXPECT_EQ(s.samples, 4);
   EXPECT_EQ(s.sun_angular_radius_deg, 1.0);
+  EXPECT_EQ(s.haze_visibility_cm, 30000.0);
+  EXPECT_EQ(s.haze_ortho_depth_cm, 900.0);
   ASSERT_EQ(s.cameras.size(), 2u);
   EXPECT_FALSE(s.cameras[1].orthographic);
   EXPECT_EQ(s.cameras[1].fov_deg, 40.0);
@@ -85,6 +88,11 @@ TEST(Scene, OutOfRangeValuesAreErrors) {
             "scenes/x.json: cameras[0].type: expected \"orthographic\" or \"perspective\", got \"fisheye\"");
   EXPECT_EQ(errorOf(R"({"frames": "10-1"})"), "scenes/x.json: frames: \"10-1\": expected FIRST <= LAST");
   EXPECT_EQ(errorOf(R"({"fps": 0})"), "scenes/x.json: fps: expected frames per second between 0 and 240");
+  EXPECT_EQ(errorOf(R"({"haze": {"visibility_cm": 500000}})"),
+            "scenes/x.json: haze.visibility_cm: expected centimetres from 100 to 100000 (the ground ends 1 km out)");
+  EXPECT_EQ(errorOf(R"({"haze": {"ortho_depth_cm": "far"}})"),
+            "scenes/x.json: haze.ortho_depth_cm: expected a number, got \"far\"");
+  EXPECT_EQ(errorOf(R"({"haze": {"fog": 1}})"), "scenes/x.json: haze.fog: unknown field");
   EXPECT_EQ(errorOf(R"({"cameras": []})"),
             "scenes/x.json: cameras: expected a non-empty array of cameras, got an array of 0");
   EXPECT_EQ(errorOf(R"([1])"), "scenes/x.json: top level: expected an object, got an array of 1");
