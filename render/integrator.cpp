@@ -97,22 +97,6 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
   ao_spp_ = uint32_t(settings.ao_samples);
 }
 
-// Slab test against the characters' bounds: most ground pixels' rays never come near them, and this is
-// far cheaper than a call into Embree. (Empty bounds have lower > upper: always a miss.)
-bool Integrator::mayHitCharacters(const glm::vec3& origin, const glm::vec3& direction, float t_far) const {
-  if (!(t_far > 0.0f)) return false;
-  float t0 = 0.0f, t1 = t_far;
-  for (int a = 0; a < 3; ++a) {
-    const float inv = 1.0f / direction[a];
-    float near = (bounds_lower_[a] - origin[a]) * inv, far = (bounds_upper_[a] - origin[a]) * inv;
-    if (near > far) std::swap(near, far);
-    t0 = near > t0 ? near : t0;  // written so a NaN (0 * inf) leaves the interval unchanged
-    t1 = far < t1 ? far : t1;
-    if (t0 > t1 * 1.0000004f) return false;  // a little slack for rounding at grazing angles
-  }
-  return true;
-}
-
 namespace {
 
 RTCRay makeRay(const glm::vec3& origin, const glm::vec3& direction, float t_far) {
@@ -220,8 +204,8 @@ struct TileScratch::CameraSample {
   uint32_t sun_pending, sky_pending;  // entries of the pending list: sun rays, then sky rays
 };
 
-// What an occlusion ray brings when it is open. `ray` indexes the sun or sky stream; -1 means the ray
-// was not traced because it cannot meet the characters' bounds (so it is open).
+// What an occlusion ray brings when it is open. `ray` indexes the batch's occlusion rays (the lanes
+// of TileScratch::occluders), or is -1: no ray (its t_far was not positive), so it is open.
 struct TileScratch::PendingRay {
   glm::vec3 weight;
   int32_t ray;
@@ -379,6 +363,11 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   }
   if (!terrain_) groundLanes(constants, lanes);
   skyLanes(constants, lanes);
+  CameraLanes& occluders = scratch.occluders;
+  for (auto* v : {&occluders.ox, &occluders.oy, &occluders.oz, &occluders.dx, &occluders.dy, &occluders.dz,
+                  &occluders.t_ground})
+    v->clear();
+  scratch.occluder_is_sky.clear();
   TileScratch::CameraSample* c = scratch.samples.data();
   j = 0;
   for (const TileScratch::PixelState& pixel : scratch.pixels) {
@@ -407,6 +396,22 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
     }
   }
 
+  // Pass 3b: the occlusion rays against the characters' box in lanes; those that may meet them go to
+  // their stream, in the order they were made.
+  const std::size_t occluder_count = occluders.ox.size();
+  occluders.resize(occluder_count);  // pads the lanes (t_far 0: no ray)
+  boxTestLanes(constants, occluders);
+  scratch.occluder_ray.resize(occluder_count);
+  for (std::size_t k = 0; k < occluder_count; ++k) {
+    int32_t& ray = scratch.occluder_ray[k];
+    ray = -1;
+    if (!occluders.may_hit[k]) continue;
+    std::vector<RTCRay>& stream = scratch.occluder_is_sky[k] ? scratch.sky_rays : scratch.sun_rays;
+    ray = int32_t(stream.size());
+    stream.push_back(makeRay({occluders.ox[k], occluders.oy[k], occluders.oz[k]},
+                             {occluders.dx[k], occluders.dy[k], occluders.dz[k]}, occluders.t_ground[k]));
+  }
+
   // Pass 4: the shadow rays (nearly parallel: one coherent stream) and the sky rays.
   if (!scratch.sun_rays.empty()) {
     RTCIntersectContext context;
@@ -422,8 +427,10 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
 
   // Pass 5: each sample's light from its open rays, and each pixel's samples into its result.
   const TileScratch::PendingRay* pending = scratch.pending.data();
-  auto open = [](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
-    return r.ray < 0 || !blocked(stream[size_t(r.ray)]);
+  auto open = [&](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
+    if (r.ray < 0) return true;
+    const int32_t traced = scratch.occluder_ray[std::size_t(r.ray)];
+    return traced < 0 || !blocked(stream[std::size_t(traced)]);
   };
   c = scratch.samples.data();
   for (int p = 0; p < count; ++p) {
@@ -558,14 +565,18 @@ float Integrator::visibleDistance(const CameraFrame& camera) const {
                               : camera.targetDistanceF() + settings_.haze.ortho_depth_cm;
 }
 
-int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far,
-                                  std::vector<RTCRay>& stream, RayTally& tally) const {
+int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
+                                  TileScratch& scratch, RayTally& tally) const {
   if (!(t_far > 0.0f)) return -1;
   ++tally.rays;
   if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, direction, t_far));
-  if (!mayHitCharacters(origin, direction, t_far)) return -1;
-  stream.push_back(makeRay(origin, direction, t_far));
-  return int32_t(stream.size() - 1);
+  // Queued for the box test in lanes (pass 3b), which sends it on to its stream or not.
+  CameraLanes& o = scratch.occluders;
+  o.ox.push_back(origin.x), o.oy.push_back(origin.y), o.oz.push_back(origin.z);
+  o.dx.push_back(direction.x), o.dy.push_back(direction.y), o.dz.push_back(direction.z);
+  o.t_ground.push_back(t_far);
+  scratch.occluder_is_sky.push_back(sky);
+  return int32_t(o.ox.size() - 1);
 }
 
 void Integrator::emitShading(const Surface& s, const Stratified2D& sun_points, const Stratified2D& sky_points,
@@ -601,7 +612,7 @@ void Integrator::emitShading(const Surface& s, const Stratified2D& sun_points, c
       const glm::vec3 wi = sampleCone(sun_frame_, sun_cos_max_, sun_points[sample * light_spp_ + k]);
       const glm::vec3 f = reflected(wi);
       if (f == glm::vec3(0.0f)) continue;  // no light from below: no ray, and nothing to add
-      const int32_t ray = emitOcclusion(origin, wi, kInfinity, scratch.sun_rays, tally);
+      const int32_t ray = emitOcclusion(origin, wi, kInfinity, false, scratch, tally);
       scratch.pending.push_back({f, ray});
       ++c.sun_pending;
     }
@@ -627,7 +638,7 @@ void Integrator::emitShading(const Surface& s, const Stratified2D& sun_points, c
     const bool toward_ground = !s.on_ground && wi.y < 0.0f;
     float t_far = settings_.ao_distance_cm;
     if (toward_ground) t_far = std::min(t_far, 0.999f * above_ground / -wi.y);
-    const int32_t ray = emitOcclusion(origin, wi, t_far, scratch.sky_rays, tally);
+    const int32_t ray = emitOcclusion(origin, wi, t_far, true, scratch, tally);
     scratch.pending.push_back({toward_ground ? ground_bounce_ : settings_.sky.radiance(wi), ray});
     ++c.sky_pending;
   }

@@ -72,6 +72,9 @@ struct TileScratch {
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
   CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
+  CameraLanes occluders;               // its shadow and sky rays (t_ground holds t_far), for the box test
+  std::vector<uint8_t> occluder_is_sky;  // per occlusion ray: the sky stream, else the sun's
+  std::vector<int32_t> occluder_ray;   // per occlusion ray: its index in its stream, or -1 (not traced)
 };
 
 class Integrator {
@@ -117,12 +120,12 @@ class Integrator {
   // scratch's pending list and streams.
   void emitShading(const Surface& s, const Stratified2D& sun_points, const Stratified2D& sky_points, uint32_t sample,
                    TileScratch::CameraSample& c, TileScratch& scratch, RayTally& tally) const;
-  // Appends an occlusion ray to `stream` unless it cannot reach the characters; returns its index or -1.
-  int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, std::vector<RTCRay>& stream,
-                        RayTally& tally) const;
+  // Queues an occlusion ray (for the sky stream or the sun's) for the box test; returns its index among
+  // the batch's occlusion rays, or -1 when t_far leaves no ray.
+  int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
+                        TileScratch& scratch, RayTally& tally) const;
   // How far along a camera ray the ground is seen before the haze ends it.
   float visibleDistance(const CameraFrame& camera) const;
-  bool mayHitCharacters(const glm::vec3& origin, const glm::vec3& direction, float t_far) const;
   void setGroundSunRegion();
   float distanceToCharacters(const glm::vec3& p) const;
 

@@ -85,7 +85,8 @@ struct LaneConstants {
 // test against it; otherwise t_ground = infinity and the caller traces the terrain, then runs
 // boxTestLanes.
 void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground);
-// may_hit from the rays and t_ground (Integrator::mayHitCharacters in lanes).
+// may_hit from the rays and t_ground (used as the far end: the camera rays' ground, or an occlusion
+// ray's t_far): whether the ray may meet the characters' box before it.
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes);
 // The flat ground's surface and, where it is open, its radiance, for samples with a finite t_shade.
 void groundLanes(const LaneConstants& k, CameraLanes& lanes);
