@@ -23,8 +23,14 @@ TEST(BenchCommand, JsonHasEveryPresetAndPositiveFiniteNumbers) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);  // exactly one JSON object on stdout
   ASSERT_TRUE(j.is_object());
-  EXPECT_EQ(j.size(), 3u);
+  EXPECT_EQ(j.size(), 4u);
   EXPECT_EQ(j.at("resolution"), nlohmann::json::array({640, 360}));
+  // The SIMD target the integrator's kernels ran on, as Highway names it.
+  ASSERT_TRUE(j.at("simd").is_string());
+  const std::string simd = j.at("simd").get<std::string>();
+  EXPECT_TRUE(simd == "SSE4" || simd == "AVX2" || simd == "AVX3" || simd == "AVX3_DL" || simd == "SSSE3" ||
+              simd == "EMU128" || simd == "SCALAR")
+      << simd;
   ASSERT_TRUE(j.at("threads").is_number_integer());
   EXPECT_GE(j.at("threads").get<int>(), 1);
   const nlohmann::json& presets = j.at("presets");
