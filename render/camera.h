@@ -66,7 +66,6 @@ class CameraFrame {
   bool perspective() const { return perspective_; }
   // Distance from the camera to its target along the view (where an orthographic ground starts to fade).
   float targetDistanceF() const { return target_distance_f_; }
-  float halfHeightF() const { return half_height_f_; }  // of the film: a tangent, or cm (orthographic)
   const glm::vec3& positionF() const { return position_f_; }
   const glm::vec3& forwardF() const { return forward_f_; }
   const glm::vec3& upF() const { return up_f_; }

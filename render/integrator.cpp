@@ -205,7 +205,7 @@ struct TileScratch::CameraSample {
 };
 
 // What an occlusion ray brings when it is open. `ray` indexes the batch's occlusion rays (the lanes
-// of TileScratch::occluders), or is -1: no ray (its t_far was not positive), so it is open.
+// in TileScratch::occluders), or is -1: no ray (its t_far was not positive), so it is open.
 struct TileScratch::PendingRay {
   glm::vec3 weight;
   int32_t ray;
@@ -363,10 +363,8 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   }
   if (!terrain_) groundLanes(constants, lanes);
   skyLanes(constants, lanes);
-  CameraLanes& occluders = scratch.occluders;
-  for (auto* v : {&occluders.ox, &occluders.oy, &occluders.oz, &occluders.dx, &occluders.dy, &occluders.dz,
-                  &occluders.t_ground})
-    v->clear();
+  RayLanes& occluders = scratch.occluders;
+  occluders.clear();
   scratch.occluder_is_sky.clear();
   TileScratch::CameraSample* c = scratch.samples.data();
   j = 0;
@@ -398,8 +396,8 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
 
   // Pass 3b: the occlusion rays against the characters' box in lanes; those that may meet them go to
   // their stream, in the order they were made.
-  const std::size_t occluder_count = occluders.ox.size();
-  occluders.resize(occluder_count);  // pads the lanes (t_far 0: no ray)
+  const std::size_t occluder_count = occluders.size;
+  occluders.pad();
   boxTestLanes(constants, occluders);
   scratch.occluder_ray.resize(occluder_count);
   for (std::size_t k = 0; k < occluder_count; ++k) {
@@ -409,7 +407,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
     std::vector<RTCRay>& stream = scratch.occluder_is_sky[k] ? scratch.sky_rays : scratch.sun_rays;
     ray = int32_t(stream.size());
     stream.push_back(makeRay({occluders.ox[k], occluders.oy[k], occluders.oz[k]},
-                             {occluders.dx[k], occluders.dy[k], occluders.dz[k]}, occluders.t_ground[k]));
+                             {occluders.dx[k], occluders.dy[k], occluders.dz[k]}, occluders.t_far[k]));
   }
 
   // Pass 4: the shadow rays (nearly parallel: one coherent stream) and the sky rays.
@@ -571,12 +569,9 @@ int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& dire
   ++tally.rays;
   if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, direction, t_far));
   // Queued for the box test in lanes (pass 3b), which sends it on to its stream or not.
-  CameraLanes& o = scratch.occluders;
-  o.ox.push_back(origin.x), o.oy.push_back(origin.y), o.oz.push_back(origin.z);
-  o.dx.push_back(direction.x), o.dy.push_back(direction.y), o.dz.push_back(direction.z);
-  o.t_ground.push_back(t_far);
+  scratch.occluders.push(origin, direction, t_far);
   scratch.occluder_is_sky.push_back(sky);
-  return int32_t(o.ox.size() - 1);
+  return int32_t(scratch.occluders.size - 1);
 }
 
 void Integrator::emitShading(const Surface& s, const Stratified2D& sun_points, const Stratified2D& sky_points,

@@ -72,7 +72,7 @@ struct TileScratch {
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
   CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
-  CameraLanes occluders;               // its shadow and sky rays (t_ground holds t_far), for the box test
+  RayLanes occluders;                  // its shadow and sky rays, for the box test
   std::vector<uint8_t> occluder_is_sky;  // per occlusion ray: the sky stream, else the sun's
   std::vector<int32_t> occluder_ray;   // per occlusion ray: its index in its stream, or -1 (not traced)
 };

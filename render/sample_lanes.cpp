@@ -153,13 +153,27 @@ void CameraRayLanes(const LaneConstants& k, CameraLanes& L, bool flat_ground) {
   }
 }
 
-void BoxTestLanes(const LaneConstants& k, CameraLanes& L) {
-  const size_t lanes = hn::Lanes(DF());
-  for (size_t i = 0; i < L.padded; i += lanes) {
-    StoreMask(BoxTest(k, Load(L.ox, i), Load(L.oy, i), Load(L.oz, i), Load(L.dx, i), Load(L.dy, i), Load(L.dz, i),
-                      Load(L.t_ground, i)),
-              L.may_hit, i);
+// BoxTest over n rays (n a whole number of vectors) given as arrays.
+void BoxTestArrays(const LaneConstants& k, const float* ox, const float* oy, const float* oz, const float* dx,
+                   const float* dy, const float* dz, const float* t_far, int32_t* may_hit, size_t n) {
+  const DF df;
+  const DI di;
+  const size_t lanes = hn::Lanes(df);
+  for (size_t i = 0; i < n; i += lanes) {
+    const MF m = BoxTest(k, hn::LoadU(df, ox + i), hn::LoadU(df, oy + i), hn::LoadU(df, oz + i), hn::LoadU(df, dx + i),
+                         hn::LoadU(df, dy + i), hn::LoadU(df, dz + i), hn::LoadU(df, t_far + i));
+    hn::StoreU(hn::VecFromMask(di, hn::RebindMask(di, m)), di, may_hit + i);
   }
+}
+
+void BoxTestLanes(const LaneConstants& k, CameraLanes& L) {
+  BoxTestArrays(k, L.ox.data(), L.oy.data(), L.oz.data(), L.dx.data(), L.dy.data(), L.dz.data(), L.t_ground.data(),
+                L.may_hit.data(), L.padded);
+}
+
+void BoxTestRays(const LaneConstants& k, RayLanes& R) {
+  BoxTestArrays(k, R.ox.data(), R.oy.data(), R.oz.data(), R.dx.data(), R.dy.data(), R.dz.data(), R.t_far.data(),
+                R.may_hit.data(), R.ox.size());
 }
 
 // AerialPerspective::perspective and ::orthographic.
@@ -207,7 +221,7 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
     const VF offset = hn::Add(Splat(2e-3f), hn::Mul(Splat(3e-5f), hn::Max(hn::Max(hn::Abs(px), Splat(0.0f)), hn::Abs(pz))));
     MF open = hn::And(ground, hn::Le(dy, Splat(0.0f)));
     if (!k.sun_region) {
-      open = hn::And(open, hn::Lt(t, Splat(-1.0f)));  // never: without the rectangle every point takes the full test
+      open = hn::FirstN(df, 0);  // none: without the rectangle every point takes the full test
     } else {
       open = hn::And(open, hn::Ge(offset, Splat(k.ground_floor)));
       const MF outside = hn::Or(hn::Or(hn::Lt(px, Splat(k.sun_lower_x)), hn::Gt(px, Splat(k.sun_upper_x))),
@@ -275,6 +289,7 @@ namespace stirrup::render {
 
 HWY_EXPORT(CameraRayLanes);
 HWY_EXPORT(BoxTestLanes);
+HWY_EXPORT(BoxTestRays);
 HWY_EXPORT(GroundLanes);
 HWY_EXPORT(SkyLanes);
 HWY_EXPORT(CheckerLanes);
@@ -294,6 +309,25 @@ void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground
   HWY_DYNAMIC_DISPATCH(CameraRayLanes)(k, lanes, flat_ground);
 }
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(BoxTestLanes)(k, lanes); }
+void boxTestLanes(const LaneConstants& k, RayLanes& rays) { HWY_DYNAMIC_DISPATCH(BoxTestRays)(k, rays); }
+
+void RayLanes::clear() {
+  size = 0;
+  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->clear();
+}
+
+void RayLanes::push(const glm::vec3& origin, const glm::vec3& direction, float t_far_) {
+  ox.push_back(origin.x), oy.push_back(origin.y), oz.push_back(origin.z);
+  dx.push_back(direction.x), dy.push_back(direction.y), dz.push_back(direction.z);
+  t_far.push_back(t_far_);
+  ++size;
+}
+
+void RayLanes::pad() {
+  const std::size_t padded = (size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->resize(padded, 0.0f);  // t_far 0: no ray
+  may_hit.resize(padded);
+}
 void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundLanes)(k, lanes); }
 void skyLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(SkyLanes)(k, lanes); }
 void filteredCheckerLanes(const float* s, const float* t, const float* width, float* out, std::size_t n) {

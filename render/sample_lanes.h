@@ -11,7 +11,7 @@
 // Determinism: every kernel uses only operations IEEE 754 rounds exactly (add, subtract, multiply,
 // divide, square root, min, max, floor, compare, select), in the order the scalar expressions give, and
 // the renderer is compiled with -ffp-contract=off, so no target fuses a multiply-add: the same frame
-// gives the same bytes on every dispatch target (Integrator.SameBytesOnEveryDispatchTarget).
+// gives the same bytes on every dispatch target (Renderer.SameBytesOnEveryDispatchTarget).
 #pragma once
 
 #include <cstddef>
@@ -50,6 +50,17 @@ struct CameraLanes {
   std::vector<float> sky_r, sky_g, sky_b;
 };
 
+// A batch's shadow and sky rays as arrays, for the box test: `t_far` is each ray's far end. pad()
+// fills the last vector with rays of t_far 0 (no ray), so the kernel needs no scalar tail.
+struct RayLanes {
+  void clear();  // keeps the capacity
+  void push(const glm::vec3& origin, const glm::vec3& direction, float t_far);
+  void pad();
+  std::size_t size = 0;
+  std::vector<float> ox, oy, oz, dx, dy, dz, t_far;
+  std::vector<int32_t> may_hit;
+};
+
 // What the kernels read of the camera, the ground, the lights and the characters' box: plain numbers,
 // set once per frame by the integrator.
 struct LaneConstants {
@@ -85,9 +96,10 @@ struct LaneConstants {
 // test against it; otherwise t_ground = infinity and the caller traces the terrain, then runs
 // boxTestLanes.
 void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground);
-// may_hit from the rays and t_ground (used as the far end: the camera rays' ground, or an occlusion
-// ray's t_far): whether the ray may meet the characters' box before it.
+// may_hit: whether each ray may meet the characters' box before its far end (a camera ray's t_ground,
+// an occlusion ray's t_far; call RayLanes::pad first).
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes);
+void boxTestLanes(const LaneConstants& k, RayLanes& rays);
 // The flat ground's surface and, where it is open, its radiance, for samples with a finite t_shade.
 void groundLanes(const LaneConstants& k, CameraLanes& lanes);
 // The background radiance of every sample (the sky gradient, or the orthographic sky).

@@ -14,11 +14,11 @@
 #include <nlohmann/json.hpp>
 #include <tbb/info.h>
 
-#include "render/sample_lanes.h"
 #include "render/cli/commands.h"
 #include "render/frame_writer.h"
 #include "render/image.h"
 #include "render/preset.h"
+#include "render/sample_lanes.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/rig_profile.h"
