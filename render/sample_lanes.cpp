@@ -10,30 +10,11 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "render/lane_math-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace stirrup::render {
 namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-using DF = hn::ScalableTag<float>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using MF = hn::Mask<DF>;
-
-// Each function below is the scalar expression it names, operation for operation and in the same
-// order (no fused multiply-add anywhere), so every target rounds exactly as the scalar code does.
-
-VF Load(const std::vector<float>& v, size_t i) { return hn::LoadU(DF(), v.data() + i); }
-void Store(VF x, std::vector<float>& v, size_t i) { hn::StoreU(x, DF(), v.data() + i); }
-void StoreMask(MF m, std::vector<int32_t>& v, size_t i) {
-  const DI di;
-  hn::StoreU(hn::VecFromMask(di, hn::RebindMask(di, m)), di, v.data() + i);
-}
-MF LoadMask(const std::vector<int32_t>& v, size_t i) {
-  return hn::RebindMask(DF(), hn::MaskFromVec(hn::LoadU(DI(), v.data() + i)));
-}
-VF Splat(float x) { return hn::Set(DF(), x); }
-// x * (1 - a) + y * a: glm::mix.
-VF Mix(VF x, VF y, VF a) { return hn::Add(hn::Mul(x, hn::Sub(Splat(1.0f), a)), hn::Mul(y, a)); }
 
 // Inverse CDF of the tent filter of radius 1: warping stratified points through it keeps their
 // stratification and gives every sample the same weight, so no pixel reads another's samples.

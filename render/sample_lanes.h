@@ -5,8 +5,9 @@
 // over all of them, a vector at a time: camera rays from the stratified points (tent filter, film to
 // ray), the analytic ground plane, the slab test against the characters' box, the ground's surface
 // (filtered checker, aerial perspective, view depth) with the whole light of open ground, and the sky
-// behind the samples that miss. What needs Embree or per-sample branching (hashing the sample
-// sequences, the characters' surfaces, sampling shadow and sky rays, the sums) stays scalar.
+// behind the samples that miss. The surfaces the samples see and the shadow and sky rays they need are
+// the kernels of render/shading_lanes.h. What needs Embree or per-sample branching (hashing the sample
+// sequences, gathering a hit triangle's vertices, queueing rays, the sums) stays scalar.
 //
 // Determinism: every kernel uses only operations IEEE 754 rounds exactly (add, subtract, multiply,
 // divide, square root, min, max, floor, compare, select), in the order the scalar expressions give, and
@@ -90,6 +91,15 @@ struct LaneConstants {
   // The characters' box (lower > upper: empty).
   glm::vec3 box_lower{0.0f}, box_upper{0.0f};
   bool box_empty = true;
+  // Shading (render/shading_lanes.h): the sun's frame (its axis is the frame's z) and cone, the
+  // characters' Blinn-Phong lobe, the lit ground's radiance seen by downward sky rays, and the shadow
+  // and sky rays per camera sample.
+  glm::vec3 sun_frame_x{0.0f}, sun_frame_y{0.0f}, sun_axis{0.0f, 1.0f, 0.0f};
+  float sun_cos_max = 1.0f, sun_tan = 0.0f;
+  float specular = 0.0f, blinn_norm = 1.0f;
+  int shininess = 1;
+  glm::vec3 ground_bounce{0.0f};
+  int light_samples = 1, ao_samples = 1;
 };
 
 // Camera rays of samples [0, size): ox..dz. With `flat_ground` also the plane's t_ground and the box
