@@ -156,8 +156,11 @@ bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const {
   return !groundSunRegionExcludes(origin) && sunMayBeBlocked(origin);
 }
 
-// A pixel of the batch: its sun and sky sequences, set up once and read by each of its samples.
+// A pixel of the batch: its sampler, and its sun and sky sequences, set up when the first of its
+// samples needs them (most pixels of a review frame are sky or open ground, which need neither).
 struct TileScratch::PixelState {
+  PixelSampler sampler;
+  bool lights_ready;
   Stratified2D sun, sky;
 };
 
@@ -264,23 +267,25 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   lanes.resize(n);
   scratch.samples.resize(n);
 
-  // Pass 1: every camera ray of the batch. The sample sequences are hashed here, one pixel at a time;
-  // the rays, the flat ground (a square in the plane y = 0, intersected without a call into Embree:
-  // its distance then bounds the search through the characters) and the test against the characters'
-  // box run in SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+  // Pass 1: every camera ray of the batch. Each pixel's sequence is set up here; its points, the rays,
+  // the flat ground (a square in the plane y = 0, intersected without a call into Embree: its distance
+  // then bounds the search through the characters) and the test against the characters' box run in
+  // SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+  StratifiedLanes& points = scratch.pixel_points;
+  points.resize(lanes.padded);
   std::size_t j = 0;
   for (int p = 0; p < count; ++p) {
     const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
     const PixelSampler sampler(x, y, frame);
-    const Stratified2D pixel_points(sampler, pixel_layout_, SampleDimension::PixelFilter);
-    scratch.pixels.push_back({Stratified2D(sampler, sun_layout_, SampleDimension::SunCone),
-                              Stratified2D(sampler, sky_layout_, SampleDimension::SkyHemisphere)});
+    const Stratified2D::PixelPart part = Stratified2D(sampler, pixel_layout_, SampleDimension::PixelFilter).pixelPart();
+    scratch.pixels.push_back({sampler, false, {}, {}});
     const float cx = float(x) + 0.5f, cy = float(y) + 0.5f;
     for (uint32_t i = 0; i < spp_; ++i, ++j) {
-      const glm::vec2 u = pixel_points[i];
-      lanes.ux[j] = u.x, lanes.uy[j] = u.y, lanes.cx[j] = cx, lanes.cy[j] = cy;
+      points.set(j, part, i);
+      lanes.cx[j] = cx, lanes.cy[j] = cy;
     }
   }
+  stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
   cameraRayLanes(constants, lanes, !terrain_);
   auto queueCharacterRay = [&](TileScratch::CameraSample& c, std::size_t k) {
     c.ray = -1;
@@ -349,10 +354,13 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   // character's hit triangle (its vertices' normals and colours), or the ground's surface.
   SurfaceLanes& surfaces = scratch.surfaces;
   surfaces.reserve(n, int(light_spp_), int(ao_spp_));
+  StratifiedLanes &sun_points = scratch.sun_points, &sky_points = scratch.sky_points;
+  sun_points.resize(surfaces.stride * light_spp_);
+  sky_points.resize(surfaces.stride * ao_spp_);
   std::size_t m = 0;
   TileScratch::CameraSample* c = scratch.samples.data();
   j = 0;
-  for (const TileScratch::PixelState& pixel : scratch.pixels) {
+  for (TileScratch::PixelState& pixel : scratch.pixels) {
     for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
       c->resolved = false;
       c->surface = -1;
@@ -374,18 +382,25 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
       c->hit = true;
       c->surface = int32_t(m);
       gatherSurface(camera, *c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
-      for (uint32_t k = 0; k < light_spp_; ++k) {
-        const glm::vec2 u = pixel.sun[i * light_spp_ + k];
-        surfaces.sun_u[k * surfaces.stride + m] = u.x, surfaces.sun_v[k * surfaces.stride + m] = u.y;
+      if (!pixel.lights_ready) {
+        pixel.sun = Stratified2D(pixel.sampler, sun_layout_, SampleDimension::SunCone);
+        pixel.sky = Stratified2D(pixel.sampler, sky_layout_, SampleDimension::SkyHemisphere);
+        pixel.lights_ready = true;
       }
-      for (uint32_t k = 0; k < ao_spp_; ++k) {
-        const glm::vec2 u = pixel.sky[i * ao_spp_ + k];
-        surfaces.sky_u[k * surfaces.stride + m] = u.x, surfaces.sky_v[k * surfaces.stride + m] = u.y;
-      }
+      const Stratified2D::PixelPart sun = pixel.sun.pixelPart(), sky = pixel.sky.pixelPart();
+      for (uint32_t k = 0; k < light_spp_; ++k) sun_points.set(k * surfaces.stride + m, sun, i * light_spp_ + k);
+      for (uint32_t k = 0; k < ao_spp_; ++k) sky_points.set(k * surfaces.stride + m, sky, i * ao_spp_ + k);
       ++m;
     }
   }
   surfaces.setSize(m);
+  // The surfaces' sun and sky points, in lanes: slot k of surface m is point k * stride + m.
+  for (uint32_t k = 0; k < light_spp_; ++k)
+    stratifiedLanes(sun_layout_, sun_points, k * surfaces.stride, surfaces.padded, surfaces.sun_u.data(),
+                    surfaces.sun_v.data());
+  for (uint32_t k = 0; k < ao_spp_; ++k)
+    stratifiedLanes(sky_layout_, sky_points, k * surfaces.stride, surfaces.padded, surfaces.sky_u.data(),
+                    surfaces.sky_v.data());
   hitSurfaceLanes(constants, surfaces);
   shadingLanes(constants, surfaces);
   // The shadow and sky rays that carry light, queued in sample order (each sample's sun rays, then

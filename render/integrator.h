@@ -72,6 +72,8 @@ struct TileScratch {
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
+  StratifiedLanes pixel_points;        // the samples' sequences, for their points in lanes
+  StratifiedLanes sun_points, sky_points;  // the surfaces' sun and sky sequences
   CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
   SurfaceLanes surfaces;               // the surfaces its samples see, for the shading kernels
   RayLanes occluders;                  // its shadow and sky rays, for the box test

@@ -258,6 +258,118 @@ void SkyLanes(const LaneConstants& k, CameraLanes& L) {
   }
 }
 
+using DU = hn::RebindToUnsigned<DF>;
+using VU = hn::Vec<DU>;
+using DU64 = hn::Repartition<uint64_t, DF>;
+using VU64 = hn::Vec<DU64>;
+
+// permuteIndex (render/sampler.h), without its loop's exit: one round of the hashed bijection of
+// [0, w] (Kensler 2013, "Correlated Multi-Jittered Sampling").
+VU PermuteRound(VU i, VU seed, VU w) {
+  const DU du;
+  auto keep = [&](VU x) { return hn::And(x, w); };
+  i = hn::Xor(i, seed);
+  i = hn::Mul(i, hn::Set(du, 0xe170893du));
+  i = hn::Xor(i, hn::ShiftRight<16>(seed));
+  i = hn::Xor(i, hn::ShiftRight<4>(keep(i)));
+  i = hn::Xor(i, hn::ShiftRight<8>(seed));
+  i = hn::Mul(i, hn::Set(du, 0x0929eb3fu));
+  i = hn::Xor(i, hn::ShiftRight<23>(seed));
+  i = hn::Xor(i, hn::ShiftRight<1>(keep(i)));
+  i = hn::Mul(i, hn::Or(hn::Set(du, 1u), hn::ShiftRight<27>(seed)));
+  i = hn::Mul(i, hn::Set(du, 0x6935fa69u));
+  i = hn::Xor(i, hn::ShiftRight<11>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0x74dcb303u));
+  i = hn::Xor(i, hn::ShiftRight<2>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0x9e501cc3u));
+  i = hn::Xor(i, hn::ShiftRight<2>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0xc860a3dfu));
+  i = keep(i);
+  return hn::Xor(i, hn::ShiftRight<5>(i));
+}
+
+// permuteIndex: rounds until every lane is below count (cycle walking; lanes already there keep
+// their value), then (i + offset) mod count. Counts are far below 2^31, so signed compares serve.
+VU Permute(VU i, VU seed, VU w, VU count, VU offset) {
+  const DU du;
+  const DI di;
+  auto atOrAbove = [&](VU x) { return hn::RebindMask(du, hn::Not(hn::Lt(hn::BitCast(di, x), hn::BitCast(di, count)))); };
+  i = PermuteRound(i, seed, w);
+  for (auto pending = atOrAbove(i); !hn::AllFalse(du, pending); pending = atOrAbove(i))
+    i = hn::IfThenElse(pending, PermuteRound(i, seed, w), i);
+  const VU r = hn::Add(i, offset);
+  return hn::IfThenElse(atOrAbove(r), hn::Sub(r, count), r);
+}
+
+// a * c modulo 2^64 from 32-bit products: lo(a) lo(c) + (hi(a) lo(c) + lo(a) hi(c)) 2^32.
+VU64 Mul64(VU64 a, uint64_t c) {
+  const DU64 d64;
+  const hn::Repartition<uint32_t, DU64> d32;
+  const auto c_lo = hn::BitCast(d32, hn::Set(d64, c & 0xffffffffu)), c_hi = hn::BitCast(d32, hn::Set(d64, c >> 32));
+  const auto a32 = hn::BitCast(d32, a);
+  const VU64 low = hn::MulEven(a32, c_lo);
+  const VU64 cross = hn::Add(hn::MulEven(hn::BitCast(d32, hn::ShiftRight<32>(a)), c_lo), hn::MulEven(a32, c_hi));
+  return hn::Add(low, hn::ShiftLeft<32>(cross));
+}
+
+// mixBits (render/sampler.h).
+VU64 MixBits(VU64 v) {
+  v = hn::Xor(v, hn::ShiftRight<33>(v));
+  v = Mul64(v, 0xff51afd7ed558ccdull);
+  v = hn::Xor(v, hn::ShiftRight<33>(v));
+  v = Mul64(v, 0xc4ceb9fe1a85ec53ull);
+  return hn::Xor(v, hn::ShiftRight<33>(v));
+}
+
+// Stratified2D::operator[], lane by lane.
+void StratifiedPointLanes(const Stratified2D::Layout& L, const StratifiedLanes& P, size_t first, size_t n, float* u_out,
+                          float* v_out) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const DU64 d64;
+  const hn::Half<DU> dh;
+  const size_t lanes = hn::Lanes(df), half = hn::Lanes(d64);
+  const VU count = hn::Set(du, L.count), w = hn::Set(du, L.mask);
+  const VF below_one = Splat(0x1.fffffep-1f);
+  auto toFloat = [&](VU x) { return hn::ConvertTo(df, hn::BitCast(di, x)); };  // x < 2^24: exact
+  for (size_t k = first; k < first + n; k += lanes) {
+    const VU index = hn::LoadU(du, P.index.data() + k);
+    VU cell = hn::Zero(du);
+    if (L.count > 1)
+      cell = Permute(index, hn::LoadU(du, P.seed.data() + k), w, count, hn::LoadU(du, P.offset.data() + k));
+    // The jitter: split2D(hashSampleOf(pixel_hash, index)), in 64-bit lanes, half a vector at a time.
+    auto jitterBits = [&](VU64 index64, size_t at) {
+      return MixBits(hn::Xor(hn::LoadU(d64, P.pixel_hash.data() + at), Mul64(index64, 0xd1b54a32d192ed03ull)));
+    };
+    const VU64 h_lo = jitterBits(hn::PromoteTo(d64, hn::LowerHalf(dh, index)), k);
+    const VU64 h_hi = jitterBits(hn::PromoteTo(d64, hn::UpperHalf(dh, index)), k + half);
+    auto narrow = [&](VU64 lo, VU64 hi) { return hn::ConcatEven(du, hn::BitCast(du, hi), hn::BitCast(du, lo)); };
+    const VU64 mask24 = hn::Set(d64, 0xffffffull);
+    const VF jx = hn::Mul(toFloat(narrow(hn::ShiftRight<40>(h_lo), hn::ShiftRight<40>(h_hi))), Splat(0x1p-24f));
+    const VF jy = hn::Mul(toFloat(narrow(hn::And(hn::ShiftRight<8>(h_lo), mask24), hn::And(hn::ShiftRight<8>(h_hi), mask24))),
+                          Splat(0x1p-24f));
+    VF u, v;
+    if (L.side != 0) {
+      VU row;
+      if (L.side_shift >= 0) {
+        row = hn::ShiftRightSame(cell, L.side_shift);
+      } else {  // cell / side in floats: exact for counts below 2^24
+        row = hn::BitCast(du, hn::ConvertTo(di, hn::Floor(hn::Div(toFloat(cell), Splat(float(L.side))))));
+      }
+      const VU col = hn::Sub(cell, hn::Mul(row, hn::Set(du, L.side)));
+      u = hn::Mul(hn::Add(toFloat(col), jx), Splat(L.inv_side));
+      v = hn::Mul(hn::Add(toFloat(row), jy), Splat(L.inv_side));
+    } else {
+      const VU row = Permute(cell, hn::LoadU(du, P.row_seed.data() + k), w, count, hn::LoadU(du, P.row_offset.data() + k));
+      u = hn::Mul(hn::Add(toFloat(cell), jx), Splat(L.inv_count));
+      v = hn::Mul(hn::Add(toFloat(row), jy), Splat(L.inv_count));
+    }
+    hn::StoreU(hn::Min(u, below_one), df, u_out + k);
+    hn::StoreU(hn::Min(v, below_one), df, v_out + k);
+  }
+}
+
 // Which target this copy was compiled for.
 int64_t CompiledTarget() { return HWY_TARGET; }
 
@@ -275,6 +387,17 @@ HWY_EXPORT(GroundLanes);
 HWY_EXPORT(SkyLanes);
 HWY_EXPORT(CheckerLanes);
 HWY_EXPORT(CompiledTarget);
+HWY_EXPORT(StratifiedPointLanes);
+
+void StratifiedLanes::resize(std::size_t n) {
+  pixel_hash.resize(n, 0);
+  for (auto* v : {&index, &seed, &row_seed, &offset, &row_offset}) v->resize(n, 0u);
+}
+
+void stratifiedLanes(const Stratified2D::Layout& layout, const StratifiedLanes& points, std::size_t first,
+                     std::size_t n, float* u, float* v) {
+  HWY_DYNAMIC_DISPATCH(StratifiedPointLanes)(layout, points, first, n, u, v);
+}
 
 void CameraLanes::resize(std::size_t n) {
   size = n;

@@ -22,6 +22,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "render/sampler.h"
+
 namespace stirrup::render {
 
 // The ground checker's contrast fades between these footprints, in squares (filteredChecker).
@@ -60,6 +62,18 @@ struct RayLanes {
   std::size_t size = 0;
   std::vector<float> ox, oy, oz, dx, dy, dz, t_far;
   std::vector<int32_t> may_hit;
+};
+
+// Points of Stratified2D sequences that share a Layout, as arrays: point k is point `index[k]` of the
+// sequence whose pixel part (Stratified2D::pixelPart) is at k. Sized by the caller (resize), padded.
+struct StratifiedLanes {
+  void resize(std::size_t n);  // keeps the capacity; n a whole number of CameraLanes::kPad
+  std::vector<uint64_t> pixel_hash;
+  std::vector<uint32_t> index, seed, row_seed, offset, row_offset;
+  void set(std::size_t k, const Stratified2D::PixelPart& part, uint32_t i) {
+    pixel_hash[k] = part.pixel_hash, seed[k] = part.seed, row_seed[k] = part.row_seed, offset[k] = part.offset;
+    row_offset[k] = part.row_offset, index[k] = i;
+  }
 };
 
 // What the kernels read of the camera, the ground, the lights and the characters' box: plain numbers,
@@ -114,6 +128,13 @@ void boxTestLanes(const LaneConstants& k, RayLanes& rays);
 void groundLanes(const LaneConstants& k, CameraLanes& lanes);
 // The background radiance of every sample (the sky gradient, or the orthographic sky).
 void skyLanes(const LaneConstants& k, CameraLanes& lanes);
+
+// Points [first, first + n) of `points` (n a whole number of CameraLanes::kPad) into u and v (indexed
+// as the points): Stratified2D::operator[] bit for bit. The sequence hashing is integer arithmetic
+// (32-bit products in the permutation, 64-bit products built from 32-bit ones in the hash), so every
+// target gives the same points.
+void stratifiedLanes(const Stratified2D::Layout& layout, const StratifiedLanes& points, std::size_t first,
+                     std::size_t n, float* u, float* v);
 
 // The filtered checker of integrator.h in lanes, for n points (the test compares the two).
 void filteredCheckerLanes(const float* s, const float* t, const float* width, float* out, std::size_t n);
