@@ -256,7 +256,6 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
                              int first, int count, int frame, TileScratch& scratch, RayTally& tally,
                              PixelResult* out) const {
   scratch.pixels.clear();
-  scratch.samples.clear();
   scratch.camera_rays.clear();
   scratch.ground_rays.clear();
   scratch.pending.clear();
@@ -265,7 +264,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = std::size_t(count) * spp_;
   lanes.resize(n);
-  scratch.samples.resize(n);
+  scratch.samples.resize(n);  // not cleared: every field a pass reads is set by an earlier pass
 
   // Pass 1: every camera ray of the batch. Each pixel's sequence is set up here; its points, the rays,
   // the flat ground (a square in the plane y = 0, intersected without a call into Embree: its distance
@@ -406,8 +405,8 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   // The shadow and sky rays that carry light, queued in sample order (each sample's sun rays, then
   // its sky rays) for the box test.
   RayLanes& occluders = scratch.occluders;
-  occluders.clear();
-  scratch.occluder_is_sky.clear();
+  occluders.start(m * (light_spp_ + ao_spp_));
+  scratch.occluder_is_sky.resize(m * (light_spp_ + ao_spp_));
   for (TileScratch::CameraSample& sample : scratch.samples) {
     if (sample.surface < 0) continue;
     const std::size_t s = std::size_t(sample.surface);
@@ -616,8 +615,8 @@ int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& dire
   ++tally.rays;
   if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, direction, t_far));
   // Queued for the box test in lanes (pass 3b), which sends it on to its stream or not.
+  scratch.occluder_is_sky[scratch.occluders.size] = sky;
   scratch.occluders.push(origin, direction, t_far);
-  scratch.occluder_is_sky.push_back(sky);
   return int32_t(scratch.occluders.size - 1);
 }
 

@@ -2,6 +2,7 @@
 // part compiled once: the dispatch tables and the entry points of sample_lanes.h.
 #include "render/sample_lanes.h"
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 
@@ -154,7 +155,7 @@ void BoxTestLanes(const LaneConstants& k, CameraLanes& L) {
 
 void BoxTestRays(const LaneConstants& k, RayLanes& R) {
   BoxTestArrays(k, R.ox.data(), R.oy.data(), R.oz.data(), R.dx.data(), R.dy.data(), R.dz.data(), R.t_far.data(),
-                R.may_hit.data(), R.ox.size());
+                R.may_hit.data(), (R.size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad);
 }
 
 // AerialPerspective::perspective and ::orthographic.
@@ -415,22 +416,16 @@ void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(BoxTestLanes)(k, lanes); }
 void boxTestLanes(const LaneConstants& k, RayLanes& rays) { HWY_DYNAMIC_DISPATCH(BoxTestRays)(k, rays); }
 
-void RayLanes::clear() {
+void RayLanes::start(std::size_t capacity) {
   size = 0;
-  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->clear();
-}
-
-void RayLanes::push(const glm::vec3& origin, const glm::vec3& direction, float t_far_) {
-  ox.push_back(origin.x), oy.push_back(origin.y), oz.push_back(origin.z);
-  dx.push_back(direction.x), dy.push_back(direction.y), dz.push_back(direction.z);
-  t_far.push_back(t_far_);
-  ++size;
+  const std::size_t padded = (capacity + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->resize(padded);
+  may_hit.resize(padded);
 }
 
 void RayLanes::pad() {
   const std::size_t padded = (size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
-  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->resize(padded, 0.0f);  // t_far 0: no ray
-  may_hit.resize(padded);
+  std::fill(t_far.begin() + std::ptrdiff_t(size), t_far.begin() + std::ptrdiff_t(padded), 0.0f);  // no ray
 }
 void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundLanes)(k, lanes); }
 void skyLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(SkyLanes)(k, lanes); }

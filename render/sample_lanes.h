@@ -53,11 +53,17 @@ struct CameraLanes {
   std::vector<float> sky_r, sky_g, sky_b;
 };
 
-// A batch's shadow and sky rays as arrays, for the box test: `t_far` is each ray's far end. pad()
-// fills the last vector with rays of t_far 0 (no ray), so the kernel needs no scalar tail.
+// A batch's shadow and sky rays as arrays, for the box test: `t_far` is each ray's far end. start()
+// makes room for as many rays as the batch can make (no reallocation while they are pushed); pad()
+// fills the rest of the last vector with rays of t_far 0 (no ray), so the kernel needs no scalar tail.
 struct RayLanes {
-  void clear();  // keeps the capacity
-  void push(const glm::vec3& origin, const glm::vec3& direction, float t_far);
+  void start(std::size_t capacity);  // keeps the allocation
+  void push(const glm::vec3& origin, const glm::vec3& direction, float t_far_) {
+    ox[size] = origin.x, oy[size] = origin.y, oz[size] = origin.z;
+    dx[size] = direction.x, dy[size] = direction.y, dz[size] = direction.z;
+    t_far[size] = t_far_;
+    ++size;
+  }
   void pad();
   std::size_t size = 0;
   std::vector<float> ox, oy, oz, dx, dy, dz, t_far;
