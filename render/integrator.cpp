@@ -156,11 +156,14 @@ bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const {
   return !groundSunRegionExcludes(origin) && sunMayBeBlocked(origin);
 }
 
-// A pixel of the batch: its sampler, and its sun and sky sequences, set up when the first of its
-// samples needs them (most pixels of a review frame are sky or open ground, which need neither).
+// A pixel of the batch: its sampler, and where its sun and sky sequences are (set up when the first of
+// its samples needs them: most pixels of a review frame are sky or open ground, which need neither).
 struct TileScratch::PixelState {
   PixelSampler sampler;
-  bool lights_ready;
+  int32_t lights;  // index in TileScratch::lights, or -1: not set up
+};
+
+struct TileScratch::LightSequences {
   Stratified2D sun, sky;
 };
 
@@ -256,6 +259,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
                              int first, int count, int frame, TileScratch& scratch, RayTally& tally,
                              PixelResult* out) const {
   scratch.pixels.clear();
+  scratch.lights.clear();
   scratch.camera_rays.clear();
   scratch.ground_rays.clear();
   scratch.pending.clear();
@@ -277,7 +281,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
     const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
     const PixelSampler sampler(x, y, frame);
     const Stratified2D::PixelPart part = Stratified2D(sampler, pixel_layout_, SampleDimension::PixelFilter).pixelPart();
-    scratch.pixels.push_back({sampler, false, {}, {}});
+    scratch.pixels.push_back({sampler, -1});
     const float cx = float(x) + 0.5f, cy = float(y) + 0.5f;
     for (uint32_t i = 0; i < spp_; ++i, ++j) {
       points.set(j, part, i);
@@ -381,12 +385,13 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
       c->hit = true;
       c->surface = int32_t(m);
       gatherSurface(camera, *c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
-      if (!pixel.lights_ready) {
-        pixel.sun = Stratified2D(pixel.sampler, sun_layout_, SampleDimension::SunCone);
-        pixel.sky = Stratified2D(pixel.sampler, sky_layout_, SampleDimension::SkyHemisphere);
-        pixel.lights_ready = true;
+      if (pixel.lights < 0) {
+        pixel.lights = int32_t(scratch.lights.size());
+        scratch.lights.push_back({Stratified2D(pixel.sampler, sun_layout_, SampleDimension::SunCone),
+                                  Stratified2D(pixel.sampler, sky_layout_, SampleDimension::SkyHemisphere)});
       }
-      const Stratified2D::PixelPart sun = pixel.sun.pixelPart(), sky = pixel.sky.pixelPart();
+      const TileScratch::LightSequences& sequences = scratch.lights[std::size_t(pixel.lights)];
+      const Stratified2D::PixelPart sun = sequences.sun.pixelPart(), sky = sequences.sky.pixelPart();
       for (uint32_t k = 0; k < light_spp_; ++k) sun_points.set(k * surfaces.stride + m, sun, i * light_spp_ + k);
       for (uint32_t k = 0; k < ao_spp_; ++k) sky_points.set(k * surfaces.stride + m, sky, i * ao_spp_ + k);
       ++m;

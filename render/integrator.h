@@ -59,6 +59,7 @@ float filteredChecker(float s, float t, float width);
 // then reused, so tracing allocates nothing per pixel or per tile.
 struct TileScratch {
   struct PixelState;
+  struct LightSequences;
   struct CameraSample;
   struct PendingRay;
   TileScratch();
@@ -66,6 +67,7 @@ struct TileScratch {
   TileScratch(TileScratch&&) noexcept;
   TileScratch& operator=(TileScratch&&) noexcept;
   std::vector<PixelState> pixels;
+  std::vector<LightSequences> lights;  // the sun and sky sequences of the pixels that need them
   std::vector<CameraSample> samples;
   std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
   std::vector<RTCRayHit> ground_rays;  // uneven ground: every camera sample against the heightfield
