@@ -335,7 +335,9 @@ void StratifiedPointLanes(const Stratified2D::Layout& L, const StratifiedLanes& 
   const VF below_one = Splat(0x1.fffffep-1f);
   auto toFloat = [&](VU x) { return hn::ConvertTo(df, hn::BitCast(di, x)); };  // x < 2^24: exact
   for (size_t k = first; k < first + n; k += lanes) {
-    const VU index = hn::LoadU(du, P.index.data() + k);
+    // Below count, as every point a caller asks for is; the padding after the last point may hold
+    // anything, and cycle walking ends only from an index below count.
+    const VU index = hn::Min(hn::LoadU(du, P.index.data() + k), hn::Set(du, L.count > 0 ? L.count - 1 : 0u));
     VU cell = hn::Zero(du);
     if (L.count > 1)
       cell = Permute(index, hn::LoadU(du, P.seed.data() + k), w, count, hn::LoadU(du, P.offset.data() + k));
