@@ -18,8 +18,8 @@
 #include "render/lights.h"
 #include "render/renderer.h"
 #include "render/sample_lanes.h"
-#include "render/shading_lanes.h"
 #include "render/sampler.h"
+#include "render/shading_lanes.h"
 #include "rig/motion/terrain.h"
 
 namespace stirrup::render {

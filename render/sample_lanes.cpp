@@ -182,7 +182,8 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
       continue;
     }
     const VF ox = Load(L.ox, i), oz = Load(L.oz, i), dx = Load(L.dx, i), dy = Load(L.dy, i), dz = Load(L.dz, i);
-    // Integrator::surfaceOf on the plane: the point (y exactly 0), the footprint, the checker.
+    // The plane's surface (Integrator::gatherSurface reads it from here): the point (y exactly 0), the
+    // footprint, the checker.
     const VF px = hn::Add(ox, hn::Mul(t, dx)), pz = hn::Add(oz, hn::Mul(t, dz));
     const VF cos_view = hn::Max(hn::Abs(dy), Splat(0.02f));
     const VF footprint = hn::Add(Splat(k.footprint_at_0), hn::Mul(Splat(k.footprint_per_cm), t));
@@ -198,7 +199,7 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
                              hn::Mul(hn::Sub(pz, Splat(k.position.z)), Splat(k.forward.z)));
     Store(ar, L.albedo_r, i), Store(ag, L.albedo_g, i), Store(ab, L.albedo_b, i);
     Store(haze, L.haze, i), Store(depth, L.depth, i);
-    // Open ground, seen from above: the shadow rays' origin (Integrator::emitShading) outside the
+    // Open ground, seen from above: the shadow rays' origin (as ShadingLanes makes it) outside the
     // sun's rectangle, and farther than ao_distance from the characters' box.
     const VF offset = hn::Add(Splat(2e-3f), hn::Mul(Splat(3e-5f), hn::Max(hn::Max(hn::Abs(px), Splat(0.0f)), hn::Abs(pz))));
     MF open = hn::And(ground, hn::Le(dy, Splat(0.0f)));
@@ -210,7 +211,7 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
                                 hn::Or(hn::Lt(pz, Splat(k.sun_lower_z)), hn::Gt(pz, Splat(k.sun_upper_z))));
       open = hn::And(open, outside);
     }
-    if (!k.box_empty) {  // Integrator::distanceToCharacters(origin) > ao_distance
+    if (!k.box_empty) {  // farther than ao_distance from the characters' box (as ShadingLanes tests it)
       const VF ex = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.x), px), hn::Sub(px, Splat(k.box_upper.x))), Splat(0.0f));
       const VF ey = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.y), offset), hn::Sub(offset, Splat(k.box_upper.y))), Splat(0.0f));
       const VF ez = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.z), pz), hn::Sub(pz, Splat(k.box_upper.z))), Splat(0.0f));

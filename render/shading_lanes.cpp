@@ -15,10 +15,10 @@ HWY_BEFORE_NAMESPACE();
 namespace stirrup::render {
 namespace HWY_NAMESPACE {
 
-// What Integrator::surfaceOf did for a character's hit, lane by lane: the point along the camera
-// ray, Embree's normal made unit and turned to the camera, the vertex normals interpolated (and turned
-// to the same side), tilted toward the camera where they face away at a silhouette so the edge does not
-// turn black, and the vertex colours interpolated.
+// A character's hit surface, lane by lane: the point along the camera ray, Embree's normal made unit
+// and turned to the camera, the vertex normals interpolated (and turned to the same side), tilted
+// toward the camera where they face away at a silhouette so the edge does not turn black, and the
+// vertex colours interpolated.
 void HitSurfaceLanes(const LaneConstants& k, SurfaceLanes& S) {
   const DF df;
   const size_t lanes = hn::Lanes(df);
@@ -89,7 +89,7 @@ MF SunMayBeBlocked(const LaneConstants& k, const V3& o) {
   return hn::Not(miss);
 }
 
-// Integrator::emitShading, lane by lane (see shading_lanes.h).
+// Each surface's light that needs no ray, and the shadow and sky rays it needs (see shading_lanes.h).
 void ShadingLanes(const LaneConstants& k, SurfaceLanes& S) {
   const DF df;
   const size_t lanes = hn::Lanes(df);
