@@ -9,6 +9,7 @@
 #include "render/preset.h"
 
 #include "rig/error.h"
+#include "rig/io/crowd_json.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/json_fields.h"
@@ -201,6 +202,25 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
   }
   s.output = r.string("output", "out/" + s.name);
   if (r.has("reference")) s.reference = parseReferenceSpec(r.object("reference"), std::filesystem::path(file).parent_path());
+  // A crowd: each pair rides its own path, so the scene's one clip has no place beside it.
+  if (r.has("crowd") || r.has("riders")) {
+    const char* key = r.has("crowd") ? "crowd" : "riders";
+    if (r.has("crowd") && r.has("riders")) r.fail("riders", "expected either \"crowd\" or \"riders\", not both");
+    if (r.has("clip")) r.fail("clip", std::string("expected no clip beside \"") + key + "\" (each pair rides its own path)");
+  }
+  if (r.has("crowd")) {
+    JsonObjectReader c = r.object("crowd");
+    s.crowd = rig::parseCrowdSpec(c);
+    s.pairs = rig::generateCrowd(*s.crowd, s.terrain, s.fps, file);
+  } else if (const nlohmann::json* riders = r.value("riders")) {
+    if (!riders->is_array() || riders->empty())
+      r.fail("riders", "expected a non-empty array of riders, got " + describeJson(*riders));
+    for (std::size_t i = 0; i < riders->size(); ++i) {
+      JsonObjectReader p(file, "riders[" + std::to_string(i) + "]", (*riders)[i]);
+      s.pairs.push_back(rig::parsePairSpec(p));
+    }
+    rig::validatePairs(s.pairs, s.terrain, s.fps, 0, file, "riders");
+  }
   r.finish();
   return s;
 }

@@ -13,6 +13,7 @@
 
 #include "render/review/layer.h"
 #include "rig/motion/clip_factory.h"
+#include "rig/motion/crowd.h"
 #include "rig/motion/procedural_gait.h"
 
 namespace stirrup::render {
@@ -82,6 +83,11 @@ struct SceneSpec {
   // Reference footage for the layered view ("reference": {...}, render/review/layer.h ReferenceSpec); its
   // file is resolved against the scene file. Absent: the layered view compares with the rigid rider.
   std::optional<ReferenceSpec> reference;
+  // A crowd (issue 19; rig/motion/crowd.h): "crowd" generates the pairs, "riders" lists them; either
+  // way `pairs` holds them, checked (no two horses meet at any frame). Empty: the one horse and rider
+  // of `clip`, as every scene before it.
+  std::optional<rig::CrowdSpec> crowd;
+  std::vector<rig::PairSpec> pairs;
 };
 
 // Reads a scene file; throws stirrup::InputError "FILE: FIELD: expected ..., got ..." on bad input.
