@@ -218,7 +218,8 @@ std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const
                      numberText(f.rank_spacing_cm));
 
   double total_weight = 0.0;
-  for (const auto& pw : spec.profile_mix) total_weight += pw.second;
+  for (const auto& pw : spec.profile_mix)
+    if (pw.second > 0.0) total_weight += pw.second;
   const double first_speed = spec.lead_speed.front().speed;
   std::vector<PairSpec> pairs;
   for (int i = 0; i < spec.pairs; ++i) {
@@ -240,11 +241,13 @@ std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const
     p.withers_height_cm = withers;
     p.rider_height_cm = rider_height;
     p.rider_build = build;
+    // The first profile whose share of the total the pick falls in (a weight of 0 is never picked).
     double cumulative = 0.0;
     for (const auto& [name, weight] : spec.profile_mix) {
+      if (!(weight > 0.0)) continue;
       cumulative += weight;
       p.profile = name;
-      if (weight > 0.0 && pick < cumulative) break;
+      if (pick < cumulative) break;
     }
     // Its slot: the file across (+ right of the lead), the rank behind; then the jitter.
     const int rank = i / f.files, file = i % f.files;
@@ -305,9 +308,14 @@ void validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Ter
     frames = static_cast<int>(std::floor(end_s * fps + 1e-9)) + 1;
   }
   if (const auto o = firstOverlap(views, offsets, extents, fps, frames)) {
-    const std::string a = field + "[" + std::to_string(o->a) + "]", b = field + "[" + std::to_string(o->b) + "]";
-    throw InputError(source + ": " + field + ": " + a + " and " + b + " overlap at frame " + std::to_string(o->frame) +
-                     " (" + numberText(o->seconds) + " s): expected paths that keep every two horses apart at every frame");
+    const std::string when = " overlap at frame " + std::to_string(o->frame) + " (" + numberText(o->seconds) + " s): ";
+    // A generated crowd names its pairs by number and the formation as the fix; a list, its entries.
+    if (field == "crowd")
+      throw InputError(source + ": crowd.formation: pairs " + std::to_string(o->a) + " and " + std::to_string(o->b) + when +
+                       "expected a formation that keeps every two horses apart at every frame (wider spacing, less "
+                       "jitter or speed variation)");
+    throw InputError(source + ": " + field + ": " + field + "[" + std::to_string(o->a) + "] and " + field + "[" +
+                     std::to_string(o->b) + "]" + when + "expected paths that keep every two horses apart at every frame");
   }
 }
 

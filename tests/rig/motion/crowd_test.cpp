@@ -364,9 +364,48 @@ TEST(Crowd, OverlappingExplicitPathsAreRejected) {
   ASSERT_TRUE(std::regex_match(message, m, std::regex("s\\.json: riders: riders\\[1\\] and riders\\[2\\] overlap at frame ([0-9]+) \\(([0-9.]+) s\\): .*")))
       << message;
   const double t = std::stod(m[2]);
+  // A generated crowd's pairs are named by number, the formation as what to change.
+  EXPECT_EQ(errorOf([&] { validatePairs({a, rider({{0, 60}, {2000, 60}}, 300)}, nullptr, 24, 0, "s.json", "crowd"); }),
+            "s.json: crowd.formation: pairs 0 and 1 overlap at frame 1 (0 s): expected a formation that keeps every two "
+            "horses apart at every frame (wider spacing, less jitter or speed variation)");
   EXPECT_GT(t, 5.0 - 1000.0 / 300.0);
   EXPECT_LT(t, (1500.0 - 180.0) / 300.0);
   EXPECT_EQ(std::stoi(m[1]), static_cast<int>(std::lround(t * 24.0)) + 1);
+}
+
+}  // namespace
+}  // namespace stirrup::rig
+
+namespace stirrup::rig {
+namespace {
+
+// A pair's path keeps its file's distance from the lead all along, through the bend: the curve through
+// its sampled points stays within a millimetre of the true offset curve (kPairPathStepCm's claim).
+TEST(Crowd, APairsPathIsTheLeadOffsetSideways) {
+  CrowdSpec s = cavalry(6, 6);
+  s.formation.jitter_cm = 0.0;
+  s.start_offset_max_s = 0.0;
+  s.speed_variation = 0.0;
+  const auto pairs = generateCrowd(s, nullptr, 24, "t");
+  const GroundPath lead(s.lead_points, "t");
+  // The lead, densely, continued straight beyond its ends as the pairs' paths are.
+  std::vector<glm::dvec2> dense;
+  for (double d = -2000.0; d <= lead.length() + 2000.0; d += 2.0) {
+    const GroundPath::Sample a = lead.at(std::clamp(d, 0.0, lead.length()));
+    dense.push_back(a.position + a.tangent * (d - std::clamp(d, 0.0, lead.length())));
+  }
+  double worst = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    const double across = std::abs((i - 2.5) * s.formation.file_spacing_cm);
+    const GroundPath own(pairs[std::size_t(i)].path.points, "t");
+    for (double d = 0.0; d <= own.length(); d += 37.0) {
+      const glm::dvec2 q = own.at(d).position;
+      double nearest = 1e300;
+      for (const glm::dvec2& p : dense) nearest = std::min(nearest, glm::length(q - p));
+      worst = std::max(worst, std::abs(nearest - across));
+    }
+  }
+  EXPECT_LT(worst, 0.1);
 }
 
 }  // namespace

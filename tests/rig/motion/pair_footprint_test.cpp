@@ -1,7 +1,6 @@
 #include "rig/motion/pair_footprint.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -55,7 +54,7 @@ PathClipParams canterToGallopTurns() {
 }
 
 // How far the farthest vertex of the skinned horse and rider, seen from above, lies outside the pair's
-// footprint (negative: inside by that much), over every fourth frame of the ride; the point-in-rectangle
+// footprint (negative: inside by that much), over every sixth frame of the ride; the point-in-rectangle
 // test here is the test's own. Also the largest roll into a turn the ride made.
 struct Outside {
   double cm = -1e9, roll_deg = 0;
@@ -69,7 +68,7 @@ Outside farthestOutside(const HorseParams& hp_params, const RiderParams& rp_para
   const PathClip clip(params, nullptr, "test");
   Outside out;
   std::vector<glm::vec3> hp, hn, rp, rn;
-  for (int frame = 1; frame <= static_cast<int>(clip.duration() * 24.0); frame += 4) {
+  for (int frame = 1; frame <= static_cast<int>(clip.duration() * 24.0); frame += 6) {
     const double t = (frame - 1) / 24.0;
     const BakedFrame b = bakeFrame(clip, profile, frame, t);
     out.roll_deg = std::max(out.roll_deg, std::abs(clip.turnRollDeg(t)));
