@@ -125,6 +125,7 @@ PathClipParams leadParams(const CrowdSpec& s) {
   PathClipParams p;
   p.points = s.lead_points;
   p.speed = s.lead_speed;
+  p.max_duration_s = kMaxCrowdSeconds;
   return p;
 }
 
@@ -257,7 +258,7 @@ std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const
     // the lead ends by what a faster pair and an outside file ride more, so it never runs out.
     const double start = behind - speed_factor * first_speed * offset_s;
     const double end = behind + speed_factor * m.length + std::abs(across) * m.total_turn_rad + kPairPathStepCm * 5.0;
-    const int steps = static_cast<int>(std::ceil((end - start) / kPairPathStepCm));
+    const int steps = std::min(kMaxPairPathPoints - 1, static_cast<int>(std::ceil((end - start) / kPairPathStepCm)));
     for (int k = 0; k <= steps; ++k) {
       const GroundPath::Sample a = lead.at(start + (end - start) * k / steps);
       p.path.points.push_back(a.position + glm::dvec2{-a.tangent.y, a.tangent.x} * across);
@@ -304,7 +305,13 @@ void validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Ter
   if (frames <= 0) {
     // While any pair still rides.
     double end_s = 0.0;
-    for (std::size_t i = 0; i < clips.size(); ++i) end_s = std::max(end_s, clips[i]->duration() - offsets[i]);
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+      const double ride_s = clips[i]->duration() - offsets[i];
+      if (ride_s > kMaxCrowdSeconds)
+        throw InputError(source + ": " + field + "[" + std::to_string(i) + "].speed: expected a ride of at most " +
+                         numberText(kMaxCrowdSeconds) + " s, got " + numberText(ride_s) + " s");
+      end_s = std::max(end_s, ride_s);
+    }
     frames = static_cast<int>(std::floor(end_s * fps + 1e-9)) + 1;
   }
   if (const auto o = firstOverlap(views, offsets, extents, fps, frames)) {

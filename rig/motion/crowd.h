@@ -36,9 +36,17 @@
 
 namespace stirrup::rig {
 
-// At most this many pairs: our choice, ten times the issue's 30-rider cavalry and twice its largest
-// benchmark (100); past it a scene is a job for instancing the issue's renderer phase has yet to prove.
+// At most this many pairs: our choice, twice the largest crowd issue 19 benchmarks (100 pairs), whose
+// renderer work (instancing, levels of detail) is what bounds a crowd, and is still to come.
 inline constexpr int kMaxCrowdPairs = 200;
+// A generated crowd's lead rides its path in at most this long (s): our choice, a shot and not a film.
+// A crowd is checked at every frame when its scene loads, about a millisecond a pair and second of
+// clip, so this and kMaxCrowdPairs keep a scene's load under half a minute. An explicit list's rides
+// are held to it too.
+inline constexpr double kMaxCrowdSeconds = 120.0;
+// A generated pair's path holds at most this many points: a very long lead is sampled more coarsely
+// (its length over this), so a pair's path table stays small (rig/motion/ground_path.h).
+inline constexpr int kMaxPairPathPoints = 500;
 
 struct ProportionRange {
   double lo = 0, hi = 0;
@@ -46,7 +54,7 @@ struct ProportionRange {
 };
 // The proportions a pair may have. Heights: issue 19 ("horses of 145-175 cm at the withers, riders of
 // 150-190 cm"). Build (rig/characters/proportions.h: it multiplies the rider's girths): our choice, a
-// slim to a stout rider; 0.85 keeps the default's 11.5 cm chest depth above the spine's own radius.
+// slim to a stout rider (the footprint test builds and rides both ends).
 inline constexpr ProportionRange kWithersHeightRangeCm{145.0, 175.0};
 inline constexpr ProportionRange kRiderHeightRangeCm{150.0, 190.0};
 inline constexpr ProportionRange kRiderBuildRange{0.85, 1.25};
@@ -88,11 +96,12 @@ struct CrowdSpec {
 
 // Limits of the variations (our choices): 10% covers a troop's spread of cruising speeds (a 900 cm/s
 // gallop ± 90); a start phase of up to 2 s covers a whole stride at every gait (the walk's is the
-// slowest, about 1.1 s) with room for the pairs to be out of step.
+// slowest, about 1.05 s: rig/motion/procedural_gait.cpp) with room for the pairs to be out of step.
 inline constexpr double kMaxSpeedVariation = 0.1;
 inline constexpr double kMaxStartOffsetS = 2.0;
 // A generated pair's path is sampled from the offset lead this often (cm) and joined by the ground
-// path's curve (rig/motion/ground_path.h): at 100 cm the curve is within a millimetre of the offset.
+// path's curve (rig/motion/ground_path.h): at 100 cm the curve is within a millimetre of the offset
+// (tests/rig/motion/crowd_test.cpp). Longer leads are sampled more coarsely (kMaxPairPathPoints).
 inline constexpr double kPairPathStepCm = 100.0;
 // The inside of the formation's tightest turn keeps at least this fraction of the lead's radius, so
 // an inside file's path never folds on itself (an offset curve has a cusp where the offset reaches

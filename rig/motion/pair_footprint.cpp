@@ -12,6 +12,9 @@ namespace stirrup::rig {
 namespace {
 
 constexpr double kRad = std::numbers::pi / 180.0;
+// The tail's thickest capsule radius (9 cm) and its blend (5 cm), as buildHorse makes the tail
+// (rig/characters/horse_character.cpp; not HorseParams, so not scaled).
+constexpr double kTailHairCm = 14.0;
 
 // The rotation of rig/pose.cpp's rot(degrees, axis) for a point, about the X, Y or Z axis, in double.
 glm::dvec3 rotX(glm::dvec3 p, double deg) {
@@ -39,9 +42,9 @@ PairExtent pairExtent(const HorseParams& h, const RiderParams& r) {
   const double head_reach = std::max(glm::length(muzzle - poll) + h.muzzle_radius, double(h.ear_length) + h.head_radius);
   const double neck_reach = glm::length(mid - base) + glm::length(poll - mid) + head_reach;
   e.front_cm = std::max({base.x + neck_reach, double(h.chest_center.x + h.chest_radii.x)});
-  // Tail: hair about its root, as long as the tail, thick as the mane.
+  // Tail: hair about its root, as long as the tail and as thick as its thickest capsule with its blend.
   e.tail_root = d3(h.tail_root);
-  e.tail_reach_cm = h.tail_length + 2.0 * h.mane_radius;
+  e.tail_reach_cm = h.tail_length + kTailHairCm;
   e.back_cm = std::min({e.tail_root.x - e.tail_reach_cm, double(h.buttock_center.x - h.buttock_radii.x),
                         double(h.croup_center.x - h.croup_radii.x)});
   // Width: the horse's trunk and quarters, and the rider's boot around the stirrup tread with her calf

@@ -42,7 +42,11 @@ struct PairExtent {
   double hoof_radius_cm = 0;
 };
 
-// Grows every footprint on each side (cm): measured, not derived; the skinned-mesh test above checks it.
+// Grows every footprint on each side (cm), for what the box does not follow: the back's arch and turn at
+// backMid, the rider's own channels and balance, her braid and coat tail. Our choice: over a canter and
+// gallop through turns the unpadded box already holds the default, largest and smallest pairs' skinned
+// meshes, some vertex within a centimetre of its side, so this is headroom for what that ride
+// does not do (tests/rig/motion/pair_footprint_test.cpp).
 inline constexpr double kPoseMarginCm = 12.0;
 
 PairExtent pairExtent(const HorseParams& horse, const RiderParams& rider);

@@ -287,6 +287,9 @@ TEST(Crowd, BadSpecsAreOneLineErrors) {
   s.start_offset_max_s = 3;
   EXPECT_EQ(gen(s), "s.json: crowd.start_offset_max_s: expected seconds from 0 to 2, got 3");
   s = parade(4, 2);
+  s.lead_points = {{0, 0}, {40000, 0}};  // 133 s at 300 cm/s
+  EXPECT_EQ(gen(s), "s.json: crowd.lead: speed: expected speeds that ride the whole path (40000 cm) within 120 s");
+  s = parade(4, 2);
   s.lead_points = {{0, 0}};
   EXPECT_EQ(gen(s).rfind("s.json: crowd.lead: points", 0), 0u) << gen(s);
 }
@@ -344,6 +347,9 @@ TEST(Crowd, ExplicitPairsAreChecked) {
   b.clip_offset_s = -1;
   EXPECT_EQ(check({a, b}), "s.json: riders[1].start_offset_s: expected seconds from 0 to 2, got -1");
   EXPECT_EQ(check({}), "s.json: riders: expected 1 to 200 pairs, got 0");
+  b.clip_offset_s = 0;
+  b.path.points = {{0, 500}, {40000, 500}};  // 133 s at 300 cm/s
+  EXPECT_EQ(check({a, b}), "s.json: riders[1].speed: expected a ride of at most 120 s, got 133.333 s");
 }
 
 TEST(Crowd, OverlappingExplicitPathsAreRejected) {
@@ -406,6 +412,37 @@ TEST(Crowd, APairsPathIsTheLeadOffsetSideways) {
     }
   }
   EXPECT_LT(worst, 0.1);
+}
+
+}  // namespace
+}  // namespace stirrup::rig
+
+namespace stirrup::rig {
+namespace {
+
+// Over rolling ground every pair's horse stands on the hills under its own path.
+TEST(Crowd, PairsRideOverTheTerrain) {
+  HillsParams h;
+  h.seed = 5;
+  h.amplitude_cm = 250;
+  h.wavelength_cm = 1500;
+  h.octaves = 2;
+  const auto hills = std::make_shared<const Terrain>(Terrain::hills(h, "t"));
+  const CrowdSpec s = parade(6, 3);
+  const auto pairs = generateCrowd(s, hills, 24, "t");
+  for (const PairSpec& p : pairs) {
+    const auto clip = makePairClip(p, hills, "t");
+    const HorseFrame f = clip->sample(1.0 + p.clip_offset_s);
+    // The travel frame stands on the ground between the hooves: within a few cm of the hill under it.
+    EXPECT_NEAR(f.ground_y_cm, hills->height(f.travel_cm, f.travel_z_cm), 5.0);
+  }
+  // And the hills are not flat where they ride.
+  double lo = 1e9, hi = -1e9;
+  for (const PairSpec& p : pairs) {
+    const double y = makePairClip(p, hills, "t")->sample(1.0 + p.clip_offset_s).ground_y_cm;
+    lo = std::min(lo, y), hi = std::max(hi, y);
+  }
+  EXPECT_GT(hi - lo, 10.0);
 }
 
 }  // namespace
