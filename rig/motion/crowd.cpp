@@ -187,10 +187,11 @@ Spacing minimumSpacing(const CrowdSpec& spec, const std::string& source) {
   // (κ a² / 2 on each of the two), and the clearance.
   s.file_cm = left + right + more_roll + 2.0 * j + k_in * reach * reach + kFormationClearanceCm;
   // Ranks: the footprint's length, the two jitters, the fastest and slowest pairs drawing apart over the
-  // lead's length, the shear of two files jittered apart through the turns (Δℓ · Δheading), the chord of
-  // a turn being shorter than its arc, and the clearance.
-  s.rank_cm = ahead + behind + 2.0 * j + 2.0 * spec.speed_variation * m.length +
-              2.0 * j * m.max_turn_rad + m.max_curvature * reach * reach + kFormationClearanceCm;
+  // lead's length, the shear of two files jittered apart through the turns (Δℓ · Δheading), the turn
+  // between two ranks (κ · spacing) swinging the near corners of their footprints along by up to the
+  // width times that, and the clearance.
+  s.rank_cm = ahead + behind + 2.0 * j + 2.0 * spec.speed_variation * m.length + 2.0 * j * m.max_turn_rad +
+              (left + right) * k_in * spec.formation.rank_spacing_cm + kFormationClearanceCm;
   return s;
 }
 
@@ -215,7 +216,7 @@ std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const
                      numberText(f.file_spacing_cm));
   if (spec.pairs > f.files && f.rank_spacing_cm < need.rank_cm)
     throw InputError(at + "formation.rank_spacing_cm: expected at least " + numberText(std::ceil(need.rank_cm)) +
-                     " cm (the longest pair's footprint, the jitter and the speed variation's drift), got " +
+                     " cm (the longest pair's footprint, the jitter, the speed variation's drift and the turns), got " +
                      numberText(f.rank_spacing_cm));
 
   double total_weight = 0.0;

@@ -7,7 +7,7 @@
 // own std::mt19937_64 (whose output the C++ standard fixes), seeded from the crowd's seed and the
 // pair's index, and turns raw 64-bit draws into numbers itself (the standard distributions are not the
 // same on every standard library), so the same spec gives the same crowd everywhere, and pair i is the
-// same in a crowd of 10 and of 100.
+// same in a crowd of 10 and of 100 (of the same files).
 //
 // Each generated pair's path is the lead path offset sideways along its normal by the pair's file in
 // the formation and its jitter, and started behind the lead by its rank and jitter (the lead is
@@ -116,7 +116,8 @@ struct Spacing {
 // The spacing a formation needs so that no two of its pairs meet, for the largest pair the spec's
 // ranges allow: files apart by the footprint's width rolled into the lead's hardest turn, plus the jitter
 // of both pairs; ranks by the footprint's length, the jitter, the distance the fastest and slowest
-// pairs draw apart over the lead path, and the shear of the jittered files through its turns.
+// pairs draw apart over the lead path, the shear of the jittered files through its turns, and the turn
+// between two ranks.
 // generateCrowd rejects a formation closer than this; its frame-by-frame check is the guarantee.
 Spacing minimumSpacing(const CrowdSpec& spec, const std::string& source);
 

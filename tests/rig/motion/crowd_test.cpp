@@ -26,7 +26,7 @@ CrowdSpec cavalry(int pairs, int files) {
   s.lead_speed = {{0, 560}, {3, 560}, {5, 900}};  // canter, then gallop from about 4 s
   s.formation.files = files;
   s.formation.file_spacing_cm = 340;
-  s.formation.rank_spacing_cm = 720;
+  s.formation.rank_spacing_cm = 800;
   s.formation.jitter_cm = 15;
   s.speed_variation = 0.01;
   s.start_offset_max_s = 1.0;
