@@ -13,13 +13,6 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-// How far to push a secondary ray's origin off the surface: above the float error of a hit point
-// computed as origin + t * direction at these coordinates (a few ulps of the largest coordinate).
-float originOffset(const glm::vec3& p) {
-  const float extent = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  return 2e-3f + 3e-5f * extent;
-}
-
 }  // namespace
 
 float filteredChecker(float s, float t, float width) {
@@ -52,17 +45,6 @@ float filteredChecker(float s, float t, float width) {
   return 0.5f + (odd - 0.5f) * contrast;
 }
 
-struct Integrator::Surface {
-  glm::vec3 p;       // hit point
-  glm::vec3 ng;      // geometric normal, facing the camera
-  glm::vec3 n;       // shading normal, same side as ng
-  glm::vec3 wo;      // toward the camera
-  glm::vec3 albedo;  // linear base colour
-  float specular;    // Blinn-Phong weight
-  float haze;        // aerial perspective: the fraction of the surface's light that reaches the camera
-  bool on_ground;
-};
-
 Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
                        std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain,
                        float ground_floor)
@@ -90,7 +72,7 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
   setGroundSunRegion();
   const glm::vec3 ground_albedo = 0.5f * (settings.ground_color_a + settings.ground_color_b);
   ground_bounce_ = ground_albedo * (sun_radiance_ * std::max(0.0f, sun.y) + settings.sky.upwardIrradianceOverPi());
-  blinn_norm_ = (settings.shininess + 8.0f) / 8.0f;
+  blinn_norm_ = float(settings.shininess + 8) / 8.0f;
   ground_extent_ = settings.ground_half_extent_cm;
   spp_ = uint32_t(settings.samples_per_pixel);
   light_spp_ = uint32_t(settings.light_samples);
@@ -174,14 +156,14 @@ bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const {
   return !groundSunRegionExcludes(origin) && sunMayBeBlocked(origin);
 }
 
-float Integrator::distanceToCharacters(const glm::vec3& p) const {
-  if (bounds_radius_ < 0.0f) return kInfinity;
-  const glm::vec3 d = glm::max(glm::max(bounds_lower_ - p, p - bounds_upper_), glm::vec3(0.0f));
-  return glm::length(d);
-}
-
-// A pixel of the batch: its sun and sky sequences, set up once and read by each of its samples.
+// A pixel of the batch: its sampler, and where its sun and sky sequences are (set up when the first of
+// its samples needs them: most pixels of a review frame are sky or open ground, which need neither).
 struct TileScratch::PixelState {
+  PixelSampler sampler;
+  int32_t lights;  // index in TileScratch::lights, or -1: not set up
+};
+
+struct TileScratch::LightSequences {
   Stratified2D sun, sky;
 };
 
@@ -190,6 +172,7 @@ struct TileScratch::CameraSample {
   glm::vec3 origin, dir;
   float t_ground;       // the ground's distance along the ray (within the visible distance), or infinity
   int32_t ray;          // its index in camera_rays, or -1: the ray cannot reach the characters
+  int32_t surface;      // its index in the surface lanes, or -1: sky or open ground
   // Set by the shading pass.
   bool hit;
   ObjectId id;
@@ -264,6 +247,11 @@ LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
   k.ao_distance = settings_.ao_distance_cm;
   k.box_lower = bounds_lower_, k.box_upper = bounds_upper_;
   k.box_empty = bounds_radius_ < 0.0f;
+  k.sun_frame_x = sun_frame_.x, k.sun_frame_y = sun_frame_.y, k.sun_axis = sun_frame_.z;
+  k.sun_cos_max = sun_cos_max_, k.sun_tan = sun_tan_;
+  k.specular = settings_.specular, k.blinn_norm = blinn_norm_, k.shininess = settings_.shininess;
+  k.ground_bounce = ground_bounce_;
+  k.light_samples = int(light_spp_), k.ao_samples = int(ao_spp_);
   return k;
 }
 
@@ -271,7 +259,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
                              int first, int count, int frame, TileScratch& scratch, RayTally& tally,
                              PixelResult* out) const {
   scratch.pixels.clear();
-  scratch.samples.clear();
+  scratch.lights.clear();
   scratch.camera_rays.clear();
   scratch.ground_rays.clear();
   scratch.pending.clear();
@@ -280,25 +268,27 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = std::size_t(count) * spp_;
   lanes.resize(n);
-  scratch.samples.resize(n);
+  scratch.samples.resize(n);  // not cleared: every field a pass reads is set by an earlier pass
 
-  // Pass 1: every camera ray of the batch. The sample sequences are hashed here, one pixel at a time;
-  // the rays, the flat ground (a square in the plane y = 0, intersected without a call into Embree:
-  // its distance then bounds the search through the characters) and the test against the characters'
-  // box run in SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+  // Pass 1: every camera ray of the batch. Each pixel's sequence is set up here; its points, the rays,
+  // the flat ground (a square in the plane y = 0, intersected without a call into Embree: its distance
+  // then bounds the search through the characters) and the test against the characters' box run in
+  // SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+  StratifiedLanes& points = scratch.pixel_points;
+  points.resize(lanes.padded);
   std::size_t j = 0;
   for (int p = 0; p < count; ++p) {
     const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
     const PixelSampler sampler(x, y, frame);
-    const Stratified2D pixel_points(sampler, pixel_layout_, SampleDimension::PixelFilter);
-    scratch.pixels.push_back({Stratified2D(sampler, sun_layout_, SampleDimension::SunCone),
-                              Stratified2D(sampler, sky_layout_, SampleDimension::SkyHemisphere)});
+    const Stratified2D::PixelPart part = Stratified2D(sampler, pixel_layout_, SampleDimension::PixelFilter).pixelPart();
+    scratch.pixels.push_back({sampler, -1});
     const float cx = float(x) + 0.5f, cy = float(y) + 0.5f;
     for (uint32_t i = 0; i < spp_; ++i, ++j) {
-      const glm::vec2 u = pixel_points[i];
-      lanes.ux[j] = u.x, lanes.uy[j] = u.y, lanes.cx[j] = cx, lanes.cy[j] = cy;
+      points.set(j, part, i);
+      lanes.cx[j] = cx, lanes.cy[j] = cy;
     }
   }
+  stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
   cameraRayLanes(constants, lanes, !terrain_);
   auto queueCharacterRay = [&](TileScratch::CameraSample& c, std::size_t k) {
     c.ray = -1;
@@ -363,14 +353,20 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   }
   if (!terrain_) groundLanes(constants, lanes);
   skyLanes(constants, lanes);
-  RayLanes& occluders = scratch.occluders;
-  occluders.clear();
-  scratch.occluder_is_sky.clear();
+  // Then every other surface a sample sees, gathered into the surface lanes in sample order: a
+  // character's hit triangle (its vertices' normals and colours), or the ground's surface.
+  SurfaceLanes& surfaces = scratch.surfaces;
+  surfaces.reserve(n, int(light_spp_), int(ao_spp_));
+  StratifiedLanes &sun_points = scratch.sun_points, &sky_points = scratch.sky_points;
+  sun_points.resize(surfaces.stride * light_spp_);
+  sky_points.resize(surfaces.stride * ao_spp_);
+  std::size_t m = 0;
   TileScratch::CameraSample* c = scratch.samples.data();
   j = 0;
-  for (const TileScratch::PixelState& pixel : scratch.pixels) {
+  for (TileScratch::PixelState& pixel : scratch.pixels) {
     for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
       c->resolved = false;
+      c->surface = -1;
       if (!terrain_ && lanes.open[j]) {  // open ground: its light is known
         c->hit = c->resolved = true;
         c->id = ObjectId::Ground;
@@ -380,17 +376,72 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
         continue;
       }
       const RTCRayHit* rh = c->ray >= 0 ? &scratch.camera_rays[size_t(c->ray)] : nullptr;
-      Surface s;
-      if (!surfaceOf(camera, *c, rh, lanes, j, s, c->id)) {
+      const bool character_hit = rh && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (!character_hit && c->t_ground == kInfinity) {
         c->hit = false;
         c->radiance = {lanes.sky_r[j], lanes.sky_g[j], lanes.sky_b[j]};
         continue;
       }
       c->hit = true;
-      c->haze = s.haze;
-      c->depth = s.on_ground && !terrain_ ? lanes.depth[j] : camera.viewDepthF(s.p);
-      c->normal = s.n;
-      emitShading(s, pixel.sun, pixel.sky, i, *c, scratch, tally);
+      c->surface = int32_t(m);
+      gatherSurface(camera, *c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
+      if (pixel.lights < 0) {
+        pixel.lights = int32_t(scratch.lights.size());
+        scratch.lights.push_back({Stratified2D(pixel.sampler, sun_layout_, SampleDimension::SunCone),
+                                  Stratified2D(pixel.sampler, sky_layout_, SampleDimension::SkyHemisphere)});
+      }
+      const TileScratch::LightSequences& sequences = scratch.lights[std::size_t(pixel.lights)];
+      const Stratified2D::PixelPart sun = sequences.sun.pixelPart(), sky = sequences.sky.pixelPart();
+      for (uint32_t k = 0; k < light_spp_; ++k) sun_points.set(k * surfaces.stride + m, sun, i * light_spp_ + k);
+      for (uint32_t k = 0; k < ao_spp_; ++k) sky_points.set(k * surfaces.stride + m, sky, i * ao_spp_ + k);
+      ++m;
+    }
+  }
+  surfaces.setSize(m);
+  // The surfaces' sun and sky points, in lanes: slot k of surface m is point k * stride + m.
+  for (uint32_t k = 0; k < light_spp_; ++k)
+    stratifiedLanes(sun_layout_, sun_points, k * surfaces.stride, surfaces.padded, surfaces.sun_u.data(),
+                    surfaces.sun_v.data());
+  for (uint32_t k = 0; k < ao_spp_; ++k)
+    stratifiedLanes(sky_layout_, sky_points, k * surfaces.stride, surfaces.padded, surfaces.sky_u.data(),
+                    surfaces.sky_v.data());
+  hitSurfaceLanes(constants, surfaces);
+  shadingLanes(constants, surfaces);
+  // The shadow and sky rays that carry light, queued in sample order (each sample's sun rays, then
+  // its sky rays) for the box test.
+  RayLanes& occluders = scratch.occluders;
+  occluders.start(m * (light_spp_ + ao_spp_));
+  scratch.occluder_is_sky.resize(m * (light_spp_ + ao_spp_));
+  for (TileScratch::CameraSample& sample : scratch.samples) {
+    if (sample.surface < 0) continue;
+    const std::size_t s = std::size_t(sample.surface);
+    const SurfaceLanes& S = surfaces;
+    sample.depth = S.depth[s];
+    sample.normal = {S.nx[s], S.ny[s], S.nz[s]};
+    sample.diffuse = {S.diffuse_r[s], S.diffuse_g[s], S.diffuse_b[s]};
+    const glm::vec3 origin(S.rox[s], S.roy[s], S.roz[s]);
+    sample.sun_pending = sample.sky_pending = 0;
+    sample.sun_traced = S.sun_traced[s] != 0;
+    sample.sun = {S.sun_r[s], S.sun_g[s], S.sun_b[s]};
+    if (sample.sun_traced) {
+      for (std::size_t k = 0, at = s; k < light_spp_; ++k, at += S.stride) {
+        if (!S.sun_valid[at]) continue;  // no light from below: no ray, and nothing to add
+        const int32_t ray = emitOcclusion(origin, {S.sun_wx[at], S.sun_wy[at], S.sun_wz[at]}, kInfinity, false,
+                                          scratch, tally);
+        scratch.pending.push_back({{S.sun_fr[at], S.sun_fg[at], S.sun_fb[at]}, ray});
+        ++sample.sun_pending;
+      }
+    }
+    sample.sky_traced = S.sky_traced[s] != 0;
+    sample.sky = {S.sky_r[s], S.sky_g[s], S.sky_b[s]};
+    if (sample.sky_traced) {
+      for (std::size_t k = 0, at = s; k < ao_spp_; ++k, at += S.stride) {
+        if (!S.sky_valid[at]) continue;  // below the real surface: blocked by it
+        const int32_t ray = emitOcclusion(origin, {S.sky_wx[at], S.sky_wy[at], S.sky_wz[at]}, S.sky_t_far[at], true,
+                                          scratch, tally);
+        scratch.pending.push_back({{S.sky_lr[at], S.sky_lg[at], S.sky_lb[at]}, ray});
+        ++sample.sky_pending;
+      }
     }
   }
 
@@ -494,68 +545,68 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   }
 }
 
-bool Integrator::surfaceOf(const CameraFrame& camera, const TileScratch::CameraSample& c, const RTCRayHit* rh,
-                           const CameraLanes& lanes, std::size_t j, Surface& s, ObjectId& id) const {
-  const bool character_hit = rh && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
-  if (!character_hit && c.t_ground == kInfinity) return false;
-  const float t = rh ? rh->ray.tfar : c.t_ground;
-  const glm::vec3& dir = c.dir;
-  s.p = c.origin + t * dir;
-  s.wo = -dir;
-  if (!character_hit) {
-    float cos_view;
-    if (terrain_) {
-      // On the heightfield mesh as hit; shaded with the terrain's own (smooth, upward) normal, which
-      // is also the geometric one the secondary rays leave along (they meet only the characters).
-      // Never flipped toward the camera: at a hill's grazing far side a ray can meet a facet whose
-      // smooth normal already faces away, and flipping it there left black specks on the horizon.
-      const glm::vec3 n(terrain_->normal(double(s.p.x), double(s.p.z)));
-      s.ng = s.n = n;
-      cos_view = std::max(std::abs(glm::dot(n, dir)), 0.02f);
-    } else {
-      // The plane's surface came from the lanes (groundLanes: the same expressions as below).
-      s.p.y = 0.0f;  // exactly on the plane; the offset below then lifts it the same everywhere
-      s.ng = s.n = glm::vec3(0.0f, dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
-      s.albedo = {lanes.albedo_r[j], lanes.albedo_g[j], lanes.albedo_b[j]};
-      s.specular = 0.0f;
-      s.haze = lanes.haze[j];
-      s.on_ground = true;
-      id = ObjectId::Ground;
-      return true;
-    }
+void Integrator::gatherSurface(const CameraFrame& camera, TileScratch::CameraSample& c, const RTCRayHit* rh,
+                               const CameraLanes& lanes, std::size_t j, SurfaceLanes& S, std::size_t m) const {
+  S.dx[m] = c.dir.x, S.dy[m] = c.dir.y, S.dz[m] = c.dir.z;
+  if (rh) {
+    // A character: the hit and its triangle's vertices, for hitSurfaceLanes.
+    const float t = rh->ray.tfar;
+    const ShadingMesh& mesh = *meshes_[rh->hit.geomID];
+    const uint32_t* tri = &mesh.indices[size_t(rh->hit.primID) * 3];
+    S.character[m] = -1;
+    S.on_ground[m] = 0;
+    S.ox[m] = c.origin.x, S.oy[m] = c.origin.y, S.oz[m] = c.origin.z, S.t[m] = t;
+    S.gx[m] = rh->hit.Ng_x, S.gy[m] = rh->hit.Ng_y, S.gz[m] = rh->hit.Ng_z;
+    S.u[m] = rh->hit.u, S.v[m] = rh->hit.v;
+    const glm::vec3 &n0 = mesh.normals[tri[0]], &n1 = mesh.normals[tri[1]], &n2 = mesh.normals[tri[2]];
+    S.n0x[m] = n0.x, S.n0y[m] = n0.y, S.n0z[m] = n0.z, S.n1x[m] = n1.x, S.n1y[m] = n1.y, S.n1z[m] = n1.z;
+    S.n2x[m] = n2.x, S.n2y[m] = n2.y, S.n2z[m] = n2.z;
+    const glm::vec3 &c0 = mesh.colors[tri[0]], &c1 = mesh.colors[tri[1]], &c2 = mesh.colors[tri[2]];
+    S.c0r[m] = c0.x, S.c0g[m] = c0.y, S.c0b[m] = c0.z, S.c1r[m] = c1.x, S.c1g[m] = c1.y, S.c1b[m] = c1.z;
+    S.c2r[m] = c2.x, S.c2g[m] = c2.y, S.c2b[m] = c2.z;
+    // The ground under the hit (its downward sky rays stop just above it).
+    const glm::vec3 p = c.origin + t * c.dir;
+    S.ground_y[m] = terrain_ ? float(terrain_->height(double(p.x), double(p.z))) : 0.0f;
+    c.id = mesh.id;
+    c.haze = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
+    return;
+  }
+  S.character[m] = 0;
+  S.on_ground[m] = -1;
+  S.ground_y[m] = 0.0f;
+  S.specular[m] = 0.0f;  // the ground is matte
+  c.id = ObjectId::Ground;
+  const float t = c.t_ground;
+  glm::vec3 p = c.origin + t * c.dir;
+  glm::vec3 n;
+  if (!terrain_) {
+    // The plane's surface came from the lanes (groundLanes). The point is exactly on the plane, so
+    // the rays' offset lifts it the same everywhere.
+    p.y = 0.0f;
+    n = glm::vec3(0.0f, c.dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
+    S.ar[m] = lanes.albedo_r[j], S.ag[m] = lanes.albedo_g[j], S.ab[m] = lanes.albedo_b[j];
+    S.depth[m] = lanes.depth[j];
+    c.haze = lanes.haze[j];
+  } else {
+    // On the heightfield mesh as hit; shaded with the terrain's own (smooth, upward) normal, which
+    // is also the geometric one the secondary rays leave along (they meet only the characters).
+    // Never flipped toward the camera: at a hill's grazing far side a ray can meet a facet whose
+    // smooth normal already faces away, and flipping it there left black specks on the horizon.
+    n = glm::vec3(terrain_->normal(double(p.x), double(p.z)));
+    const float cos_view = std::max(std::abs(glm::dot(n, c.dir)), 0.02f);
     // The sample's footprint on the ground: a pixel's width at this distance, stretched by the
     // grazing angle (isotropically, which blurs a little more than needed across the view).
     const float width = camera.pixelFootprintF(t) / cos_view / settings_.ground_square_cm;
-    const float odd = filteredChecker(s.p.x / settings_.ground_square_cm, s.p.z / settings_.ground_square_cm, width);
-    s.albedo = glm::mix(settings_.ground_color_a, settings_.ground_color_b, odd);
-    s.specular = 0.0f;
-    s.haze = camera.perspective()
+    const float odd = filteredChecker(p.x / settings_.ground_square_cm, p.z / settings_.ground_square_cm, width);
+    const glm::vec3 albedo = glm::mix(settings_.ground_color_a, settings_.ground_color_b, odd);
+    S.ar[m] = albedo.x, S.ag[m] = albedo.y, S.ab[m] = albedo.z;
+    S.depth[m] = camera.viewDepthF(p);
+    c.haze = camera.perspective()
                  ? AerialPerspective::perspective(t, settings_.haze.visibility_cm)
                  : AerialPerspective::orthographic(t - camera.targetDistanceF(), settings_.haze.ortho_depth_cm);
-    s.on_ground = true;
-    id = ObjectId::Ground;
-    return true;
   }
-  const ShadingMesh& mesh = *meshes_[rh->hit.geomID];
-  const uint32_t* tri = &mesh.indices[size_t(rh->hit.primID) * 3];
-  const float b1 = rh->hit.u, b2 = rh->hit.v, b0 = 1.0f - b1 - b2;
-  s.ng = glm::normalize(glm::vec3(rh->hit.Ng_x, rh->hit.Ng_y, rh->hit.Ng_z));
-  if (glm::dot(s.ng, dir) > 0.0f) s.ng = -s.ng;
-  glm::vec3 n = b0 * mesh.normals[tri[0]] + b1 * mesh.normals[tri[1]] + b2 * mesh.normals[tri[2]];
-  const float len = glm::length(n);
-  n = len > 1e-12f ? n / len : s.ng;
-  if (glm::dot(n, s.ng) < 0.0f) n = -n;  // seeing the back of the surface
-  // Interpolated normals can face away from the camera at silhouettes; tilt them just enough
-  // toward the viewer so the edge does not turn black.
-  const float facing = glm::dot(n, s.wo);
-  if (facing < 0.01f) n = glm::normalize(n + (0.01f - facing) * s.wo);
-  s.n = n;
-  s.albedo = b0 * mesh.colors[tri[0]] + b1 * mesh.colors[tri[1]] + b2 * mesh.colors[tri[2]];
-  s.specular = settings_.specular;
-  s.haze = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
-  s.on_ground = false;
-  id = mesh.id;
-  return true;
+  S.px[m] = p.x, S.py[m] = p.y, S.pz[m] = p.z;
+  S.ngx[m] = S.nx[m] = n.x, S.ngy[m] = S.ny[m] = n.y, S.ngz[m] = S.nz[m] = n.z;
 }
 
 float Integrator::visibleDistance(const CameraFrame& camera) const {
@@ -569,74 +620,9 @@ int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& dire
   ++tally.rays;
   if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, direction, t_far));
   // Queued for the box test in lanes (pass 3b), which sends it on to its stream or not.
+  scratch.occluder_is_sky[scratch.occluders.size] = sky;
   scratch.occluders.push(origin, direction, t_far);
-  scratch.occluder_is_sky.push_back(sky);
   return int32_t(scratch.occluders.size - 1);
-}
-
-void Integrator::emitShading(const Surface& s, const Stratified2D& sun_points, const Stratified2D& sky_points,
-                             uint32_t sample, TileScratch::CameraSample& c, TileScratch& scratch,
-                             RayTally& tally) const {
-  // Secondary rays start off the surface along the geometric normal (not the shading normal,
-  // which can point into neighbouring triangles): no acne, and contacts stay tight.
-  const glm::vec3 origin = s.p + s.ng * originOffset(s.p);
-  const glm::vec3 diffuse = s.albedo * (1.0f - s.specular);
-  c.diffuse = diffuse;
-
-  // BRDF times cosine for light arriving from wi (0 from below the surface).
-  auto reflected = [&](const glm::vec3& wi) {
-    const float cos_n = glm::dot(s.n, wi);
-    if (cos_n <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) return glm::vec3(0.0f);
-    glm::vec3 f = diffuse;
-    if (s.specular > 0.0f) {
-      const float cos_h = std::max(0.0f, glm::dot(s.n, glm::normalize(wi + s.wo)));
-      f += glm::vec3(s.specular * blinn_norm_ * std::pow(cos_h, settings_.shininess));
-    }
-    return f * cos_n;
-  };
-
-  // Sun: shadow rays spread over the sun's disc, stratified over all of the pixel's sun rays. Where
-  // no ray of the cone can reach the characters the sun is evaluated once along its axis: over a disc
-  // of a few degrees the cosine barely changes, and the open ground gets no shadow noise at all.
-  c.sun_pending = 0;
-  c.sun_traced = s.on_ground ? groundSunMayBeBlocked(origin) : sunMayBeBlocked(origin);
-  if (!c.sun_traced) {
-    c.sun = reflected(sun_frame_.z) * sun_radiance_;
-  } else {
-    for (uint32_t k = 0; k < light_spp_; ++k) {
-      const glm::vec3 wi = sampleCone(sun_frame_, sun_cos_max_, sun_points[sample * light_spp_ + k]);
-      const glm::vec3 f = reflected(wi);
-      if (f == glm::vec3(0.0f)) continue;  // no light from below: no ray, and nothing to add
-      const int32_t ray = emitOcclusion(origin, wi, kInfinity, false, scratch, tally);
-      scratch.pending.push_back({f, ray});
-      ++c.sun_pending;
-    }
-  }
-
-  // Sky: ambient occlusion against the gradient sky. Rays heading down from a character stop just
-  // short of the ground: if nothing else is in the way they see the sunlit ground's bounce.
-  // Open ground farther than ao_distance from the characters sees the whole sky: use its exact
-  // cosine-weighted mean instead of rays.
-  c.sky_pending = 0;
-  c.sky_traced = !(s.on_ground && s.ng.y > 0.0f && distanceToCharacters(origin) > settings_.ao_distance_cm);
-  if (!c.sky_traced) {
-    c.sky = diffuse * settings_.sky.upwardIrradianceOverPi();
-    return;
-  }
-  const Frame around = Frame::around(s.n);
-  // How high the surface is above the ground under it (on the plane: its height).
-  const float above_ground =
-      terrain_ && !s.on_ground ? origin.y - float(terrain_->height(double(origin.x), double(origin.z))) : origin.y;
-  for (uint32_t k = 0; k < ao_spp_; ++k) {
-    const glm::vec3 wi = sampleCosineHemisphere(around, sky_points[sample * ao_spp_ + k]);
-    if (!(glm::dot(s.ng, wi) > 0.0f)) continue;  // below the real surface: blocked by it
-    const bool toward_ground = !s.on_ground && wi.y < 0.0f;
-    float t_far = settings_.ao_distance_cm;
-    if (toward_ground) t_far = std::min(t_far, 0.999f * above_ground / -wi.y);
-    const int32_t ray = emitOcclusion(origin, wi, t_far, true, scratch, tally);
-    scratch.pending.push_back({toward_ground ? ground_bounce_ : settings_.sky.radiance(wi), ray});
-    ++c.sky_pending;
-  }
 }
 
 }  // namespace stirrup::render

@@ -18,6 +18,7 @@
 #include "render/lights.h"
 #include "render/renderer.h"
 #include "render/sample_lanes.h"
+#include "render/shading_lanes.h"
 #include "render/sampler.h"
 #include "rig/motion/terrain.h"
 
@@ -58,6 +59,7 @@ float filteredChecker(float s, float t, float width);
 // then reused, so tracing allocates nothing per pixel or per tile.
 struct TileScratch {
   struct PixelState;
+  struct LightSequences;
   struct CameraSample;
   struct PendingRay;
   TileScratch();
@@ -65,13 +67,17 @@ struct TileScratch {
   TileScratch(TileScratch&&) noexcept;
   TileScratch& operator=(TileScratch&&) noexcept;
   std::vector<PixelState> pixels;
+  std::vector<LightSequences> lights;  // the sun and sky sequences of the pixels that need them
   std::vector<CameraSample> samples;
   std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
   std::vector<RTCRayHit> ground_rays;  // uneven ground: every camera sample against the heightfield
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
+  StratifiedLanes pixel_points;        // the samples' sequences, for their points in lanes
+  StratifiedLanes sun_points, sky_points;  // the surfaces' sun and sky sequences
   CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
+  SurfaceLanes surfaces;               // the surfaces its samples see, for the shading kernels
   RayLanes occluders;                  // its shadow and sky rays, for the box test
   std::vector<uint8_t> occluder_is_sky;  // per occlusion ray: the sky stream, else the sun's
   std::vector<int32_t> occluder_ray;   // per occlusion ray: its index in its stream, or -1 (not traced)
@@ -96,6 +102,9 @@ class Integrator {
   void renderTile(const CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
                   RayTally& tally, PixelResult* out) const;
 
+  // What the SIMD kernels read (render/sample_lanes.h, render/shading_lanes.h), for this frame's camera.
+  LaneConstants laneConstants(const CameraFrame& camera) const;
+
   // Whether any ray of the sun's cone from `origin` can meet the characters' box (false: the sun is
   // certainly unblocked there and needs no shadow rays).
   bool sunMayBeBlocked(const glm::vec3& origin) const;
@@ -106,20 +115,13 @@ class Integrator {
   bool groundSunRegionExcludes(const glm::vec3& origin) const;
 
  private:
-  struct Surface;
   // Traces the camera rays of pixels [first, first + count) of the tile and shades them into `out`.
   void renderBatch(const CameraFrame& camera, const LaneConstants& constants, int x0, int tile_width, int y0, int first,
                    int count, int frame, TileScratch& scratch, RayTally& tally, PixelResult* out) const;
-  // What the SIMD kernels read, for this frame's camera.
-  LaneConstants laneConstants(const CameraFrame& camera) const;
-  // The surface a camera sample sees (false: the sky).
-  // The flat ground's surface is read from the lanes (sample j of the batch).
-  bool surfaceOf(const CameraFrame& camera, const TileScratch::CameraSample& c, const RTCRayHit* hit,
-                 const CameraLanes& lanes, std::size_t j, Surface& s, ObjectId& id) const;
-  // Direct light that needs no rays, and the shadow and sky rays the rest needs, appended to the
-  // scratch's pending list and streams.
-  void emitShading(const Surface& s, const Stratified2D& sun_points, const Stratified2D& sky_points, uint32_t sample,
-                   TileScratch::CameraSample& c, TileScratch& scratch, RayTally& tally) const;
+  // A sample's surface into the surface lanes at m: a character's hit (rh) and its triangle's
+  // vertices, or the ground's surface (the plane's from the lanes at sample j, or the terrain's).
+  void gatherSurface(const CameraFrame& camera, TileScratch::CameraSample& c, const RTCRayHit* rh,
+                     const CameraLanes& lanes, std::size_t j, SurfaceLanes& surfaces, std::size_t m) const;
   // Queues an occlusion ray (for the sky stream or the sun's) for the box test; returns its index among
   // the batch's occlusion rays, or -1 when t_far leaves no ray.
   int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
@@ -127,7 +129,6 @@ class Integrator {
   // How far along a camera ray the ground is seen before the haze ends it.
   float visibleDistance(const CameraFrame& camera) const;
   void setGroundSunRegion();
-  float distanceToCharacters(const glm::vec3& p) const;
 
   const RenderSettings& settings_;
   RTCScene characters_;

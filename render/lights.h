@@ -25,30 +25,59 @@ struct Frame {
   glm::vec3 toWorld(const glm::vec3& v) const { return v.x * x + v.y * y + v.z * z; }
 };
 
+// sin and cos of x in [-pi/4, pi/4] as polynomials (the minimax coefficients of Cephes' sinf and
+// cosf, Moshier 1989; error under 2 ulp there), in plain multiplies and adds in this order: the SIMD
+// lanes (render/lane_math-inl.h) evaluate the same operations, so every instruction set gets the
+// same bits, which std::sin and std::cos do not promise.
+inline void sinCosQuarterPi(float x, float& s, float& c) {
+  const float z = x * x;
+  s = ((-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f) * z * x + x;
+  c = ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z - 0.5f * z + 1.0f;
+}
+
+// cos and sin of 2 pi u for u in [0, 1): reduced to the nearest quarter turn q (u - q/4 is exact),
+// then rotated by q quarter turns.
+inline glm::vec2 unitCircle(float u) {
+  const float q = std::floor(u * 4.0f + 0.5f);
+  float s, c;
+  sinCosQuarterPi((u - q * 0.25f) * (2.0f * std::numbers::pi_v<float>), s, c);
+  switch (int(q) & 3) {
+    case 1: return {-s, c};
+    case 2: return {-c, -s};
+    case 3: return {s, -c};
+    default: return {c, s};
+  }
+}
+
+// x to a whole power n >= 0 by repeated squaring, in this order (the lanes do the same).
+inline float powWhole(float x, int n) {
+  float result = 1.0f;
+  for (float base = x; n > 0; n >>= 1, base *= base)
+    if (n & 1) result *= base;
+  return result;
+}
+
 // Uniform direction within the cone of half-angle acos(cos_max) around the frame's z axis: uniform
 // in solid angle, which is exact for a disc of constant radiance.
 inline glm::vec3 sampleCone(const Frame& axis, float cos_max, glm::vec2 u) {
   const float cos_t = 1.0f - u.x * (1.0f - cos_max);
   const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
-  const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
-  return axis.toWorld({sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t});
+  const glm::vec2 circle = unitCircle(u.y);
+  return axis.toWorld({sin_t * circle.x, sin_t * circle.y, cos_t});
 }
 
 // Cosine-weighted direction in the hemisphere around the frame's z axis (Malley's method over a
 // concentric disc mapping, which keeps the stratification of u). The pdf is cos / pi, so the mean
-// of L over these samples is the irradiance divided by pi.
+// of L over these samples is the irradiance divided by pi. The disc's angle is pi/4 (b/a), or
+// pi/2 - pi/4 (a/b) whose cosine and sine are the sine and cosine of pi/4 (a/b).
 inline glm::vec3 sampleCosineHemisphere(const Frame& around, glm::vec2 u) {
   const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
-  float r = 0.0f, phi = 0.0f;
-  if (a != 0.0f || b != 0.0f) {
-    constexpr float quarter_pi = std::numbers::pi_v<float> / 4.0f;
-    if (std::abs(a) > std::abs(b)) {
-      r = a, phi = quarter_pi * (b / a);
-    } else {
-      r = b, phi = 2.0f * quarter_pi - quarter_pi * (a / b);
-    }
-  }
-  const float dx = r * std::cos(phi), dy = r * std::sin(phi);
+  constexpr float quarter_pi = std::numbers::pi_v<float> / 4.0f;
+  const bool wide = std::abs(a) > std::abs(b);
+  const float r = wide ? a : b;
+  float s, c;
+  sinCosQuarterPi(r != 0.0f ? quarter_pi * ((wide ? b : a) / r) : 0.0f, s, c);
+  const float dx = r * (wide ? c : s), dy = r * (wide ? s : c);
   const float dz = std::sqrt(std::max(0.0f, 1.0f - dx * dx - dy * dy));
   return around.toWorld({dx, dy, dz});
 }

@@ -68,7 +68,7 @@ struct RenderSettings {
   // ground under it, without tracing (or waiting for) the whole scene for every sky ray.
   float ao_distance_cm = 300.0f;
   float specular = 0.04f;         // Blinn-Phong weight on the characters (the ground is matte)
-  float shininess = 48.0f;
+  int shininess = 48;              // a whole power: the lobe is the same bits on every SIMD target
 
   BvhUpdate bvh_update = BvhUpdate::Refit;  // built over the rest poses (MeshDesc::rest_positions)
   bool passes = true;  // also fill Image::depth, matte, normal and object_id

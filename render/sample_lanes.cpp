@@ -2,6 +2,7 @@
 // part compiled once: the dispatch tables and the entry points of sample_lanes.h.
 #include "render/sample_lanes.h"
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 
@@ -10,30 +11,11 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "render/lane_math-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace stirrup::render {
 namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-using DF = hn::ScalableTag<float>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using MF = hn::Mask<DF>;
-
-// Each function below is the scalar expression it names, operation for operation and in the same
-// order (no fused multiply-add anywhere), so every target rounds exactly as the scalar code does.
-
-VF Load(const std::vector<float>& v, size_t i) { return hn::LoadU(DF(), v.data() + i); }
-void Store(VF x, std::vector<float>& v, size_t i) { hn::StoreU(x, DF(), v.data() + i); }
-void StoreMask(MF m, std::vector<int32_t>& v, size_t i) {
-  const DI di;
-  hn::StoreU(hn::VecFromMask(di, hn::RebindMask(di, m)), di, v.data() + i);
-}
-MF LoadMask(const std::vector<int32_t>& v, size_t i) {
-  return hn::RebindMask(DF(), hn::MaskFromVec(hn::LoadU(DI(), v.data() + i)));
-}
-VF Splat(float x) { return hn::Set(DF(), x); }
-// x * (1 - a) + y * a: glm::mix.
-VF Mix(VF x, VF y, VF a) { return hn::Add(hn::Mul(x, hn::Sub(Splat(1.0f), a)), hn::Mul(y, a)); }
 
 // Inverse CDF of the tent filter of radius 1: warping stratified points through it keeps their
 // stratification and gives every sample the same weight, so no pixel reads another's samples.
@@ -173,7 +155,7 @@ void BoxTestLanes(const LaneConstants& k, CameraLanes& L) {
 
 void BoxTestRays(const LaneConstants& k, RayLanes& R) {
   BoxTestArrays(k, R.ox.data(), R.oy.data(), R.oz.data(), R.dx.data(), R.dy.data(), R.dz.data(), R.t_far.data(),
-                R.may_hit.data(), R.ox.size());
+                R.may_hit.data(), (R.size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad);
 }
 
 // AerialPerspective::perspective and ::orthographic.
@@ -277,6 +259,120 @@ void SkyLanes(const LaneConstants& k, CameraLanes& L) {
   }
 }
 
+using DU = hn::RebindToUnsigned<DF>;
+using VU = hn::Vec<DU>;
+using DU64 = hn::Repartition<uint64_t, DF>;
+using VU64 = hn::Vec<DU64>;
+
+// permuteIndex (render/sampler.h), without its loop's exit: one round of the hashed bijection of
+// [0, w] (Kensler 2013, "Correlated Multi-Jittered Sampling").
+VU PermuteRound(VU i, VU seed, VU w) {
+  const DU du;
+  auto keep = [&](VU x) { return hn::And(x, w); };
+  i = hn::Xor(i, seed);
+  i = hn::Mul(i, hn::Set(du, 0xe170893du));
+  i = hn::Xor(i, hn::ShiftRight<16>(seed));
+  i = hn::Xor(i, hn::ShiftRight<4>(keep(i)));
+  i = hn::Xor(i, hn::ShiftRight<8>(seed));
+  i = hn::Mul(i, hn::Set(du, 0x0929eb3fu));
+  i = hn::Xor(i, hn::ShiftRight<23>(seed));
+  i = hn::Xor(i, hn::ShiftRight<1>(keep(i)));
+  i = hn::Mul(i, hn::Or(hn::Set(du, 1u), hn::ShiftRight<27>(seed)));
+  i = hn::Mul(i, hn::Set(du, 0x6935fa69u));
+  i = hn::Xor(i, hn::ShiftRight<11>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0x74dcb303u));
+  i = hn::Xor(i, hn::ShiftRight<2>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0x9e501cc3u));
+  i = hn::Xor(i, hn::ShiftRight<2>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0xc860a3dfu));
+  i = keep(i);
+  return hn::Xor(i, hn::ShiftRight<5>(i));
+}
+
+// permuteIndex: rounds until every lane is below count (cycle walking; lanes already there keep
+// their value), then (i + offset) mod count. Counts are far below 2^31, so signed compares serve.
+VU Permute(VU i, VU seed, VU w, VU count, VU offset) {
+  const DU du;
+  const DI di;
+  auto atOrAbove = [&](VU x) { return hn::RebindMask(du, hn::Not(hn::Lt(hn::BitCast(di, x), hn::BitCast(di, count)))); };
+  i = PermuteRound(i, seed, w);
+  for (auto pending = atOrAbove(i); !hn::AllFalse(du, pending); pending = atOrAbove(i))
+    i = hn::IfThenElse(pending, PermuteRound(i, seed, w), i);
+  const VU r = hn::Add(i, offset);
+  return hn::IfThenElse(atOrAbove(r), hn::Sub(r, count), r);
+}
+
+// a * c modulo 2^64 from 32-bit products: lo(a) lo(c) + (hi(a) lo(c) + lo(a) hi(c)) 2^32.
+VU64 Mul64(VU64 a, uint64_t c) {
+  const DU64 d64;
+  const hn::Repartition<uint32_t, DU64> d32;
+  const auto c_lo = hn::BitCast(d32, hn::Set(d64, c & 0xffffffffu)), c_hi = hn::BitCast(d32, hn::Set(d64, c >> 32));
+  const auto a32 = hn::BitCast(d32, a);
+  const VU64 low = hn::MulEven(a32, c_lo);
+  const VU64 cross = hn::Add(hn::MulEven(hn::BitCast(d32, hn::ShiftRight<32>(a)), c_lo), hn::MulEven(a32, c_hi));
+  return hn::Add(low, hn::ShiftLeft<32>(cross));
+}
+
+// mixBits (render/sampler.h).
+VU64 MixBits(VU64 v) {
+  v = hn::Xor(v, hn::ShiftRight<33>(v));
+  v = Mul64(v, 0xff51afd7ed558ccdull);
+  v = hn::Xor(v, hn::ShiftRight<33>(v));
+  v = Mul64(v, 0xc4ceb9fe1a85ec53ull);
+  return hn::Xor(v, hn::ShiftRight<33>(v));
+}
+
+// Stratified2D::operator[], lane by lane.
+void StratifiedPointLanes(const Stratified2D::Layout& L, const StratifiedLanes& P, size_t first, size_t n, float* u_out,
+                          float* v_out) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const DU64 d64;
+  const hn::Half<DU> dh;
+  const size_t lanes = hn::Lanes(df), half = hn::Lanes(d64);
+  const VU count = hn::Set(du, L.count), w = hn::Set(du, L.mask);
+  const VF below_one = Splat(0x1.fffffep-1f);
+  auto toFloat = [&](VU x) { return hn::ConvertTo(df, hn::BitCast(di, x)); };  // x < 2^24: exact
+  for (size_t k = first; k < first + n; k += lanes) {
+    // Below count, as every point a caller asks for is; the padding after the last point may hold
+    // anything, and cycle walking ends only from an index below count.
+    const VU index = hn::Min(hn::LoadU(du, P.index.data() + k), hn::Set(du, L.count > 0 ? L.count - 1 : 0u));
+    VU cell = hn::Zero(du);
+    if (L.count > 1)
+      cell = Permute(index, hn::LoadU(du, P.seed.data() + k), w, count, hn::LoadU(du, P.offset.data() + k));
+    // The jitter: split2D(hashSampleOf(pixel_hash, index)), in 64-bit lanes, half a vector at a time.
+    auto jitterBits = [&](VU64 index64, size_t at) {
+      return MixBits(hn::Xor(hn::LoadU(d64, P.pixel_hash.data() + at), Mul64(index64, 0xd1b54a32d192ed03ull)));
+    };
+    const VU64 h_lo = jitterBits(hn::PromoteTo(d64, hn::LowerHalf(dh, index)), k);
+    const VU64 h_hi = jitterBits(hn::PromoteTo(d64, hn::UpperHalf(dh, index)), k + half);
+    auto narrow = [&](VU64 lo, VU64 hi) { return hn::ConcatEven(du, hn::BitCast(du, hi), hn::BitCast(du, lo)); };
+    const VU64 mask24 = hn::Set(d64, 0xffffffull);
+    const VF jx = hn::Mul(toFloat(narrow(hn::ShiftRight<40>(h_lo), hn::ShiftRight<40>(h_hi))), Splat(0x1p-24f));
+    const VF jy = hn::Mul(toFloat(narrow(hn::And(hn::ShiftRight<8>(h_lo), mask24), hn::And(hn::ShiftRight<8>(h_hi), mask24))),
+                          Splat(0x1p-24f));
+    VF u, v;
+    if (L.side != 0) {
+      VU row;
+      if (L.side_shift >= 0) {
+        row = hn::ShiftRightSame(cell, L.side_shift);
+      } else {  // cell / side in floats: exact for counts below 2^24
+        row = hn::BitCast(du, hn::ConvertTo(di, hn::Floor(hn::Div(toFloat(cell), Splat(float(L.side))))));
+      }
+      const VU col = hn::Sub(cell, hn::Mul(row, hn::Set(du, L.side)));
+      u = hn::Mul(hn::Add(toFloat(col), jx), Splat(L.inv_side));
+      v = hn::Mul(hn::Add(toFloat(row), jy), Splat(L.inv_side));
+    } else {
+      const VU row = Permute(cell, hn::LoadU(du, P.row_seed.data() + k), w, count, hn::LoadU(du, P.row_offset.data() + k));
+      u = hn::Mul(hn::Add(toFloat(cell), jx), Splat(L.inv_count));
+      v = hn::Mul(hn::Add(toFloat(row), jy), Splat(L.inv_count));
+    }
+    hn::StoreU(hn::Min(u, below_one), df, u_out + k);
+    hn::StoreU(hn::Min(v, below_one), df, v_out + k);
+  }
+}
+
 // Which target this copy was compiled for.
 int64_t CompiledTarget() { return HWY_TARGET; }
 
@@ -294,6 +390,17 @@ HWY_EXPORT(GroundLanes);
 HWY_EXPORT(SkyLanes);
 HWY_EXPORT(CheckerLanes);
 HWY_EXPORT(CompiledTarget);
+HWY_EXPORT(StratifiedPointLanes);
+
+void StratifiedLanes::resize(std::size_t n) {
+  pixel_hash.resize(n, 0);
+  for (auto* v : {&index, &seed, &row_seed, &offset, &row_offset}) v->resize(n, 0u);
+}
+
+void stratifiedLanes(const Stratified2D::Layout& layout, const StratifiedLanes& points, std::size_t first,
+                     std::size_t n, float* u, float* v) {
+  HWY_DYNAMIC_DISPATCH(StratifiedPointLanes)(layout, points, first, n, u, v);
+}
 
 void CameraLanes::resize(std::size_t n) {
   size = n;
@@ -311,22 +418,16 @@ void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(BoxTestLanes)(k, lanes); }
 void boxTestLanes(const LaneConstants& k, RayLanes& rays) { HWY_DYNAMIC_DISPATCH(BoxTestRays)(k, rays); }
 
-void RayLanes::clear() {
+void RayLanes::start(std::size_t capacity) {
   size = 0;
-  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->clear();
-}
-
-void RayLanes::push(const glm::vec3& origin, const glm::vec3& direction, float t_far_) {
-  ox.push_back(origin.x), oy.push_back(origin.y), oz.push_back(origin.z);
-  dx.push_back(direction.x), dy.push_back(direction.y), dz.push_back(direction.z);
-  t_far.push_back(t_far_);
-  ++size;
+  const std::size_t padded = (capacity + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->resize(padded);
+  may_hit.resize(padded);
 }
 
 void RayLanes::pad() {
   const std::size_t padded = (size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
-  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->resize(padded, 0.0f);  // t_far 0: no ray
-  may_hit.resize(padded);
+  std::fill(t_far.begin() + std::ptrdiff_t(size), t_far.begin() + std::ptrdiff_t(padded), 0.0f);  // no ray
 }
 void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundLanes)(k, lanes); }
 void skyLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(SkyLanes)(k, lanes); }

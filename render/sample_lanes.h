@@ -5,8 +5,9 @@
 // over all of them, a vector at a time: camera rays from the stratified points (tent filter, film to
 // ray), the analytic ground plane, the slab test against the characters' box, the ground's surface
 // (filtered checker, aerial perspective, view depth) with the whole light of open ground, and the sky
-// behind the samples that miss. What needs Embree or per-sample branching (hashing the sample
-// sequences, the characters' surfaces, sampling shadow and sky rays, the sums) stays scalar.
+// behind the samples that miss. The surfaces the samples see and the shadow and sky rays they need are
+// the kernels of render/shading_lanes.h. What needs Embree or per-sample branching (hashing the sample
+// sequences, gathering a hit triangle's vertices, queueing rays, the sums) stays scalar.
 //
 // Determinism: every kernel uses only operations IEEE 754 rounds exactly (add, subtract, multiply,
 // divide, square root, min, max, floor, compare, select), in the order the scalar expressions give, and
@@ -20,6 +21,8 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+
+#include "render/sampler.h"
 
 namespace stirrup::render {
 
@@ -50,15 +53,33 @@ struct CameraLanes {
   std::vector<float> sky_r, sky_g, sky_b;
 };
 
-// A batch's shadow and sky rays as arrays, for the box test: `t_far` is each ray's far end. pad()
-// fills the last vector with rays of t_far 0 (no ray), so the kernel needs no scalar tail.
+// A batch's shadow and sky rays as arrays, for the box test: `t_far` is each ray's far end. start()
+// makes room for as many rays as the batch can make (no reallocation while they are pushed); pad()
+// fills the rest of the last vector with rays of t_far 0 (no ray), so the kernel needs no scalar tail.
 struct RayLanes {
-  void clear();  // keeps the capacity
-  void push(const glm::vec3& origin, const glm::vec3& direction, float t_far);
+  void start(std::size_t capacity);  // keeps the allocation
+  void push(const glm::vec3& origin, const glm::vec3& direction, float t_far_) {
+    ox[size] = origin.x, oy[size] = origin.y, oz[size] = origin.z;
+    dx[size] = direction.x, dy[size] = direction.y, dz[size] = direction.z;
+    t_far[size] = t_far_;
+    ++size;
+  }
   void pad();
   std::size_t size = 0;
   std::vector<float> ox, oy, oz, dx, dy, dz, t_far;
   std::vector<int32_t> may_hit;
+};
+
+// Points of Stratified2D sequences that share a Layout, as arrays: point k is point `index[k]` of the
+// sequence whose pixel part (Stratified2D::pixelPart) is at k. Sized by the caller (resize), padded.
+struct StratifiedLanes {
+  void resize(std::size_t n);  // keeps the capacity; n a whole number of CameraLanes::kPad
+  std::vector<uint64_t> pixel_hash;
+  std::vector<uint32_t> index, seed, row_seed, offset, row_offset;
+  void set(std::size_t k, const Stratified2D::PixelPart& part, uint32_t i) {
+    pixel_hash[k] = part.pixel_hash, seed[k] = part.seed, row_seed[k] = part.row_seed, offset[k] = part.offset;
+    row_offset[k] = part.row_offset, index[k] = i;
+  }
 };
 
 // What the kernels read of the camera, the ground, the lights and the characters' box: plain numbers,
@@ -90,6 +111,15 @@ struct LaneConstants {
   // The characters' box (lower > upper: empty).
   glm::vec3 box_lower{0.0f}, box_upper{0.0f};
   bool box_empty = true;
+  // Shading (render/shading_lanes.h): the sun's frame (its axis is the frame's z) and cone, the
+  // characters' Blinn-Phong lobe, the lit ground's radiance seen by downward sky rays, and the shadow
+  // and sky rays per camera sample.
+  glm::vec3 sun_frame_x{0.0f}, sun_frame_y{0.0f}, sun_axis{0.0f, 1.0f, 0.0f};
+  float sun_cos_max = 1.0f, sun_tan = 0.0f;
+  float specular = 0.0f, blinn_norm = 1.0f;
+  int shininess = 1;
+  glm::vec3 ground_bounce{0.0f};
+  int light_samples = 1, ao_samples = 1;
 };
 
 // Camera rays of samples [0, size): ox..dz. With `flat_ground` also the plane's t_ground and the box
@@ -104,6 +134,13 @@ void boxTestLanes(const LaneConstants& k, RayLanes& rays);
 void groundLanes(const LaneConstants& k, CameraLanes& lanes);
 // The background radiance of every sample (the sky gradient, or the orthographic sky).
 void skyLanes(const LaneConstants& k, CameraLanes& lanes);
+
+// Points [first, first + n) of `points` (n a whole number of CameraLanes::kPad) into u and v (indexed
+// as the points): Stratified2D::operator[] bit for bit. The sequence hashing is integer arithmetic
+// (32-bit products in the permutation, 64-bit products built from 32-bit ones in the hash), so every
+// target gives the same points.
+void stratifiedLanes(const Stratified2D::Layout& layout, const StratifiedLanes& points, std::size_t first,
+                     std::size_t n, float* u, float* v);
 
 // The filtered checker of integrator.h in lanes, for n points (the test compares the two).
 void filteredCheckerLanes(const float* s, const float* t, const float* width, float* out, std::size_t n);

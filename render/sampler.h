@@ -178,6 +178,14 @@ class Stratified2D {
         inv_side_(layout.inv_side),
         side_shift_(layout.side_shift) {}
 
+  // What a sequence holds for its pixel, for the SIMD lanes (render/sample_lanes.h: stratifiedLanes
+  // computes operator[] from these and the Layout, bit for bit).
+  struct PixelPart {
+    uint64_t pixel_hash;
+    uint32_t seed, row_seed, offset, row_offset;
+  };
+  PixelPart pixelPart() const { return {pixel_hash_, seed_, row_seed_, offset_, row_offset_}; }
+
   glm::vec2 operator[](uint32_t index) const {
     const uint32_t cell = permuteIndex(index, count_, seed_, mask_, offset_);
     const glm::vec2 j = PixelSampler::split2D(hashSampleOf(pixel_hash_, index));

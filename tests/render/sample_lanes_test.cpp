@@ -238,6 +238,35 @@ TEST(SampleLanes, EveryDispatchTargetGivesTheSameBits) {
   }
 }
 
+// The stratified points of many pixels' sequences at once, for square counts (a grid), powers of two
+// and others (Latin hypercubes), against Stratified2D on every target, bit for bit.
+TEST(SampleLanes, StratifiedPointsAreTheSequencesPointsOnEveryTarget) {
+  TargetPin restore;
+  for (const std::string& target : simdTargets()) {
+    pinSimdTarget(target);
+    for (uint32_t count : {1u, 2u, 3u, 4u, 5u, 9u, 16u, 17u, 36u, 64u, 100u, 256u}) {
+      const Stratified2D::Layout layout(count);
+      const std::size_t n = 4 * 16 * 9;  // whole vectors of every width
+      StratifiedLanes points;
+      points.resize(n);
+      std::vector<glm::vec2> expected(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const PixelSampler sampler(int(k % 37) - 5, int(k / 37) * 3, 7 + int(count));
+        const auto dim = SampleDimension(k % 3);
+        const Stratified2D sequence(sampler, layout, dim);
+        const uint32_t index = uint32_t(k * 7) % count;
+        points.set(k, sequence.pixelPart(), index);
+        expected[k] = sequence[index];
+      }
+      std::vector<float> u(n), v(n);
+      stratifiedLanes(layout, points, 0, n, u.data(), v.data());
+      int differing = 0;
+      for (std::size_t k = 0; k < n; ++k) differing += !(sameBits(u[k], expected[k].x) && sameBits(v[k], expected[k].y));
+      EXPECT_EQ(differing, 0) << target << ", count " << count;
+    }
+  }
+}
+
 TEST(SampleLanes, AnUnknownTargetIsRefusedByName) {
   TargetPin restore;
   try {
