@@ -43,6 +43,9 @@ struct CameraSpec {
   std::string view;
   double frame_margin = 0.12;        // view framing: fraction of the image kept free at each border
   bool treadmill = false;            // the horse moves in place: travel removed (turntables)
+  // A crowd scene (SceneSpec::pairs): the pair (index into pairs) the camera follows and a view frames,
+  // as a single-pair scene's camera follows its horse. -1: the whole crowd (its middle, every pair).
+  int follow_pair = -1;
   int hold_frame = 0;                // > 0: every frame shows the pose of this frame (held-pose turntable)
   // Not a scene field: set by the shot from its horse when it resolves the camera. The saddle's rest
   // place relative to the horse's rear pivot (its root joint), cm, world axes, so a camera following
@@ -85,7 +88,8 @@ struct SceneSpec {
   std::optional<ReferenceSpec> reference;
   // A crowd (issue 19; rig/motion/crowd.h): "crowd" generates the pairs, "riders" lists them; either
   // way `pairs` holds them, checked (no two horses meet at any frame). Empty: the one horse and rider
-  // of `clip`, as every scene before it.
+  // of `clip`, as every scene before it. A "crowd" without "frames" plays its lead's whole ride
+  // (rig::crowdFrames).
   std::optional<rig::CrowdSpec> crowd;
   std::vector<rig::PairSpec> pairs;
 };

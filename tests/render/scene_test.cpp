@@ -231,5 +231,39 @@ TEST(SceneCrowd, BadCrowdsAreOneLineErrors) {
             "scenes/x.json: riders: expected either \"crowd\" or \"riders\", not both");
 }
 
+// A crowd without "frames" plays its lead's whole ride: 1500 cm at 360 cm/s is 4.17 s, so at 24 fps
+// frames 1 (t = 0) to 101 (t = 4.167 s). Given frames are kept, and a riders list keeps the default.
+TEST(SceneCrowd, ACrowdPlaysItsLeadsRideUnlessFramesAreGiven) {
+  EXPECT_EQ(parseScene(nlohmann::json::parse(kCrowd), "scenes/x.json").frames, "1-101");
+  nlohmann::json given = nlohmann::json::parse(kCrowd);
+  given["frames"] = "1-20";
+  EXPECT_EQ(parseScene(given, "scenes/x.json").frames, "1-20");
+  EXPECT_EQ(parseScene(nlohmann::json::parse(R"({"riders": [{"points": [[0, 0], [1000, 0]], "speed": [[0, 300]]}]})"),
+                       "scenes/x.json")
+                .frames,
+            SceneSpec{}.frames);
+}
+
+// A camera's follow_pair names a pair of the crowd: out of range, negative, in a scene without a crowd,
+// or a crowd on a treadmill, it is a one-line error naming the camera's field.
+TEST(SceneCrowd, FollowPairMustNameAPairOfTheCrowd) {
+  nlohmann::json ok = nlohmann::json::parse(kCrowd);
+  ok["cameras"] = nlohmann::json::parse(R"([{"view": "side"}, {"name": "one", "view": "close", "follow_pair": 5}])");
+  const SceneSpec s = parseScene(ok, "scenes/x.json");
+  EXPECT_EQ(s.cameras[0].follow_pair, -1);
+  EXPECT_EQ(s.cameras[1].follow_pair, 5);
+  nlohmann::json bad = ok;
+  bad["cameras"][1]["follow_pair"] = 6;
+  EXPECT_EQ(errorOf(bad.dump()),
+            "scenes/x.json: cameras[1].follow_pair: expected a pair index from 0 to 5 (the crowd has 6 pairs), got 6");
+  bad["cameras"][1]["follow_pair"] = -1;
+  EXPECT_EQ(errorOf(bad.dump()), "scenes/x.json: cameras[1].follow_pair: expected a pair index >= 0");
+  EXPECT_EQ(errorOf(R"({"cameras": [{"view": "side", "follow_pair": 0}]})"),
+            "scenes/x.json: cameras[0].follow_pair: expected no follow_pair in a scene without a \"crowd\" or \"riders\"");
+  bad["cameras"][1]["follow_pair"] = 0;
+  bad["cameras"][1]["treadmill"] = true;
+  EXPECT_EQ(errorOf(bad.dump()), "scenes/x.json: cameras[1].treadmill: expected false in a crowd scene");
+}
+
 }  // namespace
 }  // namespace stirrup::render
