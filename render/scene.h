@@ -104,7 +104,8 @@ std::filesystem::path findSceneFile(const std::filesystem::path& file);
 SceneSpec parseScene(const nlohmann::json& json, const std::string& file);
 
 // The scene's clip, for its horse: a path clip turns the hooves about the horse's own rest places (a
-// glTF horse is read for them; the default horse's are built in).
+// glTF horse is read for them; the default horse's are built in). A crowd scene has no one clip: an
+// InputError (bake, clip, rig and the movie set's channel plot do not take a crowd yet).
 std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene);
 
 // The camera of the scene named `name` (or the first when empty); InputError if there is none.

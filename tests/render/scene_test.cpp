@@ -244,6 +244,19 @@ TEST(SceneCrowd, ACrowdPlaysItsLeadsRideUnlessFramesAreGiven) {
             SceneSpec{}.frames);
 }
 
+// A crowd scene has no one clip: the commands that read one (bake, clip, rig, the channel plot) get a
+// one-line error rather than the default trot nobody rides.
+TEST(SceneCrowd, ACrowdHasNoOneClip) {
+  try {
+    makeSceneClip(parseScene(nlohmann::json::parse(kCrowd), "scenes/x.json"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "scenes/x.json: crowd: expected a scene of one horse and rider here (a crowd is "
+                                     "drawn by `stirrup render` only, so far)");
+  }
+  EXPECT_NE(makeSceneClip(parseScene(nlohmann::json::object(), "scenes/x.json")), nullptr);
+}
+
 // A camera's follow_pair names a pair of the crowd: out of range, negative, in a scene without a crowd,
 // or a crowd on a treadmill, it is a one-line error naming the camera's field.
 TEST(SceneCrowd, FollowPairMustNameAPairOfTheCrowd) {
