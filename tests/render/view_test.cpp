@@ -227,6 +227,12 @@ TEST(CrowdViewFraming, ViewsWithoutAFollowedPairFrameTheWholeCrowd) {
         continue;
       }
       EXPECT_EQ(c.matte, 0) << name << " frame " << f << ": a horse or rider on the image border";
+      if (cam.projection == Camera::Projection::Orthographic && std::string(name) != "top") {
+        // Its film's lower edge stands above the ground (flat here), so no ray starts under it.
+        const glm::dvec3 fwd = glm::normalize(cam.target - cam.position);
+        const glm::dvec3 up = glm::cross(glm::normalize(glm::cross(fwd, cam.up)), fwd);
+        EXPECT_GT(cam.position.y - 0.5 * cam.ortho_height_cm * up.y, 0.0) << name << " frame " << f;
+      }
       for (int pair = 0; pair < shot.pairCount(); ++pair) {
         std::vector<glm::dvec3> horse, rider;
         shot.pairPoints(pair, f, 7, horse, rider);
