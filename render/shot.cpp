@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-
 #include <map>
 
 #include <tbb/parallel_for.h>
@@ -58,8 +57,9 @@ MeshDesc meshOf(ObjectId id, const rig::Character& c) {
 
 }  // namespace
 
-// One pair of a crowd: its characters, clip and profiles, its meshes' handles and skinning buffers.
+// A crowd scene's pairs, the pair its camera follows, and the threads they are made, baked and skinned on.
 struct Shot::Crowd {
+  // One pair: its characters, clip and profiles, its meshes' handles and skinning buffers.
   struct Pair {
     rig::Character horse, rider;
     std::unique_ptr<rig::Clip> clip;           // rig::makePairClip
