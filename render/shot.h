@@ -63,6 +63,8 @@ class Shot {
   struct Crowd;  // a crowd scene's pairs (shot.cpp)
   void setUpCrowd(int threads);
   void renderCrowdMeshes(int frame);
+  // The 8 corners of each pair's horse's and rider's bounding boxes at a frame, as shown.
+  void crowdCorners(int frame, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
   // The horse whose seat a camera following the rider takes, and the profile the camera evaluates her
   // with: the scene's, or in a crowd the followed pair's (the first pair's for the crowd's middle).
   const rig::Character& cameraHorse() const;
