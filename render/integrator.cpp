@@ -240,7 +240,8 @@ LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
   k.sun_y = sun_frame_.z.y;
   k.sun_radiance = sun_radiance_;
   k.sky_irradiance = settings_.sky.upwardIrradianceOverPi();
-  k.sun_region = ground_sun_region_;
+  k.sun_region = ground_sun_region_ && settings_.open_ground_shortcuts;
+  k.open_ground_shortcuts = settings_.open_ground_shortcuts;
   k.ground_floor = ground_floor_;
   k.sun_lower_x = ground_sun_lower_.x, k.sun_lower_z = ground_sun_lower_.y;
   k.sun_upper_x = ground_sun_upper_.x, k.sun_upper_z = ground_sun_upper_.y;

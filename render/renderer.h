@@ -71,6 +71,13 @@ struct RenderSettings {
   int shininess = 48;              // a whole power: the lobe is the same bits on every SIMD target
 
   BvhUpdate bvh_update = BvhUpdate::Refit;  // built over the rest poses (MeshDesc::rest_positions)
+  // Open ground whose sun axis misses the characters' bounding box, or farther than ao_distance_cm from
+  // it, takes the sun along its axis and the sky's exact mean, with no rays; the rest samples the sun's
+  // disc and the sky with rays. Both are estimates of the same light, but not the same bits, so which
+  // one a ground point gets depends on the one box around every character. With several pairs that
+  // box couples them: one pair's pose would change the ground's pixels far from it. A crowd turns this
+  // off and samples every ground point (rays that miss the box still never reach Embree).
+  bool open_ground_shortcuts = true;
   bool passes = true;  // also fill Image::depth, matte, normal and object_id
 };
 

@@ -203,7 +203,7 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
     // sun's rectangle, and farther than ao_distance from the characters' box.
     const VF offset = hn::Add(Splat(2e-3f), hn::Mul(Splat(3e-5f), hn::Max(hn::Max(hn::Abs(px), Splat(0.0f)), hn::Abs(pz))));
     MF open = hn::And(ground, hn::Le(dy, Splat(0.0f)));
-    if (!k.sun_region) {
+    if (!k.sun_region || !k.open_ground_shortcuts) {
       open = hn::FirstN(df, 0);  // none: without the rectangle every point takes the full test
     } else {
       open = hn::And(open, hn::Ge(offset, Splat(k.ground_floor)));

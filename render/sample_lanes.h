@@ -105,6 +105,8 @@ struct LaneConstants {
   // Open ground: outside [sun_lower, sun_upper] in (x, z) the sun is unblocked (when sun_region), and
   // farther than ao_distance from the box the sky is open.
   bool sun_region = false;
+  // RenderSettings::open_ground_shortcuts: false, every ground point samples the sun and the sky.
+  bool open_ground_shortcuts = true;
   float ground_floor = 0;
   float sun_lower_x = 0, sun_lower_z = 0, sun_upper_x = 0, sun_upper_z = 0;
   float ao_distance = 0;

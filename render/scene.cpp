@@ -9,6 +9,7 @@
 #include "render/preset.h"
 
 #include "rig/error.h"
+#include "rig/io/crowd_json.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/json_fields.h"
@@ -75,6 +76,9 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
   c.frame_margin = r.number("frame_margin", c.frame_margin);
   if (!(c.frame_margin >= 0.0 && c.frame_margin < 0.45)) r.fail("frame_margin", "expected a fraction in [0, 0.45)");
   c.treadmill = r.boolean("treadmill", c.treadmill);
+  // Its upper bound is the crowd's size, checked once the pairs are read (parseScene).
+  c.follow_pair = r.integer("follow_pair", c.follow_pair);
+  if (r.has("follow_pair") && c.follow_pair < 0) r.fail("follow_pair", "expected a pair index >= 0");
   c.hold_frame = static_cast<int>(r.number("hold_frame", c.hold_frame));
   if (c.hold_frame < 0) r.fail("hold_frame", "expected a frame number >= 1 (0: no hold)");
   if (c.position == c.target) r.fail("target", "expected a point different from position");
@@ -85,6 +89,10 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
 }  // namespace
 
 std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
+  // A crowd's pairs ride their own clips; the default trot in scene.clip is no one's.
+  if (!scene.pairs.empty())
+    throw InputError(scene.file.string() + ": " + (scene.crowd ? "crowd" : "riders") +
+                     ": expected a scene of one horse and rider here (a crowd is drawn by `stirrup render` only, so far)");
   if (scene.horse == "default" || scene.clip.generator != "path") return rig::makeClip(scene.clip);
   return rig::makeClip(scene.clip, rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping));
 }
@@ -201,6 +209,37 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
   }
   s.output = r.string("output", "out/" + s.name);
   if (r.has("reference")) s.reference = parseReferenceSpec(r.object("reference"), std::filesystem::path(file).parent_path());
+  // A crowd: each pair rides its own path, so the scene's one clip has no place beside it.
+  if (r.has("crowd") || r.has("riders")) {
+    const char* key = r.has("crowd") ? "crowd" : "riders";
+    if (r.has("crowd") && r.has("riders")) r.fail("riders", "expected either \"crowd\" or \"riders\", not both");
+    if (r.has("clip")) r.fail("clip", std::string("expected no clip beside \"") + key + "\" (each pair rides its own path)");
+  }
+  if (r.has("crowd")) {
+    JsonObjectReader c = r.object("crowd");
+    s.crowd = rig::parseCrowdSpec(c);
+    s.pairs = rig::generateCrowd(*s.crowd, s.terrain, s.fps, file);
+  } else if (const nlohmann::json* riders = r.value("riders")) {
+    if (!riders->is_array() || riders->empty())
+      r.fail("riders", "expected a non-empty array of riders, got " + describeJson(*riders));
+    for (std::size_t i = 0; i < riders->size(); ++i) {
+      JsonObjectReader p(file, "riders[" + std::to_string(i) + "]", (*riders)[i]);
+      s.pairs.push_back(rig::parsePairSpec(p));
+    }
+    rig::validatePairs(s.pairs, s.terrain, s.fps, 0, file, "riders");
+  }
+  if (s.crowd && !r.has("frames")) s.frames = "1-" + std::to_string(rig::crowdFrames(*s.crowd, s.terrain, s.fps, file));
+  for (std::size_t i = 0; i < s.cameras.size(); ++i) {
+    const CameraSpec& c = s.cameras[i];
+    const std::string at = file + ": cameras[" + std::to_string(i) + "].";
+    if (c.follow_pair >= 0 && s.pairs.empty())
+      throw InputError(at + "follow_pair: expected no follow_pair in a scene without a \"crowd\" or \"riders\"");
+    if (c.follow_pair >= int(s.pairs.size()))
+      throw InputError(at + "follow_pair: expected a pair index from 0 to " + std::to_string(s.pairs.size() - 1) +
+                       " (the crowd has " + std::to_string(s.pairs.size()) + " pairs), got " + std::to_string(c.follow_pair));
+    // On a treadmill every pair would ride in place, through the others.
+    if (c.treadmill && !s.pairs.empty()) throw InputError(at + "treadmill: expected false in a crowd scene");
+  }
   r.finish();
   return s;
 }

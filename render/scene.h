@@ -13,6 +13,7 @@
 
 #include "render/review/layer.h"
 #include "rig/motion/clip_factory.h"
+#include "rig/motion/crowd.h"
 #include "rig/motion/procedural_gait.h"
 
 namespace stirrup::render {
@@ -42,6 +43,9 @@ struct CameraSpec {
   std::string view;
   double frame_margin = 0.12;        // view framing: fraction of the image kept free at each border
   bool treadmill = false;            // the horse moves in place: travel removed (turntables)
+  // A crowd scene (SceneSpec::pairs): the pair (index into pairs) the camera follows and a view frames,
+  // as a single-pair scene's camera follows its horse. -1: the whole crowd (its middle, every pair).
+  int follow_pair = -1;
   int hold_frame = 0;                // > 0: every frame shows the pose of this frame (held-pose turntable)
   // Not a scene field: set by the shot from its horse when it resolves the camera. The saddle's rest
   // place relative to the horse's rear pivot (its root joint), cm, world axes, so a camera following
@@ -82,6 +86,12 @@ struct SceneSpec {
   // Reference footage for the layered view ("reference": {...}, render/review/layer.h ReferenceSpec); its
   // file is resolved against the scene file. Absent: the layered view compares with the rigid rider.
   std::optional<ReferenceSpec> reference;
+  // A crowd (issue 19; rig/motion/crowd.h): "crowd" generates the pairs, "riders" lists them; either
+  // way `pairs` holds them, checked (no two horses meet at any frame). Empty: the one horse and rider
+  // of `clip`, as every scene before it. A "crowd" without "frames" plays its lead's whole ride
+  // (rig::crowdFrames).
+  std::optional<rig::CrowdSpec> crowd;
+  std::vector<rig::PairSpec> pairs;
 };
 
 // Reads a scene file; throws stirrup::InputError "FILE: FIELD: expected ..., got ..." on bad input.
@@ -94,7 +104,8 @@ std::filesystem::path findSceneFile(const std::filesystem::path& file);
 SceneSpec parseScene(const nlohmann::json& json, const std::string& file);
 
 // The scene's clip, for its horse: a path clip turns the hooves about the horse's own rest places (a
-// glTF horse is read for them; the default horse's are built in).
+// glTF horse is read for them; the default horse's are built in). A crowd scene has no one clip: an
+// InputError (bake, clip, rig and the movie set's channel plot do not take a crowd yet).
 std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene);
 
 // The camera of the scene named `name` (or the first when empty); InputError if there is none.

@@ -129,7 +129,7 @@ void ShadingLanes(const LaneConstants& k, SurfaceLanes& S) {
 
     // Sun: shadow rays over its disc where any ray of its cone may meet the characters; elsewhere
     // once along its axis, with no ray. Ground points outside the sun's rectangle are open at once.
-    MF sun_traced = SunMayBeBlocked(k, origin);
+    MF sun_traced = k.open_ground_shortcuts ? SunMayBeBlocked(k, origin) : hn::Not(hn::FirstN(df, 0));
     if (k.sun_region) {
       const MF outside = hn::Or(hn::Or(hn::Lt(origin.x, Splat(k.sun_lower_x)), hn::Gt(origin.x, Splat(k.sun_upper_x))),
                                 hn::Or(hn::Lt(origin.z, Splat(k.sun_lower_z)), hn::Gt(origin.z, Splat(k.sun_upper_z))));
@@ -159,7 +159,9 @@ void ShadingLanes(const LaneConstants& k, SurfaceLanes& S) {
     // heading down stop just short of the ground: if nothing else is in the way they see the lit
     // ground's bounce.
     MF sky_traced = hn::Not(hn::FirstN(df, 0));
-    if (!k.box_empty) {
+    if (!k.box_empty && !k.open_ground_shortcuts) {
+      // every point samples the sky (sky_traced stays all true)
+    } else if (!k.box_empty) {
       const V3 e = {hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.x), origin.x), hn::Sub(origin.x, Splat(k.box_upper.x))), zero),
                     hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.y), origin.y), hn::Sub(origin.y, Splat(k.box_upper.y))), zero),
                     hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.z), origin.z), hn::Sub(origin.z, Splat(k.box_upper.z))), zero)};

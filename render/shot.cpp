@@ -2,11 +2,23 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
+#include <map>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "render/camera_motion.h"
 #include "render/fence.h"
 #include "render/view.h"
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
+#include "rig/crowd_bake.h"
+#include "rig/error.h"
 #include "rig/motion/clip_factory.h"
+#include "rig/motion/crowd.h"
+#include "rig/motion/crowd_middle_clip.h"
+#include "rig/motion/shifted_clip.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_character.h"
 #include "rig/pose.h"
@@ -26,28 +38,86 @@ glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 // its hooves and the ground around it in every view stand on the fine grid.
 constexpr double kFineGroundMarginCm = 1000.0;
 
-// The box (x, z) the horse's travel frame crosses over the scene's frames, grown by the margin.
-GroundRegion trackRegion(const SceneSpec& scene, const rig::Clip& clip) {
+// The box (x, z) the horses' travel frames cross over the scene's frames, grown by the margin.
+GroundRegion trackRegion(const SceneSpec& scene, const std::vector<const rig::Clip*>& clips) {
   GroundRegion r{1e300, 1e300, -1e300, -1e300};
   for (int f : rig::parseFrameList(scene.frames, "frames")) {
-    const rig::HorseFrame h = clip.sample(frameTime(scene, f));
-    r.x0 = std::min(r.x0, h.travel_cm), r.x1 = std::max(r.x1, h.travel_cm);
-    r.z0 = std::min(r.z0, h.travel_z_cm), r.z1 = std::max(r.z1, h.travel_z_cm);
+    for (const rig::Clip* clip : clips) {
+      const rig::HorseFrame h = clip->sample(frameTime(scene, f));
+      r.x0 = std::min(r.x0, h.travel_cm), r.x1 = std::max(r.x1, h.travel_cm);
+      r.z0 = std::min(r.z0, h.travel_z_cm), r.z1 = std::max(r.z1, h.travel_z_cm);
+    }
   }
   return {r.x0 - kFineGroundMarginCm, r.z0 - kFineGroundMarginCm, r.x1 + kFineGroundMarginCm,
           r.z1 + kFineGroundMarginCm};
 }
 
+MeshDesc meshOf(ObjectId id, const rig::Character& c) {
+  return MeshDesc{id, c.mesh.indices, c.mesh.colors, c.mesh.positions.size(), c.mesh.positions};
+}
+
 }  // namespace
+
+// A crowd scene's pairs, the pair its camera follows, and the threads they are made, baked and skinned on.
+struct Shot::Crowd {
+  // One pair: its characters, clip and profiles, its meshes' handles and skinning buffers.
+  struct Pair {
+    rig::Character horse, rider;
+    std::unique_ptr<rig::Clip> clip;           // rig::makePairClip
+    std::unique_ptr<rig::ShiftedClip> shown;   // the clip at the pair's start phase, as the shot plays it
+    rig::RigProfile profile, rigid_profile;
+    double clip_offset_s = 0;
+    int horse_mesh = -1, rider_mesh = -1;
+    std::vector<glm::vec3> horse_positions, horse_normals, rider_positions, rider_normals;
+  };
+  explicit Crowd(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+  std::vector<Pair> pairs;
+  int follow = -1;         // CameraSpec::follow_pair
+  tbb::task_arena arena;   // the shot's threads, for building, baking and skinning the pairs
+
+  // Every pair's frame as shown (the held pose; the rigid rider), baked in parallel.
+  std::vector<rig::BakedFrame> bakeShown(const SceneSpec& scene, const CameraSpec& camera, bool rigid, int frame) {
+    const int shown = camera.hold_frame > 0 ? camera.hold_frame : frame;
+    std::vector<rig::CrowdPair> list;
+    for (const Pair& p : pairs) list.push_back({p.clip.get(), rigid ? &p.rigid_profile : &p.profile, p.clip_offset_s});
+    std::vector<rig::BakedFrame> baked;
+    arena.execute([&] { baked = rig::bakeCrowdFrame(list, shown, frameTime(scene, shown)); });
+    for (rig::BakedFrame& b : baked) {
+      b.frame = frame;
+      if (rigid) b.rider = rig::RiderChannels{};
+    }
+    return baked;
+  }
+  // Poses and skins the pairs of `baked` (all, or only `only`), in parallel, into their buffers.
+  void skin(const std::vector<rig::BakedFrame>& baked, bool rigid, int only = -1) {
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t i) {
+        if (only >= 0 && int(i) != only) return;
+        Pair& p = pairs[i];
+        const rig::MountedPose pose =
+            rig::poseMounted(p.horse, p.rider, baked[i].horse, baked[i].rider, rigid ? p.rigid_profile : p.profile);
+        rig::skinMesh(p.horse.mesh, p.horse.skeleton, pose.horse, p.horse_positions, p.horse_normals);
+        rig::skinMesh(p.rider.mesh, p.rider.skeleton, pose.rider, p.rider_positions, p.rider_normals);
+      });
+    });
+  }
+};
 
 Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
            BvhUpdate bvh)
     : scene_(scene),
       profile_(profile),
       camera_(camera),
-      horse_(rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping)),
-      rider_(rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping)) {
-  clip_ = rig::makeClip(scene.clip, horse_);  // a path clip turns hooves about this horse's rest places
+      // A crowd's characters are its pairs' own (setUpCrowd).
+      horse_(scene.pairs.empty() ? rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping)
+                                 : rig::Character{}),
+      rider_(scene.pairs.empty() ? rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping)
+                                 : rig::Character{}) {
+  if (scene.pairs.empty()) {
+    clip_ = rig::makeClip(scene.clip, horse_);  // a path clip turns hooves about this horse's rest places
+  } else {
+    setUpCrowd(threads);
+  }
   RenderSettings settings;
   settings.width = scene.width;
   settings.height = scene.height;
@@ -60,29 +130,113 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
   settings.sun_angular_radius_deg = scene.sun_angular_radius_deg;
   settings.haze.visibility_cm = float(scene.haze_visibility_cm);
   settings.haze.ortho_depth_cm = float(scene.haze_ortho_depth_cm);
+  // With two pairs or more the characters' one box would tie each pair's pose to the ground's shading
+  // far from it (RenderSettings::open_ground_shortcuts); one pair's box is its own.
+  settings.open_ground_shortcuts = scene.pairs.size() < 2;
   renderer_ = std::make_unique<Renderer>(settings);
-  if (scene.terrain && !scene.terrain->flat()) renderer_->setTerrain(scene.terrain, trackRegion(scene_, *clip_));
-  horse_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Horse, horse_.mesh.indices, horse_.mesh.colors,
-                                            horse_.mesh.positions.size(), horse_.mesh.positions});
-  rider_mesh_ = renderer_->addMesh(MeshDesc{ObjectId::Rider, rider_.mesh.indices, rider_.mesh.colors,
-                                            rider_.mesh.positions.size(), rider_.mesh.positions});
+  if (scene.terrain && !scene.terrain->flat()) {
+    std::vector<const rig::Clip*> tracks;
+    if (crowd_)
+      for (const Crowd::Pair& p : crowd_->pairs) tracks.push_back(p.shown.get());
+    else
+      tracks.push_back(clip_.get());
+    renderer_->setTerrain(scene.terrain, trackRegion(scene_, tracks));
+  }
+  if (crowd_) {
+    // In pair order, so the geometries' ids are the same on every run.
+    for (Crowd::Pair& p : crowd_->pairs) {
+      p.horse_mesh = renderer_->addMesh(meshOf(ObjectId::Horse, p.horse));
+      p.rider_mesh = renderer_->addMesh(meshOf(ObjectId::Rider, p.rider));
+    }
+  } else {
+    horse_mesh_ = renderer_->addMesh(meshOf(ObjectId::Horse, horse_));
+    rider_mesh_ = renderer_->addMesh(meshOf(ObjectId::Rider, rider_));
+  }
   rigid_profile_ = profile_;
   rigid_profile_.rigid = true;
   addObstacles();
   if (!camera_.view.empty()) {
-    // A named view: framed from the characters' vertices over every frame it shows (render/view.h).
+    // A named view: framed from the characters' vertices over every frame it shows (render/view.h);
+    // in a crowd, the followed pair's, or with none the corners of every pair's horse's and rider's
+    // boxes (they hold every vertex; every third vertex of 30 pairs over a whole ride took gigabytes).
     CameraSpec preset = camera_;
     applyViewPreset(preset);
-    const glm::vec3 lever = horse_.skeleton.restPosition(horse_.role("saddle")) -
-                            horse_.skeleton.restPosition(horse_.role("root"));
+    const rig::Character& horse = cameraHorse();
+    const glm::vec3 lever = horse.skeleton.restPosition(horse.role("saddle")) -
+                            horse.skeleton.restPosition(horse.role("root"));
     preset.seat_from_pivot_cm = {lever.x, lever.y, lever.z};
     camera_ = preset;  // treadmill / hold apply while sampling the points
-    camera_ = frameView(preset, scene_, *clip_, profile_, framingFrames(preset, scene_),
-                        [this](int f, std::vector<glm::dvec3>& h, std::vector<glm::dvec3>& r) {
-                          characterPoints(f, 3, h, r);
+    const int follow = crowd_ ? crowd_->follow : -1;
+    camera_ = frameView(preset, scene_, *clip_, cameraProfile(), framingFrames(preset, scene_),
+                        [this, follow](int f, std::vector<glm::dvec3>& h, std::vector<glm::dvec3>& r) {
+                          if (follow >= 0)
+                            pairPoints(follow, f, 3, h, r);
+                          else if (crowd_)
+                            crowdCorners(f, h, r);
+                          else
+                            characterPoints(f, 3, h, r);
                         });
   }
 }
+
+void Shot::setUpCrowd(int threads) {
+  const std::string source = scene_.file.string();
+  if (camera_.follow_pair >= int(scene_.pairs.size()))
+    throw InputError(source + ": cameras." + camera_.name + ".follow_pair: expected a pair index from 0 to " +
+                     std::to_string(scene_.pairs.size() - 1) + ", got " + std::to_string(camera_.follow_pair));
+  if (camera_.treadmill) throw InputError(source + ": cameras." + camera_.name + ".treadmill: expected false in a crowd scene");
+  crowd_ = std::make_unique<Crowd>(threads);
+  crowd_->follow = camera_.follow_pair;
+  // Each profile name resolved once, as the scene's own is (profiles/NAME.json beside the scene, then
+  // the data folder; the scene's profile_overrides applied).
+  std::map<std::string, rig::RigProfile> profiles;
+  for (const rig::PairSpec& spec : scene_.pairs) {
+    if (profiles.count(spec.profile)) continue;
+    SceneSpec named = scene_;
+    named.profile = spec.profile;
+    profiles.emplace(spec.profile, resolveProfile(named));
+  }
+  crowd_->pairs.resize(scene_.pairs.size());
+  for (std::size_t i = 0; i < scene_.pairs.size(); ++i) {
+    const rig::PairSpec& spec = scene_.pairs[i];
+    Crowd::Pair& p = crowd_->pairs[i];
+    p.clip = rig::makePairClip(spec, scene_.terrain, source + ": pairs[" + std::to_string(i) + "]");
+    p.clip_offset_s = spec.clip_offset_s;
+    p.shown = std::make_unique<rig::ShiftedClip>(*p.clip, spec.clip_offset_s);
+    p.profile = profiles.at(spec.profile);
+    p.rigid_profile = p.profile;
+    p.rigid_profile.rigid = true;
+  }
+  // Building a character takes a while; each pair builds its own, so in parallel.
+  crowd_->arena.execute([&] {
+    tbb::parallel_for(std::size_t(0), scene_.pairs.size(), [&](std::size_t i) {
+      const rig::HorseParams horse = scene_.pairs[i].horse();
+      crowd_->pairs[i].horse = rig::buildHorse(horse);
+      crowd_->pairs[i].rider = rig::buildRider(scene_.pairs[i].rider(), horse.mount);
+    });
+  });
+  if (crowd_->follow >= 0) {
+    clip_ = std::make_unique<rig::ShiftedClip>(*crowd_->pairs[std::size_t(crowd_->follow)].clip,
+                                               crowd_->pairs[std::size_t(crowd_->follow)].clip_offset_s);
+  } else {
+    std::vector<const rig::Clip*> shown;
+    for (const Crowd::Pair& p : crowd_->pairs) shown.push_back(p.shown.get());
+    clip_ = std::make_unique<rig::CrowdMiddleClip>(shown);
+  }
+}
+
+const rig::Character& Shot::cameraHorse() const {
+  if (!crowd_) return horse_;
+  return crowd_->pairs[std::size_t(std::max(0, crowd_->follow))].horse;
+}
+
+const rig::RigProfile& Shot::cameraProfile() const {
+  if (!crowd_) return profile_;
+  // The middle clip's controls are at rest, so its profile only sets the seat's rest (rider_unit_cm).
+  return crowd_->pairs[std::size_t(std::max(0, crowd_->follow))].profile;
+}
+
+int Shot::pairCount() const { return crowd_ ? int(crowd_->pairs.size()) : 0; }
 
 Shot::~Shot() = default;
 
@@ -93,7 +247,8 @@ const rig::RigProfile& Shot::poseProfile() const { return rigid_rider_ ? rigid_p
 // the travel out, has nothing to stand still against, so it shows no fence. Props are ground-like in
 // the passes (object id 0, outside the characters' matte) and never move, so they are set once.
 void Shot::addObstacles() {
-  if (camera_.treadmill) return;
+  // A crowd's pairs ride path clips, which have no fences.
+  if (camera_.treadmill || crowd_) return;
   const std::vector<rig::Obstacle> obstacles = clip_->obstacles();
   if (obstacles.empty()) return;
   double middle = 0.0;
@@ -108,13 +263,13 @@ void Shot::addObstacles() {
 }
 
 rig::BakedFrame Shot::bake(int frame) const {
-  return rig::bakeFrame(*clip_, profile_, frame, frameTime(scene_, frame));
+  return rig::bakeFrame(*clip_, cameraProfile(), frame, frameTime(scene_, frame));
 }
 
 Camera Shot::cameraAt(const rig::BakedFrame& baked) const { return cameraAtFrame(baked.frame); }
 
 Camera Shot::cameraAtFrame(int frame) const {
-  return render::cameraAtFrame(camera_, scene_, *clip_, profile_, frame);
+  return render::cameraAtFrame(camera_, scene_, *clip_, cameraProfile(), frame);
 }
 
 rig::BakedFrame Shot::bakeShown(int frame) const {
@@ -125,8 +280,47 @@ rig::BakedFrame Shot::bakeShown(int frame) const {
   return baked;
 }
 
+void Shot::pairPoints(int pair, int frame, int stride, std::vector<glm::dvec3>& horse,
+                      std::vector<glm::dvec3>& rider) {
+  if (!crowd_ || pair < 0 || pair >= pairCount())
+    throw std::invalid_argument("Shot::pairPoints: no pair " + std::to_string(pair));
+  crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_, pair);
+  const Crowd::Pair& p = crowd_->pairs[std::size_t(pair)];
+  const std::size_t step = static_cast<std::size_t>(std::max(1, stride));
+  horse.clear();
+  rider.clear();
+  for (std::size_t i = 0; i < p.horse_positions.size(); i += step) horse.emplace_back(p.horse_positions[i]);
+  for (std::size_t i = 0; i < p.rider_positions.size(); i += step) rider.emplace_back(p.rider_positions[i]);
+}
+
+void Shot::crowdCorners(int frame, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider) {
+  crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_);
+  horse.clear();
+  rider.clear();
+  const auto corners = [](const std::vector<glm::vec3>& points, std::vector<glm::dvec3>& out) {
+    glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+    for (const glm::vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    for (int c = 0; c < 8; ++c) out.emplace_back(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+  };
+  for (const Crowd::Pair& p : crowd_->pairs) {
+    corners(p.horse_positions, horse);
+    corners(p.rider_positions, rider);
+  }
+}
+
 void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse,
                            std::vector<glm::dvec3>& rider) {
+  if (crowd_) {
+    crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_);
+    const std::size_t step = static_cast<std::size_t>(std::max(1, stride));
+    horse.clear();
+    rider.clear();
+    for (const Crowd::Pair& p : crowd_->pairs) {
+      for (std::size_t i = 0; i < p.horse_positions.size(); i += step) horse.emplace_back(p.horse_positions[i]);
+      for (std::size_t i = 0; i < p.rider_positions.size(); i += step) rider.emplace_back(p.rider_positions[i]);
+    }
+    return;
+  }
   const rig::BakedFrame baked = bakeShown(frame);
   const rig::MountedPose pose = rig::poseMounted(horse_, rider_, baked.horse, baked.rider, poseProfile());
   const std::vector<glm::mat4>& horse_world = pose.horse;
@@ -140,7 +334,30 @@ void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse
   for (std::size_t i = 0; i < positions_.size(); i += step) rider.emplace_back(positions_[i]);
 }
 
+void Shot::renderCrowdMeshes(int frame) {
+  auto t0 = Clock::now();
+  const std::vector<rig::BakedFrame> baked = crowd_->bakeShown(scene_, camera_, rigid_rider_, frame);
+  timings_.pose_ms = msSince(t0);
+  // Posing is inside the skinning loop here (each pair posed and skinned by one task).
+  t0 = Clock::now();
+  crowd_->skin(baked, rigid_rider_);
+  for (const Crowd::Pair& p : crowd_->pairs) {
+    renderer_->updateMesh(p.horse_mesh, p.horse_positions, p.horse_normals);
+    renderer_->updateMesh(p.rider_mesh, p.rider_positions, p.rider_normals);
+  }
+  timings_.skin_ms = msSince(t0);
+}
+
 Image Shot::renderFrame(int frame, RayLog* log) {
+  if (crowd_) {
+    renderCrowdMeshes(frame);
+    auto t0 = Clock::now();
+    Image image = renderer_->render(cameraAtFrame(frame), frame, log);
+    timings_.trace_ms = msSince(t0);
+    timings_.bvh_ms = renderer_->lastStats().commit_ms;
+    timings_.rays = renderer_->lastStats().rays;
+    return image;
+  }
   const rig::BakedFrame baked = bakeShown(frame);
 
   auto t0 = Clock::now();

@@ -1,5 +1,11 @@
 // A shot: one scene seen through one of its cameras. Renders any frame on its own, running the whole
 // pipeline for that frame: sample clip -> evaluate rider controls -> pose -> skin -> trace.
+// A crowd scene (SceneSpec::pairs, issue 19) does so for every pair: each pair's own horse and rider
+// (built at its proportions), clip (at its start phase) and rig profile; the pairs are baked, posed and
+// skinned in parallel (each writes only its own buffers, so the frame is the same at any thread count)
+// and each pair's two meshes are their own geometries in the one Embree scene. Its camera follows the
+// pair CameraSpec::follow_pair names exactly as a single pair's camera follows its horse, or with none,
+// the crowd's middle (rig/motion/crowd_middle_clip.h), and a view then frames every pair.
 #pragma once
 
 #include <memory>
@@ -42,19 +48,35 @@ class Shot {
   // the clip when the Shot was made.
   const CameraSpec& camera() const { return camera_; }
   // World positions of every `stride`-th skinned vertex of the horse and the rider at a frame, as it
-  // is shown (a treadmill camera removes the travel, a held pose holds its frame).
+  // is shown (a treadmill camera removes the travel, a held pose holds its frame). In a crowd: of
+  // every pair's horse and rider.
   void characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
+  // A crowd scene's pairs (0 for a single pair), and one pair's points as characterPoints gives them.
+  int pairCount() const;
+  void pairPoints(int pair, int frame, int stride, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
   // The rider rigidly fixed to the saddle (every rider channel at rest): what the rig adds, for the
   // layered comparison (render/review/layer.h).
   void setRigidRider(bool rigid) { rigid_rider_ = rigid; }
 
  private:
   void addObstacles();
+  struct Crowd;  // a crowd scene's pairs (shot.cpp)
+  void setUpCrowd(int threads);
+  void renderCrowdMeshes(int frame);
+  // The 8 corners of each pair's horse's and rider's bounding boxes at a frame, as shown.
+  void crowdCorners(int frame, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
+  // The horse whose seat a camera following the rider takes, and the profile the camera evaluates her
+  // with: the scene's, or in a crowd the followed pair's (the first pair's for the crowd's middle).
+  const rig::Character& cameraHorse() const;
+  const rig::RigProfile& cameraProfile() const;
 
   SceneSpec scene_;
   rig::RigProfile profile_;
   CameraSpec camera_;
-  std::unique_ptr<rig::Clip> clip_;  // from scene.clip (rig::makeClip)
+  // From scene.clip (rig::makeClip); in a crowd, what the camera follows: the followed pair's clip at
+  // its start phase, or the crowd's middle.
+  std::unique_ptr<rig::Clip> clip_;
+  std::unique_ptr<Crowd> crowd_;  // null for a single pair
   rig::Character horse_, rider_;
   std::unique_ptr<Renderer> renderer_;
   int horse_mesh_ = -1, rider_mesh_ = -1;

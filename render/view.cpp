@@ -90,6 +90,29 @@ CameraSpec frameTopView(CameraSpec spec, const SceneSpec& scene, const rig::Clip
   return spec;
 }
 
+// An orthographic view's rays start on its film, which stands at the camera, a few metres from the
+// target and a little above it. A wide subject (a crowd) makes the film so tall that its lower rows
+// start under the ground and show nothing of it. Moving the camera back along its view changes no
+// ray's direction or place in the picture, only where it starts: when the film's lower edge dips
+// below the lowest framed point at any frame, the camera moves back until that edge is above the
+// highest. A single pair's film clears the ground already and is left exactly as it was.
+void raiseOrthographicFilm(CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
+                           const rig::RigProfile& profile, const std::vector<int>& frames,
+                           const std::vector<std::vector<glm::dvec3>>& pts) {
+  double dip = 0.0, need = 0.0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+    const double bottom = cam.position.y - 0.5 * spec.ortho_height_cm * basisOf(cam).up.y;
+    double lo = kInf, hi = -kInf;
+    for (const glm::dvec3& p : pts[i]) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+    dip = std::max(dip, lo - bottom);
+    need = std::max(need, hi - bottom);
+  }
+  const glm::dvec3 t = toVec(spec.target), back = glm::normalize(toVec(spec.position) - t);
+  if (!(dip > 0.0) || !(back.y > 0.0)) return;
+  spec.position = toArray(toVec(spec.position) + back * (need / back.y));
+}
+
 }  // namespace
 
 void applyViewPreset(CameraSpec& spec) {
@@ -233,6 +256,7 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
       spec.position = toArray(t + back * dist_needed);
     }
   }
+  if (spec.orthographic) raiseOrthographicFilm(spec, scene, clip, profile, frames, pts);
   return spec;
 }
 

@@ -165,3 +165,118 @@ TEST(Scene, ShippedPathScenesFollowTheirPathsAndPassTheReference) {
 
 }  // namespace
 }  // namespace stirrup::render
+
+namespace stirrup::render {
+namespace {
+
+// A crowd (issue 19): "crowd" generates the pairs, "riders" lists them; a scene without either keeps
+// its one horse and rider.
+constexpr const char* kCrowd = R"({"crowd": {"pairs": 6, "seed": 4,
+    "lead": {"points": [[0, 0], [1500, 0]], "speed": [[0, 360]]},
+    "formation": {"files": 3, "file_spacing_cm": 300, "rank_spacing_cm": 600, "jitter_cm": 10},
+    "profiles": {"english": 1, "novice": 1}}})";
+
+TEST(SceneCrowd, ASceneWithoutACrowdHasNoPairs) {
+  const SceneSpec s = parseScene(nlohmann::json::object(), "scenes/x.json");
+  EXPECT_FALSE(s.crowd.has_value());
+  EXPECT_TRUE(s.pairs.empty());
+  EXPECT_TRUE(loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trail.json").pairs.empty());
+}
+
+TEST(SceneCrowd, ACrowdBlockGeneratesItsPairs) {
+  const SceneSpec s = parseScene(nlohmann::json::parse(kCrowd), "scenes/x.json");
+  ASSERT_TRUE(s.crowd.has_value());
+  EXPECT_EQ(s.crowd->pairs, 6);
+  ASSERT_EQ(s.pairs.size(), 6u);
+  for (const rig::PairSpec& p : s.pairs) EXPECT_TRUE(p.profile == "english" || p.profile == "novice") << p.profile;
+  // The same file gives the same crowd.
+  const SceneSpec again = parseScene(nlohmann::json::parse(kCrowd), "scenes/x.json");
+  for (std::size_t i = 0; i < s.pairs.size(); ++i) EXPECT_EQ(s.pairs[i].withers_height_cm, again.pairs[i].withers_height_cm);
+}
+
+TEST(SceneCrowd, ARidersListIsReadAndChecked) {
+  const SceneSpec s = parseScene(nlohmann::json::parse(R"({"riders": [
+      {"points": [[0, 0], [1000, 0]], "speed": [[0, 300]], "profile": "english", "withers_height_cm": 150},
+      {"points": [[0, 400], [1000, 400]], "speed": [[0, 300]], "rider_height_cm": 185}]})"),
+                                 "scenes/x.json");
+  ASSERT_EQ(s.pairs.size(), 2u);
+  EXPECT_EQ(s.pairs[0].profile, "english");
+  EXPECT_EQ(s.pairs[0].withers_height_cm, 150.0);
+  EXPECT_EQ(s.pairs[1].rider_height_cm, 185.0);
+}
+
+TEST(SceneCrowd, BadCrowdsAreOneLineErrors) {
+  EXPECT_EQ(errorOf(R"({"crowd": {"pairs": 0, "lead": {"points": [[0, 0], [1500, 0]], "speed": [[0, 360]]}}})"),
+            "scenes/x.json: crowd.pairs: expected a whole number from 1 to 200, got 0");
+  EXPECT_EQ(errorOf(R"({"crowd": {"pairs": 500, "lead": {"points": [[0, 0], [1500, 0]], "speed": [[0, 360]]}}})"),
+            "scenes/x.json: crowd.pairs: expected a whole number from 1 to 200, got 500");
+  EXPECT_EQ(errorOf(R"({"crowd": {"lead": {"points": [[0, 0], [1500, 0]], "speed": [[0, 360]]},
+                        "withers_height_cm": [120, 160]}})"),
+            "scenes/x.json: crowd.withers_height_cm: expected a range [low, high] within 145 to 175 cm, got [120, 160]");
+  EXPECT_EQ(errorOf(R"({"crowd": {"lead": {"points": [[0, 0], [1500, 0]], "speed": [[0, 360]]}, "profiles": {"rodeo": 1}}})"),
+            "scenes/x.json: crowd.profiles.rodeo: expected one of thesis, english, novice");
+  EXPECT_EQ(errorOf(R"({"crowd": {"lead": {"points": [[0, 0], [1500, 0]], "speed": [[0, 360]]}, "size": 3}})"),
+            "scenes/x.json: crowd.size: unknown field");
+  EXPECT_EQ(errorOf(R"({"riders": {}})"), "scenes/x.json: riders: expected a non-empty array of riders, got an object");
+  EXPECT_EQ(errorOf(R"({"riders": [{"points": [[0, 0], [1000, 0]], "speed": [[0, 300]], "rider_height_cm": 200}]})"),
+            "scenes/x.json: riders[0].rider_height_cm: expected 150 to 190 cm, got 200");
+  EXPECT_EQ(errorOf(R"({"riders": [{"points": [[0, 0], [1000, 0]], "speed": [[0, 300]]},
+                                   {"points": [[0, 50], [1000, 50]], "speed": [[0, 300]]}]})"),
+            "scenes/x.json: riders: riders[0] and riders[1] overlap at frame 1 (0 s): expected paths that keep every two "
+            "horses apart at every frame");
+  EXPECT_EQ(errorOf(std::string(R"({"clip": {"generator": "walk"}, )") + (kCrowd + 1)),
+            "scenes/x.json: clip: expected no clip beside \"crowd\" (each pair rides its own path)");
+  EXPECT_EQ(errorOf(R"({"crowd": {"lead": {"points": [[0, 0], [1500, 0]], "speed": [[0, 360]]}},
+                        "riders": [{"points": [[0, 0], [1000, 0]], "speed": [[0, 300]]}]})"),
+            "scenes/x.json: riders: expected either \"crowd\" or \"riders\", not both");
+}
+
+// A crowd without "frames" plays its lead's whole ride: 1500 cm at 360 cm/s is 4.17 s, so at 24 fps
+// frames 1 (t = 0) to 101 (t = 4.167 s). Given frames are kept, and a riders list keeps the default.
+TEST(SceneCrowd, ACrowdPlaysItsLeadsRideUnlessFramesAreGiven) {
+  EXPECT_EQ(parseScene(nlohmann::json::parse(kCrowd), "scenes/x.json").frames, "1-101");
+  nlohmann::json given = nlohmann::json::parse(kCrowd);
+  given["frames"] = "1-20";
+  EXPECT_EQ(parseScene(given, "scenes/x.json").frames, "1-20");
+  EXPECT_EQ(parseScene(nlohmann::json::parse(R"({"riders": [{"points": [[0, 0], [1000, 0]], "speed": [[0, 300]]}]})"),
+                       "scenes/x.json")
+                .frames,
+            SceneSpec{}.frames);
+}
+
+// A crowd scene has no one clip: the commands that read one (bake, clip, rig, the channel plot) get a
+// one-line error rather than the default trot nobody rides.
+TEST(SceneCrowd, ACrowdHasNoOneClip) {
+  try {
+    makeSceneClip(parseScene(nlohmann::json::parse(kCrowd), "scenes/x.json"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "scenes/x.json: crowd: expected a scene of one horse and rider here (a crowd is "
+                                     "drawn by `stirrup render` only, so far)");
+  }
+  EXPECT_NE(makeSceneClip(parseScene(nlohmann::json::object(), "scenes/x.json")), nullptr);
+}
+
+// A camera's follow_pair names a pair of the crowd: out of range, negative, in a scene without a crowd,
+// or a crowd on a treadmill, it is a one-line error naming the camera's field.
+TEST(SceneCrowd, FollowPairMustNameAPairOfTheCrowd) {
+  nlohmann::json ok = nlohmann::json::parse(kCrowd);
+  ok["cameras"] = nlohmann::json::parse(R"([{"view": "side"}, {"name": "one", "view": "close", "follow_pair": 5}])");
+  const SceneSpec s = parseScene(ok, "scenes/x.json");
+  EXPECT_EQ(s.cameras[0].follow_pair, -1);
+  EXPECT_EQ(s.cameras[1].follow_pair, 5);
+  nlohmann::json bad = ok;
+  bad["cameras"][1]["follow_pair"] = 6;
+  EXPECT_EQ(errorOf(bad.dump()),
+            "scenes/x.json: cameras[1].follow_pair: expected a pair index from 0 to 5 (the crowd has 6 pairs), got 6");
+  bad["cameras"][1]["follow_pair"] = -1;
+  EXPECT_EQ(errorOf(bad.dump()), "scenes/x.json: cameras[1].follow_pair: expected a pair index >= 0");
+  EXPECT_EQ(errorOf(R"({"cameras": [{"view": "side", "follow_pair": 0}]})"),
+            "scenes/x.json: cameras[0].follow_pair: expected no follow_pair in a scene without a \"crowd\" or \"riders\"");
+  bad["cameras"][1]["follow_pair"] = 0;
+  bad["cameras"][1]["treadmill"] = true;
+  EXPECT_EQ(errorOf(bad.dump()), "scenes/x.json: cameras[1].treadmill: expected false in a crowd scene");
+}
+
+}  // namespace
+}  // namespace stirrup::render

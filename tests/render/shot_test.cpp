@@ -4,8 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
 #include "render/scene.h"
+#include "rig/error.h"
 #include "rig/motion/clip_factory.h"
+#include "rig/motion/crowd.h"
 
 namespace stirrup::render {
 namespace {
@@ -87,6 +95,202 @@ TEST(Shot, TheRearsCloseViewHasNoLightBandAtTheBottom) {
       for (int x = 0; x < img.width; ++x) img.at(x, img.height - 1) += glm::vec4(0.3f, 0.3f, 0.3f, 0.0f);
       EXPECT_GT(bandColumns(img), img.width / 2);
     }
+  }
+}
+
+// A crowd (issue 19) of four pairs in two ranks of two files trotting along +X, each of its own size
+// and profile. Read as if from scenes/ so the profiles are found beside it.
+std::string crowdJson(const std::string& second_profile = "english") {
+  return R"({"name": "crowd4", "frames": "1-24", "resolution": [320, 180],
+    "quality": {"samples": 4, "light_samples": 1, "ao_samples": 1},
+    "riders": [
+      {"points": [[0, -300], [3000, -300]], "speed": [[0, 300]], "profile": "thesis", "seed": 1,
+       "withers_height_cm": 150, "rider_height_cm": 160, "rider_build": 0.9},
+      {"points": [[0, 300], [3000, 300]], "speed": [[0, 300]], "profile": ")" +
+         second_profile + R"(", "seed": 2, "start_offset_s": 0.3,
+       "withers_height_cm": 170, "rider_height_cm": 185, "rider_build": 1.2},
+      {"points": [[-1200, -300], [1800, -300]], "speed": [[0, 300]], "profile": "novice", "seed": 3,
+       "start_offset_s": 0.6, "withers_height_cm": 160, "rider_height_cm": 170},
+      {"points": [[-1200, 300], [1800, 300]], "speed": [[0, 300]], "profile": "thesis", "seed": 4,
+       "start_offset_s": 0.9, "withers_height_cm": 165, "rider_height_cm": 175, "rider_build": 1.1}],
+    "cameras": [{"name": "persp", "view": "persp"}, {"name": "side", "view": "side"},
+                {"name": "follow2", "view": "side", "follow_pair": 2}]})";
+}
+
+SceneSpec crowdScene(const std::string& second_profile = "english") {
+  return parseScene(nlohmann::json::parse(crowdJson(second_profile)),
+                    std::string(STIRRUP_SOURCE_DIR) + "/scenes/crowd4.json");
+}
+
+// The pixel a world point falls in, by the pinhole or orthographic projection written out here from
+// the camera's definition (render/camera.h: v from top to bottom; vertical fov; aspect width / height),
+// not through the renderer's CameraFrame. False when it is behind the camera.
+bool projectToPixel(const Camera& c, int w, int h, const glm::dvec3& p, double& px, double& py) {
+  const glm::dvec3 forward = glm::normalize(c.target - c.position);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
+  const glm::dvec3 up = glm::cross(right, forward);
+  const glm::dvec3 q = p - c.position;
+  const double x = glm::dot(q, right), y = glm::dot(q, up), z = glm::dot(q, forward);
+  double half_h = 0.5 * c.ortho_height_cm, nx = x, ny = y;
+  if (c.projection == Camera::Projection::Perspective) {
+    if (z <= 1.0) return false;
+    half_h = std::tan(0.5 * glm::radians(c.fov_deg));
+    nx = x / z, ny = y / z;
+  }
+  const double half_w = half_h * double(w) / double(h);
+  px = (nx / half_w + 1.0) * 0.5 * w;
+  py = (1.0 - ny / half_h) * 0.5 * h;
+  return true;
+}
+
+// Every pair's horse, where its own clip (made here from its PairSpec, at its start phase) puts it:
+// its travel frame's origin (between its fore and hind hooves) raised to 62% of its withers height, in
+// the barrel, projects onto a horse or rider pixel in the object-id pass and a covered matte pixel, at
+// three frames, in the perspective view of the whole crowd and in the side view.
+TEST(Shot, DrawsEveryPairOfACrowdWhereItsHorseIs) {
+  const SceneSpec scene = crowdScene();
+  ASSERT_EQ(scene.pairs.size(), 4u);
+  for (const char* name : {"persp", "side"}) {
+    Shot shot(scene, resolveProfile(scene), findCamera(scene, name), 0);
+    ASSERT_EQ(shot.pairCount(), 4);
+    for (int frame : {1, 12, 24}) {
+      const Image img = shot.renderFrame(frame);
+      const Camera cam = shot.cameraAtFrame(frame);
+      for (std::size_t i = 0; i < scene.pairs.size(); ++i) {
+        const rig::PairSpec& pair = scene.pairs[i];
+        const auto clip = rig::makePairClip(pair, scene.terrain, "test");
+        const rig::HorseFrame h = clip->sample(frameTime(scene, frame) + pair.clip_offset_s);
+        const glm::dvec3 barrel(h.travel_cm, h.ground_y_cm + 0.62 * pair.withers_height_cm, h.travel_z_cm);
+        double px = 0, py = 0;
+        ASSERT_TRUE(projectToPixel(cam, img.width, img.height, barrel, px, py));
+        ASSERT_TRUE(px >= 0 && px < img.width && py >= 0 && py < img.height)
+            << name << " frame " << frame << " pair " << i << " at " << px << ", " << py;
+        const std::size_t k = std::size_t(py) * img.width + std::size_t(px);
+        EXPECT_NE(img.object_id[k], uint32_t(ObjectId::Ground)) << name << " frame " << frame << " pair " << i;
+        EXPECT_GT(img.matte[k], 0.5f) << name << " frame " << frame << " pair " << i;
+      }
+    }
+  }
+}
+
+// A crowd's frame is the same bytes (colour and every pass) at one thread and at all of them.
+TEST(Shot, RendersACrowdTheSameAtAnyThreadCount) {
+  const SceneSpec scene = crowdScene();
+  Shot one(scene, resolveProfile(scene), findCamera(scene, "persp"), 1);
+  Shot all(scene, resolveProfile(scene), findCamera(scene, "persp"), 0);
+  for (int frame : {5, 17}) {
+    const Image a = one.renderFrame(frame), b = all.renderFrame(frame);
+    EXPECT_TRUE(a.rgba == b.rgba) << "frame " << frame;
+    EXPECT_TRUE(a.depth == b.depth && a.matte == b.matte && a.object_id == b.object_id) << "frame " << frame;
+  }
+}
+
+// Changing one pair's profile (pair 1: english -> novice) changes only pixels within that pair's reach
+// on screen. A profile moves the rider and what she holds and stands in (her horse's stirrups and reins,
+// the vertices that moved; the horse's body stays), so the reach is the box of those skinned vertices
+// in both renders, of their shadows on the ground along the
+// sun, and of every point within the sky rays' 300 cm (RenderSettings::ao_distance_cm) of them, grown
+// by the tent filter's pixel. Both are seen through the same camera (the first one's resolved view, so
+// the framing cannot move with the pose).
+TEST(Shot, ChangingOnePairsProfileChangesOnlyItsPixels) {
+  const SceneSpec a = crowdScene("english"), b = crowdScene("novice");
+  CameraSpec camera = Shot(a, resolveProfile(a), findCamera(a, "persp"), 0).camera();
+  camera.view.clear();
+  Shot shot_a(a, resolveProfile(a), camera, 0), shot_b(b, resolveProfile(b), camera, 0);
+  constexpr int kPair = 1;
+  constexpr double kAoReachCm = 300.0;  // RenderSettings{}.ao_distance_cm
+  ASSERT_EQ(RenderSettings{}.ao_distance_cm, kAoReachCm);
+  const glm::dvec3 sun = glm::normalize(glm::dvec3(a.sun_direction[0], a.sun_direction[1], a.sun_direction[2]));
+  for (int frame : {8, 20}) {
+    const Image ia = shot_a.renderFrame(frame), ib = shot_b.renderFrame(frame);
+    const Camera cam = shot_a.cameraAtFrame(frame);
+    std::vector<glm::dvec3> pts, horse_a, horse_b, rider;
+    shot_a.pairPoints(kPair, frame, 1, horse_a, rider);
+    pts = rider;
+    shot_b.pairPoints(kPair, frame, 1, horse_b, rider);
+    pts.insert(pts.end(), rider.begin(), rider.end());
+    // Of her horse, what she moves: the stirrups and the reins (rig::poseMounted places them).
+    ASSERT_EQ(horse_a.size(), horse_b.size());
+    std::size_t tack = 0;
+    for (std::size_t v = 0; v < horse_a.size(); ++v)
+      if (horse_a[v] != horse_b[v]) pts.push_back(horse_a[v]), pts.push_back(horse_b[v]), ++tack;
+    EXPECT_LT(tack, horse_a.size() / 5) << "frame " << frame << ": the profile moved the horse's body";
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    std::vector<glm::dvec3> reach = pts;
+    for (const glm::dvec3& p : pts) reach.push_back(p - sun * (p.y / sun.y));  // its shadow on y = 0
+    // The surfaces within reach are the ground and the characters, none higher than the tallest.
+    double top = hi.y;
+    for (int other = 0; other < shot_a.pairCount(); ++other) {
+      shot_a.pairPoints(other, frame, 1, horse_b, rider);
+      for (const glm::dvec3& p : rider) top = std::max(top, p.y);
+      for (const glm::dvec3& p : horse_b) top = std::max(top, p.y);
+    }
+    for (int c = 0; c < 8; ++c)
+      reach.push_back({(c & 1 ? hi.x + kAoReachCm : lo.x - kAoReachCm), (c & 2 ? std::min(hi.y + kAoReachCm, top) : 0.0),
+                       (c & 4 ? hi.z + kAoReachCm : lo.z - kAoReachCm)});
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const glm::dvec3& p : reach) {
+      double px = 0, py = 0;
+      ASSERT_TRUE(projectToPixel(cam, ia.width, ia.height, p, px, py));
+      x0 = std::min(x0, px), x1 = std::max(x1, px), y0 = std::min(y0, py), y1 = std::max(y1, py);
+    }
+    x0 -= 2, y0 -= 2, x1 += 2, y1 += 2;  // the tent filter reaches a pixel either side
+    int changed = 0, outside = 0;
+    for (int y = 0; y < ia.height; ++y)
+      for (int x = 0; x < ia.width; ++x) {
+        const std::size_t k = std::size_t(y) * ia.width + x;
+        if (ia.rgba[k] == ib.rgba[k]) continue;
+        ++changed;
+        if (x + 1 < x0 || x > x1 || y + 1 < y0 || y > y1) ++outside;
+      }
+    EXPECT_GT(changed, 50) << "frame " << frame << ": the profile must show";
+    EXPECT_EQ(outside, 0) << "frame " << frame << ": box " << x0 << ".." << x1 << " x " << y0 << ".." << y1;
+    // The box must leave most of the frame out, or the check would say nothing.
+    const double box = (std::min(x1, double(ia.width)) - std::max(x0, 0.0)) * (std::min(y1, double(ia.height)) - std::max(y0, 0.0));
+    EXPECT_LT(box, 0.5 * ia.width * ia.height) << "frame " << frame << ": box " << x0 << ".." << x1 << " x " << y0 << ".." << y1;
+  }
+}
+
+// A camera following a pair of a crowd follows it as a single pair's camera follows its horse: one
+// pair alone in a "riders" list at the default proportions, followed, gives the same bytes as the
+// scene with that path as its clip and the default characters.
+TEST(Shot, FollowsAPairOfACrowdAsASinglePair) {
+  const std::string path = R"("points": [[0, 0], [1500, 300], [3000, 0]], "speed": [[0, 320]], "seed": 5, "variation": 0.1)";
+  const std::string common = R"("frames": "1-12", "resolution": [96, 54], "quality": {"samples": 1}, )";
+  const std::string file = std::string(STIRRUP_SOURCE_DIR) + "/scenes/follow1.json";
+  const SceneSpec single = parseScene(nlohmann::json::parse("{" + common + R"("clip": {"generator": "path", )" + path +
+                                                            R"(}, "cameras": [{"view": "close"}, {"name": "persp", "view": "persp"}]})"),
+                                      file);
+  const SceneSpec crowd = parseScene(nlohmann::json::parse("{" + common + R"("riders": [{)" + path +
+                                                           R"(}], "cameras": [{"view": "close", "follow_pair": 0},
+                                                               {"name": "persp", "view": "persp", "follow_pair": 0}]})"),
+                                     file);
+  for (std::size_t c = 0; c < 2; ++c) {
+    Shot one(single, resolveProfile(single), single.cameras[c], 0);
+    Shot pair(crowd, resolveProfile(crowd), crowd.cameras[c], 0);
+    for (int frame : {1, 12}) {
+      const Camera a = one.cameraAtFrame(frame), b = pair.cameraAtFrame(frame);
+      EXPECT_NEAR(glm::length(a.position - b.position), 0.0, 1e-6) << single.cameras[c].name << " frame " << frame;
+      EXPECT_NEAR(glm::length(a.target - b.target), 0.0, 1e-6) << single.cameras[c].name << " frame " << frame;
+      EXPECT_TRUE(one.renderFrame(frame).rgba == pair.renderFrame(frame).rgba) << single.cameras[c].name << " frame " << frame;
+    }
+  }
+}
+
+// A camera made in code (not read from a scene, which checks it when it loads) that follows a pair the
+// crowd does not have is a one-line error naming the scene, the camera and the range.
+TEST(Shot, FollowingAPairTheCrowdHasNotIsAOneLineError) {
+  const SceneSpec scene = crowdScene();
+  CameraSpec camera = findCamera(scene, "side");
+  camera.follow_pair = 4;
+  try {
+    Shot shot(scene, resolveProfile(scene), camera, 1);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              std::string(STIRRUP_SOURCE_DIR) + "/scenes/crowd4.json: cameras.side.follow_pair: expected a pair index "
+              "from 0 to 3, got 4");
   }
 }
 

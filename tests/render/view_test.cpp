@@ -2,10 +2,14 @@
 // of the character matte may touch the image border on any frame shown.
 #include "render/view.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <gtest/gtest.h>
 
 #include "render/renderer.h"
@@ -171,6 +175,117 @@ TEST(TopView, FramesTheWholeTrackFromAbove) {
     u_lo = std::min(u_lo, u), u_hi = std::max(u_hi, u);
   }
   EXPECT_GT(u_hi - u_lo, 0.6) << "the track fills the picture's width";
+}
+
+// A crowd (issue 19) of six pairs in two ranks of three files, through a turn: each view with no
+// follow_pair frames the whole crowd (every pair's skinned vertices, projected here through the
+// camera's own definition, inside the picture; no matte on the border, the close view's riders under
+// the top), and a view that follows one pair frames that pair alone, as a single pair's view does.
+SceneSpec crowdInATurn() {
+  return parseScene(nlohmann::json::parse(R"({
+    "name": "crowd6", "frames": "1-160x8", "resolution": [160, 90], "quality": {"samples": 1},
+    "crowd": {"pairs": 6, "seed": 11,
+              "lead": {"points": [[0, 0], [2000, 0], [3500, 1000]], "speed": [[0, 400]]},
+              "formation": {"files": 3, "file_spacing_cm": 320, "rank_spacing_cm": 900, "jitter_cm": 10},
+              "profiles": {"thesis": 1, "english": 1, "novice": 1}},
+    "cameras": [{"name": "side", "view": "side"}, {"name": "persp", "view": "persp"},
+                {"name": "close", "view": "close"}, {"name": "turntable", "view": "turntable"},
+                {"name": "top", "view": "top"}, {"name": "side4", "view": "side", "follow_pair": 4},
+                {"name": "persp4", "view": "persp", "follow_pair": 4}]})"),
+                    std::string(STIRRUP_SOURCE_DIR) + "/scenes/crowd6.json");
+}
+
+// Where a point falls on the film, u and v in [0, 1] (v down), by the camera's definition
+// (render/camera.h), not the renderer's CameraFrame.
+glm::dvec2 filmPoint(const Camera& c, double aspect, const glm::dvec3& p) {
+  const glm::dvec3 f = glm::normalize(c.target - c.position), r = glm::normalize(glm::cross(f, c.up));
+  const glm::dvec3 u = glm::cross(r, f), q = p - c.position;
+  double x = glm::dot(q, r), y = glm::dot(q, u), h = 0.5 * c.ortho_height_cm;
+  if (c.projection == Camera::Projection::Perspective) {
+    const double z = glm::dot(q, f);
+    if (z <= 0.0) return {-1.0, -1.0};
+    x /= z, y /= z, h = std::tan(0.5 * glm::radians(c.fov_deg));
+  }
+  return {0.5 + 0.5 * x / (h * aspect), 0.5 - 0.5 * y / h};
+}
+
+TEST(CrowdViewFraming, ViewsWithoutAFollowedPairFrameTheWholeCrowd) {
+  const SceneSpec scene = crowdInATurn();
+  ASSERT_EQ(scene.pairs.size(), 6u);
+  const rig::RigProfile profile = resolveProfile(scene);
+  const double aspect = double(scene.width) / scene.height;
+  for (const char* name : {"side", "persp", "close", "turntable", "top"}) {
+    Shot shot(scene, profile, findCamera(scene, name), 0);
+    const std::vector<int> frames = framingFrames(shot.camera(), scene);
+    for (std::size_t k = 0; k < frames.size(); k += 4) {
+      const int f = frames[k];
+      const BorderCount c = countBorder(shot.renderFrame(f));
+      const Camera cam = shot.cameraAtFrame(f);
+      if (std::string(name) == "close") {
+        EXPECT_GT(c.rider, 0) << "close frame " << f;
+        EXPECT_EQ(c.rider_top, 0) << "close frame " << f << ": a rider touches the top";
+        continue;
+      }
+      EXPECT_EQ(c.matte, 0) << name << " frame " << f << ": a horse or rider on the image border";
+      if (cam.projection == Camera::Projection::Orthographic && std::string(name) != "top") {
+        // Its film's lower edge stands above the ground (flat here), so no ray starts under it.
+        const glm::dvec3 fwd = glm::normalize(cam.target - cam.position);
+        const glm::dvec3 up = glm::cross(glm::normalize(glm::cross(fwd, cam.up)), fwd);
+        EXPECT_GT(cam.position.y - 0.5 * cam.ortho_height_cm * up.y, 0.0) << name << " frame " << f;
+      }
+      for (int pair = 0; pair < shot.pairCount(); ++pair) {
+        std::vector<glm::dvec3> horse, rider;
+        shot.pairPoints(pair, f, 7, horse, rider);
+        horse.insert(horse.end(), rider.begin(), rider.end());
+        for (const glm::dvec3& p : horse) {
+          const glm::dvec2 uv = filmPoint(cam, aspect, p);
+          ASSERT_TRUE(uv.x > 0.0 && uv.x < 1.0 && uv.y > 0.0 && uv.y < 1.0)
+              << name << " frame " << f << " pair " << pair << " at " << uv.x << ", " << uv.y;
+        }
+      }
+    }
+  }
+}
+
+TEST(CrowdViewFraming, AViewFollowingAPairFramesThatPair) {
+  const SceneSpec scene = crowdInATurn();
+  const rig::RigProfile profile = resolveProfile(scene);
+  const double aspect = double(scene.width) / scene.height;
+  Shot crowd_side(scene, profile, findCamera(scene, "side"), 0);
+  Shot side(scene, profile, findCamera(scene, "side4"), 0), persp(scene, profile, findCamera(scene, "persp4"), 0);
+  // The followed pair fills the frame as one pair does (a horse and rider in about 3.2 m of height
+  // with margins), far tighter than the whole crowd's.
+  EXPECT_LT(side.camera().ortho_height_cm, 0.6 * crowd_side.camera().ortho_height_cm);
+  Shot crowd_persp(scene, profile, findCamera(scene, "persp"), 0);
+  // The width of the followed pair's points on the film, through a camera.
+  const auto width = [&](Shot& shot, const Camera& cam, int f) {
+    std::vector<glm::dvec3> horse, rider;
+    shot.pairPoints(4, f, 7, horse, rider);
+    double lo = 1, hi = 0;
+    for (const glm::dvec3& p : horse) {
+      const glm::dvec2 uv = filmPoint(cam, aspect, p);
+      lo = std::min(lo, uv.x), hi = std::max(hi, uv.x);
+    }
+    return hi - lo;
+  };
+  for (auto [shot, whole] : {std::pair{&side, &crowd_side}, std::pair{&persp, &crowd_persp}}) {
+    for (int f : rig::parseFrameList(scene.frames, "frames")) {
+      std::vector<glm::dvec3> horse, rider;
+      shot->pairPoints(4, f, 7, horse, rider);
+      horse.insert(horse.end(), rider.begin(), rider.end());
+      double lo = 1, hi = 0;
+      const Camera cam = shot->cameraAtFrame(f);
+      for (const glm::dvec3& p : horse) {
+        const glm::dvec2 uv = filmPoint(cam, aspect, p);
+        ASSERT_TRUE(uv.x > 0.0 && uv.x < 1.0 && uv.y > 0.0 && uv.y < 1.0) << "frame " << f << " at " << uv.x << ", " << uv.y;
+        lo = std::min(lo, uv.x), hi = std::max(hi, uv.x);
+      }
+      // A third of the frame or more, as one pair's view (its horse's length), and at least twice what
+      // it takes in the view of the whole crowd.
+      EXPECT_GT(hi - lo, 0.3) << shot->camera().name << " frame " << f << ": the followed pair fills the frame";
+      EXPECT_GT(width(*shot, cam, f), 2.0 * width(*whole, whole->cameraAtFrame(f), f)) << shot->camera().name << " frame " << f;
+    }
+  }
 }
 
 }  // namespace
