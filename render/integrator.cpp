@@ -566,8 +566,11 @@ void Integrator::gatherSurface(const CameraFrame& camera, TileScratch::CameraSam
     S.c0r[m] = c0.x, S.c0g[m] = c0.y, S.c0b[m] = c0.z, S.c1r[m] = c1.x, S.c1g[m] = c1.y, S.c1b[m] = c1.z;
     S.c2r[m] = c2.x, S.c2g[m] = c2.y, S.c2b[m] = c2.z;
     // The ground under the hit (its downward sky rays stop just above it).
-    const glm::vec3 p = c.origin + t * c.dir;
-    S.ground_y[m] = terrain_ ? float(terrain_->height(double(p.x), double(p.z))) : 0.0f;
+    S.ground_y[m] = 0.0f;
+    if (terrain_) {
+      const glm::vec3 p = c.origin + t * c.dir;
+      S.ground_y[m] = float(terrain_->height(double(p.x), double(p.z)));
+    }
     c.id = mesh.id;
     c.haze = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
     return;

@@ -158,16 +158,15 @@ void ShadingLanes(const LaneConstants& k, SurfaceLanes& S) {
     // the characters sees the whole sky: its exact cosine-weighted mean, no rays. A character's rays
     // heading down stop just short of the ground: if nothing else is in the way they see the lit
     // ground's bounce.
+    // Without the shortcuts (a crowd) every point samples the sky.
     MF sky_traced = hn::Not(hn::FirstN(df, 0));
-    if (!k.box_empty && !k.open_ground_shortcuts) {
-      // every point samples the sky (sky_traced stays all true)
-    } else if (!k.box_empty) {
+    if (k.box_empty) {
+      sky_traced = hn::Not(hn::And(on_ground, hn::Gt(ng.y, zero)));  // no characters: infinitely far
+    } else if (k.open_ground_shortcuts) {
       const V3 e = {hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.x), origin.x), hn::Sub(origin.x, Splat(k.box_upper.x))), zero),
                     hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.y), origin.y), hn::Sub(origin.y, Splat(k.box_upper.y))), zero),
                     hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.z), origin.z), hn::Sub(origin.z, Splat(k.box_upper.z))), zero)};
       sky_traced = hn::Not(hn::And(hn::And(on_ground, hn::Gt(ng.y, zero)), hn::Gt(Length3(e), Splat(k.ao_distance))));
-    } else {
-      sky_traced = hn::Not(hn::And(on_ground, hn::Gt(ng.y, zero)));  // no characters: infinitely far
     }
     StoreMask(sky_traced, S.sky_traced, i);
     Store3(Mul3(diffuse, Splat3(k.sky_irradiance)), S.sky_r, S.sky_g, S.sky_b, i);

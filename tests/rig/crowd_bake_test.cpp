@@ -32,16 +32,22 @@ std::vector<PairSpec> troop() {
 
 bool sameChannels(const RiderChannels& a, const RiderChannels& b) { return a.value == b.value; }
 
+// Each pair's own clip and profile, as a shot makes them.
+void clipsAndProfiles(const std::vector<PairSpec>& pairs, std::vector<std::unique_ptr<PathClip>>& clips,
+                      std::vector<RigProfile>& profiles) {
+  for (const PairSpec& p : pairs) {
+    clips.push_back(makePairClip(p, nullptr, "t"));
+    profiles.push_back(profileNamed(p.profile));
+  }
+}
+
 // Each rider's channels in the crowd equal those of her pair baked alone: her own clip (made afresh
 // from her pair alone) and her own profile, at her own phase.
 TEST(CrowdBake, EachRiderIsHerHorsesAlone) {
   const std::vector<PairSpec> pairs = troop();
   std::vector<std::unique_ptr<PathClip>> clips;
   std::vector<RigProfile> profiles;
-  for (const PairSpec& p : pairs) {
-    clips.push_back(makePairClip(p, nullptr, "t"));
-    profiles.push_back(profileNamed(p.profile));
-  }
+  clipsAndProfiles(pairs, clips, profiles);
   std::vector<CrowdPair> crowd;
   for (std::size_t i = 0; i < pairs.size(); ++i) crowd.push_back({clips[i].get(), &profiles[i], pairs[i].clip_offset_s});
   std::vector<std::unique_ptr<PathClip>> alone_clips;
@@ -64,10 +70,7 @@ TEST(CrowdBake, OnePairsProfileChangesOnlyHer) {
   const std::vector<PairSpec> pairs = troop();
   std::vector<std::unique_ptr<PathClip>> clips;
   std::vector<RigProfile> profiles;
-  for (const PairSpec& p : pairs) {
-    clips.push_back(makePairClip(p, nullptr, "t"));
-    profiles.push_back(profileNamed(p.profile));
-  }
+  clipsAndProfiles(pairs, clips, profiles);
   const auto crowdOf = [&](const std::vector<RigProfile>& pr) {
     std::vector<CrowdPair> c;
     for (std::size_t i = 0; i < pairs.size(); ++i) c.push_back({clips[i].get(), &pr[i], pairs[i].clip_offset_s});
