@@ -130,9 +130,8 @@ unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint3
   const unsigned id = rtcAttachGeometry(scene_, g);
   throwOnDeviceError(device_, "rtcAttachGeometry", last_error_);
   if (id >= meshes_.size()) meshes_.resize(id + 1);
-  meshes_[id] = {g, vertex_count, {}};
+  meshes_[id] = Mesh{g, vertex_count, {}, indices.size() / 3};
   if (update_ == BvhUpdate::Refit) meshes_[id].rest.assign(rest_positions.begin(), rest_positions.end());
-  built_ = false;
   triangles_ += indices.size() / 3;
   dirty_ = true;
   return id;
@@ -153,16 +152,39 @@ void EmbreeScene::setVertices(unsigned geom_id, std::span<const glm::vec3> posit
   dirty_ = true;
 }
 
+void EmbreeScene::setEnabled(unsigned geom_id, bool enabled) {
+  if (geom_id >= meshes_.size() || !meshes_[geom_id].geometry) throw std::invalid_argument("setEnabled: no such mesh");
+  Mesh& m = meshes_[geom_id];
+  if (m.enabled == enabled) return;
+  m.enabled = enabled;
+  if (enabled) {
+    rtcEnableGeometry(m.geometry);
+    m.needs_rest_build = true;
+  } else {
+    rtcDisableGeometry(m.geometry);
+  }
+  dirty_ = true;
+}
+
+size_t EmbreeScene::enabledTriangleCount() const {
+  size_t n = 0;
+  for (const Mesh& m : meshes_)
+    if (m.geometry && m.enabled) n += m.triangle_count;
+  return n;
+}
+
 void EmbreeScene::commit() {
   if (!dirty_) return;
-  if (update_ == BvhUpdate::Refit && !built_) {
-    // Build each tree over its rest pose, then put the current vertices back: the commit below
-    // refits. The current vertices are copied out of Embree's buffer and restored.
+  if (update_ == BvhUpdate::Refit) {
+    // Build the tree of each new (or put back) mesh over its rest pose, then put its current vertices
+    // back: the commit below refits. The current vertices are copied out of Embree's buffer and restored.
     std::vector<std::vector<glm::vec3>> current(meshes_.size());
     bool any_rest = false;
     for (size_t id = 0; id < meshes_.size(); ++id) {
       Mesh& m = meshes_[id];
-      if (!m.geometry || m.rest.empty()) continue;
+      if (!m.geometry || !m.enabled || !m.needs_rest_build) continue;
+      m.needs_rest_build = false;
+      if (m.rest.empty()) continue;
       auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
       current[id].assign(v, v + m.vertex_count);
       std::memcpy(v, m.rest.data(), m.vertex_count * sizeof(glm::vec3));
@@ -182,7 +204,6 @@ void EmbreeScene::commit() {
         rtcCommitGeometry(m.geometry);
       }
     }
-    built_ = true;
   }
   rtcCommitScene(scene_);
   throwOnDeviceError(device_, "rtcCommitScene", last_error_);

@@ -59,6 +59,11 @@ class EmbreeScene {
                            std::span<const glm::vec3> rest_positions = {});
   // Overwrites the mesh's vertices in Embree's own buffer and marks the scene for commit.
   void setVertices(unsigned geom_id, std::span<const glm::vec3> positions);
+  // Takes a mesh out of the scene (rays pass it) or puts it back, from the next commit; a crowd's pair
+  // shows one of its levels of detail (render/detail_level.h). Refit: a mesh put back is built over its
+  // rest pose again before it is refitted to its vertices, so its tree is the same whatever frames were
+  // rendered before.
+  void setEnabled(unsigned geom_id, bool enabled);
 
   // Rebuilds or refits what changed since the last commit; no-op when nothing did. Call it from the
   // task arena the trace will run in, so the build uses the same threads.
@@ -68,13 +73,17 @@ class EmbreeScene {
   RTCScene ground() const { return ground_; }
   // Bounds of the characters at the last commit (empty, lower > upper, when there are none).
   const RTCBounds& characterBounds() const { return bounds_; }
-  size_t triangleCount() const { return triangles_; }
+  size_t triangleCount() const { return triangles_; }      // of every mesh, enabled or not
+  size_t enabledTriangleCount() const;                     // of the meshes rays can hit
 
  private:
   struct Mesh {
     RTCGeometry geometry = nullptr;
     size_t vertex_count = 0;
-    std::vector<glm::vec3> rest;  // Refit: the pose the tree is built over, until the first commit
+    std::vector<glm::vec3> rest;  // Refit: the pose the tree is built over
+    size_t triangle_count = 0;
+    bool enabled = true;
+    bool needs_rest_build = true;  // Refit: build over `rest` at the next commit (new or put back)
   };
 
   std::string last_error_;  // filled by Embree's error callback
@@ -87,7 +96,6 @@ class EmbreeScene {
   std::vector<Mesh> meshes_;  // indexed by geomID
   size_t triangles_ = 0;
   bool dirty_ = true;
-  bool built_ = false;  // Refit: the trees over the rest poses exist
 };
 
 }  // namespace stirrup::render

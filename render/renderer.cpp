@@ -136,6 +136,11 @@ void Renderer::updateMesh(int mesh, std::span<const glm::vec3> positions, std::s
   std::copy(normals.begin(), normals.end(), m.normals.begin());
 }
 
+void Renderer::setMeshEnabled(int mesh, bool enabled) {
+  if (mesh < 0 || size_t(mesh) >= state_->meshes.size()) throw std::invalid_argument("setMeshEnabled: no mesh " + std::to_string(mesh));
+  state_->scene.setEnabled(state_->geometry_of_mesh[size_t(mesh)], enabled);
+}
+
 Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
   const int w = settings_.width, h = settings_.height;
   const CameraFrame camera_frame(camera, w, h);
@@ -204,7 +209,7 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
         tbb::simple_partitioner());
     stats_.trace_ms = msSince(t1);
   });
-  stats_.triangles = state_->scene.triangleCount();
+  stats_.triangles = state_->scene.enabledTriangleCount();
   stats_.rays = rays.load();
   if (log) {
     log->camera.clear();

@@ -85,7 +85,7 @@ struct RenderSettings {
 struct RenderStats {
   double commit_ms = 0;  // BVH rebuild or refit
   double trace_ms = 0;   // tracing and shading
-  size_t triangles = 0;
+  size_t triangles = 0;  // of the meshes shown (a crowd's pairs at their levels of detail)
   uint64_t rays = 0;     // camera, shadow and sky rays of the frame (including those culled before Embree)
 };
 
@@ -118,6 +118,8 @@ class Renderer {
   int addMesh(const MeshDesc& mesh);
   // New vertex positions and unit normals for a mesh, vertex_count of each (every frame).
   void updateMesh(int mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
+  // Shows or hides a mesh from the next frame on (a crowd's pair shows one of its levels of detail).
+  void setMeshEnabled(int mesh, bool enabled);
 
   // Commits the changes since the last call and traces the frame. Deterministic for (scene, frame).
   // With `log`, also keeps the frame's rays in it (slower; for benchmarks only).

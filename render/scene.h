@@ -105,7 +105,7 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file);
 
 // The scene's clip, for its horse: a path clip turns the hooves about the horse's own rest places (a
 // glTF horse is read for them; the default horse's are built in). A crowd scene has no one clip: an
-// InputError (bake, clip, rig and the movie set's channel plot do not take a crowd yet).
+// InputError (bake, clip and rig do not take a crowd yet; the movie set's channel plot plots one pair).
 std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene);
 
 // The camera of the scene named `name` (or the first when empty); InputError if there is none.

@@ -4,11 +4,13 @@
 #include <chrono>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "render/camera_motion.h"
+#include "render/detail_level.h"
 #include "render/fence.h"
 #include "render/view.h"
 #include "rig/characters/horse_character.h"
@@ -60,15 +62,31 @@ MeshDesc meshOf(ObjectId id, const rig::Character& c) {
 
 // A crowd scene's pairs, the pair its camera follows, and the threads they are made, baked and skinned on.
 struct Shot::Crowd {
-  // One pair: its characters, clip and profiles, its meshes' handles and skinning buffers.
+  // One level of detail of a pair: its characters (shared by every pair of the same proportions and
+  // colours: built once) and their meshes' handles in the renderer.
+  struct Level {
+    std::shared_ptr<const rig::Character> horse, rider;
+    int horse_mesh = -1, rider_mesh = -1;
+  };
+  // One pair: its levels, clip and profiles, and skinning buffers.
   struct Pair {
-    rig::Character horse, rider;
+    std::array<Level, kDetailLevels> levels;
     std::unique_ptr<rig::Clip> clip;           // rig::makePairClip
     std::unique_ptr<rig::ShiftedClip> shown;   // the clip at the pair's start phase, as the shot plays it
     rig::RigProfile profile, rigid_profile;
     double clip_offset_s = 0;
-    int horse_mesh = -1, rider_mesh = -1;
+    double horse_cell_cm = 0;                  // level 0's polygonisation cell, for choosing a level
+    int level = 0;                             // the level skinned last
     std::vector<glm::vec3> horse_positions, horse_normals, rider_positions, rider_normals;
+    // The characters posing uses: every level has the same skeleton, so level 0's.
+    const rig::Character& horse() const { return *levels[0].horse; }
+    const rig::Character& rider() const { return *levels[0].rider; }
+  };
+  // How skin() picks each pair's level: a fixed one, or from the camera (render/detail_level.h).
+  struct LevelChoice {
+    int fixed = 0;                    // >= 0: every pair at this level
+    const Camera* camera = nullptr;   // fixed < 0: from each pair's size through this camera
+    int width = 0, height = 0;        // the film's, in pixels
   };
   explicit Crowd(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
   std::vector<Pair> pairs;
@@ -88,16 +106,24 @@ struct Shot::Crowd {
     }
     return baked;
   }
-  // Poses and skins the pairs of `baked` (all, or only `only`), in parallel, into their buffers.
-  void skin(const std::vector<rig::BakedFrame>& baked, bool rigid, int only = -1) {
+  // Poses the pairs of `baked` (all, or only `only`), picks each one's level and skins that level's
+  // meshes into its buffers, in parallel.
+  void skin(const std::vector<rig::BakedFrame>& baked, bool rigid, const LevelChoice& choice, int only = -1) {
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t i) {
         if (only >= 0 && int(i) != only) return;
         Pair& p = pairs[i];
-        const rig::MountedPose pose =
-            rig::poseMounted(p.horse, p.rider, baked[i].horse, baked[i].rider, rigid ? p.rigid_profile : p.profile);
-        rig::skinMesh(p.horse.mesh, p.horse.skeleton, pose.horse, p.horse_positions, p.horse_normals);
-        rig::skinMesh(p.rider.mesh, p.rider.skeleton, pose.rider, p.rider_positions, p.rider_normals);
+        const rig::MountedPose pose = rig::poseMounted(p.horse(), p.rider(), baked[i].horse, baked[i].rider,
+                                                       rigid ? p.rigid_profile : p.profile);
+        if (choice.fixed >= 0) {
+          p.level = choice.fixed;
+        } else {
+          const glm::dvec3 root(pose.horse[std::size_t(p.horse().role("root"))][3]);
+          p.level = pairDetailLevel(*choice.camera, choice.width, choice.height, root, p.horse_cell_cm);
+        }
+        const Level& l = p.levels[std::size_t(p.level)];
+        rig::skinMesh(l.horse->mesh, l.horse->skeleton, pose.horse, p.horse_positions, p.horse_normals);
+        rig::skinMesh(l.rider->mesh, l.rider->skeleton, pose.rider, p.rider_positions, p.rider_normals);
       });
     });
   }
@@ -143,10 +169,15 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
     renderer_->setTerrain(scene.terrain, trackRegion(scene_, tracks));
   }
   if (crowd_) {
-    // In pair order, so the geometries' ids are the same on every run.
+    // In pair and level order, so the geometries' ids are the same on every run. Every level is in
+    // the renderer from the start, only one of a pair's shown (renderCrowdMeshes).
     for (Crowd::Pair& p : crowd_->pairs) {
-      p.horse_mesh = renderer_->addMesh(meshOf(ObjectId::Horse, p.horse));
-      p.rider_mesh = renderer_->addMesh(meshOf(ObjectId::Rider, p.rider));
+      for (Crowd::Level& l : p.levels) {
+        l.horse_mesh = renderer_->addMesh(meshOf(ObjectId::Horse, *l.horse));
+        l.rider_mesh = renderer_->addMesh(meshOf(ObjectId::Rider, *l.rider));
+        renderer_->setMeshEnabled(l.horse_mesh, false);
+        renderer_->setMeshEnabled(l.rider_mesh, false);
+      }
     }
   } else {
     horse_mesh_ = renderer_->addMesh(meshOf(ObjectId::Horse, horse_));
@@ -207,14 +238,7 @@ void Shot::setUpCrowd(int threads) {
     p.rigid_profile = p.profile;
     p.rigid_profile.rigid = true;
   }
-  // Building a character takes a while; each pair builds its own, so in parallel.
-  crowd_->arena.execute([&] {
-    tbb::parallel_for(std::size_t(0), scene_.pairs.size(), [&](std::size_t i) {
-      const rig::HorseParams horse = scene_.pairs[i].horse();
-      crowd_->pairs[i].horse = rig::buildHorse(horse);
-      crowd_->pairs[i].rider = rig::buildRider(scene_.pairs[i].rider(), horse.mount);
-    });
-  });
+  buildCrowdCharacters();
   if (crowd_->follow >= 0) {
     clip_ = std::make_unique<rig::ShiftedClip>(*crowd_->pairs[std::size_t(crowd_->follow)].clip,
                                                crowd_->pairs[std::size_t(crowd_->follow)].clip_offset_s);
@@ -225,15 +249,74 @@ void Shot::setUpCrowd(int threads) {
   }
 }
 
+// Every pair's characters at every level of detail. Pairs of the same proportions and colours share
+// theirs (a `riders` list often repeats them), and each distinct one is built once, in parallel.
+void Shot::buildCrowdCharacters() {
+  struct Job {
+    rig::HorseParams horse;
+    rig::RiderParams rider;
+    std::shared_ptr<const rig::Character> built_horse, built_rider;
+  };
+  // A pair's proportions, colours and level -> its job.
+  using Key = std::tuple<double, double, double, std::string, std::string, std::string, std::string, int>;
+  std::map<Key, std::size_t> job_of;
+  std::vector<Job> jobs;
+  std::vector<std::array<std::size_t, kDetailLevels>> pair_jobs(scene_.pairs.size());
+  for (std::size_t i = 0; i < scene_.pairs.size(); ++i) {
+    const rig::PairSpec& spec = scene_.pairs[i];
+    for (int k = 0; k < kDetailLevels; ++k) {
+      const Key key{spec.withers_height_cm, spec.rider_height_cm, spec.rider_build, spec.coat, spec.jacket, spec.hair,
+                    spec.skin, k};
+      auto [it, inserted] = job_of.emplace(key, jobs.size());
+      if (inserted) {
+        Job job{spec.horse(), spec.rider(), nullptr, nullptr};
+        job.horse.cell *= kDetailCellFactor[k];
+        job.rider.cell *= kDetailCellFactor[k];
+        jobs.push_back(std::move(job));
+      }
+      pair_jobs[i][std::size_t(k)] = it->second;
+    }
+  }
+  // Building a character takes a while, so in parallel.
+  crowd_->arena.execute([&] {
+    tbb::parallel_for(std::size_t(0), 2 * jobs.size(), [&](std::size_t j) {
+      Job& job = jobs[j / 2];
+      if (j % 2 == 0)
+        job.built_horse = std::make_shared<const rig::Character>(rig::buildHorse(job.horse));
+      else
+        job.built_rider = std::make_shared<const rig::Character>(rig::buildRider(job.rider, job.horse.mount));
+    });
+  });
+  for (std::size_t i = 0; i < scene_.pairs.size(); ++i) {
+    Crowd::Pair& p = crowd_->pairs[i];
+    for (int k = 0; k < kDetailLevels; ++k) {
+      const Job& job = jobs[pair_jobs[i][std::size_t(k)]];
+      p.levels[std::size_t(k)].horse = job.built_horse;
+      p.levels[std::size_t(k)].rider = job.built_rider;
+      // Levels share the skeleton (only the mesh's cell differs), so one pose skins every level.
+      if (job.built_horse->skeleton.size() != p.levels[0].horse->skeleton.size() ||
+          job.built_rider->skeleton.size() != p.levels[0].rider->skeleton.size())
+        throw std::logic_error("Shot: a level of detail's skeleton differs from the full level's");
+    }
+    p.horse_cell_cm = jobs[pair_jobs[i][0]].horse.cell;
+  }
+}
+
 const rig::Character& Shot::cameraHorse() const {
   if (!crowd_) return horse_;
-  return crowd_->pairs[std::size_t(std::max(0, crowd_->follow))].horse;
+  return crowd_->pairs[std::size_t(std::max(0, crowd_->follow))].horse();
 }
 
 const rig::RigProfile& Shot::cameraProfile() const {
   if (!crowd_) return profile_;
   // The middle clip's controls are at rest, so its profile only sets the seat's rest (rider_unit_cm).
   return crowd_->pairs[std::size_t(std::max(0, crowd_->follow))].profile;
+}
+
+void Shot::setDetailLevel(int level) {
+  if (level < -1 || level >= kDetailLevels)
+    throw std::invalid_argument("Shot::setDetailLevel: expected -1 to " + std::to_string(kDetailLevels - 1));
+  detail_level_ = level;
 }
 
 int Shot::pairCount() const { return crowd_ ? int(crowd_->pairs.size()) : 0; }
@@ -284,7 +367,7 @@ void Shot::pairPoints(int pair, int frame, int stride, std::vector<glm::dvec3>& 
                       std::vector<glm::dvec3>& rider) {
   if (!crowd_ || pair < 0 || pair >= pairCount())
     throw std::invalid_argument("Shot::pairPoints: no pair " + std::to_string(pair));
-  crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_, pair);
+  crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_, {}, pair);
   const Crowd::Pair& p = crowd_->pairs[std::size_t(pair)];
   const std::size_t step = static_cast<std::size_t>(std::max(1, stride));
   horse.clear();
@@ -294,7 +377,9 @@ void Shot::pairPoints(int pair, int frame, int stride, std::vector<glm::dvec3>& 
 }
 
 void Shot::crowdCorners(int frame, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider) {
-  crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_);
+  // The coarsest level: its boxes are the full level's within a cell (a few cm against a view's 12%
+  // margin), at a sixteenth of the skinning.
+  crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_, {kDetailLevels - 1});
   horse.clear();
   rider.clear();
   const auto corners = [](const std::vector<glm::vec3>& points, std::vector<glm::dvec3>& out) {
@@ -311,7 +396,7 @@ void Shot::crowdCorners(int frame, std::vector<glm::dvec3>& horse, std::vector<g
 void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse,
                            std::vector<glm::dvec3>& rider) {
   if (crowd_) {
-    crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_);
+    crowd_->skin(crowd_->bakeShown(scene_, camera_, rigid_rider_, frame), rigid_rider_, {});
     const std::size_t step = static_cast<std::size_t>(std::max(1, stride));
     horse.clear();
     rider.clear();
@@ -334,28 +419,40 @@ void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse
   for (std::size_t i = 0; i < positions_.size(); i += step) rider.emplace_back(positions_[i]);
 }
 
-void Shot::renderCrowdMeshes(int frame) {
+void Shot::renderCrowdMeshes(int frame, const Camera& camera) {
   auto t0 = Clock::now();
   const std::vector<rig::BakedFrame> baked = crowd_->bakeShown(scene_, camera_, rigid_rider_, frame);
   timings_.pose_ms = msSince(t0);
   // Posing is inside the skinning loop here (each pair posed and skinned by one task).
   t0 = Clock::now();
-  crowd_->skin(baked, rigid_rider_);
+  crowd_->skin(baked, rigid_rider_, {detail_level_, &camera, scene_.width, scene_.height});
+  timings_.pairs_at_level = {};
+  timings_.skinned_vertices = 0;
   for (const Crowd::Pair& p : crowd_->pairs) {
-    renderer_->updateMesh(p.horse_mesh, p.horse_positions, p.horse_normals);
-    renderer_->updateMesh(p.rider_mesh, p.rider_positions, p.rider_normals);
+    for (int k = 0; k < kDetailLevels; ++k) {
+      const Crowd::Level& l = p.levels[std::size_t(k)];
+      renderer_->setMeshEnabled(l.horse_mesh, k == p.level);
+      renderer_->setMeshEnabled(l.rider_mesh, k == p.level);
+    }
+    const Crowd::Level& shown = p.levels[std::size_t(p.level)];
+    renderer_->updateMesh(shown.horse_mesh, p.horse_positions, p.horse_normals);
+    renderer_->updateMesh(shown.rider_mesh, p.rider_positions, p.rider_normals);
+    ++timings_.pairs_at_level[std::size_t(p.level)];
+    timings_.skinned_vertices += p.horse_positions.size() + p.rider_positions.size();
   }
   timings_.skin_ms = msSince(t0);
 }
 
 Image Shot::renderFrame(int frame, RayLog* log) {
   if (crowd_) {
-    renderCrowdMeshes(frame);
+    const Camera camera = cameraAtFrame(frame);
+    renderCrowdMeshes(frame, camera);
     auto t0 = Clock::now();
-    Image image = renderer_->render(cameraAtFrame(frame), frame, log);
+    Image image = renderer_->render(camera, frame, log);
     timings_.trace_ms = msSince(t0);
     timings_.bvh_ms = renderer_->lastStats().commit_ms;
     timings_.rays = renderer_->lastStats().rays;
+    timings_.triangles = renderer_->lastStats().triangles;
     return image;
   }
   const rig::BakedFrame baked = bakeShown(frame);
@@ -378,6 +475,8 @@ Image Shot::renderFrame(int frame, RayLog* log) {
   timings_.trace_ms = msSince(t0);
   timings_.bvh_ms = renderer_->lastStats().commit_ms;
   timings_.rays = renderer_->lastStats().rays;
+  timings_.triangles = renderer_->lastStats().triangles;
+  timings_.skinned_vertices = positions_.size() + horse_.mesh.positions.size();
   return image;
 }
 

@@ -8,6 +8,7 @@
 // the crowd's middle (rig/motion/crowd_middle_clip.h), and a view then frames every pair.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct FrameTimings {
   double pose_ms = 0, skin_ms = 0, trace_ms = 0;
   double bvh_ms = 0;   // the BVH update, part of trace_ms
   uint64_t rays = 0;   // camera, shadow and sky rays of the frame
+  size_t triangles = 0;             // shown (refitted), every pair at its level
+  uint64_t skinned_vertices = 0;    // of the horses and riders shown
+  std::array<int, 3> pairs_at_level{};  // a crowd's pairs at each level of detail (render/detail_level.h)
 };
 
 class Shot {
@@ -57,12 +61,16 @@ class Shot {
   // The rider rigidly fixed to the saddle (every rider channel at rest): what the rig adds, for the
   // layered comparison (render/review/layer.h).
   void setRigidRider(bool rigid) { rigid_rider_ = rigid; }
+  // A crowd's levels of detail (render/detail_level.h): -1 (the default) picks each pair's level from
+  // its size on screen; 0 to 2 draws every pair at that level (benchmarks, the switch's test).
+  void setDetailLevel(int level);
 
  private:
   void addObstacles();
   struct Crowd;  // a crowd scene's pairs (shot.cpp)
   void setUpCrowd(int threads);
-  void renderCrowdMeshes(int frame);
+  void buildCrowdCharacters();
+  void renderCrowdMeshes(int frame, const Camera& camera);
   // The 8 corners of each pair's horse's and rider's bounding boxes at a frame, as shown.
   void crowdCorners(int frame, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
   // The horse whose seat a camera following the rider takes, and the profile the camera evaluates her
@@ -83,6 +91,7 @@ class Shot {
   std::vector<glm::vec3> positions_, normals_;
   FrameTimings timings_;
   bool rigid_rider_ = false;
+  int detail_level_ = -1;
   // The profile posing uses: the scene's, or with the rigid rider the same marked rigid (her channels
   // at rest and no balance stage either: she rides like a statue).
   const rig::RigProfile& poseProfile() const;

@@ -16,6 +16,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The lens of a crowd's whole-troop perspective view (our choice): wider than a pair's 50 mm.
+constexpr double kCrowdPerspFocalMm = 35.0;
+
 double fovFromFocal(double mm) { return 2.0 * std::atan(12.0 / mm) * 180.0 / kPi; }
 
 // The direction from the target toward the camera, in the travel frame.
@@ -24,6 +27,9 @@ glm::dvec3 viewDirection(const std::string& view) {
   // Perspective views look down less than half their field of view, so the horizon is in the frame.
   if (view == "persp") return glm::normalize(glm::dvec3(0.75, 0.12, 1.0));
   if (view == "close") return glm::normalize(glm::dvec3(0.45, 0.06, 1.0));
+  // A crowd's whole troop (render/shot.h): from higher, about 15 degrees down, so the ranks behind
+  // the first show over it; a 35 mm lens's half field (19 degrees) keeps the horizon in the frame.
+  if (view == "crowd persp") return glm::normalize(glm::dvec3(0.75, 0.335, 1.0));
   return glm::normalize(glm::dvec3(0.0, 0.12, 1.0));  // turntable: starts on the right side
 }
 
@@ -191,7 +197,10 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
   if (!(lo.x <= hi.x)) throw std::invalid_argument("frameView: the characters have no vertices");
   const glm::dvec3 centre = 0.5 * (lo + hi);
   const double radius = 0.5 * glm::length(hi - lo);
-  const glm::dvec3 dir = viewDirection(spec.view);
+  // A crowd seen whole (no follow_pair) is a wide shot of many pairs: from higher, on a wider lens.
+  const bool crowd_persp = scene.pairs.size() >= 2 && spec.follow_pair < 0 && spec.view == "persp";
+  if (crowd_persp) spec.fov_deg = fovFromFocal(kCrowdPerspFocalMm);
+  const glm::dvec3 dir = viewDirection(crowd_persp ? "crowd persp" : spec.view);
   spec.target = toArray(centre);
   spec.position = toArray(centre + dir * (spec.orthographic ? radius + 600.0 : 3.0 * radius));
 

@@ -1,7 +1,12 @@
 // stirrup bench: renders a fixed trot scene at 640 x 360 with each quality preset and reports where
 // a frame's time goes (pose, skin, BVH, trace, write), the renderer's rays per second, and the bound:
 // the same rays replayed through Embree alone, with no shading, on the same threads.
+// With --scene (a crowd: issue 19) it renders that scene's frames instead, and reports the same split,
+// what was skinned and refitted per frame and per pair, the pairs at each level of detail, the set-up
+// time and the process's peak memory, against the built-in trot's frame at the same preset in the same
+// run.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +14,7 @@
 #include <vector>
 
 #include <chrono>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -21,6 +27,7 @@
 #include "render/sample_lanes.h"
 #include "render/scene.h"
 #include "render/shot.h"
+#include "rig/io/frame_range.h"
 #include "rig/rig_profile.h"
 
 namespace stirrup::cli {
@@ -30,6 +37,10 @@ struct BenchOptions {
   bool json = false;
   int threads = 0;
   int frames = 12;
+  std::string scene;      // a scene file: bench it instead of the built-in trot
+  std::string camera;     // its camera (empty: the first)
+  std::string preset;     // one preset (empty: every one)
+  int detail = -1;        // levels of detail: -1 automatic, 0-2 every pair at that level
 };
 
 // The benchmark scene: scenes/trot.json's content, built in so the numbers never depend on a file
@@ -120,7 +131,133 @@ PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions
   return r;
 }
 
+// The process's peak resident memory so far (bytes): Linux reports ru_maxrss in kilobytes.
+double peakMemoryBytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) * 1024.0;
+}
+
+struct SceneResult {
+  std::string preset;
+  double setup_s = 0, peak_bytes = 0;
+  double bake = 0, skin = 0, bvh = 0, trace = 0, write = 0;  // ms per frame
+  double fps = 0;
+  double pairs = 0, skinned_vertices = 0, triangles = 0;     // per frame
+  std::array<double, 3> pairs_at_level{};                   // per frame
+  double trot_ms = 0;   // the built-in trot's frame (pose to trace) at this preset, this run
+};
+
+SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOptions& o,
+                             const std::filesystem::path& scratch) {
+  render::SceneSpec scene = render::loadScene(o.scene);
+  render::applyPreset(scene, preset);
+  SceneResult r;
+  r.preset = std::string(preset.name);
+  const auto setup0 = Clock::now();
+  render::Shot shot(scene, render::resolveProfile(scene), render::findCamera(scene, o.camera), o.threads);
+  shot.setDetailLevel(o.detail);
+  r.setup_s = secondsSince(setup0);
+  // o.frames of the scene's frames, spread evenly over them.
+  const std::vector<int> all = rig::parseFrameList(scene.frames, "frames");
+  std::vector<int> frames;
+  for (int i = 0; i < o.frames; ++i) frames.push_back(all[std::size_t(i) * all.size() / std::size_t(o.frames)]);
+  shot.renderFrame(frames.front());  // warm-up
+  double write_ms = 0;
+  render::FrameWriter writer;
+  const auto run0 = Clock::now();
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    render::Image image = shot.renderFrame(frames[i]);
+    const render::FrameTimings& t = shot.lastTimings();
+    const std::filesystem::path file = scratch / ("bench." + std::to_string(i % 2) + ".png");
+    writer.submit([image = std::move(image), file, &write_ms] {
+      const auto w0 = Clock::now();
+      render::writePng(image, file);
+      write_ms += secondsSince(w0) * 1000.0;
+    });
+    r.bake += t.pose_ms, r.skin += t.skin_ms, r.bvh += t.bvh_ms, r.trace += t.trace_ms - t.bvh_ms;
+    r.skinned_vertices += double(t.skinned_vertices);
+    r.triangles += double(t.triangles);
+    for (int k = 0; k < 3; ++k) r.pairs_at_level[std::size_t(k)] += t.pairs_at_level[std::size_t(k)];
+  }
+  writer.wait();
+  const double n = double(frames.size());
+  r.fps = n / secondsSince(run0);
+  r.write = write_ms / n;
+  r.bake /= n, r.skin /= n, r.bvh /= n, r.trace /= n, r.skinned_vertices /= n, r.triangles /= n;
+  for (double& l : r.pairs_at_level) l /= n;
+  r.pairs = std::max(1, shot.pairCount());
+  r.peak_bytes = peakMemoryBytes();
+  return r;
+}
+
+// The built-in trot's frame at a preset: pose, skin, BVH and trace (ms), after a warm-up.
+double trotFrameMs(const render::QualityPreset& preset, const BenchOptions& o) {
+  render::SceneSpec scene = benchScene();
+  render::applyPreset(scene, preset);
+  render::Shot shot(scene, rig::RigProfile::thesis(), scene.cameras.front(), o.threads);
+  shot.renderFrame(1);
+  double ms = 0;
+  for (int i = 0; i < o.frames; ++i) {
+    shot.renderFrame(1 + i % 72);
+    const render::FrameTimings& t = shot.lastTimings();
+    ms += t.pose_ms + t.skin_ms + t.trace_ms;
+  }
+  return ms / o.frames;
+}
+
+void runSceneBench(const BenchOptions& o) {
+  namespace fs = std::filesystem;
+  const fs::path scratch = fs::temp_directory_path() / ("stirrup-bench-" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  std::vector<SceneResult> results;
+  try {
+    // The scene first, so the peak memory is the scene's (the trot's is far smaller).
+    for (const render::QualityPreset& p : render::qualityPresets())
+      if (o.preset.empty() || o.preset == p.name) results.push_back(benchScenePreset(p, o, scratch));
+    for (SceneResult& r : results) r.trot_ms = trotFrameMs(render::findPreset(r.preset), o);
+  } catch (...) {
+    fs::remove_all(scratch);
+    throw;
+  }
+  fs::remove_all(scratch);
+  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+  const auto frameMs = [](const SceneResult& r) { return r.bake + r.skin + r.bvh + r.trace; };
+  if (o.json) {
+    nlohmann::json presets = nlohmann::json::object();
+    for (const SceneResult& r : results) {
+      presets[r.preset] = {
+          {"fps", r.fps}, {"setup_s", r.setup_s}, {"peak_memory_bytes", r.peak_bytes},
+          {"ms", {{"bake", r.bake}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write}}},
+          {"pairs", r.pairs}, {"skinned_vertices", r.skinned_vertices}, {"refit_triangles", r.triangles},
+          {"pairs_at_level", r.pairs_at_level}, {"trot_ms", r.trot_ms}, {"times_trot", frameMs(r) / r.trot_ms}};
+    }
+    const nlohmann::json out = {{"scene", o.scene}, {"presets", presets}, {"threads", threads},
+                                {"detail", o.detail}, {"simd", render::simdTargetName()}};
+    std::printf("%s\n", out.dump().c_str());
+    return;
+  }
+  std::printf("stirrup bench: %s, %d thread%s, %d frame%s a preset, levels of detail %s (ms per frame)\n\n",
+              o.scene.c_str(), threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s",
+              o.detail < 0 ? "by size on screen" : ("all at level " + std::to_string(o.detail)).c_str());
+  std::printf("%-7s %7s %6s %6s %6s %8s %6s %8s %7s %8s %9s %9s %7s %8s\n", "preset", "fps", "bake", "skin", "bvh",
+              "trace", "write", "x trot", "setup", "peak MB", "skin kv/f", "refit kt/f", "kt/pair", "levels");
+  for (const SceneResult& r : results) {
+    char levels[48];
+    std::snprintf(levels, sizeof levels, "%.0f/%.0f/%.0f", r.pairs_at_level[0], r.pairs_at_level[1], r.pairs_at_level[2]);
+    std::printf("%-7s %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %7.2fx %6.1fs %8.0f %9.0f %9.0f %7.1f %8s\n", r.preset.c_str(),
+                r.fps, r.bake, r.skin, r.bvh, r.trace, r.write, frameMs(r) / r.trot_ms, r.setup_s, r.peak_bytes / 1e6,
+                r.skinned_vertices / 1e3, r.triangles / 1e3, r.triangles / 1e3 / r.pairs, levels);
+  }
+  std::printf("\nbake: every pair's channels; skin: posing and skinning every pair at its level; bvh: the refit;\n"
+              "x trot: the frame (bake to trace) over the built-in trot's at the same preset, this run;\n"
+              "skin kv/f, refit kt/f: thousands of vertices skinned and triangles refitted a frame (kt/pair: per\n"
+              "pair); levels: pairs at full, half and quarter detail a frame (render/detail_level.h);\n"
+              "peak MB: the process's peak resident memory.\n");
+}
+
 void runBench(const BenchOptions& o) {
+  if (!o.scene.empty()) return runSceneBench(o);
   namespace fs = std::filesystem;
   const fs::path scratch = fs::temp_directory_path() / ("stirrup-bench-" + std::to_string(::getpid()));
   fs::create_directories(scratch);
@@ -169,10 +306,19 @@ void addBenchCommand(CLI::App& app) {
   cmd->footer(
       "Renders a built-in trot side view at 640x360 with each preset (draft, review, final) and prints\n"
       "milliseconds per frame (pose, skin, bvh, trace, write), rays per second, and the bound: the same\n"
-      "rays replayed through Embree alone. Example: stirrup bench --json --threads 2");
+      "rays replayed through Embree alone. Example: stirrup bench --json --threads 2\n"
+      "With --scene, renders --frames of that scene's frames (spread over them) with its camera and\n"
+      "prints the same split, the pairs' skinning and refit counts, levels of detail, set-up time and\n"
+      "peak memory, and the frame against the trot's. Example: stirrup bench --scene scenes/cavalry.json -p review");
   cmd->add_flag("--json", opts->json, "Print one JSON object instead of the table");
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--frames,-n", opts->frames, "Timed frames per preset")->check(CLI::Range(1, 1000));
+  cmd->add_option("--scene", opts->scene, "Bench this scene (e.g. scenes/cavalry.json) instead of the built-in trot");
+  cmd->add_option("--camera,-c", opts->camera, "With --scene: its camera (default: the first)");
+  cmd->add_option("--preset,-p", opts->preset, "With --scene: only this preset (draft, review, final)")
+      ->check(CLI::IsMember({"draft", "review", "final"}));
+  cmd->add_option("--detail", opts->detail, "With --scene: -1 picks each pair's level of detail by its size on "
+                  "screen (default), 0-2 draws every pair at that level")->check(CLI::Range(-1, 2));
   cmd->callback([opts] { runBench(*opts); });
 }
 

@@ -70,7 +70,8 @@ ChannelPlot movementPlot(const std::string& title, const std::vector<rig::BakedF
   return plot;
 }
 
-std::vector<PlotPanel> pathPanels(const rig::PathClip& clip, const std::vector<rig::BakedFrame>& frames) {
+std::vector<PlotPanel> pathPanels(const rig::PathClip& clip, const std::vector<rig::BakedFrame>& frames,
+                                  double clip_offset_s) {
   PlotPanel speed{"Speed and gait", "m/s, gait",
                   {{"speed (m/s)", kBlue, {}}, {"gait  1-4 walk-gallop, - left lead", kVermilion, {}}}};
   PlotPanel turn{"Turn and slope", "degrees",
@@ -78,11 +79,12 @@ std::vector<PlotPanel> pathPanels(const rig::PathClip& clip, const std::vector<r
                   {"ground pitch (+ uphill)", kOrange, {}},
                   {"lowerBack.ry  rider (+ right)", kPurple, {}}}};
   for (const rig::BakedFrame& b : frames) {
-    speed.series[0].values.push_back(clip.speedAt(b.seconds) / 100.0);
+    const double t = b.seconds + clip_offset_s;  // the path clip's own time
+    speed.series[0].values.push_back(clip.speedAt(t) / 100.0);
     // The section the frame is in: the last that starts at or before it.
     const rig::PathClip::Section* in = &clip.sections().front();
     for (const rig::PathClip::Section& s : clip.sections())
-      if (s.start_s <= b.seconds) in = &s;
+      if (s.start_s <= t) in = &s;
     const double gait = 1.0 + static_cast<double>(in->gait);
     const bool leads = in->gait == rig::PathGait::Canter || in->gait == rig::PathGait::Gallop;
     speed.series[1].values.push_back(leads && in->lead == rig::Lead::Left ? -gait : gait);

@@ -41,7 +41,9 @@ ChannelPlot movementPlot(const std::string& title, const std::vector<rig::BakedF
 // The panels a path clip adds (issue 15), from the same baked frames: speed (m/s) with the gait as a
 // step (1 walk, 2 trot, 3 canter, 4 gallop; the lead as a sign, + right, at the canter and gallop),
 // and the body's roll into the turn (rearPivot.rx), the ground's pitch and the rider's lowerBack.ry.
-std::vector<PlotPanel> pathPanels(const rig::PathClip& clip, const std::vector<rig::BakedFrame>& frames);
+// `clip_offset_s`: the frames were baked from the clip started this far in (a crowd pair's start phase).
+std::vector<PlotPanel> pathPanels(const rig::PathClip& clip, const std::vector<rig::BakedFrame>& frames,
+                                  double clip_offset_s = 0.0);
 
 // Writes the plot as a PNG, `width` pixels wide (via FILE.tmp.png and a rename).
 void writeChannelPlot(const ChannelPlot& plot, const std::filesystem::path& file, int width = 1280);

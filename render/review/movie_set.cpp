@@ -18,6 +18,8 @@
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/motion/clip_factory.h"
+#include "rig/motion/crowd.h"
+#include "rig/motion/shifted_clip.h"
 #include "rig/error.h"
 #include "rig/io/frame_range.h"
 #include "rig/rig_profile.h"
@@ -104,6 +106,12 @@ std::vector<MovieJob> defaultMovieSet(const fs::path& scenes_dir, const fs::path
       {"figure_eight_persp", s("figure_eight"), "persp", "", ""},
       {"figure_eight_top", s("figure_eight"), "top", "", ""},
       {"trail_persp", s("trail"), "persp", "", ""},
+      // Crowds (issue 19): a troop cantering into a gallop over rolling ground, seen whole and with
+      // one rider followed; eight riders of mixed profiles walking and trotting a trail.
+      {"cavalry_persp", s("cavalry"), "persp", "", ""},
+      {"cavalry_follow", s("cavalry"), "follow", "", ""},
+      {"ride_out_persp", s("ride_out"), "persp", "", ""},
+      {"ride_out_close", s("ride_out"), "close", "", ""},
   };
   if (fs::is_regular_file(reference_dir / "muybridge" / "horse-and-rider-gallop-plate.jpg"))
     set.push_back({"gallop_layered", s("gallop"), "side", "", "reference"});
@@ -118,16 +126,40 @@ int movieFrameCount(const MovieJob& job, const MovieOptions& o) { return static_
 
 fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out) {
   const SceneSpec scene = loadScene(scene_file);
-  const rig::RigProfile profile = resolveProfile(scene);
-  const std::unique_ptr<rig::Clip> clip = makeSceneClip(scene);
+  // A crowd's plot is one pair's: the one a camera follows (the first such), else the first pair,
+  // its own clip at its start phase and its own profile, as the shot rides it.
+  int pair = -1;
+  std::unique_ptr<rig::Clip> own;
+  std::unique_ptr<rig::Clip> clip;
+  SceneSpec profile_scene = scene;
+  std::string title = scene.name;
+  if (!scene.pairs.empty()) {
+    pair = 0;
+    for (const CameraSpec& c : scene.cameras)
+      if (c.follow_pair >= 0) {
+        pair = c.follow_pair;
+        break;
+      }
+    const rig::PairSpec& spec = scene.pairs.at(std::size_t(pair));
+    own = rig::makePairClip(spec, scene.terrain, scene_file.string() + ": pairs[" + std::to_string(pair) + "]");
+    clip = std::make_unique<rig::ShiftedClip>(*own, spec.clip_offset_s);
+    profile_scene.profile = spec.profile;
+    title += " pair " + std::to_string(pair);
+  } else {
+    clip = makeSceneClip(scene);
+  }
+  const rig::RigProfile profile = resolveProfile(profile_scene);
   std::vector<rig::BakedFrame> baked;
   for (int f : rig::parseFrameList(scene.frames, scene_file.string() + ": frames"))
     baked.push_back(rig::bakeFrame(*clip, profile, f, frameTime(scene, f)));
   const fs::path file = out / (scene.name + "_plot.png");
-  ChannelPlot plot = movementPlot(scene.name + " (" + clip->name() + ", profile " + scene.profile + "): horse and rider channels",
+  ChannelPlot plot = movementPlot(title + " (" + (own ? own->name() : clip->name()) + ", profile " + profile_scene.profile +
+                                      "): horse and rider channels",
                                   baked, profile.rider_unit_cm);
-  if (const auto* path = dynamic_cast<const rig::PathClip*>(clip.get()))
-    for (PlotPanel& p : pathPanels(*path, baked)) plot.panels.push_back(std::move(p));
+  const rig::Clip* path_source = own ? own.get() : clip.get();
+  if (const auto* path = dynamic_cast<const rig::PathClip*>(path_source))
+    for (PlotPanel& p : pathPanels(*path, baked, own ? scene.pairs[std::size_t(pair)].clip_offset_s : 0.0))
+      plot.panels.push_back(std::move(p));
   writeChannelPlot(plot, file);
   return file;
 }

@@ -99,6 +99,10 @@ PairSpec parsePairSpec(JsonObjectReader& r) {
   p.withers_height_cm = r.number("withers_height_cm", p.withers_height_cm);
   p.rider_height_cm = r.number("rider_height_cm", p.rider_height_cm);
   p.rider_build = r.number("rider_build", p.rider_build);
+  p.coat = r.string("coat", p.coat);
+  p.jacket = r.string("jacket", p.jacket);
+  p.hair = r.string("hair", p.hair);
+  p.skin = r.string("skin", p.skin);
   r.finish();
   return p;
 }

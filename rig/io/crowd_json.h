@@ -7,7 +7,9 @@
 //             "gait_variation": 0.1}
 //   "riders": [{"points": [[x, z], ...], "speed": [[s, cm/s], ...], "speed_over": "time", "start_offset_s": 0.3,
 //               "profile": "english", "seed": 3, "variation": 0.1, "withers_height_cm": 160,
-//               "rider_height_cm": 170, "rider_build": 1}, ...]
+//               "rider_height_cm": 170, "rider_build": 1, "coat": "grey", "jacket": "navy", "hair": "blonde",
+//               "skin": "olive"}, ...]
+// Colours are names (rig/characters/palette.h); a generated crowd draws them for each pair.
 // These read the fields and their types (unknown fields and wrong types are one-line errors naming the
 // file and field); the values are checked by generateCrowd and validatePairs.
 #pragma once

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "rig/characters/palette.h"
 #include "rig/characters/proportions.h"
 #include "rig/error.h"
 #include "rig/motion/ground_path.h"
@@ -136,8 +137,16 @@ const std::vector<std::string>& crowdProfiles() {
   return names;
 }
 
-HorseParams PairSpec::horse() const { return scaledHorse(withers_height_cm, rider_height_cm); }
-RiderParams PairSpec::rider() const { return scaledRider(rider_height_cm, rider_build); }
+HorseParams PairSpec::horse() const {
+  HorseParams h = scaledHorse(withers_height_cm, rider_height_cm);
+  applyHorseCoat(coat, h);
+  return h;
+}
+RiderParams PairSpec::rider() const {
+  RiderParams r = scaledRider(rider_height_cm, rider_build);
+  applyRiderColors(jacket, hair, skin, r);
+  return r;
+}
 
 std::unique_ptr<PathClip> makePairClip(const PairSpec& pair, std::shared_ptr<const Terrain> terrain,
                                        const std::string& source) {
@@ -237,12 +246,17 @@ std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const
     const double rider_height = d.between(spec.rider_height_cm);
     const double build = d.between(spec.rider_build);
     const auto clip_seed = static_cast<unsigned>(d.engine() & 0x7FFFFFFFu);
+    // Colours last, so the draws above are what they were before pairs had colours.
+    const auto pickName = [&d](const auto& list) { return std::string(list[d.engine() % list.size()].name); };
+    const std::string coat = pickName(horseCoats()), jacket = pickName(riderJackets());
+    const std::string hair = pickName(riderHair()), skin = pickName(riderSkins());
 
     PairSpec p;
     p.clip_offset_s = offset_s;
     p.withers_height_cm = withers;
     p.rider_height_cm = rider_height;
     p.rider_build = build;
+    p.coat = coat, p.jacket = jacket, p.hair = hair, p.skin = skin;
     // The first profile whose share of the total the pick falls in (a weight of 0 is never picked).
     double cumulative = 0.0;
     for (const auto& [name, weight] : spec.profile_mix) {
@@ -292,6 +306,12 @@ void validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Ter
           std::tuple{"rider_build", p.rider_build, kRiderBuildRange, ""}})
       if (!allowed.contains(v))
         throw InputError(at + key + ": expected " + rangeText(allowed) + unit + ", got " + numberText(v));
+    if (!findHorseCoat(p.coat))
+      throw InputError(at + "coat: expected one of " + paletteNames(horseCoats()) + ", got \"" + p.coat + "\"");
+    for (const auto& [key, name, list] : {std::tuple{"jacket", &p.jacket, &riderJackets()},
+                                          std::tuple{"hair", &p.hair, &riderHair()}, std::tuple{"skin", &p.skin, &riderSkins()}})
+      if (!findNamedColor(*list, *name))
+        throw InputError(at + key + ": expected one of " + paletteNames(*list) + ", got \"" + *name + "\"");
     const auto& known = crowdProfiles();
     if (std::find(known.begin(), known.end(), p.profile) == known.end())
       throw InputError(at + "profile: expected one of thesis, english, novice, got \"" + p.profile + "\"");

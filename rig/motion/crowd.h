@@ -67,9 +67,12 @@ struct PairSpec {
   double clip_offset_s = 0;     // its clip is sampled at the shot's time plus this (its start phase)
   std::string profile = "thesis";
   double withers_height_cm = 160, rider_height_cm = 170, rider_build = 1;
+  // Colours by name (rig/characters/palette.h); the defaults are the default characters' own.
+  std::string coat = "bay";                          // the horse's coat and points
+  std::string jacket = "red", hair = "brown", skin = "light";  // the rider's
 
-  HorseParams horse() const;    // scaledHorse (rig/characters/proportions.h), at these proportions
-  RiderParams rider() const;    // scaledRider
+  HorseParams horse() const;    // scaledHorse (rig/characters/proportions.h), at these proportions and coat
+  RiderParams rider() const;    // scaledRider, in these colours
 };
 
 struct Formation {
@@ -91,6 +94,8 @@ struct CrowdSpec {
   ProportionRange rider_height_cm = kRiderHeightRangeCm;
   ProportionRange rider_build = kRiderBuildRange;
   double gait_variation = 0.1;   // each pair's clip variation (PathClipParams::variation)
+  // Each generated pair's coat, jacket, hair and skin are drawn uniformly from the palette's names
+  // (rig/characters/palette.h).
   std::uint64_t seed = 1;
 };
 

@@ -426,6 +426,31 @@ TEST(Renderer, RenderingTwiceGivesTheSameBytes) {
   EXPECT_TRUE(sameBytes(a, scene.render(0, 3)));  // and a fresh renderer agrees
 }
 
+// A hidden mesh is not drawn (the frame is the empty scene's), and shown again, after frames of other
+// poses while hidden, it gives the bytes of a fresh renderer (a crowd's levels of detail, under Refit:
+// a mesh put back is built over its rest pose again).
+TEST(Renderer, AHiddenMeshIsNotDrawnAndComesBackTheSame) {
+  SmallScene scene;
+  Renderer empty(scene.settings);
+  const Image nothing = empty.render(scene.camera, 3);
+  Renderer r(scene.settings);
+  const TestMesh rest = makeSphere({0.0f, 60.0f, 0.0f}, 25.0f, 24, 48, {0.6f, 0.35f, 0.2f});
+  const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size(),
+                              rest.positions});
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+  const Image shown = r.render(scene.camera, 3);
+  r.setMeshEnabled(mesh, false);
+  EXPECT_TRUE(sameBytes(r.render(scene.camera, 3), nothing));
+  const TestMesh moved = makeSphere({40.0f, 45.0f, 0.0f}, 30.0f, 24, 48, {0.6f, 0.35f, 0.2f});
+  r.updateMesh(mesh, moved.positions, moved.normals);
+  EXPECT_TRUE(sameBytes(r.render(scene.camera, 3), nothing));
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+  r.setMeshEnabled(mesh, true);
+  EXPECT_TRUE(sameBytes(r.render(scene.camera, 3), shown));
+  EXPECT_EQ(r.lastStats().triangles, scene.sphere.indices.size() / 3);
+  EXPECT_THROW(r.setMeshEnabled(mesh + 1, false), std::invalid_argument);
+}
+
 TEST(Renderer, AnotherFrameMovesOnlyTheNoise) {
   SmallScene scene;
   const Image a = scene.render(0, 1), b = scene.render(0, 2);

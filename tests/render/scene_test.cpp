@@ -244,7 +244,7 @@ TEST(SceneCrowd, ACrowdPlaysItsLeadsRideUnlessFramesAreGiven) {
             SceneSpec{}.frames);
 }
 
-// A crowd scene has no one clip: the commands that read one (bake, clip, rig, the channel plot) get a
+// A crowd scene has no one clip: the commands that read one (bake, clip, rig) get a
 // one-line error rather than the default trot nobody rides.
 TEST(SceneCrowd, ACrowdHasNoOneClip) {
   try {
@@ -252,7 +252,7 @@ TEST(SceneCrowd, ACrowdHasNoOneClip) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "scenes/x.json: crowd: expected a scene of one horse and rider here (a crowd is "
-                                     "drawn by `stirrup render` only, so far)");
+                                     "drawn by `stirrup render` and `stirrup movies` only, so far)");
   }
   EXPECT_NE(makeSceneClip(parseScene(nlohmann::json::object(), "scenes/x.json")), nullptr);
 }

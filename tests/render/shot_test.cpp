@@ -5,15 +5,25 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iostream>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
+#include "render/detail_level.h"
+#include "render/image.h"
 #include "render/scene.h"
 #include "rig/error.h"
 #include "rig/motion/clip_factory.h"
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
+#include "rig/crowd_bake.h"
+#include "rig/io/frame_range.h"
 #include "rig/motion/crowd.h"
+#include "rig/pose.h"
+#include "rig/skin.h"
 
 namespace stirrup::render {
 namespace {
@@ -196,7 +206,12 @@ TEST(Shot, ChangingOnePairsProfileChangesOnlyItsPixels) {
   const SceneSpec a = crowdScene("english"), b = crowdScene("novice");
   CameraSpec camera = Shot(a, resolveProfile(a), findCamera(a, "persp"), 0).camera();
   camera.view.clear();
+  // Twice as far as the view frames the crowd, so the pair's reach is well inside the frame.
+  for (int i = 0; i < 3; ++i) camera.position[i] = camera.target[i] + 2.0 * (camera.position[i] - camera.target[i]);
   Shot shot_a(a, resolveProfile(a), camera, 0), shot_b(b, resolveProfile(b), camera, 0);
+  // Full detail, as pairPoints gives the points (the levels are the same in both shots anyway).
+  shot_a.setDetailLevel(0);
+  shot_b.setDetailLevel(0);
   constexpr int kPair = 1;
   constexpr double kAoReachCm = 300.0;  // RenderSettings{}.ao_distance_cm
   ASSERT_EQ(RenderSettings{}.ao_distance_cm, kAoReachCm);
@@ -254,7 +269,8 @@ TEST(Shot, ChangingOnePairsProfileChangesOnlyItsPixels) {
 
 // A camera following a pair of a crowd follows it as a single pair's camera follows its horse: one
 // pair alone in a "riders" list at the default proportions, followed, gives the same bytes as the
-// scene with that path as its clip and the default characters.
+// scene with that path as its clip and the default characters (at full detail: a single pair has no
+// levels of detail; a crowd's are tested on their own).
 TEST(Shot, FollowsAPairOfACrowdAsASinglePair) {
   const std::string path = R"("points": [[0, 0], [1500, 300], [3000, 0]], "speed": [[0, 320]], "seed": 5, "variation": 0.1)";
   const std::string common = R"("frames": "1-12", "resolution": [96, 54], "quality": {"samples": 1}, )";
@@ -269,12 +285,159 @@ TEST(Shot, FollowsAPairOfACrowdAsASinglePair) {
   for (std::size_t c = 0; c < 2; ++c) {
     Shot one(single, resolveProfile(single), single.cameras[c], 0);
     Shot pair(crowd, resolveProfile(crowd), crowd.cameras[c], 0);
+    pair.setDetailLevel(0);
     for (int frame : {1, 12}) {
       const Camera a = one.cameraAtFrame(frame), b = pair.cameraAtFrame(frame);
       EXPECT_NEAR(glm::length(a.position - b.position), 0.0, 1e-6) << single.cameras[c].name << " frame " << frame;
       EXPECT_NEAR(glm::length(a.target - b.target), 0.0, 1e-6) << single.cameras[c].name << " frame " << frame;
       EXPECT_TRUE(one.renderFrame(frame).rgba == pair.renderFrame(frame).rgba) << single.cameras[c].name << " frame " << frame;
     }
+  }
+}
+
+// A crowd's level of detail switches where render/detail_level.h says (the coarser level's horse cell
+// spans kDetailSwitchCellPixels at the pair's nearest point) and the switch is no pop: at the switching distance the
+// two levels' frames differ in under 0.5% of the frame's pixels (8-bit sRGB, as the PNG holds them).
+// One default pair trotting straight, seen by a fixed 30-degree camera at 640 x 360 (review quality)
+// from the distance each switch happens at, measured from its horse's rear pivot.
+TEST(Shot, ACrowdsLevelOfDetailSwitchesAtItsStatedSizeWithoutAPop) {
+  const SceneSpec scene = parseScene(nlohmann::json::parse(R"({"frames": "1-12", "resolution": [640, 360],
+      "quality": {"samples": 16, "light_samples": 4, "ao_samples": 4},
+      "riders": [{"points": [[0, 0], [3000, 0]], "speed": [[0, 360]], "seed": 3}]})"),
+                                     std::string(STIRRUP_SOURCE_DIR) + "/scenes/lod1.json");
+  constexpr int kFrame = 6;
+  const auto clip = rig::makePairClip(scene.pairs[0], scene.terrain, "test");
+  const rig::HorseFrame h = clip->sample(frameTime(scene, kFrame));
+  // The rear pivot at rest (horse_character.h: hips 60 cm behind the travel point, 128 cm up); the
+  // trot moves it a few cm, well inside the 3% either side of a switch the test looks at.
+  const glm::dvec3 root(h.travel_cm - 60.0, h.ground_y_cm + 128.0, h.travel_z_cm);
+  const double cell = rig::HorseParams{}.cell;
+  const double tan_half = std::tan(glm::radians(15.0));
+  for (int level = 0; level + 1 < kDetailLevels; ++level) {
+    // The coarser level's cell spans kDetailSwitchCellPixels where 360 / (2 d tan 15) = that / its
+    // cell, d = distance - reach.
+    const double switch_cm =
+        kPairReachCm + 360.0 * cell * kDetailCellFactor[level + 1] / (kDetailSwitchCellPixels * 2.0 * tan_half);
+    const auto cameraAt = [&](double distance) {
+      CameraSpec c;
+      c.name = "lod";
+      c.orthographic = false;
+      c.fov_deg = 30.0;
+      c.follow = false;
+      c.motion = "fixed";
+      const glm::dvec3 eye = root + distance * glm::normalize(glm::dvec3(0.3, 0.1, 1.0));
+      c.position = {eye.x, eye.y, eye.z};
+      c.target = {root.x, root.y, root.z};
+      return c;
+    };
+    for (const auto& [factor, expected] : {std::pair{0.97, level}, std::pair{1.03, level + 1}}) {
+      Shot shot(scene, resolveProfile(scene), cameraAt(factor * switch_cm), 0);
+      shot.renderFrame(kFrame);
+      EXPECT_EQ(shot.lastTimings().pairs_at_level[std::size_t(expected)], 1) << "at " << factor << " x " << switch_cm << " cm";
+    }
+    Shot shot(scene, resolveProfile(scene), cameraAt(switch_cm), 0);
+    shot.setDetailLevel(level);
+    const Image fine = shot.renderFrame(kFrame);
+    shot.setDetailLevel(level + 1);
+    const Image coarse = shot.renderFrame(kFrame);
+    std::vector<uint8_t> a(fine.pixelCount() * 3), b(a.size());
+    encodeSrgb8(fine.rgba, a);
+    encodeSrgb8(coarse.rgba, b);
+    int changed = 0;
+    for (std::size_t k = 0; k < fine.pixelCount(); ++k) {
+      if (a[3 * k] != b[3 * k] || a[3 * k + 1] != b[3 * k + 1] || a[3 * k + 2] != b[3 * k + 2]) ++changed;
+    }
+    const double share = double(changed) / double(fine.pixelCount());
+    std::cout << "[ levels ] " << level << " -> " << level + 1 << " at " << switch_cm << " cm: " << changed
+              << " pixels changed (" << 100.0 * share << "% of the frame)" << std::endl;
+    EXPECT_GT(changed, 0) << "the levels must differ, or the test says nothing";
+    EXPECT_LT(share, 0.005) << "level " << level << " -> " << level + 1;
+  }
+}
+
+// A rectangle on the ground (x, z) around a pair: centre, unit axis along its heading, half extents.
+struct GroundBox {
+  glm::dvec2 centre, axis;
+  double half_along = 0, half_across = 0;
+};
+// Separating axis test of two boxes: they meet unless one of the four edge normals separates them.
+bool boxesMeet(const GroundBox& a, const GroundBox& b) {
+  const auto radius = [](const GroundBox& g, const glm::dvec2& n) {
+    const glm::dvec2 across(-g.axis.y, g.axis.x);
+    return g.half_along * std::abs(glm::dot(g.axis, n)) + g.half_across * std::abs(glm::dot(across, n));
+  };
+  for (const glm::dvec2& n : {a.axis, glm::dvec2(-a.axis.y, a.axis.x), b.axis, glm::dvec2(-b.axis.y, b.axis.x)})
+    if (std::abs(glm::dot(b.centre - a.centre, n)) > radius(a, n) + radius(b, n)) return false;
+  return true;
+}
+
+// The shipped crowd scenes keep every two pairs apart at every frame, measured on their bodies: each
+// pair's horse and rider skinned (at the coarsest level, its box grown by that level's cell, so it holds
+// the full mesh too) and boxed on the ground along its heading; no two boxes meet. (Every pair stands on
+// the ground, so boxes apart on the ground are apart in space.)
+TEST(CrowdScenes, NoTwoPairsBodiesMeetAtAnyFrame) {
+  // The box test itself: 60 cm wide boxes side by side 100 cm apart do not meet, one turned 90 degrees
+  // across the gap does; a square turned 45 degrees off another's corner, apart and then not.
+  const glm::dvec2 x(1, 0), y(0, 1), d = glm::normalize(glm::dvec2(1, 1));
+  EXPECT_FALSE(boxesMeet({{0, 0}, x, 120, 30}, {{0, 100}, x, 120, 30}));
+  EXPECT_TRUE(boxesMeet({{0, 0}, x, 120, 30}, {{0, 100}, y, 120, 30}));
+  EXPECT_FALSE(boxesMeet({{0, 0}, x, 50, 50}, {{110, 110}, d, 50, 50}));
+  EXPECT_TRUE(boxesMeet({{0, 0}, x, 50, 50}, {{70, 70}, d, 50, 50}));
+  for (const char* name : {"cavalry", "ride_out"}) {
+    const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
+    ASSERT_GE(scene.pairs.size(), 8u) << name;
+    std::vector<rig::Character> horses, riders;
+    std::vector<std::unique_ptr<rig::Clip>> clips;
+    std::vector<rig::RigProfile> profiles;
+    double grow = 0.0;
+    for (const rig::PairSpec& p : scene.pairs) {
+      rig::HorseParams hp = p.horse();
+      rig::RiderParams rp = p.rider();
+      hp.cell *= kDetailCellFactor[kDetailLevels - 1];
+      rp.cell *= kDetailCellFactor[kDetailLevels - 1];
+      grow = std::max({grow, double(hp.cell), double(rp.cell)});
+      horses.push_back(rig::buildHorse(hp));
+      riders.push_back(rig::buildRider(rp, hp.mount));
+      clips.push_back(rig::makePairClip(p, scene.terrain, name));
+      SceneSpec named = scene;
+      named.profile = p.profile;
+      profiles.push_back(resolveProfile(named));
+    }
+    std::vector<rig::CrowdPair> list;
+    for (std::size_t i = 0; i < clips.size(); ++i) list.push_back({clips[i].get(), &profiles[i], scene.pairs[i].clip_offset_s});
+    std::vector<glm::vec3> positions, normals;
+    int closest_frame = 0;
+    double closest = 1e300;
+    for (int frame : rig::parseFrameList(scene.frames, "frames")) {
+      const std::vector<rig::BakedFrame> baked = rig::bakeCrowdFrame(list, frame, frameTime(scene, frame));
+      std::vector<GroundBox> boxes;
+      for (std::size_t i = 0; i < baked.size(); ++i) {
+        const rig::MountedPose pose = rig::poseMounted(horses[i], riders[i], baked[i].horse, baked[i].rider, profiles[i]);
+        const double a = glm::radians(baked[i].horse.heading_deg);
+        const glm::dvec2 axis(std::cos(a), std::sin(a)), across(-axis.y, axis.x);
+        const glm::dvec2 origin(baked[i].horse.travel_cm, baked[i].horse.travel_z_cm);
+        double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
+        for (int c = 0; c < 2; ++c) {
+          const rig::Character& ch = c == 0 ? horses[i] : riders[i];
+          rig::skinMesh(ch.mesh, ch.skeleton, c == 0 ? pose.horse : pose.rider, positions, normals);
+          for (const glm::vec3& p : positions) {
+            const glm::dvec2 q = glm::dvec2(p.x, p.z) - origin;
+            const double u = glm::dot(q, axis), v = glm::dot(q, across);
+            u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
+          }
+        }
+        boxes.push_back({origin + axis * (0.5 * (u0 + u1)) + across * (0.5 * (v0 + v1)), axis,
+                         0.5 * (u1 - u0) + grow, 0.5 * (v1 - v0) + grow});
+      }
+      for (std::size_t i = 0; i < boxes.size(); ++i)
+        for (std::size_t j = i + 1; j < boxes.size(); ++j) {
+          EXPECT_FALSE(boxesMeet(boxes[i], boxes[j])) << name << " frame " << frame << ": pairs " << i << " and " << j;
+          const double d = glm::length(boxes[i].centre - boxes[j].centre);
+          if (d < closest) closest = d, closest_frame = frame;
+        }
+    }
+    std::cout << "[ crowd ] " << name << ": nearest two pairs' centres " << closest << " cm apart (frame "
+              << closest_frame << ")" << std::endl;
   }
 }
 

@@ -441,12 +441,16 @@ TEST(BakeGltf, OneSkeletonPerCharacter) {
   EXPECT_EQ(seen, (std::set<int>{0, 1, 2}));  // the jump's follow cameras move
 }
 
-// The list above is every scene shipped in scenes/ (a new scene file must join it).
+// The list above is every scene shipped in scenes/ (a new scene file must join it), but the crowds,
+// which bake does not take yet (a one-line error, tests/render/scene_test.cpp).
 TEST(BakeGltf, CameraTestCoversEveryDefaultScene) {
   std::set<std::string> shipped;
-  for (const auto& e : fs::directory_iterator(fs::path(STIRRUP_SOURCE_DIR) / "scenes"))
-    if (e.path().extension() == ".json" && readText(e.path()).find("\"cameras\"") != std::string::npos)
+  for (const auto& e : fs::directory_iterator(fs::path(STIRRUP_SOURCE_DIR) / "scenes")) {
+    const std::string text = e.path().extension() == ".json" ? readText(e.path()) : "";
+    if (text.find("\"cameras\"") != std::string::npos && text.find("\"crowd\"") == std::string::npos &&
+        text.find("\"riders\"") == std::string::npos)
       shipped.insert(e.path().stem().string());
+  }
   EXPECT_EQ(shipped, (std::set<std::string>{"buck", "canter", "cross_country", "figure_eight", "fox", "fox_run", "gallop",
                                             "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"}));
 }

@@ -53,5 +53,37 @@ TEST(BenchCommand, JsonHasEveryPresetAndPositiveFiniteNumbers) {
   EXPECT_GT(presets.at("draft").at("fps").get<double>(), presets.at("final").at("fps").get<double>());
 }
 
+// stirrup bench --scene: a crowd's split, counts and memory for one preset. The counts are checked
+// against what they must be: every pair at one level a frame, the skinned vertices and refitted
+// triangles at the full level (--detail 0) more than at the coarsest (--detail 2).
+TEST(BenchCommand, SceneJsonHasTheCrowdsCountsAndMemory) {
+  const std::string scene = quote(std::string(STIRRUP_SOURCE_DIR) + "/scenes/ride_out.json");
+  nlohmann::json at[2];
+  for (int detail : {0, 2}) {
+    const CommandResult r = runStirrup("bench --json --frames 1 --preset draft --detail " + std::to_string(detail) +
+                                       " --scene " + scene);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j.at("detail"), detail);
+    ASSERT_EQ(j.at("presets").size(), 1u);
+    const nlohmann::json& p = j.at("presets").at("draft");
+    for (const char* key : {"fps", "setup_s", "peak_memory_bytes", "skinned_vertices", "refit_triangles", "trot_ms",
+                            "times_trot"})
+      expectPositiveNumber(p.at(key), key);
+    for (const char* part : {"bake", "skin", "bvh", "trace", "write"}) expectPositiveNumber(p.at("ms").at(part), part);
+    EXPECT_EQ(p.at("pairs"), 8);
+    const nlohmann::json& levels = p.at("pairs_at_level");
+    ASSERT_EQ(levels.size(), 3u);
+    EXPECT_EQ(levels[std::size_t(detail)], 8);
+    EXPECT_EQ(levels[0].get<double>() + levels[1].get<double>() + levels[2].get<double>(), 8.0);
+    at[detail == 0 ? 0 : 1] = p;
+  }
+  EXPECT_GT(at[0].at("skinned_vertices").get<double>(), 8.0 * at[1].at("skinned_vertices").get<double>());
+  EXPECT_GT(at[0].at("refit_triangles").get<double>(), 8.0 * at[1].at("refit_triangles").get<double>());
+  const CommandResult bad = runStirrup("bench --scene /nowhere/crowd.json --frames 1 --preset draft");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_EQ(bad.err.find('\n'), bad.err.size() - 1) << bad.err;  // one line
+}
+
 }  // namespace
 }  // namespace stirrup::test

@@ -128,6 +128,8 @@ TEST(SceneGoldenSet, CoversEveryMovementAndView) {
     EXPECT_TRUE(scenes.count(scene)) << scene << " has no golden shot";
   for (const char* view : {"side", "persp", "close", "turntable", "turntable_pose"})
     EXPECT_TRUE(views.count(view)) << view << " has no golden shot";
+  for (const char* crowd : {"cavalry", "ride_out"})  // issue 19's crowds
+    EXPECT_TRUE(scenes.count(crowd)) << crowd << " has no golden shot";
   bool layered = false;
   for (const GoldenMovie& m : set.movies) layered = layered || m.movie.find("_layered") != std::string::npos;
   EXPECT_TRUE(layered) << "no layered movie in the golden set";

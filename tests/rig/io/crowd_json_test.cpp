@@ -94,6 +94,14 @@ TEST(CrowdJson, ReadsARider) {
   EXPECT_EQ(p.withers_height_cm, 150.0);
   EXPECT_EQ(p.rider_height_cm, 180.0);
   EXPECT_EQ(p.rider_build, 1.1);
+  EXPECT_EQ(p.coat, "bay");  // the default characters' colours unless named
+  EXPECT_EQ(p.jacket, "red");
+  const PairSpec q = pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "coat": "grey", "jacket": "navy",
+      "hair": "blonde", "skin": "olive"})");
+  EXPECT_EQ(q.coat, "grey");
+  EXPECT_EQ(q.jacket, "navy");
+  EXPECT_EQ(q.hair, "blonde");
+  EXPECT_EQ(q.skin, "olive");
   EXPECT_EQ(pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "speed_over": "distance"})").path.over,
             SpeedProfile::Over::Distance);
 }

@@ -5,12 +5,14 @@
 #include <map>
 #include <memory>
 #include <regex>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "rig/characters/palette.h"
 #include "tests/input_error.h"
 
 namespace stirrup::rig {
@@ -254,6 +256,26 @@ TEST(Crowd, NoTwoPairsMoveAlike) {
     }
 }
 
+// A troop's pairs wear different colours: thirty pairs draw at least five coats and five jackets, the
+// same spec draws the same ones, and each pair's characters carry its colours.
+TEST(Crowd, PairsWearDifferentColours) {
+  const auto pairs = generateCrowd(cavalry(30, 6), nullptr, 24, "t");
+  std::set<std::string> coats, jackets, hair, skins;
+  for (const PairSpec& p : pairs) coats.insert(p.coat), jackets.insert(p.jacket), hair.insert(p.hair), skins.insert(p.skin);
+  EXPECT_GE(coats.size(), 5u);
+  EXPECT_GE(jackets.size(), 5u);
+  EXPECT_GE(hair.size(), 3u);
+  EXPECT_GE(skins.size(), 3u);
+  const auto again = generateCrowd(cavalry(30, 6), nullptr, 24, "t");
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    EXPECT_EQ(pairs[i].coat, again[i].coat);
+    EXPECT_EQ(pairs[i].jacket, again[i].jacket);
+    EXPECT_EQ(pairs[i].horse().coat, findHorseCoat(pairs[i].coat)->coat);
+    EXPECT_EQ(pairs[i].rider().coat, findNamedColor(riderJackets(), pairs[i].jacket)->color);
+    EXPECT_EQ(pairs[i].rider().hair, findNamedColor(riderHair(), pairs[i].hair)->color);
+  }
+}
+
 TEST(Crowd, BadSpecsAreOneLineErrors) {
   const auto gen = [](CrowdSpec s) { return errorOf([&] { generateCrowd(s, nullptr, 24, "s.json"); }); };
   CrowdSpec s = parade(4, 2);
@@ -344,6 +366,13 @@ TEST(Crowd, ExplicitPairsAreChecked) {
   b.profile = "western";
   EXPECT_EQ(check({a, b}), "s.json: riders[1].profile: expected one of thesis, english, novice, got \"western\"");
   b.profile = "novice";
+  b.coat = "purple";
+  EXPECT_EQ(check({a, b}), "s.json: riders[1].coat: expected one of bay, chestnut, black, grey, dun, palomino, brown, "
+                           "got \"purple\"");
+  b.coat = "dun";
+  b.hair = "green";
+  EXPECT_EQ(check({a, b}), "s.json: riders[1].hair: expected one of brown, black, blonde, auburn, grey, got \"green\"");
+  b.hair = "grey";
   b.clip_offset_s = -1;
   EXPECT_EQ(check({a, b}), "s.json: riders[1].start_offset_s: expected seconds from 0 to 2, got -1");
   EXPECT_EQ(check({}), "s.json: riders: expected 1 to 200 pairs, got 0");
