@@ -102,7 +102,9 @@ void EmbreeScene::setGroundMesh(std::span<const glm::vec3> positions, std::span<
 }
 
 unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint32_t> indices,
-                                      std::span<const glm::vec3> rest_positions) {
+                                      std::span<const glm::vec3> rest_positions, int wanted_id) {
+  if (wanted_id >= 0 && std::size_t(wanted_id) < meshes_.size() && meshes_[std::size_t(wanted_id)].geometry)
+    throw std::invalid_argument("mesh: geometry id " + std::to_string(wanted_id) + " is taken");
   if (!rest_positions.empty() && rest_positions.size() != vertex_count)
     throw std::invalid_argument("mesh: rest positions do not match the vertex count");
   if (indices.size() % 3 != 0) throw std::invalid_argument("mesh: index count is not a multiple of 3");
@@ -127,7 +129,11 @@ unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint3
                                 : update_ == BvhUpdate::RebuildPerMeshLow ? RTC_BUILD_QUALITY_LOW
                                                                           : RTC_BUILD_QUALITY_MEDIUM);
   rtcCommitGeometry(g);
-  const unsigned id = rtcAttachGeometry(scene_, g);
+  unsigned id = unsigned(wanted_id);
+  if (wanted_id >= 0)
+    rtcAttachGeometryByID(scene_, g, id);
+  else
+    id = rtcAttachGeometry(scene_, g);
   throwOnDeviceError(device_, "rtcAttachGeometry", last_error_);
   if (id >= meshes_.size()) meshes_.resize(id + 1);
   meshes_[id] = Mesh{g, vertex_count, {}, indices.size() / 3};

@@ -55,8 +55,9 @@ class EmbreeScene {
   // A character triangle mesh with fixed topology; its vertices start at the origin until
   // setVertices. Returns its geomID in the character scene.
   // Throws std::invalid_argument for a partial triangle or an index out of range.
+  // `id` >= 0 attaches it with that geomID (which must be free), else with the next free one.
   unsigned addTriangleMesh(size_t vertex_count, std::span<const uint32_t> indices,
-                           std::span<const glm::vec3> rest_positions = {});
+                           std::span<const glm::vec3> rest_positions = {}, int id = -1);
   // Overwrites the mesh's vertices in Embree's own buffer and marks the scene for commit.
   void setVertices(unsigned geom_id, std::span<const glm::vec3> positions);
   // Takes a mesh out of the scene (rays pass it) or puts it back, from the next commit; a crowd's pair

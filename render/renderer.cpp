@@ -112,7 +112,8 @@ int Renderer::addMesh(const MeshDesc& desc) {
     throw std::invalid_argument("addMesh: " + std::to_string(desc.rest_positions.size()) + " rest positions for " +
                                 std::to_string(desc.vertex_count) + " vertices");
   }
-  const unsigned geometry = state_->scene.addTriangleMesh(desc.vertex_count, desc.indices, desc.rest_positions);
+  const unsigned geometry =
+      state_->scene.addTriangleMesh(desc.vertex_count, desc.indices, desc.rest_positions, desc.geometry_id);
   auto mesh = std::make_unique<ShadingMesh>();
   mesh->id = desc.id;
   mesh->indices = desc.indices;

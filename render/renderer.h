@@ -39,6 +39,10 @@ struct MeshDesc {
   // is built once over these and refitted every frame, so its topology never depends on which frames
   // were rendered before (see embree_scene.h).
   std::vector<glm::vec3> rest_positions{};
+  // The mesh's geomID in Embree's scene, or -1 for the next free one. A mesh added while frames are
+  // rendered (a crowd's level of detail, built when first needed) takes a fixed id, so the scene is the
+  // same whichever frames were rendered before.
+  int geometry_id = -1;
 };
 
 struct RenderSettings {

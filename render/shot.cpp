@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -63,7 +64,8 @@ MeshDesc meshOf(ObjectId id, const rig::Character& c) {
 // A crowd scene's pairs, the pair its camera follows, and the threads they are made, baked and skinned on.
 struct Shot::Crowd {
   // One level of detail of a pair: its characters (shared by every pair of the same proportions and
-  // colours: built once) and their meshes' handles in the renderer.
+  // colours), null until the level is first needed, and their meshes' handles in the renderer (-1 until
+  // the renderer first shows it).
   struct Level {
     std::shared_ptr<const rig::Character> horse, rider;
     int horse_mesh = -1, rider_mesh = -1;
@@ -71,16 +73,25 @@ struct Shot::Crowd {
   // One pair: its levels, clip and profiles, and skinning buffers.
   struct Pair {
     std::array<Level, kDetailLevels> levels;
+    std::array<std::size_t, kDetailLevels> builds{};  // each level's entry in Crowd::builds
     std::unique_ptr<rig::Clip> clip;           // rig::makePairClip
     std::unique_ptr<rig::ShiftedClip> shown;   // the clip at the pair's start phase, as the shot plays it
     rig::RigProfile profile, rigid_profile;
     double clip_offset_s = 0;
     double horse_cell_cm = 0;                  // level 0's polygonisation cell, for choosing a level
     int level = 0;                             // the level skinned last
+    rig::MountedPose pose;                     // posed last
     std::vector<glm::vec3> horse_positions, horse_normals, rider_positions, rider_normals;
-    // The characters posing uses: every level has the same skeleton, so level 0's.
-    const rig::Character& horse() const { return *levels[0].horse; }
-    const rig::Character& rider() const { return *levels[0].rider; }
+    // The characters posing uses: every level has the same skeleton (buildLevels checks it), so the
+    // coarsest level's, which every pair builds first (it frames the views).
+    const rig::Character& horse() const { return *levels[kDetailLevels - 1].horse; }
+    const rig::Character& rider() const { return *levels[kDetailLevels - 1].rider; }
+  };
+  // A distinct horse and rider: proportions, colours and level. Built once, when a pair first needs it.
+  struct Build {
+    rig::HorseParams horse;
+    rig::RiderParams rider;
+    std::shared_ptr<const rig::Character> built_horse, built_rider;
   };
   // How skin() picks each pair's level: a fixed one, or from the camera (render/detail_level.h).
   struct LevelChoice {
@@ -90,8 +101,49 @@ struct Shot::Crowd {
   };
   explicit Crowd(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
   std::vector<Pair> pairs;
+  std::vector<Build> builds;
   int follow = -1;         // CameraSpec::follow_pair
   tbb::task_arena arena;   // the shot's threads, for building, baking and skinning the pairs
+
+  // Builds the characters of every (pair, level) in `needed` that has none yet, in parallel. Pure
+  // functions of their parameters, so when they are built changes nothing.
+  void buildLevels(const std::vector<std::pair<std::size_t, int>>& needed) {
+    std::vector<std::size_t> todo;
+    for (const auto& [i, k] : needed) {
+      const std::size_t b = pairs[i].builds[std::size_t(k)];
+      if (!builds[b].built_horse && std::find(todo.begin(), todo.end(), b) == todo.end()) todo.push_back(b);
+    }
+    if (!todo.empty()) {
+      arena.execute([&] {
+        tbb::parallel_for(std::size_t(0), 2 * todo.size(), [&](std::size_t j) {
+          Build& b = builds[todo[j / 2]];
+          if (j % 2 == 0)
+            b.built_horse = std::make_shared<const rig::Character>(rig::buildHorse(b.horse));
+          else
+            b.built_rider = std::make_shared<const rig::Character>(rig::buildRider(b.rider, b.horse.mount));
+        });
+      });
+    }
+    for (const auto& [i, k] : needed) {
+      Level& l = pairs[i].levels[std::size_t(k)];
+      if (l.horse) continue;
+      const Build& b = builds[pairs[i].builds[std::size_t(k)]];
+      l.horse = b.built_horse;
+      l.rider = b.built_rider;
+      // One pose skins every level: their skeletons must be the same (only the mesh's cell differs).
+      const Level& coarsest = pairs[i].levels[kDetailLevels - 1];
+      if (coarsest.horse && (!sameSkeleton(*l.horse, *coarsest.horse) || !sameSkeleton(*l.rider, *coarsest.rider)))
+        throw std::logic_error("Shot: a level of detail's skeleton differs from the coarsest level's");
+    }
+  }
+  static bool sameSkeleton(const rig::Character& a, const rig::Character& b) {
+    if (a.skeleton.size() != b.skeleton.size()) return false;
+    for (std::size_t j = 0; j < a.skeleton.size(); ++j)
+      if (a.skeleton.joints[j].inverse_bind != b.skeleton.joints[j].inverse_bind ||
+          a.skeleton.joints[j].parent != b.skeleton.joints[j].parent)
+        return false;
+    return true;
+  }
 
   // Every pair's frame as shown (the held pose; the rigid rider), baked in parallel.
   std::vector<rig::BakedFrame> bakeShown(const SceneSpec& scene, const CameraSpec& camera, bool rigid, int frame) {
@@ -106,25 +158,33 @@ struct Shot::Crowd {
     }
     return baked;
   }
-  // Poses the pairs of `baked` (all, or only `only`), picks each one's level and skins that level's
-  // meshes into its buffers, in parallel.
+  // Poses the pairs of `baked` (all, or only `only`) and picks each one's level, in parallel; builds
+  // the levels picked that are not built yet; skins each pair's level into its buffers, in parallel.
   void skin(const std::vector<rig::BakedFrame>& baked, bool rigid, const LevelChoice& choice, int only = -1) {
-    arena.execute([&] {
-      tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t i) {
-        if (only >= 0 && int(i) != only) return;
-        Pair& p = pairs[i];
-        const rig::MountedPose pose = rig::poseMounted(p.horse(), p.rider(), baked[i].horse, baked[i].rider,
-                                                       rigid ? p.rigid_profile : p.profile);
-        if (choice.fixed >= 0) {
-          p.level = choice.fixed;
-        } else {
-          const glm::dvec3 root(pose.horse[std::size_t(p.horse().role("root"))][3]);
-          p.level = pairDetailLevel(*choice.camera, choice.width, choice.height, root, p.horse_cell_cm);
-        }
-        const Level& l = p.levels[std::size_t(p.level)];
-        rig::skinMesh(l.horse->mesh, l.horse->skeleton, pose.horse, p.horse_positions, p.horse_normals);
-        rig::skinMesh(l.rider->mesh, l.rider->skeleton, pose.rider, p.rider_positions, p.rider_normals);
+    const auto each = [&](const std::function<void(Pair&, std::size_t)>& f) {
+      arena.execute([&] {
+        tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t i) {
+          if (only < 0 || int(i) == only) f(pairs[i], i);
+        });
       });
+    };
+    each([&](Pair& p, std::size_t i) {
+      p.pose = rig::poseMounted(p.horse(), p.rider(), baked[i].horse, baked[i].rider, rigid ? p.rigid_profile : p.profile);
+      if (choice.fixed >= 0) {
+        p.level = choice.fixed;
+      } else {
+        const glm::dvec3 root(p.pose.horse[std::size_t(p.horse().role("root"))][3]);
+        p.level = pairDetailLevel(*choice.camera, choice.width, choice.height, root, p.horse_cell_cm);
+      }
+    });
+    std::vector<std::pair<std::size_t, int>> needed;
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      if (only < 0 || int(i) == only) needed.emplace_back(i, pairs[i].level);
+    buildLevels(needed);
+    each([&](Pair& p, std::size_t) {
+      const Level& l = p.levels[std::size_t(p.level)];
+      rig::skinMesh(l.horse->mesh, l.horse->skeleton, p.pose.horse, p.horse_positions, p.horse_normals);
+      rig::skinMesh(l.rider->mesh, l.rider->skeleton, p.pose.rider, p.rider_positions, p.rider_normals);
     });
   }
 };
@@ -169,16 +229,7 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
     renderer_->setTerrain(scene.terrain, trackRegion(scene_, tracks));
   }
   if (crowd_) {
-    // In pair and level order, so the geometries' ids are the same on every run. Every level is in
-    // the renderer from the start, only one of a pair's shown (renderCrowdMeshes).
-    for (Crowd::Pair& p : crowd_->pairs) {
-      for (Crowd::Level& l : p.levels) {
-        l.horse_mesh = renderer_->addMesh(meshOf(ObjectId::Horse, *l.horse));
-        l.rider_mesh = renderer_->addMesh(meshOf(ObjectId::Rider, *l.rider));
-        renderer_->setMeshEnabled(l.horse_mesh, false);
-        renderer_->setMeshEnabled(l.rider_mesh, false);
-      }
-    }
+    // A pair's levels join the renderer when first shown (renderCrowdMeshes).
   } else {
     horse_mesh_ = renderer_->addMesh(meshOf(ObjectId::Horse, horse_));
     rider_mesh_ = renderer_->addMesh(meshOf(ObjectId::Rider, rider_));
@@ -249,57 +300,34 @@ void Shot::setUpCrowd(int threads) {
   }
 }
 
-// Every pair's characters at every level of detail. Pairs of the same proportions and colours share
-// theirs (a `riders` list often repeats them), and each distinct one is built once, in parallel.
+// Every pair's characters at every level of detail, as builds: pairs of the same proportions and
+// colours share theirs (a `riders` list often repeats them). Each is built when a frame first needs it
+// (a wide view of a troop never needs full detail); the coarsest level of every pair now, as the views
+// are framed from it and every pair is posed with it.
 void Shot::buildCrowdCharacters() {
-  struct Job {
-    rig::HorseParams horse;
-    rig::RiderParams rider;
-    std::shared_ptr<const rig::Character> built_horse, built_rider;
-  };
-  // A pair's proportions, colours and level -> its job.
+  // A pair's proportions, colours and level -> its build.
   using Key = std::tuple<double, double, double, std::string, std::string, std::string, std::string, int>;
-  std::map<Key, std::size_t> job_of;
-  std::vector<Job> jobs;
-  std::vector<std::array<std::size_t, kDetailLevels>> pair_jobs(scene_.pairs.size());
+  std::map<Key, std::size_t> build_of;
   for (std::size_t i = 0; i < scene_.pairs.size(); ++i) {
     const rig::PairSpec& spec = scene_.pairs[i];
+    Crowd::Pair& p = crowd_->pairs[i];
     for (int k = 0; k < kDetailLevels; ++k) {
       const Key key{spec.withers_height_cm, spec.rider_height_cm, spec.rider_build, spec.coat, spec.jacket, spec.hair,
                     spec.skin, k};
-      auto [it, inserted] = job_of.emplace(key, jobs.size());
+      auto [it, inserted] = build_of.emplace(key, crowd_->builds.size());
       if (inserted) {
-        Job job{spec.horse(), spec.rider(), nullptr, nullptr};
-        job.horse.cell *= kDetailCellFactor[k];
-        job.rider.cell *= kDetailCellFactor[k];
-        jobs.push_back(std::move(job));
+        Crowd::Build b{spec.horse(), spec.rider(), nullptr, nullptr};
+        b.horse.cell *= kDetailCellFactor[k];
+        b.rider.cell *= kDetailCellFactor[k];
+        crowd_->builds.push_back(std::move(b));
       }
-      pair_jobs[i][std::size_t(k)] = it->second;
+      p.builds[std::size_t(k)] = it->second;
     }
+    p.horse_cell_cm = crowd_->builds[p.builds[0]].horse.cell;
   }
-  // Building a character takes a while, so in parallel.
-  crowd_->arena.execute([&] {
-    tbb::parallel_for(std::size_t(0), 2 * jobs.size(), [&](std::size_t j) {
-      Job& job = jobs[j / 2];
-      if (j % 2 == 0)
-        job.built_horse = std::make_shared<const rig::Character>(rig::buildHorse(job.horse));
-      else
-        job.built_rider = std::make_shared<const rig::Character>(rig::buildRider(job.rider, job.horse.mount));
-    });
-  });
-  for (std::size_t i = 0; i < scene_.pairs.size(); ++i) {
-    Crowd::Pair& p = crowd_->pairs[i];
-    for (int k = 0; k < kDetailLevels; ++k) {
-      const Job& job = jobs[pair_jobs[i][std::size_t(k)]];
-      p.levels[std::size_t(k)].horse = job.built_horse;
-      p.levels[std::size_t(k)].rider = job.built_rider;
-      // Levels share the skeleton (only the mesh's cell differs), so one pose skins every level.
-      if (job.built_horse->skeleton.size() != p.levels[0].horse->skeleton.size() ||
-          job.built_rider->skeleton.size() != p.levels[0].rider->skeleton.size())
-        throw std::logic_error("Shot: a level of detail's skeleton differs from the full level's");
-    }
-    p.horse_cell_cm = jobs[pair_jobs[i][0]].horse.cell;
-  }
+  std::vector<std::pair<std::size_t, int>> coarsest;
+  for (std::size_t i = 0; i < crowd_->pairs.size(); ++i) coarsest.emplace_back(i, kDetailLevels - 1);
+  crowd_->buildLevels(coarsest);
 }
 
 const rig::Character& Shot::cameraHorse() const {
@@ -426,11 +454,25 @@ void Shot::renderCrowdMeshes(int frame, const Camera& camera) {
   // Posing is inside the skinning loop here (each pair posed and skinned by one task).
   t0 = Clock::now();
   crowd_->skin(baked, rigid_rider_, {detail_level_, &camera, scene_.width, scene_.height});
+  // Levels shown for the first time join the renderer, each with its own fixed geometry ids (pair,
+  // level, horse or rider), so the scene is the same whichever frames were rendered before.
+  for (std::size_t i = 0; i < crowd_->pairs.size(); ++i) {
+    Crowd::Pair& p = crowd_->pairs[i];
+    Crowd::Level& l = p.levels[std::size_t(p.level)];
+    if (l.horse_mesh >= 0) continue;
+    const int id = 2 * (int(i) * kDetailLevels + p.level);
+    MeshDesc horse = meshOf(ObjectId::Horse, *l.horse), rider = meshOf(ObjectId::Rider, *l.rider);
+    horse.geometry_id = id;
+    rider.geometry_id = id + 1;
+    l.horse_mesh = renderer_->addMesh(horse);
+    l.rider_mesh = renderer_->addMesh(rider);
+  }
   timings_.pairs_at_level = {};
   timings_.skinned_vertices = 0;
   for (const Crowd::Pair& p : crowd_->pairs) {
     for (int k = 0; k < kDetailLevels; ++k) {
       const Crowd::Level& l = p.levels[std::size_t(k)];
+      if (l.horse_mesh < 0) continue;
       renderer_->setMeshEnabled(l.horse_mesh, k == p.level);
       renderer_->setMeshEnabled(l.rider_mesh, k == p.level);
     }

@@ -441,6 +441,25 @@ TEST(CrowdScenes, NoTwoPairsBodiesMeetAtAnyFrame) {
   }
 }
 
+// A crowd's frame does not depend on the frames rendered before it: levels built, shown and hidden
+// on earlier frames (here every pair at full detail, then at the coarsest) leave the same bytes as a
+// fresh shot rendering that frame alone.
+TEST(Shot, ACrowdsFrameIsTheSameWhateverWasRenderedBefore) {
+  const SceneSpec scene = crowdScene();
+  Shot before(scene, resolveProfile(scene), findCamera(scene, "persp"), 0);
+  before.setDetailLevel(0);
+  before.renderFrame(1);
+  before.setDetailLevel(2);
+  before.renderFrame(24);
+  before.setDetailLevel(-1);
+  const Image after = before.renderFrame(12);
+  Shot alone(scene, resolveProfile(scene), findCamera(scene, "persp"), 0);
+  const Image fresh = alone.renderFrame(12);
+  EXPECT_TRUE(after.rgba == fresh.rgba);
+  EXPECT_TRUE(after.depth == fresh.depth);
+  EXPECT_TRUE(after.object_id == fresh.object_id);
+}
+
 // A camera made in code (not read from a scene, which checks it when it loads) that follows a pair the
 // crowd does not have is a one-line error naming the scene, the camera and the range.
 TEST(Shot, FollowingAPairTheCrowdHasNotIsAOneLineError) {
