@@ -77,6 +77,17 @@ double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>
 // kept, which samples the frame evenly. The bound is a rate, so a sample of the rays measures it.
 constexpr double kMaxLoggedRays = 8e6;
 
+// Writes the frame as a PNG on the writer's thread, as `stirrup render` does, adding the write's own
+// time to write_ms (touched only by the writer thread; read after its last wait()).
+void writeInBackground(render::FrameWriter& writer, render::Image&& image, const std::filesystem::path& file,
+                       double& write_ms) {
+  writer.submit([image = std::move(image), file, &write_ms] {
+    const auto w0 = Clock::now();
+    render::writePng(image, file);
+    write_ms += secondsSince(w0) * 1000.0;
+  });
+}
+
 PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions& o,
                          const std::filesystem::path& scratch) {
   render::SceneSpec scene = benchScene();
@@ -107,12 +118,7 @@ PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions
     const int frame = 1 + i % 72;
     render::Image image = shot.renderFrame(frame);
     const render::FrameTimings& t = shot.lastTimings();
-    const std::filesystem::path file = scratch / ("bench." + std::to_string(i % 2) + ".png");
-    writer.submit([image = std::move(image), file, &write_ms] {
-      const auto w0 = Clock::now();
-      render::writePng(image, file);
-      write_ms += secondsSince(w0) * 1000.0;
-    });
+    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"), write_ms);
     r.pose += t.pose_ms;
     r.skin += t.skin_ms;
     r.bvh += t.bvh_ms;
@@ -169,12 +175,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   for (std::size_t i = 0; i < frames.size(); ++i) {
     render::Image image = shot.renderFrame(frames[i]);
     const render::FrameTimings& t = shot.lastTimings();
-    const std::filesystem::path file = scratch / ("bench." + std::to_string(i % 2) + ".png");
-    writer.submit([image = std::move(image), file, &write_ms] {
-      const auto w0 = Clock::now();
-      render::writePng(image, file);
-      write_ms += secondsSince(w0) * 1000.0;
-    });
+    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"), write_ms);
     r.bake += t.pose_ms, r.skin += t.skin_ms, r.bvh += t.bvh_ms, r.trace += t.trace_ms - t.bvh_ms;
     r.skinned_vertices += double(t.skinned_vertices);
     r.triangles += double(t.triangles);
