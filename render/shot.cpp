@@ -102,6 +102,7 @@ struct Shot::Crowd {
   explicit Crowd(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
   std::vector<Pair> pairs;
   std::vector<Build> builds;
+  double build_ms = 0;     // building levels, since the caller last cleared it
   int follow = -1;         // CameraSpec::follow_pair
   tbb::task_arena arena;   // the shot's threads, for building, baking and skinning the pairs
 
@@ -114,6 +115,7 @@ struct Shot::Crowd {
       if (!builds[b].built_horse && std::find(todo.begin(), todo.end(), b) == todo.end()) todo.push_back(b);
     }
     if (!todo.empty()) {
+      const auto t0 = Clock::now();
       arena.execute([&] {
         tbb::parallel_for(std::size_t(0), 2 * todo.size(), [&](std::size_t j) {
           Build& b = builds[todo[j / 2]];
@@ -123,6 +125,7 @@ struct Shot::Crowd {
             b.built_rider = std::make_shared<const rig::Character>(rig::buildRider(b.rider, b.horse.mount));
         });
       });
+      build_ms += msSince(t0);
     }
     for (const auto& [i, k] : needed) {
       Level& l = pairs[i].levels[std::size_t(k)];
@@ -453,7 +456,9 @@ void Shot::renderCrowdMeshes(int frame, const Camera& camera) {
   timings_.pose_ms = msSince(t0);
   // Posing is inside the skinning loop here (each pair posed and skinned by one task).
   t0 = Clock::now();
+  crowd_->build_ms = 0.0;
   crowd_->skin(baked, rigid_rider_, {detail_level_, &camera, scene_.width, scene_.height});
+  timings_.build_ms = crowd_->build_ms;
   // Levels shown for the first time join the renderer, each with its own fixed geometry ids (pair,
   // level, horse or rider), so the scene is the same whichever frames were rendered before.
   for (std::size_t i = 0; i < crowd_->pairs.size(); ++i) {

@@ -24,6 +24,9 @@ namespace stirrup::render {
 // Timings of the last frame, in milliseconds, for progress reports and benchmarks.
 struct FrameTimings {
   double pose_ms = 0, skin_ms = 0, trace_ms = 0;
+  // A crowd's levels of detail built during the frame (the first frame that needs each one), part of
+  // skin_ms: a one-time cost, like the set-up's.
+  double build_ms = 0;
   double bvh_ms = 0;   // the BVH update, part of trace_ms
   uint64_t rays = 0;   // camera, shadow and sky rays of the frame
   size_t triangles = 0;             // shown (refitted), every pair at its level
