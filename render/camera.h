@@ -80,6 +80,9 @@ class CameraFrame {
   const glm::dvec3& forward() const { return forward_; }
   const glm::dvec3& right() const { return right_; }
   const glm::dvec3& upward() const { return up_; }
+  // The film's half extent across and up: tangents of the half angles (perspective) or centimetres.
+  double halfWidth() const { return half_width_; }
+  double halfHeight() const { return half_height_; }
 
  private:
   Camera::Projection projection_;

@@ -17,19 +17,14 @@ double pixelsPerCm(const Camera& camera, int height, const glm::dvec3& point, do
 }
 
 bool sphereInView(const Camera& camera, int width, int height, const glm::dvec3& centre, double radius) {
-  const glm::dvec3 forward = glm::normalize(camera.target - camera.position);
-  const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
-  const glm::dvec3 up = glm::cross(right, forward);
+  const CameraFrame f(camera, width, height);
   const glm::dvec3 q = centre - camera.position;
-  const double x = glm::dot(q, right), y = glm::dot(q, up), z = glm::dot(q, forward);
-  const double aspect = double(width) / double(height);
-  if (camera.projection == Camera::Projection::Orthographic) {
-    const double half_h = 0.5 * camera.ortho_height_cm, half_w = half_h * aspect;
-    return std::abs(x) <= half_w + radius && std::abs(y) <= half_h + radius && z >= -radius;
-  }
+  const double x = glm::dot(q, f.right()), y = glm::dot(q, f.upward()), z = glm::dot(q, f.forward());
+  if (!f.perspective())
+    return std::abs(x) <= f.halfWidth() + radius && std::abs(y) <= f.halfHeight() + radius && z >= -radius;
   if (z < -radius) return false;
   // Each side plane through the eye: its inward unit normal's dot with q, against -radius.
-  const double th = std::tan(0.5 * camera.fov_deg * std::numbers::pi / 180.0), tw = th * aspect;
+  const double tw = f.halfWidth(), th = f.halfHeight();
   const double nh = 1.0 / std::sqrt(1.0 + th * th), nw = 1.0 / std::sqrt(1.0 + tw * tw);
   return (z * tw - std::abs(x)) * nw >= -radius && (z * th - std::abs(y)) * nh >= -radius;
 }
