@@ -59,7 +59,9 @@ BalanceResult balanceTrunk(const BalanceInput& in, const RigProfile::Balance& p)
   out.inertia_lean_deg = std::atan2(p.inertia_share * in.accel_cm_s2, kGravityCmS2) * kDeg;
   // 3. The band.
   // 2c. Against the ground's slope.
-  out.slope_lean_deg = p.slope_response * in.ground_pitch_deg;
+  //     The support term (2.) already holds her trunk's centre of mass over her feet as the slope pitches
+  //     the horse, which keeps her near the world's vertical; this is the lean riders add on top of it.
+  out.slope_lean_deg = (in.ground_pitch_deg >= 0.0 ? p.slope_response : p.downhill_response) * in.ground_pitch_deg;
   const double request = out.channel_lean_deg + out.support_lean_deg + out.inertia_lean_deg + out.slope_lean_deg;
   double lean = request >= 0.0 ? soft(request, p.band_forward_deg) : soft(request, p.band_back_deg);
   // 4. The body's limits, relative to the saddle's upright.

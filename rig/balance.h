@@ -20,11 +20,11 @@
 //  2b. inertia lean: the lean toward the vertical of gravity less inertia_share of the horse's travel
 //      acceleration, so she sits back as the horse brakes and forward as it speeds up (the rest she
 //      takes in her legs); a turn's centripetal acceleration will enter here the same way;
-//  2c. slope lean: slope_response of the ground's pitch, forward uphill and back downhill. The horse
-//      pitches with the ground and the channels (which see only the horse's own motion, relative to
-//      the ground) fold her relative to the saddle as on the flat, so she would tilt back with the
-//      horse going up a hill; riders keep their trunk near the vertical instead, which relative to
-//      the horse is leaning forward uphill and back downhill (docs/paths-and-terrain.md);
+//  2c. slope lean: riders lean forward going uphill (off the horse's loins) and sit upright or a little
+//      back going downhill. The support term (2.) already holds her trunk near the world's vertical as
+//      the slope pitches the horse (her stirrups swing ahead of or behind her seat), so this adds only
+//      the riders' own lean: slope_response of the slope forward uphill, downhill_response of it back
+//      downhill (0: upright, as on the flat) (docs/paths-and-terrain.md);
 //   3. band: their sum approaches band_forward_deg / band_back_deg softly (tanh), so small leans pass
 //      as the channels make them and large ones saturate;
 //   4. body limits, relative to the saddle: at most max_fold_deg forward (the chest stops short of the

@@ -101,7 +101,9 @@ const std::array kParameters = {
     STIRRUP_RIG_PARAM("balance.inertia_share", balance.inertia_share, RangeKind::Fraction, 0, 1,
                       "Balance: share of the horse's travel acceleration she leans against; Kuhnel 5.5, in the stop she leans back to compensate for the backward shift in centre of gravity"),
     STIRRUP_RIG_PARAM("balance.slope_response", balance.slope_response, RangeKind::Fraction, 0, 1,
-                      "Balance: share of the ground's slope she leans against (forward uphill, back downhill); 1 keeps her trunk as near the vertical as on the flat (our decision, docs/paths-and-terrain.md)"),
+                      "Balance: uphill she leans forward of her flat-ground lean by this share of the slope (riding texts: lean forward going up, off the horse's loins); the centre-of-mass term already keeps her upright in the world"),
+    STIRRUP_RIG_PARAM("balance.downhill_response", balance.downhill_response, RangeKind::Fraction, 0, 1,
+                      "Balance: downhill she leans back of her flat-ground lean by this share of the slope (riding texts: upright or slightly back going down); 0 upright"),
     STIRRUP_RIG_PARAM("balance.band_forward_deg", balance.band_forward_deg, RangeKind::AngleLimit, 0, 90,
                       "Balance: the trunk's lean ahead of the vertical approaches this softly"),
     STIRRUP_RIG_PARAM("balance.band_back_deg", balance.band_back_deg, RangeKind::AngleLimit, 0, 90,
@@ -114,6 +116,8 @@ const std::array kParameters = {
                       "Balance: the neck turns back this share of the stage's turn; Kuhnel 5.1, the rider keeps looking forward"),
     STIRRUP_RIG_PARAM("balance.seat_rise_cm", balance.seat_rise_cm, RangeKind::Length, 0, 30,
                       "Balance: at the full fold her seat is at least this far (cm) above where she sits, Eq 7's lift included; Kuhnel 5.1 and 5.4, as she leans forward she raises out of the saddle"),
+    STIRRUP_RIG_PARAM("seat.stirrup_holes_up", seat.stirrup_holes_up, RangeKind::Holes, 0, 16,
+                      "Seat: leathers taken up from the tread at the ankle bone, in 2.5 cm holes; 0 dressage, 2 general, 4 jumping (riding practice, docs/characters.md)"),
 };
 #undef STIRRUP_RIG_PARAM
 
@@ -131,6 +135,7 @@ std::string_view rangeKindName(RangeKind kind) {
     case RangeKind::Angle: return "angle";
     case RangeKind::Length: return "length";
     case RangeKind::Fraction: return "fraction";
+    case RangeKind::Holes: return "holes";
   }
   return "?";
 }

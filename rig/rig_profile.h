@@ -130,7 +130,8 @@ struct RigProfile {
     double amount = 1;                // "balance": 0 the thesis pose .. 1 balanced
     double stirrup_share = 0.25;      // of her weight over the stirrups (the rest over the seat)
     double inertia_share = 0.3;       // of the horse's travel acceleration she leans against
-    double slope_response = 1;        // of the ground's slope she takes out of her lean (1: trunk as near vertical as on the flat)
+    double slope_response = 1;        // uphill: of the slope she leans forward of her flat-ground lean
+    double downhill_response = 0;     // downhill: of the slope she leans back of it (0: upright, as on the flat)
     double band_forward_deg = 35;     // soft band around the vertical the channels move her through
     double band_back_deg = 25;
     double max_fold_deg = 75;         // trunk ahead of the saddle's upright: the chest stops short of the neck
@@ -138,6 +139,14 @@ struct RigProfile {
     double head_counter = 1;          // of the stage's turn the neck turns back, so she keeps looking ahead
     double seat_rise_cm = 5.5;        // at the full fold her seat is at least this far above where she sits
   } balance;
+
+  // How a rider the rig seats sets her stirrup leathers (rig/characters/seating.h; docs/characters.md,
+  // "Seating"): with her leg hanging long the tread is at her ankle bone, then she takes them up this
+  // many holes (2.5 cm each): 0 for dressage, 2 for a general-purpose seat, 4 for jumping. The
+  // generated rider is built in her stirrups and keeps the horse's leathers as built.
+  struct Seat {
+    double stirrup_holes_up = 2;
+  } seat;
 
   // A rider rigidly fixed to the saddle: evaluateRider returns every rider channel at its rest value
   // (0), whatever the horse does, so she rides the saddle like a statue. The layered review movies
@@ -163,6 +172,7 @@ enum class RangeKind {
   Angle,       // an offset in degrees: -90 to 90
   Length,      // an offset in units: -100 to 100 (10 m at 10 cm a unit)
   Fraction,    // a share or a blend: 0 to 1
+  Holes,       // stirrup leather holes: 0 to 16 (a jockey's leathers are 8 to 14 holes up)
 };
 // The kind's name as the docs' table writes it ("weight", "unit", ...).
 std::string_view rangeKindName(RangeKind kind);

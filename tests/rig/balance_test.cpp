@@ -405,5 +405,42 @@ TEST(RiderLeans, ProfilesDifferInHowFarTheyLean) {
   EXPECT_GT(forward(jump_novice), forward(jump_thesis) + 3.0);
 }
 
+// On a slope (docs/paths-and-terrain.md): riders lean forward going uphill and sit upright going down.
+// The support term alone keeps her trunk near the world's vertical as the slope pitches the horse (her
+// stirrups swing ahead of her seat going up, behind it going down): with slope_response 0 a 10% grade
+// leaves her within a degree of her flat-ground lean either way. slope_response then adds its share of
+// the slope's 5.71° forward uphill, and downhill_response its share back downhill (the band's softness
+// takes a few hundredths of a degree off).
+TEST(RiderLeans, OnASlopeSheLeansForwardUphillAndStaysUprightDownhill) {
+  const Character& horse = test::defaultHorse();
+  const Character& rider = test::defaultRider();
+  const double grade_deg = std::atan(0.10) * 180.0 / kPi;  // a 10% grade
+  const auto lean = [&](double pitch, const RigProfile& profile) {
+    HorseFrame frame;
+    frame.ground_pitch_deg = pitch;
+    const MountedPose pose = poseMounted(horse, rider, frame, RiderChannels{}, profile);
+    const glm::vec3 pelvis(pose.rider[rider.role("pelvis")][3]), neck(pose.rider[rider.role("neck")][3]);
+    return leanDegrees(neck - pelvis, saddleHeading(pose.horse[horse.role("saddle")]));
+  };
+  RigProfile none = RigProfile::thesis();
+  none.balance.slope_response = 0;
+  none.balance.downhill_response = 0;
+  const double flat = lean(0.0, none), up = lean(grade_deg, none), down = lean(-grade_deg, none);
+  EXPECT_NEAR(up, flat, 1.0) << "uphill, no slope response";
+  EXPECT_NEAR(down, flat, 1.0) << "downhill, no slope response";
+
+  const RigProfile thesis = RigProfile::thesis();  // slope_response 1, downhill_response 0
+  ASSERT_EQ(thesis.balance.slope_response, 1.0);
+  ASSERT_EQ(thesis.balance.downhill_response, 0.0);
+  EXPECT_NEAR(lean(grade_deg, thesis) - up, grade_deg, 0.3) << "uphill: the whole slope forward";
+  EXPECT_NEAR(lean(-grade_deg, thesis), down, 1e-9) << "downhill: upright, as with no response";
+  RigProfile back = thesis;
+  back.balance.downhill_response = 0.5;
+  EXPECT_NEAR(lean(-grade_deg, back) - down, -0.5 * grade_deg, 0.3) << "downhill: half the slope back";
+  std::printf("10%% grade: flat %.2f°; no response uphill %+.2f°, downhill %+.2f°; thesis uphill %+.2f°, downhill %+.2f°; "
+              "downhill_response 0.5: %+.2f°\n", flat, up - flat, down - flat, lean(grade_deg, thesis) - flat,
+              lean(-grade_deg, thesis) - flat, lean(-grade_deg, back) - flat);
+}
+
 }  // namespace
 }  // namespace stirrup::rig

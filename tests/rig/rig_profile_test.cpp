@@ -15,7 +15,7 @@ TEST(RigProfile, EveryKeyNamesItsEquationOrSource) {
     EXPECT_TRUE(keys.insert(key).second) << "duplicate " << key;
     const bool named = key.rfind("eq", 0) == 0 || key.rfind("knee.", 0) == 0 || key.rfind("hair.", 0) == 0 ||
                        key.rfind("cloth.", 0) == 0 || key.find("_unit_cm") != std::string::npos ||
-                       key.rfind("balance", 0) == 0;
+                       key.rfind("balance", 0) == 0 || key.rfind("seat.", 0) == 0;
     EXPECT_TRUE(named) << key;
     EXPECT_FALSE(param.cites.empty()) << key;
   }
