@@ -24,6 +24,7 @@
 #include "rig/motion/shifted_clip.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/ridden_pair.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
 
@@ -196,13 +197,12 @@ Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraS
            BvhUpdate bvh)
     : scene_(scene),
       profile_(profile),
-      camera_(camera),
-      // A crowd's characters are its pairs' own (setUpCrowd).
-      horse_(scene.pairs.empty() ? rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping)
-                                 : rig::Character{}),
-      rider_(scene.pairs.empty() ? rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping)
-                                 : rig::Character{}) {
+      camera_(camera) {
   if (scene.pairs.empty()) {
+    // A crowd's characters are its pairs' own (setUpCrowd).
+    rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+    horse_ = std::move(pair.horse);
+    rider_ = std::move(pair.rider);
     clip_ = rig::makeClip(scene.clip, horse_);  // a path clip turns hooves about this horse's rest places
   } else {
     setUpCrowd(threads);

@@ -7,13 +7,23 @@
 #include <string>
 #include <string_view>
 
+#include <glm/mat4x4.hpp>
+
 #include "rig/mesh.h"
 #include "rig/skeleton.h"
 
 namespace stirrup::rig {
 
+// Where a character read from a file came from, so what stirrup makes of it can be written back in
+// the file's own terms (rig/io/gltf_rider_motion.h).
+struct CharacterSource {
+  std::string file;               // empty: built by stirrup's generator
+  glm::dmat4 to_rig{1.0};         // the file's space (units, axes) to stirrup's: cm, +X forward, +Y up
+};
+
 struct Character {
   std::string name;
+  CharacterSource source;
   Skeleton skeleton;
   SkinnedMesh mesh;
   // Role name -> joint index, for joints other modules address (the horse's "saddle", the rider's

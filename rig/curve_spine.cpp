@@ -176,6 +176,33 @@ SpineCurve CurveSpine::curve(const SpineControllers& c, double stretch) const {
   return SpineCurve(points, frames[0] * kBoneAxis, frames[2] * kBoneAxis);
 }
 
+std::vector<glm::dquat> CurveSpine::framesAt(const SpineControllers& c, double stretch,
+                                             const std::vector<double>& fractions) const {
+  if (!(std::isfinite(stretch) && stretch > 0.0))
+    throw std::invalid_argument("CurveSpine: stretch " + std::to_string(stretch) + " is not positive");
+  const SpineCurve spline = curve(c, stretch);
+  const double length = spline.length(), end = spline.endParameter();
+  const double step = end / (kFrameStepsPerSegment * SpineCurve::kSegmentCount);
+  std::vector<glm::dquat> out;
+  out.reserve(fractions.size());
+  glm::dquat frame = controllerFrames(c)[0];
+  double at = 0.0, previous = 0.0;
+  for (const double f : fractions) {
+    if (!(f >= previous && f <= 1.0))
+      throw std::invalid_argument("CurveSpine::framesAt: fractions must ascend within 0..1");
+    previous = f;
+    const double target = f >= 1.0 ? end : spline.parameterAtArcLength(length * f);
+    while (at < target) {
+      const double next = std::min(at + step, target);
+      frame = transportFrame(frame, spline.point(at), spline.point(next), spline.tangent(next));
+      at = next;
+    }
+    const glm::dvec3 axis = spline.tangent(at);
+    out.push_back(glm::normalize(glm::angleAxis(radians(c.top.x * f), axis) * frame));
+  }
+  return out;
+}
+
 SpineResult CurveSpine::solve(const SpineControllers& c, double stretch) const {
   if (!(std::isfinite(stretch) && stretch > 0.0))
     throw std::invalid_argument("CurveSpine: stretch " + std::to_string(stretch) + " is not positive");

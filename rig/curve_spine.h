@@ -107,6 +107,14 @@ class CurveSpine {
   // chain; use stretchForOffset to turn a vertical offset in cm into a stretch.
   SpineResult solve(const SpineControllers& controllers, double stretch = 1.0) const;
 
+  // The curve's frames at arc-length fractions (ascending, each in [0, 1]): the rotation-minimizing
+  // frame transported from the lower controller's frame, as solve() transports it, with the top
+  // controller's twist spread in proportion to the arc (fraction f turns f·rx about the tangent).
+  // For chains that are not laid on the curve (a user's spine, rig/rider_spine.h): each of their
+  // bones turns with the frame at its middle, and so keeps its length.
+  std::vector<glm::dquat> framesAt(const SpineControllers& controllers, double stretch,
+                                   const std::vector<double>& fractions) const;
+
   // Pieces of solve, for tools and tests.
   std::array<glm::dquat, 3> controllerFrames(const SpineControllers& controllers) const;
   std::array<glm::dvec3, 4> fkJoints(const SpineControllers& controllers, double stretch = 1.0) const;

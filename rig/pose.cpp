@@ -11,6 +11,7 @@
 
 #include "rig/horse_leg.h"
 #include "rig/ik.h"
+#include "rig/rider_spine.h"
 #include "rig/skeleton.h"
 
 namespace stirrup::rig {
@@ -173,9 +174,10 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
   // The curve spine, in the pelvis's frame with its root at the lower back. Constructing it only
   // stores the lengths; solve() is the work (about 0.15 ms, PoseRiderSpine.SolvingPerCallIsCheap).
   const RiderSpine layout = riderSpine(rider);
-  const CurveSpine spine(layout.fk_lengths, kRiderSpineSegments);
+  const int segments = layout.laid_on_curve ? kRiderSpineSegments : CurveSpine::kMinSegments;
+  const CurveSpine spine(layout.fk_lengths, segments);
   const SpineControllers controllers = riderSpineControllers(r, params);
-  const SpineResult solved = spine.solve(controllers, riderSpineStretch(spine, r, rider_unit_cm));
+  const double stretch = riderSpineStretch(spine, r, rider_unit_cm);
   const glm::dvec3 root(layout.root);
   const glm::dquat unrest = glm::inverse(restBoneFrame());
   // A spine joint's transform relative to the pelvis: at its place, turned by its frame's change
@@ -184,20 +186,54 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
     return glm::translate(glm::dmat4(1.0), root + p) * glm::mat4_cast(frame * unrest);
   };
   const std::array<glm::dquat, 3> frames = spine.controllerFrames(controllers);
-  glm::dmat4 parent(1.0);  // the pelvis
-  for (int k = 0; k < 3; ++k) {
-    const glm::dmat4 world = place(solved.fk[k], frames[k]);
-    local[layout.controllers[k]] = glm::mat4(glm::inverse(parent) * world);
-    parent = world;
+  if (layout.laid_on_curve) {
+    const SpineResult solved = spine.solve(controllers, stretch);
+    glm::dmat4 parent(1.0);  // the pelvis
+    for (int k = 0; k < 3; ++k) {
+      const glm::dmat4 world = place(solved.fk[k], frames[k]);
+      local[layout.controllers[k]] = glm::mat4(glm::inverse(parent) * world);
+      parent = world;
+    }
+    parent = glm::dmat4(1.0);
+    for (int i = 0; i <= kRiderSpineSegments; ++i) {
+      const glm::dmat4 world = place(solved.joints[i].position, solved.joints[i].rotation);
+      local[layout.chain[i]] = glm::mat4(glm::inverse(parent) * world);
+      parent = world;
+    }
+  } else {
+    // Each bone turns with the curve's frame at its middle and keeps its length (times the stretch);
+    // a chain ending at upperChest gives its top joint the curve's end frame.
+    const std::size_t bones = layout.points.size() - 1;
+    std::vector<double> at;
+    for (std::size_t i = 0; i < bones; ++i) at.push_back(0.5 * (layout.arc[i] + layout.arc[i + 1]) / layout.arc.back());
+    if (!layout.ends_at_neck) at.push_back(1.0);
+    const std::vector<glm::dquat> turn = spine.framesAt(controllers, stretch, at);
+    glm::dvec3 p = layout.points[0];
+    glm::dmat4 parent(1.0);  // the pelvis
+    for (std::size_t i = 0; i < layout.chain.size(); ++i) {
+      const glm::dquat q = glm::normalize(turn[i] * unrest);
+      const glm::dmat4 world = glm::translate(glm::dmat4(1.0), p) * glm::mat4_cast(q);
+      local[layout.chain[i]] = glm::mat4(glm::inverse(parent) * world);
+      parent = world;
+      if (i < bones) p += q * ((layout.points[i + 1] - layout.points[i]) * stretch);
+    }
+    // Controller joints of their own (unskinned handles) at the FK places, when they hang from the pelvis.
+    const std::array<glm::dvec3, 4> fk = spine.fkJoints(controllers, stretch);
+    glm::dmat4 handle(1.0);
+    int handle_joint = layout.pelvis;
+    for (int k = 0; k < 3; ++k) {
+      const int j = layout.controllers[k];
+      if (j < 0 || s.joints[j].parent != handle_joint) break;
+      const glm::dmat4 world = place(fk[k], frames[k]);
+      local[j] = glm::mat4(glm::inverse(handle) * world);
+      handle = world;
+      handle_joint = j;
+    }
   }
-  parent = glm::dmat4(1.0);
-  for (int i = 0; i <= kRiderSpineSegments; ++i) {
-    const glm::dmat4 world = place(solved.joints[i].position, solved.joints[i].rotation);
-    local[layout.chain[i]] = glm::mat4(glm::inverse(parent) * world);
-    parent = world;
-  }
-  // Neck and head ride on the chain's tip.
-  local[rider.role("neck")] = offsetLocal(joint("neck"), up(C::neckTy), glm::mat4(1.0f));
+  // Neck and head ride on the chain's tip (a chain ending at the neck stretches its last bone too).
+  glm::mat4 neck_rest = joint("neck").rest_local;
+  if (!layout.laid_on_curve && layout.ends_at_neck) neck_rest[3] = glm::vec4(glm::vec3(neck_rest[3]) * float(stretch), 1.0f);
+  local[rider.role("neck")] = translate(up(C::neckTy)) * neck_rest;
   local[rider.role("head")] = offsetLocal(joint("head"), up(C::headATy), rot(r[C::headRy], kX) * rot(-r[C::headRz], kZ));
 }
 
@@ -249,13 +285,15 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
   std::vector<glm::mat4> local = restLocals(s);
   poseRiderSpine(rider, r, rider_unit_cm, params, local);
   // Braid and coat tail: "up" swings them back and up, "side" toward the right, spread along the chain.
+  // Both are optional roles: a rider without a braid or a coat's skirt has nothing to swing.
   const float hair_up = float(r[C::hairUp]) * params.hair_deg_per_unit / 3.0f;
   const float hair_side = float(r[C::hairSide]) * params.hair_deg_per_unit / 3.0f;
   for (const char* n : {"braid1", "braid2", "braid3"})
-    local[rider.role(n)] = s.joints[rider.role(n)].rest_local * rot(-hair_side, kX) * rot(-hair_up, kZ);
-  const int coat_tail = rider.role("coatTail");
-  local[coat_tail] = s.joints[coat_tail].rest_local * rot(-r[C::clothSide] * params.cloth_deg_per_unit, kX) *
-                     rot(-r[C::clothUp] * params.cloth_deg_per_unit, kZ);
+    if (const auto it = rider.roles.find(n); it != rider.roles.end())
+      local[it->second] = s.joints[it->second].rest_local * rot(-hair_side, kX) * rot(-hair_up, kZ);
+  if (const auto it = rider.roles.find("coatTail"); it != rider.roles.end())
+    local[it->second] = s.joints[it->second].rest_local * rot(-r[C::clothSide] * params.cloth_deg_per_unit, kX) *
+                        rot(-r[C::clothUp] * params.cloth_deg_per_unit, kZ);
   const int pelvis = rider.role("pelvis");
   local[pelvis] = saddle * local[pelvis];
   std::vector<glm::mat4> world(s.size());
@@ -292,9 +330,11 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
     }
   }
 
+  std::vector<char> solved(s.size(), 0);  // joints the limbs below place in world terms
   for (int side = 0; side < 2; ++side) {
     const std::string n = side == 0 ? "l" : "r";
     const float away = side == 0 ? -1.0f : 1.0f;  // +Z is the horse's right
+    for (const char* part : {"Shoulder", "Elbow", "Wrist", "Hand", "Hip", "Knee", "Ankle", "Ball"}) solved[rider.role(n + part)] = 1;
     // Arm: the wrist reaches for the rein, moved by wrist tx (forward) and ty (up) in saddle space.
     {
       const int shoulder = rider.role(n + "Shoulder"), elbow = rider.role(n + "Elbow"), wrist = rider.role(n + "Wrist");
@@ -335,6 +375,15 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
       world[ankle] = translate(limb.end) * foot_world_rot;
       world[ball] = translate(limb.end + glm::vec3(foot_world_rot * glm::vec4(rb - ra, 0.0f))) * foot_world_rot;
     }
+  }
+  // Joints hanging from the limbs that no role names (fingers, toes, twist and split-segment joints
+  // of a user's rig) are carried by their parents as they hang at rest.
+  std::vector<char> moved = solved;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int p = s.joints[j].parent;
+    if (solved[j] || p < 0 || !moved[p]) continue;
+    world[j] = world[p] * local[j];
+    moved[j] = 1;
   }
   return world;
 }

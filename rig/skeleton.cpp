@@ -1,5 +1,7 @@
 #include "rig/skeleton.h"
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace stirrup::rig {
@@ -23,6 +25,51 @@ int Skeleton::require(std::string_view name) const {
   const int i = find(name);
   if (i < 0) throw std::out_of_range("skeleton: no joint named " + std::string(name));
   return i;
+}
+
+std::vector<int> Skeleton::pathFrom(int ancestor, int joint) const {
+  std::vector<int> path;
+  for (int j = joint; j >= 0; j = joints[j].parent) {
+    if (j == ancestor) {
+      std::reverse(path.begin(), path.end());
+      return path;
+    }
+    path.push_back(j);
+  }
+  return {};
+}
+
+std::vector<char> hangLooseRoots(std::vector<int>& parent, const std::vector<glm::vec3>& position) {
+  const int n = static_cast<int>(parent.size());
+  std::vector<int> root_of(n), size(n, 0);
+  for (int j = 0; j < n; ++j) {
+    int r = j;
+    for (int steps = 0; parent[r] >= 0 && steps <= n; ++steps) r = parent[r];
+    root_of[j] = r;
+    ++size[r];
+  }
+  int main_root = -1;
+  for (int j = 0; j < n; ++j)
+    if (parent[j] < 0 && (main_root < 0 || size[j] > size[main_root])) main_root = j;
+  std::vector<char> attached(n, 0), hung(n, 0);
+  for (int j = 0; j < n; ++j) attached[j] = root_of[j] == main_root;
+  for (;;) {
+    int best_root = -1, best_to = -1;
+    float best = std::numeric_limits<float>::infinity();
+    for (int r = 0; r < n; ++r) {
+      if (parent[r] >= 0 || attached[r]) continue;
+      for (int a = 0; a < n; ++a) {
+        const float d = glm::length(position[r] - position[a]);
+        if (attached[a] && d < best) best = d, best_root = r, best_to = a;
+      }
+    }
+    if (best_root < 0) break;
+    parent[best_root] = best_to;
+    hung[best_root] = 1;
+    for (int j = 0; j < n; ++j)
+      if (root_of[j] == best_root) attached[j] = 1;
+  }
+  return hung;
 }
 
 std::vector<glm::mat4> restLocals(const Skeleton& skeleton) {

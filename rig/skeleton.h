@@ -16,7 +16,20 @@ struct Joint {
   std::string name;
   int parent = -1;                // index of the parent joint (always lower than this joint's), -1 for a root
   glm::mat4 rest_local{1.0f};     // rest transform relative to the parent
-  glm::mat4 inverse_bind{1.0f};   // inverse of the rest world transform: bind-pose mesh -> joint space
+  glm::mat4 inverse_bind{1.0f};   // inverse of the rest world transform: rest -> joint space
+  // The rigid motion carrying the mesh's bind pose of this joint to its rest. Identity when the mesh
+  // was bound at rest (every generated character). A user's standing rider seated by the rig
+  // (rig/characters/seating.h) keeps the mesh as the file bound it and its seating here, so skinning
+  // (world * inverse_bind * bind_offset) shows the file's own mesh in the seated rest.
+  glm::mat4 bind_offset{1.0f};
+  // A point the rig added (a hand's grip, a sole's contact with the tread), not a joint of the file
+  // the character came from: no vertex is bound to it, and exports to the user's own skeleton leave
+  // it out.
+  bool rig_point = false;
+  // A root of the file it came from that the loader hung from the nearest joint of the body (a skin
+  // exported without the bones that held it, like Blender's Rigify deform bones): exports to the
+  // user's own skeleton write it as the file has it, a root.
+  bool file_root = false;
 };
 
 struct Skeleton {
@@ -33,7 +46,23 @@ struct Skeleton {
 
   glm::mat4 restWorld(int joint) const { return glm::inverse(joints[joint].inverse_bind); }
   glm::vec3 restPosition(int joint) const { return glm::vec3(restWorld(joint)[3]); }
+  // The skinning bind of a joint (what a glTF skin's inverse bind matrix holds): inverse_bind * bind_offset.
+  // (Exactly inverse_bind where there is no offset: a product with the identity can turn -0 into +0.)
+  glm::mat4 skinBind(int joint) const {
+    const Joint& j = joints[joint];
+    return j.bind_offset == glm::mat4(1.0f) ? j.inverse_bind : j.inverse_bind * j.bind_offset;
+  }
+  // The joints on the way from `ancestor` (exclusive) down to `joint` (inclusive), ancestor's child
+  // first; empty when `ancestor` is not an ancestor of `joint`.
+  std::vector<int> pathFrom(int ancestor, int joint) const;
 };
+
+// A joint forest made one body: `parent` (-1 for a root, any order) gets each further root hung from the
+// nearest joint (by `position`) of the body built so far, starting from the largest tree, so every joint
+// moves with the body. Blender's Rigify exported with its deform bones only is such a forest: the
+// limbs' and the face's parents are mechanism bones left out of the file. Returns which joints were
+// roots and now hang from another.
+std::vector<char> hangLooseRoots(std::vector<int>& parent, const std::vector<glm::vec3>& position);
 
 // Rest local transforms, one per joint: the starting point of every posing job.
 std::vector<glm::mat4> restLocals(const Skeleton& skeleton);

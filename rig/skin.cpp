@@ -11,7 +11,7 @@ std::vector<glm::mat4> skinningMatrices(const Skeleton& skel, std::span<const gl
   if (jointWorld.size() != skel.size())
     throw std::invalid_argument("skinning: expected one world matrix per joint");
   std::vector<glm::mat4> m(skel.size());
-  for (std::size_t i = 0; i < skel.size(); ++i) m[i] = jointWorld[i] * skel.joints[i].inverse_bind;
+  for (std::size_t i = 0; i < skel.size(); ++i) m[i] = jointWorld[i] * skel.skinBind(static_cast<int>(i));
   return m;
 }
 

@@ -1,5 +1,5 @@
 // Linear blend skinning: each vertex moves by the weighted sum of its joints' skinning matrices
-// (joint world * inverse bind). Normals move by the same blend and are renormalised, which is exact
+// (joint world * skinning bind, Skeleton::skinBind). Normals move by the same blend and are renormalised, which is exact
 // for rigid joints and a close approximation where they blend.
 #pragma once
 
@@ -13,7 +13,7 @@
 
 namespace stirrup::rig {
 
-// Skinning matrices, one per joint: jointWorld[i] * inverse_bind[i].
+// Skinning matrices, one per joint: jointWorld[i] * inverse_bind[i] * bind_offset[i] (Skeleton::skinBind).
 std::vector<glm::mat4> skinningMatrices(const Skeleton& skel, std::span<const glm::mat4> jointWorld);
 
 // Deforms the mesh by the posed joints; positions and normals are resized to the vertex count.

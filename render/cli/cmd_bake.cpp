@@ -16,6 +16,7 @@
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_bake.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/ridden_pair.h"
 #include "rig/io/gltf_rider_motion.h"
 #include "rig/motion/clip_factory.h"
 #include "rig/motion/procedural_gait.h"
@@ -56,9 +57,11 @@ void writeBakedGlb(const render::SceneSpec& scene, const rig::RigProfile& profil
                    std::vector<int> frames, const std::string& output) {
   std::sort(frames.begin(), frames.end());
   frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-  const rig::Character horse = rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping);
-  const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping);
+  const rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+  const rig::Character& horse = pair.horse;
+  const rig::Character& rider = pair.rider;
   rig::BakedShot shot;
+  shot.seat = pair.seat;
   shot.name = scene.name;
   shot.fps = scene.fps;
   std::vector<rig::BakedFrame> baked;
@@ -112,16 +115,18 @@ void writeRiderGlb(const render::SceneSpec& scene, const rig::RigProfile& profil
                    std::vector<int> frames, const std::string& output) {
   std::sort(frames.begin(), frames.end());
   frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-  const rig::Character horse = rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping);
-  const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping);
+  const rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+  const rig::Character& horse = pair.horse;
+  const rig::Character& rider = pair.rider;
   rig::RiderMotion motion;
+  motion.seat = pair.seat;
   motion.name = scene.name;
   for (int frame : frames) {
     const rig::BakedFrame b = rig::bakeFrame(clip, profile, frame, render::frameTime(scene, frame));
     motion.seconds.push_back(static_cast<float>(b.seconds));
     motion.world.push_back(rig::poseMounted(horse, rider, b.horse, b.rider, profile).rider);
   }
-  rig::writeFileAtomically(output, rig::riderMotionGlb(rider, scene.rider, scene.rider_mapping, motion));
+  rig::writeFileAtomically(output, rig::riderMotionGlb(rider, motion));
 }
 
 void runBake(const BakeOptions& o) {

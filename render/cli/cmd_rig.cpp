@@ -15,6 +15,7 @@
 #include "render/cli/options.h"
 #include "render/data_dir.h"
 #include "render/scene.h"
+#include "rig/io/ridden_pair.h"
 #include "rig/bake.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_character.h"
@@ -79,8 +80,9 @@ void runBalance(const RigOptions& o) {
   rig::RigProfile profile = render::resolveProfile(scene);
   rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
   const auto clip = render::makeSceneClip(scene);
-  const rig::Character horse = rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping);
-  const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping);
+  const rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+  const rig::Character& horse = pair.horse;
+  const rig::Character& rider = pair.rider;
   std::ostringstream out;
   out << "frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,"
          "turn_deg,seat_lift_cm,limited\n";

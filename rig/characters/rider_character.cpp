@@ -87,7 +87,7 @@ Character buildRider(const RiderParams& p, const MountParams& mount) {
   const float chain_bone = (p.upper_chest.y - p.lower_back.y) / kN;
   std::array<int, kN + 1> chain{};
   for (int i = 0; i <= kN; ++i)
-    chain[i] = addJointAt(s, "spine" + std::to_string(i), i == 0 ? pelvis : chain[i - 1],
+    chain[i] = addJointAt(s, i == kN ? std::string("upperChest") : "spine" + std::to_string(i), i == 0 ? pelvis : chain[i - 1],
                           above_lower_back(p.lower_back.y + chain_bone * static_cast<float>(i)));
   // The chain joint nearest a height: where a primitive or a child at that height hangs.
   const auto chain_at = [&](float y) {
@@ -206,32 +206,5 @@ Character buildRider(const RiderParams& p, const MountParams& mount) {
 }
 
 Character buildDefaultRider() { return buildRider(RiderParams{}, HorseParams{}.mount); }
-
-RiderSpine riderSpine(const Character& rider) {
-  const Skeleton& s = rider.skeleton;
-  RiderSpine spine;
-  spine.controllers = {rider.role("lowerBack"), rider.role("waist"), rider.role("chest")};
-  for (int i = 0; i <= kRiderSpineSegments; ++i) spine.chain[i] = rider.role("spine" + std::to_string(i));
-  const int pelvis = rider.role("pelvis");
-  const bool parents_ok = s.joints[spine.controllers[0]].parent == pelvis &&
-                          s.joints[spine.controllers[1]].parent == spine.controllers[0] &&
-                          s.joints[spine.controllers[2]].parent == spine.controllers[1] &&
-                          s.joints[spine.chain[0]].parent == pelvis &&
-                          rider.role("upperChest") == spine.chain[kRiderSpineSegments];
-  if (!parents_ok) throw std::invalid_argument("riderSpine: " + rider.name + "'s spine joints are not parented as built");
-  const std::array<int, 4> fk = {spine.controllers[0], spine.controllers[1], spine.controllers[2],
-                                 spine.chain[kRiderSpineSegments]};
-  const glm::vec3 base = s.restPosition(fk[0]);
-  for (int k = 0; k < 3; ++k) {
-    const glm::vec3 d = s.restPosition(fk[k + 1]) - s.restPosition(fk[k]);
-    spine.fk_lengths[k] = d.y;
-    if (!(d.y > 0.0f) || std::abs(d.x) > 1e-3f || std::abs(d.z) > 1e-3f)
-      throw std::invalid_argument("riderSpine: " + rider.name + "'s spine controllers are not straight up at rest");
-  }
-  if (glm::length(s.restPosition(spine.chain[0]) - base) > 1e-3f)
-    throw std::invalid_argument("riderSpine: " + rider.name + "'s chain does not start at the lower back");
-  spine.root = base - s.restPosition(pelvis);
-  return spine;
-}
 
 }  // namespace stirrup::rig

@@ -23,6 +23,7 @@
 #include "rig/character.h"
 #include "rig/curve_spine.h"
 #include "rig/characters/horse_character.h"
+#include "rig/rider_spine.h"  // riderSpine reads the chain buildRider lays out
 
 namespace stirrup::rig {
 
@@ -70,16 +71,5 @@ Character buildRider(const RiderParams& params, const MountParams& mount = Mount
 Character buildDefaultRider();
 
 inline constexpr int kRiderSpineSegments = CurveSpine::kRiderSegments;
-
-// The spine of a rider built by buildRider, read from its skeleton.
-struct RiderSpine {
-  std::array<int, 3> controllers{};                   // lowerBack, waist, chest joints
-  std::array<int, kRiderSpineSegments + 1> chain{};   // spine0 .. spine<N>, root first
-  std::array<double, 3> fk_lengths{};                 // rest lengths of the three FK bones (cm)
-  glm::vec3 root{0.0f};                               // spine0 (= lowerBack) in the pelvis's frame at rest
-};
-// Throws std::out_of_range when the rider lacks the joints, std::invalid_argument when they are not
-// laid out as buildRider lays them (parents, straight up at rest).
-RiderSpine riderSpine(const Character& rider);
 
 }  // namespace stirrup::rig

@@ -23,12 +23,9 @@ const std::vector<std::string>& requiredRoles(CharacterKind kind) {
     return r;
   }();
   static const std::vector<std::string> rider = [] {
-    std::vector<std::string> r = {"pelvis", "lowerBack", "waist",  "chest",  "upperChest", "neck",
-                                  "head",   "braid1",    "braid2", "braid3", "coatTail"};
-    for (int i = 0; i <= kRiderSpineSegments; ++i) r.push_back("spine" + std::to_string(i));
+    std::vector<std::string> r = {"pelvis", "neck", "head"};
     for (const char* side : {"l", "r"})
-      for (const char* part : {"Shoulder", "Elbow", "Wrist", "Hand", "Hip", "Knee", "Ankle", "Ball"})
-        r.push_back(std::string(side) + part);
+      for (const char* part : {"Shoulder", "Elbow", "Wrist", "Hip", "Knee", "Ankle"}) r.push_back(std::string(side) + part);
     return r;
   }();
   return kind == CharacterKind::Horse ? horse : rider;
@@ -36,7 +33,13 @@ const std::vector<std::string>& requiredRoles(CharacterKind kind) {
 
 const std::vector<std::string>& optionalRoles(CharacterKind kind) {
   static const std::vector<std::string> horse = {"lfPivot", "rfPivot", "lbPivot", "rbPivot"};
-  static const std::vector<std::string> rider;
+  static const std::vector<std::string> rider = [] {
+    std::vector<std::string> r = {"lowerBack", "waist", "chest", "upperChest", "braid1", "braid2", "braid3", "coatTail"};
+    for (const char* side : {"l", "r"})
+      for (const char* part : {"Hand", "Ball"}) r.push_back(std::string(side) + part);
+    for (int i = 0; i <= kRiderSpineSegments; ++i) r.push_back("spine" + std::to_string(i));
+    return r;
+  }();
   return kind == CharacterKind::Horse ? horse : rider;
 }
 

@@ -25,13 +25,19 @@ enum class CharacterKind { Horse, Rider };
 
 std::string_view characterKindName(CharacterKind kind);  // "horse" / "rider"
 
-// Every role posing looks up, in a stable order: for the horse the trunk, neck, head, tail, tack and
-// four legs; for the rider the pelvis, curve-spine controllers and chain, neck, head, braid, coat
-// tail and both arms and legs (rig/characters/horse_character.h, rig/characters/rider_character.h).
+// Every role posing needs, in a stable order: for the horse the trunk, neck, head, tail, tack and four
+// legs (rig/characters/horse_character.h); for the rider the pelvis, neck, head and both arms (shoulder,
+// elbow, wrist) and legs (hip, knee, ankle). Her spine is the chain of joints from the pelvis up to the
+// neck, whatever its length (rig/rider_spine.h).
 const std::vector<std::string>& requiredRoles(CharacterKind kind);
 // Roles a character may name for more: a horse's leg pivots ("lfPivot".."rbPivot": the scapula's
 // pivot, the hip joint) let the whole limb reach (rig/horse_leg.h); without them a leg is solved
-// below the elbow or stifle only.
+// below the elbow or stifle only. A rider's spine controllers (lowerBack, waist, chest: joints of the
+// chain or handles of their own) and upperChest (the chain's top, the shoulders' joint), braid1..3 and
+// coatTail (swung by the hair and cloth channels), per side Hand (where the hand closes on the rein)
+// and Ball (the ball of the foot on the tread), and the generated rider's chain spine0..spine10. A
+// missing hand or ball is a point the rig adds (rig/characters/seating.h); a missing braid or coat
+// tail is not animated.
 const std::vector<std::string>& optionalRoles(CharacterKind kind);
 
 struct CharacterMapping {

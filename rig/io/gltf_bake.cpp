@@ -55,6 +55,31 @@ void setRest(tinygltf::Node& n, const Tracks& tr) {
 
 }  // namespace
 
+tinygltf::Value seatExtras(const SeatReport& seat) {
+  if (!seat.seated_by_rig && seat.added_points.empty()) return tinygltf::Value();
+  tinygltf::Value::Object o;
+  o["seated_by_rig"] = tinygltf::Value(seat.seated_by_rig);
+  const auto number = [&](const char* key, float v) { o[key] = tinygltf::Value(double(v)); };
+  if (seat.seated_by_rig) {
+    number("stirrup_holes_up", seat.stirrup_holes_up);
+    number("tread_below_seat_cm", seat.tread_below_seat_cm);
+    number("leather_change_cm", seat.leather_change_cm);
+    number("stature_cm", seat.stature_cm);
+    number("leg_cm", seat.leg_cm);
+    number("seat_depth_cm", seat.seat_depth_cm);
+    number("knee_turn_out_deg", seat.knee_turn_out_deg);
+    number("hand_shortfall_cm", seat.hand_shortfall_cm);
+  }
+  const auto list = [&](const char* key, const std::vector<std::string>& items) {
+    tinygltf::Value::Array a;
+    for (const std::string& t : items) a.emplace_back(t);
+    o[key] = tinygltf::Value(a);
+  };
+  list("added_points", seat.added_points);
+  list("notes", seat.notes);
+  return tinygltf::Value(o);
+}
+
 std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character& rider, const BakedShot& shot) {
   const std::size_t frames = shot.seconds.size();
   if (frames == 0 || shot.poses.size() != frames) throw std::invalid_argument("bakedShotGlb: expected one pose per frame");
@@ -190,6 +215,7 @@ std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character&
   tinygltf::Value::Object extras;
   extras["fps"] = tinygltf::Value(shot.fps);
   extras["frame_time"] = tinygltf::Value(std::string("seconds = (frame - 1) / fps: frame 1 at t = 0"));
+  if (const tinygltf::Value seat = seatExtras(shot.seat); seat.IsObject()) extras["stirrup_seat"] = seat;
   scene.extras = tinygltf::Value(extras);
   model.scenes.push_back(scene);
   model.defaultScene = 0;

@@ -20,6 +20,11 @@
 
 #include "rig/character.h"
 #include "rig/pose.h"
+#include "rig/characters/seating.h"
+
+namespace tinygltf {
+class Value;
+}
 
 namespace stirrup::rig {
 
@@ -46,10 +51,16 @@ struct BakedShot {
   // flat ground. Written as a static mesh "ground" under its own centimetre root.
   std::vector<glm::vec3> ground_vertices;
   std::vector<std::uint32_t> ground_indices;
+  // How the rig seated the rider (the leathers it set), recorded in the scene's extras as "stirrup_seat".
+  SeatReport seat;
 };
 
 // Joint locals from world matrices: local[i] = inverse(world[parent]) * world[i].
 std::vector<glm::mat4> worldToLocal(const Skeleton& skeleton, const std::vector<glm::mat4>& world);
+
+// The seat's record as glTF extras (an object: leathers, tread, reach, points added), or null when the
+// rig left the rider as she was built (the generated pair).
+tinygltf::Value seatExtras(const SeatReport& seat);
 
 std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character& rider, const BakedShot& shot);
 

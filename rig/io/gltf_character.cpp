@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unistd.h>
@@ -47,11 +48,14 @@ int accessorType(int components) {
   }
 }
 
-// The name a joint's node gets: its role (the first, with "upperChest" and the like preferred over
-// the chain names), else its skeleton name.
+// The name a joint's node gets. A character read from a file keeps its file's names, whatever roles a
+// joint plays (two roles on one joint never rename it). A generated character's joints are written
+// under their roles (the first, with "upperChest" and the like preferred over the chain's "spineN"),
+// as the shipped files have them.
 std::vector<std::string> jointNodeNames(const Character& c) {
   std::vector<std::string> names(c.skeleton.size());
   for (std::size_t j = 0; j < c.skeleton.size(); ++j) names[j] = c.skeleton.joints[j].name;
+  if (!c.source.file.empty()) return names;
   std::vector<bool> named(c.skeleton.size(), false);
   for (int pass = 0; pass < 2; ++pass)
     for (const auto& [role, j] : c.roles) {
@@ -188,7 +192,10 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
   skin.name = prefix + c.name;
   skin.joints = out.joint_nodes;
   std::vector<float> ibm;
-  for (const Joint& j : s.joints) ibm.insert(ibm.end(), glm::value_ptr(j.inverse_bind), glm::value_ptr(j.inverse_bind) + 16);
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const glm::mat4 bind = s.skinBind(static_cast<int>(j));
+    ibm.insert(ibm.end(), glm::value_ptr(bind), glm::value_ptr(bind) + 16);
+  }
   skin.inverseBindMatrices = appendFloatAccessor(model, bin, ibm, 16, false);
   tinygltf::Value::Object roles;
   for (const auto& [role, j] : c.roles) roles[role] = tinygltf::Value(j);
@@ -354,6 +361,11 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
         parent[j] = node_joint[n];
         break;
       }
+  // Joint bind positions from the inverse bind matrices (identity when absent), in the file's space.
+  std::vector<glm::vec3> file_bind(nj);
+  for (int j = 0; j < nj; ++j) file_bind[j] = glm::vec3(glm::inverse(ibm[j])[3]);
+  // A skin of several roots is one body (Skeleton's hangLooseRoots).
+  const std::vector<char> file_root = hangLooseRoots(parent, file_bind);
   // Parents first: depth order, stable.
   std::vector<int> depth(nj, 0), order(nj);
   for (int j = 0; j < nj; ++j)
@@ -377,6 +389,7 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
     const int p = parent[j] < 0 ? -1 : new_index[parent[j]];
     const glm::vec3 pp = p < 0 ? glm::vec3(0.0f) : bind_pos[parent[j]];
     c.skeleton.addJoint(name, p, glm::translate(glm::mat4(1.0f), bind_pos[j] - pp));
+    c.skeleton.joints.back().file_root = file_root[j] != 0;
   }
   for (const auto& [role, j] : role_joint) c.roles[role] = new_index[j];
 
@@ -462,6 +475,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
     }
   }
   if (m.indices.empty()) throw InputError(f + ": no triangles skinned by skins[0]");
+  c.source.file = f;
+  if (mapping) c.source.to_rig = mappingToRig(*mapping);
   // Smooth normals (area-weighted face normals) where the file has none.
   std::vector<glm::vec3> acc(m.positions.size(), glm::vec3(0.0f));
   bool missing = false;

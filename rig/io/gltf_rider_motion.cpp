@@ -12,6 +12,8 @@
 #include "rig/error.h"
 #include "rig/io/character_mapping.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_bake.h"
 #include "rig/io/gltf_nodes.h"
 
 namespace stirrup::rig {
@@ -39,9 +41,10 @@ FileRig builtInRig(const Character& rider) {
   return r;
 }
 
-FileRig userRig(const Character& rider, const std::string& file, const std::string& mapping_file) {
+FileRig userRig(const Character& rider) {
   FileRig r;
-  if (!mapping_file.empty()) r.to_rig = mappingToRig(loadCharacterMapping(mapping_file, CharacterKind::Rider));
+  const std::string& file = rider.source.file;
+  r.to_rig = rider.source.to_rig;
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   std::string err, warn;
@@ -50,22 +53,22 @@ FileRig userRig(const Character& rider, const std::string& file, const std::stri
   if (!ok || model.skins.empty()) throw InputError(file + ": not a readable skinned glTF file");
   const tinygltf::Skin& skin = model.skins[0];
   const std::vector<int> parent = gltfNodeParents(model, file);
-  std::vector<glm::dmat4> world(model.nodes.size());
   const auto worldOf = [&](int n) {
     glm::dmat4 m = gltfNodeLocal(model.nodes[n]);
     for (int p = parent[n]; p >= 0; p = parent[p]) m = gltfNodeLocal(model.nodes[p]) * m;
     return m;
   };
   std::vector<float> ibm;
-  if (skin.inverseBindMatrices >= 0) {
-    const tinygltf::Accessor& a = model.accessors.at(skin.inverseBindMatrices);
-    const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
-    ibm.resize(a.count * 16);
-    std::memcpy(ibm.data(), model.buffers.at(v.buffer).data.data() + v.byteOffset + a.byteOffset, ibm.size() * 4);
-  }
+  if (skin.inverseBindMatrices >= 0) ibm = readAccessor(model, skin.inverseBindMatrices, 16, file + ": skins[0].inverseBindMatrices");
   // The loader names a joint after its node, or "jointN" (N its index in the skin) when the name is
-  // empty or taken.
+  // empty or taken. Points the rig added are not in the file: they keep an identity entry.
   for (const Joint& j : rider.skeleton.joints) {
+    r.names.push_back(j.name);
+    if (j.rig_point) {
+      r.rest.emplace_back(1.0);
+      r.bind.emplace_back(1.0);
+      continue;
+    }
     int found = -1;
     for (std::size_t k = 0; k < skin.joints.size() && found < 0; ++k)
       if (model.nodes.at(skin.joints[k]).name == j.name) found = static_cast<int>(k);
@@ -73,10 +76,11 @@ FileRig userRig(const Character& rider, const std::string& file, const std::stri
     if (found < 0 || found >= static_cast<int>(skin.joints.size()))
       throw std::logic_error("riderMotionGlb: joint " + j.name + " is not in " + file);
     const int node = skin.joints[found];
-    r.names.push_back(model.nodes[node].name.empty() ? j.name : model.nodes[node].name);
+    r.names.back() = model.nodes[node].name.empty() ? j.name : model.nodes[node].name;
     r.rest.push_back(worldOf(node));
-    r.bind.push_back(ibm.empty() ? glm::dmat4(1.0) : glm::inverse(glm::dmat4(glm::make_mat4(ibm.data() + 16 * found))));
-    if (j.parent < 0 && parent[node] >= 0) r.root_parent = worldOf(parent[node]);
+    r.bind.push_back(ibm.size() < std::size_t(16 * (found + 1)) ? glm::dmat4(1.0)
+                                                  : glm::inverse(glm::dmat4(glm::make_mat4(ibm.data() + 16 * found))));
+    if (j.parent < 0 && parent[node] >= 0) r.root_parent = worldOf(parent[node]);  // every root hangs from it
   }
   return r;
 }
@@ -91,12 +95,19 @@ void decompose(const glm::dmat4& m, glm::dvec3& t, glm::dquat& q, glm::dvec3& s)
 
 }  // namespace
 
-std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::string& file,
-                                          const std::string& mapping_file, const RiderMotion& motion) {
+std::vector<unsigned char> riderMotionGlb(const Character& rider, const RiderMotion& motion) {
   const std::size_t frames = motion.seconds.size();
   if (frames == 0 || motion.world.size() != frames) throw std::invalid_argument("riderMotionGlb: expected one pose per frame");
-  const FileRig f = file == "default" ? builtInRig(rider) : userRig(rider, file, mapping_file);
+  const FileRig f = rider.source.file.empty() ? builtInRig(rider) : userRig(rider);
   const Skeleton& s = rider.skeleton;
+  // The joints written, and each one's node: the rig's own points are left out (they are leaves).
+  std::vector<int> node_of(s.size(), -1);
+  std::vector<std::size_t> written;
+  for (std::size_t j = 0; j < s.size(); ++j)
+    if (!s.joints[j].rig_point) {
+      node_of[j] = 1 + static_cast<int>(written.size());
+      written.push_back(j);
+    }
   const glm::dmat4 from_rig = glm::inverse(f.to_rig);
 
   tinygltf::Model model;
@@ -108,12 +119,13 @@ std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::str
   if (f.root_parent != glm::dmat4(1.0))
     holder.matrix = std::vector<double>(glm::value_ptr(f.root_parent), glm::value_ptr(f.root_parent) + 16);
   model.nodes.push_back(holder);
-  const int first = 1;
+  // A joint's parent in the file: a root the loader hung from the body is a root again.
+  const auto fileParent = [&](std::size_t j) { return s.joints[j].file_root ? -1 : s.joints[j].parent; };
   const auto localAtRest = [&](std::size_t j) {
-    const int p = s.joints[j].parent;
+    const int p = fileParent(j);
     return glm::inverse(p < 0 ? f.root_parent : f.rest[p]) * f.rest[j];
   };
-  for (std::size_t j = 0; j < s.size(); ++j) {
+  for (const std::size_t j : written) {
     tinygltf::Node n;
     n.name = f.names[j];
     glm::dvec3 t, sc;
@@ -123,15 +135,15 @@ std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::str
     n.rotation = {q.x, q.y, q.z, q.w};
     if (glm::length(sc - glm::dvec3(1.0)) > 1e-6) n.scale = {sc.x, sc.y, sc.z};
     model.nodes.push_back(n);
-    const int p = s.joints[j].parent;
-    model.nodes[p < 0 ? 0 : first + p].children.push_back(first + static_cast<int>(j));
+    const int p = fileParent(j);
+    model.nodes[p < 0 ? 0 : node_of[p]].children.push_back(node_of[j]);
   }
   tinygltf::Skin skin;
   skin.name = "rider";
   skin.skeleton = 0;
   std::vector<float> ibm;
-  for (std::size_t j = 0; j < s.size(); ++j) {
-    skin.joints.push_back(first + static_cast<int>(j));
+  for (const std::size_t j : written) {
+    skin.joints.push_back(node_of[j]);
     const glm::mat4 m(glm::inverse(f.bind[j]));
     ibm.insert(ibm.end(), glm::value_ptr(m), glm::value_ptr(m) + 16);
   }
@@ -139,16 +151,16 @@ std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::str
   model.skins.push_back(skin);
 
   // The user's joint world that skins the user's mesh as stirrup's joint skins its copy:
-  //   skin matrix in stirrup space  S = W * inverse_bind, in file space  to_rig^-1 S to_rig,
+  //   skin matrix in stirrup space  S = W * inverse_bind * bind_offset, in file space  to_rig^-1 S to_rig,
   //   and the joint world is that times the joint's bind.
   std::vector<std::vector<float>> tr(s.size()), rot(s.size());
   std::vector<glm::dmat4> posed(s.size());
   for (std::size_t k = 0; k < frames; ++k) {
     if (motion.world[k].size() != s.size()) throw std::invalid_argument("riderMotionGlb: expected one matrix per joint");
-    for (std::size_t j = 0; j < s.size(); ++j) {
-      const glm::dmat4 skin_rig = glm::dmat4(motion.world[k][j]) * glm::dmat4(s.joints[j].inverse_bind);
+    for (const std::size_t j : written) {
+      const glm::dmat4 skin_rig = glm::dmat4(motion.world[k][j]) * glm::dmat4(s.skinBind(static_cast<int>(j)));
       posed[j] = from_rig * skin_rig * f.to_rig * f.bind[j];
-      const int p = s.joints[j].parent;
+      const int p = fileParent(j);
       glm::dvec3 t, sc;
       glm::dquat q;
       decompose(glm::inverse(p < 0 ? f.root_parent : posed[p]) * posed[j], t, q, sc);
@@ -164,7 +176,7 @@ std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::str
   tinygltf::Animation anim;
   anim.name = motion.name;
   const int input = appendFloatAccessor(model, bin, motion.seconds, 1, true);
-  for (std::size_t j = 0; j < s.size(); ++j)
+  for (const std::size_t j : written)
     for (const auto& [path, values, comps] : {std::tuple{"translation", &tr[j], 3}, std::tuple{"rotation", &rot[j], 4}}) {
       tinygltf::AnimationSampler sm;
       sm.input = input;
@@ -173,7 +185,7 @@ std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::str
       anim.samplers.push_back(sm);
       tinygltf::AnimationChannel ch;
       ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
-      ch.target_node = first + static_cast<int>(j);
+      ch.target_node = node_of[j];
       ch.target_path = path;
       anim.channels.push_back(ch);
     }
@@ -181,6 +193,11 @@ std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::str
   tinygltf::Scene scene;
   scene.name = motion.name;
   scene.nodes = {0};
+  if (const tinygltf::Value seat = seatExtras(motion.seat); seat.IsObject()) {
+    tinygltf::Value::Object extras;
+    extras["stirrup_seat"] = seat;
+    scene.extras = tinygltf::Value(extras);
+  }
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   return glbBytes(model, std::move(bin));

@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "rig/character.h"
+#include "rig/characters/seating.h"
 
 namespace stirrup::rig {
 
@@ -24,11 +25,12 @@ struct RiderMotion {
   std::string name;                           // the animation's name
   std::vector<float> seconds;                 // one per frame, strictly increasing
   std::vector<std::vector<glm::mat4>> world;  // one per frame: the rider's joint world matrices (posing)
+  SeatReport seat;                            // how the rig seated her (the scene's extras, "stirrup_seat")
 };
 
-// `rider` is the character as resolveCharacter(Rider, file, mapping_file) made it; `file` and
-// `mapping_file` are the scene's rider entries ("default" for the built-in rider).
-std::vector<unsigned char> riderMotionGlb(const Character& rider, const std::string& file,
-                                          const std::string& mapping_file, const RiderMotion& motion);
+// `rider` is the character as the scene resolved it (its `source` says which file it came from, and
+// how that file's space maps to stirrup's; none for the built-in rider). Joints the rig added
+// (Joint::rig_point) are left out: they are not the user's.
+std::vector<unsigned char> riderMotionGlb(const Character& rider, const RiderMotion& motion);
 
 }  // namespace stirrup::rig

@@ -156,7 +156,7 @@ TEST(GltfRiderMotion, RoundTripsOntoTheUsersRider) {
     motion.seconds.push_back(static_cast<float>(b.seconds));
     motion.world.push_back(p.rider);
   }
-  const std::vector<unsigned char> bytes = riderMotionGlb(rider, user.string(), mapping.string(), motion);
+  const std::vector<unsigned char> bytes = riderMotionGlb(rider, motion);
 
   tinygltf::Model out, orig;
   tinygltf::TinyGLTF io;

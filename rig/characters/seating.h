@@ -1,0 +1,87 @@
+// Seating a user's rider on a horse (offline, once a shot): a character that stands in its own rest
+// pose (T-pose, A-pose, arms relaxed) is put in the saddle by the rig, not by its modeller, the way a
+// rider mounts: hips flexed into the seat, thighs around the horse's barrel at the saddle, knees bent so
+// the ball of each foot rests on its stirrup tread, hands closed on the reins in front of the body, the
+// trunk upright and the head up (docs/characters.md, "Seating").
+//
+// The result is the rider's rest for the rig: every joint at its seated place with a translation-only
+// rest (what the posing jobs work from, as for the generated rider, which is built seated), and the
+// mesh left exactly as the file bound it, the seating kept per joint in Joint::bind_offset. The stirrup
+// leathers are set from the rider's own leg as riders set them: with the leg hanging long beside the
+// horse the tread is at the ankle bone, then the leathers are taken up by the seat's style (a few holes
+// shorter for jumping than for dressage); the horse's stirrup joints move to the new tread.
+//
+// A rider whose rest is already seated (the generated rider, its file read back, a user's rider
+// modelled sitting) is left as it is; only the points the rig needs and the file does not name (the
+// hand's grip, the sole's contact with the tread) are added (Joint::rig_point).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "rig/character.h"
+
+namespace stirrup::rig {
+
+// Leathers are taken up from the hanging-leg length (tread at the ankle bone) in holes about 1 in
+// (2.5 cm) apart (Dover Saddlery's leathers). Dressage rides long, the iron at the ankle bone with the
+// leg hanging (the riding-school rule; the ground check: stirrup to the fingertips); a general-purpose
+// (hunt) seat two holes shorter (stirrup to the second finger joint); jumping four holes shorter (two
+// holes from 90 cm fences, up to four for 1.20 m: HQ Magazine; Micklem, Complete Horse Riding Manual).
+// The rig profile's seat.stirrup_holes_up says how many.
+inline constexpr float kLeatherHoleCm = 2.5f;
+inline constexpr float kHolesUpDressage = 0.0f, kHolesUpGeneral = 2.0f, kHolesUpJumping = 4.0f;
+
+struct SeatParams {
+  float stirrup_holes_up = kHolesUpGeneral;  // RigProfile::seat.stirrup_holes_up
+  // Where the hip joints sit over the seat: 2 cm behind the seat centre, as the generated rider is
+  // built (RiderParams::hip.x), her seat bones in the deepest part of the seat.
+  float hip_behind_seat_centre_cm = 2.0f;
+  // The knee's bend points forward and out around the barrel (RiderParams::knee_pole_dir); the
+  // seating turns it further out only as far as the horse's width needs.
+  glm::vec3 knee_pole_dir{1.0f, 0.0f, -1.0f};
+  float knee_clearance_cm = 1.0f;  // room left between the leg's surface and the horse's, at the knee and thigh
+  // Elbows hang back, down and a little out (RiderParams::elbow_pole_dir).
+  glm::vec3 elbow_pole_dir{-0.5f, -1.0f, -0.45f};
+  // The hand's direction on the rein, wrist to grip, left side (the generated rider's
+  // -RiderParams::wrist_from_grip): forward, a little down and in toward the withers.
+  glm::vec3 hand_dir{6.0f, -1.0f, 1.0f};
+  // Heel down: advanced riders hold the ankle at 83.9 ± 5.3° at the trot against a neutral 90° (Kang et
+  // al. 2010, Human Movement Science), so the foot turns about 6° toe-up from its standing rest.
+  float heel_down_deg = 6.0f;
+  float limb_soften_cm = 0.5f;  // as RiderPoseParams::limb_soften
+};
+
+// What the seating decided, for the bake's record and `stirrup character map`'s report.
+struct SeatReport {
+  bool seated_by_rig = false;     // false: the rider's rest was already seated
+  float stirrup_holes_up = 0;     // the leathers taken up this many holes from the hanging-leg length
+  float stature_cm = 0;           // the rider's height, crown to sole, standing
+  float leg_cm = 0;               // hip joint to ankle, straight
+  float seat_depth_cm = 0;        // hip joints above the seat bones (the seat centre)
+  float tread_below_seat_cm = 0;  // the stirrup treads below the seat centre after the leathers are set
+  float leather_change_cm = 0;    // how much longer (+) or shorter (-) than the horse's leathers as built
+  float knee_turn_out_deg = 0;    // how far the knees were turned out beyond knee_pole_dir to clear the barrel
+  float hand_shortfall_cm = 0;    // how far short of the rein grips her hands stayed (arms too short), 0 = on them
+  std::vector<std::string> added_points;  // rig points added (the grips, the sole contacts)
+  std::vector<std::string> notes;
+};
+
+struct SeatedRider {
+  Character rider;
+  Character horse;  // the horse with its stirrup joints at the rider's leathers
+  SeatReport report;
+};
+
+// True when the rider's rest is standing: both thighs hang within 30° of straight down.
+bool restIsStanding(const Character& rider);
+
+// Seats `rider` on `horse` (both at rest; the rider in stirrup's axes, +X the way she faces, +Y up,
+// cm, anywhere in space). The horse needs its saddle, stirrup and rein roles; the rider her roles
+// (rig/io/character_mapping.h). Throws InputError naming the role and joint when the rider's geometry
+// cannot be seated (a limb of no length, feet above the hips).
+SeatedRider seatRider(const Character& rider, const Character& horse, const SeatParams& params = {});
+
+}  // namespace stirrup::rig
