@@ -75,10 +75,10 @@ std::string frameList(const std::vector<int>& frames) {
 
 }  // namespace
 
-GoldenRender fixedTrotRender(int frame) {
+GoldenRender fixedTrotRender(int frame, const fs::path& base) {
   GoldenRender r;
   r.name = "fixed:" + std::to_string(frame);
-  r.out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / ("frame" + std::to_string(frame));
+  r.out = base / ("frame" + std::to_string(frame));
   r.args = "render " + quote((kGoldenDir / "trot_side.json").string()) + " --frames " + std::to_string(frame) +
            " --out " + quote(r.out.string());
   r.files.push_back({r.out / goldenName(frame), goldenName(frame)});
@@ -86,10 +86,10 @@ GoldenRender fixedTrotRender(int frame) {
   return r;
 }
 
-GoldenRender shotRender(const GoldenSet& set, const GoldenShot& shot) {
+GoldenRender shotRender(const GoldenSet& set, const GoldenShot& shot, const fs::path& base) {
   GoldenRender r;
   r.name = "shot:" + shot.name();
-  r.out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / shot.name();
+  r.out = base / shot.name();
   const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (shot.scene + ".json");
   r.args = "render " + quote(scene.string()) + " --camera " + quote(shot.camera) + " --frames " + frameList(shot.frames) +
            " --resolution " + set.resolution + " --preset " + set.preset + " --out " + quote(r.out.string());
@@ -101,10 +101,10 @@ GoldenRender shotRender(const GoldenSet& set, const GoldenShot& shot) {
   return r;
 }
 
-GoldenRender movieRender(const GoldenSet& set, const GoldenMovie& movie) {
+GoldenRender movieRender(const GoldenSet& set, const GoldenMovie& movie, const fs::path& base) {
   GoldenRender r;
   r.name = "movie:" + movie.movie;
-  r.out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / ("movie_" + movie.movie);
+  r.out = base / ("movie_" + movie.movie);
   r.args = "movies --only " + quote(movie.movie) + " --frames-limit " + std::to_string(movie.frames_limit) +
            " --resolution " + set.resolution + " --preset " + set.preset + " --date " + quote(movie.date) +
            " --keep-frames --out " + quote(r.out.string());
@@ -116,12 +116,12 @@ GoldenRender movieRender(const GoldenSet& set, const GoldenMovie& movie) {
   return r;
 }
 
-std::vector<GoldenRender> allGoldenRenders() {
+std::vector<GoldenRender> allGoldenRenders(const fs::path& base) {
   std::vector<GoldenRender> all;
-  for (int frame : kGoldenFrames) all.push_back(fixedTrotRender(frame));
+  for (int frame : kGoldenFrames) all.push_back(fixedTrotRender(frame, base));
   const GoldenSet set = loadGoldenSet();
-  for (const GoldenShot& shot : set.shots) all.push_back(shotRender(set, shot));
-  for (const GoldenMovie& movie : set.movies) all.push_back(movieRender(set, movie));
+  for (const GoldenShot& shot : set.shots) all.push_back(shotRender(set, shot, base));
+  for (const GoldenMovie& movie : set.movies) all.push_back(movieRender(set, movie, base));
   return all;
 }
 

@@ -91,7 +91,7 @@ GoldenComparison compareWithGolden(const std::filesystem::path& reference, const
 struct GoldenRender {
   std::string name;  // "fixed:4", "shot:trot_side", "movie:trot_layered" (update_goldens --only)
   std::string args;  // stirrup's arguments, quoted
-  std::filesystem::path out;  // where it renders, BUILD/golden_out/...
+  std::filesystem::path out;  // where it renders: a folder under `base` (the tests' or the updater's own)
   struct File {
     std::filesystem::path image;      // rendered, in `out`
     std::filesystem::path reference;  // relative to kGoldenDir
@@ -99,10 +99,13 @@ struct GoldenRender {
   std::vector<File> files;
   std::string why;
 };
-GoldenRender fixedTrotRender(int frame);  // tests/golden/trot_side.json at `frame`
-GoldenRender shotRender(const GoldenSet& set, const GoldenShot& shot);
-GoldenRender movieRender(const GoldenSet& set, const GoldenMovie& movie);
+// `base` is the folder the renders go under: the tests' (kGoldenOutDir) or the updater's own, so the
+// two never render into the same folder when CTest runs them side by side.
+inline const std::filesystem::path kGoldenOutDir = std::filesystem::path(STIRRUP_BINARY_DIR) / "golden_out";
+GoldenRender fixedTrotRender(int frame, const std::filesystem::path& base = kGoldenOutDir);  // trot_side.json
+GoldenRender shotRender(const GoldenSet& set, const GoldenShot& shot, const std::filesystem::path& base = kGoldenOutDir);
+GoldenRender movieRender(const GoldenSet& set, const GoldenMovie& movie, const std::filesystem::path& base = kGoldenOutDir);
 // Every golden render: the fixed trot frames, every shot and every movie of the set.
-std::vector<GoldenRender> allGoldenRenders();
+std::vector<GoldenRender> allGoldenRenders(const std::filesystem::path& base = kGoldenOutDir);
 
 }  // namespace stirrup::test
