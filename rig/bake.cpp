@@ -6,22 +6,26 @@
 
 namespace stirrup::rig {
 
-namespace {
-
-double accelerationAlong(const Clip& clip, double seconds, double heading_deg) {
-  // Along the heading at `seconds`: the second difference of the travel frame's ground position,
-  // projected on the heading (a path clip's turn adds a sideways part, which this leaves out).
-  // A second difference over kAccelerationWindowS: the acceleration averaged under a triangle of that
-  // half-width, so a braking that starts at once (the stop) eases the rider's lean in over a fifth of
-  // a second instead of snapping it in one frame. Before t = 0 a clip may clamp (a movement starting
-  // at a gallop would seem to jump from rest), so the stencil starts at t = 0 there.
+glm::dvec2 travelAccelerationOnGround(const Clip& clip, double seconds) {
+  // The second difference of the travel frame's ground position over kAccelerationWindowS: the
+  // acceleration averaged under a triangle of that half-width, so a braking that starts at once (the
+  // stop) eases the rider's lean in over a fifth of a second instead of snapping it in one frame.
+  // Before t = 0 a clip may clamp (a movement starting at a gallop would seem to jump from rest), so
+  // the stencil starts at t = 0 there.
   constexpr double h = kAccelerationWindowS;
   const double t0 = seconds - h >= 0.0 ? seconds - h : seconds;
   const HorseFrame a = clip.sample(t0), b = clip.sample(t0 + h), c = clip.sample(t0 + 2.0 * h);
-  const double ax = (a.travel_cm - 2.0 * b.travel_cm + c.travel_cm) / (h * h);
-  const double az = (a.travel_z_cm - 2.0 * b.travel_z_cm + c.travel_z_cm) / (h * h);
+  return {(a.travel_cm - 2.0 * b.travel_cm + c.travel_cm) / (h * h),
+          (a.travel_z_cm - 2.0 * b.travel_z_cm + c.travel_z_cm) / (h * h)};
+}
+
+namespace {
+
+// Along the heading at `seconds` (a path clip's turn adds a sideways part, which this leaves out).
+double accelerationAlong(const Clip& clip, double seconds, double heading_deg) {
+  const glm::dvec2 a = travelAccelerationOnGround(clip, seconds);
   const double heading = heading_deg * 3.14159265358979323846 / 180.0;
-  return ax * std::cos(heading) + az * std::sin(heading);
+  return a.x * std::cos(heading) + a.y * std::sin(heading);
 }
 
 }  // namespace

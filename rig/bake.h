@@ -2,6 +2,8 @@
 // Explicit inputs and outputs, no state: frame N can be baked alone, on any machine, in any order.
 #pragma once
 
+#include <glm/vec2.hpp>
+
 #include "rig/clip.h"
 #include "rig/rig_profile.h"
 
@@ -20,7 +22,11 @@ BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, dou
 
 // The clip's travel acceleration at `seconds` (cm/s²), by a second difference of its travel over
 // kAccelerationWindowS each side: smoothed, so a lean that follows it never jumps between frames.
+// travelAccelerationOnGround is the whole of it in the ground plane, (world x, world z): in a turn it
+// holds the centripetal part, toward the turn's centre. travelAcceleration is its part along the
+// heading, which the balance stage leans against (HorseFrame::travel_accel_cm_s2).
 inline constexpr double kAccelerationWindowS = 0.2;
+glm::dvec2 travelAccelerationOnGround(const Clip& clip, double seconds);
 double travelAcceleration(const Clip& clip, double seconds);
 
 }  // namespace stirrup::rig

@@ -172,7 +172,7 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
                                             rot(-r[C::hipRz], kZ) * rot(r[C::hipRy], kX));
 
   // The curve spine, in the pelvis's frame with its root at the lower back. Constructing it only
-  // stores the lengths; solve() is the work (about 0.15 ms, PoseRiderSpine.SolvingPerCallIsCheap).
+  // stores the lengths; solve() is the work (71 us a call, BM_PoseRiderSpine in tests/bench/pose_bench.cpp).
   const RiderSpine layout = riderSpine(rider);
   const int segments = layout.laid_on_curve ? kRiderSpineSegments : CurveSpine::kMinSegments;
   const CurveSpine spine(layout.fk_lengths, segments);

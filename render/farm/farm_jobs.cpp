@@ -21,10 +21,12 @@ std::string join(const std::vector<std::string>& words, const std::string& separ
   return out;
 }
 
-// Slurm's job states (squeue(1) "JOB STATE CODES") grouped by what they mean for a chunk.
+// Slurm's job states (squeue(1) "JOB STATE CODES") grouped by what they mean for a chunk. A job held
+// after its reservation was deleted (RESV_DEL_HOLD) still waits in the queue: resubmitting its chunk
+// would render it twice once it is released.
 bool waiting(const std::string& s) {
   return s == "PENDING" || s == "CONFIGURING" || s == "REQUEUED" || s == "REQUEUE_HOLD" || s == "REQUEUE_FED" ||
-         s == "RESIZING" || s == "SUSPENDED" || s == "STOPPED";
+         s == "RESV_DEL_HOLD" || s == "RESIZING" || s == "SUSPENDED" || s == "STOPPED";
 }
 bool running(const std::string& s) {
   return s == "RUNNING" || s == "COMPLETING" || s == "STAGE_OUT" || s == "SIGNALING";

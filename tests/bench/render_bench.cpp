@@ -3,6 +3,8 @@
 // Run: build/tests/bench/stirrup_bench --benchmark_filter=Trot
 #include <benchmark/benchmark.h>
 
+#include <string>
+
 #include "render/preset.h"
 #include "render/scene.h"
 #include "render/shot.h"
@@ -55,6 +57,26 @@ void BM_TrotFrame(benchmark::State& state) {
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_TrotFrame)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A frame of the trot side view at each quality preset (arg: 0 draft, 1 review, 2 final): more
+// samples a pixel cost more, which `stirrup bench` reports as fps; compared here, not in a timed test.
+void BM_TrotFramePreset(benchmark::State& state) {
+  render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  const render::QualityPreset& preset = render::qualityPresets()[static_cast<std::size_t>(state.range(0))];
+  render::applyPreset(scene, preset);
+  const rig::RigProfile profile = render::resolveProfile(scene);
+  render::Shot shot(scene, profile, scene.cameras.front(), 0);
+  shot.renderFrame(1);  // the first frame builds what later frames refit; not timed
+  int frame = 2;
+  for (auto _ : state) {
+    render::Image image = shot.renderFrame(frame);
+    frame = frame % 72 + 1;
+    benchmark::DoNotOptimize(image.rgba.data());
+  }
+  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.SetLabel(std::string(preset.name));
+}
+BENCHMARK(BM_TrotFramePreset)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The BVH update modes on the trot side view (review preset, as the movies render): a frame's BVH
 // update and trace, in ms per frame. The renderer's default (Refit) is the one with the least of the

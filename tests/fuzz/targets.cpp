@@ -33,13 +33,26 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One scratch folder per process (libFuzzer's -jobs run several), with the shipped thesis profile in
-// profiles/ so a scene's "profile": "thesis" resolves as it does beside the shipped scenes.
+// One scratch folder per process (libFuzzer's -jobs run several), laid out so the files a seed names
+// are there, as beside the shipped scenes: inputs are written to ROOT/work/scene/, where characters/,
+// profiles/ and the *-mapping.json files link to the shipped scenes' (scenes/), and ROOT/scenes and
+// ROOT/shared link to the source tree's scenes/ and the shared assets, for paths such as
+// "../../scenes/profiles/thesis.json" (tests/golden/) and "../../shared/assets/fox/Fox.glb"
+// (scenes/). The links are only read through: no target writes a file a scene names.
 const fs::path& scratch() {
   static const fs::path dir = [] {
-    const fs::path d = fs::temp_directory_path() / ("stirrup_fuzz_" + std::to_string(::getpid()));
-    fs::create_directories(d / "profiles");
-    std::ofstream(d / "profiles" / "thesis.json") << rig::profileToJson(rig::RigProfile::thesis()).dump();
+    const fs::path root = fs::temp_directory_path() / ("stirrup_fuzz_" + std::to_string(::getpid()));
+    const fs::path d = root / "work" / "scene";
+    const fs::path scenes = fs::path(STIRRUP_SOURCE_DIR) / "scenes";
+    fs::create_directories(d);
+    std::error_code ec;
+    fs::create_directory_symlink(scenes, root / "scenes", ec);
+    fs::create_directory_symlink(fs::path(STIRRUP_SHARED_DIR), root / "shared", ec);
+    for (const auto& e : fs::directory_iterator(scenes)) {
+      const std::string name = e.path().filename().string();
+      if (name == "characters" || name == "profiles") fs::create_directory_symlink(e.path(), d / name, ec);
+      else if (name.size() > 13 && name.ends_with("-mapping.json")) fs::create_symlink(e.path(), d / name, ec);
+    }
     std::atexit([] {
       std::error_code ec;
       fs::remove_all(fs::temp_directory_path() / ("stirrup_fuzz_" + std::to_string(::getpid())), ec);
@@ -90,16 +103,27 @@ void sampleClip(const rig::Clip& clip) {
 
 }  // namespace
 
-int sceneJson(const std::uint8_t* data, std::size_t size) {
-  return expectOnlyInputErrors([&] {
+SceneStage sceneJsonStage(const std::uint8_t* data, std::size_t size) {
+  SceneStage stage = SceneStage::Refused;
+  expectOnlyInputErrors([&] {
     const render::SceneSpec scene = render::loadScene(writeInput(data, size, "scene.json"));
+    stage = SceneStage::Read;
     // What every command does next: the profile with its overrides, the clip, the first frames baked.
     const rig::RigProfile profile = render::resolveProfile(scene);
+    stage = SceneStage::Profile;
     const std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
+    stage = SceneStage::Clip;
     const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
     for (std::size_t i = 0; i < std::min<std::size_t>(frames.size(), 2); ++i)
       (void)rig::bakeFrame(*clip, profile, frames[i], render::frameTime(scene, frames[i]));
+    stage = SceneStage::Baked;
   });
+  return stage;
+}
+
+int sceneJson(const std::uint8_t* data, std::size_t size) {
+  (void)sceneJsonStage(data, size);
+  return 0;
 }
 
 int rigProfileJson(const std::uint8_t* data, std::size_t size) {

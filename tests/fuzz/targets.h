@@ -26,6 +26,12 @@ int mappingJson(const std::uint8_t* data, std::size_t size);     // rig/io/chara
 int frameSpec(const std::uint8_t* data, std::size_t size);       // rig/io/frame_range.*
 int farmManifest(const std::uint8_t* data, std::size_t size);    // render/farm/farm_plan.* (OUT/farm.json)
 
+// How far sceneJson took a scene: refused by the reader, read, its profile resolved, its clip made, or
+// its first frames baked. The replay test counts the seeds that reach the clip and the bake, so a seed
+// corpus that only exercises the error paths (a scene whose characters are missing) fails.
+enum class SceneStage { Refused, Read, Profile, Clip, Baked };
+SceneStage sceneJsonStage(const std::uint8_t* data, std::size_t size);
+
 struct NamedTarget {
   std::string_view name;  // the corpus folder: tests/fuzz/corpus/NAME, tests/fuzz/regressions/NAME
   Target run;

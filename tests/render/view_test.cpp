@@ -1,5 +1,7 @@
 // Each view frames the horse and rider fully on every default scene: rendered small and fast, no pixel
-// of the character matte may touch the image border on any frame shown.
+// of the character matte may touch the image border on any frame shown, and the horse and the rider
+// both show, at a stated fraction of the frame's height (kMinPairHeight; the close view's rider,
+// kMinCloseRiderHeight).
 #include "render/view.h"
 
 #include <algorithm>
@@ -28,21 +30,42 @@ struct BorderCount {
   int matte = 0;      // border pixels with any horse or rider coverage
   int rider_top = 0;  // top-row pixels that show the rider
   int rider = 0;      // rider pixels anywhere
+  int horse = 0;      // horse pixels anywhere
+  // The bounds of the pixels showing the horse or the rider (both), and of the rider's alone, as
+  // fractions of the frame's width and height (0 when none shows).
+  double width = 0, height = 0, rider_width = 0, rider_height = 0;
 };
 
 BorderCount countBorder(const Image& im) {
   BorderCount c;
   EXPECT_EQ(im.matte.size(), im.pixelCount());
+  int x0 = im.width, x1 = -1, y0 = im.height, y1 = -1, rx0 = im.width, rx1 = -1, ry0 = im.height, ry1 = -1;
   for (int y = 0; y < im.height; ++y)
     for (int x = 0; x < im.width; ++x) {
       const std::size_t i = std::size_t(y) * im.width + x;
       const bool rider = im.object_id[i] == static_cast<uint32_t>(ObjectId::Rider);
+      const bool horse = im.object_id[i] == static_cast<uint32_t>(ObjectId::Horse);
       c.rider += rider;
+      c.horse += horse;
       if (y == 0 && rider) ++c.rider_top;
       if ((x == 0 || y == 0 || x == im.width - 1 || y == im.height - 1) && im.matte[i] > 0.0f) ++c.matte;
+      if (rider || horse) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      if (rider) rx0 = std::min(rx0, x), rx1 = std::max(rx1, x), ry0 = std::min(ry0, y), ry1 = std::max(ry1, y);
     }
+  if (x1 >= 0) c.width = double(x1 - x0 + 1) / im.width, c.height = double(y1 - y0 + 1) / im.height;
+  if (rx1 >= 0) c.rider_width = double(rx1 - rx0 + 1) / im.width, c.rider_height = double(ry1 - ry0 + 1) / im.height;
   return c;
 }
+
+// How large the framing shows the pair, stated. A view keeps every framed point frame_margin (12%)
+// inside each border over all the frames it shows, so the pair's extents over the whole clip span 76%
+// of the frame in their limiting direction; one frame's pair spans less by what the clip adds to its
+// height, the jump's flight and the rear's rise at most about 150 cm on a pair 250 cm tall: at least
+// 0.76 x 250 / 400 = 0.47 of the frame's height. Measured lowest over every default scene and view:
+// 0.46 (the jump's turntable), 0.48 (its side and perspective views), 0.65 (turntable_pose).
+constexpr double kMinPairHeight = 0.40;
+// close frames the upper 55% of the rider into the same 76%: measured lowest 0.54 (the jump's landing).
+constexpr double kMinCloseRiderHeight = 0.45;
 
 class ViewFraming : public ::testing::TestWithParam<std::string> {};
 
@@ -68,9 +91,14 @@ TEST_P(ViewFraming, EveryViewKeepsHorseAndRiderInFrame) {
         // close frames the rider above the saddle: the horse runs off the frame, the rider's head never.
         EXPECT_GT(c.rider, 0) << GetParam() << " close frame " << f;
         EXPECT_EQ(c.rider_top, 0) << GetParam() << " close frame " << f << ": the rider touches the top";
+        EXPECT_GE(c.rider_height, kMinCloseRiderHeight) << GetParam() << " close frame " << f << ": the rider too small";
       } else {
         EXPECT_EQ(c.matte, 0) << GetParam() << " " << name << " frame " << f
                               << ": horse or rider on the image border";
+        // Both in the picture, and large in it: an empty or distant frame touches no border either.
+        EXPECT_GT(c.horse, 0) << GetParam() << " " << name << " frame " << f << ": no horse";
+        EXPECT_GT(c.rider, 0) << GetParam() << " " << name << " frame " << f << ": no rider";
+        EXPECT_GE(c.height, kMinPairHeight) << GetParam() << " " << name << " frame " << f << ": horse and rider too small";
       }
       ++shown;
     }

@@ -49,8 +49,8 @@ TEST(BenchCommand, JsonHasEveryPresetAndPositiveFiniteNumbers) {
     EXPECT_EQ(ms.size(), 5u);
     for (const char* part : {"pose", "skin", "bvh", "trace", "write"}) expectPositiveNumber(ms.at(part), part);
   }
-  // More samples cost more: the presets are ordered by cost.
-  EXPECT_GT(presets.at("draft").at("fps").get<double>(), presets.at("final").at("fps").get<double>());
+  // That more samples cost more is a timing, measured by BM_TrotFramePreset (tests/bench/render_bench.cpp),
+  // not asserted here.
 }
 
 // stirrup bench --scene: a crowd's split, counts and memory for one preset. The counts are checked

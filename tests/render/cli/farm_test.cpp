@@ -1,6 +1,7 @@
 // stirrup farm end to end on a real Slurm cluster: the local one-node cluster of scripts/slurm-local,
 // started by CTest's fixture (tests/CMakeLists.txt: Farm.SlurmUp before, Farm.SlurmDown after). Every
-// test is reported skipped, never passed, where no cluster answers. Small shots (a few frames, 96x54)
+// Farm.* test is reported skipped, never passed, where no cluster answers; FarmWithoutACluster.* needs
+// none and always runs. Small shots (a few frames, 96x54)
 // keep it quick; the fault test renders frames large enough that a task can be cancelled mid-chunk.
 #include <algorithm>
 #include <chrono>
@@ -243,7 +244,9 @@ TEST(Farm, TheInstalledProgramRendersOnTheFarmFromAnyFolder) {
   fs::remove_all(local);
 }
 
-TEST(Farm, StatusOfAFolderWithoutAFarmIsAOneLineError) {
+// Needs no cluster, and is registered apart from the cluster's tests (tests/CMakeLists.txt): the
+// manifest is read before Slurm is asked anything.
+TEST(FarmWithoutACluster, StatusOfAFolderWithoutAFarmIsAOneLineError) {
   const fs::path out = scratch("none");
   fs::create_directories(out);
   const CommandResult r = runStirrup("farm status " + quote(out.string()));

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -10,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/review/index_page.h"
+#include "tests/render/cli/run_command.h"
 
 namespace stirrup::test {
 
@@ -65,24 +65,64 @@ GoldenSet loadGoldenSet() {
   return set;
 }
 
-bool updatingGoldens() {
-  const char* v = std::getenv("STIRRUP_UPDATE_GOLDENS");
-  return v && std::string(v) == "1";
+namespace {
+
+std::string frameList(const std::vector<int>& frames) {
+  std::string list;
+  for (int f : frames) list += (list.empty() ? "" : ",") + std::to_string(f);
+  return list;
 }
 
-std::string replaceGolden(const fs::path& reference, const fs::path& image) {
-  std::string what = "new";
-  if (fs::exists(reference)) {
-    try {
-      const render::DiffResult d = render::compareImageFiles(reference, image, goldenThresholds());
-      what = d.max_error == 0.0 ? "unchanged" : "changed: " + d.summary();
-    } catch (const std::exception& e) {
-      what = std::string("replaced, not comparable: ") + e.what();
-    }
+}  // namespace
+
+GoldenRender fixedTrotRender(int frame, const fs::path& base) {
+  GoldenRender r;
+  r.name = "fixed:" + std::to_string(frame);
+  r.out = base / ("frame" + std::to_string(frame));
+  r.args = "render " + quote((kGoldenDir / "trot_side.json").string()) + " --frames " + std::to_string(frame) +
+           " --out " + quote(r.out.string());
+  r.files.push_back({r.out / goldenName(frame), goldenName(frame)});
+  r.why = "the fixed trot side camera (tests/golden/trot_side.json)";
+  return r;
+}
+
+GoldenRender shotRender(const GoldenSet& set, const GoldenShot& shot, const fs::path& base) {
+  GoldenRender r;
+  r.name = "shot:" + shot.name();
+  r.out = base / shot.name();
+  const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (shot.scene + ".json");
+  r.args = "render " + quote(scene.string()) + " --camera " + quote(shot.camera) + " --frames " + frameList(shot.frames) +
+           " --resolution " + set.resolution + " --preset " + set.preset + " --out " + quote(r.out.string());
+  for (int frame : shot.frames) {
+    const std::string name = frameFileName(shot.name(), frame);
+    r.files.push_back({r.out / name, fs::path("scenes") / name});
   }
-  fs::create_directories(reference.parent_path());
-  fs::copy_file(image, reference, fs::copy_options::overwrite_existing);
-  return reference.filename().string() + ": " + what;
+  r.why = shot.why;
+  return r;
+}
+
+GoldenRender movieRender(const GoldenSet& set, const GoldenMovie& movie, const fs::path& base) {
+  GoldenRender r;
+  r.name = "movie:" + movie.movie;
+  r.out = base / ("movie_" + movie.movie);
+  r.args = "movies --only " + quote(movie.movie) + " --frames-limit " + std::to_string(movie.frames_limit) +
+           " --resolution " + set.resolution + " --preset " + set.preset + " --date " + quote(movie.date) +
+           " --keep-frames --out " + quote(r.out.string());
+  for (const std::string& file : movie.files) {
+    const fs::path image = r.out / file;
+    r.files.push_back({image, fs::path("movies") / image.filename()});
+  }
+  r.why = movie.why;
+  return r;
+}
+
+std::vector<GoldenRender> allGoldenRenders(const fs::path& base) {
+  std::vector<GoldenRender> all;
+  for (int frame : kGoldenFrames) all.push_back(fixedTrotRender(frame, base));
+  const GoldenSet set = loadGoldenSet();
+  for (const GoldenShot& shot : set.shots) all.push_back(shotRender(set, shot, base));
+  for (const GoldenMovie& movie : set.movies) all.push_back(movieRender(set, movie, base));
+  return all;
 }
 
 namespace {

@@ -13,7 +13,7 @@ namespace stirrup::test {
 
 inline const std::filesystem::path kGoldenDir = std::filesystem::path(STIRRUP_SOURCE_DIR) / "tests/golden";
 
-// The golden frames of tests/golden/trot_side.json (scripts/update-goldens renders the same list).
+// The golden frames of tests/golden/trot_side.json.
 // Frame 4: the diagonal pairs spread wide and the rider lifted; frame 9: the pairs passing, the
 // rider sunk back into the saddle.
 inline constexpr int kGoldenFrames[] = {4, 9};
@@ -83,12 +83,29 @@ struct GoldenComparison {
 // links) and the numbers.
 GoldenComparison compareWithGolden(const std::filesystem::path& reference, const std::filesystem::path& image);
 
-// scripts/update-goldens sets STIRRUP_UPDATE_GOLDENS=1 and runs the golden tests: each then replaces
-// its reference with the new image instead of failing, and says what moved.
-bool updatingGoldens();
-
-// Updating: copies `image` over `reference` and returns one line saying whether and how far it moved
-// ("new", "unchanged", or the diff numbers).
-std::string replaceGolden(const std::filesystem::path& reference, const std::filesystem::path& image);
+// One golden render: the stirrup command that makes it, the folder it renders into, and which rendered
+// file is compared with which reference. The golden tests (golden_test.cpp) run these and only
+// compare: nothing in the test suite writes a reference. The separate command that updates them after
+// an intended change (update_goldens.cpp, run by scripts/update-goldens) runs the same list, so the
+// frames live in one place.
+struct GoldenRender {
+  std::string name;  // "fixed:4", "shot:trot_side", "movie:trot_layered" (update_goldens --only)
+  std::string args;  // stirrup's arguments, quoted
+  std::filesystem::path out;  // where it renders: a folder under `base` (the tests' or the updater's own)
+  struct File {
+    std::filesystem::path image;      // rendered, in `out`
+    std::filesystem::path reference;  // relative to kGoldenDir
+  };
+  std::vector<File> files;
+  std::string why;
+};
+// `base` is the folder the renders go under: the tests' (kGoldenOutDir) or the updater's own, so the
+// two never render into the same folder when CTest runs them side by side.
+inline const std::filesystem::path kGoldenOutDir = std::filesystem::path(STIRRUP_BINARY_DIR) / "golden_out";
+GoldenRender fixedTrotRender(int frame, const std::filesystem::path& base = kGoldenOutDir);  // trot_side.json
+GoldenRender shotRender(const GoldenSet& set, const GoldenShot& shot, const std::filesystem::path& base = kGoldenOutDir);
+GoldenRender movieRender(const GoldenSet& set, const GoldenMovie& movie, const std::filesystem::path& base = kGoldenOutDir);
+// Every golden render: the fixed trot frames, every shot and every movie of the set.
+std::vector<GoldenRender> allGoldenRenders(const std::filesystem::path& base = kGoldenOutDir);
 
 }  // namespace stirrup::test

@@ -7,9 +7,10 @@
 // leaves room for another CPU's floating-point paths without letting a moved limb or camera through
 // (tests/render/cli/golden_sensitivity_test.cpp proves it). On failure an HTML report with the reference,
 // the new image, the diff and the numbers is written next to the new image.
-// Update the references after an intended change with scripts/update-goldens.
+// The tests only compare; the references are updated after an intended change by a separate command,
+// scripts/update-goldens (update_goldens.cpp), which refuses to run in CI.
 #include <filesystem>
-#include <iostream>
+#include <map>
 #include <set>
 #include <string>
 
@@ -24,25 +25,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Renders `r` and compares every file it names with its reference. Only compares: the references are
+// updated by the separate update_goldens command (scripts/update-goldens), never by a test.
+void renderAndCompare(const GoldenRender& r) {
+  fs::remove_all(r.out);
+  const CommandResult run = runStirrup(r.args);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const GoldenRender::File& f : r.files) {
+    const fs::path reference = kGoldenDir / f.reference;
+    ASSERT_TRUE(fs::exists(f.image)) << f.image << " was not written";
+    ASSERT_TRUE(fs::exists(reference)) << reference << " is missing: run scripts/update-goldens";
+    const GoldenComparison c = compareWithGolden(reference, f.image);
+    EXPECT_FALSE(c.failed()) << r.why << "\n" << c.message();
+  }
+}
+
 class Golden : public ::testing::TestWithParam<int> {};
 
-TEST_P(Golden, TrotSideMatchesTheReference) {
-  const int frame = GetParam();
-  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / ("frame" + std::to_string(frame));
-  fs::remove_all(out);
-  const CommandResult r = runStirrup("render " + quote((kGoldenDir / "trot_side.json").string()) +
-                                     " --frames " + std::to_string(frame) + " --out " + quote(out.string()));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string name = goldenName(frame);
-  const fs::path reference = kGoldenDir / name;
-  if (updatingGoldens()) {
-    std::cout << "[ update ] " << replaceGolden(reference, out / name) << std::endl;
-    return;
-  }
-  ASSERT_TRUE(fs::exists(reference)) << reference << " is missing: run scripts/update-goldens";
-  const GoldenComparison c = compareWithGolden(reference, out / name);
-  EXPECT_FALSE(c.failed()) << c.message();
-}
+TEST_P(Golden, TrotSideMatchesTheReference) { renderAndCompare(fixedTrotRender(GetParam())); }
 
 INSTANTIATE_TEST_SUITE_P(Frames, Golden, ::testing::ValuesIn(kGoldenFrames));
 
@@ -52,34 +52,7 @@ class SceneGolden : public ::testing::TestWithParam<GoldenShot> {};
 // and preset, each compared with its reference. The scene is the shipped one, so a change to a
 // default scene, clip, character, rig profile or view framing shows here as well as a change to the
 // renderer.
-TEST_P(SceneGolden, MatchesTheReference) {
-  const GoldenShot& shot = GetParam();
-  const GoldenSet set = loadGoldenSet();
-  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / shot.name();
-  fs::remove_all(out);
-  std::string frames;
-  for (int f : shot.frames) {
-    if (!frames.empty()) frames += ',';
-    frames += std::to_string(f);
-  }
-  const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (shot.scene + ".json");
-  const CommandResult r = runStirrup("render " + quote(scene.string()) + " --camera " + quote(shot.camera) +
-                                     " --frames " + frames + " --resolution " + set.resolution + " --preset " +
-                                     set.preset + " --out " + quote(out.string()));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (int frame : shot.frames) {
-    const std::string name = frameFileName(shot.name(), frame);
-    const fs::path reference = kSceneGoldenDir / name;
-    ASSERT_TRUE(fs::exists(out / name)) << out / name << " was not rendered";
-    if (updatingGoldens()) {
-      std::cout << "[ update ] " << replaceGolden(reference, out / name) << std::endl;
-      continue;
-    }
-    ASSERT_TRUE(fs::exists(reference)) << reference << " is missing: run scripts/update-goldens";
-    const GoldenComparison c = compareWithGolden(reference, out / name);
-    EXPECT_FALSE(c.failed()) << shot.why << "\n" << c.message();
-  }
-}
+TEST_P(SceneGolden, MatchesTheReference) { renderAndCompare(shotRender(loadGoldenSet(), GetParam())); }
 
 INSTANTIATE_TEST_SUITE_P(Shots, SceneGolden, ::testing::ValuesIn(loadGoldenSet().shots),
                          [](const ::testing::TestParamInfo<GoldenShot>& info) { return info.param.name(); });
@@ -88,29 +61,7 @@ class MovieGolden : public ::testing::TestWithParam<GoldenMovie> {};
 
 // A review movie as `stirrup movies` makes it, at the set's resolution and preset with a fixed slate
 // date: the burnt-in frames, the slate and the plot, compared file by file.
-TEST_P(MovieGolden, MatchesTheReference) {
-  const GoldenMovie& movie = GetParam();
-  const GoldenSet set = loadGoldenSet();
-  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / "golden_out" / ("movie_" + movie.movie);
-  fs::remove_all(out);
-  const CommandResult r = runStirrup("movies --only " + quote(movie.movie) + " --frames-limit " +
-                                     std::to_string(movie.frames_limit) + " --resolution " + set.resolution +
-                                     " --preset " + set.preset + " --date " + quote(movie.date) +
-                                     " --keep-frames --out " + quote(out.string()));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const std::string& file : movie.files) {
-    const fs::path image = out / file;
-    const fs::path reference = kMovieGoldenDir / image.filename();
-    ASSERT_TRUE(fs::exists(image)) << image << " was not written";
-    if (updatingGoldens()) {
-      std::cout << "[ update ] movies/" << replaceGolden(reference, image) << std::endl;
-      continue;
-    }
-    ASSERT_TRUE(fs::exists(reference)) << reference << " is missing: run scripts/update-goldens";
-    const GoldenComparison c = compareWithGolden(reference, image);
-    EXPECT_FALSE(c.failed()) << movie.why << "\n" << c.message();
-  }
-}
+TEST_P(MovieGolden, MatchesTheReference) { renderAndCompare(movieRender(loadGoldenSet(), GetParam())); }
 
 INSTANTIATE_TEST_SUITE_P(Movies, MovieGolden, ::testing::ValuesIn(loadGoldenSet().movies),
                          [](const ::testing::TestParamInfo<GoldenMovie>& info) { return info.param.movie; });
@@ -171,6 +122,47 @@ TEST(GoldenDiff, AMatchWritesNoReport) {
   EXPECT_EQ(c.diff.max_error, 0.0);
   EXPECT_TRUE(c.report.empty());
   EXPECT_FALSE(fs::exists(out / "trot_side.0004.report.html"));
+}
+
+// Every file under `dir`, relative, with its bytes.
+std::map<std::string, std::string> filesUnder(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = readText(e.path());
+  return files;
+}
+
+// The update is a separate command (update_goldens, run by scripts/update-goldens), and it refuses
+// to run in CI: a one-line refusal, nothing rendered, not a byte of tests/golden changed.
+TEST(GoldenUpdate, RefusesToRunInCI) {
+  const std::map<std::string, std::string> before = filesUnder(kGoldenDir);
+  for (const char* ci : {"true", "1", "TRUE"}) {
+    const CommandResult r = runCommand(std::string("CI=") + ci + " " + quote(STIRRUP_UPDATE_GOLDENS_EXE) + " --only fixed:4");
+    EXPECT_EQ(r.exit_code, 2) << ci;
+    EXPECT_EQ(r.err.rfind(std::string("update-goldens: refused: CI=") + ci + ": golden references are updated by hand", 0), 0u) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+  EXPECT_TRUE(filesUnder(kGoldenDir) == before) << "tests/golden changed";
+}
+
+// Outside CI it renders what the golden tests render and writes the references where it is told
+// (here a scratch folder laid out as tests/golden/): rendering is deterministic, so the fixed trot's
+// frame 4 comes out byte for byte as checked in, and it says so.
+TEST(GoldenUpdate, WritesTheReferencesItIsAskedForAndSaysHowFarEachMoved) {
+  const fs::path into = fs::path(STIRRUP_BINARY_DIR) / "golden_update_test";
+  fs::remove_all(into);
+  const std::string exe = "env -u CI " + quote(STIRRUP_UPDATE_GOLDENS_EXE);
+  const CommandResult r = runCommand(exe + " --only fixed:4 --into " + quote(into.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "trot_side.0004.png: new\n");  // new to that folder
+  EXPECT_TRUE(readText(into / "trot_side.0004.png") == readText(kGoldenDir / "trot_side.0004.png"));
+  const CommandResult again = runCommand(exe + " --only fixed:4 --into " + quote(into.string()));
+  EXPECT_EQ(again.out, "trot_side.0004.png: unchanged\n");
+  const CommandResult bad = runCommand(exe + " --only fixed:5");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bad.err, "update-goldens: --only: no golden render \"fixed:5\" (expected fixed:FRAME, shot:SCENE_CAMERA or movie:NAME)\n");
+  fs::remove_all(into);
 }
 
 }  // namespace
