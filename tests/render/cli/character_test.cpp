@@ -59,7 +59,7 @@ TEST(CharacterMake, BadInputIsAOneLineError) {
            {"character make horse --tail-lenght 90", "character make horse: --tail_lenght: unknown parameter"},
            {"character make horse --tail-length long", "character make horse: --tail_length: expected a number, got \"long\""},
            {"character make horse --hips 1,2", "character make horse: --hips: expected three numbers x,y,z"},
-           {"character make dragon", "character make: expected horse or rider, got \"dragon\""}}) {
+           {"character make dragon", "character make: expected horse, rider or humanoid, got \"dragon\""}}) {
     const CommandResult r = runStirrup(args + " -o " + quote(out.string()));
     EXPECT_EQ(r.exit_code, 1) << args;
     EXPECT_EQ(r.err.rfind("stirrup: " + expected, 0), 0u) << r.err;
