@@ -129,7 +129,7 @@ TEST(StandingHumanoid, RigifyNamesAndLayout) {
     ASSERT_GE(h.character.skeleton.find(name), 0) << name;
     EXPECT_EQ(parentName(h, name), parent) << name;
   }
-  EXPECT_EQ(h.character.skeleton.size(), 45u);  // 7 trunk + 2 x 15 arm + 2 x 6 leg... minus nothing: 7 + 26 + 12
+  EXPECT_EQ(h.character.skeleton.size(), 45u);  // 7 trunk + 2 x 13 arm (two halves each) + 2 x 6 leg
   // The ".001" half starts halfway along the limb: the upper arm is 0.186 x 170 = 31.62 cm.
   EXPECT_NEAR(glm::length(at(h, "DEF-upper_arm.L.001") - at(h, "DEF-upper_arm.L")), 15.81f, 0.01f);
   EXPECT_NEAR(glm::length(at(h, "DEF-forearm.L") - at(h, "DEF-upper_arm.L")), 31.62f, 0.01f);
