@@ -1,10 +1,14 @@
 // stirrup character make horse|rider [--param value ...] -o FILE.glb: builds a default character (or
 // one with changed proportions) and writes it as a skinned glTF 2.0 binary (docs/characters.md).
 // scripts/make-characters makes scenes/characters/*.glb with it.
+// stirrup character make humanoid [--pose t|a|relaxed] [--names ...] ... -o FILE.glb: a standing test
+// character written the way other tools write theirs (docs/characters.md, "Test characters").
+#include <charconv>
 #include <cstdio>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <variant>
@@ -14,7 +18,9 @@
 #include "render/cli/options.h"
 #include "rig/error.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/gltf_humanoid.h"
 #include "rig/characters/character_params.h"
+#include "rig/characters/standing_humanoid.h"
 
 namespace stirrup::cli {
 namespace {
@@ -33,7 +39,123 @@ void applyParams(const std::vector<rig::CharacterParam<P>>& table, const std::ve
   for (const auto& [key, value] : namedParameters(cmd, args)) rig::setCharacterParameter(table, key, value, cmd, out);
 }
 
+constexpr const char* kHumanoidOptions =
+    "  humanoid: --names mixamo|rigify|unreal|vrm|humanik|none (mixamo)  --pose t|a|relaxed (t)\n"
+    "    --spine-joints 1..8 (3)  --neck-joints 1..2 (1; rigify 2)  --shared-wrist-hand  --no-toes  --no-clavicles\n"
+    "    --no-fingers  --split-limbs|--no-split-limbs (on for rigify)  --end-joints|--no-end-joints (on for mixamo)\n"
+    "    --ground-root|--no-ground-root (on for unreal, vrm)  --detached-limbs|--no-detached-limbs (on for rigify)\n"
+    "    --joint-axes bone|world (world for vrm)\n"
+    "    --height 100..250 cm (170)  --seed S (0: the stated proportions)  --cell 0.5..5 cm (1.4)\n";
+
+// The humanoid's options: --names first (it sets the convention's layout), then the rest over it.
+rig::StandingHumanoidParams humanoidParams(const std::vector<std::string>& args) {
+  const std::string cmd = "character make humanoid";
+  const auto value_of = [&](std::size_t& i, std::string& key) {
+    std::string a = args[i];
+    if (const auto eq = a.find('='); eq != std::string::npos) {
+      key = a.substr(0, eq);
+      return a.substr(eq + 1);
+    }
+    key = a;
+    if (i + 1 >= args.size()) throw InputError(cmd + ": " + key + ": expected a value");
+    return args[++i];
+  };
+  const auto whole = [&](const std::string& key, const std::string& text, long long lo, long long hi) {
+    long long v = 0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || v < lo || v > hi)
+      throw InputError(cmd + ": " + key + ": expected a whole number " + std::to_string(lo) + ".." + std::to_string(hi) +
+                       ", got \"" + text + "\"");
+    return v;
+  };
+  const auto number = [&](const std::string& key, const std::string& text, float lo, float hi) {
+    float v = 0.0f;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !(v >= lo && v <= hi)) {
+      char range[64];
+      std::snprintf(range, sizeof range, "%g..%g", lo, hi);
+      throw InputError(cmd + ": " + key + ": expected a number " + range + ", got \"" + text + "\"");
+    }
+    return v;
+  };
+  rig::HumanoidNames names = rig::HumanoidNames::Mixamo;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] != "--names" && args[i].rfind("--names=", 0) != 0) continue;
+    std::string key;
+    const std::string v = value_of(i, key);
+    if (!rig::parseHumanoidNames(v, names))
+      throw InputError(cmd + ": --names: expected mixamo, rigify, unreal, vrm, humanik or none, got \"" + v + "\"");
+  }
+  rig::StandingHumanoidParams p = rig::humanoidConventionDefaults(names);
+  const std::map<std::string, bool rig::StandingHumanoidParams::*> switches = {
+      {"--toes", &rig::StandingHumanoidParams::toes},
+      {"--clavicles", &rig::StandingHumanoidParams::clavicles},
+      {"--fingers", &rig::StandingHumanoidParams::fingers},
+      {"--split-limbs", &rig::StandingHumanoidParams::split_limbs},
+      {"--end-joints", &rig::StandingHumanoidParams::end_joints},
+      {"--ground-root", &rig::StandingHumanoidParams::ground_root},
+      {"--detached-limbs", &rig::StandingHumanoidParams::detached_limbs}};
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--shared-wrist-hand") {
+      p.separate_hand = false;
+      continue;
+    }
+    if (const auto sw = switches.find(a); sw != switches.end()) {
+      p.*(sw->second) = true;
+      continue;
+    }
+    if (a.rfind("--no-", 0) == 0)
+      if (const auto sw = switches.find("--" + a.substr(5)); sw != switches.end()) {
+        p.*(sw->second) = false;
+        continue;
+      }
+    std::string key;
+    if (a.rfind("--", 0) != 0) throw InputError(cmd + ": expected an option, got \"" + a + "\"");
+    const std::string name = a.substr(0, a.find('='));
+    if (name != "--names" && name != "--pose" && name != "--spine-joints" && name != "--neck-joints" && name != "--joint-axes" &&
+        name != "--height" && name != "--seed" && name != "--cell")
+      throw InputError(cmd + ": " + name + ": unknown option (expected one of --names --pose --spine-joints --neck-joints "
+                       "--shared-wrist-hand --no-toes --no-clavicles --no-fingers --split-limbs --end-joints --ground-root --detached-limbs "
+                       "--joint-axes --height --seed --cell)");
+    const std::string v = value_of(i, key);
+    if (key == "--pose") {
+      if (v == "t") p.pose = rig::HumanoidRestPose::T;
+      else if (v == "a") p.pose = rig::HumanoidRestPose::A;
+      else if (v == "relaxed") p.pose = rig::HumanoidRestPose::Relaxed;
+      else throw InputError(cmd + ": --pose: expected t, a or relaxed, got \"" + v + "\"");
+    } else if (key == "--spine-joints") {
+      p.spine_joints = static_cast<int>(whole(key, v, 1, 8));
+    } else if (key == "--neck-joints") {
+      p.neck_joints = static_cast<int>(whole(key, v, 1, 2));
+    } else if (key == "--joint-axes") {
+      if (v == "bone") p.joint_axes = rig::HumanoidJointAxes::Bone;
+      else if (v == "world") p.joint_axes = rig::HumanoidJointAxes::World;
+      else throw InputError(cmd + ": --joint-axes: expected bone or world, got \"" + v + "\"");
+    } else if (key == "--height") {
+      p.height = number(key, v, 100.0f, 250.0f);
+    } else if (key == "--seed") {
+      p.seed = static_cast<std::uint32_t>(whole(key, v, 0, 4294967295LL));
+    } else if (key == "--cell") {
+      p.cell = number(key, v, 0.5f, 5.0f);
+    }
+  }
+  return p;
+}
+
+void runMakeHumanoid(const CharacterOptions& o) {
+  const rig::StandingHumanoid h = rig::buildStandingHumanoid(humanoidParams(o.params));
+  const std::vector<unsigned char> bytes = rig::humanoidGlb(h);
+  rig::writeFileAtomically(o.output, bytes);
+  static const char* const kPose[] = {"T", "A", "relaxed"};
+  std::printf("wrote %s: standing humanoid, %s names, %s pose, %zu joints, %zu vertices, %zu triangles, %zu bytes\n",
+              o.output.c_str(), std::string(rig::humanoidNamesName(h.params.names)).c_str(),
+              kPose[static_cast<int>(h.params.pose)], h.character.skeleton.size(), h.character.mesh.vertexCount(),
+              h.character.mesh.triangleCount(), bytes.size());
+}
+
 void runMake(const CharacterOptions& o) {
+  if (o.kind == "humanoid") return runMakeHumanoid(o);
   rig::Character c;
   if (o.kind == "horse") {
     rig::HorseParams p;
@@ -46,7 +168,7 @@ void runMake(const CharacterOptions& o) {
     if (!(p.cell >= 0.5f)) throw InputError("character make rider: --cell: expected at least 0.5 cm");
     c = rig::buildRider(p, rig::HorseParams{}.mount);
   } else {
-    throw InputError("character make: expected horse or rider, got \"" + o.kind + "\"");
+    throw InputError("character make: expected horse, rider or humanoid, got \"" + o.kind + "\"");
   }
   const std::vector<unsigned char> bytes = rig::characterGlb(c);
   rig::writeFileAtomically(o.output, bytes);
@@ -57,15 +179,17 @@ void runMake(const CharacterOptions& o) {
 }  // namespace
 
 void addCharacterCommand(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("character", "Make the default horse and rider as skinned glTF 2.0");
+  CLI::App* cmd = app.add_subcommand("character", "Make the default horse and rider, or a standing test humanoid, as skinned glTF 2.0");
   cmd->require_subcommand(1);
   auto make = std::make_shared<CharacterOptions>();
   CLI::App* mk = cmd->add_subcommand("make", "Build a character from its parameters and write it as .glb");
   mk->footer("Parameters (centimetres; colours linear RGB; vectors x,y,z in the bind pose):\n  horse:" +
              rig::characterParameterList(rig::horseParameters()) + "\n  rider:" + rig::characterParameterList(rig::riderParameters()) +
-             "\nThe stirrup and rein places are the horse's mount (rig/characters/horse_character.h), shared by both.\n"
-             "Example: stirrup character make horse -o scenes/characters/horse.glb");
-  mk->add_option("kind", make->kind, "horse or rider")->required();
+             "\nThe stirrup and rein places are the horse's mount (rig/characters/horse_character.h), shared by both.\n" +
+             std::string(kHumanoidOptions) +
+             "Examples: stirrup character make horse -o scenes/characters/horse.glb\n"
+             "          stirrup character make humanoid --names rigify --pose a --spine-joints 6 -o rigify-a.glb");
+  mk->add_option("kind", make->kind, "horse, rider or humanoid (a standing test character in another tool's style)")->required();
   mk->add_option("-o,--output", make->output, "Output file (.glb)")->required();
   mk->allow_extras();
   mk->callback([make, mk] {
