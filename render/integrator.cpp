@@ -565,6 +565,17 @@ void Integrator::gatherSurface(const CameraFrame& camera, TileScratch::CameraSam
     const glm::vec3 &c0 = mesh.colors[tri[0]], &c1 = mesh.colors[tri[1]], &c2 = mesh.colors[tri[2]];
     S.c0r[m] = c0.x, S.c0g[m] = c0.y, S.c0b[m] = c0.z, S.c1r[m] = c1.x, S.c1g[m] = c1.y, S.c1b[m] = c1.z;
     S.c2r[m] = c2.x, S.c2g[m] = c2.y, S.c2b[m] = c2.z;
+    // A textured triangle's texture at the hit's uv, interpolated as Embree's barycentrics say (a
+    // scalar lookup: the same bits on every SIMD target and thread).
+    glm::vec3 texture(1.0f);
+    if (!mesh.triangle_textures.empty()) {
+      if (const int32_t k = mesh.triangle_textures[size_t(rh->hit.primID)]; k >= 0) {
+        const float b1 = rh->hit.u, b2 = rh->hit.v, b0 = 1.0f - b1 - b2;
+        const glm::vec2 uv = b0 * mesh.uvs[tri[0]] + b1 * mesh.uvs[tri[1]] + b2 * mesh.uvs[tri[2]];
+        texture = mesh.textures[size_t(k)]->sample(uv);
+      }
+    }
+    S.tr[m] = texture.x, S.tg[m] = texture.y, S.tb[m] = texture.z;
     // The ground under the hit (its downward sky rays stop just above it).
     S.ground_y[m] = 0.0f;
     if (terrain_) {

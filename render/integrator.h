@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "render/sampler.h"
 #include "render/shading_lanes.h"
 #include "rig/motion/terrain.h"
+#include "rig/texture.h"
 
 namespace stirrup::render {
 
@@ -31,6 +33,10 @@ struct ShadingMesh {
   std::vector<uint32_t> indices;
   std::vector<glm::vec3> colors;
   std::vector<glm::vec3> normals;
+  // Base colour textures, as MeshDesc's (all empty: untextured).
+  std::vector<glm::vec2> uvs;
+  std::vector<int32_t> triangle_textures;
+  std::vector<std::shared_ptr<const rig::Texture>> textures;
 };
 
 // One pixel's result: filtered colour and coverage, and the passes.

@@ -112,6 +112,14 @@ int Renderer::addMesh(const MeshDesc& desc) {
     throw std::invalid_argument("addMesh: " + std::to_string(desc.rest_positions.size()) + " rest positions for " +
                                 std::to_string(desc.vertex_count) + " vertices");
   }
+  if (!desc.textures.empty() || !desc.uvs.empty() || !desc.triangle_textures.empty()) {
+    if (desc.uvs.size() != desc.vertex_count || desc.triangle_textures.size() != desc.indices.size() / 3)
+      throw std::invalid_argument("addMesh: a textured mesh needs one uv a vertex and one texture index a triangle");
+    for (const int32_t t : desc.triangle_textures)
+      if (t < -1 || t >= int32_t(desc.textures.size()) || (t >= 0 && !desc.textures[size_t(t)]))
+        throw std::invalid_argument("addMesh: texture index " + std::to_string(t) + " for " +
+                                    std::to_string(desc.textures.size()) + " textures");
+  }
   const unsigned geometry =
       state_->scene.addTriangleMesh(desc.vertex_count, desc.indices, desc.rest_positions, desc.geometry_id);
   auto mesh = std::make_unique<ShadingMesh>();
@@ -119,6 +127,9 @@ int Renderer::addMesh(const MeshDesc& desc) {
   mesh->indices = desc.indices;
   mesh->colors = desc.colors.empty() ? std::vector<glm::vec3>(desc.vertex_count, glm::vec3(0.5f)) : desc.colors;
   mesh->normals.assign(desc.vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
+  mesh->uvs = desc.uvs;
+  mesh->triangle_textures = desc.triangle_textures;
+  mesh->textures = desc.textures;
   if (state_->by_geometry.size() <= geometry) state_->by_geometry.resize(geometry + 1, nullptr);
   state_->by_geometry[geometry] = mesh.get();
   state_->meshes.push_back(std::move(mesh));

@@ -17,6 +17,7 @@
 #include <span>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "render/camera.h"
@@ -25,6 +26,7 @@
 #include "render/lights.h"
 #include "render/terrain_mesh.h"
 #include "rig/motion/terrain.h"
+#include "rig/texture.h"
 
 namespace stirrup::render {
 
@@ -43,6 +45,12 @@ struct MeshDesc {
   // rendered (a crowd's level of detail, built when first needed) takes a fixed id, so the scene is the
   // same whichever frames were rendered before.
   int geometry_id = -1;
+  // Base colour textures (rig::SkinnedMesh's): per-vertex uvs, per-triangle texture (-1: none) and the
+  // textures; all empty for an untextured mesh. A textured triangle's colour is its interpolated vertex
+  // colour times its texture at the interpolated uv.
+  std::vector<glm::vec2> uvs{};
+  std::vector<int32_t> triangle_textures{};
+  std::vector<std::shared_ptr<const rig::Texture>> textures{};
 };
 
 struct RenderSettings {

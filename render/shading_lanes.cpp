@@ -18,7 +18,7 @@ namespace HWY_NAMESPACE {
 // A character's hit surface, lane by lane: the point along the camera ray, Embree's normal made unit
 // and turned to the camera, the vertex normals interpolated (and turned to the same side), tilted
 // toward the camera where they face away at a silhouette so the edge does not turn black, and the
-// vertex colours interpolated.
+// vertex colours interpolated (times the texture's colour the integrator looked up at the hit).
 void HitSurfaceLanes(const LaneConstants& k, SurfaceLanes& S) {
   const DF df;
   const size_t lanes = hn::Lanes(df);
@@ -43,8 +43,10 @@ void HitSurfaceLanes(const LaneConstants& k, SurfaceLanes& S) {
     const VF facing = Dot3(n, wo);
     const V3 tilted = Normalize3(Add3(n, Scale3(hn::Sub(Splat(0.01f), facing), wo)));
     n = Select3(hn::Lt(facing, Splat(0.01f)), tilted, n);
-    const V3 albedo =
-        interpolate(Load3(S.c0r, S.c0g, S.c0b, i), Load3(S.c1r, S.c1g, S.c1b, i), Load3(S.c2r, S.c2g, S.c2b, i));
+    // Times the texture's colour (exactly 1 without a texture, which leaves the colour's bits as they were).
+    const V3 albedo = Mul3(
+        interpolate(Load3(S.c0r, S.c0g, S.c0b, i), Load3(S.c1r, S.c1g, S.c1b, i), Load3(S.c2r, S.c2g, S.c2b, i)),
+        Load3(S.tr, S.tg, S.tb, i));
     // CameraFrame::viewDepthF(p).
     const VF depth = Dot3(Sub3(p, Splat3(k.position)), Splat3(k.forward));
     auto keep = [&](VF fresh, std::vector<float>& out) { Store(hn::IfThenElse(character, fresh, Load(out, i)), out, i); };
@@ -226,6 +228,7 @@ void SurfaceLanes::reserve(std::size_t n, int light_samples, int ao_samples) {
                   &nx, &ny, &nz, &ar, &ag, &ab, &specular, &depth, &ground_y, &rox, &roy, &roz, &diffuse_r,
                   &diffuse_g, &diffuse_b, &sun_r, &sun_g, &sun_b, &sky_r, &sky_g, &sky_b})
     v->resize(stride, 0.0f);
+  for (auto* v : {&tr, &tg, &tb}) v->resize(stride, 1.0f);
   for (auto* v : {&character, &on_ground, &sun_traced, &sky_traced}) v->resize(stride, 0);
   const std::size_t sun_rays = stride * std::size_t(light_samples), sky_rays = stride * std::size_t(ao_samples);
   for (auto* v : {&sun_u, &sun_v, &sun_wx, &sun_wy, &sun_wz, &sun_fr, &sun_fg, &sun_fb}) v->resize(sun_rays, 0.0f);

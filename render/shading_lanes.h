@@ -28,13 +28,15 @@ struct SurfaceLanes {
   std::size_t size = 0, padded = 0, stride = 0;
 
   // Inputs of hitSurfaceLanes, where `character` is set (all bits): the camera ray and the hit's
-  // distance, Embree's geometric normal (any length, any side), the barycentrics (u, v) and the
-  // triangle's vertex normals and colours.
+  // distance, Embree's geometric normal (any length, any side), the barycentrics (u, v), the
+  // triangle's vertex normals and colours, and its texture's colour at the hit.
   std::vector<int32_t> character;
   std::vector<float> ox, oy, oz, dx, dy, dz, t;
   std::vector<float> gx, gy, gz, u, v;
   std::vector<float> n0x, n0y, n0z, n1x, n1y, n1z, n2x, n2y, n2z;
   std::vector<float> c0r, c0g, c0b, c1r, c1g, c1b, c2r, c2g, c2b;
+  // The triangle's texture at the hit (1 where it has none): the interpolated colour is scaled by it.
+  std::vector<float> tr, tg, tb;
   // The surface: point, geometric normal facing the camera, shading normal on its side, albedo,
   // specular weight, view depth; filled by the caller for the ground (with the ray's direction),
   // by hitSurfaceLanes for the characters. `ground_y` is the ground's height under the point (0 on

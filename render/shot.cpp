@@ -57,7 +57,11 @@ GroundRegion trackRegion(const SceneSpec& scene, const std::vector<const rig::Cl
 }
 
 MeshDesc meshOf(ObjectId id, const rig::Character& c) {
-  return MeshDesc{id, c.mesh.indices, c.mesh.colors, c.mesh.positions.size(), c.mesh.positions};
+  MeshDesc desc{id, c.mesh.indices, c.mesh.colors, c.mesh.positions.size(), c.mesh.positions};
+  desc.uvs = c.mesh.uvs;
+  desc.triangle_textures = c.mesh.triangle_textures;
+  desc.textures = c.mesh.textures;
+  return desc;
 }
 
 }  // namespace

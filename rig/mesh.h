@@ -3,11 +3,14 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <numeric>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_precision.hpp>
+
+#include "rig/texture.h"
 
 namespace stirrup::rig {
 
@@ -22,19 +25,28 @@ struct SkinnedMesh {
   std::vector<glm::u16vec4> joints;   // skeleton joint indices, unused slots have weight 0
   std::vector<glm::vec4> weights;     // sum to 1
 
+  // Base colour textures; all three empty for an untextured mesh. A textured triangle's colour at a
+  // point is its interpolated vertex colour times its texture at the interpolated uv.
+  std::vector<glm::vec2> uvs;                            // per vertex (glTF's: (0, 0) the image's top-left)
+  std::vector<std::int32_t> triangle_textures;           // per triangle: index into textures, or -1
+  std::vector<std::shared_ptr<const Texture>> textures;  // shared: a character's copies share the images
+
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return indices.size() / 3; }
+  bool textured() const { return !textures.empty(); }
+  // Triangle t's texture, or -1.
+  int triangleTexture(std::size_t t) const { return triangle_textures.empty() ? -1 : triangle_textures[t]; }
 };
 
-// Reorders the triangles so each base colour (a triangle's colour is its first vertex's) forms one
-// run, colours in the order they first appear, triangles in their order within a colour. Vertices
-// are untouched. A glTF writer then needs one primitive (one material) per colour.
+// Reorders the triangles so each base colour and texture (a triangle's colour is its first vertex's)
+// forms one run, in the order they first appear, triangles in their order within a run. Vertices are
+// untouched. A glTF writer then needs one primitive (one material) per run.
 inline void groupTrianglesByColor(SkinnedMesh& mesh) {
   const std::size_t nt = mesh.triangleCount();
-  std::vector<glm::vec3> palette;
+  std::vector<std::pair<glm::vec3, int>> palette;
   std::vector<int> group(nt);
   for (std::size_t t = 0; t < nt; ++t) {
-    const glm::vec3 c = mesh.colors[mesh.indices[t * 3]];
+    const std::pair<glm::vec3, int> c{mesh.colors[mesh.indices[t * 3]], mesh.triangleTexture(t)};
     auto it = std::find(palette.begin(), palette.end(), c);
     if (it == palette.end()) it = palette.insert(palette.end(), c);
     group[t] = static_cast<int>(it - palette.begin());
@@ -46,6 +58,11 @@ inline void groupTrianglesByColor(SkinnedMesh& mesh) {
   for (std::size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) indices[t * 3 + k] = mesh.indices[order[t] * 3 + k];
   mesh.indices = std::move(indices);
+  if (!mesh.triangle_textures.empty()) {
+    std::vector<std::int32_t> textures(nt);
+    for (std::size_t t = 0; t < nt; ++t) textures[t] = mesh.triangle_textures[order[t]];
+    mesh.triangle_textures = std::move(textures);
+  }
 }
 
 }  // namespace stirrup::rig

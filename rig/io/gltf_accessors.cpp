@@ -9,9 +9,35 @@
 
 namespace stirrup::rig {
 
-tinygltf::Model readGltfFile(const std::filesystem::path& file, const std::string& where) {
+namespace {
+
+// tinygltf's image callback: keeps the encoded bytes, then decodes them with tinygltf's own stb_image
+// loader (to RGBA, 8 or 16 bits a channel). A failure is kept, not returned.
+bool keepAndDecodeImage(tinygltf::Image* image, const int index, std::string* /*err*/, std::string* warn, int width,
+                        int height, const unsigned char* bytes, int size, void* user) {
+  auto& images = *static_cast<GltfImageBytes*>(user);
+  const std::size_t i = static_cast<std::size_t>(index);
+  if (images.encoded.size() <= i) {
+    images.encoded.resize(i + 1);
+    images.errors.resize(i + 1);
+  }
+  images.encoded[i].assign(bytes, bytes + size);
+  std::string error;
+  if (!tinygltf::LoadImageData(image, index, &error, warn, width, height, bytes, size, nullptr)) {
+    std::replace(error.begin(), error.end(), '\n', ' ');
+    while (!error.empty() && error.back() == ' ') error.pop_back();
+    images.errors[i] = error.empty() ? "cannot decode it" : error;
+    image->image.clear();
+  }
+  return true;
+}
+
+}  // namespace
+
+tinygltf::Model readGltfFile(const std::filesystem::path& file, const std::string& where, GltfImageBytes* images) {
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
+  if (images) loader.SetImageLoader(&keepAndDecodeImage, images);
   std::string err, warn;
   const bool ok = file.extension() == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
                                              : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());

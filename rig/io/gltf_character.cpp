@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 
@@ -20,6 +21,7 @@
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
 #include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_texture.h"
 
 namespace stirrup::rig {
 namespace {
@@ -41,6 +43,7 @@ int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const v
 int accessorType(int components) {
   switch (components) {
     case 1: return TINYGLTF_TYPE_SCALAR;
+    case 2: return TINYGLTF_TYPE_VEC2;
     case 3: return TINYGLTF_TYPE_VEC3;
     case 4: return TINYGLTF_TYPE_VEC4;
     case 16: return TINYGLTF_TYPE_MAT4;
@@ -141,6 +144,17 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
   proto.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
   proto.attributes["_COLOR"] = appendFloatAccessor(model, bin, col, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
   proto.attributes["WEIGHTS_0"] = appendFloatAccessor(model, bin, wts, 4, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+  // A textured character: its texture coordinates and its textures (each image as the file held it).
+  std::vector<int> textures;
+  if (m.textured()) {
+    std::vector<float> uv(nv * 2);
+    for (std::size_t v = 0; v < nv; ++v) uv[v * 2] = m.uvs[v].x, uv[v * 2 + 1] = m.uvs[v].y;
+    proto.attributes["TEXCOORD_0"] = appendFloatAccessor(model, bin, uv, 2, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+    for (std::size_t i = 0; i < m.textures.size(); ++i) {
+      const std::string name = m.textures[i]->name.empty() ? c.name + "_texture_" + std::to_string(i) : m.textures[i]->name;
+      textures.push_back(appendGltfTexture(model, bin, *m.textures[i], prefix + name));
+    }
+  }
   {
     tinygltf::Accessor a;
     a.bufferView = appendBytes(model, bin, jts.data(), jts.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
@@ -152,17 +166,18 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
   }
 
   // One primitive per run of triangles of one base colour (a triangle's colour is its first
-  // vertex's), in the order the colours first appear.
+  // vertex's) and texture, in the order the runs first appear.
   tinygltf::Mesh mesh;
   mesh.name = prefix + c.name;
   const std::size_t nt = m.triangleCount();
   std::size_t t = 0;
-  std::map<std::tuple<float, float, float>, int> materials;
+  std::map<std::tuple<float, float, float, int>, int> materials;
   while (t < nt) {
     const glm::vec3 color = m.colors[m.indices[t * 3]];
+    const int texture = m.triangleTexture(t);
     std::size_t end = t + 1;
-    while (end < nt && m.colors[m.indices[end * 3]] == color) ++end;
-    const auto key = std::make_tuple(color.x, color.y, color.z);
+    while (end < nt && m.colors[m.indices[end * 3]] == color && m.triangleTexture(end) == texture) ++end;
+    const auto key = std::make_tuple(color.x, color.y, color.z, texture);
     auto it = materials.find(key);
     if (it == materials.end()) {
       tinygltf::Material mat;
@@ -170,6 +185,7 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
       mat.pbrMetallicRoughness.baseColorFactor = {color.x, color.y, color.z, 1.0};
       mat.pbrMetallicRoughness.metallicFactor = 0.0;
       mat.pbrMetallicRoughness.roughnessFactor = 0.7;
+      if (texture >= 0) mat.pbrMetallicRoughness.baseColorTexture.index = textures.at(static_cast<std::size_t>(texture));
       model.materials.push_back(mat);
       it = materials.emplace(key, static_cast<int>(model.materials.size()) - 1).first;
     }
@@ -282,7 +298,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   const std::string f = file.string();
   const std::string kind_name(characterKindName(kind));
   if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
-  const tinygltf::Model model = readGltfFile(file, f);
+  GltfImageBytes images;
+  const tinygltf::Model model = readGltfFile(file, f, &images);
   if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned " + kind_name + ")");
   const tinygltf::Skin& skin = model.skins[0];
   const int nj = static_cast<int>(skin.joints.size());
@@ -396,8 +413,16 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   // Mesh: every primitive of every node skinned by skins[0].
   SkinnedMesh& m = c.mesh;
   const glm::mat3 rot = glm::mat3(convert) / static_cast<float>(mapping ? mapping->scale_cm : 1.0);
-  // Primitives that share their attributes (as written here) share their vertices.
-  std::map<std::map<std::string, int>, std::uint32_t> first_vertices;
+  // Primitives that share their attributes (as written here) share their vertices, when their colours
+  // come from the same place (`_COLOR`, or the same material's base colour) and their texture
+  // coordinates too: a block of vertices read without texture coordinates takes the first textured
+  // primitive's; one read through another set or transform is not shared.
+  struct VertexBlock {
+    std::uint32_t first = 0;
+    std::optional<GltfTextureRef> uvs;  // how its texture coordinates were read, if they were
+  };
+  std::map<std::pair<std::map<std::string, int>, std::vector<float>>, std::vector<VertexBlock>> blocks;
+  std::map<int, int> texture_of;  // the file's texture -> index into m.textures
   for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
     const tinygltf::Node& node = model.nodes[ni];
     if (node.mesh < 0 || node.skin != 0) continue;
@@ -438,9 +463,44 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
         for (std::size_t v = 0; v < n; ++v)
           for (int k = 0; k < 3; ++k) col[v * 3 + k] = c0[v * comps + k] * base[k];
       }
+      // The base colour texture and the texture coordinates it reads.
+      std::string material_name;  // "materials[3] \"fur\"", for errors
+      if (prim.material >= 0) {
+        const std::string& name = model.materials.at(prim.material).name;
+        material_name = "materials[" + std::to_string(prim.material) + "]" + (name.empty() ? "" : " \"" + name + "\"");
+      }
+      const std::string mw = f + ": " + material_name;
+      const GltfTextureRef tex = baseColorTextureOf(model, prim.material, mw);
+      std::vector<float> uv;
+      std::int32_t texture = -1;
+      if (tex.texture >= 0) {
+        const std::string set = "TEXCOORD_" + std::to_string(tex.tex_coord);
+        if (!prim.attributes.count(set))
+          throw InputError(pw + ": expected a " + set + " attribute (the base colour texture of " + material_name + " reads it)");
+        uv = readAccessor(model, prim.attributes.at(set), 2, pw + "." + set);
+        if (uv.size() != n * 2) throw InputError(pw + "." + set + ": expected one texture coordinate a vertex");
+        auto [it, added] = texture_of.emplace(tex.texture, static_cast<int>(m.textures.size()));
+        if (added) m.textures.push_back(readGltfTexture(model, images, tex.texture, mw + ".baseColorTexture"));
+        texture = it->second;
+      }
       // Vertices already taken from an earlier primitive with the same attributes are reused.
-      const auto [seen, fresh] = first_vertices.emplace(prim.attributes, static_cast<std::uint32_t>(m.positions.size()));
-      const std::uint32_t first_vertex = seen->second;
+      std::vector<float> colour_source;  // empty: the colours are `_COLOR`'s, the material's otherwise
+      if (!prim.attributes.count("_COLOR")) colour_source = {base.x, base.y, base.z};
+      std::vector<VertexBlock>& candidates = blocks[{prim.attributes, colour_source}];
+      VertexBlock* block = nullptr;
+      for (VertexBlock& b : candidates)
+        if (texture < 0 || !b.uvs || b.uvs->sameCoordinates(tex)) {
+          block = &b;
+          break;
+        }
+      const bool fresh = block == nullptr;
+      if (fresh) block = &candidates.emplace_back(VertexBlock{static_cast<std::uint32_t>(m.positions.size()), std::nullopt});
+      const std::uint32_t first_vertex = block->first;
+      if (texture >= 0 && !block->uvs) {
+        block->uvs = tex;
+        m.uvs.resize(m.positions.size() + (fresh ? n : 0), glm::vec2(0.0f));
+        for (std::size_t v = 0; v < n; ++v) m.uvs[first_vertex + v] = tex.transform({uv[v * 2], uv[v * 2 + 1]});
+      }
       if (fresh) {
         for (std::size_t v = 0; v < n; ++v) {
           m.positions.push_back(toRig({pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]}));
@@ -464,6 +524,7 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
           m.weights.push_back(std::abs(sum - 1.0f) > 1e-4f ? wv / sum : wv);
         }
       }
+      const std::size_t first_index = m.indices.size();
       if (prim.indices >= 0) {
         for (std::uint32_t i : readIndices(model, prim.indices, pw + ".indices")) {
           if (i >= n) throw InputError(pw + ".indices: index " + std::to_string(i) + " outside the vertices");
@@ -472,11 +533,15 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       } else {
         for (std::uint32_t i = 0; i < n; ++i) m.indices.push_back(first_vertex + i);
       }
+      if ((m.indices.size() - first_index) % 3 != 0) throw InputError(pw + ": expected a whole number of triangles (indices a multiple of 3)");
+      if (texture >= 0 && m.triangle_textures.empty()) m.triangle_textures.assign(first_index / 3, -1);
+      if (!m.textures.empty()) m.triangle_textures.resize(m.indices.size() / 3, texture);
     }
   }
   if (m.indices.empty()) throw InputError(f + ": no triangles skinned by skins[0]");
   c.source.file = f;
   if (mapping) c.source.to_rig = mappingToRig(*mapping);
+  if (!m.textures.empty()) m.uvs.resize(m.positions.size(), glm::vec2(0.0f));
   // Smooth normals (area-weighted face normals) where the file has none.
   std::vector<glm::vec3> acc(m.positions.size(), glm::vec3(0.0f));
   bool missing = false;

@@ -15,6 +15,7 @@
 
 #include "render/integrator.h"
 #include "render/sample_lanes.h"
+#include "rig/texture.h"
 #include "tests/render/test_meshes.h"
 
 namespace stirrup::render {
@@ -640,6 +641,120 @@ TEST(Renderer, GroundCheckerIsFilteredToItsMean) {
   EXPECT_EQ(filteredChecker(12.3f, 45.6f, 3.0f), 0.5f);          // far away: the mean
   EXPECT_EQ(filteredChecker(1999.5f, 0.5f, 0.0f), 1.0f);   // far from the origin, still sharp
   EXPECT_EQ(filteredChecker(-0.5f, 0.5f, 0.0f), 1.0f);
+}
+
+// A 200 cm square panel standing in the plane z = 0 and facing +z, seen square on through an
+// orthographic camera that sees only its middle (no edges, sky or ground). Its texture is a 2 x 1
+// stripe: sRGB (200, 60, 20) on the left, (20, 60, 200) on the right, nearest.
+struct TexturedPanel {
+  RenderSettings settings;
+  Camera camera;
+  std::vector<glm::vec3> positions = {{-100, 0, 0}, {100, 0, 0}, {100, 200, 0}, {-100, 200, 0}};
+  std::vector<glm::vec3> normals = std::vector<glm::vec3>(4, glm::vec3(0, 0, 1));
+  std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+  std::vector<glm::vec2> uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};  // the image's top at the panel's top
+  std::shared_ptr<const rig::Texture> stripe;
+
+  // The sRGB transfer undone (IEC 61966-2-1) for an 8-bit code.
+  static float linear(int code) {
+    const double c = code / 255.0;
+    return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+  }
+
+  TexturedPanel() {
+    settings.width = settings.height = 32;
+    settings.samples_per_pixel = 4;
+    settings.specular = 0.0f;  // matte: the light reflected is the albedo times the same irradiance
+    settings.sun_direction = {0.3, 0.5, 1.0};
+    camera.projection = Camera::Projection::Orthographic;
+    camera.position = {0.0, 100.0, 500.0};
+    camera.target = {0.0, 100.0, 0.0};
+    camera.ortho_height_cm = 150.0;
+    auto t = std::make_shared<rig::Texture>();
+    t->width = 2;
+    t->height = 1;
+    t->texels = {{linear(200), linear(60), linear(20)}, {linear(20), linear(60), linear(200)}};
+    t->filter = rig::TextureFilter::Nearest;
+    stripe = t;
+  }
+
+  Image render(bool textured, glm::vec3 colour, int threads = 0) const {
+    RenderSettings s = settings;
+    s.threads = threads;
+    Renderer r(s);
+    MeshDesc desc{ObjectId::Horse, indices, std::vector<glm::vec3>(4, colour), 4};
+    if (textured) {
+      desc.uvs = uvs;
+      desc.triangle_textures = {0, 0};
+      desc.textures = {stripe};
+    }
+    r.updateMesh(r.addMesh(desc), positions, normals);
+    return r.render(camera, 1);
+  }
+};
+
+// Textured, each pixel is its vertex colour times the texel under it times the light a white panel
+// gets there (the panel is matte, so the light is the same); untextured, the panel is its colour.
+TEST(Renderer, ATexturedTriangleShowsItsTexture) {
+  const TexturedPanel panel;
+  const glm::vec3 tint(0.5f, 1.0f, 1.0f);
+  const Image white = panel.render(false, glm::vec3(1.0f)), plain = panel.render(false, tint),
+              textured = panel.render(true, tint);
+  const glm::vec3 left(TexturedPanel::linear(200), TexturedPanel::linear(60), TexturedPanel::linear(20));
+  const glm::vec3 right(left.z, left.y, left.x);
+  int checked = 0;
+  for (int y = 0; y < textured.height; ++y)
+    for (int x = 0; x < textured.width; ++x) {
+      if (std::abs(2 * x + 1 - textured.width) < 6) continue;  // the seam's pixels see both texels
+      const glm::vec3 expected = tint * (2 * x < textured.width ? left : right);
+      const glm::vec3 light(white.at(x, y)), got(textured.at(x, y));
+      for (int k = 0; k < 3; ++k) ASSERT_NEAR(got[k], expected[k] * light[k], 1e-5f * light[k] + 1e-7f) << x << ", " << y;
+      // Left red over blue, right blue over red; untextured, the panel is the tint everywhere.
+      if (2 * x < textured.width) EXPECT_GT(got.x, 4.0f * got.z) << x << ", " << y;
+      else EXPECT_GT(got.z, 2.0f * got.x) << x << ", " << y;
+      const glm::vec3 p(plain.at(x, y));
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(p[k], tint[k] * light[k], 1e-5f * light[k] + 1e-7f) << x << ", " << y;
+      ++checked;
+    }
+  EXPECT_GT(checked, 600);
+}
+
+// A textured frame is the same bytes at any thread count and on every SIMD target.
+TEST(Renderer, TexturedBytesDoNotDependOnThreadsOrTarget) {
+  const TexturedPanel panel;
+  TexturedPanel seen = panel;
+  seen.camera.projection = Camera::Projection::Perspective;  // the panel's edges, the ground and the sky too
+  seen.camera.position = {150.0, 180.0, 420.0};
+  const Image one = seen.render(true, glm::vec3(1.0f), 1);
+  EXPECT_TRUE(sameBytes(one, seen.render(true, glm::vec3(1.0f), 2)));
+  const std::vector<std::string> targets = simdTargets();
+  if (targets.size() < 2) GTEST_SKIP() << "this CPU runs one SIMD target only (the thread counts were compared)";
+  struct Restore {
+    ~Restore() { pinSimdTarget("best"); }
+  } restore;
+  for (const std::string& target : targets) {
+    pinSimdTarget(target);
+    EXPECT_TRUE(sameBytes(seen.render(true, glm::vec3(1.0f), 2), one)) << target;
+  }
+}
+
+TEST(Renderer, RejectsInconsistentTextures) {
+  const TexturedPanel panel;
+  Renderer r(panel.settings);
+  MeshDesc desc{ObjectId::Horse, panel.indices, {}, 4};
+  desc.uvs = panel.uvs;
+  desc.triangle_textures = {0, 0};
+  desc.textures = {panel.stripe};
+  MeshDesc bad = desc;
+  bad.uvs.pop_back();
+  EXPECT_THROW(r.addMesh(bad), std::invalid_argument);  // one uv short
+  bad = desc;
+  bad.triangle_textures = {0};
+  EXPECT_THROW(r.addMesh(bad), std::invalid_argument);  // one triangle without its texture index
+  bad = desc;
+  bad.triangle_textures = {0, 1};
+  EXPECT_THROW(r.addMesh(bad), std::invalid_argument);  // texture 1 of one
+  EXPECT_NO_THROW(r.addMesh(desc));
 }
 
 }  // namespace

@@ -216,6 +216,8 @@ TEST(ShadingLanes, AHitSurfaceIsItsTrianglesInterpolation) {
     S.n2x[i] = n2.x, S.n2y[i] = n2.y, S.n2z[i] = n2.z;
     S.c0r[i] = 1.0f, S.c0g[i] = 0.0f, S.c0b[i] = 0.0f, S.c1r[i] = 0.0f, S.c1g[i] = 1.0f, S.c1b[i] = 0.0f;
     S.c2r[i] = 0.0f, S.c2g[i] = 0.0f, S.c2b[i] = 1.0f;
+    // Every third hit is on a textured triangle: its colour is scaled by the texture's there.
+    if (i % 3 == 0) S.tr[i] = 0.5f, S.tg[i] = 0.25f, S.tb[i] = 2.0f;
   }
   // The last one is a silhouette: its interpolated normal faces away from the camera.
   S.n0x[n - 1] = S.n1x[n - 1] = S.n2x[n - 1] = 1.0f;
@@ -232,9 +234,10 @@ TEST(ShadingLanes, AHitSurfaceIsItsTrianglesInterpolation) {
     EXPECT_EQ(at3(S.ngx, S.ngy, S.ngz, i), glm::vec3(0.0f, 0.0f, 1.0f)) << i;
     const float b1 = S.u[i], b2 = S.v[i], b0 = 1.0f - b1 - b2;
     const glm::vec3 albedo = at3(S.ar, S.ag, S.ab, i);
-    EXPECT_NEAR(albedo.x, b0, 1e-6f);
-    EXPECT_NEAR(albedo.y, b1, 1e-6f);
-    EXPECT_NEAR(albedo.z, b2, 1e-6f);
+    const glm::vec3 texture = i % 3 == 0 ? glm::vec3(0.5f, 0.25f, 2.0f) : glm::vec3(1.0f);
+    EXPECT_NEAR(albedo.x, b0 * texture.x, 1e-6f);
+    EXPECT_NEAR(albedo.y, b1 * texture.y, 1e-6f);
+    EXPECT_NEAR(albedo.z, b2 * texture.z, 1e-6f);
     EXPECT_EQ(S.specular[i], 0.04f);
     EXPECT_NEAR(S.depth[i], glm::dot(p, k.forward), 1e-4f);
     const glm::vec3 shading = at3(S.nx, S.ny, S.nz, i);

@@ -527,6 +527,80 @@ TEST(BakeGltf, AShotOverHillsCarriesItsGround) {
   EXPECT_NE(v.out.find("\"warnings\":0,"), std::string::npos) << v.out;
 }
 
+// A textured user horse (the Khronos Fox, its joints mapped to the horse roles) baked with the
+// default rider: the file holds the Fox's image (its PNG bytes as the Fox holds them), a horse
+// material whose base colour texture is that image, TEXCOORD_0 on every horse vertex, and an
+// untextured rider as before; the Khronos validator finds no errors or warnings in it.
+TEST(BakeGltf, ATexturedUserHorseKeepsItsTexture) {
+  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / "fox_horse";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const nlohmann::json roles = {
+      {"root", "b_Hip_01"},        {"backMid", "b_Spine01_02"},  {"chest", "b_Spine02_03"},
+      {"withers", "b_Spine02_03"}, {"neck1", "b_Neck_04"},       {"neck2", "b_Neck_04"},
+      {"head", "b_Head_05"},       {"saddle", "b_Spine01_02"},   {"lStirrup", "b_Spine01_02"},
+      {"rStirrup", "b_Spine01_02"}, {"lRein", "b_Head_05"},      {"rRein", "b_Head_05"},
+      {"tail1", "b_Tail01_012"},   {"tail2", "b_Tail02_013"},    {"tail3", "b_Tail03_014"},
+      {"lfUpper", "b_LeftUpperArm_09"}, {"lfMiddle", "b_LeftForeArm_010"}, {"lfFetlock", "b_LeftHand_011"},
+      {"lfHoof", "b_LeftHand_011"},     {"rfUpper", "b_RightUpperArm_06"}, {"rfMiddle", "b_RightForeArm_07"},
+      {"rfFetlock", "b_RightHand_08"},  {"rfHoof", "b_RightHand_08"},      {"lbUpper", "b_LeftLeg01_015"},
+      {"lbMiddle", "b_LeftLeg02_016"},  {"lbFetlock", "b_LeftFoot01_017"}, {"lbHoof", "b_LeftFoot02_018"},
+      {"rbUpper", "b_RightLeg01_019"},  {"rbMiddle", "b_RightLeg02_020"},  {"rbFetlock", "b_RightFoot01_021"},
+      {"rbHoof", "b_RightFoot02_022"}};
+  std::ofstream(dir / "fox-horse.json")
+      << nlohmann::json{{"character", "horse"}, {"scale_cm", 3.5}, {"forward", {0, 0, 1}}, {"up", {0, 1, 0}}, {"roles", roles}}.dump(1);
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(STIRRUP_SOURCE_DIR "/scenes/walk.json"));
+  scene["characters"] = {{"horse", {{"file", fox.string()}, {"mapping", "fox-horse.json"}}}, {"rider", "default"}};
+  std::ofstream(dir / "fox_walk.json") << scene.dump(1);
+  const fs::path glb = dir / "fox_walk.glb";
+  const CommandResult r = runStirrup("bake " + quote((dir / "fox_walk.json").string()) + " --frames 1-12 -o " + quote(glb.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+
+  const tinygltf::Model model = loadGlb(glb);
+  tinygltf::Model source;
+  {
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&source, &err, &warn, fox.string())) << err;
+  }
+  const auto viewBytes = [](const tinygltf::Model& m, int view) {
+    const tinygltf::BufferView& v = m.bufferViews.at(std::size_t(view));
+    const auto* p = m.buffers.at(std::size_t(v.buffer)).data.data() + v.byteOffset;
+    return std::vector<unsigned char>(p, p + v.byteLength);
+  };
+  ASSERT_EQ(model.images.size(), 1u);
+  EXPECT_EQ(model.images[0].mimeType, "image/png");
+  EXPECT_EQ(viewBytes(model, model.images[0].bufferView), viewBytes(source, source.images.at(0).bufferView));
+  const int horse_node = nodeNamed(model, "horse:horse_mesh"), rider_node = nodeNamed(model, "rider:rider_mesh");
+  ASSERT_GE(horse_node, 0);
+  ASSERT_GE(rider_node, 0);
+  const tinygltf::Mesh& horse = model.meshes.at(std::size_t(model.nodes[horse_node].mesh));
+  ASSERT_EQ(horse.primitives.size(), 1u);  // the Fox: one material
+  const tinygltf::Primitive& prim = horse.primitives[0];
+  const int texture = model.materials.at(std::size_t(prim.material)).pbrMetallicRoughness.baseColorTexture.index;
+  ASSERT_GE(texture, 0);
+  EXPECT_EQ(model.textures.at(std::size_t(texture)).source, 0);
+  ASSERT_TRUE(prim.attributes.count("TEXCOORD_0"));
+  EXPECT_EQ(model.accessors.at(std::size_t(prim.attributes.at("TEXCOORD_0"))).count,
+            model.accessors.at(std::size_t(prim.attributes.at("POSITION"))).count);
+  for (const tinygltf::Primitive& p : model.meshes.at(std::size_t(model.nodes[rider_node].mesh)).primitives) {
+    EXPECT_FALSE(p.attributes.count("TEXCOORD_0"));
+    EXPECT_LT(model.materials.at(std::size_t(p.material)).pbrMetallicRoughness.baseColorTexture.index, 0);
+  }
+
+  if (runCommand("command -v node >/dev/null").exit_code != 0) GTEST_SKIP() << "node is not installed (the file was checked)";
+  fs::path modules = fs::path(STIRRUP_BINARY_DIR) / "tools" / "node_modules";
+  if (!fs::exists(modules / "gltf-validator")) modules = fs::path(STIRRUP_SOURCE_DIR) / "build" / "tools" / "node_modules";
+  ASSERT_TRUE(fs::exists(modules / "gltf-validator")) << "gltf-validator is not installed: run scripts/setup";
+  const CommandResult v = runCommand("node " + quote(STIRRUP_SOURCE_DIR "/tests/render/cli/validate_gltf.js") + " " +
+                                     quote(modules.string()) + " " + quote(glb.string()));
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  EXPECT_NE(v.out.find("\"errors\":0,"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("\"warnings\":0,"), std::string::npos) << v.out;
+}
+
 INSTANTIATE_TEST_SUITE_P(DefaultScenes, BakedCameras,
                          testing::Values("buck", "canter", "cross_country", "figure_eight", "fox", "fox_run", "gallop",
                                          "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"));
