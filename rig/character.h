@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 
@@ -29,6 +30,27 @@ struct Character {
   // Role name -> joint index, for joints other modules address (the horse's "saddle", the rider's
   // "pelvis", ...). The role names each character provides are listed in its header.
   std::map<std::string, int, std::less<>> roles;
+  // A rider the rig seated (rig/characters/seating.h) carries the horse's side where her legs lie, so the
+  // rider channels (knee and foot movements, a leg swinging back) never press her knees and calves into
+  // it: posing turns a knee out about its hip-ankle line as far as that needs (rig/pose.h). Empty: no
+  // guard (the generated rider, built against the generated horse).
+  struct LegGuard {
+    // The horse's half-width (largest |z|, cm) in saddle space, in cells of cell_cm from (x0, y0): nx
+    // cells forward, ny up; -inf where the horse has no surface.
+    float x0 = 0.0f, y0 = 0.0f, cell_cm = 2.0f;
+    int nx = 0, ny = 0;
+    std::vector<float> half_width;
+    float knee_radius_cm = 0.0f, calf_radius_cm = 0.0f;  // her leg's surface around the knee and the calf
+    float room_cm = 0.5f;                                  // kept between her surface and the horse's
+    bool empty() const { return half_width.empty(); }
+    // The widest the horse is within one cell of (x, y) (-inf outside the table).
+    float widthNear(float x, float y) const;
+  } leg_guard;
+  // A rider seated by the rig: how much more (or less) her spine's chain bends for the curve spine's
+  // controllers than it would by their angles alone, so her trunk (pelvis to neck) leans for the rider
+  // channels as the generated rider's does (her chain starts higher above the pelvis, or ends lower
+  // below the neck, than the thesis rig's). 1 for the generated rider.
+  float spine_bend_gain = 1.0f;
 
   int role(std::string_view r) const {
     const auto it = roles.find(r);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "rig/horse_leg.h"
@@ -37,6 +38,59 @@ glm::mat4 offsetLocal(const Joint& j, glm::vec3 extra_translation, const glm::ma
 // The rigid motion a joint has made from its bind pose: world * inverse bind.
 glm::mat4 motion(const Skeleton& s, std::span<const glm::mat4> world, int joint) {
   return world[joint] * s.joints[joint].inverse_bind;
+}
+
+// A seated user rider's knee turned out about its hip-ankle line, the least that keeps the knee and two
+// points of the calf (a quarter and half way down the shin) their radius and some room outside the
+// horse's side (Character::LegGuard); where no turn is enough (the foot swung back and in against the
+// flap), the foot also moves out in the iron, by at most kGuardFootOutCm. `away` is -1 on the left, +1
+// on the right; `resolve(pole, foot_out)` solves the limb again toward a pole point (world) with the
+// ankle's target moved out by foot_out (cm, saddle space).
+constexpr float kGuardFootOutCm = 2.4f;  // within the iron's tread (11 cm wide)
+// With it, the foot rises as much as two thirds of that in the iron (the leg bends a little more, so its
+// knee can turn out): the sole stays within 3 cm of the tread's centre.
+constexpr float kGuardFootUpPerOut = 2.0f / 3.0f;
+template <class Resolve>
+LimbPose guardLeg(const Character::LegGuard& g, const glm::mat4& saddle, float away, LimbPose limb, Resolve&& resolve) {
+  const glm::mat4 to_saddle = glm::inverse(saddle);
+  float foot_out = 0.0f;
+  for (int pass = 0; pass < 4; ++pass) {
+    const glm::vec3 hip = transformPoint(to_saddle, position(limb.upper)), knee = transformPoint(to_saddle, position(limb.middle));
+    const glm::vec3 ankle = transformPoint(to_saddle, limb.end);
+    // The knee's |z| each point needs: the knee itself, and the calf's points, which lie between the
+    // knee and the ankle (whose place the tread fixes).
+    float need = g.widthNear(knee.x, knee.y) + g.knee_radius_cm + g.room_cm;
+    float worst_t = 0.0f;
+    for (float t : {0.25f, 0.5f}) {
+      const glm::vec3 c = glm::mix(knee, ankle, t);
+      const float n = (g.widthNear(c.x, c.y) + g.calf_radius_cm + g.room_cm - t * ankle.z * away) / (1.0f - t);
+      if (n > need) need = n, worst_t = t;
+    }
+    if (!(knee.z * away < need - 1e-3f)) break;
+    const glm::vec3 axis = glm::normalize(ankle - hip);
+    const glm::vec3 centre = hip + axis * glm::dot(knee - hip, axis);
+    const float radius = glm::length(knee - centre);
+    if (radius < 1e-3f) break;
+    const glm::vec3 e1 = (knee - centre) / radius, e2 = glm::cross(axis, e1);
+    // Out from the midline along the circle: (centre + radius (cos t e1 + sin t e2)).z * away; the
+    // turn nearest t = 0 that reaches `need`, or the farthest out where none does.
+    const float A = radius * e1.z * away, B = radius * e2.z * away, C = centre.z * away;
+    const float R = std::sqrt(A * A + B * B);
+    if (R < 1e-6f) break;
+    const float phase = std::atan2(B, A);
+    float t = phase;  // the farthest out
+    if (need - C <= R) {
+      const float d = std::acos(std::clamp((need - C) / R, -1.0f, 1.0f));
+      const float t1 = std::remainder(phase - d, 2.0f * glm::pi<float>()), t2 = std::remainder(phase + d, 2.0f * glm::pi<float>());
+      t = std::abs(t1) < std::abs(t2) ? t1 : t2;
+    } else if (foot_out < kGuardFootOutCm) {
+      // The calf's point t of the way down moves out t of what the ankle does; the knee needs the leg bent.
+      foot_out = std::min(kGuardFootOutCm, foot_out + (need - C - R) * (worst_t > 0.0f ? (1.0f - worst_t) / worst_t : 1.0f));
+    }
+    const glm::vec3 k = centre + radius * (std::cos(t) * e1 + std::sin(t) * e2);
+    limb = resolve(transformPoint(saddle, centre + (k - centre) * 10.0f), foot_out);
+  }
+  return limb;
 }
 
 void checkSize(const Character& c, std::span<const glm::mat4> world) {
@@ -167,17 +221,34 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
   const float u = static_cast<float>(rider_unit_cm);
   auto up = [&](C c) { return glm::vec3(0.0f, float(r[c]) * u, 0.0f); };
   auto joint = [&](const char* n) -> const Joint& { return s.joints[rider.role(n)]; };
-  // Pelvis: lifted by cog.ty and slid by cog.tx; tips forward (hip.rz) and rolls (hip.ry).
-  local[rider.role("pelvis")] = offsetLocal(joint("pelvis"), glm::vec3(float(r[C::cogTx]) * u, float(r[C::cogTy]) * u, 0.0f),
-                                            rot(-r[C::hipRz], kZ) * rot(r[C::hipRy], kX));
+  // Pelvis: lifted by cog.ty and slid by cog.tx; tips forward (hip.rz) and rolls (hip.ry). The lift and
+  // slide move the top of the pelvis's tree (the pelvis itself, or a user's root joint above it), so no
+  // bone between them stretches.
+  const glm::vec3 cog = glm::vec3(static_cast<float>(r[C::cogTx]) * u, static_cast<float>(r[C::cogTy]) * u, 0.0f);
+  const int pelvis_joint = rider.role("pelvis");
+  int top = pelvis_joint;
+  while (s.joints[top].parent >= 0) top = s.joints[top].parent;
+  if (top == pelvis_joint) {
+    local[pelvis_joint] = offsetLocal(joint("pelvis"), cog, rot(-r[C::hipRz], kZ) * rot(r[C::hipRy], kX));
+  } else {
+    local[top] = translate(cog) * s.joints[top].rest_local;
+    local[pelvis_joint] = s.joints[pelvis_joint].rest_local * rot(-r[C::hipRz], kZ) * rot(r[C::hipRy], kX);
+  }
 
   // The curve spine, in the pelvis's frame with its root at the lower back. Constructing it only
   // stores the lengths; solve() is the work (71 us a call, BM_PoseRiderSpine in tests/bench/pose_bench.cpp).
   const RiderSpine layout = riderSpine(rider);
   const int segments = layout.laid_on_curve ? kRiderSpineSegments : CurveSpine::kMinSegments;
   const CurveSpine spine(layout.fk_lengths, segments);
-  const SpineControllers controllers = riderSpineControllers(r, params);
-  const double stretch = riderSpineStretch(spine, r, rider_unit_cm);
+  SpineControllers controllers = riderSpineControllers(r, params);
+  if (!layout.laid_on_curve && rider.spine_bend_gain != 1.0f)
+    for (glm::dvec3* c : {&controllers.lower, &controllers.middle, &controllers.top}) {
+      c->y *= rider.spine_bend_gain;
+      c->z *= rider.spine_bend_gain;
+    }
+  // Eq 9's squash and stretch lengthens the generated rider's spine, neck and head bones; a user's
+  // rider keeps every bone's length (her chain only bends), so it is left out for her.
+  const double stretch = layout.laid_on_curve ? riderSpineStretch(spine, r, rider_unit_cm) : 1.0;
   const glm::dvec3 root(layout.root);
   const glm::dquat unrest = glm::inverse(restBoneFrame());
   // A spine joint's transform relative to the pelvis: at its place, turned by its frame's change
@@ -231,10 +302,10 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
     }
   }
   // Neck and head ride on the chain's tip (a chain ending at the neck stretches its last bone too).
-  glm::mat4 neck_rest = joint("neck").rest_local;
-  if (!layout.laid_on_curve && layout.ends_at_neck) neck_rest[3] = glm::vec4(glm::vec3(neck_rest[3]) * float(stretch), 1.0f);
-  local[rider.role("neck")] = translate(up(C::neckTy)) * neck_rest;
-  local[rider.role("head")] = offsetLocal(joint("head"), up(C::headATy), rot(r[C::headRy], kX) * rot(-r[C::headRz], kZ));
+  const glm::vec3 neck_lift = layout.laid_on_curve ? up(C::neckTy) : glm::vec3(0.0f);
+  const glm::vec3 head_lift = layout.laid_on_curve ? up(C::headATy) : glm::vec3(0.0f);
+  local[rider.role("neck")] = translate(neck_lift) * joint("neck").rest_local;
+  local[rider.role("head")] = offsetLocal(joint("head"), head_lift, rot(r[C::headRy], kX) * rot(-r[C::headRz], kZ));
 }
 
 glm::vec3 stirrupTarget(const Character& horse, std::span<const glm::mat4> horseWorld, const RiderChannels& r,
@@ -295,7 +366,11 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
     local[it->second] = s.joints[it->second].rest_local * rot(-r[C::clothSide] * params.cloth_deg_per_unit, kX) *
                         rot(-r[C::clothUp] * params.cloth_deg_per_unit, kZ);
   const int pelvis = rider.role("pelvis");
-  local[pelvis] = saddle * local[pelvis];
+  // The saddle carries her from the top of her pelvis's tree (a user's rig may hang the pelvis from a
+  // root on the ground, which rides along).
+  int top = pelvis;
+  while (s.joints[top].parent >= 0) top = s.joints[top].parent;
+  local[top] = saddle * local[top];
   std::vector<glm::mat4> world(s.size());
   localToWorld(s, local, world);
 
@@ -304,12 +379,17 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
     // hips to the lean the stage decides, and turn the neck back so she keeps looking ahead.
     BalanceInput in;
     in.saddle = saddle;
-    in.seat = position(world[pelvis]);
+    // Her trunk folds at her hips: the pelvis joint of the generated rider (at her hip joints' height),
+    // or where the seating marked a user's hip joints ("hipCentre": a pelvis joint sits where its rig
+    // put it, often well above the hips).
+    const auto hip_centre = rider.roles.find("hipCentre");
+    const int pivot = hip_centre == rider.roles.end() ? pelvis : hip_centre->second;
+    in.seat = position(world[pivot]);
     in.stirrups = 0.5f * (stirrupTarget(horse, horseWorld, r, rider_unit_cm, 0) + stirrupTarget(horse, horseWorld, r, rider_unit_cm, 1));
-    in.trunk = position(world[rider.role("neck")]) - in.seat;
+    in.trunk = position(world[rider.role("neck")]) - position(world[pelvis]);
     in.com_height_cm = trunkComHeight(rider);
     in.fold_scale = balance->fold_scale;
-    in.seat_rise_cm = (glm::inverse(saddle) * glm::vec4(in.seat, 1.0f)).y - s.restPosition(pelvis).y;
+    in.seat_rise_cm = (glm::inverse(saddle) * glm::vec4(in.seat, 1.0f)).y - s.restPosition(pivot).y;
     in.accel_cm_s2 = balance->accel_cm_s2;
     in.ground_pitch_deg = balance->ground_pitch_deg;
     const BalanceResult decided = balanceTrunk(in, balance->params);
@@ -321,7 +401,7 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
       const glm::vec3 lift = glm::normalize(glm::vec3(saddle[1])) * float(decided.seat_lift_cm);
       const glm::mat4 turn = translate(in.seat + lift) *
                              glm::rotate(glm::mat4(1.0f), glm::radians(float(decided.turn_deg)), axis) * translate(-in.seat);
-      local[pelvis] = turn * local[pelvis];
+      local[top] = turn * local[top];
       const float counter = std::clamp(float(decided.turn_deg * balance->params.head_counter), -kNeckCounterRangeDeg,
                                        kNeckCounterRangeDeg);
       const int neck = rider.role("neck");
@@ -368,8 +448,12 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
       const glm::vec3 knee_offset(0.0f, float(r[side == 0 ? C::lKneeTy : C::rKneeTy]) * u,
                                   float(r[side == 0 ? C::lKneeTz : C::rKneeTz]) * u * away);
       const glm::vec3 pole = transformPoint(saddle, rest_pole + knee_offset * params.knee_pole_gain);
-      const LimbPose limb = solveLimb(rh, rk, ra, rest_pole, position(world[hip]), ankle_target,
-                                      pole, params.limb_soften);
+      LimbPose limb = solveLimb(rh, rk, ra, rest_pole, position(world[hip]), ankle_target, pole, params.limb_soften);
+      if (!rider.leg_guard.empty())
+        limb = guardLeg(rider.leg_guard, saddle, away, limb, [&](glm::vec3 pole_point, float foot_out) {
+          const glm::vec3 out = glm::vec3(saddle * glm::vec4(0.0f, kGuardFootUpPerOut * foot_out, away * foot_out, 0.0f));
+          return solveLimb(rh, rk, ra, rest_pole, position(world[hip]), ankle_target + out, pole_point, params.limb_soften);
+        });
       world[hip] = limb.upper;
       world[knee] = limb.middle;
       world[ankle] = translate(limb.end) * foot_world_rot;

@@ -61,8 +61,11 @@ RiderSpine riderSpine(const Character& rider) {
                                   " (map it to the spine joint the shoulders hang from, or leave it out)");
     sp.chain.assign(to_neck.begin(), it + 1);
   } else {
+    // The joint the neck hangs from is the chain's top (its upper chest), as on the generated rider: the
+    // curve bends the back below it and the neck rides on its tip. A spine of one joint has no other
+    // bone to bend, so its curve runs on to the neck.
     sp.chain.assign(to_neck.begin(), to_neck.end() - 1);
-    sp.ends_at_neck = true;
+    sp.ends_at_neck = sp.chain.size() == 1;
   }
   const glm::vec3 pelvis_at = s.restPosition(sp.pelvis);
   for (int j : sp.chain) sp.points.push_back(glm::dvec3(s.restPosition(j) - pelvis_at));

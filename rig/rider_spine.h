@@ -25,8 +25,8 @@ namespace stirrup::rig {
 struct RiderSpine {
   int pelvis = -1, neck = -1;
   std::vector<int> chain;               // the pelvis's child on the way to the neck .. the chain's top, root first
-  // Without an upperChest role the chain's last bone runs from its top joint to the neck, so a spine of
-  // one joint still bends; with one, the chain ends at upperChest and the neck hangs from it.
+  // The chain ends at upperChest, or without that role at the joint the neck hangs from, and the neck
+  // rides on its tip; a spine of a single joint instead bends its one bone, from it to the neck.
   bool ends_at_neck = false;
   std::vector<glm::dvec3> points;       // rest places along the chain, pelvis frame: chain joints (+ the neck)
   std::vector<double> arc;              // rest arc length of each point from the first (cm)

@@ -39,18 +39,23 @@ std::vector<int> Skeleton::pathFrom(int ancestor, int joint) const {
   return {};
 }
 
-std::vector<char> hangLooseRoots(std::vector<int>& parent, const std::vector<glm::vec3>& position) {
+std::vector<char> hangLooseRoots(std::vector<int>& parent, const std::vector<glm::vec3>& position, int core) {
   const int n = static_cast<int>(parent.size());
-  std::vector<int> root_of(n), size(n, 0);
+  if (n == 0) return {};
+  std::vector<int> root_of(n);
   for (int j = 0; j < n; ++j) {
     int r = j;
     for (int steps = 0; parent[r] >= 0 && steps <= n; ++steps) r = parent[r];
     root_of[j] = r;
-    ++size[r];
   }
-  int main_root = -1;
-  for (int j = 0; j < n; ++j)
-    if (parent[j] < 0 && (main_root < 0 || size[j] > size[main_root])) main_root = j;
+  if (core < 0 || core >= n) {
+    glm::vec3 middle(0.0f);
+    for (const glm::vec3& p : position) middle += p / float(n);
+    core = 0;
+    for (int j = 1; j < n; ++j)
+      if (glm::length(position[j] - middle) < glm::length(position[core] - middle)) core = j;
+  }
+  const int main_root = root_of[core];
   std::vector<char> attached(n, 0), hung(n, 0);
   for (int j = 0; j < n; ++j) attached[j] = root_of[j] == main_root;
   for (;;) {

@@ -58,11 +58,13 @@ struct Skeleton {
 };
 
 // A joint forest made one body: `parent` (-1 for a root, any order) gets each further root hung from the
-// nearest joint (by `position`) of the body built so far, starting from the largest tree, so every joint
-// moves with the body. Blender's Rigify exported with its deform bones only is such a forest: the
-// limbs' and the face's parents are mechanism bones left out of the file. Returns which joints were
-// roots and now hang from another.
-std::vector<char> hangLooseRoots(std::vector<int>& parent, const std::vector<glm::vec3>& position);
+// nearest joint (by `position`) of the body built so far, so every joint moves with the body. The body
+// starts from the tree holding `core` (a rider's pelvis, a horse's root), or with none (-1) from the
+// tree holding the joint nearest the middle of all joints (the trunk, not a limb that happens to have
+// more joints). Blender's Rigify exported with its deform bones only is such a forest: the limbs' and
+// the face's parents are mechanism bones left out of the file. Returns which joints were roots and now
+// hang from another.
+std::vector<char> hangLooseRoots(std::vector<int>& parent, const std::vector<glm::vec3>& position, int core = -1);
 
 // Rest local transforms, one per joint: the starting point of every posing job.
 std::vector<glm::mat4> restLocals(const Skeleton& skeleton);

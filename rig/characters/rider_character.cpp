@@ -70,12 +70,10 @@ glm::vec3 restMiddle(glm::vec3 root, glm::vec3 end, float upper, float lower, gl
 
 }  // namespace
 
-Character buildRider(const RiderParams& p, const MountParams& mount) {
+Character buildRiderTrunk(const RiderParams& p) {
   Character c;
   c.name = "rider";
   Skeleton& s = c.skeleton;
-  ImplicitBody body;
-
   const int pelvis = addJointAt(s, "pelvis", -1, p.pelvis);
   // The curve spine's FK controllers, straight up from the lower back (the curve spine's rest pose),
   // then the chain of equal bones the torso is skinned to, over the same length.
@@ -89,14 +87,31 @@ Character buildRider(const RiderParams& p, const MountParams& mount) {
   for (int i = 0; i <= kN; ++i)
     chain[i] = addJointAt(s, i == kN ? std::string("upperChest") : "spine" + std::to_string(i), i == 0 ? pelvis : chain[i - 1],
                           above_lower_back(p.lower_back.y + chain_bone * static_cast<float>(i)));
+  const int neck = addJointAt(s, "neck", chain[kN], p.neck);
+  const int head = addJointAt(s, "head", neck, p.head);
+  c.roles = {{"pelvis", pelvis}, {"lowerBack", lower_back}, {"waist", waist}, {"chest", chest},
+             {"upperChest", chain[kN]}, {"neck", neck}, {"head", head}};
+  for (int i = 0; i <= kN; ++i) c.roles["spine" + std::to_string(i)] = chain[i];
+  return c;
+}
+
+Character buildRider(const RiderParams& p, const MountParams& mount) {
+  Character c = buildRiderTrunk(p);
+  Skeleton& s = c.skeleton;
+  ImplicitBody body;
+
+  const int pelvis = c.role("pelvis");
+  constexpr int kN = kRiderSpineSegments;
+  const float chain_bone = (p.upper_chest.y - p.lower_back.y) / kN;
+  std::array<int, kN + 1> chain{};
+  for (int i = 0; i <= kN; ++i) chain[i] = c.role("spine" + std::to_string(i));
   // The chain joint nearest a height: where a primitive or a child at that height hangs.
   const auto chain_at = [&](float y) {
     const int i = static_cast<int>(std::lround((y - p.lower_back.y) / chain_bone));
     return chain[std::clamp(i, 0, kN)];
   };
   const int upper_chest = chain[kN];
-  const int neck = addJointAt(s, "neck", upper_chest, p.neck);
-  const int head = addJointAt(s, "head", neck, p.head);
+  const int neck = c.role("neck"), head = c.role("head");
   const glm::vec3 skull = p.head + glm::vec3(1.5f, p.head_height * 0.45f, 0.0f);  // cranium centre
   const glm::vec3 braid_root = skull + glm::vec3(-8.5f, -2.0f, 0.0f);
   const glm::vec3 braid_dir = glm::normalize(glm::vec3(-0.15f, -1.0f, 0.0f));
@@ -104,10 +119,8 @@ Character buildRider(const RiderParams& p, const MountParams& mount) {
   const int braid2 = addJointAt(s, "braid2", braid1, braid_root + braid_dir * (p.braid_length / 3.0f));
   const int braid3 = addJointAt(s, "braid3", braid2, braid_root + braid_dir * (2.0f * p.braid_length / 3.0f));
   const int coat_tail = addJointAt(s, "coatTail", chain_at(p.waist.y), p.waist + glm::vec3(-10.0f, -4.0f, 0.0f));
-  c.roles = {{"pelvis", pelvis}, {"lowerBack", lower_back}, {"waist", waist}, {"chest", chest},
-             {"upperChest", upper_chest}, {"neck", neck}, {"head", head}, {"braid1", braid1},
-             {"braid2", braid2}, {"braid3", braid3}, {"coatTail", coat_tail}};
-  for (int i = 0; i <= kN; ++i) c.roles["spine" + std::to_string(i)] = chain[i];
+  for (const auto& [role, j] : {std::pair{"braid1", braid1}, {"braid2", braid2}, {"braid3", braid3}, {"coatTail", coat_tail}})
+    c.roles[role] = j;
 
   // Torso: coat over the chest and waist, breeches over the hips.
   body.add(ellipsoid(p.pelvis + glm::vec3(-0.5f, 0.0f, 0.0f), p.hips_radii, pelvis, p.breeches, 4.0f));

@@ -69,6 +69,9 @@ struct RiderParams {
 // `mount`: where the stirrup treads and rein grips are (the horse's HorseParams::mount).
 Character buildRider(const RiderParams& params, const MountParams& mount = MountParams{});
 Character buildDefaultRider();
+// The rider's trunk alone, as buildRider lays it out (pelvis, the curve spine's controllers and chain,
+// neck and head, with their roles; no mesh): for jobs that measure how her spine responds.
+Character buildRiderTrunk(const RiderParams& params);
 
 inline constexpr int kRiderSpineSegments = CurveSpine::kRiderSegments;
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "rig/error.h"
 #include "rig/ik.h"
 #include "rig/skin.h"
+#include "rig/pose.h"
 #include "rig/characters/rider_character.h"
 
 namespace stirrup::rig {
@@ -36,13 +38,28 @@ constexpr float kGripAlongHand = 0.6f;
 // The seat: hip joints above the seat bones, as a fraction of stature where the mesh does not tell
 // (the generated rider: 10 cm of 170), and the range a measurement from a mesh is trusted in.
 constexpr float kSeatDepthPerStature = 10.0f / 170.0f;
-constexpr float kSeatDepthMin = 0.035f, kSeatDepthMax = 0.08f;
+constexpr float kSeatDepthMin = 0.045f, kSeatDepthMax = 0.075f;
 // A thigh hanging within this angle of straight down is a standing rest.
 constexpr float kStandingThighDeg = 30.0f;
-// How far the knee's bend may turn out beyond the pole direction to clear the barrel, and in what steps.
-constexpr float kMaxKneeTurnDeg = 60.0f, kKneeTurnStepDeg = 1.0f;
-// The arm reaches at most this share of its length: a straight arm locks the elbow.
-constexpr float kArmReach = 0.97f;
+// How far the knee's bend may turn out beyond the pole direction to clear the barrel, and in what
+// steps: a little, so the knee still points forward; past that the treads move out instead.
+constexpr float kMaxKneeTurnDeg = 20.0f, kKneeTurnStepDeg = 1.0f;
+// The spine's bend gain stays within these (a chain far from the thesis rig's bends at most twice as
+// much, or half).
+constexpr double kMinSpineBendGain = 0.5, kMaxSpineBendGain = 2.0;
+// The horse's side kept for posing (Character::LegGuard): where a rider's legs can be, saddle space, in
+// 2 cm cells; the room kept between her legs' surface and the horse's as she rides.
+constexpr glm::vec2 kGuardMin{-45.0f, -80.0f}, kGuardMax{55.0f, 10.0f};
+constexpr float kGuardCellCm = 2.0f, kGuardRoomCm = 0.5f;
+// How far the treads may move out from where the horse hangs them, in a few steps: the leathers hang a
+// little wider, no more.
+constexpr float kMaxTreadOutCm = 10.0f;
+constexpr int kMaxTreadOutSteps = 6;
+// The arm reaches at most this share of its length at rest: elbows bent about 110°, a rider's hands
+// "in a straight line elbow-hand-bit" with the elbow bent and soft, so the wrist channels (forward over
+// the jump, back on landing as the trunk leans back) stay within the arm's reach. (The generated
+// rider's arms reach 88% at rest, her shoulders 10 cm nearer the saddle than most riders'.)
+constexpr float kArmReach = 0.82f;
 // The head is turned upright by at most this (a neck's comfortable range is far larger).
 constexpr float kMaxHeadTurnDeg = 20.0f;
 
@@ -173,7 +190,7 @@ void addMissingPoints(Character& c, const std::vector<glm::vec3>& mesh, float st
 
 // The horse's half-width at the saddle on one side, where the rider's leg lies: the farthest horse
 // surface point from the midline near a point (within `slab` cm fore-aft and up-down), leaving out the
-// tack that hangs free or is held (stirrups, reins). Saddle space.
+// tack that hangs free or is held (horseLooseTack). Saddle space.
 struct HorseWidth {
   std::vector<glm::vec3> points;  // the horse's surface, saddle space, tack left out
   float near(glm::vec3 at, float side, float slab) const {
@@ -186,40 +203,92 @@ struct HorseWidth {
 
 HorseWidth horseWidth(const Character& horse, glm::vec3 saddle) {
   HorseWidth out;
-  std::vector<char> loose(horse.skeleton.size(), 0);
-  for (const char* role : {"lStirrup", "rStirrup", "lRein", "rRein"})
-    if (const auto j = optionalRole(horse, role); j && *j != horse.role("saddle")) loose[*j] = 1;
+  const std::vector<bool> loose = horseLooseTack(horse);
   const std::vector<glm::vec3> mesh = restMesh(horse);
-  for (std::size_t v = 0; v < mesh.size(); ++v) {
-    bool tack = false;
-    for (int k = 0; k < kMaxInfluences; ++k) tack = tack || (horse.mesh.weights[v][k] > 0.0f && loose[horse.mesh.joints[v][k]]);
-    if (!tack) out.points.push_back(mesh[v] - saddle);
-  }
+  for (std::size_t v = 0; v < mesh.size(); ++v)
+    if (!loose[v]) out.points.push_back(mesh[v] - saddle);
   return out;
 }
 
-// A limb's surface radius around a joint: the 80th percentile of the distances from the bone's axis
-// (joint -> next joint) of the vertices bound mostly to the joint or its parent within `span` cm of it.
-float limbRadius(const Character& c, const std::vector<glm::vec3>& mesh, int joint, glm::vec3 axis_to, float span, float fallback) {
-  const Skeleton& s = c.skeleton;
-  const glm::vec3 at = s.restPosition(joint);
-  const glm::vec3 axis = glm::normalize(axis_to - at);
-  const int parent = s.joints[joint].parent;
+// How far a limb's surface reaches toward the body's midline (where the horse will be) from the bone's
+// axis (from -> to), standing: the 95th percentile, over the vertices bound mostly to one of `joints`
+// within `span` cm along the axis of the point `along` of the way down the bone, of their offset toward
+// the midline (a calf is not round: its inner side is what meets the saddle flap).
+float limbRadius(const Character& c, const std::vector<glm::vec3>& mesh, const std::vector<int>& joints, glm::vec3 from,
+                 glm::vec3 to, float along, float span, float fallback) {
+  const glm::vec3 axis = glm::normalize(to - from);
+  const glm::vec3 at = from + (to - from) * along;
+  glm::vec3 medial(0.0f, 0.0f, from.z < c.skeleton.restPosition(c.role("pelvis")).z ? 1.0f : -1.0f);
+  medial = glm::normalize(medial - axis * glm::dot(medial, axis));
   std::vector<float> d;
   for (std::size_t v = 0; v < mesh.size(); ++v) {
-    const int j = dominantJoint(c.mesh, v);
-    if (j != joint && j != parent) continue;
+    if (std::find(joints.begin(), joints.end(), dominantJoint(c.mesh, v)) == joints.end()) continue;
     const glm::vec3 r = mesh[v] - at;
-    const float along = glm::dot(r, axis);
-    if (std::abs(along) > span) continue;
-    d.push_back(glm::length(r - axis * along));
+    const float t = glm::dot(r, axis);
+    if (std::abs(t) > span) continue;
+    d.push_back(glm::dot(r - axis * t, medial));
   }
   if (d.size() < 8) return fallback;
   std::sort(d.begin(), d.end());
-  return d[d.size() * 8 / 10];
+  return std::max(d[d.size() * 95 / 100], 0.0f);
+}
+
+// The joints of a limb segment: `from` and any joints between it and `to` (a bone split in two halves,
+// Rigify's ".001"), not `to`.
+std::vector<int> segmentJoints(const Skeleton& s, int from, int to) {
+  std::vector<int> out = {from};
+  for (int j : s.pathFrom(from, to))
+    if (j != to) out.push_back(j);
+  return out;
+}
+
+// How far her trunk (pelvis joint to neck, in the pelvis's frame) leans forward for the spine's bend
+// alone: lowerBack and waist folded by kBendProbeDeg each (posing with every other channel at rest).
+constexpr double kBendProbeDeg = 10.0;
+double trunkBendLean(const Character& rider) {
+  RiderChannels r{};
+  r[RiderChannel::lowerBackRz] = kBendProbeDeg;
+  r[RiderChannel::waistRz] = kBendProbeDeg;
+  std::vector<glm::mat4> local = restLocals(rider.skeleton), world(rider.skeleton.size());
+  poseRiderSpine(rider, r, 10.0, RiderPoseParams{}, local);
+  localToWorld(rider.skeleton, local, world);
+  const glm::vec3 d = glm::vec3(world[rider.role("neck")][3] - world[rider.role("pelvis")][3]);
+  const glm::vec3 rest = rider.skeleton.restPosition(rider.role("neck")) - rider.skeleton.restPosition(rider.role("pelvis"));
+  return degrees(std::atan2(d.x, d.y)) - degrees(std::atan2(rest.x, rest.y));
+}
+
+// The gain on her spine's bend that makes her trunk lean for it as the generated rider's trunk does.
+float spineBendGain(const Character& rider) {
+  static const double reference = trunkBendLean(buildRiderTrunk(RiderParams{}));
+  const double own = trunkBendLean(rider);
+  if (!(std::abs(own) > 1e-3)) return 1.0f;
+  return static_cast<float>(std::clamp(reference / own, kMinSpineBendGain, kMaxSpineBendGain));
 }
 
 }  // namespace
+
+std::vector<bool> horseLooseTack(const Character& horse) {
+  const std::size_t n = horse.mesh.vertexCount();
+  std::vector<int> joints;
+  for (const char* role : {"lStirrup", "rStirrup", "lRein", "rRein"})
+    if (const auto j = optionalRole(horse, role); j && *j != horse.role("saddle")) joints.push_back(*j);
+  std::vector<std::uint32_t> root(n);
+  for (std::size_t v = 0; v < n; ++v) root[v] = static_cast<std::uint32_t>(v);
+  const auto find = [&](std::uint32_t v) {
+    while (root[v] != v) v = root[v] = root[root[v]];
+    return v;
+  };
+  const std::vector<std::uint32_t>& idx = horse.mesh.indices;
+  for (std::size_t t = 0; t + 2 < idx.size(); t += 3)
+    for (int k = 1; k < 3; ++k) root[find(idx[t + k])] = find(idx[t]);
+  std::vector<bool> piece(n, false), loose(n, false);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int k = 0; k < kMaxInfluences; ++k)
+      if (horse.mesh.weights[v][k] > 0.0f && std::find(joints.begin(), joints.end(), horse.mesh.joints[v][k]) != joints.end())
+        piece[find(static_cast<std::uint32_t>(v))] = true;
+  for (std::size_t v = 0; v < n; ++v) loose[v] = piece[find(static_cast<std::uint32_t>(v))];
+  return loose;
+}
 
 bool restIsStanding(const Character& rider) {
   const Skeleton& s = rider.skeleton;
@@ -257,6 +326,10 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
     return out;
   }
   report.seated_by_rig = true;
+  // Where her trunk folds (the balance stage's pivot): her hip joints' midpoint, which the pelvis joint
+  // of a user's rig need not be.
+  addRigPoint(c, "hipCentre", c.role("pelvis"),
+              0.5f * (c.skeleton.restPosition(c.role("lHip")) + c.skeleton.restPosition(c.role("rHip"))), report);
   const Skeleton& s = c.skeleton;
   const std::size_t nj = s.size();
   const auto at = [&](int j) { return s.restPosition(j); };
@@ -328,8 +401,15 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
   report.leather_change_cm = -leather_drop;
 
   // Legs: the sole's contact on the tread, heel down; the knee bent forward and out, turned further
-  // out where the barrel needs it.
-  for (int side = 0; side < 2; ++side) {
+  // out where the horse's width needs it; where even that leaves a leg against the horse (a thick calf
+  // against the flap), the treads move out with the leathers hanging wider, as a rider's legs push them.
+  struct LegFit {
+    glm::vec3 knee{0.0f}, ankle{0.0f}, pole{0.0f};
+    float turn_deg = 0.0f, clearance = 0.0f, knee_radius = 0.0f, calf_radius = 0.0f;
+    bool at_reach = false;
+  };
+  const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), radians(params.heel_down_deg), glm::vec3(0, 0, 1)));
+  const auto fitLeg = [&](int side, float tread_out) {
     const std::string n = side == 0 ? "l" : "r";
     const float out_sign = side == 0 ? -1.0f : 1.0f;
     const int hip = c.role(n + "Hip"), knee = c.role(n + "Knee"), ankle = c.role(n + "Ankle"), ball = c.role(n + "Ball");
@@ -339,53 +419,89 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
       throw InputError("roles." + n + "Knee: joint " + jointName(knee) + " leaves a thigh or shin of no length (expected the knee between " +
                        jointName(hip) + " and " + jointName(ankle) + ")");
     const glm::vec3 h = apply(trunk, hs);
-    const glm::vec3 tread(stirrup[side].x, tread_y, stirrup[side].z);
-    const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), radians(params.heel_down_deg), glm::vec3(0, 0, 1)));
-    const glm::vec3 a = tread + heel_down * (as - bs);
-    const glm::vec3 d = a - h;
+    const glm::vec3 tread(stirrup[side].x, tread_y, stirrup[side].z + out_sign * tread_out);
+    LegFit fit;
+    fit.ankle = tread + heel_down * (as - bs);
+    const glm::vec3 d = fit.ankle - h;
     const float reach = glm::length(d);
-    if (reach >= thigh + shin - params.limb_soften_cm)
-      report.notes.push_back(n + " leg: the tread is at the end of its reach");
+    fit.at_reach = reach >= thigh + shin - params.limb_soften_cm;
     const glm::vec3 dir = d / std::max(reach, 1e-3f);
     const float r = std::min(reach, thigh + shin - params.limb_soften_cm);
     const float along = (thigh * thigh - shin * shin + r * r) / (2.0f * r);
     const float across = std::sqrt(std::max(thigh * thigh - along * along, 0.0f));
-    const glm::vec3 pole = mirror(params.knee_pole_dir, out_sign);
+    const glm::vec3 pole = mirror(params.knee_pole_dir, -out_sign);  // the parameter is the left side's
     const glm::vec3 u0 = glm::normalize(pole - dir * glm::dot(pole, dir));
     glm::vec3 v0 = glm::normalize(glm::cross(dir, u0));
     if (v0.z * out_sign < 0.0f) v0 = -v0;
     const glm::vec3 centre = h + dir * along;
-    const float knee_r = limbRadius(c, standing_mesh, knee, as, 5.0f, 0.033f * stature);
-    const float thigh_r = limbRadius(c, standing_mesh, hip, ks, 0.3f * thigh, 0.047f * stature);
-    // The smallest clearance along the leg (the thigh's middle and lower part, the knee, the top of the shin).
+    const std::vector<int> thigh_joints = segmentJoints(c.skeleton, hip, knee), shin_joints = segmentJoints(c.skeleton, knee, ankle);
+    std::vector<int> knee_joints = thigh_joints;
+    knee_joints.insert(knee_joints.end(), shin_joints.begin(), shin_joints.end());
+    const float knee_r = limbRadius(c, standing_mesh, knee_joints, ks, as, 0.0f, 5.0f, 0.033f * stature);
+    float thigh_r = 0.0f;  // the widest of the thigh's upper, middle and lower part
+    for (float along : {0.25f, 0.5f, 0.75f})
+      thigh_r = std::max(thigh_r, limbRadius(c, standing_mesh, thigh_joints, hs, ks, along, 0.1f * thigh, 0.047f * stature));
+    const float calf_r = limbRadius(c, standing_mesh, shin_joints, ks, as, 0.35f, 0.15f * shin, 0.033f * stature);
+    fit.knee_radius = knee_r;
+    fit.calf_radius = calf_r;
+    // The smallest clearance along the leg (the thigh's middle and lower part, the knee, the shin).
+    // The thigh lies on the saddle (thigh_clearance_cm from it, for the pelvis's roll at the trot), the knee
+    // and calf stand clear of it by knee_clearance_cm, which the rider channels' knee and foot movements
+    // eat into.
     const auto clearance = [&](glm::vec3 k) {
       float worst = 1e30f;
-      const auto check = [&](glm::vec3 p, float radius) {
+      const auto check = [&](glm::vec3 p, float radius, float room) {
         const float w = width.near(p, out_sign, 4.0f);
-        if (w > -1e29f) worst = std::min(worst, p.z * out_sign - radius - w);
+        if (w > -1e29f) worst = std::min(worst, p.z * out_sign - radius - w - room);
       };
-      for (float t : {0.5f, 0.75f}) check(h + (k - h) * t, thigh_r);
-      check(k, knee_r);
-      check(k + (a - k) * 0.25f, knee_r);
-      return worst;
+      for (float t : {0.25f, 0.5f, 0.75f}) check(h + (k - h) * t, thigh_r, params.thigh_clearance_cm);
+      check(k, knee_r, params.knee_clearance_cm);
+      // The calf with the foot where the channels can take it: in toward the belly by the posing limit
+      // (RiderPoseParams::max_foot_in_cm), the heel turned in about the ball by its limit
+      // (max_foot_twist_deg), and the leg swung back (the stirrup's swing moves the calf back by about
+      // half the foot's).
+      const RiderPoseParams limits;
+      const glm::vec2 heel(as.x - bs.x, as.z - bs.z);
+      const float twist_in = glm::length(heel) * std::sin(radians(limits.max_foot_twist_deg));
+      const glm::vec3 foot_in = fit.ankle - glm::vec3(0.0f, 0.0f, out_sign * (limits.max_foot_in_cm + twist_in));
+      const glm::vec3 swung_back(-0.5f * limits.max_foot_swing_cm, 0.0f, 0.0f);
+      for (float t : {0.25f, 0.5f, 0.75f}) {
+        check(k + (fit.ankle - k) * t, calf_r, params.knee_clearance_cm);
+        check(k + (foot_in - k) * t, calf_r, 0.0f);
+        check(k + (foot_in - k) * t + swung_back, calf_r, 0.0f);
+      }
+      return worst;  // >= 0: clear
     };
-    float best_phi = 0.0f, best_clear = -1e30f;
+    fit.clearance = -1e30f;
     for (float phi = 0.0f; phi <= kMaxKneeTurnDeg + 1e-3f; phi += kKneeTurnStepDeg) {
       const glm::vec3 k = centre + across * (std::cos(radians(phi)) * u0 + std::sin(radians(phi)) * v0);
       const float cl = clearance(k);
-      if (cl > best_clear) best_clear = cl, best_phi = phi;
-      if (cl >= params.knee_clearance_cm) {
-        best_phi = phi;
-        best_clear = cl;
-        break;
-      }
+      if (cl > fit.clearance) fit.clearance = cl, fit.turn_deg = phi, fit.knee = k;
+      if (cl >= 0.0f) break;
     }
-    report.knee_turn_out_deg = std::max(report.knee_turn_out_deg, best_phi);
-    if (best_clear < params.knee_clearance_cm)
-      report.notes.push_back(n + " leg: " + numberText(params.knee_clearance_cm - best_clear) + " cm short of clear of the horse");
-    const glm::vec3 k = centre + across * (std::cos(radians(best_phi)) * u0 + std::sin(radians(best_phi)) * v0);
-    // The standing knee bends forward; the seated one toward k.
-    const LimbPose limb = solveLimb(hs, ks, as, ks + glm::vec3(50.0f, 0.0f, 0.0f), h, a, centre + (k - centre) * 10.0f, 0.0f);
+    fit.pole = centre + (fit.knee - centre) * 10.0f;
+    return fit;
+  };
+  float tread_out = 0.0f;
+  std::array<LegFit, 2> legs{};
+  for (int attempt = 0;; ++attempt) {
+    legs = {fitLeg(0, tread_out), fitLeg(1, tread_out)};
+    const float short_by = -std::min(legs[0].clearance, legs[1].clearance);
+    if (short_by <= 0.01f || attempt >= kMaxTreadOutSteps || tread_out >= kMaxTreadOutCm) break;
+    tread_out = std::min(tread_out + short_by, kMaxTreadOutCm);
+  }
+  report.tread_out_cm = tread_out;
+  for (int side = 0; side < 2; ++side) {
+    const std::string n = side == 0 ? "l" : "r";
+    const LegFit& fit = legs[side];
+    report.knee_turn_out_deg = std::max(report.knee_turn_out_deg, fit.turn_deg);
+    if (fit.at_reach) report.notes.push_back(n + " leg: the tread is at the end of its reach");
+    if (fit.clearance < 0.0f)
+      report.notes.push_back(n + " leg: " + numberText(-fit.clearance) + " cm short of clear of the horse");
+    const int hip = c.role(n + "Hip"), knee = c.role(n + "Knee"), ankle = c.role(n + "Ankle");
+    const glm::vec3 hs = at(hip), ks = at(knee), as = at(ankle);
+    // The standing knee bends forward; the seated one toward the knee chosen.
+    const LimbPose limb = solveLimb(hs, ks, as, ks + glm::vec3(50.0f, 0.0f, 0.0f), apply(trunk, hs), fit.ankle, fit.pole, 0.0f);
     set[hip] = limb.upper * translate(-hs);
     set[knee] = limb.middle * translate(-ks);
     set[ankle] = translate(limb.end) * glm::mat4(heel_down) * translate(-as);
@@ -461,6 +577,27 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
     ss.joints[j].inverse_bind = translate(-q[j]);
     ss.joints[j].bind_offset = m[j] * c.skeleton.joints[j].bind_offset;
   }
+  // The horse's side where her legs lie, for posing to keep her knees and calves out of it.
+  {
+    Character::LegGuard& g = seated.leg_guard;
+    g.x0 = kGuardMin.x;
+    g.y0 = kGuardMin.y;
+    g.cell_cm = kGuardCellCm;
+    g.nx = static_cast<int>(std::ceil((kGuardMax.x - kGuardMin.x) / kGuardCellCm));
+    g.ny = static_cast<int>(std::ceil((kGuardMax.y - kGuardMin.y) / kGuardCellCm));
+    g.half_width.assign(std::size_t(g.nx) * g.ny, -std::numeric_limits<float>::infinity());
+    for (const glm::vec3& p : width.points) {
+      const int i = static_cast<int>(std::floor((p.x - g.x0) / g.cell_cm)), j = static_cast<int>(std::floor((p.y - g.y0) / g.cell_cm));
+      if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) continue;
+      float& w = g.half_width[std::size_t(j) * g.nx + i];
+      w = std::max(w, std::abs(p.z));
+    }
+    g.knee_radius_cm = std::max(legs[0].knee_radius, legs[1].knee_radius);
+    g.calf_radius_cm = std::max(legs[0].calf_radius, legs[1].calf_radius);
+    g.room_cm = kGuardRoomCm;
+  }
+  seated.spine_bend_gain = spineBendGain(seated);
+  report.spine_bend_gain = seated.spine_bend_gain;
   out.rider = std::move(seated);
 
   // The horse's stirrups at the leathers just set (the irons move; the leathers, bound to the saddle
@@ -473,7 +610,8 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
       report.notes.push_back(std::string("the horse's ") + role + " is not a joint of its own: its leathers were left as they are");
       continue;
     }
-    const glm::mat4 drop = translate(glm::vec3(0.0f, leather_drop, 0.0f));
+    const float out_sign = std::string(role) == "lStirrup" ? -1.0f : 1.0f;
+    const glm::mat4 drop = translate(glm::vec3(0.0f, leather_drop, out_sign * tread_out));
     const std::vector<char> below = subtree(out.horse.skeleton, j);
     out.horse.skeleton.joints[j].rest_local = drop * out.horse.skeleton.joints[j].rest_local;
     for (std::size_t k = 0; k < out.horse.skeleton.size(); ++k)

@@ -42,7 +42,8 @@ struct SeatParams {
   // The knee's bend points forward and out around the barrel (RiderParams::knee_pole_dir); the
   // seating turns it further out only as far as the horse's width needs.
   glm::vec3 knee_pole_dir{1.0f, 0.0f, -1.0f};
-  float knee_clearance_cm = 1.0f;  // room left between the leg's surface and the horse's, at the knee and thigh
+  float knee_clearance_cm = 1.5f;  // room left between the knee's and calf's surface and the horse's at rest
+  float thigh_clearance_cm = 1.0f;  // and between the thigh's and the saddle's (the pelvis rolls at the trot)
   // Elbows hang back, down and a little out (RiderParams::elbow_pole_dir).
   glm::vec3 elbow_pole_dir{-0.5f, -1.0f, -0.45f};
   // The hand's direction on the rein, wrist to grip, left side (the generated rider's
@@ -64,7 +65,9 @@ struct SeatReport {
   float tread_below_seat_cm = 0;  // the stirrup treads below the seat centre after the leathers are set
   float leather_change_cm = 0;    // how much longer (+) or shorter (-) than the horse's leathers as built
   float knee_turn_out_deg = 0;    // how far the knees were turned out beyond knee_pole_dir to clear the barrel
+  float tread_out_cm = 0;         // how far the treads moved out from the horse's (her legs clear its sides)
   float hand_shortfall_cm = 0;    // how far short of the rein grips her hands stayed (arms too short), 0 = on them
+  float spine_bend_gain = 1;      // Character::spine_bend_gain: her spine bends this much more for the same channels
   std::vector<std::string> added_points;  // rig points added (the grips, the sole contacts)
   std::vector<std::string> notes;
 };
@@ -74,6 +77,11 @@ struct SeatedRider {
   Character horse;  // the horse with its stirrup joints at the rider's leathers
   SeatReport report;
 };
+
+// The horse's tack that hangs free or is held, left out of the surface a rider's legs keep clear of: every
+// separate piece of its mesh (vertices joined by triangles) with a vertex bound to a stirrup or rein
+// joint of its own (the irons, the leathers hanging from the saddle, the reins and bit).
+std::vector<bool> horseLooseTack(const Character& horse);
 
 // True when the rider's rest is standing: both thighs hang within 30° of straight down.
 bool restIsStanding(const Character& rider);

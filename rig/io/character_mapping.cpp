@@ -34,7 +34,7 @@ const std::vector<std::string>& requiredRoles(CharacterKind kind) {
 const std::vector<std::string>& optionalRoles(CharacterKind kind) {
   static const std::vector<std::string> horse = {"lfPivot", "rfPivot", "lbPivot", "rbPivot"};
   static const std::vector<std::string> rider = [] {
-    std::vector<std::string> r = {"lowerBack", "waist", "chest", "upperChest", "braid1", "braid2", "braid3", "coatTail"};
+    std::vector<std::string> r = {"lowerBack", "waist", "chest", "upperChest", "hipCentre", "braid1", "braid2", "braid3", "coatTail"};
     for (const char* side : {"l", "r"})
       for (const char* part : {"Hand", "Ball"}) r.push_back(std::string(side) + part);
     for (int i = 0; i <= kRiderSpineSegments; ++i) r.push_back("spine" + std::to_string(i));

@@ -68,7 +68,9 @@ tinygltf::Value seatExtras(const SeatReport& seat) {
     number("leg_cm", seat.leg_cm);
     number("seat_depth_cm", seat.seat_depth_cm);
     number("knee_turn_out_deg", seat.knee_turn_out_deg);
+    number("tread_out_cm", seat.tread_out_cm);
     number("hand_shortfall_cm", seat.hand_shortfall_cm);
+    number("spine_bend_gain", seat.spine_bend_gain);
   }
   const auto list = [&](const char* key, const std::vector<std::string>& items) {
     tinygltf::Value::Array a;

@@ -382,7 +382,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   std::vector<glm::vec3> file_bind(nj);
   for (int j = 0; j < nj; ++j) file_bind[j] = glm::vec3(glm::inverse(ibm[j])[3]);
   // A skin of several roots is one body (Skeleton's hangLooseRoots).
-  const std::vector<char> file_root = hangLooseRoots(parent, file_bind);
+  const auto core = role_joint.find(kind == CharacterKind::Rider ? "pelvis" : "root");
+  const std::vector<char> file_root = hangLooseRoots(parent, file_bind, core == role_joint.end() ? -1 : core->second);
   // Parents first: depth order, stable.
   std::vector<int> depth(nj, 0), order(nj);
   for (int j = 0; j < nj; ++j)
