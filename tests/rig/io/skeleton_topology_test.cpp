@@ -122,7 +122,7 @@ TEST(SkeletonTopology, TheShouldersMustMeetOnTheSpineInTheFilesOwnHierarchy) {
 TEST(SkeletonTopology, AChainIsNoBiped) {
   Figure f;
   int j = f.add("a", -1, {0, 0, 0});
-  for (int i = 1; i < 6; ++i) j = f.add("b" + std::to_string(i), j, {0, 30.0 * i, 0});
+  for (int i = 1; i < 6; ++i) j = f.add(std::string("b").append(std::to_string(i)), j, {0, 30.0 * i, 0});
   const MappingSkeleton s = f.done();
   EXPECT_TRUE(mirroredLimbs(s).empty());
   EXPECT_EQ(errorOf([&] { riderByTopology(s); }),
