@@ -126,15 +126,15 @@ AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const
     const std::size_t required = requiredRoles(kind).size();
     if (!params.use_names)
       rep.method_note = "names ignored" + (named.empty() || named.front().missing.size() == required ? std::string()
-                                           : " (they look like " + named.front().convention + ")");
+                                           : "; they look like " + named.front().convention);
     else if (!first_problem.empty())
-      rep.method_note = first_problem + ": mapped by topology";
+      rep.method_note = first_problem;
     else if (!named.empty() && named.front().score >= 3)
       rep.method_note = "names partly " + named.front().convention + " (" +
                         std::to_string(required - named.front().missing.size()) + " of " + std::to_string(required) +
-                        " required roles): mapped by topology";
+                        " required roles)";
     else
-      rep.method_note = "no joint names it knows: mapped by topology";
+      rep.method_note = "no joint names it knows";
     TopologyRoles t = kind == CharacterKind::Rider ? riderByTopology(s) : horseByTopology(s);
     rep.method = "topology";
     roles = std::move(t.roles);
@@ -263,9 +263,9 @@ AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const
     if (cm < min_cm || cm > max_cm) continue;
     if (const double d = std::abs(std::log(cm / nominal)); d < best) best = d, scale = u.cm, rep.unit = u.name;
   }
-  const std::string height_text = "height " + fixed(rep.height_file, rep.height_file < 10 ? 3 : 1) + " file units (" + measured + ")";
+  const std::string height_text = "height " + fixed(rep.height_file, rep.height_file < 10 ? 3 : 1) + " file units, " + measured;
   if (scale > 0.0) {
-    rep.scale_how = height_text + " read as " + rep.unit + ": " + fixed(rep.height_file * scale, 0) + " cm";
+    rep.scale_how = height_text + ", read as " + rep.unit + ": " + fixed(rep.height_file * scale, 0) + " cm";
   } else {
     scale = nominal / rep.height_file;
     rep.scale_how = height_text + ": no common unit makes a " + fixed(min_cm, 0) + "-" + fixed(max_cm, 0) + " cm " + kind_name +
@@ -319,7 +319,7 @@ AutoMapping autoMapCharacterFile(const std::filesystem::path& file, CharacterKin
 nlohmann::ordered_json autoMappingJson(const AutoMapping& a) {
   const AutoMappingReport& r = a.report;
   std::string comment = "made by stirrup character map from " + std::filesystem::path(r.file).filename().string() + " (" +
-                        (r.method == "topology" ? r.method_note : r.method + " joint names") + "; up " + r.up + ": " + r.up_how +
+                        (r.method == "topology" ? "by topology: " + r.method_note : r.method + " joint names") + "; up " + r.up + ": " + r.up_how +
                         "; forward " + r.forward + ": " + r.forward_how + "; " + r.scale_how;
   if (!r.not_mapped.empty()) comment += "; not mapped: " + joinList(r.not_mapped);
   if (!r.optional_not_mapped.empty()) comment += "; optional, not found: " + joinList(r.optional_not_mapped);

@@ -333,7 +333,7 @@ TEST(CharacterMap, SaysWhatItChoseAndWritesAMappingTheImporterTakes) {
                            "    upperChest  mixamorig:Spine2             hierarchy: the spine joint both shoulders hang from\n",
                            "  optional, left to the rig: lowerBack waist chest braid1 braid2 braid3 coatTail\n"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << " in:\n" << r.out;
-  EXPECT_NE(r.out.find("100.00 cm per file unit  (height 1."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("100.00 cm per file unit  (height 1.6"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("wrote " + json.string() + "\n"), std::string::npos) << r.out;
   // The file: the importer's own format, which it reads back and loads the character through.
   const rig::CharacterMapping m = rig::loadCharacterMapping(json, rig::CharacterKind::Rider);
@@ -349,7 +349,7 @@ TEST(CharacterMap, SaysWhatItChoseAndWritesAMappingTheImporterTakes) {
   // --ignore-names maps by the skeleton's shape: the same joints, said so.
   const CommandResult t = runStirrup("character map " + quote(glb.string()) + " --as rider --ignore-names");
   ASSERT_EQ(t.exit_code, 0) << t.err;
-  EXPECT_NE(t.out.find("as a rider: by topology (names ignored (they look like mixamo))"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("as a rider: by topology (names ignored; they look like mixamo)"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("    lShoulder   mixamorig:LeftArm            topology: arm lengths and spacing (Winter 2009)\n"), std::string::npos) << t.out;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);  // no temporary left
 }
@@ -377,9 +377,9 @@ TEST(CharacterMap, TheFoxMapsAsAHorseAndItsPreviewSaysWhyNot) {
   const fs::path json = dir / "fox.json", png = dir / "fox.png";
   const CommandResult r = runStirrup("character map " + quote(fox.string()) + " --as horse -o " + quote(json.string()) + " --preview " +
                                      quote(png.string()));
-  EXPECT_NE(r.out.find(" as a horse: by topology (no joint names it knows: mapped by topology)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" as a horse: by topology (no joint names it knows)\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  not mapped: withers saddle lStirrup rStirrup lRein rRein\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("2.5400 cm per file unit  (height 79.0 file units (ground to the top of the head) read as inches: 201 cm)"),
+  EXPECT_NE(r.out.find("2.5400 cm per file unit  (height 79.0 file units, ground to the top of the head, read as inches: 201 cm)"),
             std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(json));
   // This version's importer needs the horse's tack named: the preview is not rendered, and says why in one line.
