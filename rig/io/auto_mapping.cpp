@@ -135,7 +135,18 @@ AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const
                         " required roles)";
     else
       rep.method_note = "no joint names it knows";
-    TopologyRoles t = kind == CharacterKind::Rider ? riderByTopology(s) : horseByTopology(s);
+    TopologyRoles t;
+    try {
+      t = kind == CharacterKind::Rider ? riderByTopology(s) : horseByTopology(s);
+    } catch (const InputError& e) {
+      // What the names nearly said is worth knowing when the shape says nothing.
+      if (!params.use_names || named.empty() || named.front().score < 3) throw;
+      const NamedRoles& best = named.front();
+      std::string missing;
+      for (const std::string& r : best.missing) missing += (missing.empty() ? "" : ", ") + r;
+      throw InputError(std::string(e.what()) + "; its joint names look like " + best.convention +
+                       (first_problem.empty() ? " but name no " + missing : " but " + first_problem.substr(first_problem.find("but ") + 4)));
+    }
     rep.method = "topology";
     roles = std::move(t.roles);
     why = std::move(t.why);

@@ -340,7 +340,9 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       int found = -1;
       for (int j = 0; j < nj; ++j)
         if (joint_names[j] == joint_name) found = j;
-      if (found < 0) throw InputError(where + ": roles." + role + ": no joint named \"" + joint_name + "\" in " + f);
+      if (found < 0)
+        throw InputError(where + ": roles." + role + ": no joint named \"" + joint_name + "\" in " + f + " (change it to one of the file's joints: " +
+                         "stirrup character map " + f + " --as " + kind_name + " lists them with the roles they seem to play)");
       role_joint[role] = found;
     };
     for (const std::string& role : requiredRoles(kind)) {

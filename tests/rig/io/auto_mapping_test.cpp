@@ -390,6 +390,28 @@ TEST(AutoMapping, AFoxIsNotARider) {
                            "(write a mapping file: docs/characters.md, \"Mapping by itself\")");
 }
 
+TEST(AutoMapping, WhenTheShapeSaysNothingTheErrorSaysWhatTheNamesNearlySaid) {
+  // Mixamo names with the left thigh renamed (the names give every role but lHip), and the right hand's
+  // joint 12 cm out along the arm (no mirror image of the left arm: the shape finds only the legs).
+  StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Mixamo, HumanoidRestPose::T, 3, false));
+  Skeleton moved;
+  const Skeleton& s = h.character.skeleton;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const auto at = [&](int k) {
+      return s.restPosition(k) + (s.joints[k].name == "mixamorig:RightHand" ? glm::vec3(-12.0f, 0.0f, 0.0f) : glm::vec3(0.0f));
+    };
+    const int p = s.joints[j].parent;
+    std::string name = s.joints[j].name == "mixamorig:LeftUpLeg" ? "mixamorig:LeftThigh" : s.joints[j].name;
+    moved.addJoint(name, p, glm::translate(glm::mat4(1.0f), at(static_cast<int>(j)) - (p < 0 ? glm::vec3(0.0f) : at(p))));
+  }
+  h.character.skeleton = moved;
+  const fs::path file = writeBytes(testDir("names_nearly") / "m.glb", humanoidGlb(h));
+  EXPECT_EQ(errorOf([&] { autoMapCharacterFile(file, CharacterKind::Rider); }),
+            file.string() + ": cannot map as a rider by topology: found 1 mirror-image limb pair among 43 joints (expected two: "
+                            "arms and legs) (write a mapping file: docs/characters.md, \"Mapping by itself\"); its joint names look like "
+                            "mixamo but name no lHip");
+}
+
 TEST(AutoMapping, ARoleOffItsChainIsAOneLineErrorNamingTheRoleAndTheJoint) {
   const StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Mixamo, HumanoidRestPose::T, 3, false));
   const fs::path dir = testDir("off_chain");
