@@ -3,6 +3,10 @@
 // scripts/make-characters makes scenes/characters/*.glb with it.
 // stirrup character make humanoid [--pose t|a|relaxed] [--names ...] ... -o FILE.glb: a standing test
 // character written the way other tools write theirs (docs/characters.md, "Test characters").
+// stirrup character map FILE.glb --as rider|horse [-o MAP.json] [--preview P.png]: maps a user's
+// character by itself (rig/io/auto_mapping.h), prints what it chose, writes the mapping file, and
+// renders the character on the default horse (or the horse under the default rider) through the
+// normal pipeline (docs/characters.md, "Mapping by itself").
 #include <charconv>
 #include <cstdio>
 #include <cmath>
@@ -14,9 +18,16 @@
 #include <variant>
 #include <vector>
 
+#include <unistd.h>
+
 #include "render/cli/commands.h"
 #include "render/cli/options.h"
+#include "render/image.h"
+#include "render/preset.h"
+#include "render/scene.h"
+#include "render/shot.h"
 #include "rig/error.h"
+#include "rig/io/auto_mapping.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_humanoid.h"
 #include "rig/characters/character_params.h"
@@ -24,6 +35,86 @@
 
 namespace stirrup::cli {
 namespace {
+
+struct MapOptions {
+  std::string file;
+  std::string as;
+  std::string output;
+  std::string preview;
+  int frame = 1;
+  int threads = 0;
+  bool ignore_names = false;
+};
+
+// The preview: one frame of the default scene (the trot) seen from the three-quarter view, at the
+// review preset's samples, with the character and its mapping file in the scene as a user would put
+// them, so it shows what a render shows.
+void renderPreview(const MapOptions& o, const std::string& mapping_file, rig::CharacterKind kind) {
+  namespace fs = std::filesystem;
+  if (fs::path(o.preview).extension() != ".png") throw InputError("--preview: " + o.preview + ": expected a file name ending in .png");
+  render::SceneSpec scene;
+  scene.name = "map_preview";
+  scene.frames = std::to_string(o.frame);
+  (kind == rig::CharacterKind::Rider ? scene.rider : scene.horse) = fs::absolute(o.file).string();
+  (kind == rig::CharacterKind::Rider ? scene.rider_mapping : scene.horse_mapping) = mapping_file;
+  render::applyPreset(scene, render::findPreset("review"));
+  render::CameraSpec camera;
+  camera.name = "persp";
+  camera.view = "persp";
+  scene.cameras = {camera};
+  const rig::RigProfile profile = render::resolveProfile(scene);
+  try {
+    render::Shot shot(scene, profile, camera, o.threads);
+    const render::Image image = shot.renderFrame(o.frame);
+    if (!fs::path(o.preview).parent_path().empty()) fs::create_directories(fs::path(o.preview).parent_path());
+    render::writePng(image, o.preview);
+  } catch (const InputError& e) {
+    throw InputError("--preview: not rendered: " + std::string(e.what()));
+  }
+  std::printf("preview: %s (frame %d of the trot, %s the default %s, three-quarter view)\n", o.preview.c_str(), o.frame,
+              kind == rig::CharacterKind::Rider ? "the rider on" : "the horse under", kind == rig::CharacterKind::Rider ? "horse" : "rider");
+}
+
+void runMap(const MapOptions& o) {
+  namespace fs = std::filesystem;
+  if (o.as != "rider" && o.as != "horse") throw InputError("character map: --as: expected rider or horse, got \"" + o.as + "\"");
+  const rig::CharacterKind kind = o.as == "rider" ? rig::CharacterKind::Rider : rig::CharacterKind::Horse;
+  if (!o.output.empty() && fs::path(o.output).extension() != ".json")
+    throw InputError("-o: " + o.output + ": expected a mapping file name ending in .json");
+  rig::AutoMappingParams params;
+  params.use_names = !o.ignore_names;
+  const rig::AutoMapping mapped = rig::autoMapCharacterFile(o.file, kind, params);
+  std::fputs(rig::autoMappingReportText(mapped).c_str(), stdout);
+  const std::string json = rig::autoMappingFileText(mapped);
+  if (!o.output.empty()) {
+    rig::writeFileAtomically(o.output, std::vector<unsigned char>(json.begin(), json.end()));
+    std::printf("wrote %s\n", o.output.c_str());
+  }
+  if (o.preview.empty()) return;
+  std::fflush(stdout);
+  if (!mapped.report.not_mapped.empty()) {
+    std::string roles;
+    for (const std::string& r : mapped.report.not_mapped) roles += (roles.empty() ? "" : ", ") + r;
+    throw InputError("--preview: not rendered: " + o.file + ": the " + o.as + "'s " + roles +
+                     (mapped.report.not_mapped.size() == 1 ? " is" : " are") + " not mapped and this version needs " +
+                     (mapped.report.not_mapped.size() == 1 ? "it" : "them") + " (name the joints in the mapping file -o writes)");
+  }
+  if (!o.output.empty()) return renderPreview(o, fs::absolute(o.output).string(), kind);
+  // Without -o the preview's scene reads the mapping from a file of its own, removed after.
+  const fs::path dir = fs::temp_directory_path() / ("stirrup-map-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path file = dir / "mapping.json";
+  rig::writeFileAtomically(file, std::vector<unsigned char>(json.begin(), json.end()));
+  try {
+    renderPreview(o, file.string(), kind);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    throw;
+  }
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+}
 
 struct CharacterOptions {
   std::string kind;
@@ -179,7 +270,8 @@ void runMake(const CharacterOptions& o) {
 }  // namespace
 
 void addCharacterCommand(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("character", "Make the default horse and rider, or a standing test humanoid, as skinned glTF 2.0");
+  CLI::App* cmd = app.add_subcommand(
+      "character", "Make the default horse and rider or a standing test humanoid as skinned glTF 2.0; map a user's character");
   cmd->require_subcommand(1);
   auto make = std::make_shared<CharacterOptions>();
   CLI::App* mk = cmd->add_subcommand("make", "Build a character from its parameters and write it as .glb");
@@ -196,6 +288,24 @@ void addCharacterCommand(CLI::App& app) {
     make->params = mk->remaining();
     runMake(*make);
   });
+
+  auto map = std::make_shared<MapOptions>();
+  CLI::App* mp = cmd->add_subcommand("map", "Map a skinned glTF character's joints to the rig's roles by itself");
+  mp->footer(
+      "Recognises Mixamo, HumanIK, Unreal mannequin, Rigify and VRM joint names (and stirrup's own role names),\n"
+      "else maps by the skeleton's shape: mirror-image limb pairs, legs reaching the ground, the spine up to the head.\n"
+      "Prints the role chosen for each joint and why, the axes and scale found and the roles it could not map;\n"
+      "-o writes them as a mapping file a scene can name (edit it to change a choice). docs/characters.md, \"Mapping by itself\".\n"
+      "Example: stirrup character map my-rider.glb --as rider -o my-rider.json --preview my-rider.png");
+  mp->add_option("file", map->file, "The character (.glb or .gltf)")->required();
+  mp->add_option("--as", map->as, "rider or horse")->required();
+  mp->add_option("-o,--output", map->output, "Write the mapping file (.json)");
+  mp->add_option("--preview", map->preview,
+                 "Render one frame (.png): the rider seated on the default horse, or the horse under the default rider, at the trot");
+  mp->add_option("--frame", map->frame, "The trot's frame the preview shows (default 1)")->check(CLI::Range(1, 48));
+  mp->add_flag("--ignore-names", map->ignore_names, "Map by the skeleton's shape alone, whatever the joints are called");
+  mp->add_option("--threads,-t", map->threads, "Preview render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  mp->callback([map] { runMap(*map); });
 }
 
 }  // namespace stirrup::cli

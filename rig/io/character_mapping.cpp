@@ -82,6 +82,82 @@ CharacterMapping loadCharacterMapping(const std::filesystem::path& file, Charact
   return m;
 }
 
+namespace {
+
+// `role` must lie below `above` (or on it, where `may_share`); `what` says where it belongs.
+struct RoleBelow {
+  std::string role, above;
+  bool may_share;
+  std::string what;
+};
+
+const std::vector<RoleBelow>& roleChains(CharacterKind kind) {
+  static const std::vector<RoleBelow> rider = [] {
+    std::vector<RoleBelow> r = {{"head", "neck", false, "the head above the neck on the spine's chain"},
+                                {"upperChest", "pelvis", false, "upperChest on the spine between the pelvis and the neck"},
+                                {"neck", "upperChest", false, "upperChest on the spine between the pelvis and the neck"}};
+    for (const std::string side : {"l", "r"}) {
+      r.push_back({side + "Elbow", side + "Shoulder", false, "the elbow on the arm's chain below the shoulder"});
+      r.push_back({side + "Wrist", side + "Elbow", false, "the wrist on the arm's chain below the elbow"});
+      r.push_back({side + "Hand", side + "Wrist", false, "the grip in the palm, below the wrist"});
+      r.push_back({side + "Knee", side + "Hip", false, "the knee on the leg's chain below the hip"});
+      r.push_back({side + "Ankle", side + "Knee", false, "the ankle on the leg's chain below the knee"});
+      r.push_back({side + "Ball", side + "Ankle", false, "the ball of the foot below the ankle"});
+    }
+    return r;
+  }();
+  // A horse's roles may share joints (a user's horse with fewer joints than roles: the Fox's fore legs
+  // have no joint between the knee and the ground), so only a joint off the chain is refused.
+  static const std::vector<RoleBelow> horse = [] {
+    std::vector<RoleBelow> r = {{"neck2", "neck1", true, "the neck's joints in order from the chest"},
+                                {"head", "neck2", true, "the head at or beyond the neck"},
+                                {"tail2", "tail1", true, "the tail's joints in order from its root"},
+                                {"tail3", "tail2", true, "the tail's joints in order from its root"}};
+    for (const std::string leg : {"lf", "rf", "lb", "rb"}) {
+      r.push_back({leg + "Upper", leg + "Pivot", true, "the leg's upper joint at or below its pivot"});
+      r.push_back({leg + "Middle", leg + "Upper", true, "the leg's joints in order down to the hoof"});
+      r.push_back({leg + "Fetlock", leg + "Middle", true, "the leg's joints in order down to the hoof"});
+      r.push_back({leg + "Hoof", leg + "Fetlock", true, "the leg's joints in order down to the hoof"});
+    }
+    return r;
+  }();
+  return kind == CharacterKind::Horse ? horse : rider;
+}
+
+}  // namespace
+
+std::string roleChainProblem(CharacterKind kind, const std::map<std::string, int>& roles, const std::vector<int>& parent,
+                             const std::vector<std::string>& names, const std::string& hint) {
+  const std::string tail = hint.empty() ? ")" : "; " + hint + ")";
+  const int n = static_cast<int>(parent.size());
+  const auto name = [&](int j) { return "\"" + (j >= 0 && j < static_cast<int>(names.size()) ? names[j] : std::to_string(j)) + "\""; };
+  // Bones from `a` down to `j`, or -1 when `a` is not `j` or above it.
+  const auto bonesBelow = [&](int a, int j) {
+    int steps = 0;
+    for (int k = j; k >= 0 && k < n && steps <= n; k = parent[k], ++steps)
+      if (k == a) return steps;
+    return -1;
+  };
+  const auto at = [&](const std::string& role) {
+    const auto it = roles.find(role);
+    return it == roles.end() ? -1 : it->second;
+  };
+  if (kind == CharacterKind::Rider) {
+    const int pelvis = at("pelvis"), neck = at("neck");
+    if (pelvis >= 0 && neck >= 0 && bonesBelow(pelvis, neck) < 2)
+      return "roles.neck: joint " + name(neck) + " is not above pelvis " + name(pelvis) +
+             " with a spine joint between them (expected the neck on the chain that runs up from the pelvis" + tail;
+  }
+  for (const RoleBelow& c : roleChains(kind)) {
+    const int j = at(c.role), a = at(c.above);
+    if (j < 0 || a < 0) continue;
+    const int steps = bonesBelow(a, j);
+    if (steps > 0 || (steps == 0 && c.may_share)) continue;
+    return "roles." + c.role + ": joint " + name(j) + " is not below " + c.above + " " + name(a) + " (expected " + c.what + tail;
+  }
+  return "";
+}
+
 glm::dmat4 mappingToRig(const CharacterMapping& m) {
   const glm::dvec3 fw = glm::normalize(glm::dvec3(m.forward[0], m.forward[1], m.forward[2]));
   const glm::dvec3 up = glm::normalize(glm::dvec3(m.up[0], m.up[1], m.up[2]));

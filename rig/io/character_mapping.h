@@ -53,6 +53,15 @@ struct CharacterMapping {
 // match). A role missing from "roles" is a one-line InputError naming the file and the role.
 CharacterMapping loadCharacterMapping(const std::filesystem::path& file, CharacterKind kind);
 
+// Roles that must lie on one chain of the skeleton, each below another: a rider's elbow below her
+// shoulder, wrist below elbow, knee below hip, ..., the neck above the pelvis with a spine joint between,
+// the head above the neck; a horse's leg joints in order down to the hoof, the neck and tail in order.
+// Given role -> joint and every joint's parent (-1 for a root), the first role out of place as
+// "roles.lKnee: joint \"LeftLeg\" is not below lHip \"LeftUpLeg\" (expected the knee on the leg's chain
+// below the hip; HINT)", or "" when every role is in place. Roles not in `roles` are not checked.
+std::string roleChainProblem(CharacterKind kind, const std::map<std::string, int>& roles, const std::vector<int>& parent,
+                             const std::vector<std::string>& names, const std::string& hint = "");
+
 // The file's space to stirrup's: axes from forward and up (right = forward x up), times scale_cm,
 // then offset_cm. Joints and vertices of a mapped character are read through it.
 glm::dmat4 mappingToRig(const CharacterMapping& mapping);

@@ -7,6 +7,9 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <mutex>
+#include <set>
+#include <cstdio>
 #include <optional>
 #include <sstream>
 #include <unistd.h>
@@ -22,6 +25,8 @@
 #include "rig/characters/rider_character.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_texture.h"
+#include "rig/io/auto_mapping.h"
+#include "rig/io/mapping_skeleton.h"
 
 namespace stirrup::rig {
 namespace {
@@ -294,7 +299,8 @@ void writeCharacterGlb(const Character& c, const std::filesystem::path& file) { 
 
 namespace {
 
-Character loadCharacterGltfUnchecked(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping) {
+Character loadCharacterGltfUnchecked(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping,
+                                     AutoMapping* auto_mapped) {
   const std::string f = file.string();
   const std::string kind_name(characterKindName(kind));
   if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
@@ -309,22 +315,48 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       throw InputError(f + ": skins[0].joints[" + std::to_string(j) + "]: expected a node index 0.." +
                        std::to_string(static_cast<int>(model.nodes.size()) - 1) + ", got " + std::to_string(skin.joints[j]));
 
+  // The joints' names as the character will carry them (unnamed joints: "jointN").
+  const std::vector<std::string> joint_names = gltfJointNames(model);
   // Role -> index into skin.joints.
   std::map<std::string, int> role_joint;
   std::string where = f;
+  const bool has_role_table = [&] {
+    for (const tinygltf::Node& n : model.nodes)
+      if (n.skin == 0 && n.extras.IsObject() && n.extras.Has("stirrup_roles")) return true;
+    return false;
+  }();
+  std::optional<AutoMapping> automatic;
+  if (!mapping && !has_role_table) {
+    // No mapping file and no role table: the file is mapped by itself (rig/io/auto_mapping.h).
+    automatic = autoMapCharacter(mappingSkeletonFromGltf(model, f), kind);
+    mapping = &automatic->mapping;
+  }
+  const std::string hint = automatic ? "the automatic mapping chose it: map it in a mapping file, stirrup character map " + f +
+                                          " --as " + kind_name + " -o MAP.json"
+                                    : "change it in the mapping file";
   if (mapping) {
     where = mapping->file.empty() ? f : mapping->file.string();
     const auto mapRole = [&](const std::string& role, const std::string& joint_name) {
       int found = -1;
       for (int j = 0; j < nj; ++j)
-        if (model.nodes.at(skin.joints[j]).name == joint_name) found = j;
-      if (found < 0) throw InputError(where + ": roles." + role + ": no joint named \"" + joint_name + "\" in " + f);
+        if (joint_names[j] == joint_name) found = j;
+      if (found < 0)
+        throw InputError(where + ": roles." + role + ": no joint named \"" + joint_name + "\" in " + f + " (change it to one of the file's joints: " +
+                         "stirrup character map " + f + " --as " + kind_name + " lists them with the roles they seem to play)");
       role_joint[role] = found;
     };
     for (const std::string& role : requiredRoles(kind)) {
       const auto it = mapping->roles.find(role);
-      if (it == mapping->roles.end())
+      if (it == mapping->roles.end()) {
+        if (automatic) {
+          std::string missing;
+          for (const std::string& r : automatic->report.not_mapped) missing += (missing.empty() ? "" : ", ") + r;
+          throw InputError(f + ": roles." + role + ": not found by the automatic mapping (by " + automatic->report.method +
+                           "; not mapped: " + missing + "; map them in a mapping file: stirrup character map " + f + " --as " +
+                           kind_name + " -o MAP.json, then add them)");
+        }
         throw InputError(where + ": roles." + role + ": missing (expected the name of the " + kind_name + "'s " + role + " joint in " + f + ")");
+      }
       mapRole(role, it->second);
     }
     for (const std::string& role : optionalRoles(kind))
@@ -332,9 +364,9 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   } else {
     tinygltf::Value roles;
     for (const tinygltf::Node& n : model.nodes)
-      if (n.skin == 0 && n.extras.Has("stirrup_roles")) roles = n.extras.Get("stirrup_roles");
+      if (n.skin == 0 && n.extras.IsObject() && n.extras.Has("stirrup_roles")) roles = n.extras.Get("stirrup_roles");
     if (!roles.IsObject())
-      throw InputError(f + ": no role table in the file (expected a mapping file from its joint names to the " + kind_name + " roles)");
+      throw InputError(f + ": the file's role table (extras.stirrup_roles) is not an object (expected role -> joint index)");
     for (const std::string& role : requiredRoles(kind)) {
       const tinygltf::Value& v = roles.Get(role);
       if (!v.IsInt() || v.Get<int>() < 0 || v.Get<int>() >= nj)
@@ -384,6 +416,11 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   // A skin of several roots is one body (Skeleton's hangLooseRoots).
   const auto core = role_joint.find(kind == CharacterKind::Rider ? "pelvis" : "root");
   const std::vector<char> file_root = hangLooseRoots(parent, file_bind, core == role_joint.end() ? -1 : core->second);
+  // A mapping's roles on their chains (an elbow below its shoulder, ...), in the hierarchy the rig will
+  // pose. (A role table is stirrup's own writing, taken as it is.)
+  if (mapping)
+    if (const std::string problem = roleChainProblem(kind, role_joint, parent, joint_names, hint); !problem.empty())
+      throw InputError(where + ": " + problem);
   // Parents first: depth order, stable.
   std::vector<int> depth(nj, 0), order(nj);
   for (int j = 0; j < nj; ++j)
@@ -402,8 +439,7 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   for (int j = 0; j < nj; ++j) bind_pos[j] = toRig(glm::vec3(glm::inverse(ibm[j])[3]));
   for (int i = 0; i < nj; ++i) {
     const int j = order[i];
-    std::string name = model.nodes.at(skin.joints[j]).name;
-    if (name.empty() || c.skeleton.find(name) >= 0) name = "joint" + std::to_string(j);
+    const std::string& name = joint_names[j];
     const int p = parent[j] < 0 ? -1 : new_index[parent[j]];
     const glm::vec3 pp = p < 0 ? glm::vec3(0.0f) : bind_pos[parent[j]];
     c.skeleton.addJoint(name, p, glm::translate(glm::mat4(1.0f), bind_pos[j] - pp));
@@ -540,6 +576,7 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
     }
   }
   if (m.indices.empty()) throw InputError(f + ": no triangles skinned by skins[0]");
+  if (automatic && auto_mapped) *auto_mapped = *automatic;
   c.source.file = f;
   if (mapping) c.source.to_rig = mappingToRig(*mapping);
   if (!m.textures.empty()) m.uvs.resize(m.positions.size(), glm::vec2(0.0f));
@@ -564,9 +601,10 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
 
 }  // namespace
 
-Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping) {
+Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping,
+                            AutoMapping* auto_mapped) {
   try {
-    return loadCharacterGltfUnchecked(file, kind, mapping);
+    return loadCharacterGltfUnchecked(file, kind, mapping, auto_mapped);
   } catch (const std::out_of_range&) {
     // An index the checks above do not cover (a mesh, material or accessor index past its array): the
     // .at() lookups throw, and the user gets one line naming the file (found by fuzzing).
@@ -576,7 +614,18 @@ Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kin
 
 Character resolveCharacter(CharacterKind kind, const std::string& file, const std::string& mapping_file) {
   if (file == "default") return kind == CharacterKind::Horse ? buildDefaultHorse() : buildDefaultRider();
-  if (mapping_file.empty()) return loadCharacterGltf(file, kind);
+  if (mapping_file.empty()) {
+    AutoMapping automatic;
+    Character c = loadCharacterGltf(file, kind, nullptr, &automatic);
+    if (!automatic.report.method.empty()) {
+      // Mapped by itself: said once per file and kind (a command may resolve a character twice).
+      static std::mutex mutex;
+      static std::set<std::pair<std::string, CharacterKind>> told;
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (told.insert({file, kind}).second) std::fputs(autoMappingSummary(automatic).c_str(), stderr);
+    }
+    return c;
+  }
   const CharacterMapping mapping = loadCharacterMapping(mapping_file, kind);
   return loadCharacterGltf(file, kind, &mapping);
 }

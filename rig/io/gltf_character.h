@@ -55,14 +55,20 @@ void writeFileAtomically(const std::filesystem::path& file, const std::vector<un
 std::vector<unsigned char> characterGlb(const Character& character);
 void writeCharacterGlb(const Character& character, const std::filesystem::path& file);
 
+struct AutoMapping;
+
 // Loads a skinned glTF (.glb or .gltf) as a character of `kind`. With `mapping` null, the role table
-// the file carries (written by writeCharacterGlb) is used. Errors are one-line InputErrors naming the
-// file (and, for a missing role, the role).
+// the file carries (written by writeCharacterGlb) is used, or, in a file without one, the mapping the
+// file gets by itself (rig/io/auto_mapping.h), kept in `auto_mapped` when given. Errors are one-line
+// InputErrors naming the file (and, for a role, the role and the joint, and what to change): a role
+// missing, a joint not in the file, a mapped role off its chain (rig/io/character_mapping.h
+// roleChainProblem).
 Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind,
-                            const CharacterMapping* mapping = nullptr);
+                            const CharacterMapping* mapping = nullptr, AutoMapping* auto_mapped = nullptr);
 
 // What a scene's "characters" entry names: "default" (the built-in generator), or a glTF file with
-// an optional mapping file (empty: the file's own role table).
+// an optional mapping file (empty: the file's own role table, or the mapping it gets by itself, whose
+// choices are summed up on stderr, once a file).
 Character resolveCharacter(CharacterKind kind, const std::string& file, const std::string& mapping_file);
 
 }  // namespace stirrup::rig

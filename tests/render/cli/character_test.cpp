@@ -3,7 +3,9 @@
 // are one-line errors. `character make humanoid` (standing test characters in other tools' style)
 // writes files the Khronos validator passes, shaped by its options, byte for byte the same each run.
 // scripts/blender-rigify-rider, where Blender is installed, makes a rider in Blender itself (Rigify's
-// human meta-rig, generated, skinned, textured) and this file checks what it exported.
+// human meta-rig, generated, skinned, textured) and this file checks what it exported. `character map`
+// prints what it chose, writes a mapping file the importer takes, renders its preview through the
+// normal pipeline, and says in one line what it cannot do; a scene naming a file alone maps it on load.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +19,10 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <OpenImageIO/imageio.h>
+
+#include "rig/io/character_mapping.h"
+#include "rig/io/gltf_character.h"
 #include "tests/render/cli/run_command.h"
 
 namespace stirrup::test {
@@ -304,6 +310,122 @@ TEST(CharacterBlenderRigify, ExportsAnUprightTexturedRiderSkinnedToDefBones) {
   EXPECT_GE(hi - lo, 1.5);
   EXPECT_LE(hi - lo, 2.2);
   EXPECT_NEAR(lo, 0.0, 0.05);
+}
+
+// ---- character map
+
+fs::path makeMixamoRider(const fs::path& dir) {
+  const fs::path glb = dir / "mixamo-rider.glb";
+  const CommandResult r = runStirrup("character make humanoid --names mixamo --pose relaxed --cell 4 -o " + quote(glb.string()));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return glb;
+}
+
+TEST(CharacterMap, SaysWhatItChoseAndWritesAMappingTheImporterTakes) {
+  const fs::path dir = tempDir("map");
+  const fs::path glb = makeMixamoRider(dir), json = dir / "rider.json";
+  const CommandResult r = runStirrup("character map " + quote(glb.string()) + " --as rider -o " + quote(json.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // quiet but for the report
+  EXPECT_EQ(r.out.rfind(glb.string() + " as a rider: mixamo joint names\n", 0), 0u) << r.out;
+  for (const char* line : {"  up       +Y  (from the ankles up to the head)\n", "  forward  +Z  (the toes point ahead of the ankles)\n",
+                           "    lShoulder   mixamorig:LeftArm            name\n",
+                           "    upperChest  mixamorig:Spine2             hierarchy: the spine joint both shoulders hang from\n",
+                           "  optional, left to the rig: lowerBack waist chest braid1 braid2 braid3 coatTail\n"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " in:\n" << r.out;
+  EXPECT_NE(r.out.find("100.00 cm per file unit  (height 1.6"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("wrote " + json.string() + "\n"), std::string::npos) << r.out;
+  // The file: the importer's own format, which it reads back and loads the character through.
+  const rig::CharacterMapping m = rig::loadCharacterMapping(json, rig::CharacterKind::Rider);
+  EXPECT_EQ(m.scale_cm, 100.0);
+  EXPECT_EQ(m.forward, (std::array<double, 3>{0, 0, 1}));
+  EXPECT_EQ(m.roles.at("lHand"), "mixamorig:LeftInHandMiddle");
+  EXPECT_EQ(m.roles.size(), 20u);
+  const rig::Character c = rig::loadCharacterGltf(glb, rig::CharacterKind::Rider, &m);
+  EXPECT_EQ(c.skeleton.joints[c.role("rKnee")].name, "mixamorig:RightLeg");
+  const std::string text = readText(json);
+  EXPECT_NE(text.find("  \"forward\": [0.0,0.0,1.0],\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("    \"pelvis\": \"mixamorig:Hips\",\n"), std::string::npos) << text;
+  // --ignore-names maps by the skeleton's shape: the same joints, said so.
+  const CommandResult t = runStirrup("character map " + quote(glb.string()) + " --as rider --ignore-names");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("as a rider: by topology (names ignored; they look like mixamo)"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("    lShoulder   mixamorig:LeftArm            topology: arm lengths and spacing (Winter 2009)\n"), std::string::npos) << t.out;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);  // no temporary left
+}
+
+TEST(CharacterMap, PreviewRendersTheRiderOnTheDefaultHorse) {
+  const fs::path dir = tempDir("map_preview");
+  const fs::path glb = makeMixamoRider(dir), png = dir / "preview.png";
+  const CommandResult r = runStirrup("character map " + quote(glb.string()) + " --as rider --preview " + quote(png.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("preview: " + png.string() + " (frame 1 of the trot, the rider on the default horse, three-quarter view)\n"),
+            std::string::npos) << r.out;
+  auto in = OIIO::ImageInput::open(png.string());
+  ASSERT_TRUE(in) << png;
+  EXPECT_EQ(in->spec().width, 640);
+  EXPECT_EQ(in->spec().height, 360);
+  in->close();
+  // Without -o the preview's mapping file is its own, and gone after.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+}
+
+TEST(CharacterMap, TheFoxMapsAsAHorseAndItsPreviewSaysWhyNot) {
+  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
+  const fs::path dir = tempDir("map_fox");
+  const fs::path json = dir / "fox.json", png = dir / "fox.png";
+  const CommandResult r = runStirrup("character map " + quote(fox.string()) + " --as horse -o " + quote(json.string()) + " --preview " +
+                                     quote(png.string()));
+  EXPECT_NE(r.out.find(" as a horse: by topology (no joint names it knows)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  not mapped: withers saddle lStirrup rStirrup lRein rRein\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2.5400 cm per file unit  (height 79.0 file units, ground to the top of the head, read as inches: 201 cm)"),
+            std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(json));
+  // This version's importer needs the horse's tack named: the preview is not rendered, and says why in one line.
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: --preview: not rendered: " + fox.string() + ": the horse's withers, saddle, lStirrup, rStirrup, lRein, "
+                   "rRein are not mapped and this version needs them (name the joints in the mapping file -o writes)\n");
+  EXPECT_FALSE(fs::exists(png));
+}
+
+TEST(CharacterMap, BadInputIsAOneLineError) {
+  const fs::path dir = tempDir("map_bad");
+  const fs::path glb = makeMixamoRider(dir), json = dir / "m.json";
+  const std::string g = quote(glb.string());
+  for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"character map " + g + " --as dragon -o " + quote(json.string()), "character map: --as: expected rider or horse, got \"dragon\""},
+           {"character map " + quote((dir / "nope.glb").string()) + " --as rider -o " + quote(json.string()),
+            (dir / "nope.glb").string() + ": no such file (expected a skinned glTF rider)"},
+           {"character map " + g + " --as rider -o " + quote((dir / "m.txt").string()),
+            "-o: " + (dir / "m.txt").string() + ": expected a mapping file name ending in .json"},
+           {"character map " + g + " --as horse -o " + quote(json.string()),
+            glb.string() + ": cannot map as a horse by topology: the limb from \"mixamorig:LeftShoulder\" ends at "
+                           "\"mixamorig:LeftHandIndex3\""}}) {
+    const CommandResult r = runStirrup(args);
+    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_EQ(r.err.rfind("stirrup: " + expected, 0), 0u) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_FALSE(fs::exists(json)) << args;
+  }
+  const CommandResult bad_preview = runStirrup("character map " + g + " --as rider --preview " + quote((dir / "p.jpg").string()));
+  EXPECT_EQ(bad_preview.exit_code, 1);
+  EXPECT_EQ(bad_preview.err, "stirrup: --preview: " + (dir / "p.jpg").string() + ": expected a file name ending in .png\n");
+  const CommandResult help = runStirrup("character map --help");
+  EXPECT_NE(help.out.find("--ignore-names"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("Mapping by itself"), std::string::npos) << help.out;
+}
+
+TEST(CharacterMap, ASceneNamingAFileAloneMapsItOnLoadAndSaysSo) {
+  const fs::path dir = tempDir("map_scene");
+  makeMixamoRider(dir);
+  std::ofstream(dir / "s.json") << R"({"characters": {"rider": "mixamo-rider.glb"}, "frames": "1"})";
+  const CommandResult r = runStirrup("bake " + quote((dir / "s.json").string()) + " -o " + quote((dir / "baked.glb").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string file = (dir / "mixamo-rider.glb").string();
+  EXPECT_EQ(r.err, file + ": no role table: mapped as a rider by mixamo joint names; up +Y, forward +Z, 100.00 cm per unit (metres)\n"
+                   "  15 of 15 roles (stirrup character map " + file + " --as rider lists every choice)\n");
+  EXPECT_TRUE(fs::exists(dir / "baked.glb"));
 }
 
 }  // namespace

@@ -1,0 +1,238 @@
+#include "rig/io/mapping_skeleton.h"
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <set>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "rig/error.h"
+#include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_nodes.h"
+
+namespace stirrup::rig {
+namespace {
+
+// VRM's humanoid bone table: VRMC_vrm (1.0: humanBones is an object, bone -> {"node": i}) or VRM
+// (0.x: an array of {"bone": name, "node": i}). Bones on nodes that are not joints of the skin are left
+// out; a malformed table is ignored (the names and the topology still map the file).
+// A member of a JSON object value, or null (tinygltf's Get asserts an object).
+const tinygltf::Value& member(const tinygltf::Value& v, const std::string& key) {
+  static const tinygltf::Value null_value;
+  return v.IsObject() ? v.Get(key) : null_value;
+}
+
+void readVrmBones(const tinygltf::Model& model, const std::map<int, int>& node_joint, MappingSkeleton& s) {
+  const auto joint = [&](const tinygltf::Value& node) {
+    if (!node.IsNumber()) return -1;
+    const double d = node.GetNumberAsDouble();
+    if (!(d >= 0.0 && d < 1e9)) return -1;
+    const auto it = node_joint.find(static_cast<int>(d));
+    return it == node_joint.end() ? -1 : it->second;
+  };
+  if (const auto it = model.extensions.find("VRMC_vrm"); it != model.extensions.end()) {
+    const tinygltf::Value& bones = member(member(it->second, "humanoid"), "humanBones");
+    if (bones.IsObject()) {
+      for (const std::string& bone : bones.Keys())
+        if (const int j = joint(member(bones.Get(bone), "node")); j >= 0) s.vrm_bones[bone] = j;
+      s.vrm_table = "VRMC_vrm";
+      return;
+    }
+  }
+  if (const auto it = model.extensions.find("VRM"); it != model.extensions.end()) {
+    const tinygltf::Value& bones = member(member(it->second, "humanoid"), "humanBones");
+    if (bones.IsArray()) {
+      for (std::size_t i = 0; i < bones.ArrayLen(); ++i) {
+        const tinygltf::Value& b = bones.Get(static_cast<int>(i));
+        const tinygltf::Value& name = member(b, "bone");
+        if (!name.IsString()) continue;
+        if (const int j = joint(member(b, "node")); j >= 0) s.vrm_bones[name.Get<std::string>()] = j;
+      }
+      s.vrm_table = "VRM";
+    }
+  }
+}
+
+// A skin of several roots (Blender's Rigify exported with its deform bones only: the limbs and the
+// face are roots) made one tree for finding roles: every further root hangs from the nearest joint of
+// the trunk's tree, the one holding the joint nearest the middle of the mesh. Unlike the importer's
+// hangLooseRoots (which hangs each root from the body built so far), a mirror-image pair of loose
+// limbs then hangs from one joint, never one from the other, as the topology's rules expect; the
+// roles found lie on the same chains in either tree (a limb keeps its own hierarchy).
+void hangFromTrunk(std::vector<int>& parent, const std::vector<glm::dvec3>& position, const glm::dvec3& middle,
+                   std::vector<char>& hung) {
+  const int n = static_cast<int>(parent.size());
+  hung.assign(n, 0);
+  std::vector<int> root_of(n);
+  for (int j = 0; j < n; ++j) {
+    int r = j;
+    for (int steps = 0; parent[r] >= 0 && steps <= n; ++steps) r = parent[r];
+    root_of[j] = r;
+  }
+  int core = 0;
+  for (int j = 1; j < n; ++j)
+    if (glm::length(position[j] - middle) < glm::length(position[core] - middle)) core = j;
+  const int trunk = root_of[core];
+  for (int r = 0; r < n; ++r) {
+    if (parent[r] >= 0 || r == trunk) continue;
+    int best = -1;
+    double bd = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < n; ++a)
+      if (root_of[a] == trunk)
+        if (const double d = glm::length(position[r] - position[a]); d < bd) bd = d, best = a;
+    parent[r] = best;
+    hung[r] = 1;
+  }
+}
+
+}  // namespace
+
+void MappingSkeleton::finish() {
+  const int n = size();
+  children.assign(n, {});
+  for (int j = 0; j < n; ++j)
+    if (parent[j] >= 0) children[parent[j]].push_back(j);
+  enter.assign(n, 0);
+  leave.assign(n, 0);
+  depth.assign(n, 0);
+  int clock = 0;
+  // Iterative depth-first walk (a chain of thousands of joints must not overflow the stack).
+  std::vector<std::pair<int, std::size_t>> stack;
+  for (int r = 0; r < n; ++r) {
+    if (parent[r] >= 0) continue;
+    stack.push_back({r, 0});
+    enter[r] = clock++;
+    while (!stack.empty()) {
+      auto& [j, next] = stack.back();
+      if (next < children[j].size()) {
+        const int c = children[j][next++];
+        depth[c] = depth[j] + 1;
+        enter[c] = clock++;
+        stack.push_back({c, 0});
+      } else {
+        leave[j] = clock++;
+        stack.pop_back();
+      }
+    }
+  }
+}
+
+std::vector<int> MappingSkeleton::pathDown(int ancestor, int j) const {
+  std::vector<int> path;
+  if (!above(ancestor, j)) return path;
+  for (int k = j; k != ancestor; k = parent[k]) path.push_back(k);
+  return {path.rbegin(), path.rend()};
+}
+
+int MappingSkeleton::find(const std::string& name) const {
+  for (int j = 0; j < size(); ++j)
+    if (names[j] == name) return j;
+  return -1;
+}
+
+std::vector<std::string> gltfJointNames(const tinygltf::Model& model) {
+  std::vector<std::string> names;
+  if (model.skins.empty()) return names;
+  const tinygltf::Skin& skin = model.skins[0];
+  std::set<std::string> used;
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    const int node = skin.joints[j];
+    std::string name = node >= 0 && node < static_cast<int>(model.nodes.size()) ? model.nodes[node].name : "";
+    if (name.empty() || used.count(name)) name = "joint" + std::to_string(j);
+    for (int k = 1; used.count(name); ++k) name = "joint" + std::to_string(j) + "_" + std::to_string(k);
+    used.insert(name);
+    names.push_back(name);
+  }
+  return names;
+}
+
+MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& f) {
+  if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned character)");
+  const tinygltf::Skin& skin = model.skins[0];
+  const int nj = static_cast<int>(skin.joints.size());
+  if (nj == 0) throw InputError(f + ": skins[0] has no joints");
+  for (int j = 0; j < nj; ++j)
+    if (skin.joints[j] < 0 || skin.joints[j] >= static_cast<int>(model.nodes.size()))
+      throw InputError(f + ": skins[0].joints[" + std::to_string(j) + "]: expected a node index 0.." +
+                       std::to_string(static_cast<int>(model.nodes.size()) - 1) + ", got " + std::to_string(skin.joints[j]));
+  MappingSkeleton s;
+  s.file = f;
+  s.names = gltfJointNames(model);
+
+  // Bind places from the inverse bind matrices (identity when absent), as the importer reads them.
+  std::vector<glm::mat4> ibm(nj, glm::mat4(1.0f));
+  if (skin.inverseBindMatrices >= 0) {
+    const std::vector<float> v = readAccessor(model, skin.inverseBindMatrices, 16, f + ": skins[0].inverseBindMatrices");
+    if (static_cast<int>(v.size()) != nj * 16) throw InputError(f + ": skins[0].inverseBindMatrices: expected one per joint");
+    for (int j = 0; j < nj; ++j) std::memcpy(glm::value_ptr(ibm[j]), v.data() + j * 16, 64);
+  }
+  std::vector<glm::vec3> bind(nj);
+  for (int j = 0; j < nj; ++j) {
+    bind[j] = glm::vec3(glm::inverse(ibm[j])[3]);
+    if (!std::isfinite(bind[j].x) || !std::isfinite(bind[j].y) || !std::isfinite(bind[j].z))
+      throw InputError(f + ": skins[0].inverseBindMatrices[" + std::to_string(j) + "]: expected an invertible matrix (joint \"" +
+                       s.names[j] + "\")");
+    s.position.emplace_back(bind[j]);
+  }
+
+  // Parents: the nearest ancestor node that is a joint; further roots hung from the body.
+  const std::vector<int> node_parent = gltfNodeParents(model, f);
+  std::map<int, int> node_joint;
+  for (int j = 0; j < nj; ++j) node_joint.emplace(skin.joints[j], j);
+  s.parent.assign(nj, -1);
+  for (int j = 0; j < nj; ++j)
+    for (int n = node_parent.at(skin.joints[j]); n >= 0; n = node_parent[n])
+      if (const auto it = node_joint.find(n); it != node_joint.end()) {
+        s.parent[j] = it->second;
+        break;
+      }
+
+  // The mesh: every primitive of every node skinned by skins[0].
+  s.weighted.assign(nj, 0);
+  for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
+    const tinygltf::Node& node = model.nodes[ni];
+    if (node.mesh < 0 || node.skin != 0) continue;
+    const tinygltf::Mesh& mesh = model.meshes.at(node.mesh);
+    for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+      const tinygltf::Primitive& prim = mesh.primitives[pi];
+      const std::string pw = f + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
+      for (const char* a : {"POSITION", "JOINTS_0", "WEIGHTS_0"})
+        if (!prim.attributes.count(a)) throw InputError(pw + ": expected a " + std::string(a) + " attribute");
+      const std::vector<float> pos = readAccessor(model, prim.attributes.at("POSITION"), 3, pw + ".POSITION");
+      const std::vector<float> jts = readAccessor(model, prim.attributes.at("JOINTS_0"), 4, pw + ".JOINTS_0");
+      const std::vector<float> wts = readAccessor(model, prim.attributes.at("WEIGHTS_0"), 4, pw + ".WEIGHTS_0");
+      const std::size_t n = pos.size() / 3;
+      if (jts.size() != n * 4 || wts.size() != n * 4) throw InputError(pw + ": attribute counts differ");
+      for (std::size_t v = 0; v < n; ++v) {
+        int best = -1;
+        float best_w = 0.0f;
+        for (int k = 0; k < 4; ++k) {
+          const float w = wts[v * 4 + k];
+          if (!(w > 0.0f)) continue;
+          const int j = static_cast<int>(jts[v * 4 + k]);
+          if (j < 0 || j >= nj) throw InputError(pw + ".JOINTS_0: joint index " + std::to_string(j) + " outside skins[0]");
+          s.weighted[j] = 1;
+          if (w > best_w) best = j, best_w = w;
+        }
+        const glm::dvec3 p(pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]);
+        if (best < 0 || !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+        s.vertices.push_back(p);
+        s.vertex_joint.push_back(best);
+      }
+    }
+  }
+  if (s.vertices.empty()) throw InputError(f + ": no skinned vertices in skins[0]'s meshes (expected a skinned character)");
+  glm::dvec3 middle(0.0);
+  for (const glm::dvec3& v : s.vertices) middle += v / static_cast<double>(s.vertices.size());
+  hangFromTrunk(s.parent, s.position, middle, s.hung);
+  readVrmBones(model, node_joint, s);
+  s.finish();
+  return s;
+}
+
+}  // namespace stirrup::rig

@@ -1,0 +1,62 @@
+// A character file's skeleton as the automatic mapping reads it (rig/io/auto_mapping.h): the first
+// skin's joints with the names, hierarchy and bind places the importer (rig/io/gltf_character.h) gives
+// them, which joints carry skin weight, the bind-pose mesh, and a VRM file's own humanoid bone table.
+// Everything stays in the file's own space and units; finding the axes and scale is the mapping's job.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace tinygltf {
+class Model;
+}
+
+namespace stirrup::rig {
+
+// A direction measured on the skeleton (up, forward) within this angle of one of the file's axes is
+// taken to be that axis: files are modelled along their axes, and a rest pose's toes or a standing
+// horse's back are not exactly square to them.
+inline constexpr double kAxisSnapDeg = 25.0;
+
+struct MappingSkeleton {
+  std::string file;                      // for messages
+  std::vector<std::string> names;        // as the importer names the joints (unnamed: "jointN", N its skin index)
+  std::vector<int> parent;               // the nearest joint above in the file; further roots hung from the trunk
+  std::vector<char> hung;                // a root of the file hung from the trunk's joint nearest to it
+  std::vector<glm::dvec3> position;      // bind places (from the inverse bind matrices)
+  std::vector<char> weighted;            // some vertex weighs on the joint itself
+  std::vector<glm::dvec3> vertices;      // the skinned mesh's bind-pose vertices
+  std::vector<int> vertex_joint;         // the joint each vertex weighs on most
+  // A VRM file's humanoid bone table (VRMC_vrm 1.0's humanoid.humanBones, or VRM 0.x's): bone name
+  // ("hips", "leftUpperArm", ...) -> joint. `vrm_table` names the extension it came from ("" for none).
+  std::map<std::string, int> vrm_bones;
+  std::string vrm_table;
+
+  // Derived by finish(): children, and each joint's span in a depth-first walk (for ancestry tests).
+  std::vector<std::vector<int>> children;
+  std::vector<int> enter, leave, depth;
+
+  int size() const { return static_cast<int>(names.size()); }
+  // Fills the derived fields; parent must form a forest (every joint reaches a root).
+  void finish();
+  // True when `a` is `j` or above it.
+  bool contains(int a, int j) const { return enter[a] <= enter[j] && leave[j] <= leave[a]; }
+  bool above(int a, int j) const { return a != j && contains(a, j); }
+  // The joints from `ancestor` (exclusive) down to `j` (inclusive); empty unless ancestor is above j.
+  std::vector<int> pathDown(int ancestor, int j) const;
+  int find(const std::string& name) const;  // -1 when there is none
+};
+
+// The names the importer gives the first skin's joints: each node's name, or "jointN" (N the joint's
+// index in the skin) for a joint without a name or with the name of an earlier joint, so every joint
+// has a name of its own a mapping file can use.
+std::vector<std::string> gltfJointNames(const tinygltf::Model& model);
+
+// Reads the first skin of a model the importer would read (checked as it checks it: a one-line
+// InputError naming `file` for a bad index, accessor or hierarchy).
+MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& file);
+
+}  // namespace stirrup::rig

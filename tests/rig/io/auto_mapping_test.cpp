@@ -1,0 +1,438 @@
+// Mapping a character by itself (rig/io/auto_mapping.h). The ground truth for the generated humanoids is
+// the generator's own anatomical label on every joint (rig/characters/standing_humanoid.h), never a table
+// of the mapper's: each convention's files, in every rest pose, with two, three and six spine joints and
+// with the hand one joint with the wrist or not, map every role to the joint the labels say, by their
+// names and by topology alone. The axes and units are found in files the generator wrote in metres
+// facing +Z, and in files turned to Z-up and written in centimetres or inches. Blender's own Rigify export
+// (skipped without Blender), the Khronos Fox as a horse (skipped without the asset) and stirrup's horse
+// with its role table stripped map as their own names say. A character that is not what it is mapped
+// as, or a role off its chain, is a one-line error.
+#include "rig/io/auto_mapping.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "rig/characters/standing_humanoid.h"
+#include "rig/error.h"
+#include "rig/io/character_mapping.h"
+#include "rig/io/gltf_character.h"
+#include "rig/io/gltf_humanoid.h"
+#include "tests/input_error.h"
+
+namespace stirrup::rig {
+namespace {
+
+namespace fs = std::filesystem;
+using test::errorOf;
+
+fs::path testDir(const std::string& name) {
+  const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_auto_mapping" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+fs::path writeBytes(const fs::path& file, const std::vector<unsigned char>& bytes) {
+  std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return file;
+}
+
+StandingHumanoidParams humanoidParams(HumanoidNames names, HumanoidRestPose pose, int spine, bool shared) {
+  StandingHumanoidParams p = humanoidConventionDefaults(names);
+  p.pose = pose;
+  p.spine_joints = spine;
+  p.separate_hand = !shared;
+  p.cell = 4.0f;  // coarse: the mapping reads the skeleton and the mesh's height only
+  return p;
+}
+
+// What each rider role should be, from the generator's labels: the pelvis, the first neck joint, the
+// head; per side the upper arm's root, the forearm's root, the hand at the wrist, the palm joint (the
+// grip, when the hand has one), the thigh's and the shin's roots, the foot at the ankle and the toe; the
+// top spine joint when the clavicles hang from it in the file (not when the limbs are detached).
+std::map<std::string, std::string> expectedRiderRoles(const StandingHumanoid& h) {
+  std::map<std::string, std::string> roles;
+  const auto& joints = h.character.skeleton.joints;
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const HumanoidJointLabel& l = h.labels[j];
+    const std::string side = l.side > 0 ? "l" : "r";
+    const std::string& name = joints[j].name;
+    switch (l.bone) {
+      case HumanoidBone::Pelvis: roles["pelvis"] = name; break;
+      case HumanoidBone::Neck: if (l.index == 0) roles["neck"] = name; break;
+      case HumanoidBone::Head: roles["head"] = name; break;
+      case HumanoidBone::Spine:
+        if (l.index == h.params.spine_joints - 1 && !h.params.detached_limbs) roles["upperChest"] = name;
+        break;
+      case HumanoidBone::UpperArm: if (l.index == 0) roles[side + "Shoulder"] = name; break;
+      case HumanoidBone::Forearm: if (l.index == 0) roles[side + "Elbow"] = name; break;
+      case HumanoidBone::Hand: roles[side + "Wrist"] = name; break;
+      case HumanoidBone::Palm: roles[side + "Hand"] = name; break;
+      case HumanoidBone::UpperLeg: if (l.index == 0) roles[side + "Hip"] = name; break;
+      case HumanoidBone::LowerLeg: if (l.index == 0) roles[side + "Knee"] = name; break;
+      case HumanoidBone::Foot: roles[side + "Ankle"] = name; break;
+      case HumanoidBone::Toe: roles[side + "Ball"] = name; break;
+      default: break;
+    }
+  }
+  return roles;
+}
+
+// The humanoid turned by `rotation` and scaled by `scale` (the file's units: 100 makes a file in
+// centimetres), everything a file holds moved alike: joints, bone tails and rest frames, vertices, normals.
+StandingHumanoid transformed(StandingHumanoid h, const glm::mat3& rotation, float scale) {
+  Skeleton moved;
+  const Skeleton& s = h.character.skeleton;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int p = s.joints[j].parent;
+    const glm::vec3 at = rotation * s.restPosition(static_cast<int>(j)) * scale;
+    const glm::vec3 from = p < 0 ? glm::vec3(0.0f) : rotation * s.restPosition(p) * scale;
+    moved.addJoint(s.joints[j].name, p, glm::translate(glm::mat4(1.0f), at - from));
+  }
+  h.character.skeleton = moved;
+  for (glm::vec3& v : h.character.mesh.positions) v = rotation * v * scale;
+  for (glm::vec3& n : h.character.mesh.normals) n = rotation * n;
+  for (glm::vec3& t : h.tails) t = rotation * t * scale;
+  for (glm::mat3& a : h.rest_axes) a = rotation * a;
+  return h;
+}
+
+std::array<double, 3> arr(double x, double y, double z) { return {x, y, z}; }
+
+// ---- Every convention, rest pose, spine length and hand layout.
+
+class AutoMappingConvention : public ::testing::TestWithParam<HumanoidNames> {};
+
+TEST_P(AutoMappingConvention, MapsTheJointsTheGeneratorsLabelsSayByNamesAndByTopology) {
+  const HumanoidNames names = GetParam();
+  const std::string convention(humanoidNamesName(names));
+  const fs::path dir = testDir("convention_" + convention);
+  int mapped = 0;
+  for (const HumanoidRestPose pose : {HumanoidRestPose::T, HumanoidRestPose::A, HumanoidRestPose::Relaxed})
+    for (const int spine : {2, 3, 6})
+      for (const bool shared : {false, true}) {
+        const StandingHumanoid h = buildStandingHumanoid(humanoidParams(names, pose, spine, shared));
+        static const char* const kPose[] = {"T", "A", "relaxed"};
+        const std::string variant = convention + ", " + kPose[static_cast<int>(pose)] + " pose, " + std::to_string(spine) +
+                                    " spine joints" + (shared ? ", wrist and hand one joint" : "");
+        std::string stem = kPose[static_cast<int>(pose)];
+        stem += std::to_string(spine);
+        if (shared) stem += "_shared";
+        const fs::path file = writeBytes(dir / (stem + ".glb"), humanoidGlb(h));
+        const std::map<std::string, std::string> expected = expectedRiderRoles(h);
+        // 15 required roles, both balls, both grips unless the wrist is the hand, upperChest unless detached.
+        ASSERT_EQ(expected.size(), (shared ? 17u : 19u) + (h.params.detached_limbs ? 0u : 1u)) << variant;
+        for (const bool use_names : {true, false}) {
+          AutoMappingParams params;
+          params.use_names = use_names;
+          const AutoMapping a = autoMapCharacterFile(file, CharacterKind::Rider, params);
+          const std::string how = variant + (use_names ? ", by names" : ", by topology");
+          EXPECT_EQ(a.report.method, use_names && names != HumanoidNames::None ? convention : "topology") << how;
+          EXPECT_EQ(a.mapping.roles, expected) << how;
+          EXPECT_EQ(a.mapping.forward, arr(0, 0, 1)) << how;  // the generator faces +Z
+          EXPECT_EQ(a.mapping.up, arr(0, 1, 0)) << how;
+          EXPECT_EQ(a.mapping.scale_cm, 100.0) << how;        // written in metres
+          EXPECT_EQ(a.report.unit, "metres") << how;
+          EXPECT_EQ(a.mapping.offset_cm, arr(0, 0, 0)) << how;
+          EXPECT_TRUE(a.report.not_mapped.empty()) << how;
+          // The spine controllers, the braid and the coat tail are never guessed.
+          for (const char* role : {"lowerBack", "waist", "chest", "braid1", "coatTail"}) EXPECT_FALSE(a.mapping.roles.count(role)) << how;
+          ++mapped;
+        }
+      }
+  EXPECT_EQ(mapped, 3 * 3 * 2 * 2);  // poses x spines x hands x (names, topology)
+}
+
+INSTANTIATE_TEST_SUITE_P(Conventions, AutoMappingConvention,
+                         ::testing::Values(HumanoidNames::Mixamo, HumanoidNames::Rigify, HumanoidNames::Unreal, HumanoidNames::Vrm,
+                                           HumanoidNames::HumanIK, HumanoidNames::None),
+                         [](const ::testing::TestParamInfo<HumanoidNames>& info) { return std::string(humanoidNamesName(info.param)); });
+
+// ---- Axes and units.
+
+TEST(AutoMapping, FindsAZUpFileInCentimetres) {
+  // Blender's own axes: Z up, the character facing -Y. Turned +90 degrees about X: +Y -> +Z, +Z -> -Y.
+  const glm::mat3 to_z_up(glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(0, -1, 0));
+  const StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Mixamo, HumanoidRestPose::A, 3, false));
+  const fs::path file = writeBytes(testDir("z_up") / "z_up_cm.glb", humanoidGlb(transformed(h, to_z_up, 100.0f)));
+  for (const bool use_names : {true, false}) {
+    AutoMappingParams params;
+    params.use_names = use_names;
+    const AutoMapping a = autoMapCharacterFile(file, CharacterKind::Rider, params);
+    EXPECT_EQ(a.mapping.up, arr(0, 0, 1));
+    EXPECT_EQ(a.mapping.forward, arr(0, -1, 0));
+    EXPECT_EQ(a.mapping.scale_cm, 1.0);
+    EXPECT_EQ(a.report.unit, "centimetres");
+    EXPECT_EQ(a.mapping.roles, expectedRiderRoles(h));
+  }
+  // It loads: in stirrup's axes her head is above her ankles by Winter's heights, her left side at -Z.
+  const Character c = loadCharacterGltf(file, CharacterKind::Rider);
+  const Skeleton& s = c.skeleton;
+  EXPECT_NEAR(s.restPosition(c.role("head")).y - s.restPosition(c.role("lAnkle")).y, (0.90f - 0.039f) * 170.0f, 0.01f);
+  EXPECT_LT(s.restPosition(c.role("lHip")).z, -5.0f);
+  EXPECT_GT(s.restPosition(c.role("rHip")).z, 5.0f);
+  EXPECT_GT(s.restPosition(c.role("lBall")).x - s.restPosition(c.role("lAnkle")).x, 10.0f);  // toes ahead: +X
+}
+
+TEST(AutoMapping, FindsAFileInInchesFacingX) {
+  // Turned -90 degrees about Y: +Z (her front) -> +X; written in inches (1 / 2.54 of the centimetres).
+  const glm::mat3 face_x(glm::vec3(0, 0, -1), glm::vec3(0, 1, 0), glm::vec3(1, 0, 0));
+  const StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::None, HumanoidRestPose::T, 3, true));
+  const fs::path file = writeBytes(testDir("inches") / "inches.glb", humanoidGlb(transformed(h, face_x, 100.0f / 2.54f)));
+  const AutoMapping a = autoMapCharacterFile(file, CharacterKind::Rider);
+  EXPECT_EQ(a.mapping.up, arr(0, 1, 0));
+  EXPECT_EQ(a.mapping.forward, arr(1, 0, 0));
+  EXPECT_EQ(a.mapping.scale_cm, 2.54);
+  EXPECT_EQ(a.report.unit, "inches");
+  EXPECT_EQ(a.mapping.roles, expectedRiderRoles(h));
+}
+
+TEST(AutoMapping, ATinyFileIsScaledToANominalHeightAndSaysSo) {
+  // 170 cm written as 1.7 mm: no common unit makes a 100-230 cm rider (as metres 0.17 cm, as feet 5.2 cm).
+  const StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Mixamo, HumanoidRestPose::T, 3, false));
+  const fs::path file = writeBytes(testDir("tiny") / "tiny.glb", humanoidGlb(transformed(h, glm::mat3(1.0f), 0.001f)));
+  const AutoMapping a = autoMapCharacterFile(file, CharacterKind::Rider);
+  EXPECT_EQ(a.report.unit, "");
+  EXPECT_NEAR(a.mapping.scale_cm * a.report.height_file, kRiderNominalCm, 1e-9);
+  ASSERT_EQ(a.report.warnings.size(), 1u);
+  EXPECT_EQ(a.report.warnings[0], "no common unit gives a plausible height: scaled to 170 cm");
+}
+
+// ---- Files other tools made.
+
+TEST(AutoMapping, BlendersOwnRigifyExportMapsByItsNames) {
+  if (std::system("command -v blender >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy): Blender's Rigify rider is not made";
+  const fs::path file = testDir("blender_rigify") / "rigify-rider.glb";
+  ASSERT_EQ(std::system(("'" STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider' '" + file.string() + "' >/dev/null 2>&1").c_str()), 0);
+  const AutoMapping a = autoMapCharacterFile(file, CharacterKind::Rider);
+  // Rigify's human meta-rig (Blender 3.x): DEF-spine the pelvis, spine.004-.005 the neck, spine.006 the
+  // head; upper_arm and forearm, thigh and shin in two halves (the first half is the joint); palm.02
+  // the middle metacarpal; toe the ball of the foot.
+  const std::map<std::string, std::string> rigify = {
+      {"pelvis", "DEF-spine"},         {"neck", "DEF-spine.004"},     {"head", "DEF-spine.006"},
+      {"lShoulder", "DEF-upper_arm.L"}, {"lElbow", "DEF-forearm.L"},  {"lWrist", "DEF-hand.L"},  {"lHand", "DEF-palm.02.L"},
+      {"lHip", "DEF-thigh.L"},         {"lKnee", "DEF-shin.L"},       {"lAnkle", "DEF-foot.L"},  {"lBall", "DEF-toe.L"},
+      {"rShoulder", "DEF-upper_arm.R"}, {"rElbow", "DEF-forearm.R"},  {"rWrist", "DEF-hand.R"},  {"rHand", "DEF-palm.02.R"},
+      {"rHip", "DEF-thigh.R"},         {"rKnee", "DEF-shin.R"},       {"rAnkle", "DEF-foot.R"},  {"rBall", "DEF-toe.R"}};
+  EXPECT_EQ(a.report.method, "rigify");
+  EXPECT_EQ(a.mapping.roles, rigify);
+  EXPECT_EQ(a.mapping.up, arr(0, 1, 0));       // exported +Y up
+  EXPECT_EQ(a.mapping.forward, arr(0, 0, 1));  // the meta-rig faces -Y in Blender: +Z in glTF
+  EXPECT_EQ(a.report.unit, "metres");
+  // By its shape alone (the limbs and face bones are separate roots in the file), the same required roles.
+  AutoMappingParams shape;
+  shape.use_names = false;
+  const AutoMapping t = autoMapCharacterFile(file, CharacterKind::Rider, shape);
+  for (const std::string& role : requiredRoles(CharacterKind::Rider)) EXPECT_EQ(t.mapping.roles.at(role), rigify.at(role)) << role;
+  // And the importer reads it through the mapping it gets by itself.
+  const Character c = loadCharacterGltf(file, CharacterKind::Rider);
+  EXPECT_EQ(c.skeleton.joints[c.role("lElbow")].name, "DEF-forearm.L");
+}
+
+TEST(AutoMapping, TheFoxMapsAsAHorseWithItsTackReportedUnmapped) {
+  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
+  const AutoMapping a = autoMapCharacterFile(fox, CharacterKind::Horse);
+  EXPECT_EQ(a.report.method, "topology");
+  // The Fox's own joint names say what each is; its left is +X (it faces +Z, +Y up).
+  const std::map<std::string, std::string> fox_roles = {
+      {"root", "b_Hip_01"},         {"backMid", "b_Spine01_02"},     {"chest", "b_Spine02_03"},
+      {"neck1", "b_Neck_04"},       {"neck2", "b_Neck_04"},          {"head", "b_Head_05"},
+      {"tail1", "b_Tail01_012"},    {"tail2", "b_Tail02_013"},       {"tail3", "b_Tail03_014"},
+      {"lfUpper", "b_LeftUpperArm_09"}, {"lfMiddle", "b_LeftForeArm_010"}, {"lfFetlock", "b_LeftHand_011"}, {"lfHoof", "b_LeftHand_011"},
+      {"rfUpper", "b_RightUpperArm_06"}, {"rfMiddle", "b_RightForeArm_07"}, {"rfFetlock", "b_RightHand_08"}, {"rfHoof", "b_RightHand_08"},
+      {"lbUpper", "b_LeftLeg01_015"},  {"lbMiddle", "b_LeftLeg02_016"},  {"lbFetlock", "b_LeftFoot01_017"}, {"lbHoof", "b_LeftFoot02_018"},
+      {"rbUpper", "b_RightLeg01_019"}, {"rbMiddle", "b_RightLeg02_020"}, {"rbFetlock", "b_RightFoot01_021"}, {"rbHoof", "b_RightFoot02_022"}};
+  EXPECT_EQ(a.mapping.roles, fox_roles);
+  EXPECT_EQ(a.report.not_mapped, (std::vector<std::string>{"withers", "saddle", "lStirrup", "rStirrup", "lRein", "rRein"}));
+  EXPECT_EQ(a.report.optional_not_mapped, (std::vector<std::string>{"lfPivot", "rfPivot", "lbPivot", "rbPivot"}));
+  EXPECT_EQ(a.mapping.up, arr(0, 1, 0));
+  EXPECT_EQ(a.mapping.forward, arr(0, 0, 1));
+  // 79 units from its paws to its ears: as inches a 201 cm horse, as centimetres a fox.
+  EXPECT_EQ(a.report.unit, "inches");
+  EXPECT_NEAR(a.report.height_file, 79.03, 0.01);
+  EXPECT_NEAR(a.mapping.offset_cm[1], 0.1217 * 2.54, 0.001);  // its lowest vertex, 0.12 units below 0, put on the ground
+  // The importer loads it only with the tack named (the roles this version requires): one line, naming it.
+  EXPECT_EQ(errorOf([&] { loadCharacterGltf(fox, CharacterKind::Horse); }),
+            fox.string() + ": roles.withers: not found by the automatic mapping (by topology; not mapped: withers, saddle, lStirrup, "
+                           "rStirrup, lRein, rRein; map them in a mapping file: stirrup character map " + fox.string() +
+                           " --as horse -o MAP.json, then add them)");
+}
+
+// stirrup's own horse with its role table lost on the way (re-exported by a tool that drops extras).
+struct StrippedHorse {
+  fs::path named, unnamed;
+  std::map<std::string, std::string> roles;          // the file's role table: role -> joint name
+  std::map<std::string, std::string> roles_unnamed;  // the same joints under their new names
+};
+
+StrippedHorse stripHorse(const fs::path& dir) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF gltf;
+  std::string err, warn;
+  EXPECT_TRUE(gltf.LoadBinaryFromFile(&model, &err, &warn, STIRRUP_SOURCE_DIR "/scenes/characters/horse.glb")) << err;
+  StrippedHorse out;
+  const tinygltf::Skin& skin = model.skins.at(0);
+  for (tinygltf::Node& n : model.nodes)
+    if (n.extras.IsObject() && n.extras.Has("stirrup_roles")) {
+      const tinygltf::Value& t = n.extras.Get("stirrup_roles");
+      for (const std::string& role : t.Keys()) {
+        const int j = t.Get(role).Get<int>();
+        out.roles[role] = model.nodes.at(skin.joints.at(j)).name;
+        out.roles_unnamed[role] = "bone" + std::to_string(j);
+      }
+      n.extras = tinygltf::Value();
+    }
+  out.named = dir / "horse-no-roles.glb";
+  EXPECT_TRUE(gltf.WriteGltfSceneToFile(&model, out.named.string(), true, true, false, true));
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) model.nodes.at(skin.joints[j]).name = "bone" + std::to_string(j);
+  out.unnamed = dir / "horse-unnamed.glb";
+  EXPECT_TRUE(gltf.WriteGltfSceneToFile(&model, out.unnamed.string(), true, true, false, true));
+  return out;
+}
+
+TEST(AutoMapping, StirrupsHorseWithoutItsRoleTableMapsByNamesAndByTopology) {
+  const StrippedHorse h = stripHorse(testDir("horse"));
+  const AutoMapping named = autoMapCharacterFile(h.named, CharacterKind::Horse);
+  EXPECT_EQ(named.report.method, "stirrup");
+  EXPECT_EQ(named.mapping.roles, h.roles);
+  EXPECT_EQ(named.mapping.forward, arr(1, 0, 0));
+  EXPECT_EQ(named.mapping.up, arr(0, 1, 0));
+  EXPECT_EQ(named.mapping.scale_cm, 1.0);  // its bind space is centimetres (the file's stirrup_cm node makes metres of them)
+  EXPECT_TRUE(named.report.not_mapped.empty());
+  // Unnamed, by its shape: every role the shape shows, the withers and the tack listed as not found.
+  const AutoMapping shaped = autoMapCharacterFile(h.unnamed, CharacterKind::Horse);
+  EXPECT_EQ(shaped.report.method, "topology");
+  std::map<std::string, std::string> expected = h.roles_unnamed;
+  for (const char* role : {"withers", "saddle", "lStirrup", "rStirrup", "lRein", "rRein"}) expected.erase(role);
+  EXPECT_EQ(shaped.mapping.roles, expected);
+  EXPECT_EQ(shaped.report.not_mapped, (std::vector<std::string>{"withers", "saddle", "lStirrup", "rStirrup", "lRein", "rRein"}));
+}
+
+// ---- Loading through the mapping.
+
+TEST(AutoMapping, TheImporterMapsAFileWithoutARoleTableByItself) {
+  const StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Unreal, HumanoidRestPose::Relaxed, 3, false));
+  const fs::path file = writeBytes(testDir("importer") / "unreal.glb", humanoidGlb(h));
+  AutoMapping a;
+  const Character c = loadCharacterGltf(file, CharacterKind::Rider, nullptr, &a);
+  EXPECT_EQ(a.report.method, "unreal");
+  for (const auto& [role, joint] : expectedRiderRoles(h)) EXPECT_EQ(c.skeleton.joints[c.role(role)].name, joint) << role;
+  EXPECT_EQ(c.source.to_rig, mappingToRig(a.mapping));
+  // In stirrup's axes and centimetres: the head 153 cm up, the left hip at -Z.
+  EXPECT_NEAR(c.skeleton.restPosition(c.role("head")).y, 0.9f * 170.0f, 1e-3f);
+  EXPECT_NEAR(c.skeleton.restPosition(c.role("lHip")).z, -0.5f * 0.105f * 170.0f, 1e-3f);
+}
+
+TEST(AutoMapping, TheMappingFileItWritesLoadsBackTheSame) {
+  const StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Vrm, HumanoidRestPose::A, 6, true));
+  const fs::path dir = testDir("file");
+  const fs::path file = writeBytes(dir / "vrm.glb", humanoidGlb(h));
+  const AutoMapping a = autoMapCharacterFile(file, CharacterKind::Rider);
+  std::ofstream(dir / "vrm.json") << autoMappingJson(a).dump(2);
+  const CharacterMapping back = loadCharacterMapping(dir / "vrm.json", CharacterKind::Rider);
+  EXPECT_EQ(back.roles, a.mapping.roles);
+  EXPECT_EQ(back.scale_cm, a.mapping.scale_cm);
+  EXPECT_EQ(back.forward, a.mapping.forward);
+  EXPECT_EQ(back.up, a.mapping.up);
+  EXPECT_EQ(back.offset_cm, a.mapping.offset_cm);
+  const nlohmann::ordered_json j = autoMappingJson(a);
+  EXPECT_EQ(j.begin().key(), "comment");
+  EXPECT_EQ(j["roles"].begin().key(), "pelvis");  // in role order
+  EXPECT_NE(j["comment"].get<std::string>().find("vrm joint names; up +Y: from the ankles up to the head; forward +Z: the toes "
+                                                 "point ahead of the ankles"),
+            std::string::npos)
+      << j["comment"];
+}
+
+TEST(AutoMapping, AMirroredFileHasItsSidesSwappedWithAWarning) {
+  // Left and right names exchanged (a file mirrored after naming): the limbs called "Left" are on her right.
+  StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::HumanIK, HumanoidRestPose::T, 3, false));
+  for (Joint& j : h.character.skeleton.joints) {
+    std::string& n = j.name;
+    if (n.rfind("Left", 0) == 0) n = "Right" + n.substr(4);
+    else if (n.rfind("Right", 0) == 0) n = "Left" + n.substr(5);
+  }
+  const AutoMapping a = autoMapCharacterFile(writeBytes(testDir("mirrored") / "m.glb", humanoidGlb(h)), CharacterKind::Rider);
+  EXPECT_EQ(a.mapping.roles.at("lShoulder"), "RightArm");  // the joint on her left, whatever it is called
+  EXPECT_EQ(a.mapping.roles.at("lHip"), "RightUpLeg");
+  ASSERT_EQ(a.report.warnings.size(), 2u);
+  EXPECT_EQ(a.report.warnings[0], "the humanik names put the Shoulder called left on the character's right (a mirrored file?): sides swapped");
+}
+
+// ---- Errors.
+
+TEST(AutoMapping, AStandingHumanIsNotAHorse) {
+  const StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Mixamo, HumanoidRestPose::T, 3, false));
+  const fs::path file = writeBytes(testDir("not_a_horse") / "h.glb", humanoidGlb(h));
+  EXPECT_EQ(errorOf([&] { autoMapCharacterFile(file, CharacterKind::Horse); }),
+            file.string() + ": cannot map as a horse by topology: the limb from \"mixamorig:LeftShoulder\" ends at "
+                            "\"mixamorig:LeftHandIndex3\", 80% of the height above the ground (expected four legs reaching the "
+                            "ground; a two-legged character? try --as rider) (write a mapping file: docs/characters.md, \"Mapping by itself\")");
+}
+
+TEST(AutoMapping, AFoxIsNotARider) {
+  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
+  EXPECT_EQ(errorOf([&] { autoMapCharacterFile(fox, CharacterKind::Rider); }),
+            fox.string() + ": cannot map as a rider by topology: cannot tell the legs from the arms: neither limb pair (from "
+                           "\"b_Hip_01\" and \"b_Spine02_03\") hangs away from the other (a four-legged character? try --as horse) "
+                           "(write a mapping file: docs/characters.md, \"Mapping by itself\")");
+}
+
+TEST(AutoMapping, WhenTheShapeSaysNothingTheErrorSaysWhatTheNamesNearlySaid) {
+  // Mixamo names with the left thigh renamed (the names give every role but lHip), and the right hand's
+  // joint 12 cm out along the arm (no mirror image of the left arm: the shape finds only the legs).
+  StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Mixamo, HumanoidRestPose::T, 3, false));
+  Skeleton moved;
+  const Skeleton& s = h.character.skeleton;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const auto at = [&](int k) {
+      return s.restPosition(k) + (s.joints[k].name == "mixamorig:RightHand" ? glm::vec3(-12.0f, 0.0f, 0.0f) : glm::vec3(0.0f));
+    };
+    const int p = s.joints[j].parent;
+    std::string name = s.joints[j].name == "mixamorig:LeftUpLeg" ? "mixamorig:LeftThigh" : s.joints[j].name;
+    moved.addJoint(name, p, glm::translate(glm::mat4(1.0f), at(static_cast<int>(j)) - (p < 0 ? glm::vec3(0.0f) : at(p))));
+  }
+  h.character.skeleton = moved;
+  const fs::path file = writeBytes(testDir("names_nearly") / "m.glb", humanoidGlb(h));
+  EXPECT_EQ(errorOf([&] { autoMapCharacterFile(file, CharacterKind::Rider); }),
+            file.string() + ": cannot map as a rider by topology: found 1 mirror-image limb pair among 43 joints (expected two: "
+                            "arms and legs) (write a mapping file: docs/characters.md, \"Mapping by itself\"); its joint names look like "
+                            "mixamo but name no lHip");
+}
+
+TEST(AutoMapping, ARoleOffItsChainIsAOneLineErrorNamingTheRoleAndTheJoint) {
+  const StandingHumanoid h = buildStandingHumanoid(humanoidParams(HumanoidNames::Mixamo, HumanoidRestPose::T, 3, false));
+  const fs::path dir = testDir("off_chain");
+  const fs::path file = writeBytes(dir / "m.glb", humanoidGlb(h));
+  AutoMapping a = autoMapCharacterFile(file, CharacterKind::Rider);
+  nlohmann::ordered_json j = autoMappingJson(a);
+  j["roles"]["lKnee"] = "mixamorig:LeftArm";
+  std::ofstream(dir / "m.json") << j.dump(2);
+  const CharacterMapping m = loadCharacterMapping(dir / "m.json", CharacterKind::Rider);
+  EXPECT_EQ(errorOf([&] { loadCharacterGltf(file, CharacterKind::Rider, &m); }),
+            (dir / "m.json").string() + ": roles.lKnee: joint \"mixamorig:LeftArm\" is not below lHip \"mixamorig:LeftUpLeg\" "
+                                        "(expected the knee on the leg's chain below the hip; change it in the mapping file)");
+  j["roles"]["lKnee"] = "mixamorig:LeftLeg";
+  j["roles"]["neck"] = "mixamorig:Spine";
+  std::ofstream(dir / "m.json") << j.dump(2);
+  const CharacterMapping m2 = loadCharacterMapping(dir / "m.json", CharacterKind::Rider);
+  EXPECT_EQ(errorOf([&] { loadCharacterGltf(file, CharacterKind::Rider, &m2); }),
+            (dir / "m.json").string() + ": roles.neck: joint \"mixamorig:Spine\" is not above pelvis \"mixamorig:Hips\" with a "
+                                        "spine joint between them (expected the neck on the chain that runs up from the pelvis; change "
+                                        "it in the mapping file)");
+}
+
+}  // namespace
+}  // namespace stirrup::rig
