@@ -46,6 +46,16 @@ struct Character {
     // The widest the horse is within one cell of (x, y) (-inf outside the table).
     float widthNear(float x, float y) const;
   } leg_guard;
+  // A rider on a horse she was not built for (rig/io/ridden_pair.h) keeps her head and trunk out of the
+  // horse's neck and head as she folds forward (a tall rider in a rear meets the poll): sample points
+  // of her upper body and of the horse's neck and head, each rigid on its joint, and the room posing
+  // keeps between them (rig/pose.h). Empty: no guard (the generated pair, built together).
+  struct FoldGuard {
+    std::vector<int> rider_joint, horse_joint;
+    std::vector<glm::vec3> rider_local, horse_local;  // each point in its joint's frame
+    float room_cm = 3.0f;
+    bool empty() const { return rider_joint.empty() || horse_joint.empty(); }
+  } fold_guard;
   // A rider seated by the rig: how much more (or less) her spine's chain bends for the curve spine's
   // controllers than it would by their angles alone, so her trunk (pelvis to neck) leans for the rider
   // channels as the generated rider's does (her chain starts higher above the pelvis, or ends lower

@@ -22,6 +22,8 @@ constexpr glm::vec3 kX{1.0f, 0.0f, 0.0f}, kY{0.0f, 1.0f, 0.0f}, kZ{0.0f, 0.0f, 1
 // How far the neck turns back at most to counter the balance stage's turn: a choice, well inside the
 // extension range of a neck, so the head never tips back past where a rider looking ahead holds it.
 constexpr float kNeckCounterRangeDeg = 45.0f;
+// The fold guard (Character::FoldGuard) finds the largest forward turn that keeps its room to this.
+constexpr double kFoldGuardToleranceDeg = 0.1;
 
 glm::mat4 rot(double degrees, glm::vec3 axis) {
   return glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(degrees)), axis);
@@ -392,15 +394,47 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
     in.seat_rise_cm = (glm::inverse(saddle) * glm::vec4(in.seat, 1.0f)).y - s.restPosition(pivot).y;
     in.accel_cm_s2 = balance->accel_cm_s2;
     in.ground_pitch_deg = balance->ground_pitch_deg;
-    const BalanceResult decided = balanceTrunk(in, balance->params);
+    BalanceResult decided = balanceTrunk(in, balance->params);
+    // Forward is a turn taking the vertical toward the heading: about up x heading. The seat rises
+    // along the saddle's up.
+    const glm::vec3 axis = glm::normalize(glm::cross(kY, saddleHeading(saddle)));
+    const glm::vec3 lift = glm::normalize(glm::vec3(saddle[1])) * float(decided.seat_lift_cm);
+    const auto turnBy = [&](double deg) {
+      return translate(in.seat + lift) * glm::rotate(glm::mat4(1.0f), glm::radians(float(deg)), axis) * translate(-in.seat);
+    };
+    if (decided.turn_deg > 0.0 && !rider.fold_guard.empty()) {
+      // Folding forward, she stops where her head or chest would come within the guard's room of the
+      // horse's neck and head (a rider on a horse she was not built for; Character::FoldGuard).
+      const Character::FoldGuard& g = rider.fold_guard;
+      std::vector<glm::vec3> neck(g.horse_joint.size()), upper(g.rider_joint.size());
+      for (std::size_t k = 0; k < neck.size(); ++k) neck[k] = glm::vec3(horseWorld[g.horse_joint[k]] * glm::vec4(g.horse_local[k], 1.0f));
+      for (std::size_t k = 0; k < upper.size(); ++k) upper[k] = glm::vec3(world[g.rider_joint[k]] * glm::vec4(g.rider_local[k], 1.0f));
+      const float room2 = g.room_cm * g.room_cm;
+      const auto clear = [&](double deg) {
+        const glm::mat4 t = turnBy(deg);
+        for (const glm::vec3& p : upper) {
+          const glm::vec3 q(t * glm::vec4(p, 1.0f));
+          for (const glm::vec3& h : neck)
+            if (glm::dot(q - h, q - h) < room2) return false;
+        }
+        return true;
+      };
+      if (!clear(decided.turn_deg)) {
+        // The largest turn that keeps the room, to a tenth of a degree (bisection: nearer the neck the
+        // further she folds).
+        double lo = 0.0, hi = decided.turn_deg;
+        while (hi - lo > kFoldGuardToleranceDeg) {
+          const double mid = 0.5 * (lo + hi);
+          (clear(mid) ? lo : hi) = mid;
+        }
+        decided.turn_deg = lo;
+        decided.lean_deg = decided.pose_lean_deg + lo;
+        decided.limited = true;
+      }
+    }
     if (balance_result) *balance_result = decided;
     if (decided.turn_deg != 0.0 || decided.seat_lift_cm != 0.0) {
-      // Forward is a turn taking the vertical toward the heading: about up x heading. The seat rises
-      // along the saddle's up.
-      const glm::vec3 axis = glm::normalize(glm::cross(kY, saddleHeading(saddle)));
-      const glm::vec3 lift = glm::normalize(glm::vec3(saddle[1])) * float(decided.seat_lift_cm);
-      const glm::mat4 turn = translate(in.seat + lift) *
-                             glm::rotate(glm::mat4(1.0f), glm::radians(float(decided.turn_deg)), axis) * translate(-in.seat);
+      const glm::mat4 turn = turnBy(decided.turn_deg);
       local[top] = turn * local[top];
       const float counter = std::clamp(float(decided.turn_deg * balance->params.head_counter), -kNeckCounterRangeDeg,
                                        kNeckCounterRangeDeg);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "render/cli/commands.h"
+#include "render/cli/output_folder.h"
 #include "render/cli/options.h"
 #include "render/cli/progress.h"
 #include "render/frame_writer.h"
@@ -61,7 +62,7 @@ void runRender(const RenderOptions& o) {
   rig::RigProfile profile = render::resolveProfile(scene);
   rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
-  fs::create_directories(dir);
+  const OutputFolder folder(dir);  // taken back if the render fails before writing a frame
   const std::string base = (dir / (scene.name + "_" + camera.name)).string();
 
   if (o.encode_only) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <cstdint>
+#include <unordered_map>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -288,6 +290,42 @@ std::vector<bool> horseLooseTack(const Character& horse) {
         piece[find(static_cast<std::uint32_t>(v))] = true;
   for (std::size_t v = 0; v < n; ++v) loose[v] = piece[find(static_cast<std::uint32_t>(v))];
   return loose;
+}
+
+Character::FoldGuard foldGuard(const Character& rider, const Character& horse) {
+  Character::FoldGuard g;
+  // One point per cube: the first vertex met in each (the mesh's order is the file's: deterministic).
+  const auto thin = [](const Character& c, const std::vector<char>& keep, const glm::vec3 offset, std::vector<int>& joint,
+                       std::vector<glm::vec3>& local) {
+    const std::vector<glm::vec3> mesh = restMesh(c);
+    const std::vector<glm::mat4> rest = restWorlds(c.skeleton);
+    std::unordered_map<std::int64_t, char> seen;
+    for (std::size_t v = 0; v < mesh.size(); ++v) {
+      const int j = dominantJoint(c.mesh, v);
+      if (!keep[j]) continue;
+      const glm::ivec3 k(glm::floor((mesh[v] - offset) / kFoldGuardCellCm));
+      const std::int64_t key = (std::int64_t(k.x & 0x1FFFFF) << 42) | (std::int64_t(k.y & 0x1FFFFF) << 21) | std::int64_t(k.z & 0x1FFFFF);
+      if (!seen.emplace(key, 1).second) continue;
+      joint.push_back(j);
+      local.push_back(glm::vec3(glm::inverse(rest[j]) * glm::vec4(mesh[v], 1.0f)));
+    }
+  };
+  const Skeleton& rs = rider.skeleton;
+  std::vector<char> upper(rs.size(), 1);
+  for (const char* role : {"lElbow", "rElbow", "lHip", "rHip"}) {
+    const std::vector<char> below = subtree(rs, rider.role(role));
+    for (std::size_t j = 0; j < rs.size(); ++j) upper[j] = upper[j] && !below[j];
+  }
+  thin(rider, upper, glm::vec3(0.0f), g.rider_joint, g.rider_local);
+  std::vector<char> neck = subtree(horse.skeleton, horse.role("neck1"));
+  // The reins and bit hang from the head but are held, not a surface to keep from.
+  for (const char* role : {"lRein", "rRein"})
+    if (const auto it = horse.roles.find(role); it != horse.roles.end() && it->second != horse.role("neck1")) {
+      const std::vector<char> below = subtree(horse.skeleton, it->second);
+      for (std::size_t j = 0; j < neck.size(); ++j) neck[j] = neck[j] && !below[j];
+    }
+  thin(horse, neck, glm::vec3(0.0f), g.horse_joint, g.horse_local);
+  return g;
 }
 
 bool restIsStanding(const Character& rider) {

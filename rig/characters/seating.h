@@ -83,6 +83,13 @@ struct SeatedRider {
 // joint of its own (the irons, the leathers hanging from the saddle, the reins and bit).
 std::vector<bool> horseLooseTack(const Character& horse);
 
+// The points Character::FoldGuard keeps apart, from both at rest (the rider seated in saddle space): her
+// head, neck and trunk without her arms below the elbows and her legs, and the horse's neck and head
+// (all its first neck joint carries) without the reins, each thinned to one point per kFoldGuardCellCm
+// cube and bound rigidly to the joint that moves it most.
+inline constexpr float kFoldGuardCellCm = 3.0f;
+Character::FoldGuard foldGuard(const Character& rider, const Character& horse);
+
 // True when the rider's rest is standing: both thighs hang within 30° of straight down.
 bool restIsStanding(const Character& rider);
 

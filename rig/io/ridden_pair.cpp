@@ -20,6 +20,7 @@ RiddenPair seatPair(Character horse, Character rider, const RigProfile& profile)
   pair.horse = std::move(seated.horse);
   pair.rider = std::move(seated.rider);
   pair.seat = std::move(seated.report);
+  pair.rider.fold_guard = foldGuard(pair.rider, pair.horse);
   return pair;
 }
 

@@ -136,3 +136,32 @@ TEST_F(SceneErrors, BadPathsAndTerrainsAreOneLine) {
 
 }  // namespace
 }  // namespace stirrup::test
+
+namespace stirrup::test {
+namespace {
+
+// A mapping that names a joint its file lacks is found when the shot loads its characters, after the
+// output folder is known: the error is one line naming the mapping, the role and the joint, and the
+// render leaves no empty output folder behind (the folder, and the missing parent made for it, are
+// taken back).
+TEST_F(SceneErrors, ABadMappingIsOneLineAndLeavesNoEmptyOutputFolder) {
+  const fs::path rider = dir / "rider.glb", mapping = dir / "rider-map.json";
+  ASSERT_EQ(runStirrup("character make humanoid --names mixamo -o " + quote(rider.string())).exit_code, 0);
+  ASSERT_EQ(runStirrup("character map " + quote(rider.string()) + " --as rider -o " + quote(mapping.string())).exit_code, 0);
+  std::string text = readText(mapping);
+  const std::string joint = "\"mixamorig:LeftForeArm\"";
+  ASSERT_NE(text.find(joint), std::string::npos) << text;
+  text.replace(text.find(joint), joint.size(), "\"mixamorig:LeftElbowX\"");
+  write("rider-map.json", text);
+  const fs::path scene = write("mapped.json", R"({"name": "mapped", "clip": {"generator": "trot"}, "characters": {"horse": )" +
+                                                  std::string("\"") + STIRRUP_SOURCE_DIR + R"(/scenes/characters/horse.glb", )" +
+                                                  R"("rider": {"file": "rider.glb", "mapping": "rider-map.json"}}, "frames": "1-2", )" +
+                                                  R"("resolution": [64, 36], "output": "out/shots"})");
+  expectError("render " + quote(scene.string()),
+              mapping.string() + ": roles.lElbow: no joint named \"mixamorig:LeftElbowX\" in " + rider.string() +
+                  " (change it to one of the file's joints: stirrup character map " + rider.string() +
+                  " --as rider lists them with the roles they seem to play)");
+}
+
+}  // namespace
+}  // namespace stirrup::test
