@@ -64,9 +64,7 @@ struct Baked {
 
 // Writes the user's rider and a trot scene naming it, bakes --rider-only, and writes stirrup's own
 // joint positions for every frame (metres, the file's glTF world) as the script's --check JSON.
-Baked bakeUserRider(const rig::test::UserRiderSpec& spec, const fs::path& dir) {
-  fs::remove_all(dir);
-  const rig::test::UserRiderFiles files = rig::test::writeUserRider(spec, dir);
+Baked bakeUserRider(const rig::test::UserRiderFiles& files, const fs::path& dir) {
   nlohmann::json scene = nlohmann::json::parse(readText(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "trot.json"));
   scene["name"] = "trot";
   scene["characters"] = {{"horse", STIRRUP_SOURCE_DIR "/scenes/characters/horse.glb"},
@@ -119,12 +117,18 @@ rig::test::UserRiderSpec riderSpec(const std::string& name) {
   throw std::logic_error("no test rider " + name);
 }
 
+fs::path freshDir(const std::string& name) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_blender_apply_rider" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
 // Bakes the rider, runs the script with --check on stirrup's positions (and on `moved`, a copy with
 // one joint moved 1.5 cm at frame 13, when asked) and checks the report's first line: every joint of
 // her file, every frame, within 1 cm. Returns the run for the caller's further checks.
-CommandResult applyAndCheck(const std::string& name, bool with_moved) {
-  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_blender_apply_rider" / name;
-  const Baked b = bakeUserRider(riderSpec(name), dir);
+CommandResult applyAndCheck(const std::string& name, const rig::test::UserRiderFiles& files, const fs::path& dir, bool with_moved) {
+  const Baked b = bakeUserRider(files, dir);
   if (testing::Test::HasFailure()) return {};
   EXPECT_EQ(b.frames.size(), std::size_t(kFrames));
   EXPECT_EQ(b.frames[0]["joints"].size(), b.user_joints);  // the expectation names every joint of her file
@@ -173,7 +177,8 @@ CommandResult applyAndCheck(const std::string& name, bool with_moved) {
 // Mixamo names, T-pose rest, 3 spine joints, end joints: every joint within 1 cm, exit 0.
 TEST(BlenderApplyRider, MixamoTPoseLandsWhereStirrupPutsHer) {
   if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
-  const CommandResult r = applyAndCheck("mixamo_t3", false);
+  const fs::path dir = freshDir("mixamo_t3");
+  const CommandResult r = applyAndCheck("mixamo_t3", rig::test::writeUserRider(riderSpec("mixamo_t3"), dir), dir, false);
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }
 
@@ -182,8 +187,41 @@ TEST(BlenderApplyRider, MixamoTPoseLandsWhereStirrupPutsHer) {
 // joint moved 1.5 cm at frame 13, that one is reported at 1.5 cm there and the run exits 1.
 TEST(BlenderApplyRider, RigifyAPoseLandsWhereStirrupPutsHerAndAMovedJointFails) {
   if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
-  const CommandResult r = applyAndCheck("rigify_a6", true);
+  const fs::path dir = freshDir("rigify_a6");
+  const CommandResult r = applyAndCheck("rigify_a6", rig::test::writeUserRider(riderSpec("rigify_a6"), dir), dir, true);
   EXPECT_EQ(r.exit_code, 1) << "the moved expectation must fail the run\n" << r.out << r.err;
+}
+
+// Blender's own Rigify human (scripts/blender-rigify-rider: the meta-rig, the rig Rigify generates, a
+// body skinned by automatic weights, exported by Blender's glTF exporter with deform bones only: 160
+// DEF- bones, the limbs and face roots of their own), with the mapping a user would write for Blender
+// 3.x's meta-rig: every one of its bones within 1 cm at every frame. (Two Blender launches: one makes
+// her, one applies the motion.)
+TEST(BlenderApplyRider, BlendersOwnRigifyRiderLandsWhereStirrupPutsHer) {
+  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  const fs::path dir = freshDir("blender_rigify");
+  const rig::test::UserRiderFiles files{dir / "rigify-rider.glb", dir / "rigify-rider-mapping.json"};
+  const CommandResult made = runCommand(quote(STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider") + " " + quote(files.glb.string()));
+  ASSERT_EQ(made.exit_code, 0) << made.out << made.err;
+  // Rigify's human meta-rig in Blender 3.x: DEF-spine the pelvis, spine.004 the neck, spine.006 the
+  // head; the first half of upper_arm, forearm, thigh and shin the joint; palm.02 the middle
+  // metacarpal; toe the ball of the foot. Exported in metres, +Y up, facing +Z.
+  nlohmann::json roles = {{"pelvis", "DEF-spine"}, {"neck", "DEF-spine.004"}, {"head", "DEF-spine.006"}};
+  for (const char* side : {"L", "R"}) {
+    const std::string s = side, r = s == "L" ? "l" : "r";
+    roles[r + "Shoulder"] = "DEF-upper_arm." + s;
+    roles[r + "Elbow"] = "DEF-forearm." + s;
+    roles[r + "Wrist"] = "DEF-hand." + s;
+    roles[r + "Hand"] = "DEF-palm.02." + s;
+    roles[r + "Hip"] = "DEF-thigh." + s;
+    roles[r + "Knee"] = "DEF-shin." + s;
+    roles[r + "Ankle"] = "DEF-foot." + s;
+    roles[r + "Ball"] = "DEF-toe." + s;
+  }
+  std::ofstream(files.mapping) << nlohmann::json{{"character", "rider"}, {"scale_cm", 100}, {"forward", {0, 0, 1}},
+                                                 {"up", {0, 1, 0}}, {"roles", roles}}.dump(2);
+  const CommandResult r = applyAndCheck("blender_rigify", files, dir, false);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }
 
 }  // namespace
