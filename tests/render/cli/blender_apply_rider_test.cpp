@@ -192,6 +192,45 @@ TEST(BlenderApplyRider, RigifyAPoseLandsWhereStirrupPutsHerAndAMovedJointFails) 
   EXPECT_EQ(r.exit_code, 1) << "the moved expectation must fail the run\n" << r.out << r.err;
 }
 
+// Bad input: a one-line error naming the file and what was expected, exit 1 (2 for a usage error),
+// nothing written.
+TEST(BlenderApplyRider, BadInputIsAOneLineError) {
+  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  const fs::path dir = freshDir("bad_input");
+  const rig::test::UserRiderFiles mixamo = rig::test::writeUserRider(riderSpec("mixamo_t3"), dir);
+  const rig::test::UserRiderFiles rigify = rig::test::writeUserRider(riderSpec("rigify_a6"), dir);
+  const Baked b = bakeUserRider(mixamo, dir);
+  if (HasFailure()) return;
+  const std::string script = quote(STIRRUP_SOURCE_DIR "/scripts/blender-apply-rider") + " ";
+  const fs::path blend = dir / "never.blend";
+
+  // The rider baked from another file: caught before anything is applied.
+  CommandResult r = runCommand(script + quote(rigify.glb.string()) + " " + quote(b.rider_glb.string()) + " --blend " + quote(blend.string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "scripts/blender-apply-rider: " + b.rider_glb.string() + ": joint mixamorig:Hips is not a node of " +
+                       rigify.glb.string() + " (was the rider baked from this file?)\n");
+  // Not a rider-only file (the user's own file in its place).
+  r = runCommand(script + quote(mixamo.glb.string()) + " " + quote(mixamo.glb.string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "scripts/blender-apply-rider: " + mixamo.glb.string() +
+                       ": no fps in the scene's extras, no skin or no animation (expected the output of stirrup bake --rider-only)\n");
+  // An expectation naming a frame the file does not key.
+  const fs::path late = dir / "late.json";
+  std::ofstream(late) << R"({"frames": [{"frame": 30, "joints": {}}]})";
+  r = runCommand(script + quote(mixamo.glb.string()) + " " + quote(b.rider_glb.string()) + " --check " + quote(late.string()) +
+                 " --blend " + quote(blend.string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "scripts/blender-apply-rider: " + late.string() + ": frame 30: expected a frame the rider file keys (1-24)\n");
+  EXPECT_FALSE(fs::exists(blend));
+  // Usage errors, before Blender starts.
+  r = runCommand(script + quote(mixamo.glb.string()));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  r = runCommand(script + quote(mixamo.glb.string()) + " " + quote(b.rider_glb.string()) + " --frame x");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "scripts/blender-apply-rider: --frame: expected a frame number\n");
+}
+
 // Blender's own Rigify human (scripts/blender-rigify-rider: the meta-rig, the rig Rigify generates, a
 // body skinned by automatic weights, exported by Blender's glTF exporter with deform bones only: 160
 // DEF- bones, the limbs and face roots of their own), with the mapping a user would write for Blender
