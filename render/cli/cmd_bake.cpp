@@ -121,6 +121,7 @@ void writeRiderGlb(const render::SceneSpec& scene, const rig::RigProfile& profil
   rig::RiderMotion motion;
   motion.seat = pair.seat;
   motion.name = scene.name;
+  motion.fps = scene.fps;
   for (int frame : frames) {
     const rig::BakedFrame b = rig::bakeFrame(clip, profile, frame, render::frameTime(scene, frame));
     motion.seconds.push_back(static_cast<float>(b.seconds));

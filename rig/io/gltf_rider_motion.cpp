@@ -193,11 +193,17 @@ std::vector<unsigned char> riderMotionGlb(const Character& rider, const RiderMot
   tinygltf::Scene scene;
   scene.name = motion.name;
   scene.nodes = {0};
-  if (const tinygltf::Value seat = seatExtras(motion.seat); seat.IsObject()) {
-    tinygltf::Value::Object extras;
-    extras["stirrup_seat"] = seat;
-    scene.extras = tinygltf::Value(extras);
-  }
+  tinygltf::Value::Object extras;
+  extras["fps"] = tinygltf::Value(motion.fps);
+  extras["frame_time"] = tinygltf::Value(std::string("seconds = (frame - 1) / fps: frame 1 at t = 0"));
+  const auto fileDirection = [&](const glm::dvec3& rig) {
+    const glm::dvec3 d = glm::normalize(glm::dvec3(from_rig * glm::dvec4(rig, 0.0)));
+    return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(d.x), tinygltf::Value(d.y), tinygltf::Value(d.z)});
+  };
+  extras["stirrup_forward"] = fileDirection({1.0, 0.0, 0.0});
+  extras["stirrup_up"] = fileDirection({0.0, 1.0, 0.0});
+  if (const tinygltf::Value seat = seatExtras(motion.seat); seat.IsObject()) extras["stirrup_seat"] = seat;
+  scene.extras = tinygltf::Value(extras);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   return glbBytes(model, std::move(bin));

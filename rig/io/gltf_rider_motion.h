@@ -9,6 +9,11 @@
 // joint locals that skin the user's mesh as stirrup's pose skins stirrup's copy of it, so the action
 // applies to the user's rig by joint name. Nodes between two joints in the user's file are folded into
 // the child joint's local. The built-in rider is written in metres with stirrup's axes.
+//
+// The scene's extras hold `fps` and `frame_time` (as the whole shot's do, so a DCC sets its frame
+// rate before it imports), `stirrup_forward` and `stirrup_up` (stirrup's +X and +Y, the way the horse
+// travels and up, as unit vectors in the file's space: where a script puts a side camera) and, for a
+// seated rider, `stirrup_seat`.
 #pragma once
 
 #include <string>
@@ -23,6 +28,7 @@ namespace stirrup::rig {
 
 struct RiderMotion {
   std::string name;                           // the animation's name
+  double fps = 24.0;                          // the scene's frame rate: seconds = (frame - 1) / fps
   std::vector<float> seconds;                 // one per frame, strictly increasing
   std::vector<std::vector<glm::mat4>> world;  // one per frame: the rider's joint world matrices (posing)
   SeatReport seat;                            // how the rig seated her (the scene's extras, "stirrup_seat")

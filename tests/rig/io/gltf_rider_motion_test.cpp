@@ -150,6 +150,7 @@ TEST(GltfRiderMotion, RoundTripsOntoTheUsersRider) {
   const ProceduralGait gait(trotParams());
   RiderMotion motion;
   motion.name = "trot";
+  motion.fps = 30.0;  // not the default, so the file's extras are seen to carry it
   for (int frame = 1; frame <= 24; frame += 5) {
     const BakedFrame b = bakeFrame(gait, profile, frame, (frame - 1) / 24.0);
     const MountedPose p = poseMounted(test::defaultHorse(), rider, b.horse, b.rider, profile);
@@ -165,6 +166,16 @@ TEST(GltfRiderMotion, RoundTripsOntoTheUsersRider) {
   ASSERT_TRUE(io.LoadBinaryFromFile(&orig, &err, &warn, user.string())) << err;
   EXPECT_TRUE(out.meshes.empty());
   EXPECT_TRUE(out.cameras.empty());
+  // The scene's extras: the frame rate, and stirrup's forward (+X) and up (+Y) in the user's space
+  // (the mapping says forward +Z, up +Y).
+  const tinygltf::Value& extras = out.scenes.at(0).extras;
+  EXPECT_EQ(extras.Get("fps").GetNumberAsDouble(), 30.0);
+  const auto direction = [&](const char* key) {
+    const tinygltf::Value& v = extras.Get(key);
+    return glm::dvec3(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble(), v.Get(2).GetNumberAsDouble());
+  };
+  EXPECT_LT(glm::length(direction("stirrup_forward") - glm::dvec3(0, 0, 1)), 1e-9);
+  EXPECT_LT(glm::length(direction("stirrup_up") - glm::dvec3(0, 1, 0)), 1e-9);
   ASSERT_EQ(out.skins.size(), 1u);
   ASSERT_EQ(out.animations.size(), 1u);
   // Exported node -> the user's node of the same name; every user joint is there.
