@@ -32,7 +32,11 @@ glm::vec3 saddleHeading(const glm::mat4& saddle) {
 
 double trunkComHeight(const Character& rider) {
   const Skeleton& s = rider.skeleton;
-  const double pelvis = s.restPosition(rider.role("pelvis")).y;
+  // Her hips: where a seated user's rider folds (hipCentre, between her hip joints), else the pelvis
+  // joint (the generated rider's is at her hip joints' height). A user's pelvis joint may sit well
+  // below or above them (Rigify's DEF-spine 6.5 cm below), which would read as a longer trunk.
+  const auto hip_centre = rider.roles.find("hipCentre");
+  const double pelvis = s.restPosition(hip_centre != rider.roles.end() ? hip_centre->second : rider.role("pelvis")).y;
   const double shoulders = 0.5 * (s.restPosition(rider.role("lShoulder")).y + s.restPosition(rider.role("rShoulder")).y);
   const double head = s.restPosition(rider.role("head")).y;
   const double elbows = 0.5 * (s.restPosition(rider.role("lElbow")).y + s.restPosition(rider.role("rElbow")).y);

@@ -51,7 +51,7 @@ struct BalanceInput {
   glm::vec3 seat{0.0f};        // the rider's pelvis joint, world, as the channels place it
   glm::vec3 stirrups{0.0f};    // the middle of the two stirrup treads (where the balls of her feet go), world
   glm::vec3 trunk{0.0f, 1.0f, 0.0f};  // pelvis joint -> neck joint as the channels pose it, world
-  double com_height_cm = 26;   // the trunk's centre of mass above the pelvis joint (trunkComHeight)
+  double com_height_cm = 26;   // the trunk's centre of mass above her hips (trunkComHeight)
   double fold_scale = 1;       // how many times larger the channels' fold is than the posing limit let through (>= 1)
   double seat_rise_cm = 0;     // how far the channels raise her pelvis joint above its rest place, in the saddle's frame
   double accel_cm_s2 = 0;      // the horse's travel acceleration along its heading (HorseFrame::travel_accel_cm_s2)
@@ -77,7 +77,8 @@ double leanDegrees(glm::vec3 v, glm::vec3 forward);
 // The saddle's heading: its +X axis laid flat (the horse's forward on the ground).
 glm::vec3 saddleHeading(const glm::mat4& saddle);
 
-// The height of the rider's head, arms and trunk's centre of mass above her pelvis joint at rest, from
+// The height of the rider's head, arms and trunk's centre of mass above her hips at rest (hipCentre
+// where the seating marked it, else the pelvis joint), from
 // her skeleton and the segment masses of Plagenhoef, Evans and Abdelnour 1983 (women): trunk 45.0% at
 // the middle of hips to shoulders, head and neck 8.2% at the head joint, each arm 4.97% at its elbow.
 double trunkComHeight(const Character& rider);

@@ -61,6 +61,10 @@ struct Character {
   // channels as the generated rider's does (her chain starts higher above the pelvis, or ends lower
   // below the neck, than the thesis rig's). 1 for the generated rider.
   float spine_bend_gain = 1.0f;
+  // A rider seated by the rig: the height of her trunk's centre of mass above her hips that the balance
+  // stage's support lean uses (rig/balance.h), in proportion to her legs as the generated rider's is
+  // (rig/characters/seating.h); 0: measured from her skeleton (trunkComHeight).
+  float balance_com_height_cm = 0.0f;
 
   int role(std::string_view r) const {
     const auto it = roles.find(r);

@@ -389,7 +389,7 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
     in.seat = position(world[pivot]);
     in.stirrups = 0.5f * (stirrupTarget(horse, horseWorld, r, rider_unit_cm, 0) + stirrupTarget(horse, horseWorld, r, rider_unit_cm, 1));
     in.trunk = position(world[rider.role("neck")]) - position(world[pelvis]);
-    in.com_height_cm = trunkComHeight(rider);
+    in.com_height_cm = rider.balance_com_height_cm > 0.0f ? rider.balance_com_height_cm : trunkComHeight(rider);
     in.fold_scale = balance->fold_scale;
     in.seat_rise_cm = (glm::inverse(saddle) * glm::vec4(in.seat, 1.0f)).y - s.restPosition(pivot).y;
     in.accel_cm_s2 = balance->accel_cm_s2;

@@ -636,6 +636,8 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
   }
   seated.spine_bend_gain = spineBendGain(seated);
   report.spine_bend_gain = seated.spine_bend_gain;
+  seated.balance_com_height_cm = kReferenceComHeightCm * (report.tread_below_seat_cm + report.seat_depth_cm) / kReferenceHipsToTreadCm;
+  report.balance_com_height_cm = seated.balance_com_height_cm;
   out.rider = std::move(seated);
 
   // The horse's stirrups at the leathers just set (the irons move; the leathers, bound to the saddle

@@ -34,6 +34,16 @@ namespace stirrup::rig {
 inline constexpr float kLeatherHoleCm = 2.5f;
 inline constexpr float kHolesUpDressage = 0.0f, kHolesUpGeneral = 2.0f, kHolesUpJumping = 4.0f;
 
+// The generated rider's balance proportions (rig/characters/rider_character.h with the default
+// RiderParams, on the generated horse's mount): her trunk's centre of mass 23.6 cm above her hips
+// (trunkComHeight; checked by a test), her hips 10 cm above the seat centre and the treads 74 cm below
+// it (MountParams::stirrup). A seated rider's support lean uses a centre-of-mass height in this
+// proportion to her own hips-to-tread drop, so she balances over her stirrups as the generated rider
+// does: measured from their own skeletons, riders of Winter's proportions (hips to shoulders 0.288 of
+// their height, the generated rider 0.235) would lean about a quarter less than the default rider
+// as the horse pitches, 3-4 degrees at a jump's landing.
+inline constexpr float kReferenceComHeightCm = 23.6f, kReferenceHipsToTreadCm = 84.0f;
+
 struct SeatParams {
   float stirrup_holes_up = kHolesUpGeneral;  // RigProfile::seat.stirrup_holes_up
   // Where the hip joints sit over the seat: 2 cm behind the seat centre, as the generated rider is
@@ -68,6 +78,7 @@ struct SeatReport {
   float tread_out_cm = 0;         // how far the treads moved out from the horse's (her legs clear its sides)
   float hand_shortfall_cm = 0;    // how far short of the rein grips her hands stayed (arms too short), 0 = on them
   float spine_bend_gain = 1;      // Character::spine_bend_gain: her spine bends this much more for the same channels
+  float balance_com_height_cm = 0;  // Character::balance_com_height_cm: the support lean's centre-of-mass height
   std::vector<std::string> added_points;  // rig points added (the grips, the sole contacts)
   std::vector<std::string> notes;
 };

@@ -71,6 +71,7 @@ tinygltf::Value seatExtras(const SeatReport& seat) {
     number("tread_out_cm", seat.tread_out_cm);
     number("hand_shortfall_cm", seat.hand_shortfall_cm);
     number("spine_bend_gain", seat.spine_bend_gain);
+    number("balance_com_height_cm", seat.balance_com_height_cm);
   }
   const auto list = [&](const char* key, const std::vector<std::string>& items) {
     tinygltf::Value::Array a;

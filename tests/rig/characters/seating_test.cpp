@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -76,21 +77,33 @@ struct Worst {
 
 class SeatedUserRider : public ::testing::TestWithParam<test::UserRiderSpec> {};
 
-TEST_P(SeatedUserRider, RidesTrotCanterAndJumpSeatedWithFeetInTheStirrupsAndHandsOnTheReins) {
-  const test::UserRiderSpec& spec = GetParam();
-  const test::UserRiderFiles files = test::writeUserRider(spec, fs::path(STIRRUP_BINARY_DIR) / "test_seating");
+// The balance proportions the seating scales a rider's support lean by are the generated rider's.
+TEST(SeatRider, TheReferenceBalanceProportionsAreTheGeneratedRidersOnTheGeneratedMount) {
+  const Character& rider = test::defaultRider();
+  const Character& horse = test::defaultHorse();
+  EXPECT_NEAR(trunkComHeight(rider), kReferenceComHeightCm, 0.05);
+  const glm::vec3 seat = horse.skeleton.restPosition(horse.role("saddle"));
+  const float hips = 0.5f * (rider.skeleton.restPosition(rider.role("lHip")).y + rider.skeleton.restPosition(rider.role("rHip")).y);
+  const float tread = horse.skeleton.restPosition(horse.role("lStirrup")).y - seat.y;
+  EXPECT_NEAR(hips - tread, kReferenceHipsToTreadCm, 0.05);  // the rider is built in saddle space: hips above the seat centre
+}
+
+// Seats the rider in `glb` (through `mapping`, or mapped by itself when it is empty) on the default
+// horse and checks every frame of the trot, the canter and the jump (the header comment).
+void ridesSeated(const std::string& name, const fs::path& glb, const fs::path& mapping) {
   const Character& horse0 = test::defaultHorse();
   const Character& default_rider = test::defaultRider();
   const RigProfile profile = RigProfile::thesis();
-  const RiddenPair pair = seatPair(horse0, resolveCharacter(CharacterKind::Rider, files.glb.string(), files.mapping.string()), profile);
+  const RiddenPair pair = seatPair(horse0, resolveCharacter(CharacterKind::Rider, glb.string(), mapping.string()), profile);
   const Character& horse = pair.horse;
   const Character& rider = pair.rider;
-  ASSERT_TRUE(pair.seat.seated_by_rig) << spec.name;
+  ASSERT_TRUE(pair.seat.seated_by_rig) << name;
   std::printf("%s: stature %.1f cm, leg %.1f, seat depth %.1f, tread %.1f below the seat (%+.1f cm against the horse's), "
               "knees out %.0f deg, treads out %.1f cm, hands short %.1f cm\n",
-              spec.name.c_str(), pair.seat.stature_cm, pair.seat.leg_cm, pair.seat.seat_depth_cm, pair.seat.tread_below_seat_cm,
+              name.c_str(), pair.seat.stature_cm, pair.seat.leg_cm, pair.seat.seat_depth_cm, pair.seat.tread_below_seat_cm,
               pair.seat.leather_change_cm, pair.seat.knee_turn_out_deg, pair.seat.tread_out_cm, pair.seat.hand_shortfall_cm);
   for (const std::string& n : pair.seat.notes) std::printf("  note: %s\n", n.c_str());
+  std::printf("  trunk's centre of mass %.1f cm above her hips (the default rider's %.1f)\n", trunkComHeight(rider), trunkComHeight(default_rider));
 
   const Skeleton& s = rider.skeleton;
   const std::vector<bool> legs = legVertices(rider);
@@ -194,6 +207,25 @@ TEST_P(SeatedUserRider, RidesTrotCanterAndJumpSeatedWithFeetInTheStirrupsAndHand
                 "lean %.2f deg\n", clip_name, w.frames, w.seat, w.feet, w.hands, w.out_of_reach, w.legs, w.deepest.c_str(), 100.0 * w.bones, w.lean);
     if (::testing::Test::HasFailure()) return;  // one clip's failures say enough
   }
+}
+
+TEST_P(SeatedUserRider, RidesTrotCanterAndJumpSeatedWithFeetInTheStirrupsAndHandsOnTheReins) {
+  const test::UserRiderSpec& spec = GetParam();
+  const test::UserRiderFiles files = test::writeUserRider(spec, fs::path(STIRRUP_BINARY_DIR) / "test_seating");
+  ridesSeated(spec.name, files.glb, files.mapping);
+}
+
+// Blender's own Rigify human (scripts/blender-rigify-rider: Rigify's meta-rig and the rig it generates,
+// a skinned body, Blender's glTF exporter: 160 DEF- bones, limbs and face roots of their own), with no
+// mapping: stirrup maps it by itself, seats it and rides it as the generated test characters.
+TEST(SeatedBlenderRigifyRider, MappedByItselfRidesTrotCanterAndJumpSeated) {
+  if (std::system("command -v blender >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy): Blender's Rigify rider is not made";
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_seating" / "blender_rigify";
+  fs::create_directories(dir);
+  const fs::path glb = dir / "rigify-rider.glb";
+  ASSERT_EQ(std::system(("'" STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider' '" + glb.string() + "' >/dev/null 2>&1").c_str()), 0);
+  ridesSeated("blender_rigify", glb, "");
 }
 
 INSTANTIATE_TEST_SUITE_P(TestCharacters, SeatedUserRider, ::testing::ValuesIn(test::userRiderSpecs()),
