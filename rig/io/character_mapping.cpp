@@ -99,10 +99,10 @@ const std::vector<RoleBelow>& roleChains(CharacterKind kind) {
     for (const std::string side : {"l", "r"}) {
       r.push_back({side + "Elbow", side + "Shoulder", false, "the elbow on the arm's chain below the shoulder"});
       r.push_back({side + "Wrist", side + "Elbow", false, "the wrist on the arm's chain below the elbow"});
-      r.push_back({side + "Hand", side + "Wrist", false, "the grip in the palm, below the wrist"});
+      r.push_back({side + "Hand", side + "Wrist", true, "the grip at or below the wrist"});  // shared: the rig adds the grip
       r.push_back({side + "Knee", side + "Hip", false, "the knee on the leg's chain below the hip"});
       r.push_back({side + "Ankle", side + "Knee", false, "the ankle on the leg's chain below the knee"});
-      r.push_back({side + "Ball", side + "Ankle", false, "the ball of the foot below the ankle"});
+      r.push_back({side + "Ball", side + "Ankle", true, "the ball of the foot at or below the ankle"});  // shared: the rig adds the sole
     }
     return r;
   }();

@@ -116,7 +116,9 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
   const int first = static_cast<int>(model.nodes.size());
   for (std::size_t j = 0; j < s.size(); ++j) {
     tinygltf::Node n;
-    n.name = prefix + names[j];
+    // A user's joints keep the file's own names (the prefix would stop their tools matching bones by
+    // name); the generated characters' role names take the character's prefix.
+    n.name = (c.source.file.empty() ? prefix : std::string()) + names[j];
     const glm::mat4& l = s.joints[j].rest_local;
     const glm::vec3 t(l[3]);
     const glm::quat q = glm::normalize(glm::quat_cast(glm::mat3(l)));

@@ -35,7 +35,8 @@ struct GltfCharacterNodes {
 
 // Appends `character` to `model`: nodes, mesh, materials, skin. Binary data goes to `bin` (which
 // becomes buffer 0 when the model is written); the caller adds the returned root nodes to a scene.
-// `prefix` is prepended to node names (for two characters in one file).
+// `prefix` is prepended to node names (for two characters in one file), but not to a user's joints:
+// a character read from a file keeps its joints' own names, each character being an armature of its own.
 GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsigned char>& bin,
                                        const Character& character, const std::string& prefix = "");
 // Appends float data as a tightly packed buffer view and accessor; returns the accessor.

@@ -601,6 +601,56 @@ TEST(BakeGltf, ATexturedUserHorseKeepsItsTexture) {
   EXPECT_NE(v.out.find("\"warnings\":0,"), std::string::npos) << v.out;
 }
 
+// A user's rider keeps her joints' names in both bakes: the file's own, not the roles they play, with
+// no prefix, and a joint two roles share (a wrist that is also the hand) named once, as the file
+// names it. The full bake adds only the rig's own points (stirrup_*); --rider-only writes the file's
+// joints alone.
+TEST(BakeGltf, AUsersRiderKeepsHerJointNames) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / "user_names";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path glb = dir / "rider.glb", mapping = dir / "rider-map.json";
+  ASSERT_EQ(runStirrup("character make humanoid --names mixamo --pose a --shared-wrist-hand -o " + quote(glb.string())).exit_code, 0);
+  const CommandResult mapped = runStirrup("character map " + quote(glb.string()) + " --as rider -o " + quote(mapping.string()));
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
+  // The file's wrist is its hand: the mapping names it for both roles, as a user may write it.
+  nlohmann::json map = nlohmann::json::parse(std::ifstream(mapping));
+  nlohmann::json& roles = map["roles"];
+  roles["lHand"] = roles["lWrist"];
+  roles["rHand"] = roles["rWrist"];
+  std::ofstream(mapping) << map.dump(1);
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(STIRRUP_SOURCE_DIR "/scenes/trot.json"));
+  scene["characters"] = {{"horse", "default"}, {"rider", {{"file", glb.string()}, {"mapping", mapping.string()}}}};
+  std::ofstream(dir / "trot.json") << scene.dump(1);
+  std::set<std::string> file_joints;
+  {
+    const tinygltf::Model source = loadGlb(glb);
+    for (const int n : source.skins.at(0).joints) file_joints.insert(source.nodes.at(std::size_t(n)).name);
+  }
+  ASSERT_TRUE(file_joints.count(roles["lWrist"].get<std::string>()));
+  const auto skinJoints = [](const tinygltf::Model& m, int skin) {
+    std::set<std::string> names;
+    for (const int n : m.skins.at(std::size_t(skin)).joints) names.insert(m.nodes.at(std::size_t(n)).name);
+    return names;
+  };
+
+  CommandResult r = runStirrup("bake " + quote((dir / "trot.json").string()) + " --frames 1-6 -o " + quote((dir / "shot.glb").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tinygltf::Model shot = loadGlb(dir / "shot.glb");
+  ASSERT_EQ(shot.skins.size(), 2u);
+  const int rider_skin = shot.skins[0].name.rfind("rider:", 0) == 0 ? 0 : 1;
+  std::set<std::string> rig_points;
+  for (const std::string& name : skinJoints(shot, rider_skin))
+    if (!file_joints.count(name)) rig_points.insert(name);
+  for (const std::string& name : rig_points) EXPECT_EQ(name.rfind("stirrup_", 0), 0u) << name << " is neither hers nor a rig point";
+  std::set<std::string> written = skinJoints(shot, rider_skin);
+  for (const std::string& name : file_joints) EXPECT_TRUE(written.count(name)) << name << " lost its name in the bake";
+
+  r = runStirrup("bake " + quote((dir / "trot.json").string()) + " --frames 1-6 --rider-only -o " + quote((dir / "motion.glb").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(skinJoints(loadGlb(dir / "motion.glb"), 0), file_joints);
+}
+
 INSTANTIATE_TEST_SUITE_P(DefaultScenes, BakedCameras,
                          testing::Values("buck", "canter", "cross_country", "figure_eight", "fox", "fox_run", "gallop",
                                          "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"));
