@@ -95,13 +95,14 @@ PathLimitCheck::PathLimitCheck(const PathClipParams& params, const Terrain* terr
     return b;
   };
 
-  const int steps = std::max(1, int(std::ceil(length / kSampleStepCm)));
+  const double step_cm = std::max(kSampleStepCm, length / double(kMaxSamples));
+  const int steps = std::max(1, int(std::ceil(length / step_cm)));
   samples_.reserve(std::size_t(steps) + 1);
   int segment = 0;
   const int segments = int(path.points().size()) - 1;
   for (int i = 0; i <= steps; ++i) {
     Sample x;
-    x.s = std::min(length, double(i) * kSampleStepCm);
+    x.s = std::min(length, double(i) * step_cm);
     t = x.t = i == 0 ? 0.0 : timeAt(x.s);
     while (segment + 1 < segments && path.distanceAtPoint(std::size_t(segment) + 1) <= x.s) ++segment;
     x.segment = segment;
@@ -256,10 +257,12 @@ std::vector<LimitBreach> PathLimitCheck::during(double t0, double t1) const {
                                                                                                 : *std::prev(first);
     t0 = t1 = x.t;
   }
+  const auto from = std::lower_bound(samples_.begin(), samples_.end(), t0, [](const Sample& x, double t) { return x.t < t; });
   for (std::size_t k = 0; k < kLimits; ++k) {
     const Sample* worst = nullptr;
-    for (const Sample& x : samples_) {
-      if (x.t < t0 || x.t > t1 || !(x.bound[k] > 0.0 && x.value[k] > x.bound[k])) continue;
+    for (auto it = from; it != samples_.end() && it->t <= t1; ++it) {
+      const Sample& x = *it;
+      if (!(x.bound[k] > 0.0 && x.value[k] > x.bound[k])) continue;
       if (!worst || x.value[k] / x.bound[k] > worst->value[k] / worst->bound[k] * kWorseBy) worst = &x;
     }
     if (worst) out.push_back(breachAt(HorseLimit(k), *worst, *worst));

@@ -97,6 +97,9 @@ class PathLimitCheck {
                  const HorseLimits& limits = {});
 
   static constexpr double kSampleStepCm = 5.0;
+  // A path longer than kMaxSamples × kSampleStepCm (10 km) is sampled more coarsely, so the table stays
+  // within a few tens of megabytes.
+  static constexpr int kMaxSamples = 200000;
 
   // One entry per run of samples over a limit, in order of time (then of HorseLimit).
   const std::vector<LimitBreach>& breaches() const { return breaches_; }
