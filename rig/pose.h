@@ -1,7 +1,7 @@
 // Posing jobs: explicit inputs, explicit outputs, no hidden state. Each returns world matrices, one
 // per joint of the character's skeleton, for skinMesh.
 //
-// Signs follow ../shared/rig-channels.md by meaning. In the world (+X travel, +Y up, +Z the horse's
+// Signs follow docs/channels.md by meaning. In the world (+X travel, +Y up, +Z the horse's
 // right): "front end up" is a rotation about +Z, "roll toward the right" about +X, "yaw to the
 // right" about -Y. A rider's "lean forward" is about -Z, "lean to her right" about +X.
 //

@@ -86,7 +86,7 @@ TEST(Bake, HelpDocumentsTheCsv) {
   const CommandResult r = runStirrup("bake --help");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("--channels"), std::string::npos);
-  EXPECT_NE(r.out.find("rig-channels.md"), std::string::npos);
+  EXPECT_NE(r.out.find("docs/channels.md"), std::string::npos);
 }
 
 // stirrup bake -o: one glTF with both characters, their animation and the cameras.
