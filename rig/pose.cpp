@@ -123,18 +123,22 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
   using C = HorseChannel;
   std::vector<glm::mat4> local = restLocals(s);
 
-  // Body: the travel frame carries the rear pivot; rearPivot moves and turns it. A user's rig may hang
-  // the root from a joint of its own (a ground root): the travel frame carries the top of the root's
-  // tree, so no bone between them stretches.
+  // Body: the travel frame carries the rear pivot; rearPivot moves and turns it.
   const glm::mat4 travel = travelMatrix(frame);
   const int root = horse.role("root");
-  int top = root;
-  while (s.joints[top].parent >= 0) top = s.joints[top].parent;
-  const glm::mat4 carried = top == root ? travel : glm::mat4(1.0f);
-  if (top != root) local[top] = travel * s.joints[top].rest_local;
-  local[root] = carried * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]), float(h[C::rearPivotTz])}) *
+  local[root] = travel * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]), float(h[C::rearPivotTz])}) *
                 s.joints[root].rest_local * rot(-h[C::rearPivotRy], kY) * rot(h[C::rearPivotRz], kZ) *
                 rot(h[C::rearPivotRx], kX);
+  // A user's rig may hang the root from joints of its own (a ground root): they ride along rigidly with
+  // the root, so no bone between them stretches. (The root's rest is translation-only: its rest world
+  // is the inverse of its inverse bind.)
+  int top = root;
+  while (s.joints[top].parent >= 0) top = s.joints[top].parent;
+  if (top != root) {
+    const glm::mat4 root_world = local[root];
+    local[root] = s.joints[root].rest_local;
+    local[top] = root_world * s.joints[root].inverse_bind * s.joints[top].rest_local;
+  }
   // The back, neck and tail as this horse's skeleton has them (rig/horse_body.h).
   const HorseBody body = horseBody(horse);
   // Back arch: the hips-to-mid-back segment tilts up by half, the front half pitches down by half,

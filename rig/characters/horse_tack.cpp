@@ -44,6 +44,26 @@ int addRigPoint(Skeleton& s, const std::string& role, int parent, glm::vec3 at) 
   return j;
 }
 
+// Where the mesh's triangles that `keep` accepts (by their dominant joint) cross the plane x = `x`: the
+// ends of the segments the plane cuts from them. Measured on triangles, not vertices, so a mesh of
+// few, long triangles (a game model's) is measured as well as a dense one.
+template <class Keep>
+std::vector<glm::vec3> sectionAt(const SkinnedMesh& m, float x, Keep&& keep) {
+  std::vector<glm::vec3> out;
+  for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const std::uint32_t i[3] = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
+    const glm::vec3 p[3] = {m.positions[i[0]], m.positions[i[1]], m.positions[i[2]]};
+    const float lo = std::min({p[0].x, p[1].x, p[2].x}), hi = std::max({p[0].x, p[1].x, p[2].x});
+    if (x < lo || x > hi || !keep(dominantJoint(m, {i[0], i[1], i[2]}))) continue;
+    for (int e = 0; e < 3; ++e) {
+      const glm::vec3 a = p[e], b = p[(e + 1) % 3];
+      if ((a.x - x) * (b.x - x) > 0.0f || a.x == b.x) continue;
+      out.push_back(a + (b - a) * ((x - a.x) / (b.x - a.x)));
+    }
+  }
+  return out;
+}
+
 void appendMesh(SkinnedMesh& to, const SkinnedMesh& from) {
   const auto base = static_cast<std::uint32_t>(to.positions.size());
   to.positions.insert(to.positions.end(), from.positions.begin(), from.positions.end());
@@ -134,24 +154,21 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
   rep.back_joint = back_joint;
   rep.back_top_y = top;
 
-  // The barrel there: the body's vertices in a slab across the seat (the legs' and neck's left out).
-  const float slab = 0.05f * span;
+  // The barrel there: the section of the body's skin (its chain's joints: the legs and neck left out).
   float bottom = kInf, half_width = 0.0f;
-  for (std::uint32_t v = 0; v < m.positions.size(); ++v) {
-    const glm::vec3 q = m.positions[v];
-    if (std::abs(q.x - seat_x) > slab || q.y > top + 1.0f || !onBack(dominantJoint(m, {v}))) continue;
+  for (const glm::vec3& q : sectionAt(m, seat_x, onBack)) {
+    if (q.y > top + 1.0f) continue;
     bottom = std::min(bottom, q.y);
     half_width = std::max(half_width, std::abs(q.z - mid_z));
   }
   if (bottom == kInf || !(top - bottom > 1.0f) || !(half_width > 1.0f))
-    throw InputError(file + ": no barrel under the saddle: no vertex of the body's joints" + where);
+    throw InputError(file + ": no barrel under the saddle: no surface of the body's joints" + where);
   rep.barrel_bottom_y = bottom;
   rep.barrel_half_width = half_width;
   const glm::vec3 seat{seat_x, top + p.seat_above_back_cm, mid_z};
   rep.seat = seat;
   const glm::vec3 barrel_centre{seat_x, 0.5f * (top + bottom), mid_z};
   const glm::vec3 barrel_radii{p.barrel_length_fraction * span, 0.5f * (top - bottom), half_width};
-  const float k = barrel_radii.y / p.reference_barrel_half_height_cm;
 
   // Rig points.
   const int saddle = addRigPoint(s, "saddle", back_joint, seat);
@@ -170,16 +187,16 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
   horse.roles["lRein"] = l_rein;
   horse.roles["rRein"] = r_rein;
 
-  // The saddle: pad, flaps and girth shaped to the barrel, the seat with pommel and cantle (the
-  // generator's shapes, heights scaled to this barrel).
+  // The saddle: pad, flaps and girth shaped to the barrel, the seat with pommel and cantle: the
+  // generator's shapes and sizes (a saddle's flaps are cut to the rider's thigh, not to the horse).
   ImplicitBody shapes;
   const float far = half_width + 100.0f;
-  shapes.add(barrelShell(barrel_centre, barrel_radii, 1.8f, {seat.x - 28.0f, seat.y - 44.0f * k, mid_z - far},
+  shapes.add(barrelShell(barrel_centre, barrel_radii, 1.8f, {seat.x - 28.0f, seat.y - 44.0f, mid_z - far},
                          {seat.x + 28.0f, seat.y + 50.0f, mid_z + far}, saddle, p.pad));
-  shapes.add(barrelShell(barrel_centre, barrel_radii, 3.2f, {seat.x - 16.0f, seat.y - 38.0f * k, mid_z - far},
+  shapes.add(barrelShell(barrel_centre, barrel_radii, 3.2f, {seat.x - 16.0f, seat.y - 38.0f, mid_z - far},
                          {seat.x + 22.0f, seat.y + 50.0f, mid_z + far}, saddle, p.leather));
   shapes.add(barrelShell(barrel_centre, barrel_radii, 1.0f, {seat.x + 16.0f, bottom - 10.0f, mid_z - far},
-                         {seat.x + 21.0f, seat.y - 36.0f * k, mid_z + far}, saddle, p.leather));
+                         {seat.x + 21.0f, seat.y - 36.0f, mid_z + far}, saddle, p.leather));
   shapes.add(ellipsoid(seat + glm::vec3(-2.0f, -6.0f, 0.0f), {24.0f, 6.0f, 14.0f}, saddle, p.leather, 2.0f));
   shapes.add(ellipsoid(seat + glm::vec3(22.0f, 1.0f, 0.0f), {7.0f, 7.0f, 10.0f}, saddle, p.leather, 3.0f));
   shapes.add(ellipsoid(seat + glm::vec3(-22.0f, 3.0f, 0.0f), {5.5f, 8.0f, 13.0f}, saddle, p.leather, 3.0f, {1.0f, 0.5f, 0.0f}));
@@ -202,7 +219,7 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
     const glm::vec3 tread = side < 0 ? l_tread : r_tread;
     const glm::vec3 up = tread + glm::vec3(0.0f, 12.0f, 0.0f);
     const glm::vec3 a = tread + glm::vec3(0.0f, 0.0f, -5.5f), b = tread + glm::vec3(0.0f, 0.0f, 5.5f);
-    tube({{{seat.x, seat.y - 28.0f * k, mid_z + (half_width + 4.2f) * side}, saddle}, {up, js}}, p.strap_radius, p.leather);
+    tube({{{seat.x, seat.y - 28.0f, mid_z + (half_width + 4.2f) * side}, saddle}, {up, js}}, p.strap_radius, p.leather);
     tube({{up, js}, {a + glm::vec3(0.0f, 2.0f, 0.0f), js}, {a, js}, {b, js}, {b + glm::vec3(0.0f, 2.0f, 0.0f), js}, {up, js}},
          0.7f, p.metal);
   }
@@ -221,18 +238,19 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
   float x_min = kInf, x_max = -kInf;
   for (std::uint32_t v : head_vertices) x_min = std::min(x_min, m.positions[v].x), x_max = std::max(x_max, m.positions[v].x);
   const float head_length = x_max - x_min;
+  const auto headSection = [&](float x) { return sectionAt(m, x, [&](int j) { return j >= 0 && in_head[j] != 0; }); };
+  // The bit lies in the corners of the mouth: back from the muzzle's front by 30% of the head's length
+  // (the generator's bit, 17 cm behind the front of its 55 cm head), in the lower third of the head's
+  // height there, against the sides of the head's section at that height.
+  const float bit_x = x_max - 0.3f * head_length;
+  const std::vector<glm::vec3> at_bit = headSection(bit_x);
   float y_lo = kInf, y_hi = -kInf;
-  for (std::uint32_t v : head_vertices)
-    if (m.positions[v].x > x_max - 0.25f * head_length) y_lo = std::min(y_lo, m.positions[v].y), y_hi = std::max(y_hi, m.positions[v].y);
-  // The bit lies in the corners of the mouth: back from the muzzle's front by about 15% of the head's
-  // length (7 cm on the generated horse's 45 cm head), in the lower third of the muzzle's height.
-  const float bit_x = x_max - 0.15f * head_length, bit_y = y_lo + 0.3f * (y_hi - y_lo);
+  for (const glm::vec3& q : at_bit) y_lo = std::min(y_lo, q.y), y_hi = std::max(y_hi, q.y);
+  if (at_bit.empty()) y_lo = y_hi = s.restPosition(head).y;
+  const float bit_y = y_lo + 0.3f * (y_hi - y_lo);
   float mouth_half = 0.0f;
-  for (std::uint32_t v : head_vertices) {
-    const glm::vec3 q = m.positions[v];
-    if (std::abs(q.x - bit_x) < 0.08f * head_length && std::abs(q.y - bit_y) < 0.2f * (y_hi - y_lo))
-      mouth_half = std::max(mouth_half, std::abs(q.z - mid_z));
-  }
+  for (const glm::vec3& q : at_bit)
+    if (std::abs(q.y - bit_y) <= 0.25f * (y_hi - y_lo)) mouth_half = std::max(mouth_half, std::abs(q.z - mid_z));
   if (mouth_half == 0.0f) mouth_half = 0.1f * head_length;
   const glm::vec3 bit_l{bit_x, bit_y, mid_z - (mouth_half + 0.5f)}, bit_r = {bit_x, bit_y, mid_z + mouth_half + 0.5f};
   rep.bit = bit_l;
@@ -240,10 +258,8 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
   // A headstall: the cheek pieces from the bit up over the crown behind the ears' line (at the head joint, the poll).
   const glm::vec3 poll = s.restPosition(head);
   float crown_y = poll.y, crown_half = 0.0f;
-  for (std::uint32_t v : head_vertices) {
-    const glm::vec3 q = m.positions[v];
-    if (std::abs(q.x - poll.x) < 0.08f * head_length) crown_y = std::max(crown_y, q.y), crown_half = std::max(crown_half, std::abs(q.z - mid_z));
-  }
+  for (const glm::vec3& q : headSection(poll.x)) crown_y = std::max(crown_y, q.y), crown_half = std::max(crown_half, std::abs(q.z - mid_z));
+  if (crown_half == 0.0f) crown_half = mouth_half;
   const float hz = crown_half + 0.3f;
   tube({{glm::vec3(poll.x, bit_y, mid_z - hz), head}, {glm::vec3(poll.x, crown_y + 0.3f, mid_z - 0.6f * hz), head},
         {glm::vec3(poll.x, crown_y + 0.3f, mid_z + 0.6f * hz), head}, {glm::vec3(poll.x, bit_y, mid_z + hz), head}},
@@ -259,9 +275,7 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
     if (glm::length(s.restPosition(j) - neck_middle) < glm::length(s.restPosition(neck_joint) - neck_middle)) neck_joint = j;
   float neck_half = 0.0f;
   const glm::vec3 nj = s.restPosition(neck_joint);
-  for (std::uint32_t v = 0; v < m.positions.size(); ++v)
-    if (std::abs(m.positions[v].x - nj.x) < 0.05f * span && dominantJoint(m, {v}) == neck_joint)
-      neck_half = std::max(neck_half, std::abs(m.positions[v].z - mid_z));
+  for (const glm::vec3& q : sectionAt(m, nj.x, [&](int j) { return j == neck_joint; })) neck_half = std::max(neck_half, std::abs(q.z - mid_z));
   if (neck_half == 0.0f) neck_half = 0.5f * half_width;
   for (float side : {-1.0f, 1.0f}) {
     const glm::vec3 bit = side < 0 ? bit_l : bit_r;

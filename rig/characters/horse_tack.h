@@ -46,9 +46,6 @@ struct HorseTackParams {
   // How far the tread centres hang out from the barrel's widest: the generated horse's stirrup (31 cm
   // out) against its barrel's half-width (25 cm).
   float tread_out_of_barrel_cm = -MountParams{}.stirrup.z - HorseParams{}.barrel_radii.z;
-  // The generated saddle's shapes are built for its barrel (31 cm half-height); here they are scaled
-  // by the measured half-height over this.
-  float reference_barrel_half_height_cm = HorseParams{}.barrel_radii.y;
   // The barrel's length (its ellipsoid's half-length) per withers-to-hips span: the generated horse's 60 / 100.
   float barrel_length_fraction = 0.6f;
   glm::vec3 leather = HorseParams{}.leather, pad = HorseParams{}.pad, metal = HorseParams{}.metal;
