@@ -144,9 +144,10 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
     const float y = wa * a.y + wb * b.y + wc * c.y;
     if (y > top) top = y, top_joint = dominantJoint(m, {ia, ib, ic});
   }
+  const auto named = [&](const char* role) { return std::string(role) + " \"" + s.joints[horse.role(role)].name + "\""; };
   const std::string where = " at x = " + std::to_string(static_cast<int>(std::lround(seat_x))) +
-                            " cm, a saddle's place behind the withers (check the root, neck1 and fore leg roles, or map "
-                            "the tack roles to joints of the horse's own)";
+                            " cm, a saddle's place behind the withers (check roles " + named("root") + ", " + named("neck1") +
+                            ", " + named("lfUpper") + " and " + named("rfUpper") + ", or map the tack roles to joints of the horse's own)";
   if (top == -kInf) throw InputError(file + ": no back to put a saddle on: the mesh has no surface over the midline" + where);
   int back_joint = top_joint;
   while (back_joint >= 0 && !onBack(back_joint)) back_joint = s.joints[back_joint].parent;

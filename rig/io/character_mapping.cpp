@@ -151,6 +151,15 @@ std::string roleChainProblem(CharacterKind kind, const std::map<std::string, int
       return "roles.neck: joint " + name(neck) + " is not above pelvis " + name(pelvis) +
              " with a spine joint between them (expected the neck on the chain that runs up from the pelvis" + tail;
   }
+  if (kind == CharacterKind::Horse) {
+    // The tail swings with all it holds: it must not hold the body (the tail's first joint mapped to the
+    // hips or a back joint would swing the whole horse).
+    const int tail1 = at("tail1");
+    for (const char* held : {"root", "neck1"})
+      if (const int j = at(held); tail1 >= 0 && j >= 0 && bonesBelow(tail1, j) >= 0)
+        return "roles.tail1: joint " + name(tail1) + " holds " + held + " " + name(j) +
+               " (expected the tail's first joint, on a chain of its own behind the hips" + tail;
+  }
   for (const RoleBelow& c : roleChains(kind)) {
     const int j = at(c.role), a = at(c.above);
     if (j < 0 || a < 0) continue;

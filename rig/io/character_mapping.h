@@ -60,7 +60,8 @@ CharacterMapping loadCharacterMapping(const std::filesystem::path& file, Charact
 
 // Roles that must lie on one chain of the skeleton, each below another: a rider's elbow below her
 // shoulder, wrist below elbow, knee below hip, ..., the neck above the pelvis with a spine joint between,
-// the head above the neck; a horse's leg joints in order down to the hoof, the neck and tail in order.
+// the head above the neck; a horse's leg joints in order down to the hoof, the neck and tail in order,
+// the head beyond neck1, and tail1 holding neither the root nor neck1 (its swing would turn the body).
 // Given role -> joint and every joint's parent (-1 for a root), the first role out of place as
 // "roles.lKnee: joint \"LeftLeg\" is not below lHip \"LeftUpLeg\" (expected the knee on the leg's chain
 // below the hip; HINT)", or "" when every role is in place. Roles not in `roles` are not checked.

@@ -118,6 +118,16 @@ TEST(HorseTack, ABareHorseGetsItsSaddleWhereTheGeneratorPutsIt) {
   EXPECT_EQ(horse.mesh.vertexCount(), with_tack);
 }
 
+TEST(HorseTack, ErrorsNameTheFileTheRolesAndTheJoints) {
+  // No surface over the saddle's place (a mesh of no triangles here).
+  Character bare = bareHorse();
+  bare.mesh.indices.clear();
+  EXPECT_EQ(stirrup::test::errorOf([&] { addHorseTack(bare, "my-horse.json"); }),
+            "my-horse.json: no back to put a saddle on: the mesh has no surface over the midline at x = 10 cm, a saddle's place "
+            "behind the withers (check roles root \"root\", neck1 \"neck1\", lfUpper \"lfElbow\" and rfUpper \"rfElbow\", or map "
+            "the tack roles to joints of the horse's own)");
+}
+
 TEST(HorseTack, TackNamedInPartIsAnError) {
   Character horse = bareHorse();
   horse.roles["saddle"] = horse.role("backMid");

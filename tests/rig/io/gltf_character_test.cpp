@@ -193,6 +193,14 @@ TEST(GltfCharacter, FoxMapsOntoHorseRoles) {
   EXPECT_EQ(errorOf([&] { resolveCharacter(CharacterKind::Horse, fox.string(), m.string()); }),
             m.string() + ": roles.head: joint \"b_Spine02_03\" is not below neck1 \"b_Neck_04\" (expected the head beyond the "
                          "neck's first joint; change it in the mapping file)");
+  nlohmann::json tail_holds_body = j;
+  tail_holds_body["roles"]["tail1"] = "b_Hip_01";
+  tail_holds_body["roles"].erase("tail2");
+  tail_holds_body["roles"].erase("tail3");
+  writeJson(m, tail_holds_body);
+  EXPECT_EQ(errorOf([&] { resolveCharacter(CharacterKind::Horse, fox.string(), m.string()); }),
+            m.string() + ": roles.tail1: joint \"b_Hip_01\" holds root \"b_Hip_01\" (expected the tail's first joint, on a "
+                         "chain of its own behind the hips; change it in the mapping file)");
   nlohmann::json part_tack = j;
   for (const char* role : {"lStirrup", "rStirrup", "lRein", "rRein"}) part_tack["roles"].erase(role);
   writeJson(m, part_tack);
