@@ -269,18 +269,27 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
     const glm::vec3 bit = side < 0 ? bit_l : bit_r;
     tube({{glm::vec3(poll.x, bit_y, mid_z + hz * side), head}, {bit + glm::vec3(0.0f, 1.0f, 0.0f), head}}, p.strap_radius, p.leather);
   }
-  // Reins: from the bit past the side of the neck's middle to the hand ends.
+  // Reins: from the bit along the sides of the neck's middle, in its upper half (40% of its depth down
+  // from the crest: on the generated horse 5 cm above the generator's rein line), to the hand ends.
   const glm::vec3 neck_middle = 0.5f * (s.restPosition(neck1) + poll);
   int neck_joint = body.neck.front();
   for (int j : body.neck)
     if (glm::length(s.restPosition(j) - neck_middle) < glm::length(s.restPosition(neck_joint) - neck_middle)) neck_joint = j;
-  float neck_half = 0.0f;
   const glm::vec3 nj = s.restPosition(neck_joint);
-  for (const glm::vec3& q : sectionAt(m, nj.x, [&](int j) { return j == neck_joint; })) neck_half = std::max(neck_half, std::abs(q.z - mid_z));
+  const float rein_x = nj.x + 4.0f;
+  const std::vector<glm::vec3> neck_section = sectionAt(m, rein_x, [&](int j) {
+    return j >= 0 && (onBack(j) || std::find(body.neck.begin(), body.neck.end(), j) != body.neck.end());
+  });
+  float neck_lo = kInf, neck_hi = -kInf;
+  for (const glm::vec3& q : neck_section) neck_lo = std::min(neck_lo, q.y), neck_hi = std::max(neck_hi, q.y);
+  const float rein_y = neck_section.empty() ? nj.y : neck_hi - 0.4f * (neck_hi - neck_lo);
+  float neck_half = 0.0f;
+  for (const glm::vec3& q : neck_section)
+    if (q.y >= 0.5f * (neck_lo + neck_hi)) neck_half = std::max(neck_half, std::abs(q.z - mid_z));
   if (neck_half == 0.0f) neck_half = 0.5f * half_width;
   for (float side : {-1.0f, 1.0f}) {
     const glm::vec3 bit = side < 0 ? bit_l : bit_r;
-    const glm::vec3 mid{nj.x + 4.0f, nj.y + 2.0f, mid_z + (neck_half + 2.0f) * side};
+    const glm::vec3 mid{rein_x, rein_y, mid_z + (neck_half + 2.0f) * side};
     tube({{bit, head}, {mid, neck_joint}, {side < 0 ? l_hand : r_hand, side < 0 ? l_rein : r_rein}}, p.rein_radius, p.leather, 3.0f);
   }
   groupTrianglesByColor(tack);
