@@ -3,16 +3,16 @@
 // "Your own horse").
 //
 // Where the saddle sits: behind the shoulder blade, on the thoracic back. Saddle fitters place the
-// saddle's tree points two to three fingers behind the back edge of the scapula, so the shoulder
-// swings free, and keep its bearing surface in front of the last rib (T18), off the loins (Schleese,
-// "Saddle Fit 4 Life"; the British Horse Society's saddle-fitting guidance). The deepest point of the
-// seat, where the rider's seat bones rest, then lies about a third of the way from the withers back to
-// the hip joints: 30 cm behind the withers over a 100 cm withers-to-hips span on the generated horse
-// (HorseParams::saddle_x against withers_x and hips). Here the withers are the withers role, or
-// without one the tops of the fore legs (where their chains leave the body's chain), the hips the
-// root; the seat centre goes that fraction back from one to the other, on top of the back as the
-// mesh's top surface has it there (a vertical line through the midline), raised by the saddle's seat
-// height.
+// front of the saddle's tree clear of the back edge of the scapula, never over it, so the shoulder moves
+// freely, and keep its bearing surface in front of the last rib (T18), off the loins (Equine Therapy
+// NZ, "Saddle Placement", equinetherapy.co.nz; N. Shedrick on saddle placement, meisterider.com). The
+// deepest point of the seat, where the rider's seat bones rest, then lies about a third of the way
+// from the withers back to the hip joints: 30 cm behind the withers over a 100 cm withers-to-hips span
+// on the generated horse (HorseParams::saddle_x against withers_x and hips). Here the withers are the
+// withers role, or without one the tops of the fore legs (where their chains leave the body's chain),
+// the hips the root; the seat centre goes that fraction back from one to the other, on top of the back
+// as the mesh's top surface has it there (a vertical line through the midline), raised by the saddle's
+// seat height.
 //
 // Rig points (Joint::rig_point) under the back joint whose skin carries the back there: "saddle" (the
 // seat centre), "lStirrup"/"rStirrup" (tread centres: the mount's drop below the seat, out from the
