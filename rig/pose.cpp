@@ -10,6 +10,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "rig/horse_body.h"
 #include "rig/horse_leg.h"
 #include "rig/ik.h"
 #include "rig/rider_spine.h"
@@ -130,21 +131,34 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
   local[root] = travel * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]), float(h[C::rearPivotTz])}) *
                 s.joints[root].rest_local * rot(-h[C::rearPivotRy], kY) * rot(h[C::rearPivotRz], kZ) *
                 rot(h[C::rearPivotRx], kX);
+  // A user's rig may hang the root from joints of its own (a ground root): they ride along rigidly with
+  // the root, so no bone between them stretches. (The root's rest is translation-only: its rest world
+  // is the inverse of its inverse bind.)
+  int top = root;
+  while (s.joints[top].parent >= 0) top = s.joints[top].parent;
+  if (top != root) {
+    const glm::mat4 root_world = local[root];
+    local[root] = s.joints[root].rest_local;
+    local[top] = root_world * s.joints[root].inverse_bind * s.joints[top].rest_local;
+  }
+  // The back, neck and tail as this horse's skeleton has them (rig/horse_body.h).
+  const HorseBody body = horseBody(horse);
   // Back arch: the hips-to-mid-back segment tilts up by half, the front half pitches down by half,
   // so the middle of the back rises relative to both ends.
-  const int back_mid = horse.role("backMid");
-  const float half_arch = static_cast<float>(h[C::backMidRz]) * 0.5f;
-  const glm::vec3 back_offset(s.joints[back_mid].rest_local[3]);
-  const glm::vec3 arched = glm::vec3(rot(half_arch, kZ) * glm::vec4(back_offset, 0.0f));
-  local[back_mid] = translate(arched) * rot(-h[C::backMidRy], kY) * rot(h[C::backMidRx], kX) * rot(-half_arch, kZ);
-  // Neck and head: + = up, spread over the two neck joints. Tail: + = up and to the right.
-  for (const char* n : {"neck1", "neck2"})
-    local[horse.role(n)] = s.joints[horse.role(n)].rest_local * rot(frame.neck_rz * 0.5, kZ);
-  local[horse.role("head")] = s.joints[horse.role("head")].rest_local * rot(frame.head_rz, kZ);
-  for (const char* n : {"tail1", "tail2", "tail3"}) {
-    const int j = horse.role(n);
-    local[j] = s.joints[j].rest_local * rot(frame.tail_ry / 3.0, kY) * rot(-frame.tail_rz / 3.0, kZ);
+  if (body.back_turn >= 0) {
+    const int back_mid = body.back_turn;
+    const float half_arch = static_cast<float>(h[C::backMidRz]) * 0.5f;
+    const glm::vec3 back_offset(s.joints[back_mid].rest_local[3]);
+    const glm::vec3 arched = glm::vec3(rot(half_arch, kZ) * glm::vec4(back_offset, 0.0f));
+    local[back_mid] = translate(arched) * rot(-h[C::backMidRy], kY) * rot(h[C::backMidRx], kX) * rot(-half_arch, kZ);
   }
+  // Neck and head: + = up, spread over the neck's joints. Tail: + = up and to the right, spread over
+  // the tail's longest line of joints.
+  const double neck_share = frame.neck_rz / static_cast<double>(body.neck.size());
+  for (int j : body.neck) local[j] = s.joints[j].rest_local * rot(neck_share, kZ);
+  local[horse.role("head")] = s.joints[horse.role("head")].rest_local * rot(frame.head_rz, kZ);
+  const double tail_parts = static_cast<double>(std::max(body.tail_length, 1));
+  for (int j : body.tail) local[j] = s.joints[j].rest_local * rot(frame.tail_ry / tail_parts, kY) * rot(-frame.tail_rz / tail_parts, kZ);
   std::vector<glm::mat4> world(s.size());
   localToWorld(s, local, world);
 
@@ -155,10 +169,12 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
                                                                      {C::rfHoofTx, C::rfHoofTy, C::rfHoofTz},
                                                                      {C::lbHoofTx, C::lbHoofTy, C::lbHoofTz},
                                                                      {C::rbHoofTx, C::rbHoofTy, C::rbHoofTz}}};
+  std::vector<char> solved(s.size(), 0);  // joints the legs' IK places in world terms
   for (int leg = 0; leg < 4; ++leg) {
     const std::string n = kLegs[leg];
     const int upper = horse.role(n + "Upper"), middle = horse.role(n + "Middle");
     const int fetlock = horse.role(n + "Fetlock"), hoof = horse.role(n + "Hoof");
+    for (int j : {upper, middle, fetlock, hoof}) solved[j] = 1;
     const glm::vec3 rest_upper = s.restPosition(upper), rest_middle = s.restPosition(middle);
     const glm::vec3 rest_fetlock = s.restPosition(fetlock), rest_hoof = s.restPosition(hoof);
     const auto& ch = kHoofChannels[leg];
@@ -180,6 +196,8 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
       joints.middle = middle;
       joints.fetlock = fetlock;
       joints.hoof = hoof;
+      for (int j : {joints.pivot, joints.shoulder})
+        if (j >= 0) solved[j] = 1;
       solveHorseLeg(s, joints, {hoof_target, fold}, params.leg, world);
       continue;
     }
@@ -194,6 +212,15 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     world[middle] = limb.middle;
     world[fetlock] = translate(limb.end) * fold;
     world[hoof] = translate(limb.end + glm::vec3(fold * glm::vec4(rest_hoof - rest_fetlock, 0.0f))) * fold;
+  }
+  // Joints hanging from the legs that no role names (a user's toes, dewclaws, twist joints) are
+  // carried by their parents as they hang at rest.
+  std::vector<char> moved = solved;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int p = s.joints[j].parent;
+    if (solved[j] || p < 0 || !moved[p]) continue;
+    world[j] = world[p] * local[j];
+    moved[j] = 1;
   }
   return world;
 }

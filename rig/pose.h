@@ -51,9 +51,11 @@ glm::mat4 travelMatrix(const HorseFrame& frame);
 std::array<glm::dvec2, 4> restHoofPlaces(const Character& horse);
 
 // The horse at one frame: in its travel frame (travelMatrix); the body (root at the hips) moved and
-// turned by rearPivot, the front half turned at backMid, neck/head/tail by the frame's follow-through,
+// turned by rearPivot, the front half turned at backMid (or the back joint rig/horse_body.h finds),
+// neck/head/tail by the frame's follow-through spread over the chains the skeleton has (horseBody),
 // each leg solved by two-bone IK to its hoof target (rest hoof place + hoof tx/ty/tz), knees bending
-// forward in front and hocks backward behind, the pastern folding as the hoof lifts.
+// forward in front and hocks backward behind, the pastern folding as the hoof lifts; joints no role or
+// chain names carried by their parents. No bone changes length.
 std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame,
                                  const HorsePoseParams& params = {});
 

@@ -22,6 +22,7 @@
 #include "rig/error.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/characters/horse_character.h"
+#include "rig/characters/horse_tack.h"
 #include "rig/characters/rider_character.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_texture.h"
@@ -598,6 +599,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       if (m.normals[v] == glm::vec3(0.0f))
         m.normals[v] = glm::length(acc[v]) > 0.0f ? glm::normalize(acc[v]) : glm::vec3(0.0f, 1.0f, 0.0f);
   }
+  // A horse that names no tack gets the rig's (rig/characters/horse_tack.h).
+  if (kind == CharacterKind::Horse) addHorseTack(c, where);
   return c;
 }
 

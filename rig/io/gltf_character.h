@@ -63,7 +63,8 @@ struct AutoMapping;
 // file gets by itself (rig/io/auto_mapping.h), kept in `auto_mapped` when given. Errors are one-line
 // InputErrors naming the file (and, for a role, the role and the joint, and what to change): a role
 // missing, a joint not in the file, a mapped role off its chain (rig/io/character_mapping.h
-// roleChainProblem).
+// roleChainProblem). A horse that names no tack gets the rig's (rig/characters/horse_tack.h); one that
+// names it in part, or whose mesh has no back or head for it, is an error too.
 Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind,
                             const CharacterMapping* mapping = nullptr, AutoMapping* auto_mapped = nullptr);
 
