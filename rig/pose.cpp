@@ -26,6 +26,19 @@ constexpr float kNeckCounterRangeDeg = 45.0f;
 // The fold guard (Character::FoldGuard) finds the largest forward turn that keeps its room to this.
 constexpr double kFoldGuardToleranceDeg = 0.1;
 
+// Joints below the ones a solve placed (`solved`), which it did not place themselves, follow their
+// parents by their local transforms (parents come before children in the skeleton).
+void carryUnsolved(const Skeleton& s, std::span<const glm::mat4> local, const std::vector<char>& solved,
+                   std::span<glm::mat4> world) {
+  std::vector<char> moved = solved;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int p = s.joints[j].parent;
+    if (solved[j] || p < 0 || !moved[p]) continue;
+    world[j] = world[p] * local[j];
+    moved[j] = 1;
+  }
+}
+
 glm::mat4 rot(double degrees, glm::vec3 axis) {
   return glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(degrees)), axis);
 }
@@ -215,13 +228,7 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
   }
   // Joints hanging from the legs that no role names (a user's toes, dewclaws, twist joints) are
   // carried by their parents as they hang at rest.
-  std::vector<char> moved = solved;
-  for (std::size_t j = 0; j < s.size(); ++j) {
-    const int p = s.joints[j].parent;
-    if (solved[j] || p < 0 || !moved[p]) continue;
-    world[j] = world[p] * local[j];
-    moved[j] = 1;
-  }
+  carryUnsolved(s, local, solved, world);
   return world;
 }
 
@@ -523,13 +530,7 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
   }
   // Joints hanging from the limbs that no role names (fingers, toes, twist and split-segment joints
   // of a user's rig) are carried by their parents as they hang at rest.
-  std::vector<char> moved = solved;
-  for (std::size_t j = 0; j < s.size(); ++j) {
-    const int p = s.joints[j].parent;
-    if (solved[j] || p < 0 || !moved[p]) continue;
-    world[j] = world[p] * local[j];
-    moved[j] = 1;
-  }
+  carryUnsolved(s, local, solved, world);
   return world;
 }
 

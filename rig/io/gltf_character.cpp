@@ -30,7 +30,6 @@
 #include "rig/io/mapping_skeleton.h"
 
 namespace stirrup::rig {
-namespace {
 
 int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const void* data, std::size_t size,
                 int target) {
@@ -45,6 +44,8 @@ int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const v
   model.bufferViews.push_back(view);
   return static_cast<int>(model.bufferViews.size()) - 1;
 }
+
+namespace {
 
 int accessorType(int components) {
   switch (components) {

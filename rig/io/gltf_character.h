@@ -33,6 +33,9 @@ struct GltfCharacterNodes {
   int skin = -1;
 };
 
+// Appends `size` bytes to `bin` (4-byte aligned) as a new buffer view of buffer 0; returns its index.
+int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const void* data, std::size_t size, int target);
+
 // Appends `character` to `model`: nodes, mesh, materials, skin. Binary data goes to `bin` (which
 // becomes buffer 0 when the model is written); the caller adds the returned root nodes to a scene.
 // `prefix` is prepended to node names (for two characters in one file), but not to a user's joints:
