@@ -1,6 +1,7 @@
 #include "render/scene.h"
 
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <system_error>
 
@@ -86,7 +87,46 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
   return c;
 }
 
+// Every path of the scene against the limits a horse has: the first breach is an error naming the
+// path's source, field, segment and time, unless the scene allows the impossible.
+void checkLimits(SceneSpec& s) {
+  const std::string file = s.file.string();
+  if (const auto params = rig::pathClipParams(s.clip))
+    s.limits.push_back({std::make_shared<const rig::PathLimitCheck>(*params, s.terrain.get(), file, "clip"), 0.0});
+  for (std::size_t i = 0; i < s.pairs.size(); ++i) {
+    const std::string field = (s.crowd ? "crowd.pairs[" : "riders[") + std::to_string(i) + "]";
+    s.limits.push_back({std::make_shared<const rig::PathLimitCheck>(s.pairs[i].path, s.terrain.get(), file, field),
+                        s.pairs[i].clip_offset_s});
+  }
+  if (s.allow_impossible) return;
+  for (const SceneSpec::PathLimits& l : s.limits)
+    if (const std::string e = l.check->error(); !e.empty())
+      throw InputError(e + " (allow_impossible or --allow-impossible renders it anyway)");
+}
+
 }  // namespace
+
+std::string impossibleFrameWarning(const SceneSpec& scene, int frame) {
+  if (!scene.allow_impossible) return "";
+  const double t = frameTime(scene, frame), half = 0.5 / scene.fps;
+  std::string what;
+  for (const SceneSpec::PathLimits& l : scene.limits) {
+    const double at = t + l.clip_offset_s;
+    for (const rig::LimitBreach& b : l.check->during(at - half, at + half)) {
+      const std::string who = scene.limits.size() > 1 ? l.check->clipField() + " " : "";
+      what += std::string(what.empty() ? "" : "; ") + who + rig::horseLimitName(b.limit) + ": " +
+              b.text.substr(b.text.find(": ") + 2);
+    }
+  }
+  if (what.empty()) return "";
+  char when[64];
+  std::snprintf(when, sizeof when, "frame %d (%.3f s)", frame, t);
+  return scene.file.string() + ": " + when + ": beyond a horse's limits (allowed): " + what;
+}
+
+void warnImpossibleFrame(const SceneSpec& scene, int frame) {
+  if (const std::string w = impossibleFrameWarning(scene, frame); !w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+}
 
 std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
   // A crowd's pairs ride their own clips; the default trot in scene.clip is no one's.
@@ -97,10 +137,11 @@ std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
   return rig::makeClip(scene.clip, rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping));
 }
 
-SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
+SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const SceneLoadOptions& options) {
   JsonObjectReader r(file, "", json);
   SceneSpec s;
   s.file = file;
+  s.allow_impossible = r.boolean("allow_impossible", false) || options.allow_impossible;
   s.name = r.string("name", std::filesystem::path(file).stem().string());
   if (r.has("clip")) s.clip = parseClip(r.object("clip"), std::filesystem::path(file).parent_path(), s.gait);
   if (r.has("terrain")) {
@@ -241,6 +282,7 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file) {
     if (c.treadmill && !s.pairs.empty()) throw InputError(at + "treadmill: expected false in a crowd scene");
   }
   r.finish();
+  checkLimits(s);
   return s;
 }
 
@@ -254,9 +296,9 @@ std::filesystem::path findSceneFile(const std::filesystem::path& file) {
   return file;
 }
 
-SceneSpec loadScene(const std::filesystem::path& file) {
+SceneSpec loadScene(const std::filesystem::path& file, const SceneLoadOptions& options) {
   const std::filesystem::path f = findSceneFile(file);
-  return parseScene(readJsonFile(f), f.string());
+  return parseScene(readJsonFile(f), f.string(), options);
 }
 
 const CameraSpec& findCamera(const SceneSpec& scene, const std::string& name) {

@@ -14,6 +14,7 @@
 #include "render/review/layer.h"
 #include "rig/motion/clip_factory.h"
 #include "rig/motion/crowd.h"
+#include "rig/motion/horse_limits.h"
 #include "rig/motion/procedural_gait.h"
 
 namespace stirrup::render {
@@ -92,16 +93,30 @@ struct SceneSpec {
   // (rig::crowdFrames).
   std::optional<rig::CrowdSpec> crowd;
   std::vector<rig::PairSpec> pairs;
+  // Limits a horse has (rig/motion/horse_limits.h), read along every path of the scene (its path clip,
+  // or each pair's). A path beyond one is refused when the scene loads, unless `allow_impossible` (the
+  // scene field, or SceneLoadOptions from --allow-impossible): then it loads, and each frame that
+  // breaks a limit is warned about (impossibleFrameWarning).
+  bool allow_impossible = false;
+  struct PathLimits {
+    std::shared_ptr<const rig::PathLimitCheck> check;
+    double clip_offset_s = 0;  // the path's clip is sampled at the shot's time plus this (a crowd's pair)
+  };
+  std::vector<PathLimits> limits;
+};
+
+struct SceneLoadOptions {
+  bool allow_impossible = false;  // --allow-impossible: load a scene beyond a horse's limits, with warnings
 };
 
 // Reads a scene file; throws stirrup::InputError "FILE: FIELD: expected ..., got ..." on bad input.
 // A relative path that does not exist from the working folder is looked up in stirrup's data folder
 // (render/data_dir.h), so `stirrup render scenes/trot.json` works from anywhere once installed.
-SceneSpec loadScene(const std::filesystem::path& file);
+SceneSpec loadScene(const std::filesystem::path& file, const SceneLoadOptions& options = {});
 // Where loadScene reads `file` from: the path itself, or the data folder's file of that relative path.
 std::filesystem::path findSceneFile(const std::filesystem::path& file);
 // Parses scene JSON already in memory; `file` names it in errors.
-SceneSpec parseScene(const nlohmann::json& json, const std::string& file);
+SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const SceneLoadOptions& options = {});
 
 // The scene's clip, for its horse: a path clip turns the hooves about the horse's own rest places (a
 // glTF horse is read for them; the default horse's are built in). A crowd scene has no one clip: an
@@ -113,6 +128,12 @@ const CameraSpec& findCamera(const SceneSpec& scene, const std::string& name);
 
 // Seconds into the clip at a frame: frame 1 is t = 0.
 double frameTime(const SceneSpec& scene, int frame);
+
+// One line for a frame of an allowed impossible scene that breaks a horse's limits within half a frame
+// of its time: "FILE: frame 12 (0.458 s): impossible: turn (...); footing (...)"; "" when it breaks none.
+std::string impossibleFrameWarning(const SceneSpec& scene, int frame);
+// Writes that line (if any) to stderr.
+void warnImpossibleFrame(const SceneSpec& scene, int frame);
 
 }  // namespace stirrup::render
 

@@ -112,8 +112,8 @@ float horseLegFullReach(const Skeleton& s, const HorseLegJoints& leg, const Hors
   return virtualChain(restLeg(s, leg), leg.shoulder >= 0, leg.fore, params).reach(1.0f);
 }
 
-void solveHorseLeg(const Skeleton& s, const HorseLegJoints& leg, const HorseLegTarget& target,
-                   const HorseLegParams& params, std::span<glm::mat4> world) {
+float solveHorseLeg(const Skeleton& s, const HorseLegJoints& leg, const HorseLegTarget& target,
+                    const HorseLegParams& params, std::span<glm::mat4> world) {
   const RestLeg r = restLeg(s, leg);
   const bool two_part = leg.shoulder >= 0;
   const VirtualChain chain = virtualChain(r, two_part, leg.fore, params);
@@ -187,6 +187,7 @@ void solveHorseLeg(const Skeleton& s, const HorseLegJoints& leg, const HorseLegT
   world[leg.middle] = limb.middle;
   world[leg.fetlock] = placed(limb.end, glm::mat3(fold));
   world[leg.hoof] = placed(limb.end + glm::vec3(fold * glm::vec4(r.hoof - r.fetlock, 0.0f)), glm::mat3(fold));
+  return glm::length(limb.end - fetlock);
 }
 
 }  // namespace stirrup::rig

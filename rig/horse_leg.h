@@ -52,8 +52,12 @@ struct HorseLegTarget {
 };
 
 // Writes world matrices of the leg's joints (pivot down to hoof) into `world`, whose other entries
-// (the pivot's parent in particular) must already be posed.
-void solveHorseLeg(const Skeleton& s, const HorseLegJoints& leg, const HorseLegTarget& target,
+// (the pivot's parent in particular) must already be posed. Every joint is placed by a rotation and a
+// translation that keep each bone its rest length: a target beyond the leg's reach (even with the hoof
+// rolled) leaves the leg at its full reach, short of it. Returns how far short (cm): the distance from
+// the fetlock where the solve put it to where the (rolled) target wants it; 0 within reach, up to the
+// two-bone solve's softening (params.soften_cm) near it.
+float solveHorseLeg(const Skeleton& s, const HorseLegJoints& leg, const HorseLegTarget& target,
                    const HorseLegParams& params, std::span<glm::mat4> world);
 
 // The longest reach of the leg's virtual chain (pivot to fetlock, cm) before the hoof must roll.

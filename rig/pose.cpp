@@ -20,6 +20,8 @@ namespace stirrup::rig {
 namespace {
 
 constexpr glm::vec3 kX{1.0f, 0.0f, 0.0f}, kY{0.0f, 1.0f, 0.0f}, kZ{0.0f, 0.0f, 1.0f};
+// A hoof lifted this little (cm) or less is down, for HorseReach::planted (the clips' stance lift is 0).
+constexpr float kPlantedLiftCm = 1e-3f;
 // How far the neck turns back at most to counter the balance stage's turn: a choice, well inside the
 // extension range of a neck, so the head never tips back past where a rider looking ahead holds it.
 constexpr float kNeckCounterRangeDeg = 45.0f;
@@ -132,7 +134,8 @@ glm::mat4 travelMatrix(const HorseFrame& frame) {
          rot(-frame.heading_deg, kY) * rot(frame.ground_pitch_deg, kZ);
 }
 
-std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params) {
+std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params,
+                                 HorseReach* reach) {
   const Skeleton& s = horse.skeleton;
   const HorseChannels& h = frame.controls;
   using C = HorseChannel;
@@ -199,6 +202,7 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     const float flex = params.hoof_flex_deg * lift * lift * (3.0f - 2.0f * lift);
     // The hoof sole turns to face backward, about the travel frame's sideways axis.
     const glm::mat4 fold = glm::mat4(glm::mat3(travel)) * rot(-flex, kZ);
+    if (reach) reach->planted[std::size_t(leg)] = offset.y <= kPlantedLiftCm;
     if (horse.roles.count(n + "Pivot")) {
       // The whole limb reaches (rig/horse_leg.h): the default horse names its scapula and hip pivots.
       HorseLegJoints joints;
@@ -211,7 +215,8 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
       joints.hoof = hoof;
       for (int j : {joints.pivot, joints.shoulder})
         if (j >= 0) solved[j] = 1;
-      solveHorseLeg(s, joints, {hoof_target, fold}, params.leg, world);
+      const float short_cm = solveHorseLeg(s, joints, {hoof_target, fold}, params.leg, world);
+      if (reach) reach->short_cm[std::size_t(leg)] = short_cm;
       continue;
     }
     const glm::vec3 fetlock_target = hoof_target + glm::vec3(fold * glm::vec4(rest_fetlock - rest_hoof, 0.0f));
@@ -225,6 +230,7 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     world[middle] = limb.middle;
     world[fetlock] = translate(limb.end) * fold;
     world[hoof] = translate(limb.end + glm::vec3(fold * glm::vec4(rest_hoof - rest_fetlock, 0.0f))) * fold;
+    if (reach) reach->short_cm[std::size_t(leg)] = glm::length(limb.end - fetlock_target);
   }
   // Joints hanging from the legs that no role names (a user's toes, dewclaws, twist joints) are
   // carried by their parents as they hang at rest.
@@ -564,7 +570,7 @@ MountedPose poseMounted(const Character& horse, const Character& rider, const Ho
   const RiderPoseParams params;
   const RiderChannels r = limitRiderChannels(channels, params, unit);
   MountedPose p;
-  p.horse = poseHorse(horse, frame);
+  p.horse = poseHorse(horse, frame, {}, &p.reach);
   placeStirrups(horse, p.horse, r, unit);
   if (profile.rigid) {
     p.rider = poseRider(rider, horse, p.horse, r, unit, params);

@@ -20,6 +20,7 @@
 //   lowerBack.rx     (with the curve spine) is the top controller's twist, spread along the chain
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -56,8 +57,21 @@ std::array<glm::dvec2, 4> restHoofPlaces(const Character& horse);
 // each leg solved by two-bone IK to its hoof target (rest hoof place + hoof tx/ty/tz), knees bending
 // forward in front and hocks backward behind, the pastern folding as the hoof lifts; joints no role or
 // chain names carried by their parents. No bone changes length.
+// Never a rubber leg: a hoof target beyond its leg's reach leaves the leg at its full reach,
+// every bone its own length, and `reach` (when given) records how far short each hoof stays.
+struct HorseReach {
+  // A hoof this far (cm) or more short of its target is over-reached: beyond the two-bone solve's
+  // softening (HorseLegParams::soften_cm, 0.3 cm) by more than rounding, and enough to see.
+  static constexpr float kOverReachCm = 1.0f;
+  std::array<float, 4> short_cm{};  // lf, rf, lb, rb: the fetlock's distance from where its target wants it
+  // Whether the hoof is down (its lift, the hoof's ty, 0): a planted hoof short of its target hovers
+  // over its print or lands late; a swinging one misses a point in the air.
+  std::array<bool, 4> planted{};
+  bool overReached(int leg) const { return short_cm[std::size_t(leg)] >= kOverReachCm; }
+  bool any() const { return overReached(0) || overReached(1) || overReached(2) || overReached(3); }
+};
 std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame,
-                                 const HorsePoseParams& params = {});
+                                 const HorsePoseParams& params = {}, HorseReach* reach = nullptr);
 
 struct RiderPoseParams {
   float chest_follow = 0.5f;       // fraction of waist.rz the chest adds on top
@@ -149,6 +163,7 @@ void placeReins(const Character& horse, std::span<glm::mat4> horseWorld, const C
 // of each skeleton. The rigid rider (profile.rigid) has no balance stage: she rides like a statue.
 struct MountedPose {
   std::vector<glm::mat4> horse, rider;
+  HorseReach reach;       // hooves short of their targets (poseHorse)
   BalanceResult balance;  // what the balance stage decided (all zero for the rigid rider)
 };
 MountedPose poseMounted(const Character& horse, const Character& rider, const HorseFrame& frame,

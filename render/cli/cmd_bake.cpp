@@ -31,6 +31,7 @@ struct BakeOptions {
   std::string channels;
   std::string output;
   bool rider_only = false;
+  bool allow_impossible = false;
 };
 
 // The camera node's transform as glTF wants it (looks down -Z, +Y up): the render camera's own basis,
@@ -132,8 +133,9 @@ void writeRiderGlb(const render::SceneSpec& scene, const rig::RigProfile& profil
 
 void runBake(const BakeOptions& o) {
   namespace fs = std::filesystem;
-  const render::SceneSpec scene = render::loadScene(o.scene);
+  const render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
+  for (int frame : frames) render::warnImpossibleFrame(scene, frame);  // once a frame, whatever is written
   const rig::RigProfile profile = render::resolveProfile(scene);
   const std::unique_ptr<rig::Clip> clip = render::makeSceneClip(scene);
 
@@ -191,6 +193,8 @@ void addBakeCommand(CLI::App& app) {
   cmd->add_option("-o,--output", opts->output, "Write the baked shot as glTF 2.0 (.glb)");
   cmd->add_flag("--rider-only", opts->rider_only,
                 "With -o: write only the rider's skeleton animation, in the rider file's joint names");
+  cmd->add_flag("--allow-impossible", opts->allow_impossible,
+                "Bake a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
   cmd->callback([opts] { runBake(*opts); });
 }
 

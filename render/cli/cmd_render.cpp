@@ -38,6 +38,7 @@ struct RenderOptions {
   bool progress = false;
   bool resume = false;
   bool encode_only = false;
+  bool allow_impossible = false;
 };
 
 std::string frameName(const std::string& base, int frame, int padding, const char* extension) {
@@ -54,7 +55,7 @@ void runRender(const RenderOptions& o) {
   const bool png = format != "exr", exr = format != "png";
   if (!o.movie.empty() && !png) throw InputError("--movie: needs PNG frames; use --format png or both");
   if (o.encode_only && o.movie.empty()) throw InputError("--encode-only: expected --movie FILE.mp4 to encode");
-  render::SceneSpec scene = render::loadScene(o.scene);
+  render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
   if (!o.preset.empty()) render::applyPreset(scene, render::findPreset(o.preset));
   if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);
@@ -88,6 +89,7 @@ void runRender(const RenderOptions& o) {
     const fs::path exr_file = frameName(base, frame, o.padding, ".exr");
     const bool complete = (!png || fs::exists(png_file)) && (!exr || fs::exists(exr_file));
     if (!(o.resume && complete)) {
+      render::warnImpossibleFrame(scene, frame);
       render::Image image = shot.renderFrame(frame);
       const render::ExrMetadata metadata =
           exr ? render::exrFrameMetadata(shot.cameraAtFrame(frame), camera.name, frame, render::frameTime(scene, frame),
@@ -136,6 +138,8 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, 9));
   cmd->add_flag("--resume", opts->resume, "Skip frames whose file already exists");
+  cmd->add_flag("--allow-impossible", opts->allow_impossible,
+                "Render a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
   cmd->add_flag("--encode-only", opts->encode_only,
                 "Render nothing: encode --movie from the frames already written (a farm's last step); an error "
                 "names the first missing frame");

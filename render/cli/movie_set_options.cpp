@@ -25,6 +25,8 @@ void addMovieSetOptions(CLI::App* cmd, MovieSetArgs& a) {
   cmd->add_flag("--no-mp4", a.no_mp4, "Write no .mp4 (with --mov)");
   cmd->add_flag("--keep-frames", a.keep_frames, "Keep the frames as OUT/frames/NAME/NAME.####.png");
   cmd->add_option("--date", a.date, "The slate's date (default: today, UTC)");
+  cmd->add_flag("--allow-impossible", a.allow_impossible,
+                "Render scenes beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
 }
 
 render::MovieOptions movieOptions(const MovieSetArgs& a) {
@@ -37,6 +39,7 @@ render::MovieOptions movieOptions(const MovieSetArgs& a) {
   mo.threads = a.threads;
   mo.date = a.date;
   mo.mp4 = !a.no_mp4;
+  mo.allow_impossible = a.allow_impossible;
   if (!a.mov.empty()) {
     if (a.mov != "prores" && a.mov != "h264") throw InputError("--mov: expected prores or h264, got \"" + a.mov + "\"");
     mo.mov = true;
@@ -77,6 +80,7 @@ std::vector<std::string> movieSetArguments(const MovieSetArgs& a) {
   if (!a.mov.empty()) args.insert(args.end(), {"--mov", a.mov});
   if (a.no_mp4) args.push_back("--no-mp4");
   if (a.keep_frames) args.push_back("--keep-frames");
+  if (a.allow_impossible) args.push_back("--allow-impossible");
   if (!a.date.empty()) args.insert(args.end(), {"--date", a.date});
   return args;
 }

@@ -23,6 +23,7 @@ struct MovieSetArgs {
   bool keep_frames = false;
   int threads = 0;
   std::string date;
+  bool allow_impossible = false;
 };
 
 // Adds the options that choose and shape the set (not --out or --threads, which each command words its

@@ -70,7 +70,7 @@ std::vector<int> movieFrames(const MovieJob& job, const SceneSpec& scene, const 
 }
 
 SceneSpec loadForMovie(const MovieJob& job, const MovieOptions& o) {
-  SceneSpec scene = loadScene(job.scene);
+  SceneSpec scene = loadScene(job.scene, {o.allow_impossible});
   applyPreset(scene, findPreset(o.preset));
   if (o.width > 0) scene.width = o.width;
   if (o.height > 0) scene.height = o.height;
@@ -119,7 +119,7 @@ std::vector<MovieJob> defaultMovieSet(const fs::path& scenes_dir, const fs::path
 }
 
 std::vector<int> movieFrameList(const MovieJob& job, const MovieOptions& o) {
-  return movieFrames(job, loadScene(job.scene), o);
+  return movieFrames(job, loadScene(job.scene, {o.allow_impossible}), o);
 }
 
 int movieFrameCount(const MovieJob& job, const MovieOptions& o) { return static_cast<int>(movieFrameList(job, o).size()); }
@@ -267,6 +267,7 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
   FrameWriter writer;
   const bool side_by_side = style.mode == LayerMode::SideBySide;
   for (int f : frames) {
+    warnImpossibleFrame(scene, f);
     Image image = shot.renderFrame(f);
     if (rigid) {
       image = layerFrame(image, rigid->renderFrame(f), style);

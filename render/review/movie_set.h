@@ -45,6 +45,7 @@ struct MovieOptions {
   std::string date;               // the slate's date; empty: today (UTC)
   std::filesystem::path reference_dir;  // Muybridge's plate for reference layering
   int contact_count = 12;
+  bool allow_impossible = false;  // scenes beyond a horse's limits load, with a warning per frame
 };
 
 struct MovieResult {

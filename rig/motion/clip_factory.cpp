@@ -248,7 +248,7 @@ void pathSpeed(const ParamReader& r, PathClipParams& p) {
   }
 }
 
-std::unique_ptr<Clip> buildPath(const ParamReader& r, const ClipSpec& spec) {
+PathClipParams pathParams(const ParamReader& r, const ClipSpec& spec) {
   PathClipParams p;
   p.points = pathPoints(r);
   if (r.p.contains("duration_s")) p.max_duration_s = r.number("duration_s", 600.0, 0.1, 600.0);
@@ -261,7 +261,11 @@ std::unique_ptr<Clip> buildPath(const ParamReader& r, const ClipSpec& spec) {
   // Points first: the segment gaits need a valid path to place their speeds.
   (void)GroundPath(p.points, spec.source);
   pathSpeed(r, p);
-  return std::make_unique<PathClip>(std::move(p), spec.terrain, spec.source);
+  return p;
+}
+
+std::unique_ptr<Clip> buildPath(const ParamReader& r, const ClipSpec& spec) {
+  return std::make_unique<PathClip>(pathParams(r, spec), spec.terrain, spec.source);
 }
 
 std::unique_ptr<Clip> buildGenerator(const std::string& gen, const ParamReader& r, const ClipSpec& spec) {
@@ -378,6 +382,14 @@ std::unique_ptr<Clip> makeClip(const ClipSpec& spec) {
                    throw InputError(spec.source + "." + key + ": " + what);
                  }};
   return buildGenerator(spec.generator, pr, spec);
+}
+
+std::optional<PathClipParams> pathClipParams(const ClipSpec& spec) {
+  if (spec.generator != "path") return std::nullopt;
+  ParamReader pr{spec.params, [&spec](const std::string& key, const std::string& what) {
+                   throw InputError(spec.source + "." + key + ": " + what);
+                 }};
+  return pathParams(pr, spec);
 }
 
 std::unique_ptr<Clip> makeClip(const ClipSpec& spec, const Character& horse) {

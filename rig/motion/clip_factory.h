@@ -17,6 +17,7 @@
 #include "rig/character.h"
 #include "rig/clip.h"
 #include "rig/io/json_fields.h"
+#include "rig/motion/path_clip.h"
 #include "rig/motion/procedural_gait.h"
 #include "rig/motion/terrain.h"
 
@@ -50,6 +51,8 @@ ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_di
 std::optional<GaitParams> steadyGaitParams(const ClipSpec& spec);
 
 std::unique_ptr<Clip> makeClip(const ClipSpec& spec);
+// A path clip's parameters (the default horse's rest hoof places unless spec.hoof_rest), else nullopt.
+std::optional<PathClipParams> pathClipParams(const ClipSpec& spec);
 // The clip for this horse: a path clip turns its hooves about the horse's own rest places.
 std::unique_ptr<Clip> makeClip(const ClipSpec& spec, const Character& horse);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -276,6 +277,87 @@ TEST(SceneCrowd, FollowPairMustNameAPairOfTheCrowd) {
   bad["cameras"][1]["follow_pair"] = 0;
   bad["cameras"][1]["treadmill"] = true;
   EXPECT_EQ(errorOf(bad.dump()), "scenes/x.json: cameras[1].treadmill: expected false in a crowd scene");
+}
+
+}  // namespace
+}  // namespace stirrup::render
+
+namespace stirrup::render {
+namespace {
+
+// Limits a horse has (rig/motion/horse_limits.h), checked when a scene loads.
+
+std::string loadError(const std::string& json, const SceneLoadOptions& options = {}) {
+  try {
+    (void)parseScene(nlohmann::json::parse(json), "scenes/x.json", options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Every scene shipped in scenes/ loads, and none of its paths (path clips and crowd pairs) comes near
+// a limit: each path is read (the paths counted), each with no breach.
+TEST(SceneLimits, EveryDefaultSceneIsInsideAHorsesLimits) {
+  int paths = 0, scenes = 0;
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(STIRRUP_SOURCE_DIR) / "scenes")) {
+    const std::string name = e.path().filename().string();
+    if (e.path().extension() != ".json" || name.find("mapping") != std::string::npos || name == "spine-demo.json") continue;
+    if ((name == "fox.json" || name == "fox_run.json") && !std::filesystem::exists(std::filesystem::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb"))
+      continue;  // their clip is a third-party asset; without it they cannot load (and have no path)
+    SceneSpec s;
+    ASSERT_NO_THROW(s = loadScene(e.path(), {true})) << name;
+    ++scenes;
+    for (const SceneSpec::PathLimits& l : s.limits) {
+      ++paths;
+      EXPECT_TRUE(l.check->breaches().empty()) << name << ": " << l.check->error();
+    }
+    EXPECT_NO_THROW((void)loadScene(e.path())) << name;
+  }
+  EXPECT_GE(scenes, 14);
+  // cross_country, figure_eight and trail have one path each; cavalry and ride_out one a pair.
+  EXPECT_GE(paths, 3 + 2 * 2);
+}
+
+TEST(SceneLimits, AnImpossiblePathIsRefusedWhenTheSceneLoads) {
+  // A straight 50 m at 2500 cm/s: faster than any horse has been timed.
+  EXPECT_EQ(loadError(R"({"clip": {"generator": "path", "points": [[0, 0], [5000, 0]], "speed": [[0, 2500]]}})"),
+            "scenes/x.json: clip.speed: segment 0 from 0.00 s: a speed of 2500 cm/s, beyond the 1966 cm/s no horse has "
+            "been timed above (the record, 70.76 km/h) (allow_impossible or --allow-impossible renders it anyway)");
+  // The issue's: 20 cm hairpins at 1500 cm/s; hills of 5000 cm amplitude at 100 cm wavelength.
+  const std::string hairpins = loadError(
+      R"({"clip": {"generator": "path", "points": [[0, 0], [300, 0], [300, 20], [0, 20], [0, 40], [300, 40]], "speed": [[0, 1500]]}})");
+  EXPECT_EQ(hairpins.rfind("scenes/x.json: clip.points: segment ", 0), 0u) << hairpins;
+  EXPECT_NE(hairpins.find("cm radius at 1500 cm/s asks "), std::string::npos) << hairpins;
+  const std::string hills = loadError(
+      R"({"clip": {"generator": "path", "points": [[0, 0], [3000, 0]], "speed": [[0, 180]]},
+          "terrain": {"hills": {"seed": 1, "amplitude_cm": 5000, "wavelength_cm": 100, "octaves": 1}}})");
+  EXPECT_EQ(hills.rfind("scenes/x.json: terrain: under clip.points, segment ", 0), 0u) << hills;
+  // A rider of a crowd is checked too, named by its index.
+  const std::string rider = loadError(R"({"riders": [
+      {"points": [[0, 0], [1000, 0]], "speed": [[0, 300]]},
+      {"points": [[0, 400], [5000, 400]], "speed": [[0, 2500]]}]})");
+  EXPECT_EQ(rider.rfind("scenes/x.json: riders[1].speed: segment 0 from 0.00 s: a speed of 2500 cm/s", 0), 0u) << rider;
+}
+
+TEST(SceneLimits, AllowImpossibleLoadsAndWarnsEachFrameThatBreaksALimit) {
+  // 100 to 300 cm/s over the first 0.25 s: 800 cm/s², beyond 0.6 g; at 24 fps frames 1-7 (0 to 0.25 s)
+  // speed up that hard, frame 8 (0.292 s) no longer.
+  const std::string json = R"({"clip": {"generator": "path", "points": [[0, 0], [3000, 0]], "speed": [[0, 100], [0.25, 300]]})";
+  EXPECT_NE(loadError(json + "}"), "");
+  for (const SceneSpec& s : {parseScene(nlohmann::json::parse(json + "}"), "scenes/x.json", {true}),
+                             parseScene(nlohmann::json::parse(json + R"(, "allow_impossible": true})"), "scenes/x.json")}) {
+    EXPECT_TRUE(s.allow_impossible);
+    EXPECT_EQ(impossibleFrameWarning(s, 1),
+              "scenes/x.json: frame 1 (0.000 s): beyond a horse's limits (allowed): acceleration: speeding up at 800 cm/s² at "
+              "100 cm/s, beyond the 589 cm/s² a horse reaches at that speed (Williams et al. 2009)");
+    EXPECT_NE(impossibleFrameWarning(s, 7), "");
+    EXPECT_EQ(impossibleFrameWarning(s, 8), "");
+  }
+  // A scene inside the limits warns of nothing.
+  const SceneSpec fine = parseScene(nlohmann::json::parse(R"({"clip": {"generator": "path", "points": [[0, 0], [3000, 0]], "speed": [[0, 300]]}})"),
+                                    "scenes/x.json", {true});
+  EXPECT_EQ(impossibleFrameWarning(fine, 1), "");
 }
 
 }  // namespace

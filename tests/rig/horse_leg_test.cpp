@@ -154,6 +154,38 @@ TEST(HorseLeg, WithoutPivotsOnlyTheBonesBelowReach) {
   }
 }
 
+// Never a rubber leg (issue 36). A breakover the hoof's roll makes good is no over-reach; a two-bone
+// leg (no pivots) asked 80 cm behind stops at the span of its two bones, every bone its length, and is
+// short by at least the target's distance from its fixed upper joint less that span.
+TEST(HorseLeg, ATargetBeyondReachIsFlaggedNeverStretched) {
+  HorseFrame f;
+  f.controls[HorseChannel::rbHoofTx] = -62.0;  // rolled over its toe (AHoofBeyondReachRollsOverItsToe)
+  HorseReach rolled;
+  (void)poseHorse(defaultHorse(), f, {}, &rolled);
+  EXPECT_FALSE(rolled.any());
+  EXPECT_TRUE(rolled.planted[3]);
+
+  Character horse = defaultHorse();
+  for (const char* leg : kLegs) horse.roles.erase(std::string(leg) + "Pivot");
+  const Skeleton& s = horse.skeleton;
+  HorseFrame far;
+  far.controls[HorseChannel::lbHoofTx] = -80.0;
+  HorseReach reach;
+  const auto w = poseHorse(horse, far, {}, &reach);
+  const int upper = horse.role("lbUpper"), middle = horse.role("lbMiddle"), fetlock = horse.role("lbFetlock");
+  const auto at = [&](int j) { return glm::vec3(w[std::size_t(j)][3]); };
+  const float l1 = glm::length(s.restPosition(middle) - s.restPosition(upper));
+  const float l2 = glm::length(s.restPosition(fetlock) - s.restPosition(middle));
+  EXPECT_NEAR(glm::length(at(middle) - at(upper)), l1, 1e-3f);
+  EXPECT_NEAR(glm::length(at(fetlock) - at(middle)), l2, 1e-3f);
+  const glm::vec3 target_fetlock = s.restPosition(fetlock) + glm::vec3(-80.0f, 0.0f, 0.0f);
+  const float least = glm::length(target_fetlock - s.restPosition(upper)) - (l1 + l2);
+  EXPECT_GT(least, 10.0f);
+  EXPECT_TRUE(reach.overReached(2));
+  EXPECT_GE(reach.short_cm[2], least - 1e-3f);
+  EXPECT_FALSE(reach.overReached(0) || reach.overReached(1) || reach.overReached(3));
+}
+
 TEST(HorseLeg, FullReachIsLongerThanTheRestLeg) {
   const Character& horse = defaultHorse();
   const Skeleton& s = horse.skeleton;

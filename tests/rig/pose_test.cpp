@@ -1,6 +1,7 @@
 #include "rig/pose.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -12,6 +13,9 @@
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
 #include "rig/skin.h"
+#include "render/scene.h"
+#include "rig/io/frame_range.h"
+#include "rig/motion/clip_factory.h"
 
 namespace stirrup::rig {
 namespace {
@@ -155,6 +159,52 @@ TEST(PoseHorse, ExtremeValuesStayFinite) {
   HorseFrame f;
   for (std::size_t i = 0; i < kHorseChannelCount; ++i) f.controls.value[i] = (i % 2 ? 1 : -1) * 400.0;
   EXPECT_TRUE(finite(poseHorse(horse(), f)));
+}
+
+// Never a rubber leg (issue 36): a hind hoof asked 1.5 m behind its rest place (the issue's hairpin
+// horse) leaves its leg at full reach with every bone its rest length, and the frame records that hoof
+// short of its target by at least what no reach can close.
+TEST(PoseHorse, AHoofBeyondItsLegsReachIsFlaggedAndNoBoneStretches) {
+  const Skeleton& s = horse().skeleton;
+  HorseFrame f;
+  f.controls[HorseChannel::lbHoofTx] = -150.0;
+  HorseReach reach;
+  const std::vector<glm::mat4> w = poseHorse(horse(), f, {}, &reach);
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int parent = s.joints[j].parent;
+    if (parent < 0) continue;
+    const float rest = glm::length(s.restPosition(int(j)) - s.restPosition(parent));
+    EXPECT_NEAR(glm::length(pos(w, int(j)) - pos(w, parent)), rest, 1e-3f) << s.joints[j].name;
+  }
+  EXPECT_TRUE(reach.overReached(2));
+  EXPECT_FALSE(reach.overReached(0));
+  EXPECT_FALSE(reach.overReached(1));
+  EXPECT_FALSE(reach.overReached(3));
+  EXPECT_TRUE(reach.any());
+  // How short, at least: the fetlock's target lies |target − pivot| from the hip; the stretched leg
+  // spans horseLegFullReach of it, and rolling the hoof over its toe by at most 45° brings the fetlock
+  // nearer by at most the chord 2 |fetlock − toe| sin(22.5°).
+  const HorseLegParams leg;
+  HorseLegJoints j;
+  j.fore = false;
+  j.pivot = horse().role("lbPivot");
+  j.upper = horse().role("lbUpper");
+  j.middle = horse().role("lbMiddle");
+  j.fetlock = horse().role("lbFetlock");
+  j.hoof = horse().role("lbHoof");
+  const glm::vec3 rest_hoof = s.restPosition(j.hoof), rest_fetlock = s.restPosition(j.fetlock);
+  const glm::vec3 target_fetlock = rest_hoof + glm::vec3(-150.0f, 0.0f, 0.0f) + (rest_fetlock - rest_hoof);
+  const glm::vec3 toe = rest_hoof + glm::vec3(leg.toe_cm, 0.0f, 0.0f);
+  const float roll_chord = 2.0f * glm::length(rest_fetlock - toe) * std::sin(22.5f * 3.14159265f / 180.0f);
+  const float least = glm::length(target_fetlock - pos(w, j.pivot)) - horseLegFullReach(s, j, leg) - roll_chord;
+  EXPECT_GT(least, 30.0f);
+  EXPECT_GE(reach.short_cm[2], least);
+  // Within reach (20 cm behind), nothing is flagged.
+  f.controls[HorseChannel::lbHoofTx] = -20.0;
+  HorseReach near;
+  (void)poseHorse(horse(), f, {}, &near);
+  EXPECT_FALSE(near.any());
+  for (float c : near.short_cm) EXPECT_LT(c, 0.01f);
 }
 
 TEST(PoseRider, AtRestSeatedInTheSaddleWithFeetInTheStirrupsAndHandsOnTheReins) {
@@ -493,6 +543,70 @@ TEST(PoseMounted, LimitsScaleTheLeanAndClampTheFeet) {
   small[RiderChannel::cogTx] = -0.5;
   const RiderChannels same = limitRiderChannels(small, params, 10.0);
   EXPECT_EQ(same.value, small.value);
+}
+
+}  // namespace
+}  // namespace stirrup::rig
+
+namespace stirrup::rig {
+namespace {
+
+// Over-reach in the shipped scenes: every frame of each scene's clip posed on the default horse, a
+// hoof short of its target by HorseReach::kOverReachCm or more counted, apart while it stands (its
+// lift ty 0: the hoof hovers over its print) and while it swings (it misses a point in the air).
+struct OverReach {
+  int frames = 0, flagged = 0, stance_flagged = 0;
+  float worst_stance_cm = 0, worst_swing_cm = 0;
+  int worst_stance_frame = 0, worst_swing_frame = 0;
+};
+OverReach overReachOf(const std::string& name) {
+  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
+  const auto clip = makeClip(scene.clip, test::defaultHorse());
+  OverReach o;
+  for (int frame : parseFrameList(scene.frames, name)) {
+    HorseReach reach;
+    const HorseFrame f = clip->sample(render::frameTime(scene, frame));
+    (void)poseHorse(test::defaultHorse(), f, {}, &reach);
+    ++o.frames;
+    o.flagged += reach.any();
+    bool stance_flag = false;
+    for (int leg = 0; leg < 4; ++leg) {
+      const float c = reach.short_cm[std::size_t(leg)];
+      const bool stance = reach.planted[std::size_t(leg)];
+      stance_flag |= stance && reach.overReached(leg);
+      float& worst = stance ? o.worst_stance_cm : o.worst_swing_cm;
+      if (c > worst) (stance ? o.worst_stance_frame : o.worst_swing_frame) = frame, worst = c;
+    }
+    o.stance_flagged += stance_flag;
+  }
+  return o;
+}
+
+// Measured (docs/horse-limits.md, "Never a rubber leg"): no shipped clip leaves a planted hoof short
+// of its print by a centimetre but trail's, for 2 frames (2.3 cm: a fore landing at the end of a trot
+// stride over a hill crest). In the air, a fore at the end of its swing reaching 60-96 cm ahead of its
+// rest place while the trunk rides high in the suspension (trot, canter, the jump's landing), or a
+// hind at the start of its swing far behind (the jump's take-off, 94 cm), stays short of the clip's
+// point by up to 10 cm: the leg at full reach, the hoof landing a little late. Held to what was
+// measured (frames flagged, worst standing and swinging cm) so that it cannot get worse unseen.
+TEST(PoseHorse, ShippedScenesOverReachOnlyWhereMeasured) {
+  struct Measured {
+    const char* name;
+    int flagged, stance_flagged;
+    float stance_cm, swing_cm;
+  };
+  for (const Measured& m : {Measured{"walk", 1, 0, 0.63f, 1.09f}, Measured{"trot", 12, 0, 0.24f, 4.08f},
+                            Measured{"canter", 10, 0, 0.06f, 5.20f}, Measured{"gallop", 12, 0, 0.0f, 1.89f},
+                            Measured{"stop", 10, 0, 0.0f, 6.04f}, Measured{"jump", 25, 0, 0.05f, 10.08f},
+                            Measured{"rear", 0, 0, 0.0f, 0.0f}, Measured{"buck", 3, 0, 0.0f, 3.10f},
+                            Measured{"cross_country", 44, 0, 0.32f, 5.73f}, Measured{"figure_eight", 28, 0, 0.0f, 2.37f},
+                            Measured{"trail", 37, 2, 2.26f, 6.61f}}) {
+    const OverReach o = overReachOf(m.name);
+    EXPECT_LE(o.flagged, m.flagged) << m.name;
+    EXPECT_LE(o.stance_flagged, m.stance_flagged) << m.name;
+    EXPECT_LE(o.worst_stance_cm, m.stance_cm + 0.05f) << m.name << " frame " << o.worst_stance_frame;
+    EXPECT_LE(o.worst_swing_cm, m.swing_cm + 0.05f) << m.name << " frame " << o.worst_swing_frame;
+  }
 }
 
 }  // namespace

@@ -163,5 +163,33 @@ TEST_F(SceneErrors, ABadMappingIsOneLineAndLeavesNoEmptyOutputFolder) {
                   " --as rider lists them with the roles they seem to play)");
 }
 
+// Limits a horse has (docs/horse-limits.md): a path no horse can ride is refused when the scene loads,
+// by every command that loads it; --allow-impossible renders it with one warning a frame.
+TEST_F(SceneErrors, APathBeyondAHorsesLimitsIsRefused) {
+  const fs::path f = write("fast.json", R"({"output": "out", "frames": "1-2", "resolution": [32, 18],
+      "clip": {"generator": "path", "points": [[0, 0], [5000, 0]], "speed": [[0, 2500]]}})");
+  const std::string message = f.string() + ": clip.speed: segment 0 from 0.00 s: a speed of 2500 cm/s, beyond the 1966 cm/s "
+                              "no horse has been timed above (the record, 70.76 km/h) (allow_impossible or "
+                              "--allow-impossible renders it anyway)";
+  expectError("render " + quote(f.string()), message);
+  expectError("bake " + quote(f.string()) + " --channels " + quote((dir / "out/c.csv").string()), message);
+}
+
+TEST_F(SceneErrors, AllowImpossibleRendersWithAWarningEachFrame) {
+  const fs::path f = write("fast.json", R"({"output": "out", "frames": "1-2", "resolution": [32, 18], "quality": "draft",
+      "clip": {"generator": "path", "points": [[0, 0], [5000, 0]], "speed": [[0, 2500]]}})");
+  const CommandResult r = runStirrup("render " + quote(f.string()) + " --allow-impossible");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string limit = ": beyond a horse's limits (allowed): speed: a speed of 2500 cm/s, beyond the 1966 cm/s no horse "
+                            "has been timed above (the record, 70.76 km/h)\n";
+  EXPECT_EQ(r.err, "warning: " + f.string() + ": frame 1 (0.000 s)" + limit + "warning: " + f.string() + ": frame 2 (0.042 s)" + limit);
+  EXPECT_TRUE(fs::exists(dir / "out/fast_side.0001.png"));
+  EXPECT_TRUE(fs::exists(dir / "out/fast_side.0002.png"));
+  // bake warns once a frame too, whatever it writes.
+  const CommandResult b = runStirrup("bake " + quote(f.string()) + " --allow-impossible --channels " + quote((dir / "out/c.csv").string()));
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(lineCount(b.err), 2u) << b.err;
+}
+
 }  // namespace
 }  // namespace stirrup::test

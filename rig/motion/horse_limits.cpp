@@ -1,0 +1,270 @@
+#include "rig/motion/horse_limits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "rig/error.h"
+#include "rig/motion/ground_path.h"
+#include "rig/motion/speed_profile.h"
+
+namespace stirrup::rig {
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+constexpr std::size_t kLimits = 8;
+// Acceleration is the speed profile's derivative, by central differences over this (s): the profile's
+// own table step, far shorter than any change of speed a horse makes.
+constexpr double kAccelStepS = SpeedProfile::kStepS;
+// A sample is a run's worst when it is over its limit by this factor more than the worst before it, so
+// a steady breach (rounding apart) reports its first sample, the same on every machine.
+constexpr double kWorseBy = 1.0 + 1e-9;
+
+std::string fixed(double v, int decimals) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+// The path at arc length s, continued straight along its end tangents beyond either end (as the path
+// clip places hooves beyond them).
+GroundPath::Sample extended(const GroundPath& path, double s) {
+  GroundPath::Sample p = path.at(std::clamp(s, 0.0, path.length()));
+  if (s < 0.0 || s > path.length()) p.position += p.tangent * (s < 0.0 ? s : s - path.length());
+  return p;
+}
+
+}  // namespace
+
+double HorseLimits::accelPowerCm2S3() const {
+  // Time to 1500 cm/s: v_c / a0 at a0 up to v_c = P / a0, then (v² − v_c²) / 2P after (m v dv/dt = m P).
+  // T(P) = P / 2a0² + v²/2P falls then rises in P; its smaller root is the horse that only just makes it.
+  const double a0 = max_accel_g * kGravityCmS2, v = 1500.0, T = seconds_to_15_m_s;
+  const double b = 2.0 * a0 * a0 * T, c = a0 * a0 * v * v;  // P² − b P + c = 0
+  const double disc = b * b - 4.0 * c;
+  return disc > 0.0 ? 0.5 * (b - std::sqrt(disc)) : 0.5 * b;
+}
+
+const char* horseLimitName(HorseLimit limit) {
+  switch (limit) {
+    case HorseLimit::Speed: return "speed";
+    case HorseLimit::Acceleration: return "acceleration";
+    case HorseLimit::Deceleration: return "deceleration";
+    case HorseLimit::Turn: return "turn";
+    case HorseLimit::Climb: return "climb";
+    case HorseLimit::Descent: return "descent";
+    case HorseLimit::CanterGrade: return "canter grade";
+    case HorseLimit::Footing: return "footing";
+  }
+  return "limit";
+}
+
+PathLimitCheck::PathLimitCheck(const PathClipParams& params, const Terrain* terrain, std::string file,
+                               std::string clip_field, const HorseLimits& limits)
+    : file_(std::move(file)), clip_field_(std::move(clip_field)), limits_(limits) {
+  const std::string source = file_ + ": " + clip_field_;
+  const GroundPath path(params.points, source);
+  const double length = path.length();
+  // The speed profile over as long as the path clip tables it: the path at the slowest key's speed.
+  double slowest = 0.0;
+  for (const auto& k : params.speed) slowest = slowest == 0.0 ? k.speed : std::min(slowest, k.speed);
+  const double table_s = slowest > 0.0 && std::isfinite(slowest) ? std::min(params.max_duration_s, length / slowest + 1.0) : 1.0;
+  const SpeedProfile speed(params.speed, params.over, table_s, source);
+  const GaitSchedule gaits(speed, params.thresholds);
+
+  // The horse's length and hoof tracks, from its rest hoof places (lf, rf, lb, rb).
+  const auto& rest = params.hoof_rest;
+  const double fore_x = 0.5 * (rest[0].x + rest[1].x), hind_x = 0.5 * (rest[2].x + rest[3].x);
+  const double body_cm = std::max(fore_x - hind_x, 1.0);
+  const double track_cm = 0.25 * (std::abs(rest[0].y) + std::abs(rest[1].y) + std::abs(rest[2].y) + std::abs(rest[3].y));
+  const double g = HorseLimits::kGravityCmS2;
+  const double power = limits_.accelPowerCm2S3();  // cm²/s³: a = P / v
+  const double half_foot = 0.5 * limits_.hoof_footprint_cm;
+
+  const auto heightAt = [terrain](glm::dvec2 q) { return terrain ? terrain->height(q.x, q.y) : 0.0; };
+  double t = 0.0;
+  const auto timeAt = [&](double s) {
+    // The first time the horse has travelled s: bisection from the previous sample's time (travel grows).
+    double a = t, b = std::max(t, 1e-3);
+    while (speed.distanceAtTime(b) < s && b < table_s) b = std::min(table_s, b * 2.0 + 1e-3);
+    for (int i = 0; i < 50; ++i) {
+      const double mid = 0.5 * (a + b);
+      (speed.distanceAtTime(mid) < s ? a : b) = mid;
+    }
+    return b;
+  };
+
+  const int steps = std::max(1, int(std::ceil(length / kSampleStepCm)));
+  samples_.reserve(std::size_t(steps) + 1);
+  int segment = 0;
+  const int segments = int(path.points().size()) - 1;
+  for (int i = 0; i <= steps; ++i) {
+    Sample x;
+    x.s = std::min(length, double(i) * kSampleStepCm);
+    t = x.t = i == 0 ? 0.0 : timeAt(x.s);
+    while (segment + 1 < segments && path.distanceAtPoint(std::size_t(segment) + 1) <= x.s) ++segment;
+    x.segment = segment;
+    x.v = speed.speedAtTime(x.t);
+
+    // Speed, and its rate: a forward difference at the clip's start (the speed holds before it).
+    x.value[std::size_t(HorseLimit::Speed)] = x.v;
+    x.bound[std::size_t(HorseLimit::Speed)] = limits_.top_speed_cm_s;
+    const double t0 = std::max(0.0, x.t - kAccelStepS), t1 = x.t + kAccelStepS;
+    const double accel = (speed.speedAtTime(t1) - speed.speedAtTime(t0)) / (t1 - t0);
+    x.value[std::size_t(HorseLimit::Acceleration)] = std::max(accel, 0.0);
+    x.bound[std::size_t(HorseLimit::Acceleration)] = std::min(limits_.max_accel_g * g, power / x.v);
+    x.value[std::size_t(HorseLimit::Deceleration)] = std::max(-accel, 0.0);
+    x.bound[std::size_t(HorseLimit::Deceleration)] = limits_.max_decel_g * g;
+
+    // The turn: curvature averaged over the horse's length is the heading's change across it.
+    const double turn_deg =
+        std::remainder(extended(path, x.s + 0.5 * body_cm).heading_deg - extended(path, x.s - 0.5 * body_cm).heading_deg, 360.0);
+    const double curvature = std::abs(turn_deg) / kDeg / body_cm;
+    x.radius_cm = curvature > 0.0 ? 1.0 / curvature : 0.0;
+    x.value[std::size_t(HorseLimit::Turn)] = x.v * x.v * curvature;
+    x.bound[std::size_t(HorseLimit::Turn)] = limits_.hoof_friction * g;
+
+    if (terrain && !terrain->flat()) {
+      // Grade: the ground between the fore and hind hooves, along the path (+ climbing).
+      const GroundPath::Sample fore = extended(path, x.s + fore_x), hind = extended(path, x.s + hind_x);
+      const double grade = std::atan2(heightAt(fore.position) - heightAt(hind.position), fore_x - hind_x) * kDeg;
+      x.value[std::size_t(HorseLimit::Climb)] = std::max(grade, 0.0);
+      x.bound[std::size_t(HorseLimit::Climb)] = limits_.max_climb_deg;
+      x.value[std::size_t(HorseLimit::Descent)] = std::max(-grade, 0.0);
+      x.bound[std::size_t(HorseLimit::Descent)] = limits_.max_descent_deg;
+      const PathGait gait = gaits.gaitAt(x.t);
+      if (gait == PathGait::Canter || gait == PathGait::Gallop) {
+        x.value[std::size_t(HorseLimit::CanterGrade)] = std::abs(grade);
+        x.bound[std::size_t(HorseLimit::CanterGrade)] = limits_.max_canter_grade_deg;
+      }
+      // Footing: the ground's slope across a hoof's footprint, on the left and right hoof tracks.
+      const GroundPath::Sample here = extended(path, x.s);
+      const glm::dvec2 right{-here.tangent.y, here.tangent.x};
+      double steepest = 0.0;
+      for (const double side : {-track_cm, track_cm}) {
+        const glm::dvec2 q = here.position + right * side;
+        const double dx = (heightAt(q + glm::dvec2{half_foot, 0}) - heightAt(q - glm::dvec2{half_foot, 0})) / (2 * half_foot);
+        const double dz = (heightAt(q + glm::dvec2{0, half_foot}) - heightAt(q - glm::dvec2{0, half_foot})) / (2 * half_foot);
+        steepest = std::max(steepest, std::atan(std::hypot(dx, dz)) * kDeg);
+      }
+      x.value[std::size_t(HorseLimit::Footing)] = steepest;
+      x.bound[std::size_t(HorseLimit::Footing)] = limits_.max_footing_deg;
+    }
+    samples_.push_back(x);
+  }
+
+  // Runs of samples over each limit.
+  for (std::size_t k = 0; k < kLimits; ++k) {
+    const Sample* start = nullptr;
+    const Sample* worst = nullptr;
+    const auto over = [k](const Sample& x) { return x.bound[k] > 0.0 && x.value[k] > x.bound[k]; };
+    const auto ratio = [k](const Sample& x) { return x.value[k] / x.bound[k]; };
+    for (const Sample& x : samples_) {
+      if (over(x)) {
+        if (!start) start = worst = &x;
+        if (ratio(x) > ratio(*worst) * kWorseBy) worst = &x;
+      } else if (start) {
+        breaches_.push_back(breachAt(HorseLimit(k), *start, *worst));
+        start = worst = nullptr;
+      }
+    }
+    if (start) breaches_.push_back(breachAt(HorseLimit(k), *start, *worst));
+  }
+  std::stable_sort(breaches_.begin(), breaches_.end(),
+                   [](const LimitBreach& a, const LimitBreach& b) { return a.time_s < b.time_s; });
+}
+
+LimitBreach PathLimitCheck::breachAt(HorseLimit limit, const Sample& start, const Sample& worst) const {
+  const std::size_t k = std::size_t(limit);
+  LimitBreach b;
+  b.limit = limit;
+  b.segment = start.segment;
+  b.time_s = start.t;
+  b.distance_cm = start.s;
+  b.value = worst.value[k];
+  b.bound = worst.bound[k];
+  b.speed_cm_s = worst.v;
+  const std::string v = fixed(b.value, 0), l = fixed(b.bound, 0), vd = fixed(b.value, 1), ld = fixed(b.bound, 1);
+  const std::string speed = fixed(worst.v, 0) + " cm/s";
+  std::string what;
+  switch (limit) {
+    case HorseLimit::Speed:
+      b.field = "speed";
+      what = "a speed of " + v + " cm/s, beyond the " + l + " cm/s no horse has been timed above (the record, 70.76 km/h)";
+      break;
+    case HorseLimit::Acceleration:
+      b.field = "speed";
+      what = "speeding up at " + v + " cm/s² at " + speed + ", beyond the " + l +
+             " cm/s² a horse reaches at that speed (Williams et al. 2009)";
+      break;
+    case HorseLimit::Deceleration:
+      b.field = "speed";
+      what = "slowing at " + v + " cm/s², beyond the " + l + " cm/s² a horse brakes at (Williams et al. 2009)";
+      break;
+    case HorseLimit::Turn:
+      b.field = "points";
+      what = "a turn of " + fixed(worst.radius_cm, 0) + " cm radius at " + speed + " asks " + v +
+             " cm/s² (v²/r) of the hooves' grip, beyond " + l + " cm/s² (friction " + fixed(limits_.hoof_friction, 1) +
+             " × g; Tan and Wilson 2011)";
+      break;
+    case HorseLimit::Climb:
+      b.field = "terrain";
+      what = "a climb of " + vd + "° under the horse, beyond the " + ld + "° a ridden horse climbs";
+      break;
+    case HorseLimit::Descent:
+      b.field = "terrain";
+      what = "a descent of " + vd + "° under the horse, beyond the " + ld + "° a ridden horse descends";
+      break;
+    case HorseLimit::CanterGrade:
+      b.field = "terrain";
+      what = "a grade of " + vd + "° at the canter or gallop (" + speed + "), beyond the " + ld + "° a horse is cantered on";
+      break;
+    case HorseLimit::Footing:
+      b.field = "terrain";
+      what = "ground sloping " + vd + "° under a hoof (across its " + fixed(limits_.hoof_footprint_cm, 0) +
+             " cm footprint), beyond the " + ld + "° a hoof stands on";
+      break;
+  }
+  b.text = "segment " + std::to_string(start.segment) + " from " + fixed(start.t, 2) + " s: " + what;
+  return b;
+}
+
+std::string PathLimitCheck::errorText(const LimitBreach& b) const {
+  if (b.field == "terrain") return file_ + ": terrain: under " + clip_field_ + ".points, " + b.text;
+  return file_ + ": " + clip_field_ + "." + b.field + ": " + b.text;
+}
+
+const LimitBreach* PathLimitCheck::worst() const {
+  const LimitBreach* w = nullptr;
+  for (const LimitBreach& b : breaches_)
+    if (!w || b.value / b.bound > w->value / w->bound * kWorseBy) w = &b;
+  return w;
+}
+
+std::string PathLimitCheck::error() const { return breaches_.empty() ? "" : errorText(*worst()); }
+
+std::vector<LimitBreach> PathLimitCheck::during(double t0, double t1) const {
+  std::vector<LimitBreach> out;
+  if (samples_.empty()) return out;
+  // A window between two samples (a slow horse, a high frame rate) reads the sample nearest its middle.
+  const auto first = std::lower_bound(samples_.begin(), samples_.end(), t0, [](const Sample& x, double t) { return x.t < t; });
+  if (first == samples_.end() || first->t > t1) {
+    const double mid = 0.5 * (t0 + t1);
+    const Sample& x = first == samples_.end() ? samples_.back()
+                      : first == samples_.begin() || first->t - mid < mid - std::prev(first)->t ? *first
+                                                                                                : *std::prev(first);
+    t0 = t1 = x.t;
+  }
+  for (std::size_t k = 0; k < kLimits; ++k) {
+    const Sample* worst = nullptr;
+    for (const Sample& x : samples_) {
+      if (x.t < t0 || x.t > t1 || !(x.bound[k] > 0.0 && x.value[k] > x.bound[k])) continue;
+      if (!worst || x.value[k] / x.bound[k] > worst->value[k] / worst->bound[k] * kWorseBy) worst = &x;
+    }
+    if (worst) out.push_back(breachAt(HorseLimit(k), *worst, *worst));
+  }
+  return out;
+}
+
+}  // namespace stirrup::rig
