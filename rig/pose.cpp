@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -450,10 +451,17 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
       for (std::size_t k = 0; k < neck.size(); ++k) neck[k] = glm::vec3(horseWorld[g.horse_joint[k]] * glm::vec4(g.horse_local[k], 1.0f));
       for (std::size_t k = 0; k < upper.size(); ++k) upper[k] = glm::vec3(world[g.rider_joint[k]] * glm::vec4(g.rider_local[k], 1.0f));
       const float room2 = g.room_cm * g.room_cm;
+      // The neck's box grown by the room: a point outside it is clear of every neck point (most of her,
+      // most frames), so only the few inside are measured one by one.
+      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      for (const glm::vec3& h : neck) lo = glm::min(lo, h), hi = glm::max(hi, h);
+      lo -= glm::vec3(g.room_cm);
+      hi += glm::vec3(g.room_cm);
       const auto clear = [&](double deg) {
         const glm::mat4 t = turnBy(deg);
         for (const glm::vec3& p : upper) {
           const glm::vec3 q(t * glm::vec4(p, 1.0f));
+          if (glm::any(glm::lessThan(q, lo)) || glm::any(glm::greaterThan(q, hi))) continue;
           for (const glm::vec3& h : neck)
             if (glm::dot(q - h, q - h) < room2) return false;
         }

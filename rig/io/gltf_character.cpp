@@ -310,14 +310,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
   GltfImageBytes images;
   const tinygltf::Model model = readGltfFile(file, f, &images);
-  if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned " + kind_name + ")");
-  const tinygltf::Skin& skin = model.skins[0];
+  const tinygltf::Skin& skin = checkedFirstSkin(model, f, kind_name);
   const int nj = static_cast<int>(skin.joints.size());
-  if (nj == 0) throw InputError(f + ": skins[0] has no joints");
-  for (int j = 0; j < nj; ++j)
-    if (skin.joints[j] < 0 || skin.joints[j] >= static_cast<int>(model.nodes.size()))
-      throw InputError(f + ": skins[0].joints[" + std::to_string(j) + "]: expected a node index 0.." +
-                       std::to_string(static_cast<int>(model.nodes.size()) - 1) + ", got " + std::to_string(skin.joints[j]));
 
   // The joints' names as the character will carry them (unnamed joints: "jointN").
   const std::vector<std::string> joint_names = gltfJointNames(model);

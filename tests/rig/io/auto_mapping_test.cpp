@@ -27,12 +27,13 @@
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_humanoid.h"
 #include "tests/input_error.h"
+#include "tests/rig/user_riders.h"
 
 namespace stirrup::rig {
 namespace {
 
 namespace fs = std::filesystem;
-using test::errorOf;
+using stirrup::test::errorOf;
 
 fs::path testDir(const std::string& name) {
   const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_auto_mapping" / name;
@@ -55,37 +56,9 @@ StandingHumanoidParams humanoidParams(HumanoidNames names, HumanoidRestPose pose
   return p;
 }
 
-// What each rider role should be, from the generator's labels: the pelvis, the first neck joint, the
-// head; per side the upper arm's root, the forearm's root, the hand at the wrist, the palm joint (the
-// grip, when the hand has one), the thigh's and the shin's roots, the foot at the ankle and the toe; the
-// top spine joint when the clavicles hang from it in the file (not when the limbs are detached).
-std::map<std::string, std::string> expectedRiderRoles(const StandingHumanoid& h) {
-  std::map<std::string, std::string> roles;
-  const auto& joints = h.character.skeleton.joints;
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    const HumanoidJointLabel& l = h.labels[j];
-    const std::string side = l.side > 0 ? "l" : "r";
-    const std::string& name = joints[j].name;
-    switch (l.bone) {
-      case HumanoidBone::Pelvis: roles["pelvis"] = name; break;
-      case HumanoidBone::Neck: if (l.index == 0) roles["neck"] = name; break;
-      case HumanoidBone::Head: roles["head"] = name; break;
-      case HumanoidBone::Spine:
-        if (l.index == h.params.spine_joints - 1 && !h.params.detached_limbs) roles["upperChest"] = name;
-        break;
-      case HumanoidBone::UpperArm: if (l.index == 0) roles[side + "Shoulder"] = name; break;
-      case HumanoidBone::Forearm: if (l.index == 0) roles[side + "Elbow"] = name; break;
-      case HumanoidBone::Hand: roles[side + "Wrist"] = name; break;
-      case HumanoidBone::Palm: roles[side + "Hand"] = name; break;
-      case HumanoidBone::UpperLeg: if (l.index == 0) roles[side + "Hip"] = name; break;
-      case HumanoidBone::LowerLeg: if (l.index == 0) roles[side + "Knee"] = name; break;
-      case HumanoidBone::Foot: roles[side + "Ankle"] = name; break;
-      case HumanoidBone::Toe: roles[side + "Ball"] = name; break;
-      default: break;
-    }
-  }
-  return roles;
-}
+// What each rider role should be, from the generator's labels (tests/rig/user_riders.h), the top spine
+// joint included when the clavicles hang from it in the file.
+std::map<std::string, std::string> expectedRiderRoles(const StandingHumanoid& h) { return test::labelledRiderRoles(h, true); }
 
 // The humanoid turned by `rotation` and scaled by `scale` (the file's units: 100 makes a file in
 // centimetres), everything a file holds moved alike: joints, bone tails and rest frames, vertices, normals.
