@@ -1,4 +1,4 @@
-// The channel contract (../shared/rig-channels.md): the horse controls a clip produces and the
+// The channel contract (docs/channels.md): the horse controls a clip produces and the
 // rider controls the rider rig evaluates. Channels are addressed by enum and named
 // `control.channel` exactly as the contract names them, so CSV columns, profiles and code agree.
 #pragma once

@@ -46,10 +46,10 @@ struct Character {
     // The widest the horse is within one cell of (x, y) (-inf outside the table).
     float widthNear(float x, float y) const;
   } leg_guard;
-  // A rider on a horse she was not built for (rig/io/ridden_pair.h) keeps her head and trunk out of the
+  // A rider the rig seated on a horse (rig/io/ridden_pair.h) keeps her head and trunk out of the
   // horse's neck and head as she folds forward (a tall rider in a rear meets the poll): sample points
   // of her upper body and of the horse's neck and head, each rigid on its joint, and the room posing
-  // keeps between them (rig/pose.h). Empty: no guard (the generated pair, built together).
+  // keeps between them (rig/pose.h). Empty: no guard (a rider modelled seated, the generated one among them).
   struct FoldGuard {
     std::vector<int> rider_joint, horse_joint;
     std::vector<glm::vec3> rider_local, horse_local;  // each point in its joint's frame

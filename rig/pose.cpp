@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "rig/horse_body.h"
 #include "rig/horse_leg.h"
 #include "rig/ik.h"
 #include "rig/rider_spine.h"
@@ -26,6 +28,19 @@ constexpr float kPlantedLiftCm = 1e-3f;
 constexpr float kNeckCounterRangeDeg = 45.0f;
 // The fold guard (Character::FoldGuard) finds the largest forward turn that keeps its room to this.
 constexpr double kFoldGuardToleranceDeg = 0.1;
+
+// Joints below the ones a solve placed (`solved`), which it did not place themselves, follow their
+// parents by their local transforms (parents come before children in the skeleton).
+void carryUnsolved(const Skeleton& s, std::span<const glm::mat4> local, const std::vector<char>& solved,
+                   std::span<glm::mat4> world) {
+  std::vector<char> moved = solved;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int p = s.joints[j].parent;
+    if (solved[j] || p < 0 || !moved[p]) continue;
+    world[j] = world[p] * local[j];
+    moved[j] = 1;
+  }
+}
 
 glm::mat4 rot(double degrees, glm::vec3 axis) {
   return glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(degrees)), axis);
@@ -133,21 +148,34 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
   local[root] = travel * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]), float(h[C::rearPivotTz])}) *
                 s.joints[root].rest_local * rot(-h[C::rearPivotRy], kY) * rot(h[C::rearPivotRz], kZ) *
                 rot(h[C::rearPivotRx], kX);
+  // A user's rig may hang the root from joints of its own (a ground root): they ride along rigidly with
+  // the root, so no bone between them stretches. (The root's rest is translation-only: its rest world
+  // is the inverse of its inverse bind.)
+  int top = root;
+  while (s.joints[top].parent >= 0) top = s.joints[top].parent;
+  if (top != root) {
+    const glm::mat4 root_world = local[root];
+    local[root] = s.joints[root].rest_local;
+    local[top] = root_world * s.joints[root].inverse_bind * s.joints[top].rest_local;
+  }
+  // The back, neck and tail as this horse's skeleton has them (rig/horse_body.h).
+  const HorseBody body = horseBody(horse);
   // Back arch: the hips-to-mid-back segment tilts up by half, the front half pitches down by half,
   // so the middle of the back rises relative to both ends.
-  const int back_mid = horse.role("backMid");
-  const float half_arch = static_cast<float>(h[C::backMidRz]) * 0.5f;
-  const glm::vec3 back_offset(s.joints[back_mid].rest_local[3]);
-  const glm::vec3 arched = glm::vec3(rot(half_arch, kZ) * glm::vec4(back_offset, 0.0f));
-  local[back_mid] = translate(arched) * rot(-h[C::backMidRy], kY) * rot(h[C::backMidRx], kX) * rot(-half_arch, kZ);
-  // Neck and head: + = up, spread over the two neck joints. Tail: + = up and to the right.
-  for (const char* n : {"neck1", "neck2"})
-    local[horse.role(n)] = s.joints[horse.role(n)].rest_local * rot(frame.neck_rz * 0.5, kZ);
-  local[horse.role("head")] = s.joints[horse.role("head")].rest_local * rot(frame.head_rz, kZ);
-  for (const char* n : {"tail1", "tail2", "tail3"}) {
-    const int j = horse.role(n);
-    local[j] = s.joints[j].rest_local * rot(frame.tail_ry / 3.0, kY) * rot(-frame.tail_rz / 3.0, kZ);
+  if (body.back_turn >= 0) {
+    const int back_mid = body.back_turn;
+    const float half_arch = static_cast<float>(h[C::backMidRz]) * 0.5f;
+    const glm::vec3 back_offset(s.joints[back_mid].rest_local[3]);
+    const glm::vec3 arched = glm::vec3(rot(half_arch, kZ) * glm::vec4(back_offset, 0.0f));
+    local[back_mid] = translate(arched) * rot(-h[C::backMidRy], kY) * rot(h[C::backMidRx], kX) * rot(-half_arch, kZ);
   }
+  // Neck and head: + = up, spread over the neck's joints. Tail: + = up and to the right, spread over
+  // the tail's longest line of joints.
+  const double neck_share = frame.neck_rz / static_cast<double>(body.neck.size());
+  for (int j : body.neck) local[j] = s.joints[j].rest_local * rot(neck_share, kZ);
+  local[horse.role("head")] = s.joints[horse.role("head")].rest_local * rot(frame.head_rz, kZ);
+  const double tail_parts = static_cast<double>(std::max(body.tail_length, 1));
+  for (int j : body.tail) local[j] = s.joints[j].rest_local * rot(frame.tail_ry / tail_parts, kY) * rot(-frame.tail_rz / tail_parts, kZ);
   std::vector<glm::mat4> world(s.size());
   localToWorld(s, local, world);
 
@@ -158,10 +186,12 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
                                                                      {C::rfHoofTx, C::rfHoofTy, C::rfHoofTz},
                                                                      {C::lbHoofTx, C::lbHoofTy, C::lbHoofTz},
                                                                      {C::rbHoofTx, C::rbHoofTy, C::rbHoofTz}}};
+  std::vector<char> solved(s.size(), 0);  // joints the legs' IK places in world terms
   for (int leg = 0; leg < 4; ++leg) {
     const std::string n = kLegs[leg];
     const int upper = horse.role(n + "Upper"), middle = horse.role(n + "Middle");
     const int fetlock = horse.role(n + "Fetlock"), hoof = horse.role(n + "Hoof");
+    for (int j : {upper, middle, fetlock, hoof}) solved[j] = 1;
     const glm::vec3 rest_upper = s.restPosition(upper), rest_middle = s.restPosition(middle);
     const glm::vec3 rest_fetlock = s.restPosition(fetlock), rest_hoof = s.restPosition(hoof);
     const auto& ch = kHoofChannels[leg];
@@ -184,6 +214,8 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
       joints.middle = middle;
       joints.fetlock = fetlock;
       joints.hoof = hoof;
+      for (int j : {joints.pivot, joints.shoulder})
+        if (j >= 0) solved[j] = 1;
       const float short_cm = solveHorseLeg(s, joints, {hoof_target, fold}, params.leg, world);
       if (reach) reach->short_cm[std::size_t(leg)] = short_cm;
       continue;
@@ -201,6 +233,9 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
     world[hoof] = translate(limb.end + glm::vec3(fold * glm::vec4(rest_hoof - rest_fetlock, 0.0f))) * fold;
     if (reach) reach->short_cm[std::size_t(leg)] = glm::length(limb.end - fetlock_target);
   }
+  // Joints hanging from the legs that no role names (a user's toes, dewclaws, twist joints) are
+  // carried by their parents as they hang at rest.
+  carryUnsolved(s, local, solved, world);
   return world;
 }
 
@@ -416,10 +451,17 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
       for (std::size_t k = 0; k < neck.size(); ++k) neck[k] = glm::vec3(horseWorld[g.horse_joint[k]] * glm::vec4(g.horse_local[k], 1.0f));
       for (std::size_t k = 0; k < upper.size(); ++k) upper[k] = glm::vec3(world[g.rider_joint[k]] * glm::vec4(g.rider_local[k], 1.0f));
       const float room2 = g.room_cm * g.room_cm;
+      // The neck's box grown by the room: a point outside it is clear of every neck point (most of her,
+      // most frames), so only the few inside are measured one by one.
+      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      for (const glm::vec3& h : neck) lo = glm::min(lo, h), hi = glm::max(hi, h);
+      lo -= glm::vec3(g.room_cm);
+      hi += glm::vec3(g.room_cm);
       const auto clear = [&](double deg) {
         const glm::mat4 t = turnBy(deg);
         for (const glm::vec3& p : upper) {
           const glm::vec3 q(t * glm::vec4(p, 1.0f));
+          if (glm::any(glm::lessThan(q, lo)) || glm::any(glm::greaterThan(q, hi))) continue;
           for (const glm::vec3& h : neck)
             if (glm::dot(q - h, q - h) < room2) return false;
         }
@@ -502,13 +544,7 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
   }
   // Joints hanging from the limbs that no role names (fingers, toes, twist and split-segment joints
   // of a user's rig) are carried by their parents as they hang at rest.
-  std::vector<char> moved = solved;
-  for (std::size_t j = 0; j < s.size(); ++j) {
-    const int p = s.joints[j].parent;
-    if (solved[j] || p < 0 || !moved[p]) continue;
-    world[j] = world[p] * local[j];
-    moved[j] = 1;
-  }
+  carryUnsolved(s, local, solved, world);
   return world;
 }
 

@@ -1,7 +1,7 @@
 // Posing jobs: explicit inputs, explicit outputs, no hidden state. Each returns world matrices, one
 // per joint of the character's skeleton, for skinMesh.
 //
-// Signs follow ../shared/rig-channels.md by meaning. In the world (+X travel, +Y up, +Z the horse's
+// Signs follow docs/channels.md by meaning. In the world (+X travel, +Y up, +Z the horse's
 // right): "front end up" is a rotation about +Z, "roll toward the right" about +X, "yaw to the
 // right" about -Y. A rider's "lean forward" is about -Z, "lean to her right" about +X.
 //
@@ -52,10 +52,12 @@ glm::mat4 travelMatrix(const HorseFrame& frame);
 std::array<glm::dvec2, 4> restHoofPlaces(const Character& horse);
 
 // The horse at one frame: in its travel frame (travelMatrix); the body (root at the hips) moved and
-// turned by rearPivot, the front half turned at backMid, neck/head/tail by the frame's follow-through,
+// turned by rearPivot, the front half turned at backMid (or the back joint rig/horse_body.h finds),
+// neck/head/tail by the frame's follow-through spread over the chains the skeleton has (horseBody),
 // each leg solved by two-bone IK to its hoof target (rest hoof place + hoof tx/ty/tz), knees bending
-// forward in front and hocks backward behind, the pastern folding as the hoof lifts.
-// Never a rubber leg (issue 36): a hoof target beyond its leg's reach leaves the leg at its full reach,
+// forward in front and hocks backward behind, the pastern folding as the hoof lifts; joints no role or
+// chain names carried by their parents. No bone changes length.
+// Never a rubber leg: a hoof target beyond its leg's reach leaves the leg at its full reach,
 // every bone its own length, and `reach` (when given) records how far short each hoof stays.
 struct HorseReach {
   // A hoof this far (cm) or more short of its target is over-reached: beyond the two-bone solve's

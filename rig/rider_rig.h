@@ -4,7 +4,7 @@
 //
 // Horse translations arrive in cm and are divided by profile.horse_unit_cm (thesis units) before the
 // expressions; rider translations leave in rider units and rotations in degrees, as the channel
-// contract (../shared/rig-channels.md) says. Every constant is a named RigProfile parameter; the
+// contract (docs/channels.md) says. Every constant is a named RigProfile parameter; the
 // decisions where the thesis contradicts itself are in docs/rider-rig.md.
 #pragma once
 

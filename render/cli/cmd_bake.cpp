@@ -177,7 +177,7 @@ void addBakeCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("bake", "Evaluate a scene's clip and rider rig for every frame");
   cmd->footer(
       "--channels writes CSV: a header `frame,time,` then every horse channel and every rider channel in\n"
-      "the names of ../shared/rig-channels.md (horse: cm and degrees; rider: degrees and rider units),\n"
+      "the names of docs/channels.md (horse: cm and degrees; rider: degrees and rider units),\n"
       "one row per frame.\n"
       "-o writes one glTF 2.0 binary: both characters as skinned meshes, each under its own root node\n"
       "(one armature each), their joints at every frame (translation and rotation, LINEAR), and every\n"

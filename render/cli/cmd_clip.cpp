@@ -1,6 +1,6 @@
 // stirrup clip make GAIT [--param value ...] -o CLIP.glb: writes a generated horse clip as glTF 2.0.
 // stirrup clip info CLIP [--json]: measures a clip (a .glb/.gltf file, a generator name, or a scene's
-// clip; a path clip section by section) and prints it beside the ranges of ../shared/gait-reference.md.
+// clip; a path clip section by section) and prints it beside the ranges of docs/gait-reference.md.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>

@@ -129,7 +129,7 @@ void addRigCommand(CLI::App& app) {
   CLI::App* eval = rig_cmd->add_subcommand("eval", "Evaluate the rider rig on every row of a horse channel CSV");
   eval->footer(
       "HORSE.csv: a header row, then one row per frame, comma-separated.\n"
-      "  The header holds `frame` and any subset of the horse channels of ../shared/rig-channels.md, in\n"
+      "  The header holds `frame` and any subset of the horse channels of docs/channels.md, in\n"
       "  any order: lfHoof rfHoof lbHoof rbHoof .tx .ty .tz (cm), rearPivot .tx .ty .tz (cm) .rx .ry .rz\n"
       "  (degrees), backMid .rx .ry .rz (degrees). Absent channels are 0 (the rest pose). Values are\n"
       "  offsets from rest in the horse's travel frame; blank lines are skipped.\n"

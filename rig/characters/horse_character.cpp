@@ -49,14 +49,18 @@ Character buildHorse(const HorseParams& p) {
   const float bx = (p.saddle_x - p.barrel_center.x) / p.barrel_radii.x;
   const float back_top = p.barrel_center.y + p.barrel_radii.y * std::sqrt(std::max(0.0f, 1.0f - bx * bx));
   const glm::vec3 seat{p.saddle_x, back_top + p.saddle_seat_height, 0.0f};
-  const int saddle = addJointAt(s, "saddle", back_mid, seat);
-  const int l_stirrup = addJointAt(s, "lStirrup", saddle, seat + p.mount.stirrup);
-  const int r_stirrup = addJointAt(s, "rStirrup", saddle, seat + mirrorZ(p.mount.stirrup, -1.0f));
+  const int saddle = p.tack ? addJointAt(s, "saddle", back_mid, seat) : -1;
+  const int l_stirrup = p.tack ? addJointAt(s, "lStirrup", saddle, seat + p.mount.stirrup) : -1;
+  const int r_stirrup = p.tack ? addJointAt(s, "rStirrup", saddle, seat + mirrorZ(p.mount.stirrup, -1.0f)) : -1;
 
   c.roles = {{"root", root},     {"backMid", back_mid}, {"chest", chest},       {"withers", withers},
-             {"neck1", neck1},   {"neck2", neck2},      {"head", head},         {"saddle", saddle},
-             {"lStirrup", l_stirrup}, {"rStirrup", r_stirrup}, {"tail1", tail1}, {"tail2", tail2},
-             {"tail3", tail3}};
+             {"neck1", neck1},   {"neck2", neck2},      {"head", head},         {"tail1", tail1},
+             {"tail2", tail2},   {"tail3", tail3}};
+  if (p.tack) {
+    c.roles["saddle"] = saddle;
+    c.roles["lStirrup"] = l_stirrup;
+    c.roles["rStirrup"] = r_stirrup;
+  }
 
   // Trunk shapes.
   body.add(ellipsoid(p.croup_center, p.croup_radii, root, p.coat, 6.0f));
@@ -158,6 +162,14 @@ Character buildHorse(const HorseParams& p) {
     body.add(sole);
   }
 
+  if (!p.tack) {
+    PolygonizeParams poly;
+    poly.cell = p.cell;
+    poly.skin_falloff = 3.0f;
+    c.mesh = polygonize(body, poly);
+    groupTrianglesByColor(c.mesh);
+    return c;
+  }
   // Tack, crisp against the coat. Pad and flaps are shells around the barrel cut to a box.
   body.add(barrelShell(p, 1.8f, {seat.x - 28.0f, seat.y - 44.0f, -100.0f}, {seat.x + 28.0f, 300.0f, 100.0f},
                        saddle, p.pad));

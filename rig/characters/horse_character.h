@@ -75,6 +75,9 @@ struct HorseParams {
   float saddle_x = 10.0f;
   float saddle_seat_height = 6.0f;     // seat above the top of the back
   MountParams mount;
+  // Without tack (false): no saddle, stirrups, bridle or reins, nor their joints and roles: a bare horse,
+  // as a user's quadruped comes, for the rig's own tack (rig/characters/horse_tack.h).
+  bool tack = true;
   float rein_radius = 0.7f, strap_radius = 0.8f;
   // Colours (linear).
   glm::vec3 coat{0.16f, 0.05f, 0.016f};      // bay

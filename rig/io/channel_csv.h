@@ -1,7 +1,7 @@
 // Channel CSV files: a header row naming the columns, then one row per frame.
 //
 // Reading (horse channels): the header holds `frame` and any subset of the horse channel names of
-// ../shared/rig-channels.md (lfHoof.tx ... backMid.rz), in any order; absent channels are 0 (rest).
+// docs/channels.md (lfHoof.tx ... backMid.rz), in any order; absent channels are 0 (rest).
 // Values are plain decimal numbers (cm and degrees). A UTF-8 byte-order mark before the header (a
 // spreadsheet's "CSV UTF-8") is skipped. Blank lines are skipped; spaces around a field
 // are ignored. Every problem is one InputError line "FILE: row N, column NAME: expected ..., got ...",

@@ -16,8 +16,7 @@ std::string_view characterKindName(CharacterKind kind) { return kind == Characte
 
 const std::vector<std::string>& requiredRoles(CharacterKind kind) {
   static const std::vector<std::string> horse = [] {
-    std::vector<std::string> r = {"root",  "backMid",  "chest",    "withers", "neck1",  "neck2", "head",  "saddle",
-                                  "lStirrup", "rStirrup", "tail1", "tail2", "tail3", "lRein", "rRein"};
+    std::vector<std::string> r = {"root", "neck1", "head"};
     for (const char* leg : {"lf", "rf", "lb", "rb"})
       for (const char* part : {"Upper", "Middle", "Fetlock", "Hoof"}) r.push_back(std::string(leg) + part);
     return r;
@@ -32,7 +31,9 @@ const std::vector<std::string>& requiredRoles(CharacterKind kind) {
 }
 
 const std::vector<std::string>& optionalRoles(CharacterKind kind) {
-  static const std::vector<std::string> horse = {"lfPivot", "rfPivot", "lbPivot", "rbPivot"};
+  static const std::vector<std::string> horse = {"backMid", "chest",    "withers",  "neck2", "tail1", "tail2",
+                                                 "tail3",   "saddle",   "lStirrup", "rStirrup", "lRein", "rRein",
+                                                 "lfPivot", "rfPivot", "lbPivot", "rbPivot"};
   static const std::vector<std::string> rider = [] {
     std::vector<std::string> r = {"lowerBack", "waist", "chest", "upperChest", "hipCentre", "braid1", "braid2", "braid3", "coatTail"};
     for (const char* side : {"l", "r"})
@@ -109,10 +110,12 @@ const std::vector<RoleBelow>& roleChains(CharacterKind kind) {
   // A horse's roles may share joints (a user's horse with fewer joints than roles: the Fox's fore legs
   // have no joint between the knee and the ground), so only a joint off the chain is refused.
   static const std::vector<RoleBelow> horse = [] {
-    std::vector<RoleBelow> r = {{"neck2", "neck1", true, "the neck's joints in order from the chest"},
+    std::vector<RoleBelow> r = {{"head", "neck1", false, "the head beyond the neck's first joint"},
+                                {"neck2", "neck1", true, "the neck's joints in order from the chest"},
                                 {"head", "neck2", true, "the head at or beyond the neck"},
                                 {"tail2", "tail1", true, "the tail's joints in order from its root"},
-                                {"tail3", "tail2", true, "the tail's joints in order from its root"}};
+                                {"tail3", "tail2", true, "the tail's joints in order from its root"},
+                                {"tail3", "tail1", true, "the tail's joints in order from its root"}};
     for (const std::string leg : {"lf", "rf", "lb", "rb"}) {
       r.push_back({leg + "Upper", leg + "Pivot", true, "the leg's upper joint at or below its pivot"});
       r.push_back({leg + "Middle", leg + "Upper", true, "the leg's joints in order down to the hoof"});
@@ -147,6 +150,15 @@ std::string roleChainProblem(CharacterKind kind, const std::map<std::string, int
     if (pelvis >= 0 && neck >= 0 && bonesBelow(pelvis, neck) < 2)
       return "roles.neck: joint " + name(neck) + " is not above pelvis " + name(pelvis) +
              " with a spine joint between them (expected the neck on the chain that runs up from the pelvis" + tail;
+  }
+  if (kind == CharacterKind::Horse) {
+    // The tail swings with all it holds: it must not hold the body (the tail's first joint mapped to the
+    // hips or a back joint would swing the whole horse).
+    const int tail1 = at("tail1");
+    for (const char* held : {"root", "neck1"})
+      if (const int j = at(held); tail1 >= 0 && j >= 0 && bonesBelow(tail1, j) >= 0)
+        return "roles.tail1: joint " + name(tail1) + " holds " + held + " " + name(j) +
+               " (expected the tail's first joint, on a chain of its own behind the hips" + tail;
   }
   for (const RoleBelow& c : roleChains(kind)) {
     const int j = at(c.role), a = at(c.above);

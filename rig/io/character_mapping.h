@@ -25,12 +25,17 @@ enum class CharacterKind { Horse, Rider };
 
 std::string_view characterKindName(CharacterKind kind);  // "horse" / "rider"
 
-// Every role posing needs, in a stable order: for the horse the trunk, neck, head, tail, tack and four
-// legs (rig/characters/horse_character.h); for the rider the pelvis, neck, head and both arms (shoulder,
+// Every role posing needs, in a stable order: for the horse the root (the hips, its rear pivot), the
+// neck's first joint, the head and the four legs (upper, middle, fetlock, hoof; the fetlock may be the
+// hoof's joint); for the rider the pelvis, neck, head and both arms (shoulder,
 // elbow, wrist) and legs (hip, knee, ankle). Her spine is the chain of joints from the pelvis up to the
 // neck, whatever its length (rig/rider_spine.h).
 const std::vector<std::string>& requiredRoles(CharacterKind kind);
-// Roles a character may name for more: a horse's leg pivots ("lfPivot".."rbPivot": the scapula's
+// Roles a character may name for more: a horse's backMid (where the back arches), chest, withers,
+// neck2 (the neck's joints between neck1 and the head are found from the hierarchy anyway), tail1 (the
+// tail is tail1 and its descendants; tail2 and tail3 are accepted), its tack (saddle, lStirrup,
+// rStirrup, lRein, rRein: all five or none; without them the rig adds its own, rig/characters/horse_tack.h)
+// and its leg pivots ("lfPivot".."rbPivot": the scapula's
 // pivot, the hip joint) let the whole limb reach (rig/horse_leg.h); without them a leg is solved
 // below the elbow or stifle only. A rider's spine controllers (lowerBack, waist, chest: joints of the
 // chain or handles of their own) and upperChest (the chain's top, the shoulders' joint), braid1..3 and
@@ -55,7 +60,8 @@ CharacterMapping loadCharacterMapping(const std::filesystem::path& file, Charact
 
 // Roles that must lie on one chain of the skeleton, each below another: a rider's elbow below her
 // shoulder, wrist below elbow, knee below hip, ..., the neck above the pelvis with a spine joint between,
-// the head above the neck; a horse's leg joints in order down to the hoof, the neck and tail in order.
+// the head above the neck; a horse's leg joints in order down to the hoof, the neck and tail in order,
+// the head beyond neck1, and tail1 holding neither the root nor neck1 (its swing would turn the body).
 // Given role -> joint and every joint's parent (-1 for a root), the first role out of place as
 // "roles.lKnee: joint \"LeftLeg\" is not below lHip \"LeftUpLeg\" (expected the knee on the leg's chain
 // below the hip; HINT)", or "" when every role is in place. Roles not in `roles` are not checked.

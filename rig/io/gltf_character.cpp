@@ -22,6 +22,7 @@
 #include "rig/error.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/characters/horse_character.h"
+#include "rig/characters/horse_tack.h"
 #include "rig/characters/rider_character.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_texture.h"
@@ -29,7 +30,6 @@
 #include "rig/io/mapping_skeleton.h"
 
 namespace stirrup::rig {
-namespace {
 
 int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const void* data, std::size_t size,
                 int target) {
@@ -44,6 +44,8 @@ int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const v
   model.bufferViews.push_back(view);
   return static_cast<int>(model.bufferViews.size()) - 1;
 }
+
+namespace {
 
 int accessorType(int components) {
   switch (components) {
@@ -308,14 +310,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
   GltfImageBytes images;
   const tinygltf::Model model = readGltfFile(file, f, &images);
-  if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned " + kind_name + ")");
-  const tinygltf::Skin& skin = model.skins[0];
+  const tinygltf::Skin& skin = checkedFirstSkin(model, f, kind_name);
   const int nj = static_cast<int>(skin.joints.size());
-  if (nj == 0) throw InputError(f + ": skins[0] has no joints");
-  for (int j = 0; j < nj; ++j)
-    if (skin.joints[j] < 0 || skin.joints[j] >= static_cast<int>(model.nodes.size()))
-      throw InputError(f + ": skins[0].joints[" + std::to_string(j) + "]: expected a node index 0.." +
-                       std::to_string(static_cast<int>(model.nodes.size()) - 1) + ", got " + std::to_string(skin.joints[j]));
 
   // The joints' names as the character will carry them (unnamed joints: "jointN").
   const std::vector<std::string> joint_names = gltfJointNames(model);
@@ -598,6 +594,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       if (m.normals[v] == glm::vec3(0.0f))
         m.normals[v] = glm::length(acc[v]) > 0.0f ? glm::normalize(acc[v]) : glm::vec3(0.0f, 1.0f, 0.0f);
   }
+  // A horse that names no tack gets the rig's (rig/characters/horse_tack.h).
+  if (kind == CharacterKind::Horse) addHorseTack(c, where);
   return c;
 }
 

@@ -33,6 +33,9 @@ struct GltfCharacterNodes {
   int skin = -1;
 };
 
+// Appends `size` bytes to `bin` (4-byte aligned) as a new buffer view of buffer 0; returns its index.
+int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const void* data, std::size_t size, int target);
+
 // Appends `character` to `model`: nodes, mesh, materials, skin. Binary data goes to `bin` (which
 // becomes buffer 0 when the model is written); the caller adds the returned root nodes to a scene.
 // `prefix` is prepended to node names (for two characters in one file), but not to a user's joints:
@@ -63,7 +66,8 @@ struct AutoMapping;
 // file gets by itself (rig/io/auto_mapping.h), kept in `auto_mapped` when given. Errors are one-line
 // InputErrors naming the file (and, for a role, the role and the joint, and what to change): a role
 // missing, a joint not in the file, a mapped role off its chain (rig/io/character_mapping.h
-// roleChainProblem).
+// roleChainProblem). A horse that names no tack gets the rig's (rig/characters/horse_tack.h); one that
+// names it in part, or whose mesh has no back or head for it, is an error too.
 Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind,
                             const CharacterMapping* mapping = nullptr, AutoMapping* auto_mapped = nullptr);
 

@@ -83,7 +83,7 @@ void writeClipGltf(const Clip& clip, const std::filesystem::path& file, const Gl
   for (int i = 1; i < static_cast<int>(kClipControlNames.size()); ++i) model.nodes[0].children.push_back(i);
   tinygltf::Value::Object extras;
   extras["clip"] = tinygltf::Value(clip.name());
-  extras["contract"] = tinygltf::Value(std::string("../shared/rig-channels.md: cm, Y up, +X travel, +Z right"));
+  extras["contract"] = tinygltf::Value(std::string("stirrup docs/channels.md: cm, Y up, +X travel, +Z right"));
   // What the horse must clear (the jump's fence), in the root's travel frame: a shot of the clip read
   // back shows it where the clip put it (GltfClip::obstacles).
   const std::vector<Obstacle> obstacles = clip.obstacles();

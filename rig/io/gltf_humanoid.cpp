@@ -17,24 +17,11 @@ namespace {
 
 constexpr double kMetresPerCm = 0.01;
 
-int appendView(tinygltf::Model& model, std::vector<unsigned char>& bin, const void* data, std::size_t size, int target) {
-  while (bin.size() % 4) bin.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = bin.size();
-  view.byteLength = size;
-  view.target = target;
-  const auto* p = static_cast<const unsigned char*>(data);
-  bin.insert(bin.end(), p, p + size);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
-
 template <class T>
 int appendIntegerAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<T>& values,
                           int component_type, int type, int components, int target) {
   tinygltf::Accessor a;
-  a.bufferView = appendView(model, bin, values.data(), values.size() * sizeof(T), target);
+  a.bufferView = appendBytes(model, bin, values.data(), values.size() * sizeof(T), target);
   a.componentType = component_type;
   a.count = values.size() / components;
   a.type = type;
@@ -206,7 +193,7 @@ std::vector<unsigned char> humanoidGlb(const StandingHumanoid& h) {
     prim.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
     {
       tinygltf::Accessor a;
-      a.bufferView = appendView(model, bin, uv.data(), uv.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+      a.bufferView = appendBytes(model, bin, uv.data(), uv.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
       a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
       a.count = order.size();
       a.type = TINYGLTF_TYPE_VEC2;
@@ -242,7 +229,7 @@ std::vector<unsigned char> humanoidGlb(const StandingHumanoid& h) {
     tinygltf::Image image;
     image.name = "Body_BaseColor";
     image.mimeType = "image/png";
-    image.bufferView = appendView(model, bin, png.data(), png.size(), 0);
+    image.bufferView = appendBytes(model, bin, png.data(), png.size(), 0);
     model.images.push_back(image);
     tinygltf::Sampler sampler;
     sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;

@@ -151,8 +151,8 @@ std::vector<std::string> gltfJointNames(const tinygltf::Model& model) {
   return names;
 }
 
-MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& f) {
-  if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned character)");
+const tinygltf::Skin& checkedFirstSkin(const tinygltf::Model& model, const std::string& f, const std::string& what) {
+  if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned " + what + ")");
   const tinygltf::Skin& skin = model.skins[0];
   const int nj = static_cast<int>(skin.joints.size());
   if (nj == 0) throw InputError(f + ": skins[0] has no joints");
@@ -160,6 +160,12 @@ MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std:
     if (skin.joints[j] < 0 || skin.joints[j] >= static_cast<int>(model.nodes.size()))
       throw InputError(f + ": skins[0].joints[" + std::to_string(j) + "]: expected a node index 0.." +
                        std::to_string(static_cast<int>(model.nodes.size()) - 1) + ", got " + std::to_string(skin.joints[j]));
+  return skin;
+}
+
+MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& f) {
+  const tinygltf::Skin& skin = checkedFirstSkin(model, f, "character");
+  const int nj = static_cast<int>(skin.joints.size());
   MappingSkeleton s;
   s.file = f;
   s.names = gltfJointNames(model);

@@ -12,6 +12,7 @@
 
 namespace tinygltf {
 class Model;
+struct Skin;
 }
 
 namespace stirrup::rig {
@@ -58,5 +59,9 @@ std::vector<std::string> gltfJointNames(const tinygltf::Model& model);
 // Reads the first skin of a model the importer would read (checked as it checks it: a one-line
 // InputError naming `file` for a bad index, accessor or hierarchy).
 MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& file);
+
+// The file's first skin, checked: it exists, has joints, and every joint is a node of the file. Throws
+// InputError naming `file` and what is wrong ("expected a skinned `what`").
+const tinygltf::Skin& checkedFirstSkin(const tinygltf::Model& model, const std::string& file, const std::string& what);
 
 }  // namespace stirrup::rig

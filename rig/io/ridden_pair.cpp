@@ -20,7 +20,9 @@ RiddenPair seatPair(Character horse, Character rider, const RigProfile& profile)
   pair.horse = std::move(seated.horse);
   pair.rider = std::move(seated.rider);
   pair.seat = std::move(seated.report);
-  pair.rider.fold_guard = foldGuard(pair.rider, pair.horse);
+  // A rider the rig seated folds against a horse she was not built for; a rider modelled seated (the
+  // shipped rider read from its file among them) is left to her own proportions.
+  if (pair.seat.seated_by_rig) pair.rider.fold_guard = foldGuard(pair.rider, pair.horse);
   return pair;
 }
 

@@ -316,7 +316,7 @@ std::array<double, 2> gallopOneSuspensionForePhases(double stride_hz) {
 }
 
 std::optional<GaitReference> gaitReference(const std::string& gait) {
-  // Every number from ../shared/gait-reference.md; ≈ ranges are its engineering estimates.
+  // Every number from docs/gait-reference.md; ≈ ranges are its engineering estimates.
   GaitReference r;
   r.gait = gait;
   const auto phases = [&](double lf, double rf, double lb, double rb) {
@@ -518,7 +518,7 @@ std::string formatClipInfo(const ClipInfo& c, const GaitReference* ref) {
   char line[512];
   std::snprintf(line, sizeof line, "clip %s: %.2f s, measured %.2f–%.2f s at 1 kHz, %d strides%s\n", c.name.c_str(),
                 c.duration_s, c.start_s, c.end_s, c.strides,
-                ref ? (" (reference: " + ref->gait + ", ../shared/gait-reference.md)").c_str() : " (no gait reference)");
+                ref ? (" (reference: " + ref->gait + ", docs/gait-reference.md)").c_str() : " (no gait reference)");
   s += line;
   const bool gait = ref && ref->periodic;
   s += "hoof     touchdown  duty   peak cm  lowest cm  slide mm/frame  stance slide cm   reference touchdown (±" +
@@ -691,7 +691,7 @@ nlohmann::json clipInfoJson(const ClipInfo& c, const GaitReference* ref) {
     nlohmann::json reference = {{"gait", ref->gait}, {"periodic", ref->periodic},
                                 {"touchdown_tolerance", kTouchdownTolerance},
                                 {"per_stride_tolerance", kPerStrideTolerance},
-                                {"source", "../shared/gait-reference.md"}};
+                                {"source", "docs/gait-reference.md"}};
     nlohmann::json flags = nlohmann::json::object(), details = nlohmann::json::array();
     bool all = true;
     for (const Verdict& v : verdicts) {

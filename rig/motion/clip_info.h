@@ -2,7 +2,7 @@
 // touchdown phase, duty factor and peak height, stride frequency and length, speed, suspensions, the
 // rear pivot's bounce and pitch, and any hoof that slides or sinks; for the scripted movements the
 // trunk's extreme pitches, how long it is held up, airborne phases, the pitch at lift-off and how far
-// a hoof slides while down. Beside each number sits the range ../shared/gait-reference.md gives for
+// a hoof slides while down. Beside each number sits the range docs/gait-reference.md gives for
 // the gait or movement and a verdict (ok / OUTSIDE), so a user sees how far a clip is from a real horse.
 #pragma once
 

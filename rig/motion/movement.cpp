@@ -15,7 +15,7 @@ double smoothstep(double s) {
 }
 
 // 0 -> 1 -> 0 over s in [0, 1]. With plateau 0: sin(pi s)^1.5, highest at mid-swing (the hoof arc of
-// ../shared/gait-reference.md). With a plateau the rise and fall share the rest of the swing.
+// docs/gait-reference.md). With a plateau the rise and fall share the rest of the swing.
 double swingBump(double s, double plateau) {
   if (plateau <= 0.0) return std::pow(std::sin(std::numbers::pi * std::clamp(s, 0.0, 1.0)), 1.5);
   const double ramp = 0.5 * (1.0 - plateau);

@@ -1,6 +1,6 @@
 // The horse movements of Kuhnel 2003 section 5 as parameterised generators: steady gaits (walk, trot,
 // canter, gallop), a gait sequence with phase-continuous transitions, the sliding stop, the jump, the
-// rear and the buck. Defaults follow ../shared/gait-reference.md; each builder returns a Movement
+// rear and the buck. Defaults follow docs/gait-reference.md; each builder returns a Movement
 // whose footfall schedule and trunk curves are fixed at construction (rig/motion/movement.h samples them).
 #pragma once
 

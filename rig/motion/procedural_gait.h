@@ -1,7 +1,7 @@
 // A procedural horse gait from a footfall schedule: per-hoof touchdown phase and duty factor, a stride
 // frequency and a speed. Hooves that are down stay put in the world; hooves in the air follow a smooth
 // arc highest at mid-swing; the trunk rises, falls, pitches and rolls locked to the footfalls.
-// Defaults match ../shared/gait-reference.md (the trot: 3.6 m/s, 1.26 Hz, duty factor 0.40).
+// Defaults match docs/gait-reference.md (the trot: 3.6 m/s, 1.26 Hz, duty factor 0.40).
 #pragma once
 
 #include <array>

@@ -59,11 +59,12 @@ inline std::vector<UserRiderSpec> userRiderSpecs() {
   return out;
 }
 
-// The mapping a user would write for it, from the generator's labels: pelvis, neck (the first neck
-// joint), head, and per side the upper arm, forearm and the joint at the wrist, the palm joint as the
-// hand where there is one, thigh, shin, foot and toe.
-inline nlohmann::json userRiderMapping(const StandingHumanoid& h) {
-  nlohmann::json roles = nlohmann::json::object();
+// Each rider role's joint, from the generator's labels: the pelvis, the first neck joint, the head;
+// per side the upper arm's root, the forearm's root, the joint at the wrist, the palm joint as the hand
+// where there is one, the thigh's and the shin's roots, the foot at the ankle and the toe; with
+// `upper_chest`, also the top spine joint where the clavicles hang from it (not with detached limbs).
+inline std::map<std::string, std::string> labelledRiderRoles(const StandingHumanoid& h, bool upper_chest) {
+  std::map<std::string, std::string> roles;
   const Skeleton& s = h.character.skeleton;
   for (std::size_t j = 0; j < s.size(); ++j) {
     const HumanoidJointLabel& l = h.labels[j];
@@ -73,6 +74,9 @@ inline nlohmann::json userRiderMapping(const StandingHumanoid& h) {
       case HumanoidBone::Pelvis: roles["pelvis"] = name; break;
       case HumanoidBone::Neck: if (l.index == 0) roles["neck"] = name; break;
       case HumanoidBone::Head: roles["head"] = name; break;
+      case HumanoidBone::Spine:
+        if (upper_chest && l.index == h.params.spine_joints - 1 && !h.params.detached_limbs) roles["upperChest"] = name;
+        break;
       case HumanoidBone::UpperArm: if (l.index == 0) roles[side + "Shoulder"] = name; break;
       case HumanoidBone::Forearm: if (l.index == 0) roles[side + "Elbow"] = name; break;
       case HumanoidBone::Hand: roles[side + "Wrist"] = name; break;
@@ -84,7 +88,13 @@ inline nlohmann::json userRiderMapping(const StandingHumanoid& h) {
       default: break;
     }
   }
-  return {{"character", "rider"}, {"scale_cm", 100}, {"forward", {0, 0, 1}}, {"up", {0, 1, 0}}, {"roles", roles}};
+  return roles;
+}
+
+// The mapping a user would write for it: the roles above, without upperChest.
+inline nlohmann::json userRiderMapping(const StandingHumanoid& h) {
+  return {{"character", "rider"}, {"scale_cm", 100}, {"forward", {0, 0, 1}}, {"up", {0, 1, 0}},
+          {"roles", labelledRiderRoles(h, false)}};
 }
 
 struct UserRiderFiles {

@@ -1,5 +1,5 @@
 // stirrup bench --json: the shape the issue asks for, with every number positive and finite. Timings
-// themselves are not checked (a shared machine makes them noise); the README records measured ones.
+// themselves are not checked (a shared machine makes them noise); docs/performance.md records measured ones.
 #include <cmath>
 #include <string>
 

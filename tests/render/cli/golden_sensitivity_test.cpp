@@ -4,7 +4,7 @@
 // least one golden comparison to fail (a weight change also renders the trot's close view of the
 // shipped-scene set); the unchanged copy must pass at 1 thread and at all threads.
 // Each test works in its own folder under BUILD/golden_sensitivity/ (CTest runs them in parallel).
-// The measured margins are in README.md, "Golden images".
+// The measured margins are in docs/golden-tests.md.
 #include <array>
 #include <cmath>
 #include <cstdio>

@@ -56,6 +56,7 @@ TEST_F(Installed, LaysOutTheProgramAndItsData) {
                         "scenes/characters/horse.glb", "scenes/characters/rider.glb", "scenes/characters/rider-mapping.json"})
     EXPECT_TRUE(fs::is_regular_file(prefix_ / "share/stirrup" / f)) << f;
   EXPECT_TRUE(fs::is_regular_file(prefix_ / "share/doc/stirrup/install.md"));
+  EXPECT_TRUE(fs::is_regular_file(prefix_ / "share/doc/stirrup/LICENSE"));
   // Not a link back into the source tree: real files.
   EXPECT_FALSE(fs::is_symlink(prefix_ / "share/stirrup"));
   EXPECT_FALSE(fs::is_symlink(prefix_ / "share/stirrup/scenes"));

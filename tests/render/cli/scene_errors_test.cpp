@@ -178,7 +178,7 @@ TEST_F(SceneErrors, APathBeyondAHorsesLimitsIsRefused) {
 TEST_F(SceneErrors, AllowImpossibleRendersWithAWarningEachFrame) {
   const fs::path f = write("fast.json", R"({"output": "out", "frames": "1-2", "resolution": [32, 18], "quality": "draft",
       "clip": {"generator": "path", "points": [[0, 0], [5000, 0]], "speed": [[0, 2500]]}})");
-  const CommandResult r = runStirrup("render " + quote(f.string()) + " --allow-impossible -o " + quote((dir / "out").string()));
+  const CommandResult r = runStirrup("render " + quote(f.string()) + " --allow-impossible --out " + quote((dir / "out").string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string limit = ": beyond a horse's limits (allowed): speed: a speed of 2500 cm/s, beyond the 1966 cm/s no horse "
                             "has been timed above (the record, 70.76 km/h)\n";

@@ -119,10 +119,10 @@ TEST(GltfCharacter, UserCharactersThroughMappingFilesPoseLikeTheDefaults) {
 TEST(GltfCharacter, MissingRoleNamesTheRoleAndTheMappingFile) {
   const fs::path dir = tempDir("missing_role");
   nlohmann::json j = nlohmann::json::parse(std::ifstream(kCharacters / "horse-mapping.json"));
-  j["roles"].erase("saddle");
+  j["roles"].erase("neck1");
   const fs::path m = writeJson(dir / "mapping.json", j);
   const std::string e = errorOf([&] { loadCharacterMapping(m, CharacterKind::Horse); });
-  EXPECT_EQ(e.rfind(m.string() + ": roles.saddle: missing", 0), 0u) << e;
+  EXPECT_EQ(e, m.string() + ": roles.neck1: missing: expected the name of the horse's neck1 joint") << e;
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
@@ -180,10 +180,33 @@ TEST(GltfCharacter, FoxMapsOntoHorseRoles) {
   for (const char* hoof : {"lbHoof", "rbHoof"})
     EXPECT_LT(glm::length(glm::vec3(w[c.role(hoof)][3]) - c.skeleton.restPosition(c.role(hoof))), 0.5f) << hoof;
 
-  j["roles"].erase("tail2");
-  writeJson(m, j);
-  const std::string e = errorOf([&] { resolveCharacter(CharacterKind::Horse, fox.string(), m.string()); });
-  EXPECT_EQ(e, m.string() + ": roles.tail2: missing: expected the name of the horse's tail2 joint") << e;
+  // A required role missing, a role off its chain, the tack named in part: one line each, naming the
+  // mapping file, the role and the joint.
+  nlohmann::json without_hoof = j;
+  without_hoof["roles"].erase("lbHoof");
+  writeJson(m, without_hoof);
+  EXPECT_EQ(errorOf([&] { resolveCharacter(CharacterKind::Horse, fox.string(), m.string()); }),
+            m.string() + ": roles.lbHoof: missing: expected the name of the horse's lbHoof joint");
+  nlohmann::json head_behind = j;
+  head_behind["roles"]["head"] = "b_Spine02_03";
+  writeJson(m, head_behind);
+  EXPECT_EQ(errorOf([&] { resolveCharacter(CharacterKind::Horse, fox.string(), m.string()); }),
+            m.string() + ": roles.head: joint \"b_Spine02_03\" is not below neck1 \"b_Neck_04\" (expected the head beyond the "
+                         "neck's first joint; change it in the mapping file)");
+  nlohmann::json tail_holds_body = j;
+  tail_holds_body["roles"]["tail1"] = "b_Hip_01";
+  tail_holds_body["roles"].erase("tail2");
+  tail_holds_body["roles"].erase("tail3");
+  writeJson(m, tail_holds_body);
+  EXPECT_EQ(errorOf([&] { resolveCharacter(CharacterKind::Horse, fox.string(), m.string()); }),
+            m.string() + ": roles.tail1: joint \"b_Hip_01\" holds root \"b_Hip_01\" (expected the tail's first joint, on a "
+                         "chain of its own behind the hips; change it in the mapping file)");
+  nlohmann::json part_tack = j;
+  for (const char* role : {"lStirrup", "rStirrup", "lRein", "rRein"}) part_tack["roles"].erase(role);
+  writeJson(m, part_tack);
+  EXPECT_EQ(errorOf([&] { resolveCharacter(CharacterKind::Horse, fox.string(), m.string()); }),
+            m.string() + ": roles.lStirrup: missing (the horse's saddle mapped: expected all five tack roles, saddle, lStirrup, "
+                         "rStirrup, lRein and rRein, or none, and the rig adds its own tack)");
 }
 
 }  // namespace

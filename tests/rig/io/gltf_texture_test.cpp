@@ -20,6 +20,7 @@
 
 #include "rig/error.h"
 #include "rig/io/character_mapping.h"
+#include "rig/characters/horse_tack.h"
 #include "rig/io/gltf_character.h"
 
 namespace stirrup::rig {
@@ -97,6 +98,7 @@ struct TexturedFile {
     json roles = json::object();
     for (const CharacterKind kind : {CharacterKind::Horse, CharacterKind::Rider})  // it loads as either
       for (const std::string& role : requiredRoles(kind)) roles[role] = 0;
+    for (const char* role : kHorseTackRoles) roles[role] = 0;  // named: the rig adds no tack of its own
     j["nodes"] = {{{"name", "root"}}, {{"name", "body"}, {"mesh", 0}, {"skin", 0}, {"extras", {{"stirrup_roles", roles}}}}};
     j["skins"] = {{{"joints", {0}}}};
     const auto quad = [&](float x) {
@@ -286,13 +288,16 @@ TEST(GltfTexture, ATexturedCharacterWrittenOutReadsBackTheSame) {
 }
 
 // The Khronos Fox has one base colour texture (a PNG in the .glb) read through TEXCOORD_0 by its one
-// material. Every role is mapped to its hip here: only the mesh matters to this test.
+// material. Every role but the head (beyond the neck) is mapped to its hip here, the tack too (so the
+// rig adds none): only the mesh matters to this test.
 TEST(GltfTexture, TheFoxReadsItsTexture) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
   const fs::path dir = tempDir("fox");
   json roles = json::object();
   for (const std::string& role : requiredRoles(CharacterKind::Horse)) roles[role] = "b_Hip_01";
+  for (const char* role : kHorseTackRoles) roles[role] = "b_Hip_01";
+  roles["head"] = "b_Head_05";
   std::ofstream(dir / "fox.json") << json{{"character", "horse"}, {"roles", roles}}.dump();
   const CharacterMapping mapping = loadCharacterMapping(dir / "fox.json", CharacterKind::Horse);
   const Character c = loadCharacterGltf(fox, CharacterKind::Horse, &mapping);

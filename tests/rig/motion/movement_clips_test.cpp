@@ -1,4 +1,4 @@
-// The movement generators against ../shared/gait-reference.md, measured from the clips themselves
+// The movement generators against docs/gait-reference.md, measured from the clips themselves
 // (rig/motion/clip_info.h), and the rider's response per Kuhnel 2003 sections 5 and 9.
 #include "rig/motion/movement_clips.h"
 

@@ -1,0 +1,278 @@
+// Tack for a horse without any (rig/characters/horse_tack.h):
+//  * the generated horse built bare (HorseParams::tack = false) gets its saddle where the generator puts
+//    its own: the seat centre 30% of the way from the withers to the hips, 6 cm over the barrel's top
+//    there (worked from the generator's parameters: the barrel ellipsoid's top at x = 10), the treads
+//    74 cm below it at the barrel's sides, the rein ends at the generated rider's grips, a bit at the
+//    mouth; the leathers, irons and reins separate pieces a rider's legs and hands may touch;
+//  * the Khronos Fox as a horse through a mapping that names no tack (scenes/fox-horse-mapping.json)
+//    rides the default rider's trot: every frame her seat within 3 cm of where it is on the generated
+//    horse (in the saddle's frame), her feet on the treads, no leg vertex more than 2 cm inside the
+//    horse, every bone of the Fox keeping its length.
+#include "rig/characters/horse_tack.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "render/scene.h"
+#include "rig/bake.h"
+#include "rig/characters/seating.h"
+#include "rig/io/character_mapping.h"
+#include "rig/io/frame_range.h"
+#include "rig/io/gltf_character.h"
+#include "rig/io/ridden_pair.h"
+#include "rig/motion/clip_factory.h"
+#include "rig/pose.h"
+#include "rig/skin.h"
+#include "tests/input_error.h"
+#include "tests/rig/contact_depth.h"
+#include "tests/rig/default_characters.h"
+#include "tests/rig/user_riders.h"
+
+namespace stirrup::rig {
+namespace {
+
+namespace fs = std::filesystem;
+
+glm::vec3 at(const std::vector<glm::mat4>& w, int j) { return glm::vec3(w[j][3]); }
+glm::vec3 inSaddle(const glm::mat4& saddle, glm::vec3 p) { return glm::vec3(glm::inverse(saddle) * glm::vec4(p, 1.0f)); }
+
+Character bareHorse() {
+  HorseParams p;
+  p.tack = false;
+  return buildHorse(p);
+}
+
+TEST(HorseTack, ABareHorseGetsItsSaddleWhereTheGeneratorPutsIt) {
+  Character horse = bareHorse();
+  for (const char* role : kHorseTackRoles) ASSERT_EQ(horse.roles.count(role), 0u) << role;
+  const std::size_t bare_vertices = horse.mesh.vertexCount(), bare_joints = horse.skeleton.size();
+  const HorseTackReport r = addHorseTack(horse, "bare.glb");
+  ASSERT_TRUE(r.added);
+  const HorseParams p;
+  // The generator's seat: x = saddle_x (10), on the barrel ellipsoid's top there, + saddle_seat_height.
+  const float bx = (p.saddle_x - p.barrel_center.x) / p.barrel_radii.x;
+  const glm::vec3 seat{p.saddle_x, p.barrel_center.y + p.barrel_radii.y * std::sqrt(1.0f - bx * bx) + p.saddle_seat_height, 0.0f};
+  const Skeleton& s = horse.skeleton;
+  const glm::vec3 got = s.restPosition(horse.role("saddle"));
+  EXPECT_NEAR(got.x, seat.x, 0.5f);
+  EXPECT_NEAR(got.z, 0.0f, 1e-4f);
+  EXPECT_NEAR(got.y, seat.y, 2.0f);  // the mesh's top (smoothly blended shapes) against the ellipsoid's
+  EXPECT_NEAR(r.back_top_y, seat.y - p.saddle_seat_height, 2.0f);
+  // It hangs from the back joint carrying the barrel (the generator hangs its saddle there too).
+  EXPECT_EQ(s.joints[s.joints[horse.role("saddle")].parent].name, "backMid");
+  // Treads: 74 cm below the seat, out from the barrel (25 cm half-width) by 6 cm: the generator's 31.
+  for (int side = 0; side < 2; ++side) {
+    const glm::vec3 t = s.restPosition(horse.role(side == 0 ? "lStirrup" : "rStirrup")) - got;
+    EXPECT_NEAR(t.x, p.mount.stirrup.x, 1e-4f);
+    EXPECT_NEAR(t.y, p.mount.stirrup.y, 1e-4f);
+    EXPECT_NEAR(t.z, side == 0 ? p.mount.stirrup.z : -p.mount.stirrup.z, 1.5f) << side;
+    const glm::vec3 g = s.restPosition(horse.role(side == 0 ? "lRein" : "rRein")) - got;
+    EXPECT_LT(glm::length(g - glm::vec3(p.mount.rein_grip.x, p.mount.rein_grip.y, side == 0 ? p.mount.rein_grip.z : -p.mount.rein_grip.z)), 1e-4f);
+  }
+  // The bit: the generator's, muzzle + (-7, -2, -(muzzle radius + 0.5)), within 5 cm.
+  const glm::vec3 bit = p.muzzle + glm::vec3(-7.0f, -2.0f, -(p.muzzle_radius + 0.5f));
+  EXPECT_LT(glm::length(r.bit - bit), 5.0f) << r.bit.x << " " << r.bit.y << " " << r.bit.z;
+  // Five rig points, and tack in the mesh.
+  EXPECT_EQ(s.size(), bare_joints + 5);
+  for (const char* role : kHorseTackRoles) EXPECT_TRUE(s.joints[horse.role(role)].rig_point) << role;
+  ASSERT_GT(horse.mesh.vertexCount(), bare_vertices + 1000);
+  // Leathers, irons and reins are pieces of their own bound to the stirrup and rein points; the seat is not.
+  const std::vector<bool> loose = horseLooseTack(horse);
+  std::array<int, 4> bound{};
+  std::size_t loose_count = 0;
+  for (std::size_t v = 0; v < horse.mesh.vertexCount(); ++v) {
+    loose_count += loose[v];
+    for (int k = 0; k < kMaxInfluences; ++k) {
+      if (!(horse.mesh.weights[v][k] > 0.0f)) continue;
+      const int j = horse.mesh.joints[v][k];
+      for (int i = 0; i < 4; ++i)
+        if (j == horse.role(std::array<const char*, 4>{"lStirrup", "rStirrup", "lRein", "rRein"}[i])) {
+          ++bound[i];
+          EXPECT_TRUE(loose[v]) << "vertex " << v;
+        }
+    }
+  }
+  for (int i = 0; i < 4; ++i) EXPECT_GT(bound[i], 20) << i;
+  std::size_t seat_vertices = 0;
+  for (std::size_t v = bare_vertices; v < horse.mesh.vertexCount(); ++v) {
+    const glm::vec3 q = horse.mesh.positions[v];
+    if (std::abs(q.z) < 3.0f && q.y > got.y - 1.0f && std::abs(q.x - got.x) < 10.0f) {
+      ++seat_vertices;
+      EXPECT_FALSE(loose[v]) << "seat vertex " << v;
+    }
+  }
+  EXPECT_GT(seat_vertices, 0u);
+  // The reins reach the head: the vertices bound to the head joint among the rein pieces.
+  std::size_t at_head = 0;
+  for (std::size_t v = bare_vertices; v < horse.mesh.vertexCount(); ++v)
+    at_head += loose[v] && horse.mesh.joints[v][0] == horse.role("head") && horse.mesh.weights[v][0] > 0.5f;
+  EXPECT_GT(at_head, 0u);
+  // Again: the horse has its tack now, nothing more is added.
+  const std::size_t with_tack = horse.mesh.vertexCount();
+  EXPECT_FALSE(addHorseTack(horse, "bare.glb").added);
+  EXPECT_EQ(horse.mesh.vertexCount(), with_tack);
+}
+
+TEST(HorseTack, ErrorsNameTheFileTheRolesAndTheJoints) {
+  // No surface over the saddle's place (a mesh of no triangles here).
+  Character bare = bareHorse();
+  bare.mesh.indices.clear();
+  EXPECT_EQ(stirrup::test::errorOf([&] { addHorseTack(bare, "my-horse.json"); }),
+            "my-horse.json: no back to put a saddle on: the mesh has no surface over the midline at x = 10 cm, a saddle's place "
+            "behind the withers (check roles root \"root\", neck1 \"neck1\", lfUpper \"lfElbow\" and rfUpper \"rfElbow\", or map "
+            "the tack roles to joints of the horse's own)");
+}
+
+TEST(HorseTack, TackNamedInPartIsAnError) {
+  Character horse = bareHorse();
+  horse.roles["saddle"] = horse.role("backMid");
+  horse.roles["lRein"] = horse.role("head");
+  EXPECT_EQ(stirrup::test::errorOf([&] { addHorseTack(horse, "my-horse.json"); }),
+            "my-horse.json: roles.lStirrup: missing (the horse's saddle, lRein mapped: expected all five tack roles, saddle, "
+            "lStirrup, rStirrup, lRein and rRein, or none, and the rig adds its own tack)");
+}
+
+// `rider` on `horse` through every frame of the trot (scenes/trot.json): her seat on the saddle (and,
+// with `against_default_pair`, where the default rider's is on the generated horse, in the saddle's
+// frame), her feet on the treads, no leg vertex more than 2 cm inside the horse, every bone of the
+// horse's file its length.
+void rideTheTrot(const Character& horse, const Character& rider, const std::string& who, bool against_default_pair) {
+  const Character& horse0 = test::defaultHorse();
+  const Character& rider0 = test::defaultRider();
+  const RigProfile profile = RigProfile::thesis();
+  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
+  const auto clip = makeClip(scene.clip, horse);
+  const auto clip0 = makeClip(scene.clip);
+  const std::vector<bool> tack = test::horseTackVertices(horse);
+  const Skeleton& s = rider.skeleton;
+  std::vector<bool> legs(rider.mesh.vertexCount(), false);
+  {
+    std::vector<bool> leg_joint(s.size(), false);
+    for (std::size_t j = 0; j < s.size(); ++j) {
+      const int p = s.joints[j].parent;
+      leg_joint[j] = int(j) == rider.role("lHip") || int(j) == rider.role("rHip") || (p >= 0 && leg_joint[p]);
+    }
+    for (std::size_t v = 0; v < legs.size(); ++v) {
+      int best = 0;
+      for (int k = 1; k < 4; ++k)
+        if (rider.mesh.weights[v][k] > rider.mesh.weights[v][best]) best = k;
+      legs[v] = leg_joint[rider.mesh.joints[v][best]];
+    }
+  }
+  const RiderPoseParams pose_params;
+  double worst_seat = 0, worst_on_saddle = 0, worst_feet = 0, worst_legs = 0, worst_bone = 0;
+  std::string deepest = "none inside";
+  int frames = 0;
+  std::vector<glm::vec3> hp, hn, rp, rn;
+  for (int f : parseFrameList(scene.frames, "frames")) {
+    const BakedFrame b = bakeFrame(*clip, profile, f, render::frameTime(scene, f));
+    const BakedFrame b0 = bakeFrame(*clip0, profile, f, render::frameTime(scene, f));
+    const MountedPose p = poseMounted(horse, rider, b.horse, b.rider, profile);
+    const MountedPose d = poseMounted(horse0, rider0, b0.horse, b0.rider, profile);
+    ++frames;
+    // Seat: her pelvis in the Fox's saddle frame where it is in the generated horse's.
+    const glm::mat4& saddle = p.horse[horse.role("saddle")];
+    const glm::mat4& saddle0 = d.horse[horse0.role("saddle")];
+    if (against_default_pair) {
+      const double seat_off = glm::length(inSaddle(saddle, at(p.rider, rider.role("pelvis"))) - inSaddle(saddle0, at(d.rider, rider0.role("pelvis"))));
+      worst_seat = std::max(worst_seat, seat_off);
+      EXPECT_LE(seat_off, 3.0) << who << ", frame " << f << ": seat";
+    }
+    // And on the generated saddle: the point of her seat under her hip joints (on the seat at rest) within
+    // 6 cm of the saddle's seat centre: her hips sit 2 cm behind it (RiderParams::hip.x) and the trot's
+    // cog channels move her up to 3 cm more (as on the generated horse).
+    {
+      glm::vec3 rest = 0.5f * (s.restPosition(rider.role("lHip")) + s.restPosition(rider.role("rHip")));
+      rest.y = 0.0f;
+      const int pelvis = rider.role("pelvis");
+      const glm::vec3 seat_point = glm::vec3(p.rider[pelvis] * s.joints[pelvis].inverse_bind * glm::vec4(rest, 1.0f));
+      const double on_saddle = glm::length(seat_point - at(p.horse, horse.role("saddle")));
+      worst_on_saddle = std::max(worst_on_saddle, on_saddle);
+      EXPECT_LE(on_saddle, 6.0) << who << ", frame " << f << ": seat off the saddle";
+    }
+    // Feet on the treads.
+    const RiderChannels r = limitRiderChannels(b.rider, pose_params, profile.rider_unit_cm);
+    for (int side = 0; side < 2; ++side) {
+      const double foot = glm::length(at(p.rider, rider.role(side == 0 ? "lBall" : "rBall")) - stirrupTarget(horse, p.horse, r, profile.rider_unit_cm, side));
+      worst_feet = std::max(worst_feet, foot);
+      EXPECT_LE(foot, 3.0) << who << ", frame " << f << ": foot " << side;
+    }
+    // The Fox's bones keep their length (the rig's points are not bones).
+    for (std::size_t j = 0; j < horse.skeleton.size(); ++j) {
+      const int parent = horse.skeleton.joints[j].parent;
+      if (parent < 0 || horse.skeleton.joints[j].rig_point) continue;
+      const double rest = glm::length(horse.skeleton.restPosition(int(j)) - horse.skeleton.restPosition(parent));
+      const double off = std::abs(glm::length(at(p.horse, int(j)) - at(p.horse, parent)) - rest);
+      worst_bone = std::max(worst_bone, off);
+      EXPECT_LE(off, std::max(0.01 * rest, 0.02)) << who << ", frame " << f << ": bone " << horse.skeleton.joints[j].name;
+    }
+    // Legs in the horse.
+    skinMesh(horse.mesh, horse.skeleton, p.horse, hp, hn);
+    skinMesh(rider.mesh, rider.skeleton, p.rider, rp, rn);
+    std::vector<glm::vec3> leg_points;
+    std::vector<std::size_t> leg_vertex;
+    for (std::size_t v = 0; v < rp.size(); ++v)
+      if (legs[v]) leg_points.push_back(rp[v]), leg_vertex.push_back(v);
+    const test::ContactDepth c = test::deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, leg_points);
+    if (c.depth_cm > worst_legs) {
+      worst_legs = c.depth_cm;
+      const glm::vec3 q = inSaddle(saddle, rp[leg_vertex[c.vertex]]);
+      char where[160];
+      std::snprintf(where, sizeof where, "frame %d, at (%.1f, %.1f, %.1f) in the saddle's frame", f, q.x, q.y, q.z);
+      deepest = where;
+    }
+    EXPECT_LE(c.depth_cm, 2.0) << who << ", frame " << f << ": a leg vertex inside the horse";
+  }
+  std::printf("Fox at the trot, %s, %d frames: seat %.2f cm from the default pair's, %.2f cm from the seat centre, feet %.2f cm, legs %.2f cm deep (%s), bones %.3f cm\n", who.c_str(), frames, worst_seat,
+              worst_on_saddle, worst_feet, worst_legs, deepest.c_str(), worst_bone);
+  EXPECT_EQ(frames, 72);
+}
+
+TEST(HorseTack, TheFoxWithoutTackRidesTheDefaultRidersTrot) {
+  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
+  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox-horse-mapping.json";
+  const RigProfile profile = RigProfile::thesis();
+  const RiddenPair pair = resolveRiddenPair(fox.string(), mapping.string(), "default", "", profile);
+  const Character& horse = pair.horse;
+  const Character& rider = pair.rider;
+  const Character& horse0 = test::defaultHorse();
+  for (const char* role : kHorseTackRoles) EXPECT_TRUE(horse.skeleton.joints[horse.role(role)].rig_point) << role;
+  const glm::vec3 seat = horse.skeleton.restPosition(horse.role("saddle"));
+  std::printf("Fox: saddle (%.1f, %.1f, %.1f) on %s; treads %.1f, %.1f cm out; %zu vertices, %zu triangles\n", seat.x, seat.y, seat.z,
+              horse.skeleton.joints[horse.skeleton.joints[horse.role("saddle")].parent].name.c_str(),
+              horse.skeleton.restPosition(horse.role("lStirrup")).z, horse.skeleton.restPosition(horse.role("rStirrup")).z,
+              horse.mesh.vertexCount(), horse.mesh.triangleCount());
+  // A horse's size: the seat about where the generated horse's is (157 cm), the mesh textured still.
+  EXPECT_NEAR(seat.y, horse0.skeleton.restPosition(horse0.role("saddle")).y, 12.0f);
+  EXPECT_TRUE(horse.mesh.textured());
+
+  rideTheTrot(horse, rider, "default rider", true);
+}
+
+// A user's rider standing in her file's T-pose (tests/rig/user_riders.h, the Mixamo-named one) seated by
+// the rig on the Fox's rig-made tack: the leathers set to her legs, her legs fitted against the Fox's
+// barrel and saddle (seating reads the tack as any horse's: horseLooseTack leaves the irons, leathers and
+// reins out of the surface her legs keep clear of).
+TEST(HorseTack, AStandingUserRiderIsSeatedOnTheFoxsTackAndRidesTheTrot) {
+  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
+  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox-horse-mapping.json";
+  const test::UserRiderSpec spec = test::userRiderSpecs().front();
+  const test::UserRiderFiles files = test::writeUserRider(spec, fs::path(STIRRUP_BINARY_DIR) / "test_horse_tack");
+  const RiddenPair pair = resolveRiddenPair(fox.string(), mapping.string(), files.glb.string(), files.mapping.string(), RigProfile::thesis());
+  ASSERT_TRUE(pair.seat.seated_by_rig) << spec.name;
+  std::printf("%s on the Fox: tread %.1f cm below the seat, knees out %.0f deg, treads out %.1f cm, hands short %.1f cm\n",
+              spec.name.c_str(), pair.seat.tread_below_seat_cm, pair.seat.knee_turn_out_deg, pair.seat.tread_out_cm,
+              pair.seat.hand_shortfall_cm);
+  rideTheTrot(pair.horse, pair.rider, spec.name, false);
+}
+
+}  // namespace
+}  // namespace stirrup::rig
