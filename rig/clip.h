@@ -39,6 +39,9 @@ struct HorseFrame {
   double ground_y_cm = 0.0;
   double ground_pitch_deg = 0.0;
   std::array<double, 4> hoof_ground_cm{};
+  // A down hoof the clip slides on purpose (the sliding stop's hind hooves, Kuhnel 5.5), lf rf lb rb:
+  // `stirrup check` does not count its slide as a fault.
+  std::array<bool, 4> hoof_sliding{};
   // Body follow-through beyond the contract (degrees, + = up / to the right), for posing only.
   double neck_rz = 0.0;
   double head_rz = 0.0;

@@ -23,6 +23,8 @@ namespace {
 constexpr glm::vec3 kX{1.0f, 0.0f, 0.0f}, kY{0.0f, 1.0f, 0.0f}, kZ{0.0f, 0.0f, 1.0f};
 // A hoof lifted this little (cm) or less is down, for HorseReach::planted (the clips' stance lift is 0).
 constexpr float kPlantedLiftCm = 1e-3f;
+// Passes of the stance settle (poseHorse): each closes most of what is left.
+constexpr int kStanceSettlePasses = 4;
 // How far the neck turns back at most to counter the balance stage's turn: a choice, well inside the
 // extension range of a neck, so the head never tips back past where a rider looking ahead holds it.
 constexpr float kNeckCounterRangeDeg = 45.0f;
@@ -135,8 +137,11 @@ glm::mat4 travelMatrix(const HorseFrame& frame) {
          rot(-frame.heading_deg, kY) * rot(frame.ground_pitch_deg, kZ);
 }
 
-std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params,
-                                 HorseReach* reach) {
+namespace {
+
+// poseHorse with the body lowered `settle_cm` along the travel frame's up (see poseHorse).
+std::vector<glm::mat4> poseHorseSettled(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params,
+                                        HorseReach* reach, float settle_cm) {
   const Skeleton& s = horse.skeleton;
   const HorseChannels& h = frame.controls;
   using C = HorseChannel;
@@ -145,7 +150,7 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
   // Body: the travel frame carries the rear pivot; rearPivot moves and turns it.
   const glm::mat4 travel = travelMatrix(frame);
   const int root = horse.role("root");
-  local[root] = travel * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]), float(h[C::rearPivotTz])}) *
+  local[root] = travel * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]) - settle_cm, float(h[C::rearPivotTz])}) *
                 s.joints[root].rest_local * rot(-h[C::rearPivotRy], kY) * rot(h[C::rearPivotRz], kZ) *
                 rot(h[C::rearPivotRx], kX);
   // A user's rig may hang the root from joints of its own (a ground root): they ride along rigidly with
@@ -236,6 +241,34 @@ std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame
   // Joints hanging from the legs that no role names (a user's toes, dewclaws, twist joints) are
   // carried by their parents as they hang at rest.
   carryUnsolved(s, local, solved, world);
+  return world;
+}
+
+}  // namespace
+
+std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params,
+                                 HorseReach* reach) {
+  HorseReach r;
+  std::vector<glm::mat4> world = poseHorseSettled(horse, frame, params, &r, 0.0f);
+  // A planted leg short of its print: the body settles onto it, as far as max_stance_settle_cm. Each
+  // pass lowers it by the worst shortfall left (a leg slanted from the vertical closes less than the
+  // drop, so the passes approach the print from above); frames whose planted legs reach are untouched.
+  const auto worstPlanted = [&r] {
+    float worst = 0.0f;
+    for (std::size_t leg = 0; leg < 4; ++leg)
+      if (r.planted[leg]) worst = std::max(worst, r.short_cm[leg]);
+    return worst;
+  };
+  if (worstPlanted() >= HorseReach::kOverReachCm) {
+    float settle = 0.0f;
+    for (int pass = 0; pass < kStanceSettlePasses && settle < params.max_stance_settle_cm; ++pass) {
+      const float worst = worstPlanted();
+      if (worst <= params.leg.soften_cm) break;
+      settle = std::min(settle + worst, params.max_stance_settle_cm);
+      world = poseHorseSettled(horse, frame, params, &r, settle);
+    }
+  }
+  if (reach) *reach = r;
   return world;
 }
 

@@ -42,6 +42,12 @@ struct HorsePoseParams {
   float hoof_flex_deg = 55.0f;        // pastern fold (hoof sole turning back) when a hoof is lifted
   float hoof_flex_full_lift = 18.0f;  // lift (cm) at which the fold is complete
   HorseLegParams leg;                 // the legs' reach (its soften_cm also softens two-bone legs)
+  // How far the body may settle (cm, along the travel frame's up) onto a planted leg that falls short
+  // of its print: over the crest of a hill the ground under a hoof drops below the plane the clip
+  // carries the body on (trail's trot, 2.3 cm). A horse's trunk sinks onto its stance legs as the
+  // fetlocks extend under load, by several centimetres at the trot; 5 cm is an estimate kept below that
+  // sink, so a hoof planted farther than this from its leg's reach stays flagged (HorseReach).
+  float max_stance_settle_cm = 5.0f;
 };
 
 // The travel frame of a horse frame: world from travel-frame coordinates (its origin at (travel_cm, 0,
@@ -58,7 +64,9 @@ std::array<glm::dvec2, 4> restHoofPlaces(const Character& horse);
 // forward in front and hocks backward behind, the pastern folding as the hoof lifts; joints no role or
 // chain names carried by their parents. No bone changes length.
 // Never a rubber leg: a hoof target beyond its leg's reach leaves the leg at its full reach,
-// every bone its own length, and `reach` (when given) records how far short each hoof stays.
+// every bone its own length, and `reach` (when given) records how far short each hoof stays. A planted
+// hoof short of its print by HorseReach::kOverReachCm or more first lets the body settle onto it (at
+// most HorsePoseParams::max_stance_settle_cm); what is still short after that is recorded.
 struct HorseReach {
   // A hoof this far (cm) or more short of its target is over-reached: beyond the two-bone solve's
   // softening (HorseLegParams::soften_cm, 0.3 cm) by more than rounding, and enough to see.

@@ -19,6 +19,7 @@ void addFarmCommand(CLI::App& app);
 void addLayerCommand(CLI::App& app);
 void addMoviesCommand(CLI::App& app);
 void addCharacterCommand(CLI::App& app);
+void addCheckCommand(CLI::App& app);
 void addClipCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addRigCommand(CLI::App& app);

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   stirrup::cli::addBakeCommand(app);
   stirrup::cli::addBenchCommand(app);
   stirrup::cli::addCharacterCommand(app);
+  stirrup::cli::addCheckCommand(app);
   stirrup::cli::addClipCommand(app);
   stirrup::cli::addDiffCommand(app);
   stirrup::cli::addFarmCommand(app);

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include <glm/glm.hpp>
+
 #include "rig/error.h"
 #include "rig/motion/ground_path.h"
 #include "rig/motion/speed_profile.h"
@@ -95,13 +97,14 @@ PathLimitCheck::PathLimitCheck(const PathClipParams& params, const Terrain* terr
     return b;
   };
 
-  const int steps = std::max(1, int(std::ceil(length / kSampleStepCm)));
+  const double step_cm = std::max(kSampleStepCm, length / double(kMaxSamples));
+  const int steps = std::max(1, int(std::ceil(length / step_cm)));
   samples_.reserve(std::size_t(steps) + 1);
   int segment = 0;
   const int segments = int(path.points().size()) - 1;
   for (int i = 0; i <= steps; ++i) {
     Sample x;
-    x.s = std::min(length, double(i) * kSampleStepCm);
+    x.s = std::min(length, double(i) * step_cm);
     t = x.t = i == 0 ? 0.0 : timeAt(x.s);
     while (segment + 1 < segments && path.distanceAtPoint(std::size_t(segment) + 1) <= x.s) ++segment;
     x.segment = segment;
@@ -256,15 +259,64 @@ std::vector<LimitBreach> PathLimitCheck::during(double t0, double t1) const {
                                                                                                 : *std::prev(first);
     t0 = t1 = x.t;
   }
+  const auto from = std::lower_bound(samples_.begin(), samples_.end(), t0, [](const Sample& x, double t) { return x.t < t; });
   for (std::size_t k = 0; k < kLimits; ++k) {
     const Sample* worst = nullptr;
-    for (const Sample& x : samples_) {
-      if (x.t < t0 || x.t > t1 || !(x.bound[k] > 0.0 && x.value[k] > x.bound[k])) continue;
+    for (auto it = from; it != samples_.end() && it->t <= t1; ++it) {
+      const Sample& x = *it;
+      if (!(x.bound[k] > 0.0 && x.value[k] > x.bound[k])) continue;
       if (!worst || x.value[k] / x.bound[k] > worst->value[k] / worst->bound[k] * kWorseBy) worst = &x;
     }
     if (worst) out.push_back(breachAt(HorseLimit(k), *worst, *worst));
   }
   return out;
+}
+
+TravelLimits travelLimitsAt(const Clip& clip, double time_s, const HorseLimits& limits) {
+  TravelLimits r;
+  r.time_s = time_s;
+  const double w = TravelLimits::kTravelWindowS, end = clip.duration();
+  const double t0 = std::max(0.0, time_s - w), t1 = std::min(end, time_s + w);
+  if (t1 - t0 < 1e-6) return r;
+  // Velocity on the ground over [a, b] and the heading there.
+  const auto velocity = [&clip](double a, double b) {
+    const HorseFrame fa = clip.sample(a), fb = clip.sample(b);
+    return glm::dvec2(fb.travel_cm - fa.travel_cm, fb.travel_z_cm - fa.travel_z_cm) / (b - a);
+  };
+  const glm::dvec2 v = velocity(t0, t1);
+  r.speed_cm_s = glm::length(v);
+  const double tm = 0.5 * (t0 + t1);
+  if (tm - t0 > 1e-6 && t1 - tm > 1e-6) {
+    const glm::dvec2 va = velocity(t0, tm), vb = velocity(tm, t1);
+    const glm::dvec2 a = (vb - va) / (0.5 * (t1 - t0));
+    const glm::dvec2 along = r.speed_cm_s > 1e-6 ? v / r.speed_cm_s : glm::dvec2(1, 0);
+    r.accel_cm_s2 = glm::dot(a, along);
+    r.centripetal_cm_s2 = std::abs(along.x * a.y - along.y * a.x);
+  }
+  const double g = HorseLimits::kGravityCmS2;
+  char text[200];
+  if (r.speed_cm_s > limits.top_speed_cm_s) {
+    std::snprintf(text, sizeof text, "a speed of %.0f cm/s, beyond the %.0f cm/s no horse has been timed above", r.speed_cm_s,
+                  limits.top_speed_cm_s);
+    r.breaches.emplace_back(HorseLimit::Speed, text);
+  }
+  const double accel_bound = std::min(limits.max_accel_g * g, limits.accelPowerCm2S3() / std::max(r.speed_cm_s, 1.0));
+  if (r.accel_cm_s2 > accel_bound) {
+    std::snprintf(text, sizeof text, "speeding up at %.0f cm/s², beyond the %.0f cm/s² a horse manages at %.0f cm/s",
+                  r.accel_cm_s2, accel_bound, r.speed_cm_s);
+    r.breaches.emplace_back(HorseLimit::Acceleration, text);
+  }
+  if (-r.accel_cm_s2 > limits.max_decel_g * g) {
+    std::snprintf(text, sizeof text, "slowing down at %.0f cm/s², beyond the %.0f cm/s² (%.1f g) a horse brakes at",
+                  -r.accel_cm_s2, limits.max_decel_g * g, limits.max_decel_g);
+    r.breaches.emplace_back(HorseLimit::Deceleration, text);
+  }
+  if (r.centripetal_cm_s2 > limits.hoof_friction * g) {
+    std::snprintf(text, sizeof text, "turning at %.0f cm/s² sideways, beyond the %.0f cm/s² (%.1f g) hooves grip at", r.centripetal_cm_s2,
+                  limits.hoof_friction * g, limits.hoof_friction);
+    r.breaches.emplace_back(HorseLimit::Turn, text);
+  }
+  return r;
 }
 
 }  // namespace stirrup::rig

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -97,6 +98,9 @@ class PathLimitCheck {
                  const HorseLimits& limits = {});
 
   static constexpr double kSampleStepCm = 5.0;
+  // A path longer than kMaxSamples × kSampleStepCm (10 km) is sampled more coarsely, so the table stays
+  // within a few tens of megabytes.
+  static constexpr int kMaxSamples = 200000;
 
   // One entry per run of samples over a limit, in order of time (then of HorseLimit).
   const std::vector<LimitBreach>& breaches() const { return breaches_; }
@@ -125,5 +129,17 @@ class PathLimitCheck {
   std::vector<Sample> samples_;
   std::vector<LimitBreach> breaches_;
 };
+
+// A clip's own travel against the same limits, for a clip with no path to read (a glTF clip from another
+// tool): the travel frame's speed, its rate along the heading, and the centripetal acceleration of its
+// turning (speed × the heading's rate), each from differences over kTravelWindowS either side of the
+// time (a hand-keyed or captured root jitters from frame to frame; half a second is a trot stride).
+struct TravelLimits {
+  static constexpr double kTravelWindowS = 0.25;
+  double time_s = 0, speed_cm_s = 0, accel_cm_s2 = 0, centripetal_cm_s2 = 0;
+  // The limits broken at this time: (limit, one line with the value and the bound).
+  std::vector<std::pair<HorseLimit, std::string>> breaches;
+};
+TravelLimits travelLimitsAt(const Clip& clip, double time_s, const HorseLimits& limits = {});
 
 }  // namespace stirrup::rig

@@ -33,6 +33,7 @@ constexpr std::array<std::array<HorseChannel, 2>, 4> kHoofChannels = {{
 
 struct HoofPlace {
   double tx = 0.0, ty = 0.0;
+  bool sliding = false;  // down and riding with the body (a sliding stop's hind hoof)
 };
 
 // World velocity of a hoof while it is down: zero when planted, the body's speed when it slides.
@@ -55,7 +56,7 @@ HoofPlace hoofAt(const Movement& m, const HoofSchedule& steps, double t) {
   if (t <= cur.up_s || it == steps.end()) {
     const double held = std::min(t, cur.up_s);  // after the last lift-off the hoof stays where it left
     if (t > cur.up_s && cur.slides) return {stanceWorldX(m, cur, held) - travel, 0.0};
-    return {stanceWorldX(m, cur, t) - travel, 0.0};
+    return {stanceWorldX(m, cur, t) - travel, 0.0, cur.slides && t <= cur.up_s};
   }
   const Footfall& next = *it;
   const double span = next.down_s - cur.up_s;
@@ -161,6 +162,7 @@ HorseFrame sampleMovement(const Movement& m, double t) {
     const HoofPlace p = hoofAt(m, m.hooves[h], t);
     f.controls[kHoofChannels[h][0]] = p.tx;
     f.controls[kHoofChannels[h][1]] = std::max(0.0, p.ty);
+    f.hoof_sliding[h] = p.sliding;
   }
   // Trunk oscillation of the gaits playing, blended at one stride phase so blends cannot pop.
   const double phase = m.stridePhase(t);

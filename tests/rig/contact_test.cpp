@@ -3,7 +3,7 @@
 //  - seat: the rider's pelvis stays over the saddle's seat, in the saddle's frame;
 //  - feet: the ball of each foot stays on its stirrup tread;
 //  - depth: no rider vertex is inside the horse by more than kMaxDepthCm, however deep it is
-//    (tests/rig/contact_depth.h: the nearest point on the skinned horse's surface at any distance,
+//    (rig/contact_depth.h: the nearest point on the skinned horse's surface at any distance,
 //    and the side from the horse's vertex normals there). The thin tack the rider holds or stands in
 //    (reins and stirrup irons) is left out.
 // The measurement itself is checked first: a point at a known depth inside a sphere, and a rider
@@ -27,7 +27,7 @@
 #include "rig/characters/rider_character.h"
 #include "rig/rig_profile.h"
 #include "rig/skin.h"
-#include "tests/rig/contact_depth.h"
+#include "rig/contact_depth.h"
 #include "tests/rig/default_characters.h"
 
 namespace stirrup::rig {
@@ -77,15 +77,15 @@ TEST(ContactDepth, IsMeasuredHoweverDeep) {
   const glm::vec3 right(1, 0, 0), up(0, 1, 0);
   const std::vector<glm::vec3> outside = {c + 35.0f * right, c + 80.0f * up, c - 31.0f * up};
   const auto deepest = [&](std::vector<glm::vec3> rider) {
-    return test::deepestRiderVertexInside(s.points, s.normals, s.indices, skip, rider);
+    return deepestRiderVertexInside(s.points, s.normals, s.indices, skip, rider);
   };
-  const test::ContactDepth none = deepest(outside);
+  const ContactDepth none = deepest(outside);
   EXPECT_EQ(none.vertex, -1);
   EXPECT_EQ(none.depth_cm, 0.0f);
   std::vector<glm::vec3> rider = outside;
   rider.push_back(c + 28.0f * glm::normalize(glm::vec3(1, 1, 1)));  // 2 cm in, in the band
   rider.push_back(c + 15.0f * glm::normalize(glm::vec3(-1, 2, 0)));  // 15 cm in
-  test::ContactDepth d = deepest(rider);
+  ContactDepth d = deepest(rider);
   EXPECT_EQ(d.vertex, 4);
   EXPECT_NEAR(d.depth_cm, 15.0f, 0.05f);
   rider.push_back(c);  // the centre: 30 cm in
@@ -104,8 +104,8 @@ TEST(ContactDepth, ALegVertexPlanted15CmInsideTheHorseIsFound) {
   std::vector<glm::vec3> hp, hn, rp, rn;
   skinMesh(horse.mesh, horse.skeleton, pose.horse, hp, hn);
   skinMesh(rider.mesh, rider.skeleton, pose.rider, rp, rn);
-  const std::vector<bool> tack = test::horseTackVertices(horse);
-  const test::ContactDepth before = test::deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, rp);
+  const std::vector<bool> tack = horseTackVertices(horse);
+  const ContactDepth before = deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, rp);
   EXPECT_LE(before.depth_cm, kMaxDepthCm);
   // The belly: the horse vertex nearest the bottom of its barrel (HorseParams: centre 121 cm up, 31 cm
   // half height), its normal pointing down.
@@ -127,7 +127,7 @@ TEST(ContactDepth, ALegVertexPlanted15CmInsideTheHorseIsFound) {
   }
   ASSERT_GE(leg, 0);
   rp[static_cast<std::size_t>(leg)] = hp[h] - 15.0f * glm::normalize(hn[h]);
-  const test::ContactDepth planted = test::deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, rp);
+  const ContactDepth planted = deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, rp);
   EXPECT_EQ(planted.vertex, leg);
   EXPECT_NEAR(planted.depth_cm, 15.0f, 0.5f);
   EXPECT_GT(planted.depth_cm, kMaxDepthCm);
@@ -145,7 +145,7 @@ ClipContact measure(const std::string& scene_name) {
   const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
   const RigProfile profile = render::resolveProfile(scene);
   const auto clip = makeClip(scene.clip);
-  const std::vector<bool> tack = test::horseTackVertices(horse);
+  const std::vector<bool> tack = horseTackVertices(horse);
   const glm::vec3 rest_pelvis = rider.skeleton.restPosition(rider.role("pelvis"));
   ClipContact out;
   std::vector<glm::vec3> hp, hn, rp, rn;
@@ -166,7 +166,7 @@ ClipContact measure(const std::string& scene_name) {
     // Depth of rider vertices inside the skinned horse.
     skinMesh(horse.mesh, horse.skeleton, pose.horse, hp, hn);
     skinMesh(rider.mesh, rider.skeleton, pose.rider, rp, rn);
-    const test::ContactDepth deepest = test::deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, rp);
+    const ContactDepth deepest = deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, rp);
     if (deepest.depth_cm > out.depth) {
       out.depth = deepest.depth_cm;
       out.depth_frame = frame;

@@ -140,17 +140,50 @@ TEST(HorseLeg, AHoofBeyondReachRollsOverItsToe) {
 }
 
 // A horse that names no leg pivots (a user's glTF through a mapping) keeps the two-bone legs: the
-// joints above the elbow and stifle stay where the body carries them.
+// joints above the elbow and stifle stay where the body carries them (the body's settle onto a short
+// planted leg turned off here; it has its own test below).
 TEST(HorseLeg, WithoutPivotsOnlyTheBonesBelowReach) {
   Character horse = defaultHorse();
   for (const char* leg : kLegs) horse.roles.erase(std::string(leg) + "Pivot");
   HorseFrame f;
   f.controls[HorseChannel::lfHoofTx] = 20.0;
   f.controls[HorseChannel::lbHoofTx] = -20.0;
-  const auto w = poseHorse(horse, f);
+  HorsePoseParams no_settle;
+  no_settle.max_stance_settle_cm = 0.0f;
+  const auto w = poseHorse(horse, f, no_settle);
   for (const char* leg : {"lf", "lb"}) {
     const glm::vec3 rest = horse.skeleton.restPosition(horse.role(std::string(leg) + "Upper"));
     EXPECT_NEAR(glm::length(glm::vec3(w[horse.role(std::string(leg) + "Upper")][3]) - rest), 0.0f, 1e-3f) << leg;
+  }
+}
+
+// The same planted legs 20 cm ahead and behind fall short of their prints on two bones; the body
+// settles straight down onto them (at most max_stance_settle_cm, 5 cm), which brings them nearer, and
+// no bone changes length.
+TEST(HorseLeg, ThePlantedLegShortOfItsPrintLetsTheBodySettle) {
+  Character horse = defaultHorse();
+  for (const char* leg : kLegs) horse.roles.erase(std::string(leg) + "Pivot");
+  HorseFrame f;
+  f.controls[HorseChannel::lfHoofTx] = 20.0;
+  f.controls[HorseChannel::lbHoofTx] = -20.0;
+  HorsePoseParams no_settle;
+  no_settle.max_stance_settle_cm = 0.0f;
+  HorseReach before, after;
+  (void)poseHorse(horse, f, no_settle, &before);
+  ASSERT_TRUE(before.overReached(0) || before.overReached(2));
+  const auto w = poseHorse(horse, f, {}, &after);
+  const glm::vec3 root = glm::vec3(w[std::size_t(horse.role("root"))][3]) - horse.skeleton.restPosition(horse.role("root"));
+  EXPECT_NEAR(root.x, 0.0f, 1e-3f);
+  EXPECT_NEAR(root.z, 0.0f, 1e-3f);
+  EXPECT_LT(root.y, -0.5f);
+  EXPECT_GE(root.y, -5.0f - 1e-3f);
+  EXPECT_LT(std::max(after.short_cm[0], after.short_cm[2]), std::max(before.short_cm[0], before.short_cm[2]));
+  const Skeleton& s = horse.skeleton;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int parent = s.joints[j].parent;
+    if (parent < 0) continue;
+    EXPECT_NEAR(glm::length(glm::vec3(w[j][3]) - glm::vec3(w[std::size_t(parent)][3])),
+                glm::length(s.restPosition(int(j)) - s.restPosition(parent)), 1e-3f) << s.joints[j].name;
   }
 }
 
@@ -171,7 +204,9 @@ TEST(HorseLeg, ATargetBeyondReachIsFlaggedNeverStretched) {
   HorseFrame far;
   far.controls[HorseChannel::lbHoofTx] = -80.0;
   HorseReach reach;
-  const auto w = poseHorse(horse, far, {}, &reach);
+  HorsePoseParams no_settle;  // the leg alone, its body where the clip carries it
+  no_settle.max_stance_settle_cm = 0.0f;
+  const auto w = poseHorse(horse, far, no_settle, &reach);
   const int upper = horse.role("lbUpper"), middle = horse.role("lbMiddle"), fetlock = horse.role("lbFetlock");
   const auto at = [&](int j) { return glm::vec3(w[std::size_t(j)][3]); };
   const float l1 = glm::length(s.restPosition(middle) - s.restPosition(upper));

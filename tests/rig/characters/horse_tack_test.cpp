@@ -30,7 +30,7 @@
 #include "rig/pose.h"
 #include "rig/skin.h"
 #include "tests/input_error.h"
-#include "tests/rig/contact_depth.h"
+#include "rig/contact_depth.h"
 #include "tests/rig/default_characters.h"
 #include "tests/rig/user_riders.h"
 
@@ -149,7 +149,7 @@ void rideTheTrot(const Character& horse, const Character& rider, const std::stri
   const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
   const auto clip = makeClip(scene.clip, horse);
   const auto clip0 = makeClip(scene.clip);
-  const std::vector<bool> tack = test::horseTackVertices(horse);
+  const std::vector<bool> tack = horseTackVertices(horse);
   const Skeleton& s = rider.skeleton;
   std::vector<bool> legs(rider.mesh.vertexCount(), false);
   {
@@ -219,7 +219,7 @@ void rideTheTrot(const Character& horse, const Character& rider, const std::stri
     std::vector<std::size_t> leg_vertex;
     for (std::size_t v = 0; v < rp.size(); ++v)
       if (legs[v]) leg_points.push_back(rp[v]), leg_vertex.push_back(v);
-    const test::ContactDepth c = test::deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, leg_points);
+    const ContactDepth c = deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, leg_points);
     if (c.depth_cm > worst_legs) {
       worst_legs = c.depth_cm;
       const glm::vec3 q = inSaddle(saddle, rp[leg_vertex[c.vertex]]);

@@ -6,7 +6,7 @@
 //   feet   the sole under the ball of each foot within 3 cm of its tread (rig::stirrupTarget);
 //   hands  where each hand closes (the Hand role) within 3 cm of where the rig asks for it (the rein
 //          grip at rest moved by the wrist channels, in the saddle's frame);
-//   legs   no vertex of her legs more than 2 cm inside the skinned horse (tests/rig/contact_depth.h);
+//   legs   no vertex of her legs more than 2 cm inside the skinned horse (rig/contact_depth.h);
 //   bones  every bone of her file within 1% of its length (or 0.02 cm for the shortest);
 //   trunk  her pelvis-to-neck line's world lean within 3° of the default rider's.
 #include "rig/characters/seating.h"
@@ -31,7 +31,7 @@
 #include "rig/motion/clip_factory.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
-#include "tests/rig/contact_depth.h"
+#include "rig/contact_depth.h"
 #include "tests/rig/user_riders.h"
 
 namespace stirrup::rig {
@@ -107,7 +107,7 @@ void ridesSeated(const std::string& name, const fs::path& glb, const fs::path& m
 
   const Skeleton& s = rider.skeleton;
   const std::vector<bool> legs = legVertices(rider);
-  const std::vector<bool> tack = test::horseTackVertices(horse);
+  const std::vector<bool> tack = horseTackVertices(horse);
   std::vector<glm::vec3> hp, hn, rp, rn;
   const std::vector<glm::vec3> rest_grip = {s.restPosition(rider.role("lHand")), s.restPosition(rider.role("rHand"))};
   const std::vector<glm::vec3> rest_wrist = {s.restPosition(rider.role("lWrist")), s.restPosition(rider.role("rWrist"))};
@@ -180,7 +180,7 @@ void ridesSeated(const std::string& name, const fs::path& glb, const fs::path& m
       std::vector<std::size_t> leg_vertex;
       for (std::size_t v = 0; v < rp.size(); ++v)
         if (legs[v]) leg_points.push_back(rp[v]), leg_vertex.push_back(v);
-      const test::ContactDepth c = test::deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, leg_points);
+      const ContactDepth c = deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, leg_points);
       if (c.depth_cm > w.legs) {
         w.legs = c.depth_cm;
         const std::size_t v = leg_vertex[c.vertex];

@@ -1,5 +1,5 @@
 // How far a posed rider sinks into a posed horse, however deep: the deepest rider vertex inside the
-// horse's surface and its index. For tests: the default clips' contact (tests/rig/contact_test.cpp),
+// horse's surface and its index. For `stirrup check` (rig/frame_check.h) and the tests: the default clips' contact (tests/rig/contact_test.cpp),
 // and any rider a user brings ("no leg vertex more than 2 cm inside the horse").
 //
 //   const ContactDepth d = deepestRiderVertexInside(horse_points, horse_normals, horse.mesh.indices,
@@ -42,7 +42,7 @@
 
 #include "rig/character.h"
 
-namespace stirrup::rig::test {
+namespace stirrup::rig {
 
 struct ContactDepth {
   float depth_cm = 0.0f;  // how far the deepest rider vertex is inside the horse; 0 when none is
@@ -334,4 +334,4 @@ inline ContactDepth deepestRiderVertexInside(const std::vector<glm::vec3>& horse
   return deepest;
 }
 
-}  // namespace stirrup::rig::test
+}  // namespace stirrup::rig
