@@ -9,6 +9,7 @@
 #include "render/cli/output_folder.h"
 #include "render/cli/options.h"
 #include "render/cli/progress.h"
+#include "render/frame_sequence.h"
 #include "render/frame_writer.h"
 #include "render/image.h"
 #include "render/review/movie.h"
@@ -34,18 +35,12 @@ struct RenderOptions {
   std::string format = "png";
   bool exr = false;
   int threads = 0;
-  int padding = 4;
+  int padding = render::kDefaultFramePadding;
   bool progress = false;
   bool resume = false;
   bool encode_only = false;
   bool allow_impossible = false;
 };
-
-std::string frameName(const std::string& base, int frame, int padding, const char* extension) {
-  char digits[32];
-  std::snprintf(digits, sizeof digits, "%0*d", padding, frame);
-  return base + "." + digits + extension;
-}
 
 void runRender(const RenderOptions& o) {
   namespace fs = std::filesystem;
@@ -64,13 +59,15 @@ void runRender(const RenderOptions& o) {
   rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
   const OutputFolder folder(dir);  // taken back if the render fails before writing a frame
-  const std::string base = (dir / (scene.name + "_" + camera.name)).string();
+  const std::string shot_name = scene.name + "_" + camera.name;
+  const render::FrameSequence png_frames = render::FrameSequence::named(dir, shot_name, ".png", o.padding);
+  const render::FrameSequence exr_frames = render::FrameSequence::named(dir, shot_name, ".exr", o.padding);
 
   if (o.encode_only) {
     // A farm's last step: every frame must already be there; render nothing, encode.
     std::vector<fs::path> written;
     for (int frame : frames) {
-      written.push_back(frameName(base, frame, o.padding, ".png"));
+      written.push_back(png_frames.path(frame));
       if (!fs::is_regular_file(written.back()))
         throw InputError("--encode-only: frame " + std::to_string(frame) + " is missing (" + written.back().string() + ")");
     }
@@ -85,8 +82,7 @@ void runRender(const RenderOptions& o) {
   render::FrameWriter writer;
   int done = 0;
   for (int frame : frames) {
-    const fs::path png_file = frameName(base, frame, o.padding, ".png");
-    const fs::path exr_file = frameName(base, frame, o.padding, ".exr");
+    const fs::path png_file = png_frames.path(frame), exr_file = exr_frames.path(frame);
     const bool complete = (!png || fs::exists(png_file)) && (!exr || fs::exists(exr_file));
     if (!(o.resume && complete)) {
       render::warnImpossibleFrame(scene, frame);
@@ -136,7 +132,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"png", "exr", "both"}));
   cmd->add_flag("--exr", opts->exr, "Also write the EXR frames (same as --format both)");
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, 9));
+  cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, render::kMaxFramePadding));
   cmd->add_flag("--resume", opts->resume, "Skip frames whose file already exists");
   cmd->add_flag("--allow-impossible", opts->allow_impossible,
                 "Render a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
