@@ -14,11 +14,11 @@
 #include "render/image.h"
 #include "render/review/movie.h"
 #include "render/preset.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/error.h"
 #include "rig/io/frame_range.h"
-#include "rig/io/rig_profile_json.h"
 
 namespace stirrup::cli {
 namespace {
@@ -55,8 +55,7 @@ void runRender(const RenderOptions& o) {
   if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
-  rig::RigProfile profile = render::resolveProfile(scene);
-  rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
+  const rig::RigProfile profile = render::resolveProfile(scene, parseSets(o.sets));
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
   const OutputFolder folder(dir);  // taken back if the render fails before writing a frame
   const std::string shot_name = scene.name + "_" + camera.name;

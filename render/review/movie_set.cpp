@@ -16,6 +16,7 @@
 #include "render/image.h"
 #include "render/review/layer.h"
 #include "render/preset.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/motion/clip_factory.h"
