@@ -314,26 +314,3 @@ const CameraSpec& findCamera(const SceneSpec& scene, const std::string& name) {
 double frameTime(const SceneSpec& scene, int frame) { return (frame - 1) / scene.fps; }
 
 }  // namespace stirrup::render
-
-#include "rig/io/rig_profile_json.h"
-
-namespace stirrup::render {
-
-rig::RigProfile resolveProfile(const SceneSpec& scene) {
-  const std::filesystem::path scene_dir = scene.file.parent_path();
-  const bool is_path = std::filesystem::path(scene.profile).extension() == ".json";
-  // A profile name is looked up beside the scene (SCENE_DIR/profiles/NAME.json), then among the data
-  // folder's profiles, so a user's scene in a folder of its own can say "profile": "english".
-  std::filesystem::path profiles = scene_dir / "profiles";
-  std::error_code ec;
-  if (!is_path && !std::filesystem::exists(profiles / (scene.profile + ".json"), ec))
-    if (const std::optional<std::filesystem::path> data = findDataDir();
-        data && std::filesystem::exists(*data / "scenes" / "profiles" / (scene.profile + ".json"), ec))
-      profiles = *data / "scenes" / "profiles";
-  rig::RigProfile p = is_path ? rig::loadRigProfile((scene_dir / scene.profile).string(), scene_dir)
-                              : rig::loadRigProfile(scene.profile, profiles);
-  rig::applyProfileOverrides(p, scene.profile_overrides, scene.file.string() + ": profile_overrides");
-  return p;
-}
-
-}  // namespace stirrup::render

@@ -137,16 +137,3 @@ void warnImpossibleFrame(const SceneSpec& scene, int frame);
 
 }  // namespace stirrup::render
 
-namespace stirrup::rig {
-struct RigProfile;
-}
-
-namespace stirrup::render {
-
-// The scene's rig profile: a name is looked up as profiles/NAME.json beside the scene file (so
-// scenes/trot.json finds scenes/profiles/thesis.json from any working directory), else in the data
-// folder's scenes/profiles; a path ending in .json is read as it is; then the scene's profile_overrides
-// are applied.
-rig::RigProfile resolveProfile(const SceneSpec& scene);
-
-}  // namespace stirrup::render

@@ -13,6 +13,7 @@
 #include "render/camera_motion.h"
 #include "render/detail_level.h"
 #include "render/fence.h"
+#include "render/profile_resolver.h"
 #include "render/view.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"

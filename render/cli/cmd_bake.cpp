@@ -8,6 +8,7 @@
 
 #include "render/camera.h"
 #include "render/cli/commands.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/bake.h"

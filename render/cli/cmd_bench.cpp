@@ -25,6 +25,7 @@
 #include "render/image.h"
 #include "render/preset.h"
 #include "render/sample_lanes.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/io/frame_range.h"

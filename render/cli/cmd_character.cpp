@@ -24,6 +24,7 @@
 #include "render/cli/options.h"
 #include "render/image.h"
 #include "render/preset.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/error.h"

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "render/cli/commands.h"
+#include "render/frame_sequence.h"
 #include "render/review/image_diff.h"
 #include "rig/error.h"
 
@@ -22,35 +23,11 @@ struct DiffOptions {
   double scale = 16.0;
 };
 
-bool isSequence(const std::string& s) { return s.find('#') != std::string::npos; }
-
-// NAME.####.png with the #s replaced by `frame`, zero-padded to their count.
-fs::path framePath(const std::string& pattern, int frame) {
-  const std::size_t first = pattern.find('#'), last = pattern.rfind('#');
-  std::string number = std::to_string(frame);
-  if (number.size() < last - first + 1) number.insert(0, last - first + 1 - number.size(), '0');
-  return pattern.substr(0, first) + number + pattern.substr(last + 1);
-}
+bool isSequence(const std::string& s) { return render::FrameSequence::isPattern(s); }
 
 // Frames of a sequence pattern NAME.####.png found on disk, by frame number.
 std::map<int, fs::path> findFrames(const std::string& pattern) {
-  const fs::path p(pattern);
-  const std::string name = p.filename().string();
-  const std::size_t first = name.find('#'), last = name.rfind('#');
-  const std::string prefix = name.substr(0, first), suffix = name.substr(last + 1);
-  const std::size_t digits = last - first + 1;
-  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  std::map<int, fs::path> frames;
-  if (!fs::is_directory(dir)) throw InputError(pattern + ": no such folder " + dir.string());
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string f = entry.path().filename().string();
-    if (f.size() < prefix.size() + suffix.size() + digits || f.rfind(prefix, 0) != 0 ||
-        f.compare(f.size() - suffix.size(), suffix.size(), suffix) != 0)
-      continue;
-    const std::string mid = f.substr(prefix.size(), f.size() - prefix.size() - suffix.size());
-    if (mid.size() < digits || !std::all_of(mid.begin(), mid.end(), ::isdigit)) continue;
-    frames[std::stoi(mid)] = entry.path();
-  }
+  std::map<int, fs::path> frames = render::FrameSequence::parse(pattern)->scan();
   if (frames.empty()) throw InputError(pattern + ": no frames match the pattern");
   return frames;
 }
@@ -98,7 +75,7 @@ void compareAll(const DiffOptions& o) {
     if (!o.diff_image.empty()) {
       diff_image = o.diff_image;
       if (isSequence(o.a) && isSequence(o.diff_image))  // OUT.####.png: the frame number in the #s
-        diff_image = framePath(o.diff_image, frame);
+        diff_image = render::FrameSequence::parse(o.diff_image)->path(frame);
       else if (pairs.size() > 1)  // one diff image per frame: OUT.ext -> OUT.<frame file name>
         diff_image = fs::path(o.diff_image).replace_extension("").string() + "." + b.filename().string();
       std::error_code ec;  // a failure here shows as the write's own one-line error

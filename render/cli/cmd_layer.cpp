@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/cli/commands.h"
+#include "render/frame_sequence.h"
 #include "render/image.h"
 #include "render/review/layer.h"
 #include "render/scene.h"
@@ -44,17 +45,12 @@ struct LayerOptions {
   bool no_labels = false;
 };
 
-bool isPattern(const std::string& s) { return s.find('#') != std::string::npos || s.find('%') != std::string::npos; }
+bool isPattern(const std::string& s) { return render::FrameSequence::isPattern(s); }
 
-// NAME.####.ext with the frame number filled in.
+// NAME.####.ext (or NAME.%04d.ext) with the frame number filled in; one image is itself.
 fs::path frameFile(const std::string& pattern, int frame) {
-  const size_t hash = pattern.find('#');
-  if (hash == std::string::npos) return pattern;
-  size_t end = hash;
-  while (end < pattern.size() && pattern[end] == '#') ++end;
-  char digits[32];
-  std::snprintf(digits, sizeof digits, "%0*d", int(end - hash), frame);
-  return pattern.substr(0, hash) + digits + pattern.substr(end);
+  const std::optional<render::FrameSequence> sequence = render::FrameSequence::parse(pattern);
+  return sequence ? sequence->path(frame) : fs::path(pattern);
 }
 
 glm::vec2 parsePosition(const std::string& text) {

@@ -9,15 +9,16 @@
 #include "render/cli/output_folder.h"
 #include "render/cli/options.h"
 #include "render/cli/progress.h"
+#include "render/frame_sequence.h"
 #include "render/frame_writer.h"
 #include "render/image.h"
 #include "render/review/movie.h"
 #include "render/preset.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/error.h"
 #include "rig/io/frame_range.h"
-#include "rig/io/rig_profile_json.h"
 
 namespace stirrup::cli {
 namespace {
@@ -34,18 +35,12 @@ struct RenderOptions {
   std::string format = "png";
   bool exr = false;
   int threads = 0;
-  int padding = 4;
+  int padding = render::kDefaultFramePadding;
   bool progress = false;
   bool resume = false;
   bool encode_only = false;
   bool allow_impossible = false;
 };
-
-std::string frameName(const std::string& base, int frame, int padding, const char* extension) {
-  char digits[32];
-  std::snprintf(digits, sizeof digits, "%0*d", padding, frame);
-  return base + "." + digits + extension;
-}
 
 void runRender(const RenderOptions& o) {
   namespace fs = std::filesystem;
@@ -60,17 +55,18 @@ void runRender(const RenderOptions& o) {
   if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
-  rig::RigProfile profile = render::resolveProfile(scene);
-  rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
+  const rig::RigProfile profile = render::resolveProfile(scene, parseSets(o.sets));
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
   const OutputFolder folder(dir);  // taken back if the render fails before writing a frame
-  const std::string base = (dir / (scene.name + "_" + camera.name)).string();
+  const std::string shot_name = scene.name + "_" + camera.name;
+  const render::FrameSequence png_frames = render::FrameSequence::named(dir, shot_name, ".png", o.padding);
+  const render::FrameSequence exr_frames = render::FrameSequence::named(dir, shot_name, ".exr", o.padding);
 
   if (o.encode_only) {
     // A farm's last step: every frame must already be there; render nothing, encode.
     std::vector<fs::path> written;
     for (int frame : frames) {
-      written.push_back(frameName(base, frame, o.padding, ".png"));
+      written.push_back(png_frames.path(frame));
       if (!fs::is_regular_file(written.back()))
         throw InputError("--encode-only: frame " + std::to_string(frame) + " is missing (" + written.back().string() + ")");
     }
@@ -85,8 +81,7 @@ void runRender(const RenderOptions& o) {
   render::FrameWriter writer;
   int done = 0;
   for (int frame : frames) {
-    const fs::path png_file = frameName(base, frame, o.padding, ".png");
-    const fs::path exr_file = frameName(base, frame, o.padding, ".exr");
+    const fs::path png_file = png_frames.path(frame), exr_file = exr_frames.path(frame);
     const bool complete = (!png || fs::exists(png_file)) && (!exr || fs::exists(exr_file));
     if (!(o.resume && complete)) {
       render::warnImpossibleFrame(scene, frame);
@@ -136,7 +131,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"png", "exr", "both"}));
   cmd->add_flag("--exr", opts->exr, "Also write the EXR frames (same as --format both)");
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, 9));
+  cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, render::kMaxFramePadding));
   cmd->add_flag("--resume", opts->resume, "Skip frames whose file already exists");
   cmd->add_flag("--allow-impossible", opts->allow_impossible,
                 "Render a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");

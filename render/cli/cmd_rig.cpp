@@ -13,7 +13,7 @@
 
 #include "render/cli/commands.h"
 #include "render/cli/options.h"
-#include "render/data_dir.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "rig/io/ridden_pair.h"
 #include "rig/bake.h"
@@ -24,7 +24,6 @@
 #include "rig/io/channel_csv.h"
 #include "rig/error.h"
 #include "rig/rider_rig.h"
-#include "rig/io/rig_profile_json.h"
 
 namespace stirrup::cli {
 namespace {
@@ -37,16 +36,7 @@ struct RigOptions {
   std::vector<std::string> sets;
 };
 
-std::filesystem::path profilesDir() {
-  if (const char* env = std::getenv("STIRRUP_PROFILES"); env && *env) return env;
-  return render::dataDir() / "scenes" / "profiles";
-}
-
-rig::RigProfile resolveProfile(const RigOptions& o) {
-  rig::RigProfile p = rig::loadRigProfile(o.profile, profilesDir());
-  rig::applyProfileOverrides(p, parseSets(o.sets), "--set");
-  return p;
-}
+rig::RigProfile resolveProfile(const RigOptions& o) { return render::resolveProfile(o.profile, parseSets(o.sets)); }
 
 void runEval(const RigOptions& o) {
   const rig::RigProfile profile = resolveProfile(o);
@@ -77,8 +67,7 @@ void runParams(const RigOptions& o) {
 // as the stage leaves it (measured from the posed pelvis and neck joints), and the stage's terms.
 void runBalance(const RigOptions& o) {
   const render::SceneSpec scene = render::loadScene(o.scene);
-  rig::RigProfile profile = render::resolveProfile(scene);
-  rig::applyProfileOverrides(profile, parseSets(o.sets), "--set");
+  const rig::RigProfile profile = render::resolveProfile(scene, parseSets(o.sets));
   const auto clip = render::makeSceneClip(scene);
   const rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
   const rig::Character& horse = pair.horse;
@@ -111,8 +100,8 @@ void runBalance(const RigOptions& o) {
 
 void addProfileOptions(CLI::App* cmd, const std::shared_ptr<RigOptions>& opts) {
   cmd->add_option("--profile,-p", opts->profile,
-                  "Rig profile: a name looked up in the profiles folder (thesis, english, novice; folder: "
-                  "$STIRRUP_PROFILES or scenes/profiles in stirrup's data folder) or a path to a .json file")
+                  "Rig profile: a name (thesis, english, novice, rigid) looked up in $STIRRUP_PROFILES, then in "
+                  "scenes/profiles in stirrup's data folder, or a path to a .json file (docs/rider-rig.md)")
       ->capture_default_str();
   cmd->add_option("--set,-s", opts->sets,
                   "Override one profile parameter, KEY=NUMBER (repeatable), e.g. --set eq7.w2_scale=0.015; "

@@ -7,6 +7,7 @@
 #include <map>
 #include <system_error>
 
+#include "render/frame_sequence.h"
 #include "render/scene.h"
 #include "rig/error.h"
 #include "rig/io/frame_range.h"
@@ -17,12 +18,6 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string relativeTo(const fs::path& file, const fs::path& out) { return fs::relative(file, out).generic_string(); }
-
-std::string padded4(int frame) {
-  char digits[32];
-  std::snprintf(digits, sizeof digits, "%04d", frame);
-  return digits;
-}
 
 FarmPlan emptyPlan(const FarmRequest& r, const std::string& kind) {
   FarmPlan plan;
@@ -51,12 +46,13 @@ FarmPlan planRender(const FarmRequest& r, const fs::path& scene_file, const std:
   shot.command.insert(shot.command.end(), render_args.begin(), render_args.end());
   shot.command.push_back("--resume");
   shot.frames_dir = ".";
+  const FrameSequence frames_named = FrameSequence::named("", name, ".png");  // as `stirrup render` names them
   shot.outputs = {name + ".mp4"};
   int task = 0;
   for (std::vector<int>& chunk : chunkFrames(frames, r.chunk)) {
     FarmChunk c;
     c.task = ++task;
-    for (int f : chunk) c.files.push_back(name + "." + padded4(f) + ".png");
+    for (int f : chunk) c.files.push_back(frames_named.fileName(f));
     c.frames = std::move(chunk);
     shot.chunks.push_back(std::move(c));
   }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <ctime>
 
+#include "render/frame_sequence.h"
 #include "render/review/text.h"
 
 namespace stirrup::render {
@@ -27,12 +28,6 @@ void paint(Image& image, const std::vector<float>& mask, glm::vec3 colour) {
     glm::vec4& p = image.rgba[i];
     p = glm::vec4(glm::vec3(p) * (1.0f - m) + colour * m, 1.0f);
   }
-}
-
-std::string padded(int frame) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%04d", frame);
-  return buf;
 }
 
 }  // namespace
@@ -59,7 +54,7 @@ void burnIn(Image& image, const BurnInFacts& f, int frame) {
                size, FontStyle::SansBold);
   drawTextMask(mask, image.width, image.height, image.width - pad, top, "profile " + f.profile, size,
                FontStyle::Sans, TextAlign::Right);
-  drawTextMask(mask, image.width, image.height, pad, bottom, "frame " + padded(frame), size, FontStyle::Mono);
+  drawTextMask(mask, image.width, image.height, pad, bottom, "frame " + paddedFrameNumber(frame), size, FontStyle::Mono);
   drawTextMask(mask, image.width, image.height, image.width - pad, bottom, timecode(frame, f.fps), size,
                FontStyle::Mono, TextAlign::Right);
   paint(image, mask, glm::vec3(0.92f));

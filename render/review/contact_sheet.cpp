@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
+#include "render/frame_sequence.h"
 #include "render/review/plot_canvas.h"
 
 namespace stirrup::render {
@@ -58,9 +58,8 @@ void writeContactSheet(const std::string& title, const std::vector<ContactFrame>
     const int col = int(i) % cols, row = int(i) / cols;
     const int x = gap + col * (tw + gap), y = titleH + row * (th + label + gap);
     c.paste(x, y, tw, th, thumbnail(frames[i].image, tw, th));
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "frame %04d", frames[i].frame);
-    c.text(x + tw / 2, y + th + 17, buf, 14, {0.85f, 0.85f, 0.85f}, TextAlign::Center, FontStyle::Mono);
+    c.text(x + tw / 2, y + th + 17, "frame " + paddedFrameNumber(frames[i].frame), 14, {0.85f, 0.85f, 0.85f},
+           TextAlign::Center, FontStyle::Mono);
   }
   if (!file.parent_path().empty()) std::filesystem::create_directories(file.parent_path());
   c.write(file);

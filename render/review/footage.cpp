@@ -3,14 +3,13 @@
 #include "render/review/footage.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <sstream>
 
 #include <OpenImageIO/imageio.h>
 
+#include "render/frame_sequence.h"
 #include "rig/error.h"
 
 namespace stirrup::render {
@@ -62,50 +61,6 @@ glm::vec3 sampleBilinear(const Image& img, const PixelRect& r, double u, double 
   };
   return (1 - fy) * ((1 - fx) * texel(x0, y0) + fx * texel(x0 + 1, y0)) +
          fy * ((1 - fx) * texel(x0, y0 + 1) + fx * texel(x0 + 1, y0 + 1));
-}
-
-// The pattern's directory, the text before and after the frame number and its padding (0: any).
-struct Pattern {
-  fs::path dir;
-  std::string prefix, suffix;
-  int padding = 0;
-  bool has_number = false;
-};
-
-Pattern splitPattern(const fs::path& pattern) {
-  Pattern p;
-  p.dir = pattern.parent_path();
-  const std::string name = pattern.filename().string();
-  const size_t hash = name.find('#');
-  if (hash != std::string::npos) {
-    size_t end = hash;
-    while (end < name.size() && name[end] == '#') ++end;
-    p.prefix = name.substr(0, hash);
-    p.suffix = name.substr(end);
-    p.padding = int(end - hash);
-    p.has_number = true;
-    return p;
-  }
-  const size_t pct = name.find('%');
-  if (pct != std::string::npos) {
-    size_t i = pct + 1;
-    int width = 0;
-    while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i]))) width = width * 10 + (name[i++] - '0');
-    if (i < name.size() && name[i] == 'd') {
-      p.prefix = name.substr(0, pct);
-      p.suffix = name.substr(i + 1);
-      p.padding = width;
-      p.has_number = true;
-      return p;
-    }
-  }
-  return p;
-}
-
-std::string frameFileName(const Pattern& p, int frame) {
-  char digits[32];
-  std::snprintf(digits, sizeof digits, "%0*d", std::max(1, p.padding), frame);
-  return p.prefix + digits + p.suffix;
 }
 
 // Our canvas's pixel (x, y) centre in the crop's coordinates, or nothing where the footage does not reach.
@@ -251,30 +206,15 @@ void FootageSequence::validate(const std::string& context) const {
 }
 
 FootageSequence openFootage(const fs::path& pattern) {
-  const Pattern p = splitPattern(pattern);
+  const std::optional<FrameSequence> sequence = FrameSequence::parse(pattern);
   FootageSequence seq;
   seq.name = pattern.string();
-  if (!p.has_number) {
+  if (!sequence) {
     if (!fs::exists(pattern)) throw InputError(pattern.string() + ": no such image file");
     seq.files = {pattern};
     return seq;
   }
-  const fs::path dir = p.dir.empty() ? fs::path(".") : p.dir;
-  std::map<int, fs::path> found;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.size() <= p.prefix.size() + p.suffix.size() || name.compare(0, p.prefix.size(), p.prefix) != 0 ||
-        name.compare(name.size() - p.suffix.size(), p.suffix.size(), p.suffix) != 0)
-      continue;
-    const std::string digits = name.substr(p.prefix.size(), name.size() - p.prefix.size() - p.suffix.size());
-    if (digits.empty() || digits.size() > 9 || int(digits.size()) < p.padding ||
-        !std::all_of(digits.begin(), digits.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
-      continue;
-    const int number = std::stoi(digits);
-    if (frameFileName(p, number) == name) found[number] = entry.path();
-  }
-  if (ec) throw InputError(pattern.string() + ": cannot list the folder " + dir.string() + " (" + ec.message() + ")");
+  const std::map<int, fs::path> found = sequence->scan();
   if (found.empty()) throw InputError(pattern.string() + ": no frames match this sequence pattern");
   seq.first = found.begin()->first;
   for (const auto& [number, file] : found) {
@@ -349,8 +289,7 @@ std::vector<Image> cutPlate(const fs::path& plate_file, const PlateGrid& grid) {
 }
 
 bool referenceAvailable(const ReferenceSpec& ref) {
-  const Pattern p = splitPattern(ref.file);
-  if (!p.has_number) return fs::is_regular_file(ref.file);
+  if (!FrameSequence::isPattern(ref.file)) return fs::is_regular_file(ref.file);
   try {
     openFootage(ref.file);
     return true;

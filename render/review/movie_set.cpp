@@ -11,10 +11,12 @@
 #include "render/review/burn_in.h"
 #include "render/review/channel_plot.h"
 #include "render/review/contact_sheet.h"
+#include "render/frame_sequence.h"
 #include "render/frame_writer.h"
 #include "render/image.h"
 #include "render/review/layer.h"
 #include "render/preset.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/motion/clip_factory.h"
@@ -28,12 +30,6 @@ namespace stirrup::render {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string padded(int frame) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%04d", frame);
-  return buf;
-}
 
 // The scene's own reference block, when the scene format has one (render/review/layer.h ReferenceSpec).
 template <typename S>
@@ -168,10 +164,10 @@ namespace {
 
 fs::path frameDir(const MovieJob& job, const MovieOptions& o) { return o.out / "frames" / job.name; }
 fs::path framePng(const MovieJob& job, const MovieOptions& o, int f) {
-  return frameDir(job, o) / (job.name + "." + padded(f) + ".png");
+  return FrameSequence::named(frameDir(job, o), job.name, ".png").path(f);
 }
 fs::path sheetExr(const MovieJob& job, const MovieOptions& o, int f) {
-  return frameDir(job, o) / (job.name + "." + padded(f) + ".sheet.exr");
+  return FrameSequence::named(frameDir(job, o), job.name, ".sheet.exr").path(f);
 }
 
 std::string movieView(const MovieJob& job) { return job.layered.empty() ? job.camera : "layered (" + job.camera + ")"; }

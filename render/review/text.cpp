@@ -67,6 +67,16 @@ std::array<int, 2> textSize(const std::string& text, int size, FontStyle style) 
 void drawTextMask(std::vector<float>& mask, int width, int height, int x, int y, const std::string& text,
                   int size, FontStyle style, TextAlign align) {
   if (text.empty()) return;
+  // OpenImageIO's render_text fails an assertion (aborts) when no pixel of the text lands in the
+  // image: draw nothing for text outside the mask. kSliverPx keeps a text whose box OpenImageIO places a
+  // pixel or two differently from this estimate on the safe side (such a sliver shows nothing legible).
+  constexpr int kSliverPx = 2;
+  OIIO::ROI box = OIIO::ImageBufAlgo::text_size(text, size, findFont(style).string());
+  if (!box.defined()) return;
+  const int left = x - (align == TextAlign::Left ? 0 : align == TextAlign::Center ? box.width() / 2 : box.width());
+  if (left + box.xend <= kSliverPx || left + box.xbegin >= width - kSliverPx || y + box.yend <= kSliverPx ||
+      y + box.ybegin >= height - kSliverPx)
+    return;
   OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::FLOAT);
   OIIO::ImageBuf buf(spec, mask.data());
   const float white[1] = {1.0f};

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "rig/bake.h"
 #include "rig/balance.h"

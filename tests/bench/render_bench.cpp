@@ -6,6 +6,7 @@
 #include <string>
 
 #include "render/preset.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/pose.h"

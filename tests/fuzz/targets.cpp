@@ -14,6 +14,7 @@
 
 #include "render/cli/options.h"
 #include "render/farm/farm_plan.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "rig/bake.h"
 #include "rig/curve_spine.h"

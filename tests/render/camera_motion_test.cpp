@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "render/renderer.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/io/frame_range.h"

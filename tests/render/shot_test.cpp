@@ -14,6 +14,7 @@
 
 #include "render/detail_level.h"
 #include "render/image.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "rig/error.h"
 #include "rig/motion/clip_factory.h"

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "default_characters.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "rig/bake.h"
 #include "rig/io/frame_range.h"

@@ -18,6 +18,7 @@
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "rig/bake.h"
 #include "rig/motion/clip_factory.h"

@@ -20,6 +20,7 @@
 #include <tiny_gltf.h>
 
 #include "render/camera.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "render/view.h"

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "rig/bake.h"
 #include "rig/io/ridden_pair.h"

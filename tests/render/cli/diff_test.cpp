@@ -99,6 +99,23 @@ TEST_F(Diff, ComparesSequencesFrameByFrame) {
   EXPECT_NE(missing.err.find("frame 2 is missing"), std::string::npos) << missing.err;
 }
 
+// The frames of a pattern are the files it names exactly (docs/frame-sequences.md): s.00002.png is not
+// frame 2 of s.####.png (it once was, and one of the two files won), and s.-001.png is frame -1.
+TEST_F(Diff, SequencesHoldTheFramesThePatternNamesExactly) {
+  for (const char* side : {"a", "b"}) {
+    writeImage(dir / side / "s.-001.png", 0);
+    writeImage(dir / side / "s.0002.png", 0);
+  }
+  writeImage(dir / "b/s.00002.png", 3);  // a look-alike, different pixels
+  fs::copy_file(dir / "new.png", dir / "b/s.0003.png.tmp");  // a frame being written
+  const CommandResult r = runStirrup("diff " + quote((dir / "a/s.####.png").string()) + " " +
+                                     quote((dir / "b/s.####.png").string()));
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("2 frames: PASS"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("s.-001.png"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("s.00002.png"), std::string::npos) << r.out;
+}
+
 TEST_F(Diff, WritesOneDiffImagePerFrameThroughAPattern) {
   writeImage(dir / "a/s.0007.png", 0);
   writeImage(dir / "a/s.0009.png", 0);

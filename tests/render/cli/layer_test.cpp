@@ -92,6 +92,23 @@ TEST(LayerCli, FrameListAndDifference) {
   EXPECT_FALSE(fs::exists(dir / "out" / frameName("d", 2)));
 }
 
+// A printf pattern names a sequence as #s do (docs/frame-sequences.md): -o OUT.%04d.png writes a file a
+// frame (it once wrote every frame over one file named OUT.%04d.png), and B.%04d.png reads B's frames.
+TEST(LayerCli, PrintfPatternsAreSequencesToo) {
+  const fs::path dir = freshDir("printf");
+  fs::create_directories(dir / "out");
+  for (int f = 1; f <= 3; ++f) {
+    render::writePng(grey(3, 3, 0.5f), dir / frameName("a", f));
+    render::writePng(grey(3, 3, 0.0f), dir / frameName("b", f));
+  }
+  const CommandResult r = runStirrup("layer " + quote((dir / "a.%04d.png").string()) + " " + quote((dir / "b.%04d.png").string()) +
+                                     " -o " + quote((dir / "out/d.%04d.png").string()) + " --mode difference --gain 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(fileCount(dir / "out"), 3);
+  for (int f = 1; f <= 3; ++f) EXPECT_EQ(code(dir / "out" / frameName("d", f), 1, 1), 188) << f;
+  EXPECT_FALSE(fs::exists(dir / "out" / "d.%04d.png"));
+}
+
 TEST(LayerCli, SideBySideIsBothAtAsHeight) {
   const fs::path dir = freshDir("side");
   render::writePng(grey(8, 6, 1.0f), dir / "a.png");

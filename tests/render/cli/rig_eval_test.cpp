@@ -106,6 +106,12 @@ TEST_F(RigEval, ProfilesFolderFromTheEnvironment) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string h;
   EXPECT_EQ(readRows(dir_ / "o.csv", &h)[0][static_cast<std::size_t>(RiderChannel::cogTy) + 1], 0);
+  // A name the folder does not hold is found in the data folder next (docs/rider-rig.md, "Where profiles
+  // are found"); before the one rule this was an error naming STIRRUP_PROFILES/novice.json.
+  const CommandResult novice = runCommand("STIRRUP_PROFILES=" + quote((dir_ / "profiles").string()) + " " +
+                                          quote(STIRRUP_EXE) + " rig params --profile novice");
+  ASSERT_EQ(novice.exit_code, 0) << novice.err;
+  EXPECT_NE(novice.out.find("# profile novice:"), std::string::npos) << novice.out;
 }
 
 // Bad input: exit 1, one line on stderr, and no output file.
@@ -150,8 +156,8 @@ TEST_F(RigEval, BadInputIsOneLineAndLeavesNoOutput) {
   expectFails(eval(good, " --set eq1.w1_pivot_pitch"),
               "--set: expected key=value (e.g. eq1.w1_pivot_pitch=0.05), got \"eq1.w1_pivot_pitch\"", out);
   expectFails(eval(good, " --profile cowboy"),
-              std::string(STIRRUP_SOURCE_DIR) +
-                  "/scenes/profiles/cowboy.json: no such rig profile (expected one of english, novice, thesis)",
+              "--profile: no rig profile \"cowboy\" in " + std::string(STIRRUP_SOURCE_DIR) +
+                  "/scenes/profiles (expected one of english, novice, rigid, thesis, or a path to a .json file)",
               out);
 }
 

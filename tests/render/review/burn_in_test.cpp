@@ -1,11 +1,6 @@
 #include "render/review/burn_in.h"
 
-#include <cstdlib>
-
 #include <gtest/gtest.h>
-
-#include "render/review/text.h"
-#include "rig/error.h"
 
 namespace stirrup::render {
 namespace {
@@ -65,18 +60,6 @@ TEST(Slate, ShowsTheFactsOnAnOpaqueFrame) {
   facts.date = "2026-01-02";
   const Image t = makeSlate(640, 360, facts);
   EXPECT_NE(s.rgba, t.rgba);
-}
-
-TEST(Font, ABadStirrupFontIsAClearError) {
-  ::setenv("STIRRUP_FONT", "/nonexistent/font.ttf", 1);
-  try {
-    (void)findFont();
-    ADD_FAILURE() << "expected an error";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("STIRRUP_FONT: /nonexistent/font.ttf"), std::string::npos) << e.what();
-  }
-  ::unsetenv("STIRRUP_FONT");
-  EXPECT_TRUE(std::filesystem::is_regular_file(findFont()));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "rig/motion/clip_factory.h"
 #include "rig/rig_profile.h"

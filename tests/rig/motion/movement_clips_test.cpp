@@ -667,19 +667,5 @@ TEST(RiderResponse, WalkLeansForwardAsEachForeHoofIsSetDownAndRolls) {
   EXPECT_LT(correlation(roll, r.series(HorseChannel::rearPivotRx)), -0.99);
 }
 
-TEST(ClipSpec, UnknownParameterNamesFileAndField) {
-  nlohmann::json j = {{"generator", "jump"}, {"fence_hieght_cm", 90}};
-  JsonObjectReader r("scenes/x.json", "clip", j);
-  try {
-    parseClipSpec(r, ".");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "scenes/x.json: clip.fence_hieght_cm: unknown field");
-  }
-  nlohmann::json bad = {{"generator", "rear"}, {"angle_deg", 95}};
-  JsonObjectReader r2("scenes/x.json", "clip", bad);
-  EXPECT_THROW(parseClipSpec(r2, "."), InputError);
-}
-
 }  // namespace
 }  // namespace stirrup::rig

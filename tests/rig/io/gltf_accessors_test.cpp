@@ -1,0 +1,126 @@
+// Checked glTF reads (rig/io/gltf_accessors.cpp) on small in-memory models whose bytes are written
+// here: floats, normalised and plain integers, strided views, indices, and one-line errors naming
+// `where` for an accessor that does not fit its buffer or a file that is no glTF.
+#include "rig/io/gltf_accessors.h"
+
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "tests/input_error.h"
+
+namespace stirrup::rig {
+namespace {
+
+namespace fs = std::filesystem;
+using test::errorOf;
+
+// A model with one buffer holding `bytes`, one view over all of it (with `stride`), and one accessor.
+template <typename T>
+tinygltf::Model model(const std::vector<T>& values, int component_type, int type, std::size_t count, bool normalized = false,
+                      int stride = 0) {
+  tinygltf::Model m;
+  tinygltf::Buffer b;
+  b.data.resize(values.size() * sizeof(T));
+  std::memcpy(b.data.data(), values.data(), b.data.size());
+  m.buffers.push_back(b);
+  tinygltf::BufferView v;
+  v.buffer = 0;
+  v.byteLength = b.data.size();
+  v.byteStride = static_cast<std::size_t>(stride);
+  m.bufferViews.push_back(v);
+  tinygltf::Accessor a;
+  a.bufferView = 0;
+  a.componentType = component_type;
+  a.type = type;
+  a.count = count;
+  a.normalized = normalized;
+  m.accessors.push_back(a);
+  return m;
+}
+
+TEST(GltfAccessors, FloatsAndIntegersAsFloats) {
+  EXPECT_EQ(readAccessor(model<float>({1.5f, -2, 3, 4, 5, 6}, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 2), 0, 3, "w"),
+            (std::vector<float>{1.5f, -2, 3, 4, 5, 6}));
+  // Normalised bytes are 0..1 (51 / 255 = 0.2); plain bytes are their value.
+  EXPECT_EQ(readAccessor(model<std::uint8_t>({0, 51, 255}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_SCALAR, 3, true),
+                         0, 1, "w"),
+            (std::vector<float>{0.0f, 51.0f / 255.0f, 1.0f}));
+  EXPECT_EQ(readAccessor(model<std::uint8_t>({0, 51, 255}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_SCALAR, 3), 0, 1, "w"),
+            (std::vector<float>{0, 51, 255}));
+  EXPECT_EQ(readAccessor(model<std::uint16_t>({65535, 1000}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, 1, true),
+                         0, 2, "w"),
+            (std::vector<float>{1.0f, 1000.0f / 65535.0f}));
+  EXPECT_EQ(readAccessor(model<std::uint32_t>({7, 70000}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 2), 0, 1, "w"),
+            (std::vector<float>{7, 70000}));
+}
+
+// Interleaved: each element is a VEC2 of floats followed by two floats of something else (16 bytes).
+TEST(GltfAccessors, AStrideSkipsTheOtherAttributes) {
+  const tinygltf::Model m =
+      model<float>({1, 2, 99, 99, 3, 4, 99, 99, 5, 6, 99, 99}, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, 3, false, 16);
+  EXPECT_EQ(readAccessor(m, 0, 2, "w"), (std::vector<float>{1, 2, 3, 4, 5, 6}));
+}
+
+TEST(GltfAccessors, AnAccessorWithoutAViewIsZeros) {
+  tinygltf::Model m = model<float>({1, 2, 3}, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 1);
+  m.accessors[0].bufferView = -1;
+  m.accessors[0].count = 2;
+  EXPECT_EQ(readAccessor(m, 0, 3, "w"), std::vector<float>(6, 0.0f));
+}
+
+TEST(GltfAccessors, AccessorsThatDoNotFitAreOneLineErrors) {
+  const tinygltf::Model floats = model<float>({1, 2, 3}, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 1);
+  EXPECT_EQ(errorOf([&] { readAccessor(floats, 1, 3, "x.glb: POSITION"); }), "x.glb: POSITION: no such accessor");
+  EXPECT_EQ(errorOf([&] { readAccessor(floats, 0, 2, "x.glb: POSITION"); }), "x.glb: POSITION: expected 2 components per element");
+  tinygltf::Model past = floats;
+  past.accessors[0].count = 2;  // 24 bytes from a 12-byte buffer
+  EXPECT_EQ(errorOf([&] { readAccessor(past, 0, 3, "x.glb: POSITION"); }), "x.glb: POSITION: accessor runs past its buffer");
+  tinygltf::Model sparse = floats;
+  sparse.accessors[0].sparse.isSparse = true;
+  EXPECT_EQ(errorOf([&] { readAccessor(sparse, 0, 3, "w"); }), "w: sparse accessors are not supported");
+  const tinygltf::Model signed_bytes = model<std::int8_t>({-1}, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_SCALAR, 1);
+  EXPECT_EQ(errorOf([&] { readAccessor(signed_bytes, 0, 1, "w"); }), "w: unsupported component type");
+}
+
+TEST(GltfAccessors, IndicesOfEveryWidth) {
+  EXPECT_EQ(readIndices(model<std::uint8_t>({0, 1, 2}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_SCALAR, 3), 0, "w"),
+            (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(readIndices(model<std::uint16_t>({3, 60000}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 2), 0, "w"),
+            (std::vector<std::uint32_t>{3, 60000}));
+  EXPECT_EQ(readIndices(model<std::uint32_t>({70000}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 1), 0, "w"),
+            (std::vector<std::uint32_t>{70000}));
+  EXPECT_EQ(errorOf([] {
+              readIndices(model<std::uint16_t>({1, 2}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 3), 0, "x.glb: indices");
+            }),
+            "x.glb: indices: indices run past the buffer");
+}
+
+TEST(GltfAccessors, FilesReadOrSayWhyNot) {
+  const fs::path dir = fs::temp_directory_path() / ("stirrup_gltf_accessors_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  tinygltf::Model m = model<float>({1, 2, 3}, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 1);
+  m.asset.version = "2.0";
+  tinygltf::TinyGLTF w;
+  ASSERT_TRUE(w.WriteGltfSceneToFile(&m, (dir / "one.glb").string(), true, true, true, true));
+  const tinygltf::Model back = readGltfFile(dir / "one.glb", "one.glb");
+  EXPECT_EQ(readAccessor(back, 0, 3, "one.glb"), (std::vector<float>{1, 2, 3}));
+  std::ofstream(dir / "junk.glb") << "not a glb";
+  EXPECT_EQ(errorOf([&] { readGltfFile(dir / "junk.glb", "scene.json: horse"); }).rfind("scene.json: horse: not a readable glTF file (", 0),
+            0u);
+  const std::string missing = errorOf([&] { readGltfFile(dir / "gone.gltf", "scene.json: rider"); });
+  EXPECT_EQ(missing.rfind("scene.json: rider: not a readable glTF file (", 0), 0u) << missing;
+  EXPECT_EQ(missing.find('\n'), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace stirrup::rig
