@@ -25,6 +25,7 @@
 #include "render/cli/progress.h"
 #include "render/image.h"
 #include "render/preset.h"
+#include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
 #include "rig/bake.h"
