@@ -187,6 +187,14 @@ const rig::Clip& ShotEvaluator::shownClip(int pair) const {
   checkPair(pair, pairCount(), "shownClip");
   return pairs_->pairs[std::size_t(pair)].shownClip();
 }
+const rig::Clip& ShotEvaluator::clip(int pair) const {
+  checkPair(pair, pairCount(), "clip");
+  return *pairs_->pairs[std::size_t(pair)].clip;
+}
+double ShotEvaluator::clipOffsetS(int pair) const {
+  checkPair(pair, pairCount(), "clipOffsetS");
+  return pairs_->pairs[std::size_t(pair)].clip_offset_s;
+}
 const rig::RigProfile& ShotEvaluator::profile(int pair) const {
   checkPair(pair, pairCount(), "profile");
   return pairs_->pairs[std::size_t(pair)].profile;

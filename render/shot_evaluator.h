@@ -94,6 +94,10 @@ class ShotEvaluator {
 
   // A pair's clip as the shot plays it (a crowd pair's at its start phase: the shot's time is its clip's).
   const rig::Clip& shownClip(int pair) const;
+  // A pair's own clip, from the start of its ride, and how far into it the shot starts (0 for a
+  // single pair): the shot's time t plays the clip at t + clipOffsetS.
+  const rig::Clip& clip(int pair) const;
+  double clipOffsetS(int pair) const;
   const rig::RigProfile& profile(int pair) const;
   // The characters a pair is posed with: every level shares their skeleton (the coarsest level's),
   // built now if no frame has needed them yet.
