@@ -493,6 +493,35 @@ TEST(BakeGltf, RiderOnlyWritesTheRiderAlone) {
   EXPECT_NE(r.out.find("--rider-only"), std::string::npos);
 }
 
+// --rider-only on a crowd writes one file a pair (the pair's name before the extension), each the
+// rider's skeleton alone, keyed at every frame; two pairs' riders move differently.
+TEST(BakeGltf, ACrowdsRiderOnlyIsOneFileAPair) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_rider_only" / "crowd";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "crowd.json") << R"({"riders": [
+    {"points": [[0, -300], [3000, -300]], "speed": [[0, 300]], "seed": 1},
+    {"points": [[0, 300], [3000, 300]], "speed": [[0, 300]], "seed": 2, "start_offset_s": 0.5, "rider_height_cm": 185},
+    {"points": [[-1200, 0], [1800, 0]], "speed": [[0, 300]], "seed": 3}]})";
+  const CommandResult r = runStirrup("bake " + quote((dir / "crowd.json").string()) + " --frames 1-12 --rider-only -o " +
+                                     quote((dir / "rider.glb").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "rider.glb"));
+  std::vector<std::vector<float>> first_rotation;
+  for (const char* name : {"rider_pair00.glb", "rider_pair01.glb", "rider_pair02.glb"}) {
+    ASSERT_TRUE(fs::exists(dir / name)) << name;
+    const tinygltf::Model model = loadGlb(dir / name);
+    EXPECT_TRUE(model.meshes.empty()) << name;
+    EXPECT_TRUE(model.cameras.empty()) << name;
+    ASSERT_EQ(model.skins.size(), 1u) << name;
+    ASSERT_EQ(model.animations.size(), 1u) << name;
+    EXPECT_EQ(accessorData<float>(model, model.animations[0].samplers[0].input).size(), 12u) << name;
+    first_rotation.push_back(accessorData<float>(model, model.animations[0].samplers[1].output));
+  }
+  EXPECT_FALSE(fs::exists(dir / "rider_pair03.glb"));
+  EXPECT_NE(first_rotation[0], first_rotation[1]) << "two pairs' riders move alike";
+}
+
 // Over a terrain the baked file holds the ground (node "ground", scale 0.01, its mesh in cm): its
 // vertices on the scene's hills, covering the track, facing up; the Khronos validator passes it.
 TEST(BakeGltf, AShotOverHillsCarriesItsGround) {
