@@ -4,7 +4,6 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "render/camera_motion.h"
 #include "render/detail_level.h"
 #include "render/fence.h"
 #include "rig/io/frame_range.h"

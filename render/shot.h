@@ -48,6 +48,8 @@ class Shot {
   Renderer& renderer() { return *renderer_; }
   // The characters it evaluates (every pair of the scene).
   ShotEvaluator& characters() { return *characters_; }
+  // The bake at a frame of what the camera follows (a single pair's clip; in a crowd the followed
+  // pair's, or the crowd's middle) with its profile; every pair's is characters().evaluate's.
   rig::BakedFrame bake(int frame) const;
   const FrameTimings& lastTimings() const { return timings_; }
 
