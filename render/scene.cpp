@@ -132,7 +132,7 @@ std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
   // A crowd's pairs ride their own clips; the default trot in scene.clip is no one's.
   if (!scene.pairs.empty())
     throw InputError(scene.file.string() + ": " + (scene.crowd ? "crowd" : "riders") +
-                     ": expected a scene of one horse and rider here (a crowd is drawn by `stirrup render` and `stirrup movies` only, so far)");
+                     ": expected a scene of one horse and rider here (each pair of a crowd rides its own clip)");
   if (scene.horse == "default" || scene.clip.generator != "path") return rig::makeClip(scene.clip);
   return rig::makeClip(scene.clip, rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping));
 }

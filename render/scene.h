@@ -120,7 +120,8 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
 
 // The scene's clip, for its horse: a path clip turns the hooves about the horse's own rest places (a
 // glTF horse is read for them; the default horse's are built in). A crowd scene has no one clip: an
-// InputError (bake, clip and rig do not take a crowd yet; the movie set's channel plot plots one pair).
+// InputError (each pair rides its own: render/shot_evaluator.h evaluates them all, rig::makePairClip
+// makes one).
 std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene);
 
 // The camera of the scene named `name` (or the first when empty); InputError if there is none.

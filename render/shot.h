@@ -1,9 +1,8 @@
 // A shot: one scene seen through one of its cameras. Renders any frame on its own, running the whole
-// pipeline for that frame: sample clip -> evaluate rider controls -> pose -> skin -> trace.
-// A crowd scene (SceneSpec::pairs, issue 19) does so for every pair: each pair's own horse and rider
-// (built at its proportions), clip (at its start phase) and rig profile; the pairs are baked, posed and
-// skinned in parallel (each writes only its own buffers, so the frame is the same at any thread count)
-// and each pair's two meshes are their own geometries in the one Embree scene. Its camera follows the
+// pipeline for that frame: the characters evaluated (render/shot_evaluator.h: sample clip -> evaluate
+// rider controls -> pose -> skin, for every pair of the scene, a single pair being a crowd of one), then
+// traced. Each pair's two meshes are their own geometries in the one Embree scene; a crowd's pairs each
+// at the level of detail its size on screen asks for. The camera (render/shot_camera.h) follows the
 // pair CameraSpec::follow_pair names exactly as a single pair's camera follows its horse, or with none,
 // the crowd's middle (rig/motion/crowd_middle_clip.h), and a view then frames every pair.
 #pragma once
@@ -15,6 +14,8 @@
 #include "render/camera.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "render/shot_camera.h"
+#include "render/shot_evaluator.h"
 #include "rig/bake.h"
 #include "rig/character.h"
 #include "rig/motion/procedural_gait.h"
@@ -45,6 +46,10 @@ class Shot {
   // With `log`, the frame's rays are also kept in it (see Renderer::render).
   Image renderFrame(int frame, RayLog* log = nullptr);
   Renderer& renderer() { return *renderer_; }
+  // The characters it evaluates (every pair of the scene).
+  ShotEvaluator& characters() { return *characters_; }
+  // The bake at a frame of what the camera follows (a single pair's clip; in a crowd the followed
+  // pair's, or the crowd's middle) with its profile; every pair's is characters().evaluate's.
   rig::BakedFrame bake(int frame) const;
   const FrameTimings& lastTimings() const { return timings_; }
 
@@ -53,7 +58,7 @@ class Shot {
   Camera cameraAtFrame(int frame) const;
   // The camera as resolved: a view camera (render/view.h) framed from the characters' bounds over
   // the clip when the Shot was made.
-  const CameraSpec& camera() const { return camera_; }
+  const CameraSpec& camera() const { return camera_->spec(); }
   // World positions of every `stride`-th skinned vertex of the horse and the rider at a frame, as it
   // is shown (a treadmill camera removes the travel, a held pose holds its frame). In a crowd: of
   // every pair's horse and rider.
@@ -70,37 +75,23 @@ class Shot {
 
  private:
   void addObstacles();
-  struct Crowd;  // a crowd scene's pairs (shot.cpp)
-  void setUpCrowd(int threads);
-  void buildCrowdCharacters();
-  void renderCrowdMeshes(int frame, const Camera& camera);
-  // The 8 corners of each pair's horse's and rider's bounding boxes at a frame, as shown.
-  void crowdCorners(int frame, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
-  // The horse whose seat a camera following the rider takes, and the profile the camera evaluates her
-  // with: the scene's, or in a crowd the followed pair's (the first pair's for the crowd's middle).
-  const rig::Character& cameraHorse() const;
-  const rig::RigProfile& cameraProfile() const;
+  // Adds the meshes of each pair's level shown in frame_ that the renderer does not hold yet, shows
+  // those levels and hides the others, and updates the shown meshes' vertices.
+  void showMeshes();
+  // The characters at a frame as this shot shows them (its camera's hold and treadmill, the rigid
+  // rider), every pair at full detail or only `pair`.
+  void evaluatePoints(int frame, int pair);
 
   SceneSpec scene_;
-  rig::RigProfile profile_;
-  CameraSpec camera_;
-  // From scene.clip (rig::makeClip); in a crowd, what the camera follows: the followed pair's clip at
-  // its start phase, or the crowd's middle.
-  std::unique_ptr<rig::Clip> clip_;
-  std::unique_ptr<Crowd> crowd_;  // null for a single pair
-  rig::Character horse_, rider_;
+  std::unique_ptr<ShotEvaluator> characters_;
+  std::unique_ptr<ShotCamera> camera_;
   std::unique_ptr<Renderer> renderer_;
-  int horse_mesh_ = -1, rider_mesh_ = -1;
-  std::vector<glm::vec3> positions_, normals_;
+  ShotFrame frame_;  // the characters' last evaluated frame
+  // Each pair's meshes in the renderer, per level (horse, rider; -1 until first shown).
+  std::vector<std::vector<std::array<int, 2>>> meshes_;
   FrameTimings timings_;
   bool rigid_rider_ = false;
   int detail_level_ = -1;
-  // The profile posing uses: the scene's, or with the rigid rider the same marked rigid (her channels
-  // at rest and no balance stage either: she rides like a statue).
-  const rig::RigProfile& poseProfile() const;
-  rig::RigProfile rigid_profile_;
-  // The baked frame shown at `frame`: the held pose, and no travel on a treadmill.
-  rig::BakedFrame bakeShown(int frame) const;
 };
 
 }  // namespace stirrup::render

@@ -28,19 +28,15 @@
 #include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
+#include "render/shot_evaluator.h"
 #include "rig/bake.h"
-#include "rig/characters/horse_character.h"
-#include "rig/characters/rider_character.h"
 #include "rig/error.h"
 #include "rig/frame_check.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_clip.h"
-#include "rig/io/ridden_pair.h"
 #include "rig/motion/clip_info.h"
-#include "rig/motion/crowd.h"
 #include "rig/motion/horse_limits.h"
 #include "rig/motion/path_clip.h"
-#include "rig/motion/shifted_clip.h"
 #include "rig/pose.h"
 #include "rig/rig_profile.h"
 
@@ -65,14 +61,15 @@ struct CheckOptions {
 constexpr std::array<const char*, 9> kRules = {"limit",          "over-reach",    "hoof-slide",       "hoof-in-ground", "rider-in-horse",
                                                "hand-off-rein", "foot-off-stirrup", "trunk-balance", "gait"};
 
-// One horse and rider of the shot, as it is checked.
+// One horse and rider of the shot, as it is checked: the characters, clip and profile the shot's
+// evaluator gives it (render/shot_evaluator.h; a crowd pair's at full detail).
 struct CheckedPair {
   std::string name;  // "" for a single pair; "pair 3" in a crowd
   int index = 0;
-  std::shared_ptr<const rig::Character> horse, rider;
+  const rig::Character* horse = nullptr;
+  const rig::Character* rider = nullptr;
   rig::RigProfile profile;
-  std::unique_ptr<rig::Clip> base;  // a crowd pair's own clip
-  std::unique_ptr<rig::Clip> clip;  // what is sampled at the shot's time (a crowd's pair: base at its start phase)
+  const rig::Clip* clip = nullptr;  // sampled at the shot's time (a crowd's pair: its clip at its start phase)
   std::vector<rig::FrameMeasures> measures;
   std::vector<rig::CheckFinding> findings;
   std::vector<std::string> unmeasured;
@@ -118,58 +115,29 @@ CheckInput loadInput(const CheckOptions& o) {
 }
 
 // The pairs to check: the scene's one pair, or a crowd's (all, or those --pairs lists).
-std::vector<CheckedPair> checkedPairs(const CheckInput& in, const CheckOptions& o) {
+std::vector<CheckedPair> checkedPairs(const CheckInput& in, const CheckOptions& o, render::ShotEvaluator& shot) {
   const render::SceneSpec& scene = in.scene;
-  std::vector<CheckedPair> out;
-  if (scene.pairs.empty()) {
-    if (!o.pairs.empty()) throw InputError("--pairs: expected a crowd scene, " + in.source + " has one horse and rider");
-    CheckedPair p;
-    p.profile = render::resolveProfile(scene);
-    rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, p.profile);
-    p.horse = std::make_shared<const rig::Character>(std::move(pair.horse));
-    p.rider = std::make_shared<const rig::Character>(std::move(pair.rider));
-    p.clip = render::makeSceneClip(scene);
-    out.push_back(std::move(p));
-    return out;
-  }
+  if (scene.pairs.empty() && !o.pairs.empty())
+    throw InputError("--pairs: expected a crowd scene, " + in.source + " has one horse and rider");
   std::vector<int> chosen;
   if (o.pairs.empty()) {
-    for (int i = 0; i < int(scene.pairs.size()); ++i) chosen.push_back(i);
+    for (int i = 0; i < shot.pairCount(); ++i) chosen.push_back(i);
   } else {
     for (const int i : rig::parseFrameList(o.pairs, "--pairs")) {
-      if (i < 0 || i >= int(scene.pairs.size()))
-        throw InputError("--pairs: expected pair indices from 0 to " + std::to_string(scene.pairs.size() - 1) + ", got " + std::to_string(i));
+      if (i < 0 || i >= shot.pairCount())
+        throw InputError("--pairs: expected pair indices from 0 to " + std::to_string(shot.pairCount() - 1) + ", got " + std::to_string(i));
       chosen.push_back(i);
     }
   }
-  // Pairs of the same proportions and colours share their characters, as a shot's do.
-  std::map<std::string, std::pair<std::shared_ptr<const rig::Character>, std::shared_ptr<const rig::Character>>> built;
-  std::map<std::string, rig::RigProfile> profiles;
+  std::vector<CheckedPair> out;
   for (const int i : chosen) {
-    const rig::PairSpec& spec = scene.pairs[std::size_t(i)];
     CheckedPair p;
     p.index = i;
-    p.name = "pair " + std::to_string(i);
-    if (!profiles.count(spec.profile)) {
-      render::SceneSpec named = scene;
-      named.profile = spec.profile;
-      profiles.emplace(spec.profile, render::resolveProfile(named));
-    }
-    p.profile = profiles.at(spec.profile);
-    char key[256];
-    std::snprintf(key, sizeof key, "%.6g %.6g %.6g %s %s %s %s", spec.withers_height_cm, spec.rider_height_cm, spec.rider_build,
-                  spec.coat.c_str(), spec.jacket.c_str(), spec.hair.c_str(), spec.skin.c_str());
-    auto it = built.find(key);
-    if (it == built.end()) {
-      const rig::HorseParams hp = spec.horse();
-      auto horse = std::make_shared<const rig::Character>(rig::buildHorse(hp));
-      auto rider = std::make_shared<const rig::Character>(rig::buildRider(spec.rider(), hp.mount));
-      it = built.emplace(key, std::make_pair(horse, rider)).first;
-    }
-    p.horse = it->second.first;
-    p.rider = it->second.second;
-    p.base = rig::makePairClip(spec, scene.terrain, in.source + ": pairs[" + std::to_string(i) + "]");
-    p.clip = std::make_unique<rig::ShiftedClip>(*p.base, spec.clip_offset_s);
+    p.name = shot.isCrowd() ? "pair " + std::to_string(i) : "";
+    p.horse = &shot.horseAt(i, 0);
+    p.rider = &shot.riderAt(i, 0);
+    p.profile = shot.profile(i);
+    p.clip = &shot.shownClip(i);
     out.push_back(std::move(p));
   }
   return out;
@@ -439,7 +407,8 @@ void check(const CheckOptions& o) {
   const CheckInput in = loadInput(o);
   const render::SceneSpec& scene = in.scene;
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
-  std::vector<CheckedPair> pairs = checkedPairs(in, o);
+  render::ShotEvaluator shot(scene, render::resolveProfile(scene), 0);
+  std::vector<CheckedPair> pairs = checkedPairs(in, o, shot);
   if (!o.html.empty() && fs::exists(o.html) && !fs::is_directory(o.html))
     throw InputError("--html: expected a folder, " + o.html + " is a file");
   const rig::Terrain* terrain = scene.terrain.get();

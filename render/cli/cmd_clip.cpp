@@ -14,8 +14,10 @@
 #include "render/cli/options.h"
 #include "rig/motion/clip_factory.h"
 #include "rig/motion/clip_info.h"
+#include "rig/motion/crowd.h"
 #include "rig/motion/path_clip.h"
 #include "render/scene.h"
+#include "render/shot_evaluator.h"
 #include "rig/error.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/io/json_fields.h"
@@ -33,6 +35,7 @@ struct ClipOptions {
   std::string reference;
   int loops = 0;  // 0: 1 for a contract clip, 4 for a skeleton clip (a cycle)
   double ground_cm = -1.0;
+  int pair = -1;  // a crowd scene's pair to measure (-1: every pair)
   std::vector<std::string> params;  // the --name value pairs after the gait
 };
 
@@ -74,7 +77,12 @@ void runMake(const ClipOptions& o) {
 // A path clip measured section by section: each stretch of steady gait (between its blends) against
 // that gait's reference, measured on the path's straight form (gait timing does not depend on the
 // bends), then the whole clip on the path for slides, which are measured in the world.
-void runPathInfo(const std::string& scene_file, const rig::PathClip& clip, const ClipOptions& o) {
+// The measures as JSON ({"sections": [...], "path": {...}}) and as text, headed by `who`.
+struct PathInfo {
+  nlohmann::json json;
+  std::string text;
+};
+PathInfo pathInfo(const std::string& who, const rig::PathClip& clip, const ClipOptions& o) {
   const rig::MovementClip straight(clip.movement());
   nlohmann::json sections = nlohmann::json::array();
   std::string text;
@@ -117,13 +125,43 @@ void runPathInfo(const std::string& scene_file, const rig::PathClip& clip, const
   rig::ClipInfoOptions whole_options;
   if (o.ground_cm >= 0.0) whole_options.ground_cm = o.ground_cm;
   const rig::ClipInfo whole = rig::measureClip(clip, whole_options);
+  char head[256];
+  std::snprintf(head, sizeof head, "%s: path, %.2f s, %zu sections\n\n", who.c_str(), clip.duration(), clip.sections().size());
+  return {{{"sections", sections}, {"path", rig::clipInfoJson(whole, nullptr)}},
+          head + text + "whole path, on the ground:\n" + rig::formatClipInfo(whole, nullptr)};
+}
+
+void runPathInfo(const std::string& scene_file, const rig::PathClip& clip, const ClipOptions& o) {
+  PathInfo info = pathInfo(scene_file, clip, o);
   if (o.json) {
-    const nlohmann::json out = {{"scene", scene_file}, {"sections", sections}, {"path", rig::clipInfoJson(whole, nullptr)}};
+    nlohmann::json out = {{"scene", scene_file}};
+    out.update(info.json);
     std::printf("%s\n", out.dump(2).c_str());
     return;
   }
-  std::printf("%s: path, %.2f s, %zu sections\n\n%swhole path, on the ground:\n%s", scene_file.c_str(), clip.duration(),
-              clip.sections().size(), text.c_str(), rig::formatClipInfo(whole, nullptr).c_str());
+  std::printf("%s", info.text.c_str());
+}
+
+// A crowd's pairs each ride their own path clip (rig::makePairClip, from the ride's start: a pair's start
+// phase only shifts it in the shot): each measured as one path is, every pair or only --pair's.
+void runCrowdInfo(const render::SceneSpec& scene, const ClipOptions& o) {
+  const int count = int(scene.pairs.size());
+  if (o.pair >= count)
+    throw InputError("clip info: --pair: expected a pair index from 0 to " + std::to_string(count - 1) + ", got " + std::to_string(o.pair));
+  const std::string source = scene.file.string();
+  nlohmann::json pairs = nlohmann::json::array();
+  std::string text;
+  for (int i = o.pair >= 0 ? o.pair : 0; i < (o.pair >= 0 ? o.pair + 1 : count); ++i) {
+    const auto clip = rig::makePairClip(scene.pairs[std::size_t(i)], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
+    const std::string name = render::crowdPairName(i, count);
+    PathInfo info = pathInfo(source + " " + name, *clip, o);
+    nlohmann::json j = {{"pair", i}, {"name", name}, {"start_offset_s", scene.pairs[std::size_t(i)].clip_offset_s}};
+    j.update(info.json);
+    pairs.push_back(j);
+    text += (text.empty() ? "" : "\n") + info.text;
+  }
+  if (o.json) std::printf("%s\n", nlohmann::json{{"scene", source}, {"pairs", pairs}}.dump(2).c_str());
+  else std::printf("%s", text.c_str());
 }
 
 void runInfo(const ClipOptions& o) {
@@ -134,6 +172,8 @@ void runInfo(const ClipOptions& o) {
     // A scene: its clip, over its terrain. A path clip is measured section by section.
     if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a scene: " + o.params[0]);
     const render::SceneSpec scene = render::loadScene(o.clip);
+    if (!scene.pairs.empty()) return runCrowdInfo(scene, o);
+    if (o.pair >= 0) throw InputError("clip info: --pair: expected a crowd scene (\"crowd\" or \"riders\"), got one horse and rider in " + o.clip);
     clip = render::makeSceneClip(scene);
     if (const auto* path = dynamic_cast<const rig::PathClip*>(clip.get())) return runPathInfo(o.clip, *path, o);
     if (reference.empty()) reference = scene.clip.generator;  // empty for a glTF clip
@@ -191,6 +231,8 @@ void addClipCommand(CLI::App& app) {
   CLI::App* in = cmd->add_subcommand("info", "Measure a clip: footfalls, duty factors, stride, bounce, slides");
   in->footer(
       "CLIP is a .glb/.gltf file or a generator name (" + generators + ") with its --parameters.\n"
+      "A crowd scene's pairs are measured one by one, each its own path (--pair N: only pair N); --json\n"
+      "  then gives {\"scene\", \"pairs\": [{\"pair\", \"name\", \"start_offset_s\", \"sections\", \"path\"}]}.\n"
       "Example: stirrup clip info gallop --speed_cm_s 1200\n"
       "         stirrup clip info ../shared/assets/fox/Fox.glb --mapping scenes/fox-mapping.json --animation Run");
   in->add_option("clip", info->clip, "A .glb/.gltf file, a generator name, or a scene (.json: its clip; a path section by section)")->required();
@@ -199,6 +241,7 @@ void addClipCommand(CLI::App& app) {
   in->add_option("--animation", info->animation, "Animation in the file (default: the first)");
   in->add_option("--reference", info->reference, "Compare with this movement of gait-reference.md (walk, trot, canter, gallop, stop, jump, rear, buck)");
   in->add_option("--loops", info->loops, "Loops of a file's animation to measure (default 1; 4 with a skeleton mapping)");
+  in->add_option("--pair", info->pair, "A crowd scene's pair to measure, by index from 0 (default: every pair in turn)");
   in->add_option("--ground-cm", info->ground_cm, "A hoof this low or lower is down (default 0.001; 0.5 for skeletons)");
   in->allow_extras();
   in->callback([info, in] {

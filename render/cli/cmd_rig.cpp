@@ -15,6 +15,7 @@
 #include "render/cli/options.h"
 #include "render/profile_resolver.h"
 #include "render/scene.h"
+#include "render/shot_evaluator.h"
 #include "rig/io/ridden_pair.h"
 #include "rig/bake.h"
 #include "rig/io/frame_range.h"
@@ -22,6 +23,7 @@
 #include "rig/motion/clip_factory.h"
 #include "rig/pose.h"
 #include "rig/io/channel_csv.h"
+#include "rig/io/rig_profile_json.h"
 #include "rig/error.h"
 #include "rig/rider_rig.h"
 
@@ -63,32 +65,46 @@ void runParams(const RigOptions& o) {
   }
 }
 
-// One row a frame: the horse's back above level, the trunk's world lean as the channels pose it and
-// as the stage leaves it (measured from the posed pelvis and neck joints), and the stage's terms.
+// One row a frame (a crowd: a frame and a pair, the pair's index first): the horse's back above level,
+// the trunk's world lean as the channels pose it and as the stage leaves it (measured from the posed
+// pelvis and neck joints), and the stage's terms. Every pair is posed by the shot's evaluator
+// (render/shot_evaluator.h) with its own profile, the scene's overrides and then --set applied.
 void runBalance(const RigOptions& o) {
-  const render::SceneSpec scene = render::loadScene(o.scene);
-  const rig::RigProfile profile = render::resolveProfile(scene, parseSets(o.sets));
-  const auto clip = render::makeSceneClip(scene);
-  const rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
-  const rig::Character& horse = pair.horse;
-  const rig::Character& rider = pair.rider;
+  render::SceneSpec scene = render::loadScene(o.scene);
+  rig::RigProfile profile = render::resolveProfile(scene);
+  const nlohmann::json sets = parseSets(o.sets);
+  rig::applyProfileOverrides(profile, sets, "--set");  // checked here, so an error names --set
+  // A crowd's pairs resolve their own profiles from the scene: --set joins its overrides, after them.
+  for (const auto& [key, value] : sets.items()) scene.profile_overrides[key] = value;
+  render::ShotEvaluator characters(scene, profile, 0);
+  const bool crowd = characters.isCrowd();
   std::ostringstream out;
-  out << "frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,"
+  out << (crowd ? "pair," : "")
+      << "frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,"
          "turn_deg,seat_lift_cm,limited\n";
   char row[320];
+  render::ShotFrame frame;
   for (int f : rig::parseFrameList(scene.frames, "frames")) {
-    const rig::BakedFrame b = rig::bakeFrame(*clip, profile, f, render::frameTime(scene, f));
-    const rig::MountedPose pose = rig::poseMounted(horse, rider, b.horse, b.rider, profile);
-    const glm::mat4& saddle = pose.horse[horse.role("saddle")];
-    const glm::vec3 heading = rig::saddleHeading(saddle);
-    const glm::vec3 x(saddle[0]);
-    const double back = std::atan2(double(x.y), double(glm::dot(x, heading))) * 180.0 / 3.14159265358979323846;
-    const double lean = rig::leanDegrees(glm::vec3(pose.rider[rider.role("neck")][3]) - glm::vec3(pose.rider[rider.role("pelvis")][3]), heading);
-    const rig::BalanceResult& r = pose.balance;
-    std::snprintf(row, sizeof row, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d\n", f, back, r.pose_lean_deg,
-                  r.channel_lean_deg, r.support_lean_deg, r.inertia_lean_deg, lean, r.turn_deg, r.seat_lift_cm,
-                  int(r.limited));
-    out << row;
+    render::FrameRequest request;
+    request.frame = f;
+    request.until = render::EvalStage::Pose;
+    characters.evaluate(request, frame);
+    for (int i = 0; i < characters.pairCount(); ++i) {
+      const rig::Character& horse = characters.horse(i);
+      const rig::Character& rider = characters.rider(i);
+      const rig::MountedPose& pose = frame.pairs[std::size_t(i)].pose;
+      const glm::mat4& saddle = pose.horse[horse.role("saddle")];
+      const glm::vec3 heading = rig::saddleHeading(saddle);
+      const glm::vec3 x(saddle[0]);
+      const double back = std::atan2(double(x.y), double(glm::dot(x, heading))) * 180.0 / 3.14159265358979323846;
+      const double lean = rig::leanDegrees(glm::vec3(pose.rider[rider.role("neck")][3]) - glm::vec3(pose.rider[rider.role("pelvis")][3]), heading);
+      const rig::BalanceResult& r = pose.balance;
+      if (crowd) out << i << ',';
+      std::snprintf(row, sizeof row, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d\n", f, back, r.pose_lean_deg,
+                    r.channel_lean_deg, r.support_lean_deg, r.inertia_lean_deg, lean, r.turn_deg, r.seat_lift_cm,
+                    int(r.limited));
+      out << row;
+    }
   }
   if (o.rider_csv.empty()) {
     std::fputs(out.str().c_str(), stdout);
@@ -141,6 +157,8 @@ void addRigCommand(CLI::App& app) {
       "  the stage's terms channel_lean_deg, support_lean_deg, inertia_lean_deg, then lean_deg (measured on\n"
       "  the posed joints), turn_deg, seat_lift_cm and limited (1: a body limit held her). Leans are + toward\n"
       "  the horse's head. The scene's profile applies, then --set.\n"
+      "A crowd scene (docs/crowds.md): a first column `pair` (its index from 0), one row a frame and pair,\n"
+      "  each pair with its own profile (then --set).\n"
       "Example: stirrup rig balance scenes/rear.json --set balance.max_fold_deg=60 -o rear_balance.csv");
   balance->add_option("scene", opts->scene, "Scene file")->required();
   balance->add_option("--out,-o", opts->rider_csv, "CSV file (default: standard output)");

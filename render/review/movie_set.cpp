@@ -19,6 +19,7 @@
 #include "render/profile_resolver.h"
 #include "render/scene.h"
 #include "render/shot.h"
+#include "render/shot_evaluator.h"
 #include "rig/motion/clip_factory.h"
 #include "rig/motion/crowd.h"
 #include "rig/motion/shifted_clip.h"
@@ -122,40 +123,36 @@ int movieFrameCount(const MovieJob& job, const MovieOptions& o) { return static_
 
 fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out) {
   const SceneSpec scene = loadScene(scene_file);
-  // A crowd's plot is one pair's: the one a camera follows (the first such), else the first pair,
-  // its own clip at its start phase and its own profile, as the shot rides it.
-  int pair = -1;
-  std::unique_ptr<rig::Clip> own;
-  std::unique_ptr<rig::Clip> clip;
-  SceneSpec profile_scene = scene;
-  std::string title = scene.name;
-  if (!scene.pairs.empty()) {
-    pair = 0;
+  // A crowd's plot is one pair's: the one a camera follows (the first such), else the first pair, as
+  // the shot's evaluator bakes it (its own clip at its start phase, its own profile).
+  ShotEvaluator characters(scene, resolveProfile(scene), 0);
+  int pair = 0;
+  std::string title = scene.name, profile_name = scene.profile;
+  if (characters.isCrowd()) {
     for (const CameraSpec& c : scene.cameras)
       if (c.follow_pair >= 0) {
         pair = c.follow_pair;
         break;
       }
-    const rig::PairSpec& spec = scene.pairs.at(std::size_t(pair));
-    own = rig::makePairClip(spec, scene.terrain, scene_file.string() + ": pairs[" + std::to_string(pair) + "]");
-    clip = std::make_unique<rig::ShiftedClip>(*own, spec.clip_offset_s);
-    profile_scene.profile = spec.profile;
     title += " pair " + std::to_string(pair);
-  } else {
-    clip = makeSceneClip(scene);
+    profile_name = scene.pairs.at(std::size_t(pair)).profile;
   }
-  const rig::RigProfile profile = resolveProfile(profile_scene);
   std::vector<rig::BakedFrame> baked;
-  for (int f : rig::parseFrameList(scene.frames, scene_file.string() + ": frames"))
-    baked.push_back(rig::bakeFrame(*clip, profile, f, frameTime(scene, f)));
+  ShotFrame frame;
+  for (int f : rig::parseFrameList(scene.frames, scene_file.string() + ": frames")) {
+    FrameRequest request;
+    request.frame = f;
+    request.until = EvalStage::Bake;
+    request.only_pair = pair;
+    characters.evaluate(request, frame);
+    baked.push_back(frame.pairs[std::size_t(pair)].baked);
+  }
+  const rig::Clip& clip = characters.clip(pair);
   const fs::path file = out / (scene.name + "_plot.png");
-  ChannelPlot plot = movementPlot(title + " (" + (own ? own->name() : clip->name()) + ", profile " + profile_scene.profile +
-                                      "): horse and rider channels",
-                                  baked, profile.rider_unit_cm);
-  const rig::Clip* path_source = own ? own.get() : clip.get();
-  if (const auto* path = dynamic_cast<const rig::PathClip*>(path_source))
-    for (PlotPanel& p : pathPanels(*path, baked, own ? scene.pairs[std::size_t(pair)].clip_offset_s : 0.0))
-      plot.panels.push_back(std::move(p));
+  ChannelPlot plot = movementPlot(title + " (" + clip.name() + ", profile " + profile_name + "): horse and rider channels", baked,
+                                  characters.profile(pair).rider_unit_cm);
+  if (const auto* path = dynamic_cast<const rig::PathClip*>(&clip))
+    for (PlotPanel& p : pathPanels(*path, baked, characters.clipOffsetS(pair))) plot.panels.push_back(std::move(p));
   writeChannelPlot(plot, file);
   return file;
 }

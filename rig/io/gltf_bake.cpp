@@ -83,27 +83,66 @@ tinygltf::Value seatExtras(const SeatReport& seat) {
   return tinygltf::Value(o);
 }
 
-std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character& rider, const BakedShot& shot) {
+std::vector<unsigned char> bakedShotGlb(const BakedShot& shot) {
   const std::size_t frames = shot.seconds.size();
-  if (frames == 0 || shot.poses.size() != frames) throw std::invalid_argument("bakedShotGlb: expected one pose per frame");
+  if (shot.pairs.empty()) throw std::invalid_argument("bakedShotGlb: expected a pair at least");
+  for (const BakedPair& pair : shot.pairs) {
+    if (!pair.horse || !pair.rider) throw std::invalid_argument("bakedShotGlb: a pair without its characters");
+    if (frames == 0 || pair.poses.size() != frames) throw std::invalid_argument("bakedShotGlb: expected one pose per frame");
+  }
   for (std::size_t i = 1; i < frames; ++i)
     if (!(shot.seconds[i] > shot.seconds[i - 1])) throw std::invalid_argument("bakedShotGlb: times must increase");
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "stirrup bake";
   std::vector<unsigned char> bin;
-  const GltfCharacterNodes h = appendCharacterGltf(model, bin, horse, "horse:");
-  const GltfCharacterNodes r = appendCharacterGltf(model, bin, rider, "rider:");
-  // One root per character, in metres, as its skin's skeleton: one armature per character in a DCC.
-  std::vector<int> roots;
-  for (const auto* c : {&horse, &rider}) {
-    const GltfCharacterNodes& n = c == &horse ? h : r;
-    const int root = addCentimetreRoot(model, c == &horse ? "horse" : "rider");
-    for (std::size_t j = 0; j < c->skeleton.size(); ++j)
-      if (c->skeleton.joints[j].parent < 0) model.nodes[root].children.push_back(n.joint_nodes[j]);
-    model.skins[n.skin].skeleton = root;
-    roots.push_back(root);
+  // Each pair's two characters: a root per character, in metres, as its skin's skeleton (one armature
+  // per character in a DCC). A crowd pair's name goes before its roots', meshes' and skins' names.
+  struct PairNodes {
+    GltfCharacterNodes horse, rider;
+    int horse_root = -1, rider_root = -1;
+  };
+  std::vector<PairNodes> pair_nodes;
+  for (const BakedPair& pair : shot.pairs) {
+    PairNodes p;
+    const std::string named = pair.name.empty() ? "" : pair.name + "_";
+    for (int which = 0; which < 2; ++which) {
+      const Character& c = which == 0 ? *pair.horse : *pair.rider;
+      const std::string role = which == 0 ? "horse:" : "rider:";
+      GltfCharacterNodes n = appendCharacterGltf(model, bin, c, role);
+      if (!named.empty()) {
+        // Each armature is its own and named after its pair: a generated character's joints need no
+        // "horse:" to tell them apart, and keep the skeleton's own names (those the shipped characters'
+        // files have), so one script drives every pair's bones.
+        if (c.source.file.empty())
+          for (int node : n.joint_nodes) model.nodes[std::size_t(node)].name.erase(0, role.size());
+        model.nodes[std::size_t(n.mesh_node)].name.insert(0, named);
+        model.skins[std::size_t(n.skin)].name.insert(0, named);
+        tinygltf::Mesh& mesh = model.meshes[std::size_t(model.nodes[std::size_t(n.mesh_node)].mesh)];
+        mesh.name.insert(0, named);
+        for (const tinygltf::Primitive& prim : mesh.primitives)
+          if (prim.material >= 0) model.materials[std::size_t(prim.material)].name.insert(0, named);
+      }
+      (which == 0 ? p.horse : p.rider) = n;
+    }
+    for (int which = 0; which < 2; ++which) {
+      const Character& c = which == 0 ? *pair.horse : *pair.rider;
+      const GltfCharacterNodes& n = which == 0 ? p.horse : p.rider;
+      const int root = addCentimetreRoot(model, named + (which == 0 ? "horse" : "rider"));
+      for (std::size_t j = 0; j < c.skeleton.size(); ++j)
+        if (c.skeleton.joints[j].parent < 0) model.nodes[std::size_t(root)].children.push_back(n.joint_nodes[j]);
+      model.skins[std::size_t(n.skin)].skeleton = root;
+      (which == 0 ? p.horse_root : p.rider_root) = root;
+    }
+    if (!pair.name.empty())
+      if (const tinygltf::Value seat = seatExtras(pair.seat); seat.IsObject()) {
+        tinygltf::Value::Object extras;
+        extras["stirrup_seat"] = seat;
+        model.nodes[std::size_t(p.rider_root)].extras = tinygltf::Value(extras);
+      }
+    pair_nodes.push_back(p);
   }
+  int ground_root = -1;
 
   if (!shot.ground_indices.empty()) {
     // Smooth normals: each vertex the area-weighted sum of its triangles' (facing up).
@@ -133,9 +172,8 @@ std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character&
     node.name = "ground_mesh";
     node.mesh = static_cast<int>(model.meshes.size()) - 1;
     model.nodes.push_back(node);
-    const int root = addCentimetreRoot(model, "ground");
-    model.nodes[root].children.push_back(static_cast<int>(model.nodes.size()) - 2);
-    roots.push_back(root);
+    ground_root = addCentimetreRoot(model, "ground");
+    model.nodes[std::size_t(ground_root)].children.push_back(static_cast<int>(model.nodes.size()) - 2);
   }
 
   tinygltf::Animation anim;
@@ -159,15 +197,17 @@ std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character&
     channel(node, tr.t, 3, "translation");
     channel(node, tr.r, 4, "rotation");
   };
-  for (int which = 0; which < 2; ++which) {
-    const Character& c = which == 0 ? horse : rider;
-    const GltfCharacterNodes& n = which == 0 ? h : r;
-    std::vector<Tracks> tracks(c.skeleton.size());
-    for (const MountedPose& p : shot.poses) {
-      const std::vector<glm::mat4> local = worldToLocal(c.skeleton, which == 0 ? p.horse : p.rider);
-      for (std::size_t j = 0; j < local.size(); ++j) tracks[j].push(glm::dmat4(local[j]));
+  for (std::size_t i = 0; i < shot.pairs.size(); ++i) {
+    for (int which = 0; which < 2; ++which) {
+      const Character& c = which == 0 ? *shot.pairs[i].horse : *shot.pairs[i].rider;
+      const GltfCharacterNodes& n = which == 0 ? pair_nodes[i].horse : pair_nodes[i].rider;
+      std::vector<Tracks> tracks(c.skeleton.size());
+      for (const MountedPose& p : shot.pairs[i].poses) {
+        const std::vector<glm::mat4> local = worldToLocal(c.skeleton, which == 0 ? p.horse : p.rider);
+        for (std::size_t j = 0; j < local.size(); ++j) tracks[j].push(glm::dmat4(local[j]));
+      }
+      for (std::size_t j = 0; j < tracks.size(); ++j) animate(n.joint_nodes[j], tracks[j]);
     }
-    for (std::size_t j = 0; j < tracks.size(); ++j) animate(n.joint_nodes[j], tracks[j]);
   }
   std::vector<int> camera_nodes;
   for (const BakedCamera& bc : shot.cameras) {
@@ -212,13 +252,15 @@ std::vector<unsigned char> bakedShotGlb(const Character& horse, const Character&
   if (!anim.channels.empty()) model.animations.push_back(anim);
   tinygltf::Scene scene;
   scene.name = shot.name;
-  scene.nodes = {roots[0], roots[1], h.mesh_node, r.mesh_node};
+  for (const PairNodes& p : pair_nodes) scene.nodes.insert(scene.nodes.end(), {p.horse_root, p.rider_root});
+  for (const PairNodes& p : pair_nodes) scene.nodes.insert(scene.nodes.end(), {p.horse.mesh_node, p.rider.mesh_node});
   scene.nodes.insert(scene.nodes.end(), camera_nodes.begin(), camera_nodes.end());
-  if (roots.size() > 2) scene.nodes.push_back(roots[2]);  // the ground
+  if (ground_root >= 0) scene.nodes.push_back(ground_root);
   tinygltf::Value::Object extras;
   extras["fps"] = tinygltf::Value(shot.fps);
   extras["frame_time"] = tinygltf::Value(std::string("seconds = (frame - 1) / fps: frame 1 at t = 0"));
-  if (const tinygltf::Value seat = seatExtras(shot.seat); seat.IsObject()) extras["stirrup_seat"] = seat;
+  if (shot.pairs.size() == 1 && shot.pairs[0].name.empty())
+    if (const tinygltf::Value seat = seatExtras(shot.pairs[0].seat); seat.IsObject()) extras["stirrup_seat"] = seat;
   scene.extras = tinygltf::Value(extras);
   model.scenes.push_back(scene);
   model.defaultScene = 0;

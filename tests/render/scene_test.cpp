@@ -245,15 +245,15 @@ TEST(SceneCrowd, ACrowdPlaysItsLeadsRideUnlessFramesAreGiven) {
             SceneSpec{}.frames);
 }
 
-// A crowd scene has no one clip: the commands that read one (bake, clip, rig) get a
-// one-line error rather than the default trot nobody rides.
+// A crowd scene has no one clip: asking for it is a one-line error rather than the default trot nobody
+// rides (bake, clip info and rig balance take each pair's own).
 TEST(SceneCrowd, ACrowdHasNoOneClip) {
   try {
     makeSceneClip(parseScene(nlohmann::json::parse(kCrowd), "scenes/x.json"));
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "scenes/x.json: crowd: expected a scene of one horse and rider here (a crowd is "
-                                     "drawn by `stirrup render` and `stirrup movies` only, so far)");
+    EXPECT_EQ(std::string(e.what()), "scenes/x.json: crowd: expected a scene of one horse and rider here (each pair of "
+                                     "a crowd rides its own clip)");
   }
   EXPECT_NE(makeSceneClip(parseScene(nlohmann::json::object(), "scenes/x.json")), nullptr);
 }

@@ -111,6 +111,45 @@ TEST(ClipCli, InfoOnAPathSceneMeasuresEachSection) {
   EXPECT_NE(text.out.find("whole path, on the ground:"), std::string::npos) << text.out;
 }
 
+// clip info on a crowd measures each pair's own path in turn (--pair N: that pair alone): every
+// pair's sections at the trot it rides; --pair out of range, or on a scene of one pair, is one line.
+TEST(ClipCli, InfoOnACrowdMeasuresEachPair) {
+  const fs::path scene = outDir() / "crowd.json";
+  std::ofstream(scene) << R"({"output": "out", "riders": [
+    {"points": [[0, -300], [3000, -300]], "speed": [[0, 300]], "seed": 1},
+    {"points": [[0, 300], [3000, 300]], "speed": [[0, 300]], "seed": 2, "start_offset_s": 0.5},
+    {"points": [[-1200, 0], [1800, 0]], "speed": [[0, 300]], "seed": 3}]})";
+  CommandResult r = runStirrup("clip info " + quote(scene.string()) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["pairs"].size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    const nlohmann::json& p = j["pairs"][std::size_t(i)];
+    EXPECT_EQ(p["pair"], i);
+    EXPECT_EQ(p["name"], "pair0" + std::to_string(i));
+    ASSERT_FALSE(p["sections"].empty()) << p;
+    for (const auto& s : p["sections"]) EXPECT_EQ(s["gait"], "trot") << "pair " << i;
+  }
+  EXPECT_EQ(j["pairs"][1]["start_offset_s"], 0.5);
+  r = runStirrup("clip info " + quote(scene.string()) + " --pair 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["pairs"].size(), 1u);
+  EXPECT_EQ(j["pairs"][0]["pair"], 2);
+  r = runStirrup("clip info " + quote(scene.string()) + " --pair 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(scene.string() + " pair01: path"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("pair00"), std::string::npos) << r.out;
+  r = runStirrup("clip info " + quote(scene.string()) + " --pair 3");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "stirrup: clip info: --pair: expected a pair index from 0 to 2, got 3\n");
+  const std::string trot = std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json";
+  r = runStirrup("clip info " + quote(trot) + " --pair 0");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "stirrup: clip info: --pair: expected a crowd scene (\"crowd\" or \"riders\"), got one horse and rider in " +
+                       trot + "\n");
+}
+
 TEST(ClipCli, BadInputIsOneLine) {
   const CommandResult unknown = runStirrup("clip make jump --fence 3 -o " + quote((outDir() / "x.glb").string()));
   EXPECT_EQ(unknown.exit_code, 1);

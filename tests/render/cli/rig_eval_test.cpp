@@ -1,4 +1,6 @@
 // stirrup rig eval / rig params / rig balance, end to end through the program.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -187,6 +189,42 @@ TEST_F(RigEval, BalanceWritesTheStageOnEveryFrame) {
   fs::remove(out);
   expectFails(runStirrup("rig balance " + scene + " --set balance=2 -o " + quote(out.string())),
               "--set: balance: expected a number from 0 to 1 (docs/rider-rig.md, valid ranges), got 2", out);
+}
+
+// A crowd of four pairs, each on its own path with its own profile, over 12 frames.
+constexpr const char* kCrowdOfFour = R"({"frames": "1-12",
+  "riders": [
+    {"points": [[0, -300], [3000, -300]], "speed": [[0, 300]], "profile": "thesis", "seed": 1},
+    {"points": [[0, 300], [3000, 300]], "speed": [[0, 300]], "profile": "english", "seed": 2, "start_offset_s": 0.3},
+    {"points": [[-1200, -300], [1800, -300]], "speed": [[0, 300]], "profile": "novice", "seed": 3, "start_offset_s": 0.6},
+    {"points": [[-1200, 300], [1800, 300]], "speed": [[0, 300]], "profile": "thesis", "seed": 4, "start_offset_s": 0.9}]})";
+
+// rig balance on a crowd: a row a frame and pair, the pair's index first; each pair rides its own way
+// (two pairs' leans differ), and --set reaches every pair's profile (balance 0: every lean the thesis
+// pose's).
+TEST_F(RigEval, BalanceOnACrowdWritesEveryPair) {
+  const fs::path scene = dir_ / "crowd.json", out = dir_ / "crowd.csv";
+  std::ofstream(scene) << kCrowdOfFour;
+  CommandResult r = runStirrup("rig balance " + quote(scene.string()) + " -o " + quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string header;
+  std::vector<std::vector<double>> rows = readRows(out, &header);
+  EXPECT_EQ(header,
+            "pair,frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,turn_deg,"
+            "seat_lift_cm,limited");
+  ASSERT_EQ(rows.size(), 48u);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_EQ(rows[k][0], double(k % 4)) << "row " << k;
+    EXPECT_EQ(rows[k][1], double(k / 4 + 1)) << "row " << k;
+  }
+  double apart = 0;
+  for (std::size_t f = 0; f < 12; ++f) apart = std::max(apart, std::abs(rows[4 * f][7] - rows[4 * f + 1][7]));
+  EXPECT_GT(apart, 0.1) << "degrees: pairs 0 and 1 lean alike at every frame";
+  r = runStirrup("rig balance " + quote(scene.string()) + " --set balance=0 -o " + quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  rows = readRows(out, &header);
+  ASSERT_EQ(rows.size(), 48u);
+  for (const auto& row : rows) EXPECT_NEAR(row[7], row[3], 0.01) << "pair " << row[0] << " frame " << row[1];
 }
 
 TEST(RigEvalHelp, DocumentsTheCsvFormat) {

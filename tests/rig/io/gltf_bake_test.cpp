@@ -73,7 +73,11 @@ BakedShot twoFrameShot() {
   MountedPose rest{restWorlds(defaultHorse().skeleton), restWorlds(defaultRider().skeleton), {}, {}};
   MountedPose moved = rest;
   moved.horse[0] = glm::translate(glm::mat4(1.0f), {50, 0, 0}) * moved.horse[0];  // joints are parents first: 0 is a root
-  shot.poses = {rest, moved};
+  BakedPair pair;
+  pair.horse = &defaultHorse();
+  pair.rider = &defaultRider();
+  pair.poses = {rest, moved};
+  shot.pairs = {pair};
   BakedCamera cam;
   cam.name = "side";
   cam.orthographic = true;
@@ -110,7 +114,7 @@ int nodeNamed(const tinygltf::Model& m, const std::string& name) {
 }
 
 TEST(GltfBake, AShotIsOneRootPerCharacterCamerasAndTheGround) {
-  const tinygltf::Model m = readBack(bakedShotGlb(defaultHorse(), defaultRider(), twoFrameShot()));
+  const tinygltf::Model m = readBack(bakedShotGlb(twoFrameShot()));
   ASSERT_EQ(m.skins.size(), 2u);
   for (const char* root : {"horse", "rider", "ground"}) {
     const int n = nodeNamed(m, root);
@@ -165,22 +169,22 @@ TEST(GltfBake, AShotIsOneRootPerCharacterCamerasAndTheGround) {
 TEST(GltfBake, OneFrameIsStillAndInconsistentShotsAreRefused) {
   BakedShot one = twoFrameShot();
   one.seconds.resize(1);
-  one.poses.resize(1);
+  one.pairs[0].poses.resize(1);
   one.cameras[0].world.resize(1);
-  EXPECT_TRUE(readBack(bakedShotGlb(defaultHorse(), defaultRider(), one)).animations.empty());
+  EXPECT_TRUE(readBack(bakedShotGlb(one)).animations.empty());
 
   BakedShot bad = twoFrameShot();
-  bad.poses.pop_back();
-  EXPECT_THROW(bakedShotGlb(defaultHorse(), defaultRider(), bad), std::invalid_argument);
+  bad.pairs[0].poses.pop_back();
+  EXPECT_THROW(bakedShotGlb(bad), std::invalid_argument);
   bad = twoFrameShot();
   bad.seconds = {0.5f, 0.5f};
-  EXPECT_THROW(bakedShotGlb(defaultHorse(), defaultRider(), bad), std::invalid_argument);
+  EXPECT_THROW(bakedShotGlb(bad), std::invalid_argument);
   bad = twoFrameShot();
   bad.cameras[0].world.pop_back();
-  EXPECT_THROW(bakedShotGlb(defaultHorse(), defaultRider(), bad), std::invalid_argument);
+  EXPECT_THROW(bakedShotGlb(bad), std::invalid_argument);
   bad = twoFrameShot();
   bad.cameras[0].height = 0;
-  EXPECT_THROW(bakedShotGlb(defaultHorse(), defaultRider(), bad), std::invalid_argument);
+  EXPECT_THROW(bakedShotGlb(bad), std::invalid_argument);
 }
 
 }  // namespace
