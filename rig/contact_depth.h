@@ -3,13 +3,13 @@
 // and any rider a user brings ("no leg vertex more than 2 cm inside the horse").
 //
 //   const ContactDepth d = deepestRiderVertexInside(horse_points, horse_normals, horse.mesh.indices,
-//                                                   horseTackVertices(horse), rider_points);
+//                                                   horseLooseTack(horse), rider_points);
 //   // d.depth_cm: how deep the deepest rider vertex is (0 when none is inside); d.vertex: its index
 //
 // The inputs are skinned meshes (rig::skinMesh): the horse's positions, its vertex normals (outward)
 // and its triangles; `horse_skip` marks horse vertices whose triangles are not part of the surface a
-// rider must stay out of (horseTackVertices: the reins she holds, the stirrup irons she stands in and the
-// leathers her legs lie over);
+// rider must stay out of (rig::horseLooseTack in rig/characters/seating.h: the reins she holds, the
+// stirrup irons she stands in and the leathers her legs lie over);
 // the rider's positions.
 //
 // Inside, and how deep, for a rider vertex q: p is the nearest point to q on the horse's surface, at
@@ -48,36 +48,6 @@ struct ContactDepth {
   float depth_cm = 0.0f;  // how far the deepest rider vertex is inside the horse; 0 when none is
   int vertex = -1;        // that vertex's index in the rider's mesh; -1 when none is inside
 };
-
-// The horse's tack a rider holds, stands in or lies over, left out of its surface: every separate piece
-// of its mesh (vertices joined by triangles) with a vertex bound (with any weight) to lRein, rRein,
-// lStirrup or rStirrup: the reins and bit, and the stirrup irons and leathers, whose top ends hang from
-// the saddle (a rider's leg lies over the leather against the flap). A user's horse without those
-// roles (the rig's own tack joints, or roles sharing a trunk joint) leaves none out by this rule.
-inline std::vector<bool> horseTackVertices(const Character& horse) {
-  const std::size_t n = horse.mesh.vertexCount();
-  std::vector<int> joint_of_role;
-  for (const char* role : {"lRein", "rRein", "lStirrup", "rStirrup"})
-    if (const auto it = horse.roles.find(role); it != horse.roles.end() && it->second != horse.role("saddle"))
-      joint_of_role.push_back(it->second);
-  // Pieces: union-find over the triangles' vertices.
-  std::vector<std::uint32_t> root(n);
-  for (std::size_t v = 0; v < n; ++v) root[v] = static_cast<std::uint32_t>(v);
-  const auto find = [&](std::uint32_t v) {
-    while (root[v] != v) v = root[v] = root[root[v]];
-    return v;
-  };
-  const std::vector<std::uint32_t>& idx = horse.mesh.indices;
-  for (std::size_t t = 0; t + 2 < idx.size(); t += 3)
-    for (int k = 1; k < 3; ++k) root[find(idx[t + k])] = find(idx[t]);
-  std::vector<bool> piece(n, false), tack(n, false);
-  for (std::size_t v = 0; v < n; ++v)
-    for (int k = 0; k < 4; ++k)
-      for (const int j : joint_of_role)
-        if (horse.mesh.weights[v][k] > 0.0f && horse.mesh.joints[v][k] == j) piece[find(static_cast<std::uint32_t>(v))] = true;
-  for (std::size_t v = 0; v < n; ++v) tack[v] = piece[find(static_cast<std::uint32_t>(v))];
-  return tack;
-}
 
 namespace contact_detail {
 

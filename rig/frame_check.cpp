@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "rig/balance.h"
+#include "rig/characters/seating.h"
 #include "rig/contact_depth.h"
 #include "rig/skin.h"
 
@@ -86,7 +87,7 @@ const char* checkSeverityName(CheckSeverity s) {
 }
 
 PairCheck::PairCheck(const Character& horse, const Character& rider, const RigProfile::Balance& band, FrameCheckLimits limits)
-    : horse_(horse), rider_(rider), band_(band), limits_(limits), tack_(horseTackVertices(horse)) {
+    : horse_(horse), rider_(rider), band_(band), limits_(limits), tack_(horseLooseTack(horse)) {
   for (std::size_t leg = 0; leg < 4; ++leg) hoof_joint_[leg] = horse.role(std::string(kLegs[leg]) + "Hoof");
   // A hoof's vertices: those its hoof joint carries most (a user's horse may skin the hoof to joints
   // below it, a toe: those count too).

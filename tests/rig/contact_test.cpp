@@ -28,6 +28,7 @@
 #include "rig/characters/rider_character.h"
 #include "rig/rig_profile.h"
 #include "rig/skin.h"
+#include "rig/characters/seating.h"
 #include "rig/contact_depth.h"
 #include "tests/rig/default_characters.h"
 
@@ -105,7 +106,7 @@ TEST(ContactDepth, ALegVertexPlanted15CmInsideTheHorseIsFound) {
   std::vector<glm::vec3> hp, hn, rp, rn;
   skinMesh(horse.mesh, horse.skeleton, pose.horse, hp, hn);
   skinMesh(rider.mesh, rider.skeleton, pose.rider, rp, rn);
-  const std::vector<bool> tack = horseTackVertices(horse);
+  const std::vector<bool> tack = horseLooseTack(horse);
   const ContactDepth before = deepestRiderVertexInside(hp, hn, horse.mesh.indices, tack, rp);
   EXPECT_LE(before.depth_cm, kMaxDepthCm);
   // The belly: the horse vertex nearest the bottom of its barrel (HorseParams: centre 121 cm up, 31 cm
@@ -146,7 +147,7 @@ ClipContact measure(const std::string& scene_name) {
   const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
   const RigProfile profile = render::resolveProfile(scene);
   const auto clip = makeClip(scene.clip);
-  const std::vector<bool> tack = horseTackVertices(horse);
+  const std::vector<bool> tack = horseLooseTack(horse);
   const glm::vec3 rest_pelvis = rider.skeleton.restPosition(rider.role("pelvis"));
   ClipContact out;
   std::vector<glm::vec3> hp, hn, rp, rn;

@@ -149,7 +149,7 @@ void rideTheTrot(const Character& horse, const Character& rider, const std::stri
   const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
   const auto clip = makeClip(scene.clip, horse);
   const auto clip0 = makeClip(scene.clip);
-  const std::vector<bool> tack = horseTackVertices(horse);
+  const std::vector<bool> tack = horseLooseTack(horse);
   const Skeleton& s = rider.skeleton;
   std::vector<bool> legs(rider.mesh.vertexCount(), false);
   {

@@ -107,7 +107,7 @@ void ridesSeated(const std::string& name, const fs::path& glb, const fs::path& m
 
   const Skeleton& s = rider.skeleton;
   const std::vector<bool> legs = legVertices(rider);
-  const std::vector<bool> tack = horseTackVertices(horse);
+  const std::vector<bool> tack = horseLooseTack(horse);
   std::vector<glm::vec3> hp, hn, rp, rn;
   const std::vector<glm::vec3> rest_grip = {s.restPosition(rider.role("lHand")), s.restPosition(rider.role("rHand"))};
   const std::vector<glm::vec3> rest_wrist = {s.restPosition(rider.role("lWrist")), s.restPosition(rider.role("rWrist"))};
