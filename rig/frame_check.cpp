@@ -192,16 +192,14 @@ std::vector<CheckFinding> PairCheck::judge(std::span<const FrameMeasures> frames
         add(m, "hoof-slide", hoof, slide, L.slide_warn_cm, L.slide_fail_cm,
             hoof + " hoof down slides " + format("%.2f cm along the ground since the frame before (at most %.1f cm a frame)", slide, L.slide_warn_cm));
       }
-      {
-        const double s = m.reach_short_cm[leg];
-        if (m.down[leg]) {
-          add(m, "over-reach", hoof, s, L.reach_warn_cm, L.reach_fail_cm,
-              hoof + " hoof planted " + format("%.2f cm short of its print, its leg at full reach (no bone stretched; at most %.1f cm)", s, L.reach_warn_cm));
-        } else if (s >= L.reach_warn_cm) {
-          // A swinging hoof missing a point in the air by a few centimetres: reported, not counted.
-          out.push_back({m.frame, m.time_s, pair, CheckSeverity::Note, "over-reach", hoof, s, L.reach_warn_cm,
-                         hoof + " hoof in the air " + format("%.2f cm short of its target, its leg at full reach", s, 0)});
-        }
+      const double short_cm = m.reach_short_cm[leg];
+      if (m.down[leg]) {
+        add(m, "over-reach", hoof, short_cm, L.reach_warn_cm, L.reach_fail_cm,
+            hoof + " hoof planted " + format("%.2f cm short of its print, its leg at full reach (no bone stretched; at most %.1f cm)", short_cm, L.reach_warn_cm));
+      } else if (short_cm >= L.reach_warn_cm) {
+        // A swinging hoof missing a point in the air by a few centimetres: reported, not counted.
+        out.push_back({m.frame, m.time_s, pair, CheckSeverity::Note, "over-reach", hoof, short_cm, L.reach_warn_cm,
+                       hoof + " hoof in the air " + format("%.2f cm short of its target, its leg at full reach", short_cm, 0)});
       }
       add(m, "hoof-in-ground", hoof, m.below_ground_cm[leg], L.ground_warn_cm, L.ground_fail_cm,
           hoof + " hoof " + format("%.2f cm into the ground (at most %.1f cm)", m.below_ground_cm[leg], L.ground_warn_cm));

@@ -315,11 +315,9 @@ void writeHtml(const CheckInput& in, std::vector<CheckedPair>& pairs, const std:
   };
   std::vector<Run> runs;
   for (CheckedPair& p : pairs) {
-    std::map<std::string, Run*> open;
     std::vector<Run> mine;
     for (const rig::CheckFinding& f : p.findings) {
       if (f.severity == rig::CheckSeverity::Note) continue;
-      const std::string key = f.rule + "/" + f.where;
       bool joined = false;
       for (Run& r : mine)
         if (r.worst->rule == f.rule && r.worst->where == f.where && f.frame > 0 && f.frame <= r.last + 1) {
