@@ -4,8 +4,8 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "render/detail_level.h"
-#include "render/fence.h"
+#include "render/scene/detail_level.h"
+#include "render/scene/fence.h"
 #include "rig/io/frame_range.h"
 
 namespace stirrup::render {

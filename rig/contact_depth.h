@@ -8,7 +8,7 @@
 //
 // The inputs are skinned meshes (rig::skinMesh): the horse's positions, its vertex normals (outward)
 // and its triangles; `horse_skip` marks horse vertices whose triangles are not part of the surface a
-// rider must stay out of (rig::horseLooseTack in rig/characters/seating.h: the reins she holds, the
+// rider must stay out of (rig::horseLooseTack in rig/loose_tack.h: the reins she holds, the
 // stirrup irons she stands in and the leathers her legs lie over);
 // the rider's positions.
 //

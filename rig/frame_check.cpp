@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "rig/balance.h"
-#include "rig/characters/seating.h"
+#include "rig/loose_tack.h"
 #include "rig/contact_depth.h"
 #include "rig/skin.h"
 

@@ -314,7 +314,7 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
   // The curve spine, in the pelvis's frame with its root at the lower back. Constructing it only
   // stores the lengths; solve() is the work (71 us a call, BM_PoseRiderSpine in tests/bench/pose_bench.cpp).
   const RiderSpine layout = riderSpine(rider);
-  const int segments = layout.laid_on_curve ? kRiderSpineSegments : CurveSpine::kMinSegments;
+  const int segments = layout.laid_on_curve ? CurveSpine::kRiderSegments : CurveSpine::kMinSegments;
   const CurveSpine spine(layout.fk_lengths, segments);
   SpineControllers controllers = riderSpineControllers(r, params);
   if (!layout.laid_on_curve && rider.spine_bend_gain != 1.0f)
@@ -342,7 +342,7 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
       parent = world;
     }
     parent = glm::dmat4(1.0);
-    for (int i = 0; i <= kRiderSpineSegments; ++i) {
+    for (int i = 0; i <= CurveSpine::kRiderSegments; ++i) {
       const glm::dmat4 world = place(solved.joints[i].position, solved.joints[i].rotation);
       local[layout.chain[i]] = glm::mat4(glm::inverse(parent) * world);
       parent = world;

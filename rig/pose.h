@@ -33,8 +33,6 @@
 #include "rig/curve_spine.h"
 #include "rig/horse_leg.h"
 #include "rig/rig_profile.h"
-#include "rig/characters/horse_character.h"  // the characters these jobs pose, for callers that include only pose.h
-#include "rig/characters/rider_character.h"
 
 namespace stirrup::rig {
 

@@ -1,46 +1,66 @@
-# The layout's include rules (README "How the code is laid out"):
-#   1. nothing under rig/ includes render/ (the rig knows nothing of rendering);
-#   2. the runtime (files directly in rig/) never includes rig/io/ or rig/motion/ (runtime kept apart
-#      from offline work, as in ozz-animation);
-#   3. the character generators (rig/characters/) never include rig/io/ or rig/motion/ either.
+# The layout's include rules (README "How the code is laid out"). The code is cut into layers by the
+# direction of its dependencies, lowest first:
+#   rig              the runtime: channels, clips, the rider rig, curve spine, IK, skeleton, pose, skinning
+#   rig/characters   the character generators and the seating of a user's rider
+#   rig/motion       horse motion: gaits, movements, paths, terrain, crowds, limits, clip analysis
+#   rig/io           files: glTF, JSON and CSV readers and writers, the clip factory
+#   render/scene     the scene document and its evaluation without pixels (evaluator, cameras, bakes)
+#   render/tracer    the ray tracer (Embree, the integrator and its lanes, images)
+#   render           the shot: evaluated frames traced
+#   render/review    review material: movies, layers, sheets, plots, diffs
+#   render/farm      rendering on a Slurm cluster
+#   cli              the program, every subcommand
+# A file may include its own folder and any folder below it, never one above, so the include graph of
+# the folders has no cycle. A folder with sources that is not in the list is a violation too (a new
+# folder must be given its place).
 # Run as `cmake -DSOURCE_DIR=... -P layout_test.cmake`; each violation prints one line naming the file,
-# the line and the rule, and the script fails. With -DSELF_TEST=ON it checks a scratch tree holding one
-# violation of each rule instead, and fails unless all three are caught (so the check cannot pass idly).
+# the line, the include and the two layers, and the script fails. With -DSELF_TEST=ON it checks a
+# scratch tree instead holding a planted cycle (rig/ and rig/io/ including each other), a tracer file
+# including the review, a library file including the program and a folder outside the order, and fails
+# unless exactly those four are caught (so the check cannot pass idly).
 #
 # With -DCHECK=mirrored_tests it checks instead that tests mirror the source tree file for file: every
-# library source, rig/**.cpp and render/**.cpp but the program's own render/cli/, has its test file
+# library source, rig/**.cpp and render/**.cpp (not the program, cli/), has its test file
 # tests/<the same path>_test.cpp. With -DSELF_TEST=ON as well, a scratch tree with one source lacking
 # its test file (and a program file without one, which is allowed) must give exactly that one.
 cmake_minimum_required(VERSION 3.25)
 
-# Appends "FILE:LINE: RULE" to out_var for every include in `files` (relative to `root`) that matches
-# `pattern`.
-function(find_includes root files pattern rule out_var)
-  set(found ${${out_var}})
-  foreach(rel ${files})
+set(STIRRUP_LAYERS rig rig/characters rig/motion rig/io render/scene render/tracer render render/review render/farm cli)
+
+# Appends one line to out_var for every include, in every source and header under `root`'s layers, of a
+# project file in a layer above the including file's, and for every folder of sources outside the order.
+function(check_tree root out_var)
+  set(violations)
+  file(GLOB_RECURSE all RELATIVE "${root}" "${root}/rig/*.h" "${root}/rig/*.cpp" "${root}/render/*.h"
+       "${root}/render/*.cpp" "${root}/cli/*.h" "${root}/cli/*.cpp")
+  set(unplaced)
+  foreach(rel IN LISTS all)
+    get_filename_component(folder "${rel}" DIRECTORY)
+    list(FIND STIRRUP_LAYERS "${folder}" own)
+    if(own EQUAL -1)
+      if(NOT folder IN_LIST unplaced)
+        list(APPEND unplaced "${folder}")
+        list(APPEND violations "${folder}/: a folder of sources with no place in the layer order (tests/layout_test.cmake STIRRUP_LAYERS)")
+      endif()
+      continue()
+    endif()
     file(STRINGS "${root}/${rel}" lines)
     set(n 0)
     foreach(line IN LISTS lines)
       math(EXPR n "${n} + 1")
-      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*\"(${pattern})")
-        list(APPEND found "${rel}:${n}: ${rule} (#include \"${CMAKE_MATCH_1}...\")")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*\"((rig|render|cli)/[^\"]*)\"")
+        set(included "${CMAKE_MATCH_1}")
+        get_filename_component(to "${included}" DIRECTORY)
+        list(FIND STIRRUP_LAYERS "${to}" other)
+        if(other GREATER own)
+          list(APPEND violations "${rel}:${n}: #include \"${included}\": ${folder} includes ${to}, a layer above it")
+        endif()
       endif()
     endforeach()
   endforeach()
-  set(${out_var} ${found} PARENT_SCOPE)
-endfunction()
-
-function(check_tree root out_var)
-  set(violations)
-  file(GLOB_RECURSE rig_all RELATIVE "${root}" "${root}/rig/*.h" "${root}/rig/*.cpp")
-  file(GLOB runtime RELATIVE "${root}" "${root}/rig/*.h" "${root}/rig/*.cpp")
-  file(GLOB_RECURSE characters RELATIVE "${root}" "${root}/rig/characters/*.h" "${root}/rig/characters/*.cpp")
-  find_includes("${root}" "${rig_all}" "render/" "rig/ includes render/" violations)
-  find_includes("${root}" "${runtime}" "rig/io/|rig/motion/" "the rig runtime includes offline code" violations)
-  find_includes("${root}" "${characters}" "rig/io/|rig/motion/" "a character generator includes offline code" violations)
-  list(LENGTH runtime n_runtime)
-  if(n_runtime EQUAL 0)
-    list(APPEND violations "${root}/rig: no runtime sources found (wrong SOURCE_DIR?)")
+  list(LENGTH all n_all)
+  if(n_all EQUAL 0)
+    list(APPEND violations "${root}: no sources found under rig/, render/ or cli/ (wrong SOURCE_DIR?)")
   endif()
   set(${out_var} ${violations} PARENT_SCOPE)
 endfunction()
@@ -50,8 +70,7 @@ endfunction()
 function(check_mirrored_tests root out_var)
   set(missing)
   file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/rig/*.cpp" "${root}/render/*.cpp")
-  list(FILTER sources EXCLUDE REGEX "^render/cli/")  # the program: tested end to end by tests/render/cli/
-  foreach(src IN LISTS sources)
+    foreach(src IN LISTS sources)
     string(REGEX REPLACE "\\.cpp$" "_test.cpp" test "${src}")
     if(NOT EXISTS "${root}/tests/${test}")
       list(APPEND missing "${src}: no test file tests/${test} (tests mirror the source tree file for file)")
@@ -69,7 +88,7 @@ if(CHECK STREQUAL "mirrored_tests")
     string(RANDOM LENGTH 8 tag)
     set(root "${CMAKE_CURRENT_BINARY_DIR}/layout_mirror_self_test_${tag}")
     foreach(f rig/pose.cpp tests/rig/pose_test.cpp rig/io/gltf_clip.cpp render/review/movie.cpp
-              tests/render/review/movie_test.cpp render/cli/cmd_render.cpp)
+              tests/render/review/movie_test.cpp cli/cmd_render.cpp)
       get_filename_component(d "${root}/${f}" DIRECTORY)
       file(MAKE_DIRECTORY "${d}")
       file(WRITE "${root}/${f}" "// scratch\n")
@@ -101,17 +120,30 @@ endif()
 if(SELF_TEST)
   string(RANDOM LENGTH 8 tag)
   set(root "${CMAKE_CURRENT_BINARY_DIR}/layout_self_test_${tag}")
-  file(MAKE_DIRECTORY "${root}/rig/io" "${root}/rig/characters")
-  file(WRITE "${root}/rig/pose.cpp" "#include \"rig/pose.h\"\n#include \"rig/io/gltf_clip.h\"\n")
-  file(WRITE "${root}/rig/io/gltf_clip.cpp" "#include \"rig/io/gltf_clip.h\"\n  #  include \"render/image.h\"\n")
-  file(WRITE "${root}/rig/characters/tube.cpp" "#include \"rig/mesh.h\"\n#include \"rig/motion/noise.h\"\n")
+  # A cycle: the runtime's pose.h includes a glTF reader that includes pose.h back; only the upward
+  # edge is a violation. Then a tracer file including the review (an include indented, spaced), a
+  # review file including the program, and a folder nobody placed. Includes that keep to the order
+  # (the reader including the runtime, the shot including the tracer and scene) must pass.
+  file(MAKE_DIRECTORY "${root}/rig/io" "${root}/render/tracer" "${root}/render/review" "${root}/render/extra")
+  file(WRITE "${root}/rig/pose.h" "#pragma once\n#include \"rig/skeleton.h\"\n#include \"rig/io/gltf_clip.h\"\n")
+  file(WRITE "${root}/rig/io/gltf_clip.h" "#pragma once\n#include \"rig/pose.h\"\n")
+  file(WRITE "${root}/render/tracer/image.cpp" "#include \"render/tracer/image.h\"\n  #  include \"render/review/text.h\"\n")
+  file(WRITE "${root}/render/shot.cpp" "#include \"render/tracer/renderer.h\"\n#include \"render/scene/scene.h\"\n")
+  file(WRITE "${root}/render/review/movie.cpp" "#include \"render/shot.h\"\n#include \"cli/options.h\"\n")
+  file(WRITE "${root}/render/extra/thing.cpp" "#include \"rig/pose.h\"\n")
   check_tree("${root}" violations)
   file(REMOVE_RECURSE "${root}")
-  list(LENGTH violations n)
-  if(NOT n EQUAL 3)
-    message(FATAL_ERROR "layout check self-test: expected 3 violations in the scratch tree, found ${n}: ${violations}")
+  set(expected
+    "render/extra/: a folder of sources with no place in the layer order (tests/layout_test.cmake STIRRUP_LAYERS)"
+    "render/review/movie.cpp:2: #include \"cli/options.h\": render/review includes cli, a layer above it"
+    "render/tracer/image.cpp:2: #include \"render/review/text.h\": render/tracer includes render/review, a layer above it"
+    "rig/pose.h:3: #include \"rig/io/gltf_clip.h\": rig includes rig/io, a layer above it")
+  list(SORT violations)
+  if(NOT violations STREQUAL expected)
+    string(REPLACE ";" "\n  " got "${violations}")
+    message(FATAL_ERROR "layout check self-test: expected exactly the 4 planted violations, got:\n  ${got}")
   endif()
-  message(STATUS "layout check self-test: all 3 planted violations caught")
+  message(STATUS "layout check self-test: the planted cycle and the 3 other planted violations caught, nothing else")
   return()
 endif()
 
@@ -126,4 +158,4 @@ if(violations)
   list(LENGTH violations n)
   message(FATAL_ERROR "layout check: ${n} include(s) break the layout's rules")
 endif()
-message(STATUS "layout check: rig/ includes no render/; the rig runtime and characters include no rig/io/ or rig/motion/")
+message(STATUS "layout check: every include keeps to the layer order ${STIRRUP_LAYERS}")

@@ -7,8 +7,8 @@
 #include <map>
 #include <system_error>
 
-#include "render/frame_sequence.h"
-#include "render/scene.h"
+#include "render/scene/frame_sequence.h"
+#include "render/scene/scene.h"
 #include "rig/error.h"
 #include "rig/io/frame_range.h"
 

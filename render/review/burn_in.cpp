@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <ctime>
 
-#include "render/frame_sequence.h"
+#include "render/scene/frame_sequence.h"
 #include "render/review/text.h"
 
 namespace stirrup::render {

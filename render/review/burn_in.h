@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "render/image.h"
+#include "render/tracer/image.h"
 
 namespace stirrup::render {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "render/frame_sequence.h"
+#include "render/scene/frame_sequence.h"
 #include "render/review/plot_canvas.h"
 
 namespace stirrup::render {

@@ -13,24 +13,6 @@
 
 namespace stirrup::render {
 
-LayerMode parseLayerMode(const std::string& name, const std::string& context) {
-  if (name == "side-by-side") return LayerMode::SideBySide;
-  if (name == "over") return LayerMode::Over;
-  if (name == "difference") return LayerMode::Difference;
-  if (name == "onion-skin" || name == "onion") return LayerMode::OnionSkin;
-  throw InputError(context + ": expected side-by-side, over, difference or onion-skin, got \"" + name + "\"");
-}
-
-const char* layerModeName(LayerMode mode) {
-  switch (mode) {
-    case LayerMode::SideBySide: return "side-by-side";
-    case LayerMode::Over: return "over";
-    case LayerMode::Difference: return "difference";
-    case LayerMode::OnionSkin: return "onion-skin";
-  }
-  return "?";
-}
-
 namespace {
 
 void requireSameSize(const Image& a, const Image& b, const char* what) {

@@ -7,7 +7,7 @@
 // Everything here is a pure function of its inputs: no globals, no caches, no clocks, so any frame of
 // a layered movie can be made alone, in any order, on any machine.
 //
-// Colour: Image is linear light (render/image.h). Footage files are decoded to linear (8-bit and
+// Colour: Image is linear light (render/tracer/image.h). Footage files are decoded to linear (8-bit and
 // 16-bit files are treated as sRGB, float files as linear). Greyscale files fill R, G and B.
 #pragma once
 
@@ -20,18 +20,14 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
-#include "render/image.h"
+#include "render/scene/reference_spec.h"
+#include "render/tracer/image.h"
 
 namespace stirrup::render {
 
 // ---------------------------------------------------------------------------------------------------
 // Per-frame composites
 
-enum class LayerMode { SideBySide, Over, Difference, OnionSkin };
-
-// "side-by-side", "over", "difference", "onion-skin" (also "onion"); InputError naming `context`.
-LayerMode parseLayerMode(const std::string& name, const std::string& context);
-const char* layerModeName(LayerMode mode);  // the canonical spellings above
 
 // Which part of `ours` lies over `other` in Over and OnionSkin.
 enum class LayerCoverage {
@@ -96,20 +92,12 @@ void drawLabel(Image& image, int x, int y, const std::string& text, int scale = 
 // ---------------------------------------------------------------------------------------------------
 // Footage
 
-struct PixelRect {
-  int x = 0, y = 0, width = 0, height = 0;  // top-left origin; empty (width or height 0): the whole image
-  bool empty() const { return width <= 0 || height <= 0; }
-};
-// "x,y,w,h" -> PixelRect; InputError naming `context`.
-PixelRect parsePixelRect(const std::string& text, const std::string& context);
 
 // Reads any image OpenImageIO can (PNG, JPEG, TIFF, EXR...) into linear RGBA, plus the matte pass
 // when the file has a "matte" channel (stirrup's EXRs); InputError naming the file when it is missing
 // or unreadable.
 Image readLinearImage(const std::filesystem::path& file);
 
-// What happens when an our-frame maps before the first or after the last footage frame.
-enum class FootageEdge { Hold, Loop, Blank };
 
 // Another image sequence mapped onto our frames and placed on our canvas.
 //   their frame number = first + offset + floor((our_frame - 1) * rate)   (then FootageEdge)
@@ -156,49 +144,12 @@ FootageSequence openFootage(const std::filesystem::path& pattern);
 // A sequence from an explicit list of files, frame numbers first, first + 1, ...
 FootageSequence openFootage(std::vector<std::filesystem::path> files, int first = 1);
 
-// A plate of frames in a grid (Muybridge's): rows x columns cells inside the plate's margins, read
-// row by row, left to right. Each cell is (plate - margins) / columns wide (likewise high); within a
-// cell, `cell_crop` (cell pixels; empty: the whole cell) keeps the picture and leaves out the printed
-// frame number and the borders. Every frame has cell_crop's size.
-//
-// Real plates are not a perfect grid (Muybridge's is two half-plates with a wider gutter between
-// them, and its rows are not evenly spaced). With `snap`, each cell's origin moves to the top-left
-// corner of its photograph: the last dark column (row) of the plate's border within an eighth of a
-// cell of the nominal edge, "dark" meaning below 30% of the way from the darkest to the brightest
-// column (row) mean there. Without a dark border nearby the nominal edge stays.
-struct PlateGrid {
-  int rows = 1, columns = 1;
-  int margin_left = 0, margin_top = 0, margin_right = 0, margin_bottom = 0;
-  PixelRect cell_crop;
-  bool snap = false;
-};
 // InputError naming `context` and the field when the grid does not fit the plate.
 std::vector<Image> cutPlate(const Image& plate, const PlateGrid& grid, const std::string& context);
 std::vector<Image> cutPlate(const std::filesystem::path& plate_file, const PlateGrid& grid);
 
 // ---------------------------------------------------------------------------------------------------
-// A scene's "reference" block (render/scene.h: SceneSpec::reference): footage for the layered view.
-//   "reference": {"file": "../../shared/reference/muybridge/horse-and-rider-gallop-plate.jpg",
-//                 "grid": {"rows": 2, "columns": 6, "margins": [l, t, r, b], "cell_crop": [x, y, w, h]},
-//                 "offset": 0, "rate": 1.0, "edge": "loop", "crop": [x, y, w, h], "scale": 0.7,
-//                 "position": [x, y], "flip_x": false, "shift_x": [...], "mode": "over", "opacity": 0.5,
-//                 "label": "MUYBRIDGE 1887"}
-// `file` is relative to the scene file: a plate (with "grid"), an image, or a name.####.ext pattern.
-struct ReferenceSpec {
-  std::filesystem::path file;       // resolved (absolute or relative to the working directory)
-  std::optional<PlateGrid> grid;
-  int offset = 0;
-  double rate = 1.0;
-  FootageEdge edge = FootageEdge::Loop;
-  PixelRect crop;
-  float scale = 1.0f;
-  glm::vec2 position = {0.0f, 0.0f};
-  bool flip_x = false;
-  std::vector<float> shift_x;       // "shift_x": one per footage frame, or absent (FootageSequence::shift_x)
-  LayerMode mode = LayerMode::Over;
-  float opacity = 0.5f;
-  std::string label = "REFERENCE";
-};
+// ReferenceSpec, a scene's "reference" block, is in render/scene/reference_spec.h.
 
 // True when the reference's file (or the first frame of its pattern) exists; a layered movie against
 // a missing reference is skipped with a message, not an error.

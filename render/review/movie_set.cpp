@@ -11,16 +11,16 @@
 #include "render/review/burn_in.h"
 #include "render/review/channel_plot.h"
 #include "render/review/contact_sheet.h"
-#include "render/frame_sequence.h"
-#include "render/frame_writer.h"
-#include "render/image.h"
+#include "render/scene/frame_sequence.h"
+#include "render/tracer/frame_writer.h"
+#include "render/tracer/image.h"
 #include "render/review/layer.h"
-#include "render/preset.h"
-#include "render/profile_resolver.h"
-#include "render/scene.h"
+#include "render/scene/preset.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
 #include "render/shot.h"
-#include "render/shot_evaluator.h"
-#include "rig/motion/clip_factory.h"
+#include "render/scene/shot_evaluator.h"
+#include "rig/io/clip_factory.h"
 #include "rig/motion/crowd.h"
 #include "rig/motion/shifted_clip.h"
 #include "rig/error.h"
@@ -32,7 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The scene's own reference block, when the scene format has one (render/review/layer.h ReferenceSpec).
+// The scene's own reference block, when the scene format has one (render/scene/reference_spec.h ReferenceSpec).
 template <typename S>
 std::optional<ReferenceSpec> sceneReference(const S& scene) {
   if constexpr (requires { scene.reference; }) {

@@ -89,10 +89,7 @@ struct SeatedRider {
   SeatReport report;
 };
 
-// The horse's tack that hangs free or is held, left out of the surface a rider's legs keep clear of: every
-// separate piece of its mesh (vertices joined by triangles) with a vertex bound to a stirrup or rein
-// joint of its own (the irons, the leathers hanging from the saddle, the reins and bit).
-std::vector<bool> horseLooseTack(const Character& horse);
+// horseLooseTack (the tack a rider's legs may touch) is in rig/loose_tack.h.
 
 // The points Character::FoldGuard keeps apart, from both at rest (the rider seated in saddle space): her
 // head, neck and trunk without her arms below the elbows and her legs, and the horse's neck and head

@@ -7,13 +7,15 @@
 #include <string>
 #include <vector>
 
-#include "render/profile_resolver.h"
-#include "render/scene.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
 #include "rig/bake.h"
 #include "rig/balance.h"
 #include "rig/io/frame_range.h"
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/pose.h"
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
 
 namespace {
 

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "rig/pose.h"
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
 #include "rig/skeleton.h"
 
 namespace {

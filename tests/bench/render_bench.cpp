@@ -5,11 +5,13 @@
 
 #include <string>
 
-#include "render/preset.h"
-#include "render/profile_resolver.h"
-#include "render/scene.h"
+#include "render/scene/preset.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
 #include "render/shot.h"
 #include "rig/pose.h"
+#include "rig/characters/horse_character.h"
+#include "rig/characters/rider_character.h"
 #include "rig/rig_profile.h"
 #include "rig/skin.h"
 

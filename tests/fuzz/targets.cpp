@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "render/cli/options.h"
+#include "cli/options.h"
 #include "render/farm/farm_plan.h"
-#include "render/profile_resolver.h"
-#include "render/scene.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
 #include "rig/bake.h"
 #include "rig/curve_spine.h"
 #include "rig/error.h"
@@ -26,7 +26,7 @@
 #include "rig/io/gltf_clip.h"
 #include "rig/io/rig_profile_json.h"
 #include "rig/io/spine_json.h"
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/rider_rig.h"
 
 namespace stirrup::fuzz {

@@ -15,9 +15,9 @@ namespace stirrup::fuzz {
 
 using Target = int (*)(const std::uint8_t* data, std::size_t size);
 
-int sceneJson(const std::uint8_t* data, std::size_t size);       // render/scene.* (+ its profile and clip)
+int sceneJson(const std::uint8_t* data, std::size_t size);       // render/scene/scene.* (+ its profile and clip)
 int rigProfileJson(const std::uint8_t* data, std::size_t size);  // rig/io/rig_profile_json.*
-int profileSets(const std::uint8_t* data, std::size_t size);     // --set lines: render/cli/options.h parseSets
+int profileSets(const std::uint8_t* data, std::size_t size);     // --set lines: cli/options.h parseSets
 int horseCsv(const std::uint8_t* data, std::size_t size);        // rig/io/channel_csv.*
 int spineJson(const std::uint8_t* data, std::size_t size);       // rig/io/spine_json.* (+ laying the spine)
 int gltfClip(const std::uint8_t* data, std::size_t size);        // rig/io/gltf_clip.* (.glb or .gltf)

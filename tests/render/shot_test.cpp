@@ -12,12 +12,12 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "render/detail_level.h"
-#include "render/image.h"
-#include "render/profile_resolver.h"
-#include "render/scene.h"
+#include "render/scene/detail_level.h"
+#include "render/tracer/image.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
 #include "rig/error.h"
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
 #include "rig/crowd_bake.h"
@@ -134,7 +134,7 @@ SceneSpec crowdScene(const std::string& second_profile = "english") {
 }
 
 // The pixel a world point falls in, by the pinhole or orthographic projection written out here from
-// the camera's definition (render/camera.h: v from top to bottom; vertical fov; aspect width / height),
+// the camera's definition (render/scene/camera.h: v from top to bottom; vertical fov; aspect width / height),
 // not through the renderer's CameraFrame. False when it is behind the camera.
 bool projectToPixel(const Camera& c, int w, int h, const glm::dvec3& p, double& px, double& py) {
   const glm::dvec3 forward = glm::normalize(c.target - c.position);
@@ -296,7 +296,7 @@ TEST(Shot, FollowsAPairOfACrowdAsASinglePair) {
   }
 }
 
-// A crowd's level of detail switches where render/detail_level.h says (the coarser level's horse cell
+// A crowd's level of detail switches where render/scene/detail_level.h says (the coarser level's horse cell
 // spans kDetailSwitchCellPixels at the pair's nearest point) and the switch is no pop: at the switching distance the
 // two levels' frames differ in under 0.5% of the frame's pixels (8-bit sRGB, as the PNG holds them).
 // One default pair trotting straight, seen by a fixed 30-degree camera at 640 x 360 (review quality)

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/rig_profile.h"
 
 namespace stirrup::rig {

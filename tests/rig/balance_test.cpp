@@ -16,11 +16,11 @@
 #include <gtest/gtest.h>
 
 #include "default_characters.h"
-#include "render/profile_resolver.h"
-#include "render/scene.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
 #include "rig/bake.h"
 #include "rig/io/frame_range.h"
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
 #include "rig/io/gltf_character.h"

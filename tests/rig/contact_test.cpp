@@ -18,10 +18,10 @@
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
-#include "render/profile_resolver.h"
-#include "render/scene.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
 #include "rig/bake.h"
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/io/frame_range.h"
 #include "rig/characters/horse_character.h"
 #include "rig/pose.h"
@@ -30,6 +30,7 @@
 #include "rig/skin.h"
 #include "rig/characters/seating.h"
 #include "rig/contact_depth.h"
+#include "rig/loose_tack.h"
 #include "tests/rig/default_characters.h"
 
 namespace stirrup::rig {

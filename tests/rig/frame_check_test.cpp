@@ -11,7 +11,7 @@
 
 #include "rig/bake.h"
 #include "rig/frame_check.h"
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/pose.h"
 #include "rig/rig_profile.h"
 #include "tests/rig/default_characters.h"

@@ -10,7 +10,7 @@
 
 #include "tests/rig/default_characters.h"
 
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/pose.h"
 
 namespace stirrup::rig {

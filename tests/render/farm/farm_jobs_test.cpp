@@ -3,7 +3,7 @@
 // scancel, with their arguments) and answer from files the test writes (the next job id, which sbatch
 // call fails, what squeue and sacct print). So submission and its rollback, every state Slurm reports
 // and what resume resubmits are checked on every test run, without root or a cluster; the real cluster
-// runs the same code end to end in tests/render/cli/farm_test.cpp.
+// runs the same code end to end in tests/cli/farm_test.cpp.
 #include "render/farm/farm_jobs.h"
 
 #include <sys/stat.h>

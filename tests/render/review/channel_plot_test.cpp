@@ -6,9 +6,9 @@
 #include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
-#include "render/profile_resolver.h"
-#include "render/scene.h"
-#include "rig/motion/clip_factory.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
+#include "rig/io/clip_factory.h"
 #include "rig/rig_profile.h"
 
 namespace stirrup::render {

@@ -10,7 +10,7 @@
 
 #include "tests/input_error.h"
 
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "rig/error.h"
 
 namespace stirrup::render {
@@ -201,14 +201,6 @@ TEST(LayerOnionSkin, GhostFramesAndBadInput) {
   const std::vector<int> zero = {0}, two = {1, 2};
   EXPECT_NE(errorOf([&] { onionSkin(one, ghosts, zero, one, s); }).find("offset is 0"), std::string::npos);
   EXPECT_NE(errorOf([&] { onionSkin(one, ghosts, two, one, s); }).find("offsets"), std::string::npos);
-}
-
-TEST(LayerMode, NamesRoundTripAndBadNameIsAnError) {
-  for (LayerMode m : {LayerMode::SideBySide, LayerMode::Over, LayerMode::Difference, LayerMode::OnionSkin})
-    EXPECT_EQ(parseLayerMode(layerModeName(m), "--mode"), m);
-  EXPECT_EQ(parseLayerMode("onion", "x"), LayerMode::OnionSkin);
-  const std::string e = errorOf([] { parseLayerMode("multiply", "--mode"); });
-  EXPECT_EQ(e.rfind("--mode: expected side-by-side, over, difference or onion-skin, got \"multiply\"", 0), 0u) << e;
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // The movie set (render/review/movie_set.cpp): the default set, each movie's frames, the files its two
 // stages write, and stage 1 on a tiny render. The encoded movies themselves are tested end to end by
-// tests/render/cli/movies_test.cpp (they need ffmpeg).
+// tests/cli/movies_test.cpp (they need ffmpeg).
 #include "render/review/movie_set.h"
 
 #include <unistd.h>

@@ -22,16 +22,17 @@
 #include <gtest/gtest.h>
 
 #include "tests/rig/default_characters.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "rig/bake.h"
 #include "rig/balance.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/ridden_pair.h"
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
 #include "rig/contact_depth.h"
+#include "rig/loose_tack.h"
 #include "tests/rig/user_riders.h"
 
 namespace stirrup::rig {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "rig/motion/clip_factory.h"
+#include "rig/io/clip_factory.h"
 #include "rig/motion/clip_info.h"
 #include "rig/error.h"
 #include "rig/motion/movement_clips.h"

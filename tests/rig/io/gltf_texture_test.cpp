@@ -233,7 +233,7 @@ TEST(GltfTexture, ASmallTexturedCharacterReadsAsWorkedOutByHand) {
 // Written out by characterGlb and read back, a textured character is the same: vertices, texture
 // coordinates, per-triangle textures, texels, wraps and filters; the file holds each image's bytes
 // as they were read, a material referencing it, and TEXCOORD_0 for every vertex. Untextured files
-// keep none of this (the shipped characters' bytes are checked by tests/render/cli/character_test.cpp).
+// keep none of this (the shipped characters' bytes are checked by tests/cli/character_test.cpp).
 TEST(GltfTexture, ATexturedCharacterWrittenOutReadsBackTheSame) {
   const TexturedFile file("round_trip");
   const Character c = file.load();

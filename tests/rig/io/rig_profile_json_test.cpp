@@ -217,7 +217,7 @@ TEST_F(ProfileFiles, AFileValuePastItsRangeNamesTheFile) {
 }
 
 // The ranges hold every value the project ships or tests: the thesis's, the shipped profiles', the golden
-// sensitivity test's 10% perturbations (tests/render/cli/golden_sensitivity_test.cpp) and the prose's
+// sensitivity test's 10% perturbations (tests/cli/golden_sensitivity_test.cpp) and the prose's
 // alternatives the thesis's code overrides (docs/rider-rig.md, decisions).
 TEST(RigProfileRanges, HoldEveryShippedAndTestedValue) {
   for (const RigParameter& param : rigParameters()) {

@@ -11,8 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "render/scene.h"
-#include "rig/motion/clip_factory.h"
+#include "render/scene/scene.h"
+#include "rig/io/clip_factory.h"
 #include "rig/motion/clip_info.h"
 #include "rig/error.h"
 #include "rig/characters/horse_character.h"

@@ -1,0 +1,334 @@
+// stirrup bench: renders a fixed trot scene at 640 x 360 with each quality preset and reports where
+// a frame's time goes (pose, skin, BVH, trace, write), the renderer's rays per second, and the bound:
+// the same rays replayed through Embree alone, with no shading, on the same threads.
+// With --scene (a crowd: issue 19) it renders that scene's frames instead, and reports the same split,
+// what was skinned and refitted per frame and per pair, the pairs at each level of detail, the set-up
+// time and the process's peak memory, against the built-in trot's frame at the same preset in the same
+// run.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <chrono>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+#include <tbb/info.h>
+
+#include "cli/commands.h"
+#include "render/tracer/frame_writer.h"
+#include "render/tracer/image.h"
+#include "render/scene/preset.h"
+#include "render/tracer/sample_lanes.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
+#include "render/shot.h"
+#include "rig/io/frame_range.h"
+#include "rig/rig_profile.h"
+
+namespace stirrup::cli {
+namespace {
+
+struct BenchOptions {
+  bool json = false;
+  int threads = 0;
+  int frames = 12;
+  std::string scene;      // a scene file: bench it instead of the built-in trot
+  std::string camera;     // its camera (empty: the first)
+  std::string preset;     // one preset (empty: every one)
+  int detail = -1;        // levels of detail: -1 automatic, 0-2 every pair at that level
+};
+
+// The benchmark scene: scenes/trot.json's content, built in so the numbers never depend on a file
+// someone edited. The quality is set per preset.
+render::SceneSpec benchScene() {
+  const nlohmann::json trot = nlohmann::json::parse(R"({
+    "name": "trot",
+    "clip": {"generator": "trot", "speed_cm_s": 360, "stride_hz": 1.26, "hoof_lift_cm": 14},
+    "fps": 24,
+    "frames": "1-72",
+    "resolution": [640, 360],
+    "sun": {"direction": [0.45, 0.75, 0.5], "angular_radius": 2.0},
+    "cameras": [
+      {"name": "side", "type": "orthographic", "ortho_height": 320,
+       "position": [20, 255, 900], "target": [20, 100, 0], "follow": true}
+    ]
+  })");
+  return render::parseScene(trot, "bench");
+}
+
+struct PresetResult {
+  std::string name;
+  int samples = 0;
+  double pose = 0, skin = 0, bvh = 0, trace = 0, write = 0;  // ms per frame
+  double rays_per_frame = 0;
+  double rays_per_second = 0, bound_rays_per_second = 0;
+  double fps = 0;
+};
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Keep at most this many rays for the replay (48 bytes each); above it every Nth pixel's rays are
+// kept, which samples the frame evenly. The bound is a rate, so a sample of the rays measures it.
+constexpr double kMaxLoggedRays = 8e6;
+
+// Writes the frame as a PNG on the writer's thread, as `stirrup render` does, adding the write's own
+// time to write_ms (touched only by the writer thread; read after its last wait()).
+void writeInBackground(render::FrameWriter& writer, render::Image&& image, const std::filesystem::path& file,
+                       double& write_ms) {
+  writer.submit([image = std::move(image), file, &write_ms] {
+    const auto w0 = Clock::now();
+    render::writePng(image, file);
+    write_ms += secondsSince(w0) * 1000.0;
+  });
+}
+
+PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions& o,
+                         const std::filesystem::path& scratch) {
+  render::SceneSpec scene = benchScene();
+  render::applyPreset(scene, preset);
+  render::Shot shot(scene, rig::RigProfile::thesis(), scene.cameras.front(), o.threads);
+  PresetResult r;
+  r.name = std::string(preset.name);
+  r.samples = preset.samples;
+
+  // Warm-up, and the rays of one frame: render frame 1 once to count them, again keeping them
+  // (sampled when there are many), then replay them while the BVH is that frame's.
+  shot.renderFrame(1);
+  render::RayLog log;
+  log.pixel_stride = std::max(1, int(std::ceil(double(shot.lastTimings().rays) / kMaxLoggedRays)));
+  shot.renderFrame(1, &log);
+  double replay_s = shot.renderer().replay(log);
+  replay_s = std::min(replay_s, shot.renderer().replay(log));  // the faster of two: less noise
+  r.bound_rays_per_second = replay_s > 0.0 ? double(log.rays) / replay_s : 0.0;
+
+  // Frames as `stirrup render` makes them: each PNG written on the background thread while the next
+  // frame renders (render/tracer/frame_writer.h). fps is frames over the wall-clock time of the whole run,
+  // writes included; the write column is a write's own time on its thread.
+  double rays = 0;
+  double write_ms = 0;  // touched only by the writer thread, read after its last wait()
+  render::FrameWriter writer;
+  const auto run0 = Clock::now();
+  for (int i = 0; i < o.frames; ++i) {
+    const int frame = 1 + i % 72;
+    render::Image image = shot.renderFrame(frame);
+    const render::FrameTimings& t = shot.lastTimings();
+    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"), write_ms);
+    r.pose += t.pose_ms;
+    r.skin += t.skin_ms;
+    r.bvh += t.bvh_ms;
+    r.trace += t.trace_ms - t.bvh_ms;
+    rays += double(t.rays);
+  }
+  writer.wait();
+  const double run_s = secondsSince(run0);
+  r.write = write_ms;
+  const double n = double(o.frames);
+  r.pose /= n, r.skin /= n, r.bvh /= n, r.trace /= n, r.write /= n;
+  r.rays_per_frame = rays / n;
+  const double compute_s = (r.pose + r.skin + r.bvh + r.trace) / 1000.0;
+  r.rays_per_second = compute_s > 0.0 ? r.rays_per_frame / compute_s : 0.0;
+  r.fps = run_s > 0.0 ? n / run_s : 0.0;
+  return r;
+}
+
+// The process's peak resident memory so far (bytes): Linux reports ru_maxrss in kilobytes.
+double peakMemoryBytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) * 1024.0;
+}
+
+struct SceneResult {
+  std::string preset;
+  double setup_s = 0, peak_bytes = 0;
+  double bake = 0, skin = 0, bvh = 0, trace = 0, write = 0;  // ms per frame; skin without build
+  double build = 0;     // ms per frame building levels of detail first needed (a one-time cost)
+  double fps = 0;
+  double pairs = 0, skinned_vertices = 0, triangles = 0;     // per frame
+  std::array<double, 3> pairs_at_level{};                   // per frame
+  double trot_ms = 0;   // the built-in trot's frame (pose to trace) at this preset, this run
+};
+
+SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOptions& o,
+                             const std::filesystem::path& scratch) {
+  render::SceneSpec scene = render::loadScene(o.scene);
+  render::applyPreset(scene, preset);
+  SceneResult r;
+  r.preset = std::string(preset.name);
+  const auto setup0 = Clock::now();
+  render::Shot shot(scene, render::resolveProfile(scene), render::findCamera(scene, o.camera), o.threads);
+  shot.setDetailLevel(o.detail);
+  r.setup_s = secondsSince(setup0);
+  // o.frames of the scene's frames, spread evenly over them.
+  const std::vector<int> all = rig::parseFrameList(scene.frames, "frames");
+  std::vector<int> frames;
+  for (int i = 0; i < o.frames; ++i) frames.push_back(all[std::size_t(i) * all.size() / std::size_t(o.frames)]);
+  shot.renderFrame(frames.front());  // warm-up
+  double write_ms = 0;
+  render::FrameWriter writer;
+  const auto run0 = Clock::now();
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    render::Image image = shot.renderFrame(frames[i]);
+    const render::FrameTimings& t = shot.lastTimings();
+    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"), write_ms);
+    r.bake += t.pose_ms, r.skin += t.skin_ms - t.build_ms, r.build += t.build_ms, r.bvh += t.bvh_ms,
+        r.trace += t.trace_ms - t.bvh_ms;
+    r.skinned_vertices += double(t.skinned_vertices);
+    r.triangles += double(t.triangles);
+    for (int k = 0; k < 3; ++k) r.pairs_at_level[std::size_t(k)] += t.pairs_at_level[std::size_t(k)];
+  }
+  writer.wait();
+  const double n = double(frames.size());
+  r.fps = n / secondsSince(run0);
+  r.write = write_ms / n;
+  r.bake /= n, r.skin /= n, r.build /= n, r.bvh /= n, r.trace /= n, r.skinned_vertices /= n, r.triangles /= n;
+  for (double& l : r.pairs_at_level) l /= n;
+  r.pairs = std::max(1, shot.pairCount());
+  r.peak_bytes = peakMemoryBytes();
+  return r;
+}
+
+// The built-in trot's frame at a preset: pose, skin, BVH and trace (ms), after a warm-up.
+double trotFrameMs(const render::QualityPreset& preset, const BenchOptions& o) {
+  render::SceneSpec scene = benchScene();
+  render::applyPreset(scene, preset);
+  render::Shot shot(scene, rig::RigProfile::thesis(), scene.cameras.front(), o.threads);
+  shot.renderFrame(1);
+  double ms = 0;
+  for (int i = 0; i < o.frames; ++i) {
+    shot.renderFrame(1 + i % 72);
+    const render::FrameTimings& t = shot.lastTimings();
+    ms += t.pose_ms + t.skin_ms + t.trace_ms;
+  }
+  return ms / o.frames;
+}
+
+void runSceneBench(const BenchOptions& o) {
+  namespace fs = std::filesystem;
+  const fs::path scratch = fs::temp_directory_path() / ("stirrup-bench-" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  std::vector<SceneResult> results;
+  try {
+    // The scene first, so the peak memory is the scene's (the trot's is far smaller).
+    for (const render::QualityPreset& p : render::qualityPresets())
+      if (o.preset.empty() || o.preset == p.name) results.push_back(benchScenePreset(p, o, scratch));
+    for (SceneResult& r : results) r.trot_ms = trotFrameMs(render::findPreset(r.preset), o);
+  } catch (...) {
+    fs::remove_all(scratch);
+    throw;
+  }
+  fs::remove_all(scratch);
+  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+  const auto frameMs = [](const SceneResult& r) { return r.bake + r.skin + r.bvh + r.trace; };
+  if (o.json) {
+    nlohmann::json presets = nlohmann::json::object();
+    for (const SceneResult& r : results) {
+      presets[r.preset] = {
+          {"fps", r.fps}, {"setup_s", r.setup_s}, {"peak_memory_bytes", r.peak_bytes},
+          {"ms", {{"bake", r.bake}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write},
+                  {"build", r.build}}},
+          {"pairs", r.pairs}, {"skinned_vertices", r.skinned_vertices}, {"refit_triangles", r.triangles},
+          {"pairs_at_level", r.pairs_at_level}, {"trot_ms", r.trot_ms}, {"times_trot", frameMs(r) / r.trot_ms}};
+    }
+    const nlohmann::json out = {{"scene", o.scene}, {"presets", presets}, {"threads", threads},
+                                {"detail", o.detail}, {"simd", render::simdTargetName()}};
+    std::printf("%s\n", out.dump().c_str());
+    return;
+  }
+  std::printf("stirrup bench: %s, %d thread%s, %d frame%s a preset, levels of detail %s (ms per frame)\n\n",
+              o.scene.c_str(), threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s",
+              o.detail < 0 ? "by size on screen" : ("all at level " + std::to_string(o.detail)).c_str());
+  std::printf("%-7s %7s %6s %6s %6s %8s %6s %6s %8s %7s %8s %9s %9s %7s %8s\n", "preset", "fps", "bake", "skin",
+              "bvh", "trace", "write", "build", "x trot", "setup", "peak MB", "skin kv/f", "refit kt/f", "kt/pair",
+              "levels");
+  for (const SceneResult& r : results) {
+    char levels[48];
+    std::snprintf(levels, sizeof levels, "%.0f/%.0f/%.0f", r.pairs_at_level[0], r.pairs_at_level[1], r.pairs_at_level[2]);
+    std::printf("%-7s %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %6.1f %7.2fx %6.1fs %8.0f %9.0f %9.0f %7.1f %8s\n",
+                r.preset.c_str(), r.fps, r.bake, r.skin, r.bvh, r.trace, r.write, r.build, frameMs(r) / r.trot_ms,
+                r.setup_s, r.peak_bytes / 1e6,
+                r.skinned_vertices / 1e3, r.triangles / 1e3, r.triangles / 1e3 / r.pairs, levels);
+  }
+  std::printf("\nbake: every pair's channels; skin: posing and skinning every pair at its level; bvh: the refit;\n"
+              "build: building levels of detail the frame was the first to need (once per pair and level, like\n"
+              "the set-up: in fps, which is wall clock, not in x trot); x trot: the frame (bake, skin, bvh,\n"
+              "trace) over the built-in trot's at the same preset, this run;\n"
+              "skin kv/f, refit kt/f: thousands of vertices skinned and triangles refitted a frame (kt/pair: per\n"
+              "pair); levels: pairs at full, half and quarter detail a frame (render/scene/detail_level.h);\n"
+              "peak MB: the process's peak resident memory.\n");
+}
+
+void runBench(const BenchOptions& o) {
+  if (!o.scene.empty()) return runSceneBench(o);
+  namespace fs = std::filesystem;
+  const fs::path scratch = fs::temp_directory_path() / ("stirrup-bench-" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  std::vector<PresetResult> results;
+  try {
+    for (const render::QualityPreset& p : render::qualityPresets()) results.push_back(benchPreset(p, o, scratch));
+  } catch (...) {
+    fs::remove_all(scratch);
+    throw;
+  }
+  fs::remove_all(scratch);
+  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+
+  if (o.json) {
+    nlohmann::json presets = nlohmann::json::object();
+    for (const PresetResult& r : results) {
+      presets[r.name] = {{"fps", r.fps},
+                         {"rays_per_second", r.rays_per_second},
+                         {"bound_rays_per_second", r.bound_rays_per_second},
+                         {"ms", {{"pose", r.pose}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write}}}};
+    }
+    const nlohmann::json out = {{"presets", presets}, {"threads", threads}, {"resolution", {640, 360}},
+                                {"simd", render::simdTargetName()}};
+    std::printf("%s\n", out.dump().c_str());
+    return;
+  }
+  std::printf("stirrup bench: trot side view, 640x360, %d thread%s, %d frame%s a preset, SIMD %s (ms per frame)\n\n",
+              threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s", render::simdTargetName().c_str());
+  std::printf("%-7s %4s %7s %6s %6s %6s %8s %6s %9s %9s %10s %6s\n", "preset", "spp", "fps", "pose", "skin",
+              "bvh", "trace", "write", "Mrays/f", "Mrays/s", "bound Mr/s", "ratio");
+  for (const PresetResult& r : results) {
+    std::printf("%-7s %4d %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %9.2f %9.2f %10.2f %5.0f%%\n", r.name.c_str(),
+                r.samples, r.fps, r.pose, r.skin, r.bvh, r.trace, r.write, r.rays_per_frame / 1e6,
+                r.rays_per_second / 1e6, r.bound_rays_per_second / 1e6,
+                r.bound_rays_per_second > 0 ? 100.0 * r.rays_per_second / r.bound_rays_per_second : 0.0);
+  }
+  std::printf("\nratio: the renderer's rays per second (frame time without write) over the bound, the same\n"
+              "rays cast through Embree alone with no shading.\n");
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+  auto opts = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "Measure the renderer per quality preset against Embree alone");
+  cmd->footer(
+      "Renders a built-in trot side view at 640x360 with each preset (draft, review, final) and prints\n"
+      "milliseconds per frame (pose, skin, bvh, trace, write), rays per second, and the bound: the same\n"
+      "rays replayed through Embree alone. Example: stirrup bench --json --threads 2\n"
+      "With --scene, renders --frames of that scene's frames (spread over them) with its camera and\n"
+      "prints the same split, the pairs' skinning and refit counts, levels of detail, set-up time and\n"
+      "peak memory, and the frame against the trot's. Example: stirrup bench --scene scenes/cavalry.json -p review");
+  cmd->add_flag("--json", opts->json, "Print one JSON object instead of the table");
+  cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--frames,-n", opts->frames, "Timed frames per preset")->check(CLI::Range(1, 1000));
+  cmd->add_option("--scene", opts->scene, "Bench this scene (e.g. scenes/cavalry.json) instead of the built-in trot");
+  cmd->add_option("--camera,-c", opts->camera, "With --scene: its camera (default: the first)");
+  cmd->add_option("--preset,-p", opts->preset, "With --scene: only this preset (draft, review, final)")
+      ->check(CLI::IsMember({"draft", "review", "final"}));
+  cmd->add_option("--detail", opts->detail, "With --scene: -1 picks each pair's level of detail by its size on "
+                  "screen (default), 0-2 draws every pair at that level")->check(CLI::Range(-1, 2));
+  cmd->callback([opts] { runBench(*opts); });
+}
+
+}  // namespace stirrup::cli

@@ -1,0 +1,108 @@
+// stirrup movies: the review set (the thesis's Appendix A movies, more movements, turntables and the
+// Muybridge comparison) with contact sheets, channel plots and an index.html, in one command.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <tuple>
+
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "cli/movie_set_options.h"
+#include "cli/options.h"
+#include "render/scene/data_dir.h"
+#include "render/review/index_page.h"
+#include "render/review/movie_set.h"
+#include "render/scene/preset.h"
+#include "rig/error.h"
+#include "rig/io/frame_range.h"
+
+namespace stirrup::cli {
+namespace {
+
+struct MoviesOptions {
+  MovieSetArgs set;
+  std::string frames;  // stage 1 only, for one movie (a farm task's share)
+  bool resume = false;
+  bool finish = false;
+  bool list = false;
+  bool progress = false;
+};
+
+void runMovies(const MoviesOptions& o) {
+  namespace fs = std::filesystem;
+  const render::MovieOptions mo = movieOptions(o.set);
+  const std::vector<render::MovieJob> jobs = selectMovies(o.set, mo);
+  if (o.list) {
+    for (const auto& j : jobs) std::printf("%s\t%s\t%s\n", j.name.c_str(), j.scene.string().c_str(), j.camera.c_str());
+    return;
+  }
+  if (!o.frames.empty() && o.finish) throw InputError("--frames: renders frames only; --finish makes movies of frames already rendered, not both");
+  if (!o.frames.empty() && jobs.size() != 1)
+    throw InputError("--frames: expected exactly one movie with --only NAME, got " + std::to_string(jobs.size()));
+  const fs::path out = o.set.out;
+  if (fs::exists(out) && !fs::is_directory(out)) throw InputError("--out: " + out.string() + ": not a folder");
+  fs::create_directories(out);
+
+  // Stage 1 (render/review/movie_set.h): the frames, unless --finish.
+  std::vector<std::vector<int>> frames(jobs.size());
+  int total = 0;
+  if (!o.finish)
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      frames[i] = o.frames.empty() ? render::movieFrameList(jobs[i], mo) : rig::parseFrameList(o.frames, "--frames");
+      total += static_cast<int>(frames[i].size());
+    }
+  ProgressBar bar("movies", total, o.progress);
+  int done = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < jobs.size() && !o.finish; ++i)
+    render::renderMovieFrames(jobs[i], mo, frames[i], o.resume, [&] { bar.step(++done); });
+  if (!o.frames.empty()) return;  // a farm task: the finishing job makes the movie
+
+  // Stage 2: movies, contact sheets, plots, the index.
+  std::map<fs::path, fs::path> plots;  // scene file -> its plot
+  std::vector<render::MovieResult> results;
+  for (const auto& j : jobs) {
+    if (!plots.count(j.scene)) plots[j.scene] = render::writeMovementPlot(j.scene, out);
+    render::MovieResult r = render::finishMovie(j, mo);
+    r.plot = plots[j.scene];
+    results.push_back(std::move(r));
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const fs::path index = render::writeIndexPage(out, results);
+  // The one line a script needs; details live in the index.
+  std::printf("%s\n", index.string().c_str());
+  if (o.progress || isatty(STDERR_FILENO))
+    std::fprintf(stderr, "%zu movies, %d frames in %.1f s\n", results.size(), total, seconds);
+}
+
+}  // namespace
+
+void addMoviesCommand(CLI::App& app) {
+  auto opts = std::make_shared<MoviesOptions>();
+  CLI::App* cmd = app.add_subcommand("movies", "Render the review movie set with contact sheets, plots and index.html");
+  cmd->footer(
+      "Writes OUT/NAME.mp4 (H.264 yuv420p CRF 18; --mov adds NAME.mov), OUT/NAME_sheet.png, OUT/SCENE_plot.png\n"
+      "and OUT/index.html. Every movie starts with a one-second slate; every frame has burn-ins.\n"
+      "gallop_layered is included when ../shared/reference (or $STIRRUP_SHARED_DIR/reference) holds the\n"
+      "Muybridge plate. Example: stirrup movies --out out/movies --only trot_side,trot_persp");
+  cmd->add_option("--out,-o", opts->set.out, "Output folder")->capture_default_str();
+  addMovieSetOptions(cmd, opts->set);
+  cmd->add_option("--threads,-t", opts->set.threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--resume", opts->resume,
+                "Skip frames already in OUT/frames/NAME/ (left by --keep-frames, an interrupted run or a farm task)");
+  cmd->add_option("--frames,-f", opts->frames,
+                  "Only render these frames of the one --only movie into OUT/frames/NAME/ and stop (a farm task's "
+                  "share, docs/farm.md; --finish then makes the movie)");
+  cmd->add_flag("--finish", opts->finish,
+                "Render nothing: make the movies, contact sheets, plots and index from frames already in OUT/frames/ "
+                "(a farm's last step); an error names the first missing frame");
+  cmd->add_flag("--list", opts->list, "Print the movies of the set (name, scene, camera) and exit");
+  cmd->add_flag("--progress", opts->progress, "Show the progress bar even when stderr is not a terminal");
+  cmd->callback([opts] { runMovies(*opts); });
+}
+
+}  // namespace stirrup::cli

@@ -1,0 +1,145 @@
+// stirrup render SCENE: writes the frames of a shot as NAME.####.png (and/or linear NAME.####.exr
+// with the compositing passes), and a movie with --movie.
+#include <cstdio>
+#include <filesystem>
+#include <tuple>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/output_folder.h"
+#include "cli/options.h"
+#include "cli/progress.h"
+#include "render/scene/frame_sequence.h"
+#include "render/tracer/frame_writer.h"
+#include "render/tracer/image.h"
+#include "render/review/movie.h"
+#include "render/scene/preset.h"
+#include "render/scene/profile_resolver.h"
+#include "render/scene/scene.h"
+#include "render/shot.h"
+#include "rig/error.h"
+#include "rig/io/frame_range.h"
+
+namespace stirrup::cli {
+namespace {
+
+struct RenderOptions {
+  std::string scene;
+  std::string frames;
+  std::string camera;
+  std::string out;
+  std::string movie;
+  std::string preset;
+  std::string resolution;
+  std::vector<std::string> sets;
+  std::string format = "png";
+  bool exr = false;
+  int threads = 0;
+  int padding = render::kDefaultFramePadding;
+  bool progress = false;
+  bool resume = false;
+  bool encode_only = false;
+  bool allow_impossible = false;
+};
+
+void runRender(const RenderOptions& o) {
+  namespace fs = std::filesystem;
+  if (!o.movie.empty() && fs::path(o.movie).extension() != ".mp4")
+    throw InputError("--movie: " + o.movie + ": expected a file name ending in .mp4");
+  const std::string format = o.exr ? "both" : o.format;
+  const bool png = format != "exr", exr = format != "png";
+  if (!o.movie.empty() && !png) throw InputError("--movie: needs PNG frames; use --format png or both");
+  if (o.encode_only && o.movie.empty()) throw InputError("--encode-only: expected --movie FILE.mp4 to encode");
+  render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
+  if (!o.preset.empty()) render::applyPreset(scene, render::findPreset(o.preset));
+  if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
+  const render::CameraSpec& camera = render::findCamera(scene, o.camera);
+  const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
+  const rig::RigProfile profile = render::resolveProfile(scene, parseSets(o.sets));
+  const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
+  const OutputFolder folder(dir);  // taken back if the render fails before writing a frame
+  const std::string shot_name = scene.name + "_" + camera.name;
+  const render::FrameSequence png_frames = render::FrameSequence::named(dir, shot_name, ".png", o.padding);
+  const render::FrameSequence exr_frames = render::FrameSequence::named(dir, shot_name, ".exr", o.padding);
+
+  if (o.encode_only) {
+    // A farm's last step: every frame must already be there; render nothing, encode.
+    std::vector<fs::path> written;
+    for (int frame : frames) {
+      written.push_back(png_frames.path(frame));
+      if (!fs::is_regular_file(written.back()))
+        throw InputError("--encode-only: frame " + std::to_string(frame) + " is missing (" + written.back().string() + ")");
+    }
+    render::encodeMovie({written, scene.fps, o.movie, 18});
+    std::printf("%s\n", o.movie.c_str());
+    return;
+  }
+
+  render::Shot shot(scene, profile, camera, o.threads);
+  ProgressBar bar("render " + scene.name + "_" + camera.name, static_cast<int>(frames.size()), o.progress);
+  std::vector<fs::path> written;
+  render::FrameWriter writer;
+  int done = 0;
+  for (int frame : frames) {
+    const fs::path png_file = png_frames.path(frame), exr_file = exr_frames.path(frame);
+    const bool complete = (!png || fs::exists(png_file)) && (!exr || fs::exists(exr_file));
+    if (!(o.resume && complete)) {
+      render::warnImpossibleFrame(scene, frame);
+      render::Image image = shot.renderFrame(frame);
+      const render::ExrMetadata metadata =
+          exr ? render::exrFrameMetadata(shot.cameraAtFrame(frame), camera.name, frame, render::frameTime(scene, frame),
+                                         scene.name)
+              : render::ExrMetadata{};
+      // Written while the next frame renders (render/tracer/frame_writer.h); still each to a temporary name.
+      writer.submit([image = std::move(image), metadata, png_file, exr_file, png, exr] {
+        if (png) render::writePng(image, png_file);
+        if (exr) render::writeExr(image, exr_file, metadata);
+      });
+    }
+    if (png) written.push_back(png_file);
+    bar.step(++done);
+  }
+  writer.wait();
+  if (!o.movie.empty()) {
+    render::encodeMovie({written, scene.fps, o.movie, 18});
+    std::printf("%s\n", o.movie.c_str());
+  }
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+  auto opts = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene's frames (NAME.####.png) and optionally a movie");
+  cmd->footer(
+      "Frames are written as OUT/SCENE_CAMERA.####.png (or .exr), each to a temporary name renamed when complete.\n"
+      "Frame lists: 1-120, 1-120x2 (every 2nd), 1-10,20-30, 7.\n"
+      "Example: stirrup render scenes/trot.json --frames 1-48 --movie out/trot_side.mp4");
+  cmd->add_option("scene", opts->scene, "Scene file (JSON), e.g. scenes/trot.json")->required();
+  cmd->add_option("--frames,-f", opts->frames, "Frames to render (default: the scene's frames)");
+  cmd->add_option("--camera,-c", opts->camera, "Camera name (default: the scene's first camera)");
+  cmd->add_option("--out,-o", opts->out, "Output folder (default: the scene's output)");
+  cmd->add_option("--movie,-m", opts->movie, "Also encode the frames as an H.264 .mp4 movie");
+  cmd->add_option("--preset", opts->preset, "Quality preset: draft, review or final (default: the scene's quality)");
+  cmd->add_option("--set,-s", opts->sets,
+                  "Override one rig-profile parameter after the scene's, KEY=NUMBER (repeatable), e.g. --set eq7.w2_scale=0.015 "
+                  "(stirrup rig params lists them)");
+  cmd->add_option("--resolution", opts->resolution, "WIDTHxHEIGHT instead of the scene's (e.g. 320x180)");
+  cmd->add_option("--format", opts->format,
+                  "png (sRGB review frames), exr (linear half float with RGBA, N, Z, matte and objectId "
+                  "passes and the camera in the header) or both")
+      ->check(CLI::IsMember({"png", "exr", "both"}));
+  cmd->add_flag("--exr", opts->exr, "Also write the EXR frames (same as --format both)");
+  cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, render::kMaxFramePadding));
+  cmd->add_flag("--resume", opts->resume, "Skip frames whose file already exists");
+  cmd->add_flag("--allow-impossible", opts->allow_impossible,
+                "Render a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
+  cmd->add_flag("--encode-only", opts->encode_only,
+                "Render nothing: encode --movie from the frames already written (a farm's last step); an error "
+                "names the first missing frame");
+  cmd->add_flag("--progress", opts->progress, "Show the progress bar even when stderr is not a terminal");
+  cmd->callback([opts] { runRender(*opts); });
+}
+
+}  // namespace stirrup::cli

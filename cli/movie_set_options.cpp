@@ -1,0 +1,88 @@
+#include "cli/movie_set_options.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <tuple>
+
+#include "cli/options.h"
+#include "render/scene/data_dir.h"
+#include "render/scene/preset.h"
+#include "rig/error.h"
+
+namespace stirrup::cli {
+namespace fs = std::filesystem;
+
+void addMovieSetOptions(CLI::App* cmd, MovieSetArgs& a) {
+  cmd->add_option("--preset,-p", a.preset, "Quality preset: draft, review or final")->capture_default_str();
+  cmd->add_option("--only", a.only, "Only these movies (comma-separated names; see stirrup movies --list)")->delimiter(',');
+  cmd->add_option("--frames-limit", a.frames_limit, "Render at most the first N frames of each movie")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--resolution", a.resolution, "WIDTHxHEIGHT instead of the scenes' (e.g. 640x360)");
+  cmd->add_option("--scenes", a.scenes, "Folder of scene files (default: scenes/ in stirrup's data folder, docs/install.md)");
+  cmd->add_option("--mov", a.mov, "Also write QuickTime NAME.mov: prores (ProRes 422 HQ) or h264");
+  cmd->add_flag("--no-mp4", a.no_mp4, "Write no .mp4 (with --mov)");
+  cmd->add_flag("--keep-frames", a.keep_frames, "Keep the frames as OUT/frames/NAME/NAME.####.png");
+  cmd->add_option("--date", a.date, "The slate's date (default: today, UTC)");
+  cmd->add_flag("--allow-impossible", a.allow_impossible,
+                "Render scenes beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
+}
+
+render::MovieOptions movieOptions(const MovieSetArgs& a) {
+  render::findPreset(a.preset);  // a bad name is an error before any work
+  render::MovieOptions mo;
+  mo.out = a.out;
+  mo.preset = a.preset;
+  mo.frames_limit = a.frames_limit;
+  mo.keep_frames = a.keep_frames;
+  mo.threads = a.threads;
+  mo.date = a.date;
+  mo.mp4 = !a.no_mp4;
+  mo.allow_impossible = a.allow_impossible;
+  if (!a.mov.empty()) {
+    if (a.mov != "prores" && a.mov != "h264") throw InputError("--mov: expected prores or h264, got \"" + a.mov + "\"");
+    mo.mov = true;
+    mo.mov_codec = a.mov == "prores" ? render::MovieCodec::ProRes : render::MovieCodec::H264;
+  }
+  if (!mo.mp4 && !mo.mov) throw InputError("--no-mp4: expected --mov as well (there would be no movie)");
+  if (!a.resolution.empty()) std::tie(mo.width, mo.height) = parseResolution(a.resolution);
+  // Muybridge's plate is in ../shared beside the data folder (the repository's, in a build tree) or
+  // $STIRRUP_SHARED_DIR.
+  const std::optional<fs::path> data = render::findDataDir();
+  const fs::path scenes = a.scenes.empty() ? render::dataDir() / "scenes" : fs::path(a.scenes);
+  mo.reference_dir = render::sharedDir(data ? *data : fs::weakly_canonical(scenes).parent_path()) / "reference";
+  return mo;
+}
+
+std::vector<render::MovieJob> selectMovies(const MovieSetArgs& a, const render::MovieOptions& mo) {
+  const fs::path scenes = a.scenes.empty() ? render::dataDir() / "scenes" : fs::path(a.scenes);
+  if (!fs::is_directory(scenes)) throw InputError("--scenes: " + scenes.string() + ": no such folder");
+  std::vector<render::MovieJob> jobs = render::defaultMovieSet(scenes, mo.reference_dir);
+  if (a.only.empty()) return jobs;
+  std::set<std::string> known;
+  for (const auto& j : jobs) known.insert(j.name);
+  for (const std::string& n : a.only)
+    if (!known.count(n)) {
+      std::string names;
+      for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
+      throw InputError("--only: no movie named \"" + n + "\" (expected one of " + names + ")");
+    }
+  std::erase_if(jobs, [&](const render::MovieJob& j) { return std::find(a.only.begin(), a.only.end(), j.name) == a.only.end(); });
+  return jobs;
+}
+
+std::vector<std::string> movieSetArguments(const MovieSetArgs& a) {
+  std::vector<std::string> args = {"--preset", a.preset};
+  if (a.frames_limit > 0) args.insert(args.end(), {"--frames-limit", std::to_string(a.frames_limit)});
+  if (!a.resolution.empty()) args.insert(args.end(), {"--resolution", a.resolution});
+  if (!a.scenes.empty()) args.insert(args.end(), {"--scenes", fs::absolute(a.scenes).string()});
+  if (!a.mov.empty()) args.insert(args.end(), {"--mov", a.mov});
+  if (a.no_mp4) args.push_back("--no-mp4");
+  if (a.keep_frames) args.push_back("--keep-frames");
+  if (a.allow_impossible) args.push_back("--allow-impossible");
+  if (!a.date.empty()) args.insert(args.end(), {"--date", a.date});
+  return args;
+}
+
+}  // namespace stirrup::cli

@@ -1,0 +1,29 @@
+// Quality presets: named sets of samples per pixel and light/sky samples per camera sample, so a
+// scene or the command line can ask for "draft", "review" or "final" instead of three numbers.
+#pragma once
+
+#include <span>
+#include <string_view>
+
+#include "render/scene/scene.h"
+
+namespace stirrup::render {
+
+struct QualityPreset {
+  std::string_view name;
+  int samples;        // camera samples per pixel, stratified
+  int light_samples;  // sun shadow rays per camera sample
+  int ao_samples;     // sky occlusion rays per camera sample
+};
+
+// draft (playblast speed), review (the movies' default), final (stills and turntables), in that order.
+std::span<const QualityPreset> qualityPresets();
+
+// The preset called `name`; throws stirrup::InputError
+// "--preset: expected draft, review or final, got NAME" for any other name.
+const QualityPreset& findPreset(std::string_view name);
+
+// Sets the scene's samples, light_samples and ao_samples to the preset's.
+void applyPreset(SceneSpec& scene, const QualityPreset& p);
+
+}  // namespace stirrup::render

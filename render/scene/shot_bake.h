@@ -1,0 +1,19 @@
+// A shot baked for another tool (stirrup bake -o, docs/round-trip.md): every pair's two characters (a
+// crowd's at full detail) posed at every frame by the shot's evaluator (render/scene/shot_evaluator.h), every
+// camera of the scene as `stirrup render` resolves it (render/scene/shot_camera.h: views framed, follow and
+// orbit motion) at every frame, and over a terrain the ground under the tracks. rig::bakedShotGlb
+// writes it as glTF.
+#pragma once
+
+#include <vector>
+
+#include "render/scene/shot_evaluator.h"
+#include "rig/io/gltf_bake.h"
+
+namespace stirrup::render {
+
+// The frames sorted, each once. Pair i of the shot is the evaluator's pair i, named by its pairName;
+// its characters are the evaluator's (they must outlive the result).
+rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames);
+
+}  // namespace stirrup::render

@@ -1,0 +1,643 @@
+#include "render/tracer/integrator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+namespace stirrup::render {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+}  // namespace
+
+float filteredChecker(float s, float t, float width) {
+  const float half = 0.5f * width;
+  if (half < 1e-4f) {  // sharp: the parity of floor(s) + floor(t), in floats as the SIMD lanes make it
+    auto parity = [](float v) { return v - 2.0f * std::floor(v * 0.5f); };
+    const float ps = parity(std::floor(s)), pt = parity(std::floor(t));
+    return ps + pt - 2.0f * ps * pt;
+  }
+  // A box filter's side lobes alias: a footprint of 1.5 squares still shows a third of the contrast,
+  // as bands that crawl when the camera moves. So the contrast also fades, from full where a square
+  // spans four footprints (width 0.25) to none where it spans one: no pattern finer than the pixels.
+  if (width >= kCheckerFadeEnd) return 0.5f;
+  // Integral of the square wave that is 1 on [1, 2) mod 2. The wave has period 2, so each
+  // coordinate is first reduced to [0, 2): the differences below then stay exact enough in floats
+  // however far from the origin the point is.
+  auto integral = [](float x) {
+    const float f = std::floor(x * 0.5f);
+    return f + 2.0f * std::max(x * 0.5f - f - 0.5f, 0.0f);
+  };
+  auto box = [&](float x) {
+    x -= 2.0f * std::floor(x * 0.5f);
+    return (integral(x + half) - integral(x - half)) / (2.0f * half);
+  };
+  const float ss = box(s), tt = box(t);
+  const float odd = ss + tt - 2.0f * ss * tt;  // odd in s xor odd in t
+  if (width <= kCheckerFadeStart) return odd;
+  const float x = (width - kCheckerFadeStart) * (1.0f / (kCheckerFadeEnd - kCheckerFadeStart));
+  const float contrast = 1.0f - x * x * (3.0f - 2.0f * x);
+  return 0.5f + (odd - 0.5f) * contrast;
+}
+
+Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
+                       std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain,
+                       float ground_floor)
+    : settings_(settings),
+      characters_(scene.characters()),
+      meshes_(meshes_by_geometry),
+      terrain_(terrain),
+      ground_(scene.ground()),
+      ground_floor_(terrain ? ground_floor : 0.0f),
+      pixel_layout_(uint32_t(settings.samples_per_pixel)),
+      sun_layout_(uint32_t(settings.samples_per_pixel * settings.light_samples)),
+      sky_layout_(uint32_t(settings.samples_per_pixel * settings.ao_samples)) {
+  const RTCBounds& b = scene.characterBounds();
+  bounds_lower_ = {b.lower_x, b.lower_y, b.lower_z};
+  bounds_upper_ = {b.upper_x, b.upper_y, b.upper_z};
+  const bool empty = !(b.lower_x <= b.upper_x && b.lower_y <= b.upper_y && b.lower_z <= b.upper_z);
+  bounds_radius_ = empty ? -1.0f : 0.5f * glm::length(bounds_upper_ - bounds_lower_);
+  const glm::vec3 sun = glm::normalize(glm::vec3(settings.sun_direction));
+  sun_frame_ = Frame::around(sun);
+  inv_sun_dir_ = 1.0f / sun_frame_.z;  // inf for a zero component, which sunMayBeBlocked never uses
+  const float sun_angle = float(std::max(0.0, settings.sun_angular_radius_deg) * std::numbers::pi / 180.0);
+  sun_cos_max_ = std::cos(sun_angle);
+  sun_tan_ = std::tan(sun_angle);
+  sun_radiance_ = settings.sun_color * settings.sun_strength;
+  setGroundSunRegion();
+  const glm::vec3 ground_albedo = 0.5f * (settings.ground_color_a + settings.ground_color_b);
+  ground_bounce_ = ground_albedo * (sun_radiance_ * std::max(0.0f, sun.y) + settings.sky.upwardIrradianceOverPi());
+  blinn_norm_ = float(settings.shininess + 8) / 8.0f;
+  ground_extent_ = settings.ground_half_extent_cm;
+  spp_ = uint32_t(settings.samples_per_pixel);
+  light_spp_ = uint32_t(settings.light_samples);
+  ao_spp_ = uint32_t(settings.ao_samples);
+}
+
+namespace {
+
+RTCRay makeRay(const glm::vec3& origin, const glm::vec3& direction, float t_far) {
+  RTCRay ray;
+  ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
+  ray.dir_x = direction.x, ray.dir_y = direction.y, ray.dir_z = direction.z;
+  ray.tnear = 0.0f;
+  ray.tfar = t_far;
+  ray.time = 0.0f;
+  ray.mask = 0xffffffffu;
+  ray.id = 0;
+  ray.flags = 0;
+  return ray;
+}
+
+}  // namespace
+
+// Whether any ray of the sun's cone from `origin` can meet the characters' bounding box. The cone is
+// covered by the axis ray against the box grown by the cone's radius at the box's far corner. When it
+// misses, the sun is certainly unblocked there and needs no shadow rays (most of the ground).
+bool Integrator::sunMayBeBlocked(const glm::vec3& origin) const {
+  if (bounds_radius_ < 0.0f) return false;
+  const glm::vec3 far_corner = glm::max(glm::abs(origin - bounds_lower_), glm::abs(origin - bounds_upper_));
+  const float margin = glm::length(far_corner) * sun_tan_ * 1.01f + 0.1f;
+  const glm::vec3 lower = bounds_lower_ - margin, upper = bounds_upper_ + margin;
+  const glm::vec3& d = sun_frame_.z;
+  float t0 = 0.0f, t1 = kInfinity;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0.0f) {
+      if (origin[a] < lower[a] || origin[a] > upper[a]) return false;
+      continue;
+    }
+    float near = (lower[a] - origin[a]) * inv_sun_dir_[a], far = (upper[a] - origin[a]) * inv_sun_dir_[a];
+    if (near > far) std::swap(near, far);
+    t0 = std::max(t0, near);
+    t1 = std::min(t1, far);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// sunMayBeBlocked(o) is true only when the sun's axis from o meets the characters' box grown by a
+// margin M(o) = |far corner| tan(sun radius) 1.01 + 0.1 (above). For a point o on the ground, hitting
+// it at q (in the grown box) means o = q - t d with t = (q.y - o.y) / d.y <= (H + M) / d.y, H the box's
+// top, and the far corner is at most t + |box extent| + sqrt(3) M from o. So M <= k ((H + M) / d.y +
+// |extent| + sqrt(3) M) + 0.1 with k = 1.01 tan: a bound on M, and with it a rectangle of the ground
+// outside which sunMayBeBlocked is certainly false. The rectangle answers most of the ground in four
+// comparisons, with the same answer the full test gives there.
+void Integrator::setGroundSunRegion() {
+  ground_sun_region_ = false;
+  const glm::vec3& d = sun_frame_.z;
+  if (bounds_radius_ < 0.0f || !(d.y > 0.0f)) return;
+  const float k = 1.01f * sun_tan_;
+  const float denominator = 1.0f - k / d.y - 1.7320508f * k;
+  if (!(denominator > 0.1f)) return;  // a low or very wide sun: no useful bound, always run the test
+  // Heights from the lowest ground (0 on the plane: then exactly the plane's bound).
+  const float top = std::max(bounds_upper_.y - ground_floor_, 0.0f);
+  const float extent = glm::length(bounds_upper_ - bounds_lower_);
+  const float margin = (k * (top / d.y + extent) + 0.1f) / denominator * 1.01f + 1.0f;  // + rounding slack
+  const float t_max = (top + margin) / d.y;
+  ground_sun_lower_ = {bounds_lower_.x - margin - std::max(0.0f, t_max * d.x),
+                       bounds_lower_.z - margin - std::max(0.0f, t_max * d.z)};
+  ground_sun_upper_ = {bounds_upper_.x + margin - std::min(0.0f, t_max * d.x),
+                       bounds_upper_.z + margin - std::min(0.0f, t_max * d.z)};
+  ground_sun_region_ = true;
+}
+
+bool Integrator::groundSunRegionExcludes(const glm::vec3& origin) const {
+  return ground_sun_region_ && origin.y >= ground_floor_ &&
+         (origin.x < ground_sun_lower_.x || origin.x > ground_sun_upper_.x || origin.z < ground_sun_lower_.y ||
+          origin.z > ground_sun_upper_.y);
+}
+
+bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const {
+  return !groundSunRegionExcludes(origin) && sunMayBeBlocked(origin);
+}
+
+// A pixel of the batch: its sampler, and where its sun and sky sequences are (set up when the first of
+// its samples needs them: most pixels of a review frame are sky or open ground, which need neither).
+struct TileScratch::PixelState {
+  PixelSampler sampler;
+  int32_t lights;  // index in TileScratch::lights, or -1: not set up
+};
+
+struct TileScratch::LightSequences {
+  Stratified2D sun, sky;
+};
+
+// A camera sample of the batch, from its ray to the light it gathered.
+struct TileScratch::CameraSample {
+  glm::vec3 origin, dir;
+  float t_ground;       // the ground's distance along the ray (within the visible distance), or infinity
+  int32_t ray;          // its index in camera_rays, or -1: the ray cannot reach the characters
+  int32_t surface;      // its index in the surface lanes, or -1: sky or open ground
+  // Set by the shading pass.
+  bool hit;
+  ObjectId id;
+  float depth;
+  glm::vec3 normal;
+  glm::vec3 radiance;   // of the sky, when nothing was hit; of open ground, when resolved
+  glm::vec3 sun, sky;   // light that needed no rays (when the matching *_traced is false)
+  glm::vec3 diffuse;    // scales the sky rays' sum
+  float haze;           // aerial perspective (1: none)
+  bool sun_traced, sky_traced;
+  bool resolved;        // open ground: `radiance` is its whole light, from the lanes
+  uint32_t sun_pending, sky_pending;  // entries of the pending list: sun rays, then sky rays
+};
+
+// What an occlusion ray brings when it is open. `ray` indexes the batch's occlusion rays (the lanes
+// in TileScratch::occluders), or is -1: no ray (its t_far was not positive), so it is open.
+struct TileScratch::PendingRay {
+  glm::vec3 weight;
+  int32_t ray;
+};
+
+TileScratch::TileScratch() = default;
+TileScratch::~TileScratch() = default;
+TileScratch::TileScratch(TileScratch&&) noexcept = default;
+TileScratch& TileScratch::operator=(TileScratch&&) noexcept = default;
+
+namespace {
+
+// Camera samples per batch: a batch's rays and results (about 200 bytes a sample) stay within the
+// core's L2 cache, and the streams are long enough for Embree to trace them as packets.
+constexpr int kBatchSamples = 1024;
+
+bool blocked(const RTCRay& ray) { return ray.tfar < 0.0f; }  // Embree sets tfar to -inf on a hit
+
+}  // namespace
+
+void Integrator::renderTile(const CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
+                            RayTally& tally, PixelResult* out) const {
+  const int width = x1 - x0, count = width * (y1 - y0);
+  const int batch = std::max(1, kBatchSamples / int(spp_));
+  const LaneConstants constants = laneConstants(camera);
+  for (int first = 0; first < count; first += batch) {
+    renderBatch(camera, constants, x0, width, y0, first, std::min(batch, count - first), frame, scratch, tally,
+                out + first);
+  }
+}
+
+LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
+  LaneConstants k;
+  camera.laneView(k.perspective, k.pixel_dx, k.pixel_dy, k.half_width, k.half_height, k.footprint_at_0,
+                  k.footprint_per_cm);
+  k.position = camera.positionF(), k.forward = camera.forwardF(), k.right = camera.rightF(), k.up = camera.upF();
+  k.target_distance = camera.targetDistanceF();
+  k.ground_extent = ground_extent_;
+  k.t_visible = visibleDistance(camera);
+  k.square_cm = settings_.ground_square_cm;
+  k.color_a = settings_.ground_color_a, k.color_b = settings_.ground_color_b;
+  k.haze_visibility = settings_.haze.visibility_cm, k.haze_ortho_depth = settings_.haze.ortho_depth_cm;
+  k.horizon = settings_.sky.horizon, k.zenith = settings_.sky.zenith, k.below = settings_.sky.below;
+  // An orthographic sky is graded from the ground's height under the camera's target.
+  if (terrain_ && !camera.perspective()) {
+    const glm::vec3 target = camera.positionF() + camera.forwardF() * camera.targetDistanceF();
+    k.sky_floor = float(terrain_->height(double(target.x), double(target.z)));
+  }
+  k.sun_y = sun_frame_.z.y;
+  k.sun_radiance = sun_radiance_;
+  k.sky_irradiance = settings_.sky.upwardIrradianceOverPi();
+  k.sun_region = ground_sun_region_ && settings_.open_ground_shortcuts;
+  k.open_ground_shortcuts = settings_.open_ground_shortcuts;
+  k.ground_floor = ground_floor_;
+  k.sun_lower_x = ground_sun_lower_.x, k.sun_lower_z = ground_sun_lower_.y;
+  k.sun_upper_x = ground_sun_upper_.x, k.sun_upper_z = ground_sun_upper_.y;
+  k.ao_distance = settings_.ao_distance_cm;
+  k.box_lower = bounds_lower_, k.box_upper = bounds_upper_;
+  k.box_empty = bounds_radius_ < 0.0f;
+  k.sun_frame_x = sun_frame_.x, k.sun_frame_y = sun_frame_.y, k.sun_axis = sun_frame_.z;
+  k.sun_cos_max = sun_cos_max_, k.sun_tan = sun_tan_;
+  k.specular = settings_.specular, k.blinn_norm = blinn_norm_, k.shininess = settings_.shininess;
+  k.ground_bounce = ground_bounce_;
+  k.light_samples = int(light_spp_), k.ao_samples = int(ao_spp_);
+  return k;
+}
+
+void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& constants, int x0, int tile_width, int y0,
+                             int first, int count, int frame, TileScratch& scratch, RayTally& tally,
+                             PixelResult* out) const {
+  scratch.pixels.clear();
+  scratch.lights.clear();
+  scratch.camera_rays.clear();
+  scratch.ground_rays.clear();
+  scratch.pending.clear();
+  scratch.sun_rays.clear();
+  scratch.sky_rays.clear();
+  CameraLanes& lanes = scratch.lanes;
+  const std::size_t n = std::size_t(count) * spp_;
+  lanes.resize(n);
+  scratch.samples.resize(n);  // not cleared: every field a pass reads is set by an earlier pass
+
+  // Pass 1: every camera ray of the batch. Each pixel's sequence is set up here; its points, the rays,
+  // the flat ground (a square in the plane y = 0, intersected without a call into Embree: its distance
+  // then bounds the search through the characters) and the test against the characters' box run in
+  // SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+  StratifiedLanes& points = scratch.pixel_points;
+  points.resize(lanes.padded);
+  std::size_t j = 0;
+  for (int p = 0; p < count; ++p) {
+    const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
+    const PixelSampler sampler(x, y, frame);
+    const Stratified2D::PixelPart part = Stratified2D(sampler, pixel_layout_, SampleDimension::PixelFilter).pixelPart();
+    scratch.pixels.push_back({sampler, -1});
+    const float cx = float(x) + 0.5f, cy = float(y) + 0.5f;
+    for (uint32_t i = 0; i < spp_; ++i, ++j) {
+      points.set(j, part, i);
+      lanes.cx[j] = cx, lanes.cy[j] = cy;
+    }
+  }
+  stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
+  cameraRayLanes(constants, lanes, !terrain_);
+  auto queueCharacterRay = [&](TileScratch::CameraSample& c, std::size_t k) {
+    c.ray = -1;
+    // Most camera rays of a review view pass beside the characters' box: no call into Embree.
+    if (lanes.may_hit[k]) {
+      c.ray = int32_t(scratch.camera_rays.size());
+      RTCRayHit& rh = scratch.camera_rays.emplace_back();
+      rh.ray = makeRay(c.origin, c.dir, c.t_ground);
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    TileScratch::CameraSample& c = scratch.samples[k];
+    c.origin = {lanes.ox[k], lanes.oy[k], lanes.oz[k]};
+    c.dir = {lanes.dx[k], lanes.dy[k], lanes.dz[k]};
+    c.t_ground = lanes.t_ground[k];
+    ++tally.rays;
+    if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
+    if (terrain_) {
+      RTCRayHit& rh = scratch.ground_rays.emplace_back();
+      rh.ray = makeRay(c.origin, c.dir, constants.t_visible);
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      continue;
+    }
+    queueCharacterRay(c, k);
+  }
+
+  // Pass 1b (uneven ground): every camera ray against the heightfield as one coherent stream; its
+  // distance then bounds the search through the characters as the plane's does.
+  if (terrain_ && n > 0) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(ground_, &context, scratch.ground_rays.data(), unsigned(scratch.ground_rays.size()),
+                   sizeof(RTCRayHit));
+    for (std::size_t k = 0; k < n; ++k) {
+      const RTCRayHit& rh = scratch.ground_rays[k];
+      scratch.samples[k].t_ground = lanes.t_ground[k] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kInfinity;
+    }
+    boxTestLanes(constants, lanes);
+    for (std::size_t k = 0; k < n; ++k) queueCharacterRay(scratch.samples[k], k);
+  }
+
+  // Pass 2: the camera rays that may meet the characters, as one coherent stream.
+  if (!scratch.camera_rays.empty()) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(characters_, &context, scratch.camera_rays.data(), unsigned(scratch.camera_rays.size()),
+                   sizeof(RTCRayHit));
+  }
+
+  // Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
+  // In lanes first: the flat ground's surface (and the whole light of open ground, most of a review
+  // frame) where no character is nearer, and the sky behind every sample.
+  for (std::size_t k = 0; k < n; ++k) {
+    const TileScratch::CameraSample& c = scratch.samples[k];
+    const bool character_hit = c.ray >= 0 && scratch.camera_rays[std::size_t(c.ray)].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    lanes.t_shade[k] = character_hit ? kInfinity : c.t_ground;
+  }
+  if (!terrain_) groundLanes(constants, lanes);
+  skyLanes(constants, lanes);
+  // Then every other surface a sample sees, gathered into the surface lanes in sample order: a
+  // character's hit triangle (its vertices' normals and colours), or the ground's surface.
+  SurfaceLanes& surfaces = scratch.surfaces;
+  surfaces.reserve(n, int(light_spp_), int(ao_spp_));
+  StratifiedLanes &sun_points = scratch.sun_points, &sky_points = scratch.sky_points;
+  sun_points.resize(surfaces.stride * light_spp_);
+  sky_points.resize(surfaces.stride * ao_spp_);
+  std::size_t m = 0;
+  TileScratch::CameraSample* c = scratch.samples.data();
+  j = 0;
+  for (TileScratch::PixelState& pixel : scratch.pixels) {
+    for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
+      c->resolved = false;
+      c->surface = -1;
+      if (!terrain_ && lanes.open[j]) {  // open ground: its light is known
+        c->hit = c->resolved = true;
+        c->id = ObjectId::Ground;
+        c->depth = lanes.depth[j];
+        c->normal = glm::vec3(0.0f, 1.0f, 0.0f);
+        c->radiance = {lanes.radiance_r[j], lanes.radiance_g[j], lanes.radiance_b[j]};
+        continue;
+      }
+      const RTCRayHit* rh = c->ray >= 0 ? &scratch.camera_rays[size_t(c->ray)] : nullptr;
+      const bool character_hit = rh && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (!character_hit && c->t_ground == kInfinity) {
+        c->hit = false;
+        c->radiance = {lanes.sky_r[j], lanes.sky_g[j], lanes.sky_b[j]};
+        continue;
+      }
+      c->hit = true;
+      c->surface = int32_t(m);
+      gatherSurface(camera, *c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
+      if (pixel.lights < 0) {
+        pixel.lights = int32_t(scratch.lights.size());
+        scratch.lights.push_back({Stratified2D(pixel.sampler, sun_layout_, SampleDimension::SunCone),
+                                  Stratified2D(pixel.sampler, sky_layout_, SampleDimension::SkyHemisphere)});
+      }
+      const TileScratch::LightSequences& sequences = scratch.lights[std::size_t(pixel.lights)];
+      const Stratified2D::PixelPart sun = sequences.sun.pixelPart(), sky = sequences.sky.pixelPart();
+      for (uint32_t k = 0; k < light_spp_; ++k) sun_points.set(k * surfaces.stride + m, sun, i * light_spp_ + k);
+      for (uint32_t k = 0; k < ao_spp_; ++k) sky_points.set(k * surfaces.stride + m, sky, i * ao_spp_ + k);
+      ++m;
+    }
+  }
+  surfaces.setSize(m);
+  // The surfaces' sun and sky points, in lanes: slot k of surface m is point k * stride + m.
+  for (uint32_t k = 0; k < light_spp_; ++k)
+    stratifiedLanes(sun_layout_, sun_points, k * surfaces.stride, surfaces.padded, surfaces.sun_u.data(),
+                    surfaces.sun_v.data());
+  for (uint32_t k = 0; k < ao_spp_; ++k)
+    stratifiedLanes(sky_layout_, sky_points, k * surfaces.stride, surfaces.padded, surfaces.sky_u.data(),
+                    surfaces.sky_v.data());
+  hitSurfaceLanes(constants, surfaces);
+  shadingLanes(constants, surfaces);
+  // The shadow and sky rays that carry light, queued in sample order (each sample's sun rays, then
+  // its sky rays) for the box test.
+  RayLanes& occluders = scratch.occluders;
+  occluders.start(m * (light_spp_ + ao_spp_));
+  scratch.occluder_is_sky.resize(m * (light_spp_ + ao_spp_));
+  for (TileScratch::CameraSample& sample : scratch.samples) {
+    if (sample.surface < 0) continue;
+    const std::size_t s = std::size_t(sample.surface);
+    const SurfaceLanes& S = surfaces;
+    sample.depth = S.depth[s];
+    sample.normal = {S.nx[s], S.ny[s], S.nz[s]};
+    sample.diffuse = {S.diffuse_r[s], S.diffuse_g[s], S.diffuse_b[s]};
+    const glm::vec3 origin(S.rox[s], S.roy[s], S.roz[s]);
+    sample.sun_pending = sample.sky_pending = 0;
+    sample.sun_traced = S.sun_traced[s] != 0;
+    sample.sun = {S.sun_r[s], S.sun_g[s], S.sun_b[s]};
+    if (sample.sun_traced) {
+      for (std::size_t k = 0, at = s; k < light_spp_; ++k, at += S.stride) {
+        if (!S.sun_valid[at]) continue;  // no light from below: no ray, and nothing to add
+        const int32_t ray = emitOcclusion(origin, {S.sun_wx[at], S.sun_wy[at], S.sun_wz[at]}, kInfinity, false,
+                                          scratch, tally);
+        scratch.pending.push_back({{S.sun_fr[at], S.sun_fg[at], S.sun_fb[at]}, ray});
+        ++sample.sun_pending;
+      }
+    }
+    sample.sky_traced = S.sky_traced[s] != 0;
+    sample.sky = {S.sky_r[s], S.sky_g[s], S.sky_b[s]};
+    if (sample.sky_traced) {
+      for (std::size_t k = 0, at = s; k < ao_spp_; ++k, at += S.stride) {
+        if (!S.sky_valid[at]) continue;  // below the real surface: blocked by it
+        const int32_t ray = emitOcclusion(origin, {S.sky_wx[at], S.sky_wy[at], S.sky_wz[at]}, S.sky_t_far[at], true,
+                                          scratch, tally);
+        scratch.pending.push_back({{S.sky_lr[at], S.sky_lg[at], S.sky_lb[at]}, ray});
+        ++sample.sky_pending;
+      }
+    }
+  }
+
+  // Pass 3b: the occlusion rays against the characters' box in lanes; those that may meet them go to
+  // their stream, in the order they were made.
+  const std::size_t occluder_count = occluders.size;
+  occluders.pad();
+  boxTestLanes(constants, occluders);
+  scratch.occluder_ray.resize(occluder_count);
+  for (std::size_t k = 0; k < occluder_count; ++k) {
+    int32_t& ray = scratch.occluder_ray[k];
+    ray = -1;
+    if (!occluders.may_hit[k]) continue;
+    std::vector<RTCRay>& stream = scratch.occluder_is_sky[k] ? scratch.sky_rays : scratch.sun_rays;
+    ray = int32_t(stream.size());
+    stream.push_back(makeRay({occluders.ox[k], occluders.oy[k], occluders.oz[k]},
+                             {occluders.dx[k], occluders.dy[k], occluders.dz[k]}, occluders.t_far[k]));
+  }
+
+  // Pass 4: the shadow rays (nearly parallel: one coherent stream) and the sky rays.
+  if (!scratch.sun_rays.empty()) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded1M(characters_, &context, scratch.sun_rays.data(), unsigned(scratch.sun_rays.size()), sizeof(RTCRay));
+  }
+  if (!scratch.sky_rays.empty()) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1M(characters_, &context, scratch.sky_rays.data(), unsigned(scratch.sky_rays.size()), sizeof(RTCRay));
+  }
+
+  // Pass 5: each sample's light from its open rays, and each pixel's samples into its result.
+  const TileScratch::PendingRay* pending = scratch.pending.data();
+  auto open = [&](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
+    if (r.ray < 0) return true;
+    const int32_t traced = scratch.occluder_ray[std::size_t(r.ray)];
+    return traced < 0 || !blocked(stream[std::size_t(traced)]);
+  };
+  c = scratch.samples.data();
+  for (int p = 0; p < count; ++p) {
+    glm::vec3 sum(0.0f), normal_sum(0.0f);
+    uint32_t hits = 0, character_hits = 0;
+    float nearest = kInfinity;
+    // Votes for the object id pass: at most a handful of distinct ids can meet in one pixel.
+    constexpr int kMaxIds = 4;
+    uint32_t ids[kMaxIds], votes[kMaxIds];
+    int distinct = 0, sky_votes = 0;
+    for (uint32_t i = 0; i < spp_; ++i, ++c) {
+      if (!c->hit) {
+        sum += c->radiance;
+        ++sky_votes;
+        continue;
+      }
+      glm::vec3 radiance;
+      if (c->resolved) {
+        radiance = c->radiance;
+      } else {
+      glm::vec3 sun = c->sun;
+      if (c->sun_traced) {
+        sun = glm::vec3(0.0f);
+        for (uint32_t k = 0; k < c->sun_pending; ++k, ++pending)
+          if (open(*pending, scratch.sun_rays)) sun += pending->weight;
+        sun *= sun_radiance_ / float(light_spp_);
+      }
+      if (!c->sky_traced) {
+        radiance = sun + c->sky;
+      } else {
+        glm::vec3 sky(0.0f);
+        for (uint32_t k = 0; k < c->sky_pending; ++k, ++pending)
+          if (open(*pending, scratch.sky_rays)) sky += pending->weight;
+        sky *= c->diffuse / float(ao_spp_);
+        radiance = sun + sky;
+      }
+      if (c->haze < 1.0f) radiance = radiance * c->haze + settings_.sky.horizon * (1.0f - c->haze);
+      }
+      sum += radiance;
+      ++hits;
+      normal_sum += c->normal;
+      if (c->id != ObjectId::Ground) ++character_hits;
+      nearest = std::min(nearest, c->depth);
+      int k = 0;
+      while (k < distinct && ids[k] != uint32_t(c->id)) ++k;
+      if (k == distinct && distinct < kMaxIds) ids[distinct] = uint32_t(c->id), votes[distinct++] = 0;
+      if (k < distinct) ++votes[k];
+    }
+    PixelResult& r = out[p];
+    const float inv = 1.0f / float(spp_);
+    r.rgba = glm::vec4(sum * inv, float(hits) * inv);
+    r.depth = nearest;
+    r.matte = float(character_hits) * inv;
+    const float normal_length = glm::length(normal_sum);
+    r.normal = normal_length > 0.0f ? normal_sum / normal_length : glm::vec3(0.0f);
+    // Most votes wins; on a tie the id seen first, and the sky only with more votes than any object.
+    r.object_id = kNoObject;
+    int best = -1;
+    for (int k = 0; k < distinct; ++k) {
+      if (int(votes[k]) > best) best = int(votes[k]), r.object_id = ids[k];
+    }
+    if (sky_votes > best) r.object_id = kNoObject;
+  }
+}
+
+void Integrator::gatherSurface(const CameraFrame& camera, TileScratch::CameraSample& c, const RTCRayHit* rh,
+                               const CameraLanes& lanes, std::size_t j, SurfaceLanes& S, std::size_t m) const {
+  S.dx[m] = c.dir.x, S.dy[m] = c.dir.y, S.dz[m] = c.dir.z;
+  if (rh) {
+    // A character: the hit and its triangle's vertices, for hitSurfaceLanes.
+    const float t = rh->ray.tfar;
+    const ShadingMesh& mesh = *meshes_[rh->hit.geomID];
+    const uint32_t* tri = &mesh.indices[size_t(rh->hit.primID) * 3];
+    S.character[m] = -1;
+    S.on_ground[m] = 0;
+    S.ox[m] = c.origin.x, S.oy[m] = c.origin.y, S.oz[m] = c.origin.z, S.t[m] = t;
+    S.gx[m] = rh->hit.Ng_x, S.gy[m] = rh->hit.Ng_y, S.gz[m] = rh->hit.Ng_z;
+    S.u[m] = rh->hit.u, S.v[m] = rh->hit.v;
+    const glm::vec3 &n0 = mesh.normals[tri[0]], &n1 = mesh.normals[tri[1]], &n2 = mesh.normals[tri[2]];
+    S.n0x[m] = n0.x, S.n0y[m] = n0.y, S.n0z[m] = n0.z, S.n1x[m] = n1.x, S.n1y[m] = n1.y, S.n1z[m] = n1.z;
+    S.n2x[m] = n2.x, S.n2y[m] = n2.y, S.n2z[m] = n2.z;
+    const glm::vec3 &c0 = mesh.colors[tri[0]], &c1 = mesh.colors[tri[1]], &c2 = mesh.colors[tri[2]];
+    S.c0r[m] = c0.x, S.c0g[m] = c0.y, S.c0b[m] = c0.z, S.c1r[m] = c1.x, S.c1g[m] = c1.y, S.c1b[m] = c1.z;
+    S.c2r[m] = c2.x, S.c2g[m] = c2.y, S.c2b[m] = c2.z;
+    // A textured triangle's texture at the hit's uv, interpolated as Embree's barycentrics say (a
+    // scalar lookup: the same bits on every SIMD target and thread).
+    glm::vec3 texture(1.0f);
+    if (!mesh.triangle_textures.empty()) {
+      if (const int32_t k = mesh.triangle_textures[size_t(rh->hit.primID)]; k >= 0) {
+        const float b1 = rh->hit.u, b2 = rh->hit.v, b0 = 1.0f - b1 - b2;
+        const glm::vec2 uv = b0 * mesh.uvs[tri[0]] + b1 * mesh.uvs[tri[1]] + b2 * mesh.uvs[tri[2]];
+        texture = mesh.textures[size_t(k)]->sample(uv);
+      }
+    }
+    S.tr[m] = texture.x, S.tg[m] = texture.y, S.tb[m] = texture.z;
+    // The ground under the hit (its downward sky rays stop just above it).
+    S.ground_y[m] = 0.0f;
+    if (terrain_) {
+      const glm::vec3 p = c.origin + t * c.dir;
+      S.ground_y[m] = float(terrain_->height(double(p.x), double(p.z)));
+    }
+    c.id = mesh.id;
+    c.haze = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
+    return;
+  }
+  S.character[m] = 0;
+  S.on_ground[m] = -1;
+  S.ground_y[m] = 0.0f;
+  S.specular[m] = 0.0f;  // the ground is matte
+  c.id = ObjectId::Ground;
+  const float t = c.t_ground;
+  glm::vec3 p = c.origin + t * c.dir;
+  glm::vec3 n;
+  if (!terrain_) {
+    // The plane's surface came from the lanes (groundLanes). The point is exactly on the plane, so
+    // the rays' offset lifts it the same everywhere.
+    p.y = 0.0f;
+    n = glm::vec3(0.0f, c.dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
+    S.ar[m] = lanes.albedo_r[j], S.ag[m] = lanes.albedo_g[j], S.ab[m] = lanes.albedo_b[j];
+    S.depth[m] = lanes.depth[j];
+    c.haze = lanes.haze[j];
+  } else {
+    // On the heightfield mesh as hit; shaded with the terrain's own (smooth, upward) normal, which
+    // is also the geometric one the secondary rays leave along (they meet only the characters).
+    // Never flipped toward the camera: at a hill's grazing far side a ray can meet a facet whose
+    // smooth normal already faces away, and flipping it there left black specks on the horizon.
+    n = glm::vec3(terrain_->normal(double(p.x), double(p.z)));
+    const float cos_view = std::max(std::abs(glm::dot(n, c.dir)), 0.02f);
+    // The sample's footprint on the ground: a pixel's width at this distance, stretched by the
+    // grazing angle (isotropically, which blurs a little more than needed across the view).
+    const float width = camera.pixelFootprintF(t) / cos_view / settings_.ground_square_cm;
+    const float odd = filteredChecker(p.x / settings_.ground_square_cm, p.z / settings_.ground_square_cm, width);
+    const glm::vec3 albedo = glm::mix(settings_.ground_color_a, settings_.ground_color_b, odd);
+    S.ar[m] = albedo.x, S.ag[m] = albedo.y, S.ab[m] = albedo.z;
+    S.depth[m] = camera.viewDepthF(p);
+    c.haze = camera.perspective()
+                 ? AerialPerspective::perspective(t, settings_.haze.visibility_cm)
+                 : AerialPerspective::orthographic(t - camera.targetDistanceF(), settings_.haze.ortho_depth_cm);
+  }
+  S.px[m] = p.x, S.py[m] = p.y, S.pz[m] = p.z;
+  S.ngx[m] = S.nx[m] = n.x, S.ngy[m] = S.ny[m] = n.y, S.ngz[m] = S.nz[m] = n.z;
+}
+
+float Integrator::visibleDistance(const CameraFrame& camera) const {
+  return camera.perspective() ? settings_.haze.visibility_cm
+                              : camera.targetDistanceF() + settings_.haze.ortho_depth_cm;
+}
+
+int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
+                                  TileScratch& scratch, RayTally& tally) const {
+  if (!(t_far > 0.0f)) return -1;
+  ++tally.rays;
+  if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, direction, t_far));
+  // Queued for the box test in lanes (pass 3b), which sends it on to its stream or not.
+  scratch.occluder_is_sky[scratch.occluders.size] = sky;
+  scratch.occluders.push(origin, direction, t_far);
+  return int32_t(scratch.occluders.size - 1);
+}
+
+}  // namespace stirrup::render

@@ -1,0 +1,161 @@
+// Shading for the review look: per camera sample, one primary ray, then direct sun through
+// `light_samples` shadow rays into the sun's cone and sky light through `ao_samples` cosine-weighted
+// occlusion rays. Surfaces are diffuse plus a small normalised Blinn-Phong lobe, smooth-shaded from the
+// vertex normals; the ground is a filtered checker. No indirect bounces except a constant ground
+// bounce seen by downward sky rays (so bellies are not black).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "render/scene/camera.h"
+#include "render/tracer/embree_scene.h"
+#include "render/tracer/lights.h"
+#include "render/tracer/renderer.h"
+#include "render/tracer/sample_lanes.h"
+#include "render/tracer/sampler.h"
+#include "render/tracer/shading_lanes.h"
+#include "rig/motion/terrain.h"
+#include "rig/texture.h"
+
+namespace stirrup::render {
+
+// What the integrator needs of a mesh: its id for the passes, and the per-vertex data Embree does
+// not keep (Embree has the positions and the triangles).
+struct ShadingMesh {
+  ObjectId id = ObjectId::Horse;
+  std::vector<uint32_t> indices;
+  std::vector<glm::vec3> colors;
+  std::vector<glm::vec3> normals;
+  // Base colour textures, as MeshDesc's (all empty: untextured).
+  std::vector<glm::vec2> uvs;
+  std::vector<int32_t> triangle_textures;
+  std::vector<std::shared_ptr<const rig::Texture>> textures;
+};
+
+// One pixel's result: filtered colour and coverage, and the passes.
+struct PixelResult {
+  glm::vec4 rgba{0.0f};
+  float depth = 0.0f;
+  float matte = 0.0f;
+  glm::vec3 normal{0.0f};  // mean world-space shading normal of the samples that hit (0 over sky)
+  uint32_t object_id = 0;
+};
+
+// Counts the rays a pixel casts and, when the vectors are set, keeps them as Embree rays for
+// replaying through Embree alone (stirrup bench's bound). One per tile: no sharing between threads.
+struct RayTally {
+  uint64_t rays = 0;                        // camera rays + shadow and sky rays
+  std::vector<RTCRay>* camera = nullptr;    // camera rays as cast, tfar = infinity
+  std::vector<RTCRay>* occlusion = nullptr; // shadow and sky rays as cast
+};
+
+// Fraction of the area within a box of `width` (in squares) around (s, t) (in squares) that falls on
+// the odd squares of a checker: 0 or 1 when sharp, tending to 0.5 as the box grows (pbrt's closed-form
+// box-filtered checkerboard).
+float filteredChecker(float s, float t, float width);
+
+// The reusable buffers of one thread's tiles. They grow to the largest batch on the first tile and are
+// then reused, so tracing allocates nothing per pixel or per tile.
+struct TileScratch {
+  struct PixelState;
+  struct LightSequences;
+  struct CameraSample;
+  struct PendingRay;
+  TileScratch();
+  ~TileScratch();
+  TileScratch(TileScratch&&) noexcept;
+  TileScratch& operator=(TileScratch&&) noexcept;
+  std::vector<PixelState> pixels;
+  std::vector<LightSequences> lights;  // the sun and sky sequences of the pixels that need them
+  std::vector<CameraSample> samples;
+  std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
+  std::vector<RTCRayHit> ground_rays;  // uneven ground: every camera sample against the heightfield
+  std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
+  std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
+  std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
+  StratifiedLanes pixel_points;        // the samples' sequences, for their points in lanes
+  StratifiedLanes sun_points, sky_points;  // the surfaces' sun and sky sequences
+  CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
+  SurfaceLanes surfaces;               // the surfaces its samples see, for the shading kernels
+  RayLanes occluders;                  // its shadow and sky rays, for the box test
+  std::vector<uint8_t> occluder_is_sky;  // per occlusion ray: the sky stream, else the sun's
+  std::vector<int32_t> occluder_ray;   // per occlusion ray: its index in its stream, or -1 (not traced)
+};
+
+class Integrator {
+ public:
+  // `meshes_by_geometry[geomID]` is the mesh of each geometry of the scene's character BVH. The
+  // scene must be committed. With `terrain` (uneven ground) the scene's ground is its heightfield mesh:
+  // camera rays are traced against it, the ground is shaded with the terrain's normal, and
+  // `ground_floor` is its lowest height. Without, the ground is the plane y = 0, hit analytically.
+  // (The hills cast no shadows of their own: shadow and sky rays still meet only the characters.)
+  Integrator(const RenderSettings& settings, const EmbreeScene& scene,
+             std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain = nullptr,
+             float ground_floor = 0.0f);
+
+  // Every pixel of the tile [x0, x1) x [y0, y1), written row by row to `out` ((x1 - x0) * (y1 - y0)
+  // results). The tile is traced in batches of pixels as ray streams, in three passes: all camera
+  // samples of the batch (one rtcIntersect1M), then all shadow and sky rays their shading needs (one
+  // rtcOccluded1M each), then the sums. Each pixel's result depends on its own samples only, so it is
+  // the same whatever tile or batch the pixel falls in.
+  void renderTile(const CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
+                  RayTally& tally, PixelResult* out) const;
+
+  // What the SIMD kernels read (render/tracer/sample_lanes.h, render/tracer/shading_lanes.h), for this frame's camera.
+  LaneConstants laneConstants(const CameraFrame& camera) const;
+
+  // Whether any ray of the sun's cone from `origin` can meet the characters' box (false: the sun is
+  // certainly unblocked there and needs no shadow rays).
+  bool sunMayBeBlocked(const glm::vec3& origin) const;
+  // The same answer for a point on or just above the ground, mostly from a rectangle worked out once
+  // per frame.
+  bool groundSunMayBeBlocked(const glm::vec3& origin) const;
+  // True when the point is outside that rectangle (so the sun is certainly unblocked there).
+  bool groundSunRegionExcludes(const glm::vec3& origin) const;
+
+ private:
+  // Traces the camera rays of pixels [first, first + count) of the tile and shades them into `out`.
+  void renderBatch(const CameraFrame& camera, const LaneConstants& constants, int x0, int tile_width, int y0, int first,
+                   int count, int frame, TileScratch& scratch, RayTally& tally, PixelResult* out) const;
+  // A sample's surface into the surface lanes at m: a character's hit (rh) and its triangle's
+  // vertices, or the ground's surface (the plane's from the lanes at sample j, or the terrain's).
+  void gatherSurface(const CameraFrame& camera, TileScratch::CameraSample& c, const RTCRayHit* rh,
+                     const CameraLanes& lanes, std::size_t j, SurfaceLanes& surfaces, std::size_t m) const;
+  // Queues an occlusion ray (for the sky stream or the sun's) for the box test; returns its index among
+  // the batch's occlusion rays, or -1 when t_far leaves no ray.
+  int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
+                        TileScratch& scratch, RayTally& tally) const;
+  // How far along a camera ray the ground is seen before the haze ends it.
+  float visibleDistance(const CameraFrame& camera) const;
+  void setGroundSunRegion();
+
+  const RenderSettings& settings_;
+  RTCScene characters_;
+  glm::vec3 bounds_lower_, bounds_upper_;  // of the characters: occlusion rays missing it skip Embree
+  float bounds_radius_;                    // of the sphere around the bounds; < 0: no characters
+  std::span<const ShadingMesh* const> meshes_;
+  // Derived once per frame.
+  Frame sun_frame_;
+  glm::vec3 inv_sun_dir_;      // 1 / the sun axis, per component: slab tests without divisions
+  float sun_cos_max_, sun_tan_;
+  bool ground_sun_region_;     // ground points outside [lower, upper] (x, z) see the sun unblocked
+  glm::vec2 ground_sun_lower_, ground_sun_upper_;
+  glm::vec3 sun_radiance_;     // of a white matte surface facing the sun
+  glm::vec3 ground_bounce_;    // radiance of the lit ground, seen by downward sky rays
+  float ground_extent_;        // the ground is the square |x|, |z| <= this at y = 0, hit analytically
+  const rig::Terrain* terrain_;  // or, when set, this terrain's mesh in ground_
+  RTCScene ground_;
+  float ground_floor_;         // no ground point lies below this height
+  float blinn_norm_;           // (n + 8) / 8: Blinn-Phong lobe normalised for energy
+  uint32_t spp_, light_spp_, ao_spp_;
+  Stratified2D::Layout pixel_layout_, sun_layout_, sky_layout_;  // spp, spp * light, spp * ao points
+};
+
+}  // namespace stirrup::render

@@ -1,0 +1,462 @@
+// Highway compiles this file once per target (foreach_target.h re-includes it); HWY_ONCE marks the
+// part compiled once: the dispatch tables and the entry points of sample_lanes.h.
+#include "render/tracer/sample_lanes.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "render/tracer/sample_lanes.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "render/tracer/lane_math-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace stirrup::render {
+namespace HWY_NAMESPACE {
+
+// Inverse CDF of the tent filter of radius 1: warping stratified points through it keeps their
+// stratification and gives every sample the same weight, so no pixel reads another's samples.
+// u < 0.5 ? sqrt(2u) - 1 : 1 - sqrt(2 - 2u).
+VF TentOffset(VF u) {
+  const VF low = hn::Sub(hn::Sqrt(hn::Mul(Splat(2.0f), u)), Splat(1.0f));
+  const VF high = hn::Sub(Splat(1.0f), hn::Sqrt(hn::Sub(Splat(2.0f), hn::Mul(Splat(2.0f), u))));
+  return hn::IfThenElse(hn::Lt(u, Splat(0.5f)), low, high);
+}
+
+// v - 2 floor(v / 2) for a whole v: its parity, 0 or 1.
+VF Parity(VF v) { return hn::Sub(v, hn::Mul(Splat(2.0f), hn::Floor(hn::Mul(v, Splat(0.5f))))); }
+
+// filteredChecker (integrator.cpp), lane by lane.
+VF Checker(VF s, VF t, VF width) {
+  const VF half = hn::Mul(Splat(0.5f), width);
+  // Sharp: the parity of floor(s) + floor(t).
+  const VF ps = Parity(hn::Floor(s)), pt = Parity(hn::Floor(t));
+  const VF sharp = hn::Sub(hn::Add(ps, pt), hn::Mul(hn::Mul(Splat(2.0f), ps), pt));
+  auto integral = [](VF x) {
+    const VF f = hn::Floor(hn::Mul(x, Splat(0.5f)));
+    const VF rest = hn::Sub(hn::Sub(hn::Mul(x, Splat(0.5f)), f), Splat(0.5f));
+    return hn::Add(f, hn::Mul(Splat(2.0f), hn::Max(rest, Splat(0.0f))));
+  };
+  auto box = [&](VF x) {
+    x = hn::Sub(x, hn::Mul(Splat(2.0f), hn::Floor(hn::Mul(x, Splat(0.5f)))));
+    return hn::Div(hn::Sub(integral(hn::Add(x, half)), integral(hn::Sub(x, half))), hn::Mul(Splat(2.0f), half));
+  };
+  const VF ss = box(s), tt = box(t);
+  const VF odd = hn::Sub(hn::Add(ss, tt), hn::Mul(hn::Mul(Splat(2.0f), ss), tt));
+  const VF x = hn::Mul(hn::Sub(width, Splat(kCheckerFadeStart)), Splat(1.0f / (kCheckerFadeEnd - kCheckerFadeStart)));
+  const VF contrast = hn::Sub(Splat(1.0f), hn::Mul(hn::Mul(x, x), hn::Sub(Splat(3.0f), hn::Mul(Splat(2.0f), x))));
+  const VF faded = hn::Add(Splat(0.5f), hn::Mul(hn::Sub(odd, Splat(0.5f)), contrast));
+  VF out = hn::IfThenElse(hn::Le(width, Splat(kCheckerFadeStart)), odd, faded);
+  out = hn::IfThenElse(hn::Ge(width, Splat(kCheckerFadeEnd)), Splat(0.5f), out);
+  return hn::IfThenElse(hn::Lt(half, Splat(1e-4f)), sharp, out);
+}
+
+void CheckerLanes(const float* s, const float* t, const float* width, float* out, size_t n) {
+  const DF df;
+  const size_t lanes = hn::Lanes(df);
+  size_t i = 0;
+  for (; i + lanes <= n; i += lanes)
+    hn::StoreU(Checker(hn::LoadU(df, s + i), hn::LoadU(df, t + i), hn::LoadU(df, width + i)), df, out + i);
+  if (i < n) {  // the tail through a padded copy
+    alignas(64) float bs[64] = {}, bt[64] = {}, bw[64] = {}, bo[64];
+    for (size_t j = i; j < n; ++j) bs[j - i] = s[j], bt[j - i] = t[j], bw[j - i] = width[j];
+    hn::StoreU(Checker(hn::LoadU(df, bs), hn::LoadU(df, bt), hn::LoadU(df, bw)), df, bo);
+    for (size_t j = i; j < n; ++j) out[j] = bo[j - i];
+  }
+}
+
+// Slab test against the characters' box up to t_far: most rays of a review frame pass beside it, and
+// this is far cheaper than a call into Embree. All three slabs are tested (a test that stopped at the
+// first failed slab gives the same answer: t0 only grows and t1 only shrinks). Written so a NaN
+// (0 * inf) leaves the interval unchanged, with a little slack for rounding at grazing angles. No
+// characters: every ray misses.
+MF BoxTest(const LaneConstants& k, VF ox, VF oy, VF oz, VF dx, VF dy, VF dz, VF t_far) {
+  if (k.box_empty) return hn::FirstN(DF(), 0);  // no lane
+  VF t0 = Splat(0.0f), t1 = t_far;
+  MF miss = hn::Not(hn::Gt(t_far, Splat(0.0f)));
+  const VF o[3] = {ox, oy, oz}, d[3] = {dx, dy, dz};
+  const float lower[3] = {k.box_lower.x, k.box_lower.y, k.box_lower.z};
+  const float upper[3] = {k.box_upper.x, k.box_upper.y, k.box_upper.z};
+  for (int a = 0; a < 3; ++a) {
+    const VF inv = hn::Div(Splat(1.0f), d[a]);
+    const VF n0 = hn::Mul(hn::Sub(Splat(lower[a]), o[a]), inv);
+    const VF f0 = hn::Mul(hn::Sub(Splat(upper[a]), o[a]), inv);
+    const MF swap = hn::Gt(n0, f0);
+    const VF near = hn::IfThenElse(swap, f0, n0), far = hn::IfThenElse(swap, n0, f0);
+    t0 = hn::IfThenElse(hn::Gt(near, t0), near, t0);  // a NaN leaves the interval unchanged
+    t1 = hn::IfThenElse(hn::Lt(far, t1), far, t1);
+    miss = hn::Or(miss, hn::Gt(t0, hn::Mul(t1, Splat(1.0000004f))));
+  }
+  return hn::Not(miss);
+}
+
+void CameraRayLanes(const LaneConstants& k, CameraLanes& L, bool flat_ground) {
+  const DF df;
+  const size_t lanes = hn::Lanes(df);
+  const VF inf = Splat(std::numeric_limits<float>::infinity());
+  for (size_t i = 0; i < L.padded; i += lanes) {
+    const VF px = hn::Add(Load(L.cx, i), TentOffset(Load(L.ux, i)));
+    const VF py = hn::Add(Load(L.cy, i), TentOffset(Load(L.uy, i)));
+    // CameraFrame::rayFromPixel.
+    const VF x = hn::Sub(hn::Mul(px, Splat(k.pixel_dx)), Splat(k.half_width));
+    const VF y = hn::Sub(Splat(k.half_height), hn::Mul(py, Splat(k.pixel_dy)));
+    VF ox, oy, oz, dx, dy, dz;
+    if (k.perspective) {
+      const VF ex = hn::Add(hn::Add(Splat(k.forward.x), hn::Mul(x, Splat(k.right.x))), hn::Mul(y, Splat(k.up.x)));
+      const VF ey = hn::Add(hn::Add(Splat(k.forward.y), hn::Mul(x, Splat(k.right.y))), hn::Mul(y, Splat(k.up.y)));
+      const VF ez = hn::Add(hn::Add(Splat(k.forward.z), hn::Mul(x, Splat(k.right.z))), hn::Mul(y, Splat(k.up.z)));
+      const VF inv = hn::Div(Splat(1.0f), hn::Sqrt(hn::Add(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)), hn::Mul(ez, ez))));
+      ox = Splat(k.position.x), oy = Splat(k.position.y), oz = Splat(k.position.z);
+      dx = hn::Mul(ex, inv), dy = hn::Mul(ey, inv), dz = hn::Mul(ez, inv);
+    } else {
+      ox = hn::Add(hn::Add(Splat(k.position.x), hn::Mul(x, Splat(k.right.x))), hn::Mul(y, Splat(k.up.x)));
+      oy = hn::Add(hn::Add(Splat(k.position.y), hn::Mul(x, Splat(k.right.y))), hn::Mul(y, Splat(k.up.y)));
+      oz = hn::Add(hn::Add(Splat(k.position.z), hn::Mul(x, Splat(k.right.z))), hn::Mul(y, Splat(k.up.z)));
+      dx = Splat(k.forward.x), dy = Splat(k.forward.y), dz = Splat(k.forward.z);
+    }
+    Store(ox, L.ox, i), Store(oy, L.oy, i), Store(oz, L.oz, i);
+    Store(dx, L.dx, i), Store(dy, L.dy, i), Store(dz, L.dz, i);
+    if (!flat_ground) {
+      Store(inf, L.t_ground, i);
+      continue;
+    }
+    // The plane y = 0: t = -o.y / d.y, kept when 0 < t < t_visible and the hit is on the square.
+    const VF t = hn::Div(hn::Neg(oy), dy);
+    const VF hx = hn::Add(ox, hn::Mul(t, dx)), hz = hn::Add(oz, hn::Mul(t, dz));
+    const VF extent = Splat(k.ground_extent);
+    MF on = hn::And(hn::Ne(dy, Splat(0.0f)), hn::And(hn::Gt(t, Splat(0.0f)), hn::Lt(t, Splat(k.t_visible))));
+    on = hn::And(on, hn::And(hn::Le(hn::Abs(hx), extent), hn::Le(hn::Abs(hz), extent)));
+    const VF t_ground = hn::IfThenElse(on, t, inf);
+    Store(t_ground, L.t_ground, i);
+    StoreMask(BoxTest(k, ox, oy, oz, dx, dy, dz, t_ground), L.may_hit, i);
+  }
+}
+
+// BoxTest over n rays (n a whole number of vectors) given as arrays.
+void BoxTestArrays(const LaneConstants& k, const float* ox, const float* oy, const float* oz, const float* dx,
+                   const float* dy, const float* dz, const float* t_far, int32_t* may_hit, size_t n) {
+  const DF df;
+  const DI di;
+  const size_t lanes = hn::Lanes(df);
+  for (size_t i = 0; i < n; i += lanes) {
+    const MF m = BoxTest(k, hn::LoadU(df, ox + i), hn::LoadU(df, oy + i), hn::LoadU(df, oz + i), hn::LoadU(df, dx + i),
+                         hn::LoadU(df, dy + i), hn::LoadU(df, dz + i), hn::LoadU(df, t_far + i));
+    hn::StoreU(hn::VecFromMask(di, hn::RebindMask(di, m)), di, may_hit + i);
+  }
+}
+
+void BoxTestLanes(const LaneConstants& k, CameraLanes& L) {
+  BoxTestArrays(k, L.ox.data(), L.oy.data(), L.oz.data(), L.dx.data(), L.dy.data(), L.dz.data(), L.t_ground.data(),
+                L.may_hit.data(), L.padded);
+}
+
+void BoxTestRays(const LaneConstants& k, RayLanes& R) {
+  BoxTestArrays(k, R.ox.data(), R.oy.data(), R.oz.data(), R.dx.data(), R.dy.data(), R.dz.data(), R.t_far.data(),
+                R.may_hit.data(), (R.size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad);
+}
+
+// AerialPerspective::perspective and ::orthographic.
+VF Haze(const LaneConstants& k, VF t) {
+  if (k.perspective) {
+    const VF x = hn::Sub(Splat(1.0f), hn::Min(hn::Div(t, Splat(k.haze_visibility)), Splat(1.0f)));
+    return hn::Mul(hn::Mul(x, x), x);
+  }
+  const VF behind = hn::Sub(t, Splat(k.target_distance));
+  const VF x = hn::Sub(Splat(1.0f),
+                       hn::Min(hn::Max(hn::Div(behind, Splat(k.haze_ortho_depth)), Splat(0.0f)), Splat(1.0f)));
+  return hn::Mul(hn::Mul(x, x), x);
+}
+
+void GroundLanes(const LaneConstants& k, CameraLanes& L) {
+  const DF df;
+  const size_t lanes = hn::Lanes(df);
+  const VF inf = Splat(std::numeric_limits<float>::infinity());
+  for (size_t i = 0; i < L.padded; i += lanes) {
+    const VF t = Load(L.t_shade, i);
+    const MF ground = hn::Lt(t, inf);
+    if (hn::AllFalse(df, ground)) {
+      StoreMask(ground, L.open, i);
+      continue;
+    }
+    const VF ox = Load(L.ox, i), oz = Load(L.oz, i), dx = Load(L.dx, i), dy = Load(L.dy, i), dz = Load(L.dz, i);
+    // The plane's surface (Integrator::gatherSurface reads it from here): the point (y exactly 0), the
+    // footprint, the checker.
+    const VF px = hn::Add(ox, hn::Mul(t, dx)), pz = hn::Add(oz, hn::Mul(t, dz));
+    const VF cos_view = hn::Max(hn::Abs(dy), Splat(0.02f));
+    const VF footprint = hn::Add(Splat(k.footprint_at_0), hn::Mul(Splat(k.footprint_per_cm), t));
+    const VF width = hn::Div(hn::Div(footprint, cos_view), Splat(k.square_cm));
+    const VF odd = Checker(hn::Div(px, Splat(k.square_cm)), hn::Div(pz, Splat(k.square_cm)), width);
+    const VF ar = Mix(Splat(k.color_a.x), Splat(k.color_b.x), odd);
+    const VF ag = Mix(Splat(k.color_a.y), Splat(k.color_b.y), odd);
+    const VF ab = Mix(Splat(k.color_a.z), Splat(k.color_b.z), odd);
+    const VF haze = Haze(k, t);
+    // CameraFrame::viewDepthF(p).
+    const VF depth = hn::Add(hn::Add(hn::Mul(hn::Sub(px, Splat(k.position.x)), Splat(k.forward.x)),
+                                     hn::Mul(hn::Sub(Splat(0.0f), Splat(k.position.y)), Splat(k.forward.y))),
+                             hn::Mul(hn::Sub(pz, Splat(k.position.z)), Splat(k.forward.z)));
+    Store(ar, L.albedo_r, i), Store(ag, L.albedo_g, i), Store(ab, L.albedo_b, i);
+    Store(haze, L.haze, i), Store(depth, L.depth, i);
+    // Open ground, seen from above: the shadow rays' origin (as ShadingLanes makes it) outside the
+    // sun's rectangle, and farther than ao_distance from the characters' box.
+    const VF offset = hn::Add(Splat(2e-3f), hn::Mul(Splat(3e-5f), hn::Max(hn::Max(hn::Abs(px), Splat(0.0f)), hn::Abs(pz))));
+    MF open = hn::And(ground, hn::Le(dy, Splat(0.0f)));
+    if (!k.sun_region || !k.open_ground_shortcuts) {
+      open = hn::FirstN(df, 0);  // none: without the rectangle every point takes the full test
+    } else {
+      open = hn::And(open, hn::Ge(offset, Splat(k.ground_floor)));
+      const MF outside = hn::Or(hn::Or(hn::Lt(px, Splat(k.sun_lower_x)), hn::Gt(px, Splat(k.sun_upper_x))),
+                                hn::Or(hn::Lt(pz, Splat(k.sun_lower_z)), hn::Gt(pz, Splat(k.sun_upper_z))));
+      open = hn::And(open, outside);
+    }
+    if (!k.box_empty) {  // farther than ao_distance from the characters' box (as ShadingLanes tests it)
+      const VF ex = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.x), px), hn::Sub(px, Splat(k.box_upper.x))), Splat(0.0f));
+      const VF ey = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.y), offset), hn::Sub(offset, Splat(k.box_upper.y))), Splat(0.0f));
+      const VF ez = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.z), pz), hn::Sub(pz, Splat(k.box_upper.z))), Splat(0.0f));
+      const VF distance = hn::Sqrt(hn::Add(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)), hn::Mul(ez, ez)));
+      open = hn::And(open, hn::Gt(distance, Splat(k.ao_distance)));
+    }
+    StoreMask(open, L.open, i);
+    if (hn::AllFalse(df, open)) continue;
+    // Its light: (albedo cos) sun + albedo sky, then the haze.
+    const VF cos_n = Splat(k.sun_y > 0.0f ? k.sun_y : 0.0f);
+    const VF ar2 = hn::Add(hn::Mul(hn::Mul(ar, cos_n), Splat(k.sun_radiance.x)), hn::Mul(ar, Splat(k.sky_irradiance.x)));
+    const VF ag2 = hn::Add(hn::Mul(hn::Mul(ag, cos_n), Splat(k.sun_radiance.y)), hn::Mul(ag, Splat(k.sky_irradiance.y)));
+    const VF ab2 = hn::Add(hn::Mul(hn::Mul(ab, cos_n), Splat(k.sun_radiance.z)), hn::Mul(ab, Splat(k.sky_irradiance.z)));
+    const MF hazed = hn::Lt(haze, Splat(1.0f));
+    const VF clear = hn::Sub(Splat(1.0f), haze);
+    auto fade = [&](VF r, float horizon) {
+      return hn::IfThenElse(hazed, hn::Add(hn::Mul(r, haze), hn::Mul(Splat(horizon), clear)), r);
+    };
+    Store(fade(ar2, k.horizon.x), L.radiance_r, i);
+    Store(fade(ag2, k.horizon.y), L.radiance_g, i);
+    Store(fade(ab2, k.horizon.z), L.radiance_b, i);
+  }
+}
+
+void SkyLanes(const LaneConstants& k, CameraLanes& L) {
+  const size_t lanes = hn::Lanes(DF());
+  for (size_t i = 0; i < L.padded; i += lanes) {
+    VF dy = Load(L.dy, i);
+    if (!k.perspective) {
+      // Integrator::background: graded by the origin's height above the ground's far line.
+      const VF line = hn::Sub(Splat(k.sky_floor), hn::Mul(Splat(k.t_visible), dy));
+      const VF above = hn::Div(hn::Sub(Load(L.oy, i), line), hn::Mul(Splat(2.0f), Splat(k.half_height)));
+      const VF graded = hn::Min(hn::Max(above, Splat(0.0f)), Splat(1.0f));
+      dy = hn::IfThenElse(hn::Lt(dy, Splat(0.0f)), graded, dy);
+    }
+    // SkyGradient::radiance.
+    const MF down = hn::Lt(dy, Splat(0.0f));
+    const VF a_down = hn::Min(Splat(1.0f), hn::Mul(Splat(-8.0f), dy));
+    const VF a_up = hn::Sqrt(hn::Max(dy, Splat(0.0f)));
+    auto channel = [&](float horizon, float below, float zenith) {
+      return hn::IfThenElse(down, Mix(Splat(horizon), Splat(below), a_down), Mix(Splat(horizon), Splat(zenith), a_up));
+    };
+    Store(channel(k.horizon.x, k.below.x, k.zenith.x), L.sky_r, i);
+    Store(channel(k.horizon.y, k.below.y, k.zenith.y), L.sky_g, i);
+    Store(channel(k.horizon.z, k.below.z, k.zenith.z), L.sky_b, i);
+  }
+}
+
+using DU = hn::RebindToUnsigned<DF>;
+using VU = hn::Vec<DU>;
+using DU64 = hn::Repartition<uint64_t, DF>;
+using VU64 = hn::Vec<DU64>;
+
+// permuteIndex (render/tracer/sampler.h), without its loop's exit: one round of the hashed bijection of
+// [0, w] (Kensler 2013, "Correlated Multi-Jittered Sampling").
+VU PermuteRound(VU i, VU seed, VU w) {
+  const DU du;
+  auto keep = [&](VU x) { return hn::And(x, w); };
+  i = hn::Xor(i, seed);
+  i = hn::Mul(i, hn::Set(du, 0xe170893du));
+  i = hn::Xor(i, hn::ShiftRight<16>(seed));
+  i = hn::Xor(i, hn::ShiftRight<4>(keep(i)));
+  i = hn::Xor(i, hn::ShiftRight<8>(seed));
+  i = hn::Mul(i, hn::Set(du, 0x0929eb3fu));
+  i = hn::Xor(i, hn::ShiftRight<23>(seed));
+  i = hn::Xor(i, hn::ShiftRight<1>(keep(i)));
+  i = hn::Mul(i, hn::Or(hn::Set(du, 1u), hn::ShiftRight<27>(seed)));
+  i = hn::Mul(i, hn::Set(du, 0x6935fa69u));
+  i = hn::Xor(i, hn::ShiftRight<11>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0x74dcb303u));
+  i = hn::Xor(i, hn::ShiftRight<2>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0x9e501cc3u));
+  i = hn::Xor(i, hn::ShiftRight<2>(keep(i)));
+  i = hn::Mul(i, hn::Set(du, 0xc860a3dfu));
+  i = keep(i);
+  return hn::Xor(i, hn::ShiftRight<5>(i));
+}
+
+// permuteIndex: rounds until every lane is below count (cycle walking; lanes already there keep
+// their value), then (i + offset) mod count. Counts are far below 2^31, so signed compares serve.
+VU Permute(VU i, VU seed, VU w, VU count, VU offset) {
+  const DU du;
+  const DI di;
+  auto atOrAbove = [&](VU x) { return hn::RebindMask(du, hn::Not(hn::Lt(hn::BitCast(di, x), hn::BitCast(di, count)))); };
+  i = PermuteRound(i, seed, w);
+  for (auto pending = atOrAbove(i); !hn::AllFalse(du, pending); pending = atOrAbove(i))
+    i = hn::IfThenElse(pending, PermuteRound(i, seed, w), i);
+  const VU r = hn::Add(i, offset);
+  return hn::IfThenElse(atOrAbove(r), hn::Sub(r, count), r);
+}
+
+// a * c modulo 2^64 from 32-bit products: lo(a) lo(c) + (hi(a) lo(c) + lo(a) hi(c)) 2^32.
+VU64 Mul64(VU64 a, uint64_t c) {
+  const DU64 d64;
+  const hn::Repartition<uint32_t, DU64> d32;
+  const auto c_lo = hn::BitCast(d32, hn::Set(d64, c & 0xffffffffu)), c_hi = hn::BitCast(d32, hn::Set(d64, c >> 32));
+  const auto a32 = hn::BitCast(d32, a);
+  const VU64 low = hn::MulEven(a32, c_lo);
+  const VU64 cross = hn::Add(hn::MulEven(hn::BitCast(d32, hn::ShiftRight<32>(a)), c_lo), hn::MulEven(a32, c_hi));
+  return hn::Add(low, hn::ShiftLeft<32>(cross));
+}
+
+// mixBits (render/tracer/sampler.h).
+VU64 MixBits(VU64 v) {
+  v = hn::Xor(v, hn::ShiftRight<33>(v));
+  v = Mul64(v, 0xff51afd7ed558ccdull);
+  v = hn::Xor(v, hn::ShiftRight<33>(v));
+  v = Mul64(v, 0xc4ceb9fe1a85ec53ull);
+  return hn::Xor(v, hn::ShiftRight<33>(v));
+}
+
+// Stratified2D::operator[], lane by lane.
+void StratifiedPointLanes(const Stratified2D::Layout& L, const StratifiedLanes& P, size_t first, size_t n, float* u_out,
+                          float* v_out) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const DU64 d64;
+  const hn::Half<DU> dh;
+  const size_t lanes = hn::Lanes(df), half = hn::Lanes(d64);
+  const VU count = hn::Set(du, L.count), w = hn::Set(du, L.mask);
+  const VF below_one = Splat(0x1.fffffep-1f);
+  auto toFloat = [&](VU x) { return hn::ConvertTo(df, hn::BitCast(di, x)); };  // x < 2^24: exact
+  for (size_t k = first; k < first + n; k += lanes) {
+    // Below count, as every point a caller asks for is; the padding after the last point may hold
+    // anything, and cycle walking ends only from an index below count.
+    const VU index = hn::Min(hn::LoadU(du, P.index.data() + k), hn::Set(du, L.count > 0 ? L.count - 1 : 0u));
+    VU cell = hn::Zero(du);
+    if (L.count > 1)
+      cell = Permute(index, hn::LoadU(du, P.seed.data() + k), w, count, hn::LoadU(du, P.offset.data() + k));
+    // The jitter: split2D(hashSampleOf(pixel_hash, index)), in 64-bit lanes, half a vector at a time.
+    auto jitterBits = [&](VU64 index64, size_t at) {
+      return MixBits(hn::Xor(hn::LoadU(d64, P.pixel_hash.data() + at), Mul64(index64, 0xd1b54a32d192ed03ull)));
+    };
+    const VU64 h_lo = jitterBits(hn::PromoteTo(d64, hn::LowerHalf(dh, index)), k);
+    const VU64 h_hi = jitterBits(hn::PromoteTo(d64, hn::UpperHalf(dh, index)), k + half);
+    auto narrow = [&](VU64 lo, VU64 hi) { return hn::ConcatEven(du, hn::BitCast(du, hi), hn::BitCast(du, lo)); };
+    const VU64 mask24 = hn::Set(d64, 0xffffffull);
+    const VF jx = hn::Mul(toFloat(narrow(hn::ShiftRight<40>(h_lo), hn::ShiftRight<40>(h_hi))), Splat(0x1p-24f));
+    const VF jy = hn::Mul(toFloat(narrow(hn::And(hn::ShiftRight<8>(h_lo), mask24), hn::And(hn::ShiftRight<8>(h_hi), mask24))),
+                          Splat(0x1p-24f));
+    VF u, v;
+    if (L.side != 0) {
+      VU row;
+      if (L.side_shift >= 0) {
+        row = hn::ShiftRightSame(cell, L.side_shift);
+      } else {  // cell / side in floats: exact for counts below 2^24
+        row = hn::BitCast(du, hn::ConvertTo(di, hn::Floor(hn::Div(toFloat(cell), Splat(float(L.side))))));
+      }
+      const VU col = hn::Sub(cell, hn::Mul(row, hn::Set(du, L.side)));
+      u = hn::Mul(hn::Add(toFloat(col), jx), Splat(L.inv_side));
+      v = hn::Mul(hn::Add(toFloat(row), jy), Splat(L.inv_side));
+    } else {
+      const VU row = Permute(cell, hn::LoadU(du, P.row_seed.data() + k), w, count, hn::LoadU(du, P.row_offset.data() + k));
+      u = hn::Mul(hn::Add(toFloat(cell), jx), Splat(L.inv_count));
+      v = hn::Mul(hn::Add(toFloat(row), jy), Splat(L.inv_count));
+    }
+    hn::StoreU(hn::Min(u, below_one), df, u_out + k);
+    hn::StoreU(hn::Min(v, below_one), df, v_out + k);
+  }
+}
+
+// Which target this copy was compiled for.
+int64_t CompiledTarget() { return HWY_TARGET; }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace stirrup::render
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace stirrup::render {
+
+HWY_EXPORT(CameraRayLanes);
+HWY_EXPORT(BoxTestLanes);
+HWY_EXPORT(BoxTestRays);
+HWY_EXPORT(GroundLanes);
+HWY_EXPORT(SkyLanes);
+HWY_EXPORT(CheckerLanes);
+HWY_EXPORT(CompiledTarget);
+HWY_EXPORT(StratifiedPointLanes);
+
+void StratifiedLanes::resize(std::size_t n) {
+  pixel_hash.resize(n, 0);
+  for (auto* v : {&index, &seed, &row_seed, &offset, &row_offset}) v->resize(n, 0u);
+}
+
+void stratifiedLanes(const Stratified2D::Layout& layout, const StratifiedLanes& points, std::size_t first,
+                     std::size_t n, float* u, float* v) {
+  HWY_DYNAMIC_DISPATCH(StratifiedPointLanes)(layout, points, first, n, u, v);
+}
+
+void CameraLanes::resize(std::size_t n) {
+  size = n;
+  padded = (n + kPad - 1) / kPad * kPad;
+  for (auto* v : {&ux, &uy, &cx, &cy, &ox, &oy, &oz, &dx, &dy, &dz, &t_ground, &t_shade, &albedo_r, &albedo_g,
+                  &albedo_b, &haze, &depth, &radiance_r, &radiance_g, &radiance_b, &sky_r, &sky_g, &sky_b})
+    v->resize(padded, 0.0f);
+  may_hit.resize(padded, 0);
+  open.resize(padded, 0);
+}
+
+void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground) {
+  HWY_DYNAMIC_DISPATCH(CameraRayLanes)(k, lanes, flat_ground);
+}
+void boxTestLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(BoxTestLanes)(k, lanes); }
+void boxTestLanes(const LaneConstants& k, RayLanes& rays) { HWY_DYNAMIC_DISPATCH(BoxTestRays)(k, rays); }
+
+void RayLanes::start(std::size_t capacity) {
+  size = 0;
+  const std::size_t padded = (capacity + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->resize(padded);
+  may_hit.resize(padded);
+}
+
+void RayLanes::pad() {
+  const std::size_t padded = (size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  std::fill(t_far.begin() + std::ptrdiff_t(size), t_far.begin() + std::ptrdiff_t(padded), 0.0f);  // no ray
+}
+void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundLanes)(k, lanes); }
+void skyLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(SkyLanes)(k, lanes); }
+void filteredCheckerLanes(const float* s, const float* t, const float* width, float* out, std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(CheckerLanes)(s, t, width, out, n);
+}
+
+std::string simdTargetName() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(CompiledTarget)()); }
+
+std::vector<std::string> simdTargets() {
+  std::vector<std::string> names;
+  for (int64_t target : hwy::SupportedAndGeneratedTargets()) names.emplace_back(hwy::TargetName(target));
+  return names;
+}
+
+void pinSimdTarget(const std::string& name) {
+  hwy::SetSupportedTargetsForTest(0);  // back to what the CPU has
+  if (name.empty() || name == "best") return;
+  std::string known;
+  for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    if (name == hwy::TargetName(target)) {
+      hwy::SetSupportedTargetsForTest(target);
+      return;
+    }
+    known += (known.empty() ? "" : ", ") + std::string(hwy::TargetName(target));
+  }
+  throw std::invalid_argument("SIMD target \"" + name + "\": expected one of " + known + " or best");
+}
+
+}  // namespace stirrup::render
+#endif  // HWY_ONCE

@@ -1,0 +1,194 @@
+// stirrup movies end to end, small: a few movies at 96x54, 3 frames each, draft quality. Checks the
+// movies with ffprobe, the index's links, and the index in a real headless Chromium.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "tests/cli/run_command.h"
+
+namespace stirrup::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+CommandResult runStirrupHere(const std::string& args) { return runCommand(quote(STIRRUP_EXE) + " " + args); }
+
+std::string probe(const fs::path& movie) {
+  return runCommand("ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+                    "stream=codec_name,pix_fmt,nb_read_frames,r_frame_rate -of csv=p=0 " +
+                    quote(movie.string()))
+      .out;
+}
+
+class MoviesCommand : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    // CTest runs every test in its own process, two at a time: each process renders into its own folder.
+    dir_ = fs::path(STIRRUP_BINARY_DIR) / ("test_movies_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    result_ = new CommandResult(runStirrupHere(
+        "movies --only trot_side,walk_layered,turntable_pose --frames-limit 3 --preset draft --resolution 96x54 "
+        "--mov prores --date 2026-01-01 --out " + quote(dir_.string())));
+  }
+  static void TearDownTestSuite() {
+    delete result_;
+    if (!::testing::UnitTest::GetInstance()->Failed()) fs::remove_all(dir_);  // kept for a look on failure
+  }
+  static fs::path dir_;
+  static CommandResult* result_;
+};
+fs::path MoviesCommand::dir_;
+CommandResult* MoviesCommand::result_ = nullptr;
+
+TEST_F(MoviesCommand, WritesMoviesWithTheRightFramesRateAndCodec) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->err;
+  EXPECT_EQ(result_->out, (dir_ / "index.html").string() + "\n");
+  EXPECT_EQ(result_->err, "");  // quiet when stderr is not a terminal
+  // 24 fps scenes: a one-second slate (24 frames) and 3 rendered frames.
+  for (const char* name : {"trot_side", "walk_layered", "turntable_pose"}) {
+    EXPECT_EQ(probe(dir_ / (std::string(name) + ".mp4")), "h264,yuv420p,24/1,27\n") << name;
+    EXPECT_EQ(probe(dir_ / (std::string(name) + ".mov")), "prores,yuv422p10le,24/1,27\n") << name;
+    EXPECT_TRUE(fs::exists(dir_ / (std::string(name) + "_sheet.png"))) << name;
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "trot_plot.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "walk_plot.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "frames"));  // frames are not kept without --keep-frames
+}
+
+TEST_F(MoviesCommand, LayeredMovieIsTwoPanelsWide) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->err;
+  const std::string size = runCommand("ffprobe -v error -select_streams v:0 -show_entries stream=width,height "
+                                      "-of csv=p=0 " + quote((dir_ / "walk_layered.mp4").string())).out;
+  const std::string single = runCommand("ffprobe -v error -select_streams v:0 -show_entries stream=width,height "
+                                        "-of csv=p=0 " + quote((dir_ / "trot_side.mp4").string())).out;
+  EXPECT_EQ(single, "96,54\n");
+  int w = 0, h = 0;
+  ASSERT_EQ(std::sscanf(size.c_str(), "%d,%d", &w, &h), 2) << size;
+  EXPECT_GE(w, 2 * 96);
+  EXPECT_EQ(h, 54);
+}
+
+TEST_F(MoviesCommand, IndexLinksOnlyExistingFilesAndShowsEveryMovie) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->err;
+  const std::string html = readText(dir_ / "index.html");
+  const std::regex link("(?:src|href)=\"([^\"]+)\"");
+  int links = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), link); it != std::sregex_iterator(); ++it, ++links)
+    EXPECT_TRUE(fs::is_regular_file(dir_ / (*it)[1].str())) << (*it)[1].str();
+  EXPECT_GE(links, 3 * 5);
+  for (const char* name : {"trot_side", "walk_layered", "turntable_pose"})
+    EXPECT_NE(html.find("<video controls preload=\"auto\" muted playsinline src=\"" + std::string(name) + ".mp4\""),
+              std::string::npos)
+        << name;
+}
+
+// Loads index.html in Debian's Chromium, headless, lets the page load the movies and dumps the DOM:
+// every <video> must report its metadata (duration, size) through the page's data attributes.
+TEST_F(MoviesCommand, HeadlessChromiumLoadsEveryVideo) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->err;
+  if (runCommand("command -v chromium").exit_code != 0) GTEST_SKIP() << "chromium is not installed (scripts/setup)";
+  const fs::path profile = dir_ / "chromium-profile";
+  fs::remove_all(profile);
+  const CommandResult r = runCommand(
+      "timeout 60 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync --mute-audio "
+      "--allow-file-access-from-files --autoplay-policy=no-user-gesture-required --virtual-time-budget=8000 "
+      "--user-data-dir=" + quote(profile.string()) + " --dump-dom " +
+      quote("file://" + fs::absolute(dir_ / "index.html").string()));
+  fs::remove_all(profile);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::regex video("<video[^>]*>");
+  int videos = 0;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), video); it != std::sregex_iterator(); ++it) {
+    const std::string tag = it->str();
+    ++videos;
+    EXPECT_EQ(tag.find("data-error"), std::string::npos) << "the browser could not play: " << tag;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(tag, m, std::regex("data-duration=\"([0-9.]+)\""))) << tag;
+    // 27 frames at 24 fps.
+    EXPECT_NEAR(std::stod(m[1].str()), 27.0 / 24.0, 0.05) << tag;
+    EXPECT_NE(tag.find("data-height=\"54\""), std::string::npos) << tag;
+  }
+  EXPECT_EQ(videos, 3);
+}
+
+TEST(MoviesErrors, UnknownMovieAndPresetAreOneLineErrors) {
+  CommandResult r = runStirrupHere("movies --only trot_sidee --out /tmp/never");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--only: no movie named \"trot_sidee\""), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  r = runStirrupHere("movies --preset fast --out /tmp/never");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--preset"), std::string::npos) << r.err;
+  r = runStirrupHere("movies --mov avi --out /tmp/never");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--mov: expected prores or h264"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists("/tmp/never"));
+}
+
+TEST(MoviesList, ListsTheThesisSetAndMore) {
+  const CommandResult r = runStirrupHere("movies --list");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"jump_side", "jump_persp", "rear_side", "rear_persp", "stop_side", "stop_persp",
+                           "stop_close", "stop_layered", "trot_side", "trot_persp", "trot_close", "trot_layered",
+                           "walk_side", "walk_persp", "walk_close", "walk_layered", "buck_side", "buck_persp",
+                           "canter_side", "gallop_side", "turntable_pose", "turntable_trot", "cross_country_persp",
+                           "figure_eight_persp", "figure_eight_top", "trail_persp"})
+    EXPECT_NE(r.out.find(std::string(name) + "\t"), std::string::npos) << name;
+  const bool plate = fs::exists(fs::path(STIRRUP_SHARED_DIR) / "reference/muybridge/horse-and-rider-gallop-plate.jpg");
+  EXPECT_EQ(r.out.find("gallop_layered\t") != std::string::npos, plate);
+}
+
+// The two stages a farm runs apart (render/review/movie_set.h): --frames renders a share of one movie's
+// frames, --finish makes the movie from them. Together they make what one `stirrup movies` makes.
+TEST(MoviesStages, FramesThenFinishMakeTheSameMovieAsOneRun) {
+  const fs::path one = fs::path(STIRRUP_BINARY_DIR) / ("test_movies_one_" + std::to_string(::getpid()));
+  const fs::path two = fs::path(STIRRUP_BINARY_DIR) / ("test_movies_two_" + std::to_string(::getpid()));
+  const std::string set = "--only trot_side --frames-limit 5 --preset draft --resolution 96x54 --date 2026-01-01 --keep-frames";
+  ASSERT_EQ(runStirrupHere("movies " + set + " --out " + quote(one.string())).exit_code, 0);
+  CommandResult r = runStirrupHere("movies " + set + " --frames 4-5 --out " + quote(two.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");  // a share of frames, no movie yet
+  EXPECT_FALSE(fs::exists(two / "trot_side.mp4"));
+  // Finishing before every frame is there names the first missing one and encodes nothing.
+  r = runStirrupHere("movies " + set + " --finish --out " + quote(two.string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: trot_side: frame 1 is missing (" + (two / "frames/trot_side/trot_side.0001.png").string() + ")\n");
+  EXPECT_FALSE(fs::exists(two / "trot_side.mp4"));
+  // --resume renders only what is missing (frames 1-3), then the movie is made as one run makes it.
+  const auto written = fs::last_write_time(two / "frames/trot_side/trot_side.0004.png");
+  ASSERT_EQ(runStirrupHere("movies " + set + " --frames 1-5 --resume --out " + quote(two.string())).exit_code, 0);
+  EXPECT_EQ(fs::last_write_time(two / "frames/trot_side/trot_side.0004.png"), written);
+  r = runStirrupHere("movies " + set + " --finish --out " + quote(two.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, (two / "index.html").string() + "\n");
+  for (const char* file : {"trot_side_sheet.png", "trot_plot.png", "frames/trot_side/trot_side.0001.png",
+                           "frames/trot_side/trot_side.0005.png", "frames/trot_side/trot_side.slate.png"})
+    EXPECT_TRUE(readText(one / file) == readText(two / file)) << file;
+  EXPECT_EQ(probe(two / "trot_side.mp4"), probe(one / "trot_side.mp4"));
+  EXPECT_FALSE(fs::exists(two / "frames/trot_side/trot_side.0001.sheet.exr"));  // kept frames are the PNGs
+  fs::remove_all(one);
+  fs::remove_all(two);
+}
+
+TEST(MoviesStages, MisusedStageOptionsAreOneLineErrors) {
+  CommandResult r = runStirrupHere("movies --only trot_side,jump_side --frames 1-2 --out /tmp/never");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: --frames: expected exactly one movie with --only NAME, got 2\n");
+  r = runStirrupHere("movies --only trot_side --frames 1-2 --finish --out /tmp/never");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  r = runStirrupHere("movies --only trot_side --frames-limit 4 --frames 9 --out /tmp/never_frames");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "stirrup: trot_side: frame 9 is not one of the movie's frames (1-4)\n");
+  EXPECT_FALSE(fs::exists("/tmp/never"));
+  fs::remove_all("/tmp/never_frames");
+}
+
+}  // namespace
+}  // namespace stirrup::test

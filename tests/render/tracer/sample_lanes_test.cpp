@@ -1,0 +1,281 @@
+// The SIMD kernels against the scalar expressions they stand for, bit for bit, and against each other
+// on every instruction set this CPU runs.
+#include "render/tracer/sample_lanes.h"
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "render/scene/camera.h"
+#include "render/tracer/integrator.h"
+#include "render/tracer/lights.h"
+
+namespace stirrup::render {
+namespace {
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Pins the kernels to each target in turn and back to the best when it goes out of scope.
+struct TargetPin {
+  ~TargetPin() { pinSimdTarget("best"); }
+};
+
+TEST(SampleLanes, TheCheckerMatchesTheScalarFilterBitForBit) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coord(-4000.0f, 4000.0f), w(0.0f, 1.4f);
+  const std::size_t n = 20011;  // not a multiple of any vector: the tail is covered too
+  std::vector<float> s(n), t(n), width(n), out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s[i] = coord(rng), t[i] = coord(rng);
+    width[i] = i % 7 == 0 ? 0.0f : (i % 11 == 0 ? 0.25f : (i % 13 == 0 ? 1.0f : w(rng)));
+  }
+  filteredCheckerLanes(s.data(), t.data(), width.data(), out.data(), n);
+  int differing = 0;
+  for (std::size_t i = 0; i < n; ++i) differing += !sameBits(out[i], filteredChecker(s[i], t[i], width[i]));
+  EXPECT_EQ(differing, 0);
+}
+
+TEST(SampleLanes, TheCheckerHasNoContrastBelowAPixel) {
+  // A footprint of 1.5 squares: a box filter alone still shows a third of the contrast (0.33 to 0.67
+  // along a row); the fade leaves the mean.
+  for (float s = 0.0f; s < 4.0f; s += 0.01f) EXPECT_EQ(filteredChecker(s, 0.3f, 1.5f), 0.5f);
+  // Between four footprints a square and one, the contrast falls smoothly: never above the box's own.
+  float previous = 1.0f;
+  for (int step = 0; step <= 15; ++step) {
+    const float width = step == 15 ? 1.0f : 0.25f + 0.05f * float(step);
+    float lo = 1.0f, hi = 0.0f;
+    for (float s = 0.0f; s < 2.0f; s += 0.005f) {
+      const float v = filteredChecker(s, 0.5f, width);
+      lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    EXPECT_LE(hi - lo, previous + 1e-6f) << "width " << width;
+    previous = hi - lo;
+  }
+  EXPECT_LT(previous, 1e-5f);
+}
+
+// The tent filter's inverse CDF (as sample_lanes.cpp states it), for the expected rays.
+float tent(float u) { return u < 0.5f ? std::sqrt(2.0f * u) - 1.0f : 1.0f - std::sqrt(2.0f - 2.0f * u); }
+
+LaneConstants constantsFor(const CameraFrame& frame) {
+  LaneConstants k;
+  frame.laneView(k.perspective, k.pixel_dx, k.pixel_dy, k.half_width, k.half_height, k.footprint_at_0,
+                 k.footprint_per_cm);
+  k.position = frame.positionF(), k.forward = frame.forwardF(), k.right = frame.rightF(), k.up = frame.upF();
+  k.target_distance = frame.targetDistanceF();
+  k.ground_extent = 100000.0f;
+  k.t_visible = 60000.0f;
+  k.box_lower = {-50.0f, 0.0f, -80.0f}, k.box_upper = {50.0f, 250.0f, 80.0f};
+  k.box_empty = false;
+  return k;
+}
+
+CameraLanes randomSamples(std::size_t n, int width, int height, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 0.99999994f);
+  CameraLanes lanes;
+  lanes.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lanes.ux[i] = u(rng), lanes.uy[i] = u(rng);
+    lanes.cx[i] = float(int(u(rng) * float(width))) + 0.5f, lanes.cy[i] = float(int(u(rng) * float(height))) + 0.5f;
+  }
+  return lanes;
+}
+
+Camera sideCamera(Camera::Projection projection) {
+  Camera c;
+  c.projection = projection;
+  c.position = {40.0, 220.0, 900.0};
+  c.target = {0.0, 110.0, 0.0};
+  c.fov_deg = 27.0;
+  c.ortho_height_cm = 320.0;
+  return c;
+}
+
+TEST(SampleLanes, CameraRaysAreTheCameraFramesRays) {
+  for (Camera::Projection projection : {Camera::Projection::Perspective, Camera::Projection::Orthographic}) {
+    const CameraFrame frame(sideCamera(projection), 640, 360);
+    const LaneConstants k = constantsFor(frame);
+    CameraLanes lanes = randomSamples(3001, 640, 360, 9);
+    cameraRayLanes(k, lanes, true);
+    int differing = 0, ground = 0, may_hit = 0;
+    for (std::size_t i = 0; i < lanes.size; ++i) {
+      glm::vec3 o, d;
+      frame.rayFromPixel(lanes.cx[i] + tent(lanes.ux[i]), lanes.cy[i] + tent(lanes.uy[i]), o, d);
+      differing += !(sameBits(o.x, lanes.ox[i]) && sameBits(o.y, lanes.oy[i]) && sameBits(o.z, lanes.oz[i]) &&
+                     sameBits(d.x, lanes.dx[i]) && sameBits(d.y, lanes.dy[i]) && sameBits(d.z, lanes.dz[i]));
+      // The plane: where the ray meets y = 0 in front of the camera, and nowhere else.
+      const float t = -o.y / d.y;
+      if (d.y < 0.0f && t < k.t_visible) {
+        ++ground;
+        EXPECT_TRUE(sameBits(lanes.t_ground[i], t)) << i;
+      } else {
+        EXPECT_TRUE(std::isinf(lanes.t_ground[i])) << i;
+      }
+      // The box test is conservative: a ray that meets the box (in doubles, before the ground) is kept.
+      const glm::dvec3 od(o), dd(d);
+      double t0 = 0.0, t1 = std::isinf(lanes.t_ground[i]) ? 1e30 : double(lanes.t_ground[i]);
+      for (int a = 0; a < 3; ++a) {
+        double n0 = (double(k.box_lower[a]) - od[a]) / dd[a], f0 = (double(k.box_upper[a]) - od[a]) / dd[a];
+        if (n0 > f0) std::swap(n0, f0);
+        t0 = std::max(t0, n0), t1 = std::min(t1, f0);
+      }
+      if (t0 < t1 - 1e-3) {
+        EXPECT_NE(lanes.may_hit[i], 0) << i;
+      }
+      if (t0 > t1 + 1.0) {
+        EXPECT_EQ(lanes.may_hit[i], 0) << i;
+      }
+      may_hit += lanes.may_hit[i] != 0;
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(ground, 100);  // the frames hold ground and the box (and sky, in perspective)
+    EXPECT_GT(may_hit, 100);
+    if (projection == Camera::Projection::Perspective) {
+      EXPECT_LT(ground, int(lanes.size));
+    }
+  }
+}
+
+// Open ground's light from the lanes is the scalar shading's: (albedo cos) sun + albedo sky, hazed.
+TEST(SampleLanes, OpenGroundIsLitAsTheScalarShadingLightsIt) {
+  const CameraFrame frame(sideCamera(Camera::Projection::Perspective), 640, 360);
+  LaneConstants k = constantsFor(frame);
+  RenderSettings settings;
+  k.color_a = settings.ground_color_a, k.color_b = settings.ground_color_b;
+  k.square_cm = settings.ground_square_cm;
+  k.haze_visibility = settings.haze.visibility_cm;
+  k.horizon = settings.sky.horizon;
+  const glm::vec3 sun = glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f));
+  k.sun_y = sun.y;
+  k.sun_radiance = settings.sun_color * settings.sun_strength;
+  k.sky_irradiance = settings.sky.upwardIrradianceOverPi();
+  k.sun_region = true;
+  k.sun_lower_x = -300.0f, k.sun_upper_x = 300.0f, k.sun_lower_z = -300.0f, k.sun_upper_z = 300.0f;
+  k.ao_distance = 300.0f;
+  CameraLanes lanes = randomSamples(4000, 640, 360, 3);
+  cameraRayLanes(k, lanes, true);
+  lanes.t_shade = lanes.t_ground;
+  groundLanes(k, lanes);
+  int open = 0, differing = 0;
+  for (std::size_t i = 0; i < lanes.size; ++i) {
+    if (std::isinf(lanes.t_shade[i])) continue;
+    const float t = lanes.t_shade[i];
+    const glm::vec3 p(lanes.ox[i] + t * lanes.dx[i], 0.0f, lanes.oz[i] + t * lanes.dz[i]);
+    const float width = frame.pixelFootprintF(t) / std::max(std::abs(lanes.dy[i]), 0.02f) / k.square_cm;
+    const glm::vec3 albedo = glm::mix(k.color_a, k.color_b, filteredChecker(p.x / k.square_cm, p.z / k.square_cm, width));
+    const float haze = AerialPerspective::perspective(t, k.haze_visibility);
+    differing += !(sameBits(albedo.x, lanes.albedo_r[i]) && sameBits(albedo.z, lanes.albedo_b[i]) &&
+                   sameBits(haze, lanes.haze[i]) && sameBits(frame.viewDepthF(p), lanes.depth[i]));
+    const bool outside = p.x < -300.0f || p.x > 300.0f || p.z < -300.0f || p.z > 300.0f;
+    const glm::vec3 to_box = glm::max(glm::max(k.box_lower - p, p - k.box_upper), glm::vec3(0.0f));
+    const bool expect_open = outside && glm::length(to_box) > 300.5f;  // (the origin is lifted a little)
+    if (expect_open) {
+      EXPECT_NE(lanes.open[i], 0) << i;
+    }
+    if (!outside) {
+      EXPECT_EQ(lanes.open[i], 0) << i;
+    }
+    if (!lanes.open[i]) continue;
+    ++open;
+    glm::vec3 radiance = albedo * sun.y * k.sun_radiance + albedo * k.sky_irradiance;
+    if (haze < 1.0f) radiance = radiance * haze + k.horizon * (1.0f - haze);
+    differing += !(sameBits(radiance.x, lanes.radiance_r[i]) && sameBits(radiance.y, lanes.radiance_g[i]) &&
+                   sameBits(radiance.z, lanes.radiance_b[i]));
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(open, 500);
+}
+
+// Every kernel, run on every target this CPU has, gives the same bits (the premise of a frame's bytes
+// not depending on the instruction set).
+TEST(SampleLanes, EveryDispatchTargetGivesTheSameBits) {
+  const std::vector<std::string> targets = simdTargets();
+  ASSERT_FALSE(targets.empty());
+  if (targets.size() < 2) GTEST_SKIP() << "this CPU runs one SIMD target only: " << targets.front();
+  TargetPin restore;
+  for (Camera::Projection projection : {Camera::Projection::Perspective, Camera::Projection::Orthographic}) {
+    const CameraFrame frame(sideCamera(projection), 640, 360);
+    LaneConstants k = constantsFor(frame);
+    k.sun_region = true, k.sun_y = 0.7f, k.sun_radiance = glm::vec3(1.5f), k.sky_irradiance = glm::vec3(0.4f);
+    k.ao_distance = 300.0f, k.horizon = {0.6f, 0.66f, 0.74f}, k.zenith = {0.2f, 0.3f, 0.6f}, k.below = k.horizon;
+    k.color_a = glm::vec3(0.3f), k.color_b = glm::vec3(0.34f);
+    std::vector<std::vector<float>> first;
+    for (const std::string& target : targets) {
+      pinSimdTarget(target);
+      ASSERT_EQ(simdTargetName(), target);
+      CameraLanes lanes = randomSamples(2053, 640, 360, 11);
+      cameraRayLanes(k, lanes, true);
+      lanes.t_shade = lanes.t_ground;
+      groundLanes(k, lanes);
+      skyLanes(k, lanes);
+      std::vector<std::vector<float>> all = {lanes.ox, lanes.oy, lanes.oz, lanes.dx, lanes.dy, lanes.dz,
+                                             lanes.t_ground, lanes.albedo_r, lanes.haze, lanes.depth,
+                                             lanes.radiance_g, lanes.sky_b};
+      std::vector<float> masks;
+      for (std::size_t i = 0; i < lanes.size; ++i) {
+        masks.push_back(float(lanes.may_hit[i] != 0));
+        masks.push_back(float(lanes.open[i] != 0));
+        if (!lanes.open[i]) lanes.radiance_g[i] = 0.0f;  // left from other lanes' pass: not an output
+        if (std::isinf(lanes.t_shade[i])) lanes.albedo_r[i] = lanes.haze[i] = lanes.depth[i] = 0.0f;
+      }
+      all[7] = lanes.albedo_r, all[8] = lanes.haze, all[9] = lanes.depth, all[10] = lanes.radiance_g;
+      all.push_back(masks);
+      for (auto& v : all) v.resize(lanes.size);
+      if (first.empty()) {
+        first = all;
+        continue;
+      }
+      for (std::size_t a = 0; a < all.size(); ++a)
+        EXPECT_EQ(std::memcmp(all[a].data(), first[a].data(), all[a].size() * sizeof(float)), 0)
+            << target << " against " << targets.front() << ", array " << a;
+    }
+  }
+}
+
+// The stratified points of many pixels' sequences at once, for square counts (a grid), powers of two
+// and others (Latin hypercubes), against Stratified2D on every target, bit for bit.
+TEST(SampleLanes, StratifiedPointsAreTheSequencesPointsOnEveryTarget) {
+  TargetPin restore;
+  for (const std::string& target : simdTargets()) {
+    pinSimdTarget(target);
+    for (uint32_t count : {1u, 2u, 3u, 4u, 5u, 9u, 16u, 17u, 36u, 64u, 100u, 256u}) {
+      const Stratified2D::Layout layout(count);
+      const std::size_t n = 4 * 16 * 9;  // whole vectors of every width
+      StratifiedLanes points;
+      points.resize(n);
+      std::vector<glm::vec2> expected(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const PixelSampler sampler(int(k % 37) - 5, int(k / 37) * 3, 7 + int(count));
+        const auto dim = SampleDimension(k % 3);
+        const Stratified2D sequence(sampler, layout, dim);
+        const uint32_t index = uint32_t(k * 7) % count;
+        points.set(k, sequence.pixelPart(), index);
+        expected[k] = sequence[index];
+      }
+      std::vector<float> u(n), v(n);
+      stratifiedLanes(layout, points, 0, n, u.data(), v.data());
+      int differing = 0;
+      for (std::size_t k = 0; k < n; ++k) differing += !(sameBits(u[k], expected[k].x) && sameBits(v[k], expected[k].y));
+      EXPECT_EQ(differing, 0) << target << ", count " << count;
+    }
+  }
+}
+
+TEST(SampleLanes, AnUnknownTargetIsRefusedByName) {
+  TargetPin restore;
+  try {
+    pinSimdTarget("NEON");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("\"NEON\": expected one of"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace stirrup::render
