@@ -3,9 +3,9 @@
 // committed once and never touched again. The character scene holds triangle meshes whose vertex
 // buffers are overwritten in place every frame (rtcUpdateGeometryBuffer + rtcCommitGeometry, then
 // one rtcCommitScene before tracing). Keeping the ground out of the character BVH means shadow and
-// sky rays, which the ground is taken never to block (see integrator.cpp; on hills, a hill's own
-// shadow is left out), traverse only the characters, and the huge ground triangles never inflate the
-// character BVH's nodes.
+// sky rays traverse only the characters (the flat ground never blocks them; on hills, only the sun
+// rays the hills might block are also traced against the ground scene, see integrator.cpp), and the
+// huge ground triangles never inflate the character BVH's nodes.
 #pragma once
 
 #include <cstdint>

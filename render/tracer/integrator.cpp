@@ -47,11 +47,12 @@ float filteredChecker(float s, float t, float width) {
 
 Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
                        std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain,
-                       float ground_floor)
+                       float ground_floor, const SunHorizon* hills)
     : settings_(settings),
       characters_(scene.characters()),
       meshes_(meshes_by_geometry),
       terrain_(terrain),
+      hills_(hills),
       ground_(scene.ground()),
       ground_floor_(terrain ? ground_floor : 0.0f),
       pixel_layout_(uint32_t(settings.samples_per_pixel)),
@@ -188,10 +189,12 @@ struct TileScratch::CameraSample {
 };
 
 // What an occlusion ray brings when it is open. `ray` indexes the batch's occlusion rays (the lanes
-// in TileScratch::occluders), or is -1: no ray (its t_far was not positive), so it is open.
+// in TileScratch::occluders), or is -1: no ray (its t_far was not positive), so it is open. `hill`
+// indexes TileScratch::hill_rays, the same sun ray against the heightfield, or is -1: not traced there.
 struct TileScratch::PendingRay {
   glm::vec3 weight;
   int32_t ray;
+  int32_t hill;
 };
 
 TileScratch::TileScratch() = default;
@@ -266,6 +269,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   scratch.pending.clear();
   scratch.sun_rays.clear();
   scratch.sky_rays.clear();
+  scratch.hill_rays.clear();
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = std::size_t(count) * spp_;
   lanes.resize(n);
@@ -424,12 +428,19 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
     sample.sun_pending = sample.sky_pending = 0;
     sample.sun_traced = S.sun_traced[s] != 0;
     sample.sun = {S.sun_r[s], S.sun_g[s], S.sun_b[s]};
+    const bool hills = S.hills[s] != 0;
     if (sample.sun_traced) {
       for (std::size_t k = 0, at = s; k < light_spp_; ++k, at += S.stride) {
         if (!S.sun_valid[at]) continue;  // no light from below: no ray, and nothing to add
-        const int32_t ray = emitOcclusion(origin, {S.sun_wx[at], S.sun_wy[at], S.sun_wz[at]}, kInfinity, false,
-                                          scratch, tally);
-        scratch.pending.push_back({{S.sun_fr[at], S.sun_fg[at], S.sun_fb[at]}, ray});
+        const glm::vec3 direction(S.sun_wx[at], S.sun_wy[at], S.sun_wz[at]);
+        const int32_t ray = emitOcclusion(origin, direction, kInfinity, false, scratch, tally);
+        int32_t hill = -1;
+        if (hills) {  // the same ray against the heightfield
+          hill = int32_t(scratch.hill_rays.size());
+          scratch.hill_rays.push_back(makeRay(origin, direction, kInfinity));
+          ++tally.rays;  // (not kept in a RayLog, whose occlusion rays are replayed against the characters)
+        }
+        scratch.pending.push_back({{S.sun_fr[at], S.sun_fg[at], S.sun_fb[at]}, ray, hill});
         ++sample.sun_pending;
       }
     }
@@ -440,7 +451,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
         if (!S.sky_valid[at]) continue;  // below the real surface: blocked by it
         const int32_t ray = emitOcclusion(origin, {S.sky_wx[at], S.sky_wy[at], S.sky_wz[at]}, S.sky_t_far[at], true,
                                           scratch, tally);
-        scratch.pending.push_back({{S.sky_lr[at], S.sky_lg[at], S.sky_lb[at]}, ray});
+        scratch.pending.push_back({{S.sky_lr[at], S.sky_lg[at], S.sky_lb[at]}, ray, -1});
         ++sample.sky_pending;
       }
     }
@@ -474,10 +485,17 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
     rtcInitIntersectContext(&context);
     rtcOccluded1M(characters_, &context, scratch.sky_rays.data(), unsigned(scratch.sky_rays.size()), sizeof(RTCRay));
   }
+  if (!scratch.hill_rays.empty()) {  // the sun rays the hills may block, against the heightfield (nearly parallel)
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded1M(ground_, &context, scratch.hill_rays.data(), unsigned(scratch.hill_rays.size()), sizeof(RTCRay));
+  }
 
   // Pass 5: each sample's light from its open rays, and each pixel's samples into its result.
   const TileScratch::PendingRay* pending = scratch.pending.data();
   auto open = [&](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
+    if (r.hill >= 0 && blocked(scratch.hill_rays[std::size_t(r.hill)])) return false;
     if (r.ray < 0) return true;
     const int32_t traced = scratch.occluder_ray[std::size_t(r.ray)];
     return traced < 0 || !blocked(stream[std::size_t(traced)]);
@@ -578,9 +596,11 @@ void Integrator::gatherSurface(const CameraFrame& camera, TileScratch::CameraSam
     S.tr[m] = texture.x, S.tg[m] = texture.y, S.tb[m] = texture.z;
     // The ground under the hit (its downward sky rays stop just above it).
     S.ground_y[m] = 0.0f;
+    S.hills[m] = 0;
     if (terrain_) {
       const glm::vec3 p = c.origin + t * c.dir;
       S.ground_y[m] = float(terrain_->height(double(p.x), double(p.z)));
+      S.hills[m] = hillsMayBlockSun(p, false) ? -1 : 0;
     }
     c.id = mesh.id;
     c.haze = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
@@ -620,8 +640,18 @@ void Integrator::gatherSurface(const CameraFrame& camera, TileScratch::CameraSam
                  ? AerialPerspective::perspective(t, settings_.haze.visibility_cm)
                  : AerialPerspective::orthographic(t - camera.targetDistanceF(), settings_.haze.ortho_depth_cm);
   }
+  S.hills[m] = terrain_ && hillsMayBlockSun(p, true) ? -1 : 0;
   S.px[m] = p.x, S.py[m] = p.y, S.pz[m] = p.z;
   S.ngx[m] = S.nx[m] = n.x, S.ngy[m] = S.ny[m] = n.y, S.ngz[m] = S.nz[m] = n.z;
+}
+
+bool Integrator::hillsMayBlockSun(const glm::vec3& p, bool on_ground) const {
+  if (!hills_) return true;
+  // The secondary rays leave from p lifted by at most 2e-3 + 3e-5 * its largest coordinate
+  // (shading_lanes.cpp), and the lanes' p can differ from this one in its last bits: a little more.
+  const float extent = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
+  const float slack = 3e-3f + 4e-5f * extent;
+  return !hills_->open(p, slack, on_ground);
 }
 
 float Integrator::visibleDistance(const CameraFrame& camera) const {

@@ -21,6 +21,7 @@
 #include "render/tracer/sample_lanes.h"
 #include "render/tracer/sampler.h"
 #include "render/tracer/shading_lanes.h"
+#include "render/tracer/terrain_mesh.h"
 #include "rig/motion/terrain.h"
 #include "rig/texture.h"
 
@@ -80,6 +81,7 @@ struct TileScratch {
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
+  std::vector<RTCRay> hill_rays;       // uneven ground: the sun rays the hills may block, against the heightfield
   StratifiedLanes pixel_points;        // the samples' sequences, for their points in lanes
   StratifiedLanes sun_points, sky_points;  // the surfaces' sun and sky sequences
   CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
@@ -95,10 +97,12 @@ class Integrator {
   // scene must be committed. With `terrain` (uneven ground) the scene's ground is its heightfield mesh:
   // camera rays are traced against it, the ground is shaded with the terrain's normal, and
   // `ground_floor` is its lowest height. Without, the ground is the plane y = 0, hit analytically.
-  // (The hills cast no shadows of their own: shadow and sky rays still meet only the characters.)
+  // The hills shadow the ground and the characters: wherever `hills` (this sun's horizon map of the
+  // heightfield) cannot promise the sun is open, its shadow rays are also traced against the
+  // heightfield. Sky rays meet only the characters.
   Integrator(const RenderSettings& settings, const EmbreeScene& scene,
              std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain = nullptr,
-             float ground_floor = 0.0f);
+             float ground_floor = 0.0f, const SunHorizon* hills = nullptr);
 
   // Every pixel of the tile [x0, x1) x [y0, y1), written row by row to `out` ((x1 - x0) * (y1 - y0)
   // results). The tile is traced in batches of pixels as ray streams, in three passes: all camera
@@ -132,6 +136,9 @@ class Integrator {
   // the batch's occlusion rays, or -1 when t_far leaves no ray.
   int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
                         TileScratch& scratch, RayTally& tally) const;
+  // Whether the hills may block some ray of the sun's disc from a surface at p (true with terrain and no
+  // horizon map). `on_ground`: p is a hit on the heightfield (so on or above it).
+  bool hillsMayBlockSun(const glm::vec3& p, bool on_ground) const;
   // How far along a camera ray the ground is seen before the haze ends it.
   float visibleDistance(const CameraFrame& camera) const;
   void setGroundSunRegion();
@@ -151,6 +158,7 @@ class Integrator {
   glm::vec3 ground_bounce_;    // radiance of the lit ground, seen by downward sky rays
   float ground_extent_;        // the ground is the square |x|, |z| <= this at y = 0, hit analytically
   const rig::Terrain* terrain_;  // or, when set, this terrain's mesh in ground_
+  const SunHorizon* hills_;      // with terrain_: where the hills certainly leave the sun open (null: nowhere)
   RTCScene ground_;
   float ground_floor_;         // no ground point lies below this height
   float blinn_norm_;           // (n + 8) / 8: Blinn-Phong lobe normalised for energy

@@ -1,6 +1,8 @@
 #include "render/tracer/renderer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -83,6 +85,8 @@ struct Renderer::State {
   std::vector<const ShadingMesh*> by_geometry;        // by geomID in the character scene
   std::shared_ptr<const rig::Terrain> terrain;        // null: the flat plane
   float ground_floor = 0.0f;                          // the lowest ground height
+  std::unique_ptr<const TerrainMesh> ground_mesh;     // the terrain's heightfield, as traced
+  std::unique_ptr<const SunHorizon> hills;            // where its hills certainly leave the sun open
   tbb::enumerable_thread_specific<TileBuffers> tile_buffers;
 };
 
@@ -97,10 +101,14 @@ Renderer::~Renderer() = default;
 void Renderer::setTerrain(std::shared_ptr<const rig::Terrain> terrain, const GroundRegion& region,
                           const TerrainMeshParams& params) {
   if (!terrain || terrain->flat()) return;
-  const TerrainMesh mesh = makeTerrainMesh(*terrain, region, params);
-  state_->arena.execute([&] { state_->scene.setGroundMesh(mesh.positions, mesh.indices); });
+  auto mesh = std::make_unique<const TerrainMesh>(makeTerrainMesh(*terrain, region, params));
+  state_->arena.execute([&] { state_->scene.setGroundMesh(mesh->positions, mesh->indices); });
+  // The sun is the renderer's for its whole life, so its horizon over the hills is worked out once too.
+  const double sun_radius = std::max(0.0, settings_.sun_angular_radius_deg) * std::numbers::pi / 180.0;
+  state_->hills = std::make_unique<const SunHorizon>(*mesh, settings_.sun_direction, sun_radius, region);
+  state_->ground_mesh = std::move(mesh);
   state_->terrain = std::move(terrain);
-  state_->ground_floor = mesh.min_height;
+  state_->ground_floor = state_->ground_mesh->min_height;
 }
 
 int Renderer::addMesh(const MeshDesc& desc) {
@@ -175,7 +183,7 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
     state_->scene.commit();
     stats_.commit_ms = msSince(t0);
     const Integrator integrator(settings_, state_->scene, state_->by_geometry, state_->terrain.get(),
-                                state_->ground_floor);
+                                state_->ground_floor, state_->hills.get());
 
     const auto t1 = Clock::now();
     // simple_partitioner: tiles of at most 16 x 16, whatever the thread count.

@@ -138,6 +138,7 @@ void ShadingLanes(const LaneConstants& k, SurfaceLanes& S) {
       const MF excluded = hn::And(on_ground, hn::And(hn::Ge(origin.y, Splat(k.ground_floor)), outside));
       sun_traced = hn::AndNot(excluded, sun_traced);
     }
+    sun_traced = hn::Or(sun_traced, LoadMask(S.hills, i));
     StoreMask(sun_traced, S.sun_traced, i);
     Store3(Mul3(reflected(sun_frame.z), Splat3(k.sun_radiance)), S.sun_r, S.sun_g, S.sun_b, i);
     if (!hn::AllFalse(df, sun_traced)) {
@@ -229,7 +230,7 @@ void SurfaceLanes::reserve(std::size_t n, int light_samples, int ao_samples) {
                   &diffuse_g, &diffuse_b, &sun_r, &sun_g, &sun_b, &sky_r, &sky_g, &sky_b})
     v->resize(stride, 0.0f);
   for (auto* v : {&tr, &tg, &tb}) v->resize(stride, 1.0f);
-  for (auto* v : {&character, &on_ground, &sun_traced, &sky_traced}) v->resize(stride, 0);
+  for (auto* v : {&character, &on_ground, &hills, &sun_traced, &sky_traced}) v->resize(stride, 0);
   const std::size_t sun_rays = stride * std::size_t(light_samples), sky_rays = stride * std::size_t(ao_samples);
   for (auto* v : {&sun_u, &sun_v, &sun_wx, &sun_wy, &sun_wz, &sun_fr, &sun_fg, &sun_fb}) v->resize(sun_rays, 0.0f);
   sun_valid.resize(sun_rays, 0);

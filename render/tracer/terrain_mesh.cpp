@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <utility>
 #include <stdexcept>
 
 namespace stirrup::render {
@@ -42,6 +44,8 @@ TerrainMesh makeTerrainMesh(const rig::Terrain& terrain, const GroundRegion& reg
   const std::vector<double> xs = terrainGridLines(region.x0, region.x0 + width, spacing, params);
   const std::vector<double> zs = terrainGridLines(region.z0, region.z0 + depth, spacing, params);
   TerrainMesh mesh;
+  mesh.xs = xs;
+  mesh.zs = zs;
   mesh.positions.reserve(xs.size() * zs.size());
   mesh.min_height = std::numeric_limits<float>::infinity();
   mesh.max_height = -std::numeric_limits<float>::infinity();
@@ -63,6 +67,135 @@ TerrainMesh makeTerrainMesh(const rig::Terrain& terrain, const GroundRegion& reg
     }
   }
   return mesh;
+}
+
+double TerrainMesh::heightAt(double x, double z) const {
+  if (xs.size() < 2 || zs.size() < 2 || !(x >= xs.front() && x <= xs.back() && z >= zs.front() && z <= zs.back()))
+    return -std::numeric_limits<double>::infinity();
+  const std::size_t i = std::min<std::size_t>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin(), xs.size() - 1) - 1;
+  const std::size_t j = std::min<std::size_t>(std::upper_bound(zs.begin(), zs.end(), z) - zs.begin(), zs.size() - 1) - 1;
+  const std::size_t nx = xs.size(), a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+  const double tx = (x - xs[i]) / (xs[i + 1] - xs[i]), tz = (z - zs[j]) / (zs[j + 1] - zs[j]);
+  const double ha = positions[a].y, hb = positions[b].y, hc = positions[c].y, hd = positions[d].y;
+  // The cell's two triangles meet on its diagonal a (x0 z0) - d (x1 z1): (a c d) where tz >= tx, (a d b) below.
+  if (tz >= tx) return ha + tz * (hc - ha) + tx * (hd - hc);
+  return ha + tx * (hb - ha) + tz * (hd - hb);
+}
+
+double TerrainMesh::cellSlope(std::size_t i, std::size_t j) const {
+  const std::size_t nx = xs.size(), a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+  const double dx = xs[i + 1] - xs[i], dz = zs[j + 1] - zs[j];
+  const double ha = positions[a].y, hb = positions[b].y, hc = positions[c].y, hd = positions[d].y;
+  const double upper = std::hypot((hd - hc) / dx, (hc - ha) / dz);  // (a c d)
+  const double lower = std::hypot((hb - ha) / dx, (hd - hb) / dz);  // (a d b)
+  return std::max(upper, lower);
+}
+
+namespace {
+
+// How far a ray origin may be from the point the map is asked about (the renderer's ray offset: 2e-3 cm
+// plus 3e-5 of the coordinates, under 1 cm within 300 m; render/shading_lanes.cpp). Farther points are
+// not answered (traced).
+constexpr double kMaxSlackCm = 1.0;
+// Heights are stored in floats: this much more is asked of a point than the bound in doubles says.
+constexpr double kHeightEpsilonCm = 0.01;
+
+}  // namespace
+
+SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, double angular_radius_rad,
+                       const GroundRegion& region, const SunHorizonParams& params)
+    : mesh_(&mesh) {
+  if (mesh.xs.size() < 2 || mesh.zs.size() < 2) return;
+  for (std::size_t j = 0; j + 1 < mesh.zs.size(); ++j)
+    for (std::size_t i = 0; i + 1 < mesh.xs.size(); ++i) steepest_ = std::max(steepest_, mesh.cellSlope(i, j));
+  const double length = std::sqrt(toward_sun.x * toward_sun.x + toward_sun.y * toward_sun.y + toward_sun.z * toward_sun.z);
+  if (!(length > 0.0)) return;
+  const double elevation = std::asin(std::clamp(toward_sun.y / length, -1.0, 1.0));
+  const double low = elevation - angular_radius_rad;  // the lowest ray of the disc
+  if (!(low > 0.0)) return;                            // the disc reaches the horizon: nothing is known
+  tan_low_ = std::tan(low);
+  if (steepest_ < tan_low_) {
+    everywhere_open_ = true;
+    return;
+  }
+  // The sun's azimuth, and how far a disc ray's ground track can turn from it (as a chord of the unit circle).
+  const double horizontal = std::hypot(toward_sun.x, toward_sun.z);
+  const double ax = horizontal > 0.0 ? toward_sun.x / horizontal : 1.0, az = horizontal > 0.0 ? toward_sun.z / horizontal : 0.0;
+  const double cos_e = horizontal / length;
+  double chord = 2.0;
+  if (angular_radius_rad < std::numbers::pi / 2.0 - elevation && cos_e > 0.0) {
+    const double sin_phi = std::min(1.0, std::sin(angular_radius_rad) / cos_e);
+    chord = std::sqrt(std::max(0.0, 2.0 - 2.0 * std::sqrt(1.0 - sin_phi * sin_phi)));
+  }
+  const double tan_far = tan_low_ - steepest_ * chord;  // the far field's slowest rise, against the axis's track
+  if (!(tan_far > 0.0)) return;
+
+  const double x0 = region.x0 - params.margin_cm, z0 = region.z0 - params.margin_cm;
+  const double width = std::max(region.x1 - region.x0, 0.0) + 2.0 * params.margin_cm;
+  const double depth = std::max(region.z1 - region.z0, 0.0) + 2.0 * params.margin_cm;
+  texel_ = params.texel_cm;
+  if ((width / texel_ + 1.0) * (depth / texel_ + 1.0) > params.max_texels)
+    texel_ = std::sqrt(width * depth / params.max_texels) * 1.01;
+  x0_ = x0, z0_ = z0;
+  nx_ = std::size_t(std::ceil(width / texel_)), nz_ = std::size_t(std::ceil(depth / texel_));
+  // A point asked about is within the texel (half-diagonal) and the slack of its centre.
+  rho_ = texel_ * std::sqrt(0.5) + kMaxSlackCm * std::sqrt(2.0);
+  const double near = std::max(params.near_cm, texel_);  // s0
+  const double step = 0.5 * texel_;                  // the far field's samples along the sun's track
+  const double run = (double(mesh.max_height) - double(mesh.min_height)) / tan_far + step;  // past it nothing rises above the lowest point
+  const double between = (steepest_ + tan_far) * step * 0.5;  // the most the maximised function rises between samples
+  clear_.assign(nx_ * nz_, std::numeric_limits<float>::infinity());
+  auto cellRise = [&](std::size_t i, std::size_t j) {
+    const std::size_t n = mesh.xs.size(), a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+    const double dx = mesh.xs[i + 1] - mesh.xs[i], dz = mesh.zs[j + 1] - mesh.zs[j];
+    const double ha = mesh.positions[a].y, hb = mesh.positions[b].y, hc = mesh.positions[c].y, hd = mesh.positions[d].y;
+    auto rise = [&](double gx, double gz) { return gx * ax + gz * az + std::hypot(gx, gz) * chord; };
+    return std::max(rise((hd - hc) / dx, (hc - ha) / dz), rise((hb - ha) / dx, (hd - hb) / dz));  // (a c d), (a d b)
+  };
+  const std::vector<double>&xs = mesh.xs, &zs = mesh.zs;
+  auto cellRange = [](const std::vector<double>& lines, double lo, double hi) {
+    const std::size_t first = std::size_t(std::max<std::ptrdiff_t>(
+        0, std::upper_bound(lines.begin(), lines.end(), lo) - lines.begin() - 1));
+    const std::size_t last = std::min<std::size_t>(std::lower_bound(lines.begin(), lines.end(), hi) - lines.begin(),
+                                                   lines.size() - 1);
+    return std::pair<std::size_t, std::size_t>(first, last);  // cells [first, last)
+  };
+  for (std::size_t tj = 0; tj < nz_; ++tj) {
+    const double pz = z0_ + (double(tj) + 0.5) * texel_;
+    const auto [zc0, zc1] = cellRange(zs, pz - near - rho_, pz + near + rho_);
+    for (std::size_t ti = 0; ti < nx_; ++ti) {
+      const double px = x0_ + (double(ti) + 0.5) * texel_;
+      // Near field: the fastest any triangle within reach rises along a disc ray's ground track (its
+      // gradient along the sun's azimuth, plus its steepness times the track's turn).
+      const auto [xc0, xc1] = cellRange(xs, px - near - rho_, px + near + rho_);
+      double local = 0.0;
+      for (std::size_t j = zc0; j < zc1 && local < tan_low_; ++j)
+        for (std::size_t i = xc0; i < xc1; ++i) local = std::max(local, cellRise(i, j));
+      if (!(local < tan_low_)) continue;  // too steep near by to tell: traced
+      // Far field: the highest the mesh comes above a line rising tan_far along the sun's track.
+      double highest = -std::numeric_limits<double>::infinity();
+      for (double s = near; s <= run + near + step; s += step)  // every run in [near, run + near] within half a step of a sample
+        highest = std::max(highest, mesh.heightAt(px + s * ax, pz + s * az) - s * tan_far);
+      const double clear = highest + steepest_ * rho_ + between + kHeightEpsilonCm;
+      float stored = float(clear);
+      if (double(stored) < clear) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
+      clear_[tj * nx_ + ti] = stored;
+    }
+  }
+}
+
+bool SunHorizon::open(const glm::vec3& p, float slack, bool above_mesh_known) const {
+  if (!(double(slack) <= kMaxSlackCm)) return false;
+  if (!above_mesh_known) {
+    // Every point within the slack must be on or above the mesh, which rises at most `steepest_` per unit run.
+    const double floor = mesh_->heightAt(p.x, p.z) + steepest_ * double(slack) * std::sqrt(2.0) + kHeightEpsilonCm;
+    if (!(double(p.y) - double(slack) >= floor)) return false;
+  }
+  if (everywhere_open_) return true;
+  if (nx_ == 0) return false;
+  const double fx = (double(p.x) - x0_) / texel_, fz = (double(p.z) - z0_) / texel_;
+  if (!(fx >= 0.0 && fz >= 0.0 && fx < double(nx_) && fz < double(nz_))) return false;
+  return double(p.y) - double(slack) > double(clear_[std::size_t(fz) * nx_ + std::size_t(fx)]);
 }
 
 }  // namespace stirrup::render

@@ -8,6 +8,7 @@
 // by at most about |height''| spacing² / 8 (0.03 cm for 80 cm hills 30 m apart at 25 cm).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -34,9 +35,17 @@ struct TerrainMeshParams {
 };
 
 struct TerrainMesh {
-  std::vector<glm::vec3> positions;    // on Terrain::height
+  std::vector<glm::vec3> positions;    // on Terrain::height, row by row along X (xs.size() a row)
   std::vector<uint32_t> indices;       // three per triangle, counter-clockwise seen from above
+  std::vector<double> xs, zs;          // the grid lines (terrainGridLines), ascending
   float min_height = 0.0f, max_height = 0.0f;
+
+  // The mesh's own height at (x, z): linear on the triangle there, as a ray tracing the mesh meets it
+  // (not Terrain::height, which it only matches at the vertices). -infinity off the mesh.
+  double heightAt(double x, double z) const;
+  // The steepest slope (|gradient|, rise over run) of any triangle of cell (i, j), the cell between
+  // lines xs[i], xs[i + 1] and zs[j], zs[j + 1].
+  double cellSlope(std::size_t i, std::size_t j) const;
 };
 
 // Grid line coordinates along one axis: fine over [lo, hi] (on multiples of the spacing, so the grid
@@ -46,5 +55,55 @@ std::vector<double> terrainGridLines(double lo, double hi, double spacing, const
 // The mesh of `terrain` over `region` (fine) and around it (coarse).
 TerrainMesh makeTerrainMesh(const rig::Terrain& terrain, const GroundRegion& region,
                             const TerrainMeshParams& params = {});
+
+struct SunHorizonParams {
+  double texel_cm = 25.0;         // the horizon map's spacing over the region
+  double near_cm = 200.0;         // the near field's run (s0 below)
+  double margin_cm = 5000.0;      // ... and how far beyond the region it reaches (the ground the views see near)
+  double max_texels = 4.0e6;      // a larger region gets wider texels (16 MB of floats at most)
+};
+
+// Where the hills certainly leave the sun open: a "horizon toward the sun" map of a heightfield mesh,
+// computed once a shot for one sun, so the many ground points a frame shades need no ray against the
+// hills to know they are lit, and only the few near a hill's shadow's edge are traced.
+//
+// For each texel p of a grid over the region (plus a margin) it keeps a height `clear(p)`: any point q
+// within the texel that is on or above the mesh and higher than clear(p) sees the whole sun disc past
+// the mesh. Proof sketch, with G the mesh's steepest slope, e' the sun's elevation less its angular
+// radius (every ray of the disc rises at least tan e' per unit run) and rho the texel's half-diagonal:
+//  - near field (run s < s0): no triangle within s0 + rho of p rises faster than R(p) along any disc
+//    ray's ground track (its gradient along the sun's azimuth plus its steepness times the track's
+//    turn, below), so from a point on or above the mesh a ray rising tan e' > R(p) stays above it;
+//  - far field (s >= s0): a disc ray's ground track turns from the sun's azimuth by at most phi
+//    (sin phi = sin r / cos e), so at run s it is within s * chord(phi) of the axis's track and the mesh
+//    there is at most G s chord(phi) higher; q is within rho of p, at most G rho more. So q is open
+//    when q.y > max over s >= s0 of [mesh(p + s a) - s (tan e' - G chord(phi))] + G rho, the maximum
+//    taken every half texel and raised by the most the function can rise between two samples.
+// Past the map, or where the near field is too steep, nothing is known (the caller traces the rays).
+// When even the steepest triangle rises slower than tan e', every point on or above the mesh is open.
+class SunHorizon {
+ public:
+  // `toward_sun` need not be unit; `angular_radius_rad` is the sun disc's (RenderSettings).
+  SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, double angular_radius_rad,
+             const GroundRegion& region, const SunHorizonParams& params = {});
+
+  // True when no ray of the sun's disc from a point within `slack` (cm, in every axis) of `p` can meet
+  // the mesh, for points on or above the mesh. `above_mesh_known`: p is known to be on or above the
+  // mesh (a ground hit); else p is checked against heightAt.
+  bool open(const glm::vec3& p, float slack, bool above_mesh_known) const;
+  bool everywhereOpen() const { return everywhere_open_; }
+  double steepestSlope() const { return steepest_; }
+  // The map's size (0 x 0 when everywhere open or the sun is too low to tell anything).
+  std::size_t width() const { return nx_; }
+  std::size_t depth() const { return nz_; }
+
+ private:
+  const TerrainMesh* mesh_;
+  bool everywhere_open_ = false;
+  double steepest_ = 0.0, tan_low_ = 0.0;
+  double x0_ = 0.0, z0_ = 0.0, texel_ = 1.0, rho_ = 0.0;
+  std::size_t nx_ = 0, nz_ = 0;
+  std::vector<float> clear_;  // per texel: the height above which the sun is open (+infinity: unknown)
+};
 
 }  // namespace stirrup::render

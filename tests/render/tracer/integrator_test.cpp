@@ -2,11 +2,16 @@
 // on which tile or batch it falls in, or on how many other pixels share its streams.
 #include "render/tracer/integrator.h"
 
+#include <cmath>
 #include <cstring>
+#include <memory>
+#include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "render/renderer.h"
+#include "rig/motion/terrain_mesh.h"
 #include "tests/render/test_meshes.h"
 
 namespace stirrup::render {
@@ -173,6 +178,108 @@ TEST(Integrator, TheGroundSunShortcutHoldsOverHills) {
   }
   EXPECT_GT(blocked, 300);      // both answers are exercised
   EXPECT_GT(excluded, 20000);
+}
+
+
+// A ridge across the sun (issue 35, terrain you can see): a prism along z, 200 cm high at x = 0 with
+// 45-degree faces down to the flat ground at x = -200 and x = 200, and flat ground out to 50 m. The
+// sun shines from +x. Seen straight down through the renderer, a few pixels around one ground point.
+struct RidgeScene {
+  static constexpr double kCrestCm = 200.0, kHalfWidthCm = 200.0, kExtentCm = 5000.0;
+  RenderSettings settings;
+  std::unique_ptr<Renderer> renderer;
+
+  explicit RidgeScene(double sun_elevation_deg) {
+    settings.width = settings.height = 4;
+    settings.samples_per_pixel = 4;
+    settings.light_samples = 4;
+    settings.ao_samples = 4;
+    settings.threads = 1;
+    settings.passes = false;
+    const double e = sun_elevation_deg * std::numbers::pi / 180.0;
+    settings.sun_direction = {std::cos(e), std::sin(e), 0.0};
+    settings.ground_color_a = settings.ground_color_b = glm::vec3(0.3f);  // no checker: one albedo
+    renderer = std::make_unique<Renderer>(settings);
+    const double x[5] = {-kExtentCm, -kHalfWidthCm, 0.0, kHalfWidthCm, kExtentCm};
+    const double y[5] = {0.0, 0.0, kCrestCm, 0.0, 0.0};
+    std::vector<glm::dvec3> vertices;
+    for (int i = 0; i < 5; ++i) vertices.push_back({x[i], y[i], -kExtentCm}), vertices.push_back({x[i], y[i], kExtentCm});
+    std::vector<uint32_t> indices;
+    for (uint32_t i = 0; i < 4; ++i) {  // counter-clockwise seen from above
+      const uint32_t a = 2 * i, b = a + 1, c = a + 2, d = a + 3;
+      indices.insert(indices.end(), {a, b, d, a, d, c});
+    }
+    auto mesh = std::make_shared<const rig::TerrainMesh>(vertices, indices, "ridge");
+    renderer->setTerrain(std::make_shared<const rig::Terrain>(rig::Terrain::mesh(mesh)),
+                         GroundRegion{-3000.0, -500.0, 3000.0, 500.0});
+  }
+  // The ridge's height at x.
+  static double height(double x) { return std::max(0.0, kCrestCm - std::abs(x) * kCrestCm / kHalfWidthCm); }
+
+  void addSphere(glm::vec3 center, float radius) {
+    const testing::TestMesh sphere = testing::makeSphere(center, radius, 16, 32, {0.6f, 0.6f, 0.6f});
+    MeshDesc desc;
+    desc.indices = sphere.indices;
+    desc.colors = sphere.colors;
+    desc.vertex_count = sphere.positions.size();
+    desc.rest_positions = sphere.positions;
+    renderer->updateMesh(renderer->addMesh(desc), sphere.positions, sphere.normals);
+  }
+
+  // Mean red radiance of a 4 x 4 pixel, 2 cm square view straight down onto (x, y, z).
+  float redAt(double x, double y, double z) {
+    Camera camera;
+    camera.projection = Camera::Projection::Orthographic;
+    camera.position = {x, y + 1000.0, z};
+    camera.target = {x, y, z};
+    camera.up = {0.0, 0.0, -1.0};
+    camera.ortho_height_cm = 2.0;
+    const Image image = renderer->render(camera, 1);
+    float sum = 0.0f;
+    for (const glm::vec4& p : image.rgba) sum += p.x;
+    return sum / float(image.rgba.size());
+  }
+};
+
+// Hand-worked light (RenderSettings' defaults): the sun's red radiance 1.8 (strength 1.8, colour 1.0), the
+// sky's red irradiance / pi on an upward surface horizon + 0.8 (zenith - horizon) = 0.6 + 0.8 (0.22 - 0.6)
+// = 0.296 (SkyGradient::upwardIrradianceOverPi), the ground's albedo 0.3 and matte.
+constexpr float kSunRed = 1.8f, kSkyRed = 0.296f, kGroundAlbedo = 0.3f;
+
+TEST(Integrator, TheSunnyFaceOfAHillIsBrighterThanItsShadedFace) {
+  // Sun 30 degrees up from +x: the face toward it (normal (1, 1, 0) / sqrt 2) takes cos = (cos 30 + sin
+  // 30) / sqrt 2 = 0.966 of the sun, the face away (-1, 1, 0) / sqrt 2 none (cos < 0), flat ground sin 30
+  // = 0.5. The faces see the same sky (the sky is not tilted with the ground): the difference is the sun's.
+  RidgeScene ridge(30.0);
+  const float sunny = ridge.redAt(100.0, RidgeScene::height(100.0), 0.0);
+  const float shaded = ridge.redAt(-100.0, RidgeScene::height(-100.0), 0.0);
+  const float flat = ridge.redAt(-2500.0, 0.0, 0.0);
+  EXPECT_NEAR(sunny - shaded, kGroundAlbedo * kSunRed * 0.9659f, 0.02f);
+  EXPECT_NEAR(flat, kGroundAlbedo * (kSunRed * 0.5f + kSkyRed), 0.01f);
+}
+
+TEST(Integrator, GroundInAHillsShadowGetsNoDirectSun) {
+  // Sun 20 degrees up from +x (tan 20 = 0.364; the disc's highest ray, 22 degrees, tan 0.404). From the
+  // ground at x = -400 a ray reaches the crest's x = 0 at most 400 * 0.404 = 162 cm up, under the 200 cm
+  // crest: the whole disc is behind the ridge and only the sky lights it, 0.3 * 0.296. From x = -2500 the
+  // lowest ray (18 degrees, tan 0.325) passes the crest 812 cm up: the full sun, 0.3 (1.8 sin 20 + 0.296).
+  RidgeScene ridge(20.0);
+  EXPECT_NEAR(ridge.redAt(-400.0, 0.0, 0.0), kGroundAlbedo * kSkyRed, 0.005f);
+  EXPECT_NEAR(ridge.redAt(-2500.0, 0.0, 0.0), kGroundAlbedo * (kSunRed * 0.3420f + kSkyRed), 0.01f);
+}
+
+TEST(Integrator, ACharacterInAHillsShadowIsDarker) {
+  // Two grey spheres (radius 10, albedo 0.6, specular 0.04) resting on the flat ground, one at x = -400
+  // behind the ridge, one at x = -2500 in the open. The shaded one's top, 20 cm up, sees the crest's
+  // x = 0 under the disc's highest ray (20 + 400 * 0.404 = 182 cm < 200): no sun, the sky alone. The open
+  // top takes 0.96 * 0.6 * 1.8 sin 20 of the sun on top of its sky.
+  RidgeScene ridge(20.0);
+  ridge.addSphere({-400.0f, 10.0f, 0.0f}, 10.0f);
+  ridge.addSphere({-2500.0f, 10.0f, 0.0f}, 10.0f);
+  const float diffuse = 0.96f * 0.6f;
+  const float shaded = ridge.redAt(-400.0, 20.0, 0.0), open = ridge.redAt(-2500.0, 20.0, 0.0);
+  EXPECT_LT(shaded, diffuse * kSkyRed * 1.15f);  // the sky alone (sampled: a margin for its noise)
+  EXPECT_GT(open - shaded, 0.8f * diffuse * kSunRed * 0.3420f);
 }
 
 }  // namespace

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include <glm/geometric.hpp>
 
 #include <embree3/rtcore.h>
 #include <gtest/gtest.h>
@@ -101,6 +105,108 @@ TEST(TerrainMesh, StaysWithinItsVertexBudget) {
   // The budget, plus the growing border's lines on each side (a few hundred per axis at most).
   EXPECT_LT(mesh.positions.size(), std::size_t((100.0 + 200.0) * (100.0 + 200.0)));
   EXPECT_EQ(mesh.indices.size() % 3, 0u);
+}
+
+
+// The mesh's own height is what a ray tracing it meets: at the vertices the terrain's, between them
+// the triangle's plane, which a ray straight down through Embree finds to float precision.
+TEST(TerrainMesh, HeightAtIsTheTracedMesh) {
+  const rig::Terrain terrain = hills();
+  const TerrainMesh mesh = makeTerrainMesh(terrain, kTrack);
+  for (std::size_t k = 0; k < mesh.positions.size(); k += 997) {
+    const glm::vec3& v = mesh.positions[k];
+    EXPECT_NEAR(mesh.heightAt(v.x, v.z), v.y, 1e-3);  // (x, z) rounded to floats: off the line by an ulp
+  }
+  EmbreeScene scene;
+  scene.setGroundMesh(mesh.positions, mesh.indices);
+  uint32_t state = 5u;
+  auto uniform = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) * 0x1p-24;
+  };
+  for (int i = 0; i < 2000; ++i) {
+    // Over the coarse ground too, where the mesh is far from Terrain::height.
+    const double x = -20000.0 + 44000.0 * uniform(), z = -20000.0 + 44000.0 * uniform();
+    RTCRayHit rh{};
+    rh.ray.org_x = float(x), rh.ray.org_y = 1000.0f, rh.ray.org_z = float(z);
+    rh.ray.dir_y = -1.0f;
+    rh.ray.tfar = 1e6f;
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(scene.ground(), &context, &rh);
+    ASSERT_NE(rh.hit.geomID, RTC_INVALID_GEOMETRY_ID);
+    EXPECT_NEAR(1000.0 - double(rh.ray.tfar), mesh.heightAt(double(float(x)), double(float(z))), 0.01) << x << " " << z;
+  }
+}
+
+// A sun higher than the steepest hill: every point on the ground sees it, no map needed. The path
+// scenes' hills (80 cm, 30 m apart) rise far less than tan 46 = 1.04 (the sun 48 degrees up less its
+// 2 degree radius) anywhere.
+TEST(SunHorizon, AHighSunOverGentleHillsIsOpenEverywhere) {
+  const TerrainMesh mesh = makeTerrainMesh(hills(), kTrack);
+  const SunHorizon horizon(mesh, {0.45, 0.75, 0.5}, 2.0 * std::numbers::pi / 180.0, kTrack);
+  EXPECT_LT(horizon.steepestSlope(), 1.0);
+  EXPECT_TRUE(horizon.everywhereOpen());
+  EXPECT_TRUE(horizon.open({100.0f, float(mesh.heightAt(100.0, 100.0)) + 0.01f, 100.0f}, 0.01f, true));
+}
+
+// Steep hills under a low sun: wherever the map says a point is open, no ray of the sun's disc from it
+// meets the mesh (traced through Embree, the rim and the centre of the disc); and the map is of use,
+// answering much of the lit ground while the hills shadow half of it (sun 8 degrees up, 5 m hills 15 m apart).
+TEST(SunHorizon, WhereItSaysOpenNoSunRayMeetsTheMesh) {
+  rig::HillsParams p;
+  p.seed = 7;
+  p.amplitude_cm = 500.0;
+  p.wavelength_cm = 1500.0;
+  const rig::Terrain terrain = rig::Terrain::hills(p, "test");
+  const GroundRegion region{-1500.0, -1500.0, 1500.0, 1500.0};
+  const TerrainMesh mesh = makeTerrainMesh(terrain, region);
+  const double radius = 2.0 * std::numbers::pi / 180.0, elevation = 8.0 * std::numbers::pi / 180.0;
+  const glm::dvec3 sun(std::cos(elevation) * 0.8, std::sin(elevation), std::cos(elevation) * 0.6);
+  const SunHorizon horizon(mesh, sun, radius, region);
+  ASSERT_FALSE(horizon.everywhereOpen());
+  ASSERT_GT(horizon.width(), 0u);
+  EmbreeScene scene;
+  scene.setGroundMesh(mesh.positions, mesh.indices);
+  const glm::dvec3 axis = glm::normalize(sun);
+  const glm::dvec3 side = glm::normalize(glm::cross(axis, glm::dvec3(0.0, 1.0, 0.0)));
+  const glm::dvec3 up = glm::cross(side, axis);
+  uint32_t state = 11u;
+  auto uniform = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) * 0x1p-24;
+  };
+  int said_open = 0, blocked_axis = 0, points = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double x = -1500.0 + 3000.0 * uniform(), z = -1500.0 + 3000.0 * uniform();
+    const glm::vec3 q(float(x), float(mesh.heightAt(x, z) + 0.2), float(z));  // a ray origin just above
+    ++points;
+    const bool open = horizon.open(q, 0.05f, false);
+    said_open += open;
+    for (int r = 0; r <= 16; ++r) {  // the axis, then 16 directions on the disc's rim
+      glm::dvec3 d = axis;
+      if (r > 0) {
+        const double a = 2.0 * std::numbers::pi * double(r - 1) / 16.0;
+        d = glm::normalize(axis * std::cos(radius) + (side * std::cos(a) + up * std::sin(a)) * std::sin(radius));
+      }
+      RTCRay ray{};
+      ray.org_x = q.x, ray.org_y = q.y, ray.org_z = q.z;
+      ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
+      ray.tfar = 1e7f;
+      ray.mask = 0xffffffffu;
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      rtcOccluded1(scene.ground(), &context, &ray);
+      const bool hit = ray.tfar < 0.0f;
+      if (r == 0) blocked_axis += hit;
+      if (open) ASSERT_FALSE(hit) << "said open at " << x << " " << z << ", ray " << r << " meets the mesh";
+    }
+  }
+  std::printf("%d points: %d with the sun's axis blocked by the hills, %d said open\n", points, blocked_axis, said_open);
+  EXPECT_GT(blocked_axis, points / 10);                 // the hills do shadow the ground
+  EXPECT_GT(said_open, (points - blocked_axis) / 4);    // and much of the lit ground needs no ray (30% measured)
 }
 
 }  // namespace
