@@ -94,7 +94,7 @@ double TerrainMesh::cellSlope(std::size_t i, std::size_t j) const {
 namespace {
 
 // How far a ray origin may be from the point the map is asked about (the renderer's ray offset: 2e-3 cm
-// plus 3e-5 of the coordinates, under 1 cm within 300 m; render/shading_lanes.cpp). Farther points are
+// plus 3e-5 of the coordinates, under 1 cm within 300 m; render/tracer/shading_lanes.cpp). Farther points are
 // not answered (traced).
 constexpr double kMaxSlackCm = 1.0;
 // Heights are stored in floats: this much more is asked of a point than the bound in doubles says.

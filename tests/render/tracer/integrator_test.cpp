@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "render/renderer.h"
+#include "render/tracer/renderer.h"
 #include "rig/motion/terrain_mesh.h"
 #include "tests/render/test_meshes.h"
 

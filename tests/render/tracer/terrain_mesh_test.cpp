@@ -201,7 +201,9 @@ TEST(SunHorizon, WhereItSaysOpenNoSunRayMeetsTheMesh) {
       rtcOccluded1(scene.ground(), &context, &ray);
       const bool hit = ray.tfar < 0.0f;
       if (r == 0) blocked_axis += hit;
-      if (open) ASSERT_FALSE(hit) << "said open at " << x << " " << z << ", ray " << r << " meets the mesh";
+      if (open) {
+        ASSERT_FALSE(hit) << "said open at " << x << " " << z << ", ray " << r << " meets the mesh";
+      }
     }
   }
   std::printf("%d points: %d with the sun's axis blocked by the hills, %d said open\n", points, blocked_axis, said_open);
