@@ -27,7 +27,7 @@ GroundRegion trackRegion(const SceneSpec& scene, const std::vector<const rig::Cl
   GroundRegion r{1e300, 1e300, -1e300, -1e300};
   for (int f : rig::parseFrameList(scene.frames, "frames")) {
     for (const rig::Clip* clip : clips) {
-      const rig::HorseFrame h = clip->sample(frameTime(scene, f));
+      const rig::HorseFrame h = clip->sampleTravel(frameTime(scene, f));
       r.x0 = std::min(r.x0, h.travel_cm), r.x1 = std::max(r.x1, h.travel_cm);
       r.z0 = std::min(r.z0, h.travel_z_cm), r.z1 = std::max(r.z1, h.travel_z_cm);
     }

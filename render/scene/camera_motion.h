@@ -66,7 +66,20 @@ glm::dvec3 turnByHeading(const glm::dvec3& v, double heading_deg);
 double cameraHeadingAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
                             const rig::RigProfile& profile, int frame);
 
-// The render camera of `spec` at `frame` of `scene`.
+// Where the camera's motion puts it at `frame`, apart from its own position and target: a follow
+// camera's followFrame (its point and heading), an orbit's undamped followed point (heading 0), nothing
+// for a fixed camera. It reads only the spec's motion, follow_target, treadmill, seat_from_pivot_cm,
+// damping_s and hold_frame, so framing a view (render/scene/view.h), which moves and sizes the camera
+// pass after pass, finds it once a frame. The follow filter samples the clip some 600 times; this is
+// all of a camera's cost.
+FollowFrame cameraFollowAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
+                                const rig::RigProfile& profile, int frame);
+
+// The render camera of `spec` at `frame`, its motion's part given (cameraFollowAtFrame of the same spec,
+// or of one that differs only in position, target, lens and size).
+Camera cameraFromFollow(const CameraSpec& spec, const FollowFrame& follow, int frame);
+
+// The render camera of `spec` at `frame` of `scene`: cameraFromFollow(spec, cameraFollowAtFrame(...)).
 Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
                      const rig::RigProfile& profile, int frame);
 

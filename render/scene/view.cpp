@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
 
 #include "render/scene/camera_motion.h"
 #include "rig/io/frame_range.h"
@@ -46,20 +47,20 @@ Basis basisOf(const Camera& c) {
   return b;
 }
 
-std::vector<glm::dvec3> viewPoints(const CameraSpec& spec, const CharacterPoints& points, int frame) {
-  std::vector<glm::dvec3> horse, rider;
-  points(frame, horse, rider);
+// The points a view frames at one frame: the horse's and the rider's, or for `close` the rider's above
+// the saddle. (Skinned positions are floats; every use below reads them as doubles, exactly.)
+std::vector<glm::vec3> viewPoints(const CameraSpec& spec, std::vector<glm::vec3>&& horse, std::vector<glm::vec3>&& rider) {
   if (spec.view != "close") {
     horse.insert(horse.end(), rider.begin(), rider.end());
-    return horse;
+    return std::move(horse);
   }
   // The rider above the saddle: the upper 55% of the rider's height at this frame.
   double lo = kInf, hi = -kInf;
-  for (const glm::dvec3& p : rider) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+  for (const glm::dvec3 p : rider) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
   const double cut = lo + 0.45 * (hi - lo);
-  std::vector<glm::dvec3> upper;
-  for (const glm::dvec3& p : rider)
-    if (p.y >= cut) upper.push_back(p);
+  std::vector<glm::vec3> upper;
+  for (const glm::vec3& p : rider)
+    if (double(p.y) >= cut) upper.push_back(p);
   return upper;
 }
 
@@ -76,15 +77,15 @@ constexpr std::array<double, 3> kTopUp = {0.0, 0.0, -1.0};
 // points over every frame, so the whole ground track (a figure eight, a circle) is in the picture
 // with frame_margin free at each border.
 CameraSpec frameTopView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& clip,
-                        const std::vector<std::vector<glm::dvec3>>& pts) {
+                        const std::vector<std::vector<glm::vec3>>& pts) {
   glm::dvec3 lo(kInf), hi(-kInf);
   for (int f : rig::parseFrameList(scene.frames, "frames")) {
-    const rig::HorseFrame h = clip.sample(frameTime(scene, f));
+    const rig::HorseFrame h = clip.sampleTravel(frameTime(scene, f));
     const glm::dvec3 travel(h.travel_cm, h.ground_y_cm, h.travel_z_cm);
     lo = glm::min(lo, travel), hi = glm::max(hi, travel);
   }
-  for (const std::vector<glm::dvec3>& frame : pts)
-    for (const glm::dvec3& p : frame) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  for (const std::vector<glm::vec3>& frame : pts)
+    for (const glm::dvec3 p : frame) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const glm::dvec3 centre = 0.5 * (lo + hi);
   spec.target = toArray({centre.x, lo.y, centre.z});
   spec.position = toArray({centre.x, hi.y + kTopCameraClearanceCm, centre.z});
@@ -102,15 +103,14 @@ CameraSpec frameTopView(CameraSpec spec, const SceneSpec& scene, const rig::Clip
 // ray's direction or place in the picture, only where it starts: when the film's lower edge dips
 // below the lowest framed point at any frame, the camera moves back until that edge is above the
 // highest. A single pair's film clears the ground already and is left exactly as it was.
-void raiseOrthographicFilm(CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
-                           const rig::RigProfile& profile, const std::vector<int>& frames,
-                           const std::vector<std::vector<glm::dvec3>>& pts) {
+void raiseOrthographicFilm(CameraSpec& spec, const std::vector<int>& frames, const std::vector<FollowFrame>& follows,
+                           const std::vector<std::vector<glm::vec3>>& pts) {
   double dip = 0.0, need = 0.0;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+    const Camera cam = cameraFromFollow(spec, follows[i], frames[i]);
     const double bottom = cam.position.y - 0.5 * spec.ortho_height_cm * basisOf(cam).up.y;
     double lo = kInf, hi = -kInf;
-    for (const glm::dvec3& p : pts[i]) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+    for (const glm::dvec3 p : pts[i]) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
     dip = std::max(dip, lo - bottom);
     need = std::max(need, hi - bottom);
   }
@@ -175,11 +175,18 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
   applyViewPreset(spec);
   if (frames.empty()) throw std::invalid_argument("frameView: no frames");
   // The points of every frame, once.
-  std::vector<std::vector<glm::dvec3>> pts;
-  pts.reserve(frames.size());
-  for (int f : frames) pts.push_back(viewPoints(spec, points, f));
+  std::vector<std::vector<glm::vec3>> pts(frames.size()), rider;
+  points(frames, pts, rider);
+  for (std::size_t i = 0; i < frames.size(); ++i) pts[i] = viewPoints(spec, std::move(pts[i]), std::move(rider[i]));
+  rider.clear();
 
   if (spec.view == "top") return frameTopView(spec, scene, clip, pts);
+  // Where the camera's motion takes it at every frame, once: the passes below move and size the
+  // camera but not its motion (cameraFollowAtFrame).
+  // Each frame alone, in parallel (on the caller's threads: ShotCamera runs this on its evaluator's).
+  std::vector<FollowFrame> follows(frames.size());
+  tbb::parallel_for(std::size_t(0), frames.size(),
+                    [&](std::size_t i) { follows[i] = cameraFollowAtFrame(spec, scene, clip, profile, frames[i]); });
 
   // 1. Aim at the centre of the points' bounds in the followed frame (turned back by the heading the
   //    camera turns with, so a path clip's points are seen from the horse's side).
@@ -188,8 +195,8 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
     const int shown = spec.hold_frame > 0 ? spec.hold_frame : frames[i];
     const glm::dvec3 follow = spec.motion == "fixed" ? glm::dvec3(0.0)
                                                      : followPoint(spec, clip, profile, frameTime(scene, shown));
-    const double heading = cameraHeadingAtFrame(spec, scene, clip, profile, frames[i]);
-    for (const glm::dvec3& p : pts[i]) {
+    const double heading = follows[i].heading_deg;  // cameraHeadingAtFrame
+    for (const glm::dvec3 p : pts[i]) {
       const glm::dvec3 q = turnByHeading(p - follow, -heading);
       lo = glm::min(lo, q), hi = glm::max(hi, q);
     }
@@ -215,11 +222,11 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
     const double th = std::tan(0.5 * spec.fov_deg * kPi / 180.0), tw = th * aspect;
     glm::dvec3 right0(1, 0, 0), up0(0, 1, 0);
     for (std::size_t i = 0; i < frames.size(); ++i) {
-      const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+      const Camera cam = cameraFromFollow(spec, follows[i], frames[i]);
       const Basis b = basisOf(cam);
       if (i == 0) right0 = b.right, up0 = b.up;
       const double dist = glm::length(cam.target - cam.position);
-      for (const glm::dvec3& p : pts[i]) {
+      for (const glm::dvec3 p : pts[i]) {
         const glm::dvec3 q = p - b.target;
         const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
         if (spec.orthographic) {
@@ -236,7 +243,7 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
     // Centre: truck along the first frame's right/up (constant for follow cameras, in their own
     // turning frame: turned back by the first frame's heading); an orbit only rises or sinks, along
     // the world vertical.
-    const double heading0 = cameraHeadingAtFrame(spec, scene, clip, profile, frames[0]);
+    const double heading0 = follows[0].heading_deg;
     right0 = turnByHeading(right0, -heading0), up0 = turnByHeading(up0, -heading0);
     const double cu = 0.5 * (umin + umax), cv = 0.5 * (vmin + vmax);
     glm::dvec3 shift = orbit ? glm::dvec3(0.0, cv / std::max(0.2, up0.y), 0.0) : right0 * cu + up0 * cv;
@@ -250,9 +257,9 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
       // Dolly back along the view axis until every point fits: |x| <= tw keep (dist' + z).
       double dist_needed = 0.0;
       for (std::size_t i = 0; i < frames.size(); ++i) {
-        const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+        const Camera cam = cameraFromFollow(spec, follows[i], frames[i]);
         const Basis b = basisOf(cam);
-        for (const glm::dvec3& p : pts[i]) {
+        for (const glm::dvec3 p : pts[i]) {
           const glm::dvec3 q = p - b.target;
           const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
           dist_needed = std::max(dist_needed, std::abs(x) / (tw * keep) - z);
@@ -265,7 +272,7 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
       spec.position = toArray(t + back * dist_needed);
     }
   }
-  if (spec.orthographic) raiseOrthographicFilm(spec, scene, clip, profile, frames, pts);
+  if (spec.orthographic) raiseOrthographicFilm(spec, frames, follows, pts);
   return spec;
 }
 
