@@ -128,11 +128,19 @@ FollowFrame followFrame(const CameraSpec& spec, const rig::Clip& clip, const rig
   return out;
 }
 
-glm::dvec3 turnByHeading(const glm::dvec3& v, double heading_deg) {
-  if (heading_deg == 0.0) return v;  // exactly: straight clips keep the frames they had
-  const double a = glm::radians(heading_deg), c = std::cos(a), s = std::sin(a);
-  return {v.x * c - v.z * s, v.y, v.x * s + v.z * c};
+HeadingTurn::HeadingTurn(double heading_deg) : none_(heading_deg == 0.0) {
+  if (none_) return;
+  const double a = glm::radians(heading_deg);
+  c_ = std::cos(a);
+  s_ = std::sin(a);
 }
+
+glm::dvec3 HeadingTurn::operator()(const glm::dvec3& v) const {
+  if (none_) return v;  // exactly: straight clips keep the frames they had
+  return {v.x * c_ - v.z * s_, v.y, v.x * s_ + v.z * c_};
+}
+
+glm::dvec3 turnByHeading(const glm::dvec3& v, double heading_deg) { return HeadingTurn(heading_deg)(v); }
 
 double cameraHeadingAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
                             const rig::RigProfile& profile, int frame) {

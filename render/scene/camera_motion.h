@@ -61,6 +61,16 @@ FollowFrame followFrame(const CameraSpec& spec, const rig::Clip& clip, const rig
 // `v` (in a follow camera's frame) turned about the vertical by heading_deg, as rig::travelMatrix turns
 // the horse: +X toward +Z.
 glm::dvec3 turnByHeading(const glm::dvec3& v, double heading_deg);
+// turnByHeading for many vectors by one heading, its cosine and sine found once: the same bits.
+class HeadingTurn {
+ public:
+  explicit HeadingTurn(double heading_deg);
+  glm::dvec3 operator()(const glm::dvec3& v) const;
+
+ private:
+  bool none_;  // heading 0 exactly: straight clips keep the frames they had
+  double c_ = 1.0, s_ = 0.0;
+};
 
 // The heading a camera is turned by at `frame` (0 for fixed and orbit cameras).
 double cameraHeadingAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,

@@ -65,17 +65,14 @@ ShotCamera::ShotCamera(ShotEvaluator& characters, const CameraSpec& camera)
     horse.assign(frames.size(), {});
     rider.assign(frames.size(), {});
     // The frames in parallel, each writing only its own slot.
-    characters.evaluateEach(requests, [&](std::size_t k, const ShotFrame& frame) {
-      std::vector<glm::vec3>& h = horse[k];
-      std::vector<glm::vec3>& r = rider[k];
+    characters.evaluateEach(requests, [&](std::size_t k, ShotFrame& frame) {
       if (whole_crowd) {
-        for (const PairFrame& p : frame.pairs) appendCorners(p, h, r);
+        for (const PairFrame& p : frame.pairs) appendCorners(p, horse[k], rider[k]);
         return;
       }
-      const PairFrame& p = frame.pairs[std::size_t(seat_pair)];
-      h.reserve(p.horse_positions.size() + p.rider_positions.size());  // the view appends the rider's
-      h.assign(p.horse_positions.begin(), p.horse_positions.end());
-      r = p.rider_positions;
+      PairFrame& p = frame.pairs[std::size_t(seat_pair)];
+      horse[k] = std::move(p.horse_positions);
+      rider[k] = std::move(p.rider_positions);
     });
   };
   // The follow filter of every frame runs in parallel too, on the evaluator's threads.

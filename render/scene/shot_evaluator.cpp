@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <map>
@@ -144,10 +145,23 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
     using Key = std::tuple<double, double, double, std::string, std::string, std::string, std::string, int>;
     std::map<Key, std::size_t> build_of;
     ps.pairs.resize(scene.pairs.size());
+    // Each pair's clip (a path clip: its footfalls scanned, a few ms a second of ride), the pairs in
+    // parallel; a bad pair's error is the first bad pair's, whatever the threads.
+    std::vector<std::exception_ptr> errors(scene.pairs.size());
+    ps.arena.execute([&] {
+      tbb::parallel_for(std::size_t(0), scene.pairs.size(), [&](std::size_t i) {
+        try {
+          ps.pairs[i].clip = rig::makePairClip(scene.pairs[i], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      });
+    });
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
     for (std::size_t i = 0; i < scene.pairs.size(); ++i) {
       const rig::PairSpec& spec = scene.pairs[i];
       Pairs::Pair& p = ps.pairs[i];
-      p.clip = rig::makePairClip(spec, scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
       p.clip_offset_s = spec.clip_offset_s;
       p.shown = std::make_unique<rig::ShiftedClip>(*p.clip, spec.clip_offset_s);
       p.profile = profiles.at(spec.profile);
@@ -344,7 +358,7 @@ void ShotEvaluator::evaluate(const FrameRequest& request, ShotFrame& out) {
 void ShotEvaluator::run(const std::function<void()>& job) { pairs_->arena.execute(job); }
 
 void ShotEvaluator::evaluateEach(const std::vector<FrameRequest>& requests,
-                                 const std::function<void(std::size_t, const ShotFrame&)>& use) {
+                                 const std::function<void(std::size_t, ShotFrame&)>& use) {
   Pairs& ps = *pairs_;
   // Every character the requests need, built first (building is the one thing that changes the
   // evaluator), so the frames below only read it.

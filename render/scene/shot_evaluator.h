@@ -123,10 +123,11 @@ class ShotEvaluator {
   const EvalTimings& lastTimings() const { return timings_; }
   // Evaluates every one of `requests` (each one's level fixed: LevelChoice::fixed >= 0), the frames in
   // parallel on the evaluator's threads, and hands each to use(k, frame) for requests[k]: called
-  // concurrently for different k, the frame lives only during the call. Each frame is what evaluate()
+  // concurrently for different k, the frame is the caller's to take from and is dropped after the
+  // call. Each frame is what evaluate()
   // gives for its request, to the bit, at any thread count (framing a view over a whole shot:
   // render/scene/shot_camera.h). Builds the characters the requests need first; lastTimings() is left.
-  void evaluateEach(const std::vector<FrameRequest>& requests, const std::function<void(std::size_t, const ShotFrame&)>& use);
+  void evaluateEach(const std::vector<FrameRequest>& requests, const std::function<void(std::size_t, ShotFrame&)>& use);
   // Runs `job` on the evaluator's threads (the thread count it was made with): parallel work of the
   // shot's, such as framing its view, stays within it.
   void run(const std::function<void()>& job);

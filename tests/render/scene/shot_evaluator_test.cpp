@@ -231,7 +231,7 @@ TEST(ShotEvaluator, EachFrameOfABatchIsTheFrameAlone) {
       ShotEvaluator batch(scene, resolveProfile(scene), threads);
       std::vector<ShotFrame> got(requests.size());
       std::vector<int> calls(requests.size(), 0);
-      batch.evaluateEach(requests, [&](std::size_t k, const ShotFrame& f) {
+      batch.evaluateEach(requests, [&](std::size_t k, ShotFrame& f) {
         got[k] = f;
         ++calls[k];
       });
@@ -263,7 +263,7 @@ TEST(ShotEvaluator, EachFrameOfABatchIsTheFrameAlone) {
   ShotEvaluator eval(crowdOfFour(), resolveProfile(crowdOfFour()), 1);
   FrameRequest by_size;
   by_size.level.fixed = -1;
-  EXPECT_THROW(eval.evaluateEach({by_size}, [](std::size_t, const ShotFrame&) {}), std::invalid_argument);
+  EXPECT_THROW(eval.evaluateEach({by_size}, [](std::size_t, ShotFrame&) {}), std::invalid_argument);
 }
 
 }  // namespace
