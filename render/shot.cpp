@@ -48,7 +48,11 @@ MeshDesc meshOf(ObjectId id, const rig::Character& c) {
 
 Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
            BvhUpdate bvh)
-    : scene_(scene), characters_(std::make_unique<ShotEvaluator>(scene, profile, threads)) {
+    : Shot(std::make_shared<ShotEvaluator>(scene, profile, threads), camera, threads, bvh) {}
+
+Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, int threads, BvhUpdate bvh)
+    : scene_(characters->scene()), characters_(std::move(characters)) {
+  const SceneSpec& scene = scene_;
   RenderSettings settings;
   settings.width = scene.width;
   settings.height = scene.height;
