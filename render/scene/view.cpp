@@ -54,8 +54,8 @@ Basis basisOf(const Camera& c) {
   return b;
 }
 
-// The points a view frames at one frame: the horse's and the rider's, kept apart (joining them copied
-// a third of the framing's memory), or for `close` the rider's above the saddle alone. Skinned
+// The points a view frames at one frame: the horse's and the rider's, kept apart (joining them was one
+// more copy of every frame's points), or for `close` the rider's above the saddle alone. Skinned
 // positions are floats; every use below reads them as doubles, exactly.
 struct FramePoints {
   std::vector<glm::vec3> horse, rider;
