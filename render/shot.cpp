@@ -27,7 +27,7 @@ GroundRegion trackRegion(const SceneSpec& scene, const std::vector<const rig::Cl
   GroundRegion r{1e300, 1e300, -1e300, -1e300};
   for (int f : rig::parseFrameList(scene.frames, "frames")) {
     for (const rig::Clip* clip : clips) {
-      const rig::HorseFrame h = clip->sample(frameTime(scene, f));
+      const rig::HorseFrame h = clip->sampleTravel(frameTime(scene, f));
       r.x0 = std::min(r.x0, h.travel_cm), r.x1 = std::max(r.x1, h.travel_cm);
       r.z0 = std::min(r.z0, h.travel_z_cm), r.z1 = std::max(r.z1, h.travel_z_cm);
     }
@@ -48,7 +48,11 @@ MeshDesc meshOf(ObjectId id, const rig::Character& c) {
 
 Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
            BvhUpdate bvh)
-    : scene_(scene), characters_(std::make_unique<ShotEvaluator>(scene, profile, threads)) {
+    : Shot(std::make_shared<ShotEvaluator>(scene, profile, threads), camera, threads, bvh) {}
+
+Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, int threads, BvhUpdate bvh)
+    : scene_(characters->scene()), characters_(std::move(characters)) {
+  const SceneSpec& scene = scene_;
   RenderSettings settings;
   settings.width = scene.width;
   settings.height = scene.height;

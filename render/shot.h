@@ -41,6 +41,11 @@ class Shot {
   // `bvh`: how the BVH follows the characters (the default is the renderer's; others for benchmarks).
   Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
        BvhUpdate bvh = RenderSettings{}.bvh_update);
+  // A shot of the scene `characters` evaluates, sharing them with the other shots made from them (a
+  // layered movie's rigid panel beside the rigged one): the characters are read, seated and built
+  // once. The shots must render one after the other, not at once (the evaluator is not reentrant).
+  Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, int threads,
+       BvhUpdate bvh = RenderSettings{}.bvh_update);
   ~Shot();
 
   // With `log`, the frame's rays are also kept in it (see Renderer::render).
@@ -48,6 +53,7 @@ class Shot {
   Renderer& renderer() { return *renderer_; }
   // The characters it evaluates (every pair of the scene).
   ShotEvaluator& characters() { return *characters_; }
+  const std::shared_ptr<ShotEvaluator>& sharedCharacters() const { return characters_; }
   // The bake at a frame of what the camera follows (a single pair's clip; in a crowd the followed
   // pair's, or the crowd's middle) with its profile; every pair's is characters().evaluate's.
   rig::BakedFrame bake(int frame) const;
@@ -83,7 +89,7 @@ class Shot {
   void evaluatePoints(int frame, int pair);
 
   SceneSpec scene_;
-  std::unique_ptr<ShotEvaluator> characters_;
+  std::shared_ptr<ShotEvaluator> characters_;
   std::unique_ptr<ShotCamera> camera_;
   std::unique_ptr<Renderer> renderer_;
   ShotFrame frame_;  // the characters' last evaluated frame

@@ -14,7 +14,7 @@ glm::dvec2 travelAccelerationOnGround(const Clip& clip, double seconds) {
   // the stencil starts at t = 0 there.
   constexpr double h = kAccelerationWindowS;
   const double t0 = seconds - h >= 0.0 ? seconds - h : seconds;
-  const HorseFrame a = clip.sample(t0), b = clip.sample(t0 + h), c = clip.sample(t0 + 2.0 * h);
+  const HorseFrame a = clip.sampleTravel(t0), b = clip.sampleTravel(t0 + h), c = clip.sampleTravel(t0 + 2.0 * h);
   return {(a.travel_cm - 2.0 * b.travel_cm + c.travel_cm) / (h * h),
           (a.travel_z_cm - 2.0 * b.travel_z_cm + c.travel_z_cm) / (h * h)};
 }
@@ -31,7 +31,7 @@ double accelerationAlong(const Clip& clip, double seconds, double heading_deg) {
 }  // namespace
 
 double travelAcceleration(const Clip& clip, double seconds) {
-  return accelerationAlong(clip, seconds, clip.sample(seconds).heading_deg);
+  return accelerationAlong(clip, seconds, clip.sampleTravel(seconds).heading_deg);
 }
 
 BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, double seconds) {

@@ -66,6 +66,11 @@ class Clip {
   // Seconds; sample() accepts any t and is periodic or clamped as the clip defines.
   virtual double duration() const = 0;
   virtual HorseFrame sample(double seconds) const = 0;
+  // The travel frame alone: travel_cm, travel_z_cm, ground_y_cm, heading_deg and ground_pitch_deg to
+  // the bit as sample() gives them, the other fields unspecified. A follow camera's filter and the
+  // travel's acceleration sample the travel hundreds of times a frame; a clip that can find it
+  // without the legs and the trunk (a path clip) says so. By default, sample().
+  virtual HorseFrame sampleTravel(double seconds) const { return sample(seconds); }
   // What the clip's horse must clear (empty for most clips).
   virtual std::vector<Obstacle> obstacles() const { return {}; }
 };

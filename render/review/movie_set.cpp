@@ -236,7 +236,7 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
   if (job.layered == "rigid") {
     CameraSpec same = shot.camera();  // exactly the rigged shot's framed camera
     same.view.clear();
-    rigid = std::make_unique<Shot>(scene, profile, same, o.threads);
+    rigid = std::make_unique<Shot>(shot.sharedCharacters(), same, o.threads);  // the same characters, read once
     rigid->setRigidRider(true);
     panel_labels = {"rigged rider (stirrup)", "rider fixed to the saddle"};
     style.mode = LayerMode::SideBySide;

@@ -78,15 +78,21 @@ glm::dvec3 followPointOf(const CameraSpec& spec, const rig::HorseFrame& horse, c
   return travelPointOf(spec, horse);
 }
 
+// The clip at `seconds` as far as the followed point and the heading need it: the travel frame alone
+// unless the camera follows the rider's seat, which reads the horse's channels.
+rig::HorseFrame sampleFollowed(const CameraSpec& spec, const rig::Clip& clip, double seconds) {
+  return spec.follow_target == "rider" ? clip.sample(seconds) : clip.sampleTravel(seconds);
+}
+
 }  // namespace
 
 glm::dvec3 travelPoint(const CameraSpec& spec, const rig::Clip& clip, double seconds) {
-  return travelPointOf(spec, clip.sample(seconds));
+  return travelPointOf(spec, clip.sampleTravel(seconds));
 }
 
 glm::dvec3 followPoint(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
                        double seconds) {
-  return followPointOf(spec, clip.sample(seconds), profile);
+  return followPointOf(spec, sampleFollowed(spec, clip, seconds), profile);
 }
 
 glm::dvec3 followOffset(const CameraSpec& spec, const rig::Clip& clip, const rig::RigProfile& profile,
@@ -100,7 +106,7 @@ FollowFrame followFrame(const CameraSpec& spec, const rig::Clip& clip, const rig
   // Damping the travel too made the camera overshoot where the horse decelerates (the filter is
   // lag-free only for constant speed): in stop_close the rider drifted from 76% to 18% of the frame's
   // width, and in the rear, where the seat swings 30 cm back as the body rises, by 21%.
-  const rig::HorseFrame now = clip.sample(seconds);
+  const rig::HorseFrame now = sampleFollowed(spec, clip, seconds);
   const glm::dvec3 point = followPointOf(spec, now, profile);
   FollowFrame out;
   if (!(tau > 0.0)) {
@@ -112,7 +118,7 @@ FollowFrame followFrame(const CameraSpec& spec, const rig::Clip& clip, const rig
   // works on each component alone, so the height is exactly what it is filtered alone.
   const glm::dvec3 damped = dampedFollow(
       [&](double u) {
-        const rig::HorseFrame f = clip.sample(u);
+        const rig::HorseFrame f = sampleFollowed(spec, clip, u);
         const double a = glm::radians(f.heading_deg);
         return glm::dvec3(std::cos(a), followPointOf(spec, f, profile).y, std::sin(a));
       },
@@ -122,22 +128,36 @@ FollowFrame followFrame(const CameraSpec& spec, const rig::Clip& clip, const rig
   return out;
 }
 
-glm::dvec3 turnByHeading(const glm::dvec3& v, double heading_deg) {
-  if (heading_deg == 0.0) return v;  // exactly: straight clips keep the frames they had
-  const double a = glm::radians(heading_deg), c = std::cos(a), s = std::sin(a);
-  return {v.x * c - v.z * s, v.y, v.x * s + v.z * c};
+HeadingTurn::HeadingTurn(double heading_deg) : none_(heading_deg == 0.0) {
+  if (none_) return;
+  const double a = glm::radians(heading_deg);
+  c_ = std::cos(a);
+  s_ = std::sin(a);
 }
+
+glm::dvec3 HeadingTurn::operator()(const glm::dvec3& v) const {
+  if (none_) return v;  // exactly: straight clips keep the frames they had
+  return {v.x * c_ - v.z * s_, v.y, v.x * s_ + v.z * c_};
+}
+
+glm::dvec3 turnByHeading(const glm::dvec3& v, double heading_deg) { return HeadingTurn(heading_deg)(v); }
 
 double cameraHeadingAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
                             const rig::RigProfile& profile, int frame) {
   if (spec.motion != "follow") return 0.0;
-  const int shown = spec.hold_frame > 0 ? spec.hold_frame : frame;
-  return followFrame(spec, clip, profile, frameTime(scene, shown), spec.hold_frame > 0 ? 0.0 : spec.damping_s)
-      .heading_deg;
+  return cameraFollowAtFrame(spec, scene, clip, profile, frame).heading_deg;
 }
 
-Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
-                     const rig::RigProfile& profile, int frame) {
+FollowFrame cameraFollowAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
+                                const rig::RigProfile& profile, int frame) {
+  if (spec.motion == "fixed") return {};
+  const int shown = spec.hold_frame > 0 ? spec.hold_frame : frame;
+  const double t = frameTime(scene, shown);
+  if (spec.motion == "orbit") return {followPoint(spec, clip, profile, t), 0.0};
+  return followFrame(spec, clip, profile, t, spec.hold_frame > 0 ? 0.0 : spec.damping_s);
+}
+
+Camera cameraFromFollow(const CameraSpec& spec, const FollowFrame& follow, int frame) {
   Camera c;
   c.projection = spec.orthographic ? Camera::Projection::Orthographic : Camera::Projection::Perspective;
   c.fov_deg = spec.fov_deg;
@@ -150,11 +170,7 @@ Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::
     c.target = target;
     return c;
   }
-  const int shown = spec.hold_frame > 0 ? spec.hold_frame : frame;
-  const double t = frameTime(scene, shown);
-  glm::dvec3 offset;
   if (spec.motion == "orbit") {
-    offset = followPoint(spec, clip, profile, t);
     const double deg = spec.orbit_frames > 0 ? 360.0 / spec.orbit_frames : spec.orbit_deg_per_frame;
     const double a = deg * (frame - 1) * kPi / 180.0;
     const glm::dvec3 rel = position - target;
@@ -162,14 +178,17 @@ Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::
     position = target + glm::dvec3(rel.x * std::cos(a) + rel.z * std::sin(a), rel.y,
                                    -rel.x * std::sin(a) + rel.z * std::cos(a));
   } else {
-    const FollowFrame follow = followFrame(spec, clip, profile, t, spec.hold_frame > 0 ? 0.0 : spec.damping_s);
-    offset = follow.point;
     position = turnByHeading(position, follow.heading_deg);
     target = turnByHeading(target, follow.heading_deg);
   }
-  c.position = position + offset;
-  c.target = target + offset;
+  c.position = position + follow.point;
+  c.target = target + follow.point;
   return c;
+}
+
+Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
+                     const rig::RigProfile& profile, int frame) {
+  return cameraFromFollow(spec, cameraFollowAtFrame(spec, scene, clip, profile, frame), frame);
 }
 
 }  // namespace stirrup::render

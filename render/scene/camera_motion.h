@@ -61,12 +61,35 @@ FollowFrame followFrame(const CameraSpec& spec, const rig::Clip& clip, const rig
 // `v` (in a follow camera's frame) turned about the vertical by heading_deg, as rig::travelMatrix turns
 // the horse: +X toward +Z.
 glm::dvec3 turnByHeading(const glm::dvec3& v, double heading_deg);
+// turnByHeading for many vectors by one heading, its cosine and sine found once: the same bits.
+class HeadingTurn {
+ public:
+  explicit HeadingTurn(double heading_deg);
+  glm::dvec3 operator()(const glm::dvec3& v) const;
+
+ private:
+  bool none_;  // heading 0 exactly: straight clips keep the frames they had
+  double c_ = 1.0, s_ = 0.0;
+};
 
 // The heading a camera is turned by at `frame` (0 for fixed and orbit cameras).
 double cameraHeadingAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
                             const rig::RigProfile& profile, int frame);
 
-// The render camera of `spec` at `frame` of `scene`.
+// Where the camera's motion puts it at `frame`, apart from its own position and target: a follow
+// camera's followFrame (its point and heading), an orbit's undamped followed point (heading 0), nothing
+// for a fixed camera. It reads only the spec's motion, follow_target, treadmill, seat_from_pivot_cm,
+// damping_s and hold_frame, so framing a view (render/scene/view.h), which moves and sizes the camera
+// pass after pass, finds it once a frame. The follow filter samples the clip some 600 times; this is
+// all of a camera's cost.
+FollowFrame cameraFollowAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
+                                const rig::RigProfile& profile, int frame);
+
+// The render camera of `spec` at `frame`, its motion's part given (cameraFollowAtFrame of the same spec,
+// or of one that differs only in position, target, lens and size).
+Camera cameraFromFollow(const CameraSpec& spec, const FollowFrame& follow, int frame);
+
+// The render camera of `spec` at `frame` of `scene`: cameraFromFollow(spec, cameraFollowAtFrame(...)).
 Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
                      const rig::RigProfile& profile, int frame);
 

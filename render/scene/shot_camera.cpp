@@ -9,6 +9,13 @@
 #include "rig/motion/crowd_middle_clip.h"
 
 namespace stirrup::render {
+namespace {
+
+// A pair's view is framed from every third skinned vertex (our choice: a third of a mesh whose
+// vertices stand a few cm apart bounds it to well within a view's margin).
+constexpr int kFramingPointStride = 3;
+
+}  // namespace
 
 ShotCamera::ShotCamera(ShotEvaluator& characters, const CameraSpec& camera)
     : scene_(characters.scene()), spec_(camera) {
@@ -42,22 +49,34 @@ ShotCamera::ShotCamera(ShotEvaluator& characters, const CameraSpec& camera)
   const glm::vec3 lever = horse.skeleton.restPosition(horse.role("saddle")) - horse.skeleton.restPosition(horse.role("root"));
   preset.seat_from_pivot_cm = {lever.x, lever.y, lever.z};
   const bool whole_crowd = characters.isCrowd() && follow < 0;
-  ShotFrame frame;
-  spec_ = frameView(preset, scene_, *clip_, *profile_, framingFrames(preset, scene_),
-                    [&](int f, std::vector<glm::dvec3>& h, std::vector<glm::dvec3>& r) {
-                      FrameRequest request;
-                      request.frame = f;
-                      request.shown = shownAs(preset);  // a treadmill or a held pose as the view shows them
-                      request.level.fixed = whole_crowd ? kDetailLevels - 1 : 0;
-                      request.only_pair = whole_crowd ? -1 : seat_pair;
-                      characters.evaluate(request, frame);
-                      h.clear();
-                      r.clear();
-                      if (whole_crowd)
-                        for (const PairFrame& p : frame.pairs) appendCorners(p, h, r);
-                      else
-                        appendPoints(frame.pairs[std::size_t(seat_pair)], 3, h, r);
-                    });
+  const auto points = [&](const std::vector<int>& frames, std::vector<std::vector<glm::vec3>>& horse,
+                          std::vector<std::vector<glm::vec3>>& rider) {
+    std::vector<FrameRequest> requests(frames.size());
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      FrameRequest& request = requests[k];
+      request.frame = frames[k];
+      request.shown = shownAs(preset);  // a treadmill or a held pose as the view shows them
+      request.level.fixed = whole_crowd ? kDetailLevels - 1 : 0;
+      request.only_pair = whole_crowd ? -1 : seat_pair;
+      // Positions alone, and of a pair only the vertices the view reads.
+      request.until = EvalStage::Points;
+      request.point_stride = whole_crowd ? 1 : kFramingPointStride;
+    }
+    horse.assign(frames.size(), {});
+    rider.assign(frames.size(), {});
+    // The frames in parallel, each writing only its own slot.
+    characters.evaluateEach(requests, [&](std::size_t k, ShotFrame& frame) {
+      if (whole_crowd) {
+        for (const PairFrame& p : frame.pairs) appendCorners(p, horse[k], rider[k]);
+        return;
+      }
+      PairFrame& p = frame.pairs[std::size_t(seat_pair)];
+      horse[k] = std::move(p.horse_positions);
+      rider[k] = std::move(p.rider_positions);
+    });
+  };
+  // The follow filter of every frame runs in parallel too, on the evaluator's threads.
+  characters.run([&] { spec_ = frameView(preset, scene_, *clip_, *profile_, framingFrames(preset, scene_), points); });
 }
 
 ShotCamera::~ShotCamera() = default;

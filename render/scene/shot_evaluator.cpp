@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 
@@ -143,10 +145,23 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
     using Key = std::tuple<double, double, double, std::string, std::string, std::string, std::string, int>;
     std::map<Key, std::size_t> build_of;
     ps.pairs.resize(scene.pairs.size());
+    // Each pair's clip (a path clip: its footfalls scanned, a few ms a second of ride), the pairs in
+    // parallel; a bad pair's error is the first bad pair's, whatever the threads.
+    std::vector<std::exception_ptr> errors(scene.pairs.size());
+    ps.arena.execute([&] {
+      tbb::parallel_for(std::size_t(0), scene.pairs.size(), [&](std::size_t i) {
+        try {
+          ps.pairs[i].clip = rig::makePairClip(scene.pairs[i], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      });
+    });
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
     for (std::size_t i = 0; i < scene.pairs.size(); ++i) {
       const rig::PairSpec& spec = scene.pairs[i];
       Pairs::Pair& p = ps.pairs[i];
-      p.clip = rig::makePairClip(spec, scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
       p.clip_offset_s = spec.clip_offset_s;
       p.shown = std::make_unique<rig::ShiftedClip>(*p.clip, spec.clip_offset_s);
       p.profile = profiles.at(spec.profile);
@@ -243,27 +258,30 @@ std::string crowdPairName(int pair, int pair_count) {
   return name;
 }
 
-void ShotEvaluator::evaluate(const FrameRequest& request, ShotFrame& out) {
-  Pairs& ps = *pairs_;
-  if (request.only_pair >= pairCount()) throw std::invalid_argument("ShotEvaluator::evaluate: no pair " + std::to_string(request.only_pair));
-  out.pairs.resize(ps.pairs.size());
-  timings_ = {};
-  std::vector<std::size_t> which;
-  for (std::size_t i = 0; i < ps.pairs.size(); ++i)
-    if (request.only_pair < 0 || int(i) == request.only_pair) which.push_back(i);
-  const bool rigid = request.shown.rigid_rider;
-  const auto each = [&](const std::function<void(std::size_t)>& f) {
-    ps.arena.execute([&] { tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t k) { f(which[k]); }); });
-  };
+namespace {
 
-  // Bake: every pair's clip and profile at the frame shown (the held pose's), its time the shot's.
-  auto t0 = Clock::now();
+// The pairs a request asks for, in the scene's order.
+std::vector<std::size_t> pairsAsked(const FrameRequest& request, std::size_t pair_count) {
+  std::vector<std::size_t> which;
+  for (std::size_t i = 0; i < pair_count; ++i)
+    if (request.only_pair < 0 || int(i) == request.only_pair) which.push_back(i);
+  return which;
+}
+
+}  // namespace
+
+// The three stages of a frame, each for the pairs `which`, writing only their own PairFrames: evaluate
+// runs them stage by stage over the pairs (timing each), evaluateEach frame by frame; both through
+// these, so a frame is the same either way.
+void ShotEvaluator::bakeStage(const FrameRequest& request, const std::vector<std::size_t>& which, ShotFrame& out) const {
+  const Pairs& ps = *pairs_;
+  const bool rigid = request.shown.rigid_rider;
+  // Every pair's clip and profile at the frame shown (the held pose's), its time the shot's.
   const int shown = request.shown.hold_frame > 0 ? request.shown.hold_frame : request.frame;
   std::vector<rig::CrowdPair> list;
   for (std::size_t i : which)
     list.push_back({ps.pairs[i].clip.get(), rigid ? &ps.pairs[i].rigid_profile : &ps.pairs[i].profile, ps.pairs[i].clip_offset_s});
-  std::vector<rig::BakedFrame> baked;
-  ps.arena.execute([&] { baked = rig::bakeCrowdFrame(list, shown, frameTime(scene_, shown)); });
+  std::vector<rig::BakedFrame> baked = rig::bakeCrowdFrame(list, shown, frameTime(scene_, shown));
   for (std::size_t k = 0; k < which.size(); ++k) {
     rig::BakedFrame& b = out.pairs[which[k]].baked;
     b = std::move(baked[k]);
@@ -271,6 +289,49 @@ void ShotEvaluator::evaluate(const FrameRequest& request, ShotFrame& out) {
     if (request.shown.treadmill) b.horse.travel_cm = b.horse.travel_z_cm = 0.0;
     if (rigid) b.rider = rig::RiderChannels{};
   }
+}
+
+void ShotEvaluator::poseStage(const FrameRequest& request, std::size_t i, PairFrame& f) const {
+  const Pairs& ps = *pairs_;
+  const Pairs::Pair& p = ps.pairs[i];
+  const rig::Character& horse = ps.poseHorse(i);
+  const bool rigid = request.shown.rigid_rider;
+  f.pose = rig::poseMounted(horse, ps.poseRider(i), f.baked.horse, f.baked.rider, rigid ? p.rigid_profile : p.profile);
+  const LevelChoice& choice = request.level;
+  if (choice.fixed >= 0 || ps.levels == 1) {
+    f.level = std::clamp(choice.fixed, 0, ps.levels - 1);
+  } else {
+    const glm::dvec3 root(f.pose.horse[std::size_t(horse.role("root"))][3]);
+    f.level = std::min(pairDetailLevel(*choice.camera, choice.width, choice.height, root, ps.build(i, 0).horse.cell),
+                       ps.levels - 1);
+  }
+}
+
+void ShotEvaluator::skinStage(const FrameRequest& request, std::size_t i, PairFrame& f) const {
+  const Pairs::Build& b = pairs_->build(i, f.level);
+  if (request.until == EvalStage::Points) {
+    rig::skinPositions(b.built_horse->mesh, b.built_horse->skeleton, f.pose.horse, request.point_stride, f.horse_positions);
+    rig::skinPositions(b.built_rider->mesh, b.built_rider->skeleton, f.pose.rider, request.point_stride, f.rider_positions);
+    f.horse_normals.clear();
+    f.rider_normals.clear();
+    return;
+  }
+  rig::skinMesh(b.built_horse->mesh, b.built_horse->skeleton, f.pose.horse, f.horse_positions, f.horse_normals);
+  rig::skinMesh(b.built_rider->mesh, b.built_rider->skeleton, f.pose.rider, f.rider_positions, f.rider_normals);
+}
+
+void ShotEvaluator::evaluate(const FrameRequest& request, ShotFrame& out) {
+  Pairs& ps = *pairs_;
+  if (request.only_pair >= pairCount()) throw std::invalid_argument("ShotEvaluator::evaluate: no pair " + std::to_string(request.only_pair));
+  out.pairs.resize(ps.pairs.size());
+  timings_ = {};
+  const std::vector<std::size_t> which = pairsAsked(request, ps.pairs.size());
+  const auto each = [&](const std::function<void(std::size_t)>& f) {
+    ps.arena.execute([&] { tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t k) { f(which[k]); }); });
+  };
+
+  auto t0 = Clock::now();
+  ps.arena.execute([&] { bakeStage(request, which, out); });
   timings_.bake_ms = msSince(t0);
   if (request.until == EvalStage::Bake) return;
 
@@ -278,20 +339,7 @@ void ShotEvaluator::evaluate(const FrameRequest& request, ShotFrame& out) {
   t0 = Clock::now();
   ps.build_ms = 0;
   ps.buildCoarsest(which);
-  const LevelChoice& choice = request.level;
-  each([&](std::size_t i) {
-    const Pairs::Pair& p = ps.pairs[i];
-    PairFrame& f = out.pairs[i];
-    const rig::Character& horse = ps.poseHorse(i);
-    f.pose = rig::poseMounted(horse, ps.poseRider(i), f.baked.horse, f.baked.rider, rigid ? p.rigid_profile : p.profile);
-    if (choice.fixed >= 0 || ps.levels == 1) {
-      f.level = std::clamp(choice.fixed, 0, ps.levels - 1);
-    } else {
-      const glm::dvec3 root(f.pose.horse[std::size_t(horse.role("root"))][3]);
-      f.level = std::min(pairDetailLevel(*choice.camera, choice.width, choice.height, root, ps.build(i, 0).horse.cell),
-                         ps.levels - 1);
-    }
-  });
+  each([&](std::size_t i) { poseStage(request, i, out.pairs[i]); });
   timings_.pose_ms = msSince(t0) - ps.build_ms;  // building is counted apart (a one-time cost)
   timings_.build_ms = ps.build_ms;
   if (request.until == EvalStage::Pose) return;
@@ -303,13 +351,43 @@ void ShotEvaluator::evaluate(const FrameRequest& request, ShotFrame& out) {
   for (std::size_t i : which) needed.emplace_back(i, out.pairs[i].level);
   ps.buildLevels(needed);
   timings_.build_ms += ps.build_ms;
-  each([&](std::size_t i) {
-    PairFrame& f = out.pairs[i];
-    const Pairs::Build& b = ps.build(i, f.level);
-    rig::skinMesh(b.built_horse->mesh, b.built_horse->skeleton, f.pose.horse, f.horse_positions, f.horse_normals);
-    rig::skinMesh(b.built_rider->mesh, b.built_rider->skeleton, f.pose.rider, f.rider_positions, f.rider_normals);
-  });
+  each([&](std::size_t i) { skinStage(request, i, out.pairs[i]); });
   timings_.skin_ms = msSince(t0);
+}
+
+void ShotEvaluator::run(const std::function<void()>& job) { pairs_->arena.execute(job); }
+
+void ShotEvaluator::evaluateEach(const std::vector<FrameRequest>& requests,
+                                 const std::function<void(std::size_t, ShotFrame&)>& use) {
+  Pairs& ps = *pairs_;
+  // Every character the requests need, built first (building is the one thing that changes the
+  // evaluator), so the frames below only read it.
+  std::set<std::pair<std::size_t, int>> needed;
+  for (const FrameRequest& r : requests) {
+    if (r.only_pair >= pairCount()) throw std::invalid_argument("ShotEvaluator::evaluateEach: no pair " + std::to_string(r.only_pair));
+    if (r.level.fixed < 0) throw std::invalid_argument("ShotEvaluator::evaluateEach: expected every request's level fixed");
+    if (r.until == EvalStage::Bake) continue;
+    for (std::size_t i : pairsAsked(r, ps.pairs.size()))
+      needed.emplace(i, r.until == EvalStage::Pose ? ps.levels - 1 : std::clamp(r.level.fixed, 0, ps.levels - 1));
+  }
+  ps.buildLevels({needed.begin(), needed.end()});
+  ps.arena.execute([&] {
+    tbb::parallel_for(std::size_t(0), requests.size(), [&](std::size_t k) {
+      const FrameRequest& request = requests[k];
+      const std::vector<std::size_t> which = pairsAsked(request, ps.pairs.size());
+      ShotFrame frame;
+      frame.pairs.resize(ps.pairs.size());
+      bakeStage(request, which, frame);
+      if (request.until != EvalStage::Bake) {
+        tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t j) {
+          PairFrame& f = frame.pairs[which[j]];
+          poseStage(request, which[j], f);
+          if (request.until != EvalStage::Pose) skinStage(request, which[j], f);
+        });
+      }
+      use(k, frame);
+    });
+  });
 }
 
 void appendPoints(const PairFrame& pair, int stride, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider) {
@@ -318,8 +396,8 @@ void appendPoints(const PairFrame& pair, int stride, std::vector<glm::dvec3>& ho
   for (std::size_t i = 0; i < pair.rider_positions.size(); i += step) rider.emplace_back(pair.rider_positions[i]);
 }
 
-void appendCorners(const PairFrame& pair, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider) {
-  const auto corners = [](const std::vector<glm::vec3>& points, std::vector<glm::dvec3>& out) {
+void appendCorners(const PairFrame& pair, std::vector<glm::vec3>& horse, std::vector<glm::vec3>& rider) {
+  const auto corners = [](const std::vector<glm::vec3>& points, std::vector<glm::vec3>& out) {
     glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
     for (const glm::vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     for (int c = 0; c < 8; ++c) out.emplace_back(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);

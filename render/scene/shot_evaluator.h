@@ -15,6 +15,7 @@
 // Nothing here traces rays: the renderer (render/shot.h) and the bake (stirrup bake) both sit on it.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -47,8 +48,10 @@ struct LevelChoice {
   int width = 0, height = 0;       // the film's, in pixels
 };
 
-// How far a frame is evaluated: baked only, posed too, or skinned too.
-enum class EvalStage { Bake, Pose, Skin };
+// How far a frame is evaluated: baked only, posed too, or skinned too. Points skins the positions of
+// every FrameRequest::point_stride-th vertex alone (rig::skinPositions: the same bits as Skin's, no
+// normals): what framing a view needs.
+enum class EvalStage { Bake, Pose, Points, Skin };
 
 struct FrameRequest {
   int frame = 1;
@@ -56,13 +59,15 @@ struct FrameRequest {
   EvalStage until = EvalStage::Skin;
   LevelChoice level;
   int only_pair = -1;  // >= 0: this pair alone (the others' PairFrames are left as they were)
+  int point_stride = 1;  // EvalStage::Points: every this-many-th vertex (vertex 0, stride, 2 stride, ...)
 };
 
 // One pair at a frame, as shown.
 struct PairFrame {
   rig::BakedFrame baked;  // frame: the frame asked for; seconds: the shot's time of the frame shown
   rig::MountedPose pose;  // world matrices of both skeletons (EvalStage::Pose and on)
-  int level = 0;          // the level skinned (EvalStage::Skin)
+  int level = 0;          // the level skinned (EvalStage::Points and Skin)
+  // EvalStage::Skin: every vertex; EvalStage::Points: every point_stride-th vertex's position, no normals.
   std::vector<glm::vec3> horse_positions, horse_normals, rider_positions, rider_normals;
 };
 
@@ -116,9 +121,23 @@ class ShotEvaluator {
   // Evaluates `request` into `out` (resized to one PairFrame a pair).
   void evaluate(const FrameRequest& request, ShotFrame& out);
   const EvalTimings& lastTimings() const { return timings_; }
+  // Evaluates every one of `requests` (each one's level fixed: LevelChoice::fixed >= 0), the frames in
+  // parallel on the evaluator's threads, and hands each to use(k, frame) for requests[k]: called
+  // concurrently for different k, the frame is the caller's to take from and is dropped after the
+  // call. Each frame is what evaluate()
+  // gives for its request, to the bit, at any thread count (framing a view over a whole shot:
+  // render/scene/shot_camera.h). Builds the characters the requests need first; lastTimings() is left.
+  void evaluateEach(const std::vector<FrameRequest>& requests, const std::function<void(std::size_t, ShotFrame&)>& use);
+  // Runs `job` on the evaluator's threads (the thread count it was made with): parallel work of the
+  // shot's, such as framing its view, stays within it.
+  void run(const std::function<void()>& job);
 
  private:
   struct Pairs;  // the pairs, their builds and the threads (shot_evaluator.cpp)
+  // A frame's stages for the pairs `which` (bake) or pair i, reading the built characters only.
+  void bakeStage(const FrameRequest& request, const std::vector<std::size_t>& which, ShotFrame& out) const;
+  void poseStage(const FrameRequest& request, std::size_t i, PairFrame& f) const;
+  void skinStage(const FrameRequest& request, std::size_t i, PairFrame& f) const;
   SceneSpec scene_;
   std::unique_ptr<Pairs> pairs_;
   EvalTimings timings_;
@@ -131,6 +150,6 @@ std::string crowdPairName(int pair, int pair_count);
 // Every `stride`-th skinned vertex of a pair's horse and rider, appended as world points.
 void appendPoints(const PairFrame& pair, int stride, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
 // The 8 corners of a pair's horse's and rider's bounding boxes, appended.
-void appendCorners(const PairFrame& pair, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
+void appendCorners(const PairFrame& pair, std::vector<glm::vec3>& horse, std::vector<glm::vec3>& rider);
 
 }  // namespace stirrup::render

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
 
 #include "render/scene/camera_motion.h"
 #include "rig/io/frame_range.h"
@@ -33,6 +34,13 @@ glm::dvec3 viewDirection(const std::string& view) {
   return glm::normalize(glm::dvec3(0.0, 0.12, 1.0));  // turntable: starts on the right side
 }
 
+// Runs f(i) for every frame index in parallel, on the caller's threads (ShotCamera runs the framing on
+// its evaluator's). Each frame's part is kept apart and the parts are then combined in frame order, by
+// min and max, which are exact: the framing is the same at any thread count.
+void eachFrame(std::size_t frames, const std::function<void(std::size_t)>& f) {
+  tbb::parallel_for(std::size_t(0), frames, [&](std::size_t i) { f(i); });
+}
+
 struct Basis {
   glm::dvec3 forward, right, up, target;
 };
@@ -46,21 +54,29 @@ Basis basisOf(const Camera& c) {
   return b;
 }
 
-std::vector<glm::dvec3> viewPoints(const CameraSpec& spec, const CharacterPoints& points, int frame) {
-  std::vector<glm::dvec3> horse, rider;
-  points(frame, horse, rider);
-  if (spec.view != "close") {
-    horse.insert(horse.end(), rider.begin(), rider.end());
-    return horse;
+// The points a view frames at one frame: the horse's and the rider's, kept apart (joining them was one
+// more copy of every frame's points), or for `close` the rider's above the saddle alone. Skinned
+// positions are floats; every use below reads them as doubles, exactly.
+struct FramePoints {
+  std::vector<glm::vec3> horse, rider;
+  // f(p) for every point, the horse's then the rider's.
+  template <typename F>
+  void each(F&& f) const {
+    for (const glm::dvec3 p : horse) f(p);
+    for (const glm::dvec3 p : rider) f(p);
   }
+};
+
+void keepViewPoints(const CameraSpec& spec, FramePoints& points) {
+  if (spec.view != "close") return;
   // The rider above the saddle: the upper 55% of the rider's height at this frame.
+  std::vector<glm::vec3>& rider = points.rider;
   double lo = kInf, hi = -kInf;
-  for (const glm::dvec3& p : rider) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+  for (const glm::dvec3 p : rider) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
   const double cut = lo + 0.45 * (hi - lo);
-  std::vector<glm::dvec3> upper;
-  for (const glm::dvec3& p : rider)
-    if (p.y >= cut) upper.push_back(p);
-  return upper;
+  rider.erase(std::remove_if(rider.begin(), rider.end(), [&](const glm::vec3& p) { return !(double(p.y) >= cut); }),
+              rider.end());
+  points.horse.clear();
 }
 
 glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
@@ -76,15 +92,14 @@ constexpr std::array<double, 3> kTopUp = {0.0, 0.0, -1.0};
 // points over every frame, so the whole ground track (a figure eight, a circle) is in the picture
 // with frame_margin free at each border.
 CameraSpec frameTopView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& clip,
-                        const std::vector<std::vector<glm::dvec3>>& pts) {
+                        const std::vector<FramePoints>& pts) {
   glm::dvec3 lo(kInf), hi(-kInf);
   for (int f : rig::parseFrameList(scene.frames, "frames")) {
-    const rig::HorseFrame h = clip.sample(frameTime(scene, f));
+    const rig::HorseFrame h = clip.sampleTravel(frameTime(scene, f));
     const glm::dvec3 travel(h.travel_cm, h.ground_y_cm, h.travel_z_cm);
     lo = glm::min(lo, travel), hi = glm::max(hi, travel);
   }
-  for (const std::vector<glm::dvec3>& frame : pts)
-    for (const glm::dvec3& p : frame) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  for (const FramePoints& frame : pts) frame.each([&](const glm::dvec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); });
   const glm::dvec3 centre = 0.5 * (lo + hi);
   spec.target = toArray({centre.x, lo.y, centre.z});
   spec.position = toArray({centre.x, hi.y + kTopCameraClearanceCm, centre.z});
@@ -102,18 +117,19 @@ CameraSpec frameTopView(CameraSpec spec, const SceneSpec& scene, const rig::Clip
 // ray's direction or place in the picture, only where it starts: when the film's lower edge dips
 // below the lowest framed point at any frame, the camera moves back until that edge is above the
 // highest. A single pair's film clears the ground already and is left exactly as it was.
-void raiseOrthographicFilm(CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
-                           const rig::RigProfile& profile, const std::vector<int>& frames,
-                           const std::vector<std::vector<glm::dvec3>>& pts) {
-  double dip = 0.0, need = 0.0;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+void raiseOrthographicFilm(CameraSpec& spec, const std::vector<int>& frames, const std::vector<FollowFrame>& follows,
+                           const std::vector<FramePoints>& pts) {
+  std::vector<double> dips(frames.size()), needs(frames.size());
+  eachFrame(frames.size(), [&](std::size_t i) {
+    const Camera cam = cameraFromFollow(spec, follows[i], frames[i]);
     const double bottom = cam.position.y - 0.5 * spec.ortho_height_cm * basisOf(cam).up.y;
     double lo = kInf, hi = -kInf;
-    for (const glm::dvec3& p : pts[i]) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
-    dip = std::max(dip, lo - bottom);
-    need = std::max(need, hi - bottom);
-  }
+    pts[i].each([&](const glm::dvec3 p) { lo = std::min(lo, p.y), hi = std::max(hi, p.y); });
+    dips[i] = lo - bottom;
+    needs[i] = hi - bottom;
+  });
+  double dip = 0.0, need = 0.0;
+  for (std::size_t i = 0; i < frames.size(); ++i) dip = std::max(dip, dips[i]), need = std::max(need, needs[i]);
   const glm::dvec3 t = toVec(spec.target), back = glm::normalize(toVec(spec.position) - t);
   if (!(dip > 0.0) || !(back.y > 0.0)) return;
   spec.position = toArray(toVec(spec.position) + back * (need / back.y));
@@ -175,25 +191,37 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
   applyViewPreset(spec);
   if (frames.empty()) throw std::invalid_argument("frameView: no frames");
   // The points of every frame, once.
-  std::vector<std::vector<glm::dvec3>> pts;
-  pts.reserve(frames.size());
-  for (int f : frames) pts.push_back(viewPoints(spec, points, f));
+  std::vector<std::vector<glm::vec3>> horse, rider;
+  points(frames, horse, rider);
+  std::vector<FramePoints> pts(frames.size());
+  eachFrame(frames.size(), [&](std::size_t i) {
+    pts[i] = {std::move(horse[i]), std::move(rider[i])};
+    keepViewPoints(spec, pts[i]);
+  });
+  horse.clear();
+  rider.clear();
 
   if (spec.view == "top") return frameTopView(spec, scene, clip, pts);
+  // Where the camera's motion takes it at every frame, once: the passes below move and size the
+  // camera but not its motion (cameraFollowAtFrame).
+  std::vector<FollowFrame> follows(frames.size());
+  eachFrame(frames.size(), [&](std::size_t i) { follows[i] = cameraFollowAtFrame(spec, scene, clip, profile, frames[i]); });
 
   // 1. Aim at the centre of the points' bounds in the followed frame (turned back by the heading the
   //    camera turns with, so a path clip's points are seen from the horse's side).
-  glm::dvec3 lo(kInf), hi(-kInf);
-  for (std::size_t i = 0; i < frames.size(); ++i) {
+  std::vector<glm::dvec3> los(frames.size(), glm::dvec3(kInf)), his(frames.size(), glm::dvec3(-kInf));
+  eachFrame(frames.size(), [&](std::size_t i) {
     const int shown = spec.hold_frame > 0 ? spec.hold_frame : frames[i];
     const glm::dvec3 follow = spec.motion == "fixed" ? glm::dvec3(0.0)
                                                      : followPoint(spec, clip, profile, frameTime(scene, shown));
-    const double heading = cameraHeadingAtFrame(spec, scene, clip, profile, frames[i]);
-    for (const glm::dvec3& p : pts[i]) {
-      const glm::dvec3 q = turnByHeading(p - follow, -heading);
-      lo = glm::min(lo, q), hi = glm::max(hi, q);
-    }
-  }
+    const HeadingTurn back(-follows[i].heading_deg);  // cameraHeadingAtFrame's, undone
+    pts[i].each([&](const glm::dvec3 p) {
+      const glm::dvec3 q = back(p - follow);
+      los[i] = glm::min(los[i], q), his[i] = glm::max(his[i], q);
+    });
+  });
+  glm::dvec3 lo(kInf), hi(-kInf);
+  for (std::size_t i = 0; i < frames.size(); ++i) lo = glm::min(lo, los[i]), hi = glm::max(hi, his[i]);
   if (!(lo.x <= hi.x)) throw std::invalid_argument("frameView: the characters have no vertices");
   const glm::dvec3 centre = 0.5 * (lo + hi);
   const double radius = 0.5 * glm::length(hi - lo);
@@ -210,33 +238,42 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
 
   // 2. Truck (shift position and target together) to centre the extents, then size; three passes so
   //    the perspective centring sees the final distance.
-  for (int pass = 0; pass < 3; ++pass) {
+  struct Extent {
     double umin = kInf, umax = -kInf, vmin = kInf, vmax = -kInf;
+  };
+  std::vector<Extent> extents(frames.size());
+  std::vector<double> dists(frames.size());
+  for (int pass = 0; pass < 3; ++pass) {
     const double th = std::tan(0.5 * spec.fov_deg * kPi / 180.0), tw = th * aspect;
-    glm::dvec3 right0(1, 0, 0), up0(0, 1, 0);
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+    eachFrame(frames.size(), [&](std::size_t i) {
+      const Camera cam = cameraFromFollow(spec, follows[i], frames[i]);
       const Basis b = basisOf(cam);
-      if (i == 0) right0 = b.right, up0 = b.up;
       const double dist = glm::length(cam.target - cam.position);
-      for (const glm::dvec3& p : pts[i]) {
+      Extent e;
+      pts[i].each([&](const glm::dvec3 p) {
         const glm::dvec3 q = p - b.target;
         const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
         if (spec.orthographic) {
-          umin = std::min(umin, x), umax = std::max(umax, x), vmin = std::min(vmin, y), vmax = std::max(vmax, y);
+          e.umin = std::min(e.umin, x), e.umax = std::max(e.umax, x), e.vmin = std::min(e.vmin, y), e.vmax = std::max(e.vmax, y);
         } else {
           const double depth = dist + z;  // along the view axis from the camera
-          if (depth <= 1.0) continue;  // behind the camera: the dolly below moves it out
+          if (depth <= 1.0) return;  // behind the camera: the dolly below moves it out
           // Film coordinates at the target's distance (so a truck by d moves them by d).
-          umin = std::min(umin, x * dist / depth), umax = std::max(umax, x * dist / depth);
-          vmin = std::min(vmin, y * dist / depth), vmax = std::max(vmax, y * dist / depth);
+          e.umin = std::min(e.umin, x * dist / depth), e.umax = std::max(e.umax, x * dist / depth);
+          e.vmin = std::min(e.vmin, y * dist / depth), e.vmax = std::max(e.vmax, y * dist / depth);
         }
-      }
-    }
+      });
+      extents[i] = e;
+    });
+    double umin = kInf, umax = -kInf, vmin = kInf, vmax = -kInf;
+    for (const Extent& e : extents)
+      umin = std::min(umin, e.umin), umax = std::max(umax, e.umax), vmin = std::min(vmin, e.vmin), vmax = std::max(vmax, e.vmax);
+    const Basis first = basisOf(cameraFromFollow(spec, follows[0], frames[0]));
+    glm::dvec3 right0 = first.right, up0 = first.up;
     // Centre: truck along the first frame's right/up (constant for follow cameras, in their own
     // turning frame: turned back by the first frame's heading); an orbit only rises or sinks, along
     // the world vertical.
-    const double heading0 = cameraHeadingAtFrame(spec, scene, clip, profile, frames[0]);
+    const double heading0 = follows[0].heading_deg;
     right0 = turnByHeading(right0, -heading0), up0 = turnByHeading(up0, -heading0);
     const double cu = 0.5 * (umin + umax), cv = 0.5 * (vmin + vmax);
     glm::dvec3 shift = orbit ? glm::dvec3(0.0, cv / std::max(0.2, up0.y), 0.0) : right0 * cu + up0 * cv;
@@ -248,24 +285,27 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
       spec.ortho_height_cm = 2.0 * std::max(half, halfu) / keep;
     } else {
       // Dolly back along the view axis until every point fits: |x| <= tw keep (dist' + z).
-      double dist_needed = 0.0;
-      for (std::size_t i = 0; i < frames.size(); ++i) {
-        const Camera cam = cameraAtFrame(spec, scene, clip, profile, frames[i]);
+      eachFrame(frames.size(), [&](std::size_t i) {
+        const Camera cam = cameraFromFollow(spec, follows[i], frames[i]);
         const Basis b = basisOf(cam);
-        for (const glm::dvec3& p : pts[i]) {
+        double need = 0.0;
+        pts[i].each([&](const glm::dvec3 p) {
           const glm::dvec3 q = p - b.target;
           const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
-          dist_needed = std::max(dist_needed, std::abs(x) / (tw * keep) - z);
-          dist_needed = std::max(dist_needed, std::abs(y) / (th * keep) - z);
-          dist_needed = std::max(dist_needed, 1.05 * radius - z);  // never inside the characters
-        }
-      }
+          need = std::max(need, std::abs(x) / (tw * keep) - z);
+          need = std::max(need, std::abs(y) / (th * keep) - z);
+          need = std::max(need, 1.05 * radius - z);  // never inside the characters
+        });
+        dists[i] = need;
+      });
+      double dist_needed = 0.0;
+      for (double need : dists) dist_needed = std::max(dist_needed, need);
       const glm::dvec3 t = toVec(spec.target);
       const glm::dvec3 back = glm::normalize(toVec(spec.position) - t);
       spec.position = toArray(t + back * dist_needed);
     }
   }
-  if (spec.orthographic) raiseOrthographicFilm(spec, scene, clip, profile, frames, pts);
+  if (spec.orthographic) raiseOrthographicFilm(spec, frames, follows, pts);
   return spec;
 }
 

@@ -33,9 +33,10 @@ void applyViewPreset(CameraSpec& spec);
 // The frames a view is framed over: the scene's frames, and 1..orbit_frames for an orbit.
 std::vector<int> framingFrames(const CameraSpec& spec, const SceneSpec& scene);
 
-// World positions of (a subset of) the horse's and the rider's skinned vertices at a frame, as shown.
-using CharacterPoints =
-    std::function<void(int frame, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider)>;
+// World positions of (a subset of) the horse's and the rider's skinned vertices at each of `frames`, as
+// shown: horse[k] and rider[k] (both resized to one a frame) are frames[k]'s.
+using CharacterPoints = std::function<void(const std::vector<int>& frames, std::vector<std::vector<glm::vec3>>& horse,
+                                           std::vector<std::vector<glm::vec3>>& rider)>;
 
 // The view camera framed over `frames`: position, target and size resolved. `spec` must have a view.
 CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& clip,

@@ -40,7 +40,7 @@ HorseFrame CrowdMiddleClip::average(double seconds) const {
   HorseFrame out;
   double x = 0.0, z = 0.0, y = 0.0, cos_sum = 0.0, sin_sum = 0.0;
   for (const Clip* c : clips_) {
-    const HorseFrame f = c->sample(seconds);
+    const HorseFrame f = c->sampleTravel(seconds);
     x += f.travel_cm, z += f.travel_z_cm, y += f.ground_y_cm;
     const double a = f.heading_deg * (3.14159265358979323846 / 180.0);
     cos_sum += std::cos(a), sin_sum += std::sin(a);

@@ -242,9 +242,7 @@ double PathClip::turnRollDeg(double t) const {
   return limit > 0.0 ? limit * std::tanh(roll / limit) : 0.0;
 }
 
-HorseFrame PathClip::sample(double t) const {
-  HorseFrame f = sampleMovement(movement_, t);
-  const double s = f.travel_cm;
+GroundPath::Sample PathClip::placeTravelFrame(double s, HorseFrame& f, double& pitch) const {
   const GroundPath::Sample here = extended(s);
   const glm::dvec2 ahead = here.tangent, right{-here.tangent.y, here.tangent.x};
   const Terrain& ground = terrain();
@@ -258,12 +256,30 @@ HorseFrame PathClip::sample(double t) const {
     (i < 2 ? fore_h : hind_h) += 0.5 * h;
     (i < 2 ? fore_x : hind_x) += 0.5 * r.x;
   }
-  const double pitch = std::atan2(fore_h - hind_h, fore_x - hind_x);
+  pitch = std::atan2(fore_h - hind_h, fore_x - hind_x);
   f.travel_cm = here.position.x;
   f.travel_z_cm = here.position.y;
   f.heading_deg = here.heading_deg;
   f.ground_pitch_deg = pitch * kDeg;
   f.ground_y_cm = hind_h + (fore_h - hind_h) * (0.0 - hind_x) / (fore_x - hind_x);
+  return here;
+}
+
+HorseFrame PathClip::sampleTravel(double t) const {
+  // The travel as sampleMovement finds it (the distance along the path), without legs or trunk.
+  HorseFrame f;
+  double pitch = 0.0;
+  placeTravelFrame(movement_.travelCm(t), f, pitch);
+  return f;
+}
+
+HorseFrame PathClip::sample(double t) const {
+  HorseFrame f = sampleMovement(movement_, t);
+  const double s = f.travel_cm;
+  double pitch = 0.0;
+  const GroundPath::Sample here = placeTravelFrame(s, f, pitch);
+  const glm::dvec2 ahead = here.tangent, right{-here.tangent.y, here.tangent.x};
+  const Terrain& ground = terrain();
   const double cp = std::cos(pitch), sp = std::sin(pitch);
 
   // Each hoof at its place along the path, seen from the travel frame.

@@ -69,6 +69,7 @@ class PathClip final : public Clip {
   std::string name() const override { return "path"; }
   double duration() const override { return movement_.duration_s; }
   HorseFrame sample(double seconds) const override;
+  HorseFrame sampleTravel(double seconds) const override;
 
   // One stretch of steady gait and lead, between the middles of the blends on either side.
   struct Section {
@@ -90,6 +91,10 @@ class PathClip final : public Clip {
   // The path at arc length s, continued straight along its end tangents beyond either end.
   GroundPath::Sample extended(double s) const;
   double meanCurvature(double s, double half_window_cm) const;
+  // Sets f's travel frame for the distance s along the path (sample and sampleTravel share it):
+  // travel_cm, travel_z_cm, heading_deg, ground_pitch_deg, ground_y_cm; returns the path there and
+  // the ground's pitch in radians.
+  GroundPath::Sample placeTravelFrame(double s, HorseFrame& f, double& pitch) const;
 
   PathClipParams params_;
   std::shared_ptr<const Terrain> terrain_;

@@ -18,6 +18,7 @@ class ShiftedClip : public Clip {
   // The time left to play from the shot's start.
   double duration() const override { return clip_.duration() - offset_s_; }
   HorseFrame sample(double seconds) const override { return clip_.sample(seconds + offset_s_); }
+  HorseFrame sampleTravel(double seconds) const override { return clip_.sampleTravel(seconds + offset_s_); }
   // Fences stand by travel distance, not by time: unchanged.
   std::vector<Obstacle> obstacles() const override { return clip_.obstacles(); }
 

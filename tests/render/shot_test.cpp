@@ -196,6 +196,30 @@ TEST(Shot, RendersACrowdTheSameAtAnyThreadCount) {
   }
 }
 
+// A shot made from another's characters (a layered movie's rigid panel) evaluates the very same
+// evaluator, and renders every frame as a shot with characters of its own does, the rigged and the
+// rigid rider, the two shots rendering in turn.
+TEST(Shot, ShotsSharingTheirCharactersRenderAsShotsOfTheirOwn) {
+  const SceneSpec scene = pathOverHills();
+  CameraSpec camera;
+  camera.ortho_height_cm = 400;
+  Shot rigged(scene, resolveProfile(scene), camera, 1);
+  Shot shared(rigged.sharedCharacters(), camera, 1);
+  EXPECT_EQ(&shared.characters(), &rigged.characters());
+  Shot own(scene, resolveProfile(scene), camera, 1);
+  shared.setRigidRider(true);
+  own.setRigidRider(true);
+  for (int frame : {3, 40, 41}) {
+    const Image a = shared.renderFrame(frame), b = own.renderFrame(frame);
+    EXPECT_TRUE(a.rgba == b.rgba && a.depth == b.depth && a.object_id == b.object_id) << "frame " << frame;
+    // Each shot shows its own rider through the one evaluator: the rigged one moves off the rigid one.
+    std::vector<glm::dvec3> horse_a, rider_a, horse_b, rider_b;
+    rigged.characterPoints(frame, 1, horse_a, rider_a);
+    shared.characterPoints(frame, 1, horse_b, rider_b);
+    EXPECT_NE(rider_a, rider_b) << "frame " << frame;
+  }
+}
+
 // Changing one pair's profile (pair 1: english -> novice) changes only pixels within that pair's reach
 // on screen. A profile moves the rider and what she holds and stands in (her horse's stirrups and reins,
 // the vertices that moved; the horse's body stays), so the reach is the box of those skinned vertices

@@ -90,5 +90,26 @@ TEST(Skin, DefaultCharactersHaveNormalisedWeightsOfAtMostFourJoints) {
   expectValidWeights(buildDefaultRider());
 }
 
+// skinPositions places every stride-th vertex where skinMesh does, to the bit (framing a view reads
+// them instead of the whole skin): the built horse, posed with a bent joint so vertices blend.
+TEST(Skin, PositionsAloneAreSkinMeshsEveryStrideThVertex) {
+  const Character horse = buildHorse(HorseParams{});
+  std::vector<glm::mat4> world = restWorlds(horse.skeleton);
+  for (std::size_t j = 1; j < world.size(); j += 3)
+    world[j] = world[j] * glm::rotate(glm::mat4(1.0f), glm::radians(20.0f), glm::normalize(glm::vec3(1, 2, 3)));
+  std::vector<glm::vec3> all, normals;
+  skinMesh(horse.mesh, horse.skeleton, world, all, normals);
+  for (int stride : {1, 3, 7}) {
+    std::vector<glm::vec3> some;
+    skinPositions(horse.mesh, horse.skeleton, world, stride, some);
+    ASSERT_EQ(some.size(), (all.size() + std::size_t(stride) - 1) / std::size_t(stride)) << stride;
+    for (std::size_t k = 0; k < some.size(); ++k) ASSERT_EQ(some[k], all[k * std::size_t(stride)]) << stride << " " << k;
+  }
+  std::vector<glm::vec3> none;
+  EXPECT_THROW(skinPositions(horse.mesh, horse.skeleton, world, 0, none), std::invalid_argument);
+  world.pop_back();
+  EXPECT_THROW(skinPositions(horse.mesh, horse.skeleton, world, 3, none), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace stirrup::rig

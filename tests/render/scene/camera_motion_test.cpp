@@ -327,5 +327,44 @@ TEST_F(MotionFixture, StraightClipCameraIsNotTurned) {
   }
 }
 
+// A camera's motion does not depend on where the camera stands: the follow frame found for one spec
+// places a spec moved, re-aimed and resized exactly as cameraAtFrame places it (framing a view finds
+// each frame's follow frame once and moves the camera over it pass after pass).
+TEST(FollowCamera, MotionIsFoundOnceForAnyPlaceAndSize) {
+  const SceneSpec scene = loadScene(STIRRUP_SOURCE_DIR "/scenes/figure_eight.json");
+  const auto clip = makeSceneClip(scene);
+  const rig::RigProfile profile = rig::RigProfile::thesis();
+  for (const char* motion : {"follow", "orbit", "fixed"}) {
+    CameraSpec spec;
+    spec.motion = motion;
+    spec.follow = spec.motion == "follow";
+    spec.damping_s = 0.3;
+    spec.orbit_frames = 48;
+    spec.position = {100, 200, 900};
+    spec.target = {0, 100, 0};
+    CameraSpec moved = spec;
+    moved.position = {-340, 410, 1250};
+    moved.target = {35, 90, -12};
+    moved.fov_deg = 20.0;
+    moved.ortho_height_cm = 555.0;
+    for (int frame : {1, 30, 77}) {
+      const FollowFrame follow = cameraFollowAtFrame(spec, scene, *clip, profile, frame);
+      const Camera a = cameraFromFollow(moved, follow, frame), b = cameraAtFrame(moved, scene, *clip, profile, frame);
+      EXPECT_EQ(a.position, b.position) << motion << " " << frame;
+      EXPECT_EQ(a.target, b.target) << motion << " " << frame;
+      EXPECT_EQ(a.fov_deg, b.fov_deg) << motion << " " << frame;
+      EXPECT_EQ(a.ortho_height_cm, b.ortho_height_cm) << motion << " " << frame;
+      EXPECT_EQ(follow.heading_deg, cameraHeadingAtFrame(spec, scene, *clip, profile, frame)) << motion << " " << frame;
+    }
+  }
+  // And it does move: the follow camera turns with the horse on the figure eight.
+  CameraSpec spec;
+  spec.motion = "follow";
+  spec.follow = true;
+  spec.damping_s = 0.3;
+  EXPECT_NE(cameraFollowAtFrame(spec, scene, *clip, profile, 1).heading_deg,
+            cameraFollowAtFrame(spec, scene, *clip, profile, 100).heading_deg);
+}
+
 }  // namespace
 }  // namespace stirrup::render

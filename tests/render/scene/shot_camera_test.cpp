@@ -63,5 +63,24 @@ TEST(ShotCamera, ACrowdsCameraMustFollowAPairOfItAndStayOffTheTreadmill) {
   }
 }
 
+// A view is framed from every frame's points and follow frame, found in parallel on the evaluator's
+// threads: the same camera to the bit at one thread and at two, for a pair's views and a crowd's.
+TEST(ShotCamera, FramesTheSameViewAtAnyThreadCount) {
+  for (const SceneSpec& scene : {loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json"), test::crowdOfFour()}) {
+    for (const char* view : {"side", "persp", "close", "top"}) {
+      CameraSpec spec;
+      spec.name = view;
+      spec.view = view;
+      ShotEvaluator one(scene, resolveProfile(scene), 1), two(scene, resolveProfile(scene), 2);
+      const CameraSpec a = ShotCamera(one, spec).spec(), b = ShotCamera(two, spec).spec();
+      EXPECT_EQ(a.position, b.position) << scene.name << " " << view;
+      EXPECT_EQ(a.target, b.target) << scene.name << " " << view;
+      EXPECT_EQ(a.ortho_height_cm, b.ortho_height_cm) << scene.name << " " << view;
+      EXPECT_EQ(a.fov_deg, b.fov_deg) << scene.name << " " << view;
+      EXPECT_NE(a.position, spec.position) << "framed: " << scene.name << " " << view;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace stirrup::render

@@ -206,5 +206,65 @@ TEST(ShotEvaluator, TheSameFrameAtAnyThreadCount) {
       << "the camera should see the pairs at different levels";
 }
 
+// evaluateEach gives every request's frame as evaluate() does, to the bit, whatever the thread count:
+// a single pair skinned whole and as positions of every third vertex, and a crowd at a fixed level
+// (framing a view evaluates the whole shot this way).
+TEST(ShotEvaluator, EachFrameOfABatchIsTheFrameAlone) {
+  for (const SceneSpec& scene : {trot(), crowdOfFour()}) {
+    const bool crowd = !scene.pairs.empty();
+    std::vector<FrameRequest> requests;
+    for (int frame : {1, 7, 19, 40}) {
+      for (EvalStage until : {EvalStage::Points, EvalStage::Skin}) {
+        FrameRequest r;
+        r.frame = frame;
+        r.until = until;
+        r.point_stride = 3;
+        r.level.fixed = crowd ? kDetailLevels - 1 : 0;
+        r.shown.treadmill = frame == 19;
+        requests.push_back(r);
+      }
+    }
+    ShotEvaluator alone(scene, resolveProfile(scene), 1);
+    std::vector<ShotFrame> expected(requests.size());
+    for (std::size_t k = 0; k < requests.size(); ++k) alone.evaluate(requests[k], expected[k]);
+    for (int threads : {1, 2}) {
+      ShotEvaluator batch(scene, resolveProfile(scene), threads);
+      std::vector<ShotFrame> got(requests.size());
+      std::vector<int> calls(requests.size(), 0);
+      batch.evaluateEach(requests, [&](std::size_t k, ShotFrame& f) {
+        got[k] = f;
+        ++calls[k];
+      });
+      for (std::size_t k = 0; k < requests.size(); ++k) {
+        const std::string what = scene.name + " request " + std::to_string(k) + " threads " + std::to_string(threads);
+        ASSERT_EQ(calls[k], 1) << what;
+        ASSERT_EQ(got[k].pairs.size(), expected[k].pairs.size()) << what;
+        for (std::size_t i = 0; i < got[k].pairs.size(); ++i) {
+          const PairFrame &a = got[k].pairs[i], &b = expected[k].pairs[i];
+          EXPECT_EQ(a.baked.horse.controls.value, b.baked.horse.controls.value) << what;
+          EXPECT_EQ(a.baked.horse.travel_cm, b.baked.horse.travel_cm) << what;
+          EXPECT_EQ(a.baked.rider.value, b.baked.rider.value) << what;
+          EXPECT_EQ(a.level, b.level) << what;
+          EXPECT_EQ(a.horse_positions, b.horse_positions) << what;
+          EXPECT_EQ(a.rider_positions, b.rider_positions) << what;
+          EXPECT_EQ(a.horse_normals, b.horse_normals) << what;
+        }
+      }
+    }
+    // Points are every third skinned vertex, without normals.
+    const PairFrame &points = expected[0].pairs[0], &skin = expected[1].pairs[0];
+    ASSERT_FALSE(points.horse_positions.empty());
+    EXPECT_TRUE(points.horse_normals.empty());
+    ASSERT_EQ(points.horse_positions.size(), (skin.horse_positions.size() + 2) / 3);
+    for (std::size_t k = 0; k < points.horse_positions.size(); ++k)
+      ASSERT_EQ(points.horse_positions[k], skin.horse_positions[3 * k]) << k;
+  }
+  // Levels must be fixed: a level picked by size on screen would build characters mid-batch.
+  ShotEvaluator eval(crowdOfFour(), resolveProfile(crowdOfFour()), 1);
+  FrameRequest by_size;
+  by_size.level.fixed = -1;
+  EXPECT_THROW(eval.evaluateEach({by_size}, [](std::size_t, ShotFrame&) {}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace stirrup::render

@@ -506,5 +506,25 @@ TEST(PathClip, BadPathsAndSpeedsAreOneLineErrors) {
   for (const PathClipParams& q : {canterEss(), turnsAndTransitions()}) EXPECT_EQ(errorOf(q), "");
 }
 
+// sampleTravel finds the travel frame without the legs and the trunk: the same bits as sample()'s,
+// over hills (height and pitch from the ground under the rest hooves), through turns, before the
+// start and past the end of the path.
+TEST(PathClip, SampleTravelIsSamplesTravelFrame) {
+  const PathClip clip(turnsAndTransitions(), hills(120, 2500), "test");
+  int checked = 0;
+  for (double t = -1.0; t <= clip.duration() + 2.0; t += 0.37, ++checked) {
+    const HorseFrame a = clip.sampleTravel(t), b = clip.sample(t);
+    ASSERT_EQ(a.travel_cm, b.travel_cm) << t;
+    ASSERT_EQ(a.travel_z_cm, b.travel_z_cm) << t;
+    ASSERT_EQ(a.ground_y_cm, b.ground_y_cm) << t;
+    ASSERT_EQ(a.heading_deg, b.heading_deg) << t;
+    ASSERT_EQ(a.ground_pitch_deg, b.ground_pitch_deg) << t;
+  }
+  EXPECT_GT(checked, 50);
+  // The samples are of a horse going somewhere: over the hills, turning.
+  EXPECT_NE(clip.sampleTravel(5.0).ground_y_cm, 0.0);
+  EXPECT_NE(clip.sampleTravel(12.0).heading_deg, clip.sampleTravel(1.0).heading_deg);
+}
+
 }  // namespace
 }  // namespace stirrup::rig

@@ -35,5 +35,19 @@ TEST(ShiftedClip, IsTheClipAtItsOffset) {
   EXPECT_GT(shifted.sample(0.0).travel_cm, 200.0);
 }
 
+// Its travel frame alone is the clip's at the offset too.
+TEST(ShiftedClip, TravelIsTheClipsAtItsOffset) {
+  const PathClip clip = turningPath();
+  constexpr double kOffsetS = 0.75;
+  const ShiftedClip shifted(clip, kOffsetS);
+  for (double t : {0.0, 1.0 / 24.0, 2.5, 4.0, clip.duration()}) {
+    const HorseFrame a = shifted.sampleTravel(t), b = clip.sample(t + kOffsetS);
+    EXPECT_EQ(a.travel_cm, b.travel_cm) << t;
+    EXPECT_EQ(a.travel_z_cm, b.travel_z_cm) << t;
+    EXPECT_EQ(a.heading_deg, b.heading_deg) << t;
+    EXPECT_EQ(a.ground_y_cm, b.ground_y_cm) << t;
+  }
+}
+
 }  // namespace
 }  // namespace stirrup::rig
