@@ -12,6 +12,20 @@ namespace stirrup::render {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
+// How much the heightfield's slab is widened before camera rays are clipped to it (cm).
+constexpr float kSlabPadCm = 1.0f;
+
+// The part [t0, t1] of a ray's [0, t_max] between heights low and high; false when there is none.
+bool slabInterval(const glm::vec3& o, const glm::vec3& d, float t_max, float low, float high, float& t0, float& t1) {
+  if (d.y == 0.0f) {
+    t0 = 0.0f, t1 = t_max;
+    return o.y >= low && o.y <= high;
+  }
+  const float ta = (low - o.y) / d.y, tb = (high - o.y) / d.y;
+  t0 = std::max(0.0f, std::min(ta, tb));
+  t1 = std::min(t_max, std::max(ta, tb));
+  return t0 <= t1;
+}
 
 }  // namespace
 
@@ -47,12 +61,15 @@ float filteredChecker(float s, float t, float width) {
 
 Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
                        std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain,
-                       float ground_floor, const SunHorizon* hills)
+                       float ground_floor, const SunHorizon* hills, const TerrainMesh* ground_mesh)
     : settings_(settings),
       characters_(scene.characters()),
       meshes_(meshes_by_geometry),
       terrain_(terrain),
       hills_(hills),
+      ground_mesh_(terrain ? ground_mesh : nullptr),
+      slab_low_(-kInfinity),
+      slab_high_(kInfinity),
       ground_(scene.ground()),
       ground_floor_(terrain ? ground_floor : 0.0f),
       pixel_layout_(uint32_t(settings.samples_per_pixel)),
@@ -78,6 +95,12 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
   spp_ = uint32_t(settings.samples_per_pixel);
   light_spp_ = uint32_t(settings.light_samples);
   ao_spp_ = uint32_t(settings.ao_samples);
+  if (ground_mesh_ && !ground_mesh_->positions.empty()) {
+    // Every point of the mesh, and so every hit, is within [min, max] height; a centimetre more each way
+    // (far more than a hit's rounding in y) keeps a hit on the slab's faces inside the traced interval.
+    slab_low_ = ground_mesh_->min_height - kSlabPadCm;
+    slab_high_ = ground_mesh_->max_height + kSlabPadCm;
+  }
 }
 
 namespace {
@@ -218,7 +241,7 @@ void Integrator::renderTile(const CameraFrame& camera, int x0, int x1, int y0, i
   const int batch = std::max(1, kBatchSamples / int(spp_));
   const LaneConstants constants = laneConstants(camera);
   for (int first = 0; first < count; first += batch) {
-    renderBatch(camera, constants, x0, width, y0, first, std::min(batch, count - first), frame, scratch, tally,
+    renderBatch(constants, x0, width, y0, first, std::min(batch, count - first), frame, scratch, tally,
                 out + first);
   }
 }
@@ -259,13 +282,12 @@ LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
   return k;
 }
 
-void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& constants, int x0, int tile_width, int y0,
+void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_width, int y0,
                              int first, int count, int frame, TileScratch& scratch, RayTally& tally,
                              PixelResult* out) const {
   scratch.pixels.clear();
   scratch.lights.clear();
   scratch.camera_rays.clear();
-  scratch.ground_rays.clear();
   scratch.pending.clear();
   scratch.sun_rays.clear();
   scratch.sky_rays.clear();
@@ -295,6 +317,14 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   }
   stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
   cameraRayLanes(constants, lanes, !terrain_);
+  if (terrain_) {
+    const std::size_t packets = (n + 15) / 16 * 16;
+    scratch.ground_t0.resize(packets);
+    scratch.ground_t1.resize(packets);
+    scratch.ground_prim.resize(n);
+    scratch.ground_u.resize(n);
+    scratch.ground_v.resize(n);
+  }
   auto queueCharacterRay = [&](TileScratch::CameraSample& c, std::size_t k) {
     c.ray = -1;
     // Most camera rays of a review view pass beside the characters' box: no call into Embree.
@@ -314,26 +344,54 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
     ++tally.rays;
     if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
     if (terrain_) {
-      RTCRayHit& rh = scratch.ground_rays.emplace_back();
-      rh.ray = makeRay(c.origin, c.dir, constants.t_visible);
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      // Only the part of the ray within the heightfield's slab can meet it: above the hills (the sky
+      // of most views) nothing is traced, and the rest is traced from where it enters the slab.
+      float& t0 = scratch.ground_t0[k];
+      float& t1 = scratch.ground_t1[k];
+      if (!slabInterval(c.origin, c.dir, constants.t_visible, slab_low_, slab_high_, t0, t1)) t0 = kInfinity, t1 = 0.0f;
       continue;
     }
     queueCharacterRay(c, k);
   }
 
-  // Pass 1b (uneven ground): every camera ray against the heightfield as one coherent stream; its
-  // distance then bounds the search through the characters as the plane's does.
+  // Pass 1b (uneven ground): the camera rays against the heightfield in packets of 16 neighbouring
+  // samples, copied from the lanes as they are (structure of arrays, no per-ray structures to fill or
+  // for Embree to regroup), each ray from where it enters the heightfield's slab to where it leaves
+  // it; a packet wholly above the hills is not traced. The ground's distance then bounds the search
+  // through the characters as the plane's does.
   if (terrain_ && n > 0) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect1M(ground_, &context, scratch.ground_rays.data(), unsigned(scratch.ground_rays.size()),
-                   sizeof(RTCRayHit));
-    for (std::size_t k = 0; k < n; ++k) {
-      const RTCRayHit& rh = scratch.ground_rays[k];
-      scratch.samples[k].t_ground = lanes.t_ground[k] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kInfinity;
+    alignas(64) RTCRayHit16 packet;
+    alignas(64) int valid[16];
+    for (std::size_t first = 0; first < n; first += 16) {
+      const std::size_t count = std::min<std::size_t>(16, n - first);
+      bool any = false;
+      for (std::size_t i = 0; i < 16; ++i) {
+        const std::size_t k = first + i;
+        valid[i] = i < count && scratch.ground_t0[k] <= scratch.ground_t1[k] ? -1 : 0;
+        any = any || valid[i];
+        if (!valid[i]) continue;
+        packet.ray.org_x[i] = lanes.ox[k], packet.ray.org_y[i] = lanes.oy[k], packet.ray.org_z[i] = lanes.oz[k];
+        packet.ray.dir_x[i] = lanes.dx[k], packet.ray.dir_y[i] = lanes.dy[k], packet.ray.dir_z[i] = lanes.dz[k];
+        packet.ray.tnear[i] = scratch.ground_t0[k], packet.ray.tfar[i] = scratch.ground_t1[k];
+        packet.ray.time[i] = 0.0f;
+        packet.ray.mask[i] = 0xffffffffu;
+        packet.ray.id[i] = 0;
+        packet.ray.flags[i] = 0;
+        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+      }
+      if (any) rtcIntersect16(valid, ground_, &context, &packet);
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t k = first + i;
+        const bool hit = valid[i] && packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        scratch.samples[k].t_ground = lanes.t_ground[k] = hit ? packet.ray.tfar[i] : kInfinity;
+        scratch.ground_prim[k] = hit ? int32_t(packet.hit.primID[i]) : -1;
+        scratch.ground_u[k] = hit ? packet.hit.u[i] : 0.0f;
+        scratch.ground_v[k] = hit ? packet.hit.v[i] : 0.0f;
+      }
     }
     boxTestLanes(constants, lanes);
     for (std::size_t k = 0; k < n; ++k) queueCharacterRay(scratch.samples[k], k);
@@ -355,8 +413,13 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
     const TileScratch::CameraSample& c = scratch.samples[k];
     const bool character_hit = c.ray >= 0 && scratch.camera_rays[std::size_t(c.ray)].hit.geomID != RTC_INVALID_GEOMETRY_ID;
     lanes.t_shade[k] = character_hit ? kInfinity : c.t_ground;
+    if (terrain_ && lanes.t_shade[k] != kInfinity) groundNormal(scratch, lanes, k);
   }
-  if (!terrain_) groundLanes(constants, lanes);
+  if (terrain_) {
+    terrainGroundLanes(constants, lanes);
+  } else {
+    groundLanes(constants, lanes);
+  }
   skyLanes(constants, lanes);
   // Then every other surface a sample sees, gathered into the surface lanes in sample order: a
   // character's hit triangle (its vertices' normals and colours), or the ground's surface.
@@ -372,11 +435,11 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
     for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
       c->resolved = false;
       c->surface = -1;
-      if (!terrain_ && lanes.open[j]) {  // open ground: its light is known
+      if (lanes.open[j]) {  // open ground: its light is known
         c->hit = c->resolved = true;
         c->id = ObjectId::Ground;
         c->depth = lanes.depth[j];
-        c->normal = glm::vec3(0.0f, 1.0f, 0.0f);
+        c->normal = terrain_ ? glm::vec3(lanes.gnx[j], lanes.gny[j], lanes.gnz[j]) : glm::vec3(0.0f, 1.0f, 0.0f);
         c->radiance = {lanes.radiance_r[j], lanes.radiance_g[j], lanes.radiance_b[j]};
         continue;
       }
@@ -389,7 +452,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
       }
       c->hit = true;
       c->surface = int32_t(m);
-      gatherSurface(camera, *c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
+      gatherSurface(*c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
       if (pixel.lights < 0) {
         pixel.lights = int32_t(scratch.lights.size());
         scratch.lights.push_back({Stratified2D(pixel.sampler, sun_layout_, SampleDimension::SunCone),
@@ -564,7 +627,7 @@ void Integrator::renderBatch(const CameraFrame& camera, const LaneConstants& con
   }
 }
 
-void Integrator::gatherSurface(const CameraFrame& camera, TileScratch::CameraSample& c, const RTCRayHit* rh,
+void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh,
                                const CameraLanes& lanes, std::size_t j, SurfaceLanes& S, std::size_t m) const {
   S.dx[m] = c.dir.x, S.dy[m] = c.dir.y, S.dz[m] = c.dir.z;
   if (rh) {
@@ -623,26 +686,36 @@ void Integrator::gatherSurface(const CameraFrame& camera, TileScratch::CameraSam
     S.depth[m] = lanes.depth[j];
     c.haze = lanes.haze[j];
   } else {
-    // On the heightfield mesh as hit; shaded with the terrain's own (smooth, upward) normal, which
-    // is also the geometric one the secondary rays leave along (they meet only the characters).
+    // On the heightfield mesh as hit, its surface from the lanes (terrainGroundLanes): the normal
+    // interpolated from the mesh's vertex normals (the terrain's own, smooth and upward), which is also
+    // the geometric one the secondary rays leave along (they meet only the characters and the hills).
     // Never flipped toward the camera: at a hill's grazing far side a ray can meet a facet whose
     // smooth normal already faces away, and flipping it there left black specks on the horizon.
-    n = glm::vec3(terrain_->normal(double(p.x), double(p.z)));
-    const float cos_view = std::max(std::abs(glm::dot(n, c.dir)), 0.02f);
-    // The sample's footprint on the ground: a pixel's width at this distance, stretched by the
-    // grazing angle (isotropically, which blurs a little more than needed across the view).
-    const float width = camera.pixelFootprintF(t) / cos_view / settings_.ground_square_cm;
-    const float odd = filteredChecker(p.x / settings_.ground_square_cm, p.z / settings_.ground_square_cm, width);
-    const glm::vec3 albedo = glm::mix(settings_.ground_color_a, settings_.ground_color_b, odd);
-    S.ar[m] = albedo.x, S.ag[m] = albedo.y, S.ab[m] = albedo.z;
-    S.depth[m] = camera.viewDepthF(p);
-    c.haze = camera.perspective()
-                 ? AerialPerspective::perspective(t, settings_.haze.visibility_cm)
-                 : AerialPerspective::orthographic(t - camera.targetDistanceF(), settings_.haze.ortho_depth_cm);
+    n = glm::vec3(lanes.gnx[j], lanes.gny[j], lanes.gnz[j]);
+    S.ar[m] = lanes.albedo_r[j], S.ag[m] = lanes.albedo_g[j], S.ab[m] = lanes.albedo_b[j];
+    S.depth[m] = lanes.depth[j];
+    c.haze = lanes.haze[j];
   }
-  S.hills[m] = terrain_ && hillsMayBlockSun(p, true) ? -1 : 0;
+  S.hills[m] = terrain_ && !lanes.hills_open[j] ? -1 : 0;
   S.px[m] = p.x, S.py[m] = p.y, S.pz[m] = p.z;
   S.ngx[m] = S.nx[m] = n.x, S.ngy[m] = S.ny[m] = n.y, S.ngz[m] = S.nz[m] = n.z;
+}
+
+void Integrator::groundNormal(const TileScratch& scratch, CameraLanes& lanes, std::size_t k) const {
+  const TileScratch::CameraSample& c = scratch.samples[k];
+  const glm::vec3 p = c.origin + c.t_ground * c.dir;
+  glm::vec3 n;
+  if (ground_mesh_) {
+    // The hit triangle's vertex normals, weighted by Embree's barycentrics (u for its second vertex,
+    // v for its third); made unit in the lanes.
+    const uint32_t* tri = &ground_mesh_->indices[std::size_t(scratch.ground_prim[k]) * 3];
+    const float b1 = scratch.ground_u[k], b2 = scratch.ground_v[k], b0 = 1.0f - b1 - b2;
+    n = b0 * ground_mesh_->normals[tri[0]] + b1 * ground_mesh_->normals[tri[1]] + b2 * ground_mesh_->normals[tri[2]];
+  } else {
+    n = glm::vec3(terrain_->normal(double(p.x), double(p.z)));
+  }
+  lanes.gnx[k] = n.x, lanes.gny[k] = n.y, lanes.gnz[k] = n.z;
+  lanes.hills_open[k] = hillsMayBlockSun(p, true) ? 0 : -1;
 }
 
 bool Integrator::hillsMayBlockSun(const glm::vec3& p, bool on_ground) const {

@@ -77,7 +77,10 @@ struct TileScratch {
   std::vector<LightSequences> lights;  // the sun and sky sequences of the pixels that need them
   std::vector<CameraSample> samples;
   std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
-  std::vector<RTCRayHit> ground_rays;  // uneven ground: every camera sample against the heightfield
+  // Uneven ground, per camera sample: the part of its ray within the heightfield's slab (t0 > t1: none),
+  // and the triangle it hit there (-1: none) with Embree's barycentrics.
+  std::vector<float> ground_t0, ground_t1, ground_u, ground_v;
+  std::vector<int32_t> ground_prim;
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
@@ -99,10 +102,12 @@ class Integrator {
   // `ground_floor` is its lowest height. Without, the ground is the plane y = 0, hit analytically.
   // The hills shadow the ground and the characters: wherever `hills` (this sun's horizon map of the
   // heightfield) cannot promise the sun is open, its shadow rays are also traced against the
-  // heightfield. Sky rays meet only the characters.
+  // heightfield. Sky rays meet only the characters. `ground_mesh` is that heightfield (the mesh in the
+  // scene's ground): a camera ray is traced only where it crosses the slab between its lowest and
+  // highest points, and a hit is shaded with its vertex normals; without it, with the terrain's normal.
   Integrator(const RenderSettings& settings, const EmbreeScene& scene,
              std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain = nullptr,
-             float ground_floor = 0.0f, const SunHorizon* hills = nullptr);
+             float ground_floor = 0.0f, const SunHorizon* hills = nullptr, const TerrainMesh* ground_mesh = nullptr);
 
   // Every pixel of the tile [x0, x1) x [y0, y1), written row by row to `out` ((x1 - x0) * (y1 - y0)
   // results). The tile is traced in batches of pixels as ray streams, in three passes: all camera
@@ -126,16 +131,19 @@ class Integrator {
 
  private:
   // Traces the camera rays of pixels [first, first + count) of the tile and shades them into `out`.
-  void renderBatch(const CameraFrame& camera, const LaneConstants& constants, int x0, int tile_width, int y0, int first,
+  void renderBatch(const LaneConstants& constants, int x0, int tile_width, int y0, int first,
                    int count, int frame, TileScratch& scratch, RayTally& tally, PixelResult* out) const;
   // A sample's surface into the surface lanes at m: a character's hit (rh) and its triangle's
   // vertices, or the ground's surface (the plane's from the lanes at sample j, or the terrain's).
-  void gatherSurface(const CameraFrame& camera, TileScratch::CameraSample& c, const RTCRayHit* rh,
+  void gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh,
                      const CameraLanes& lanes, std::size_t j, SurfaceLanes& surfaces, std::size_t m) const;
   // Queues an occlusion ray (for the sky stream or the sun's) for the box test; returns its index among
   // the batch's occlusion rays, or -1 when t_far leaves no ray.
   int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
                         TileScratch& scratch, RayTally& tally) const;
+  // The ground's normal (not yet unit) and whether the hills leave the sun open, at camera sample k's
+  // ground hit, into the lanes.
+  void groundNormal(const TileScratch& scratch, CameraLanes& lanes, std::size_t k) const;
   // Whether the hills may block some ray of the sun's disc from a surface at p (true with terrain and no
   // horizon map). `on_ground`: p is a hit on the heightfield (so on or above it).
   bool hillsMayBlockSun(const glm::vec3& p, bool on_ground) const;
@@ -159,6 +167,8 @@ class Integrator {
   float ground_extent_;        // the ground is the square |x|, |z| <= this at y = 0, hit analytically
   const rig::Terrain* terrain_;  // or, when set, this terrain's mesh in ground_
   const SunHorizon* hills_;      // with terrain_: where the hills certainly leave the sun open (null: nowhere)
+  const TerrainMesh* ground_mesh_;  // with terrain_: the heightfield as traced (null: unknown)
+  float slab_low_, slab_high_;   // with terrain_: every ground point's height is within these
   RTCScene ground_;
   float ground_floor_;         // no ground point lies below this height
   float blinn_norm_;           // (n + 8) / 8: Blinn-Phong lobe normalised for energy

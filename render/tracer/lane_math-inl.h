@@ -19,6 +19,8 @@
 #include <glm/vec3.hpp>
 #include <hwy/highway.h>
 
+#include "render/tracer/sample_lanes.h"  // LaneConstants
+
 HWY_BEFORE_NAMESPACE();
 namespace stirrup::render {
 namespace HWY_NAMESPACE {
@@ -113,6 +115,38 @@ inline Frame3 FrameAround(const V3& n) {
                 hn::Neg(hn::Mul(sign, n.x))};
   const V3 y = {b, hn::Add(sign, hn::Mul(hn::Mul(n.y, n.y), a)), hn::Neg(n.y)};
   return {x, y, n};
+}
+
+// Integrator::sunMayBeBlocked, lane by lane: the sun's axis from the origin against the characters'
+// box grown by the cone's radius at the box's far corner.
+inline MF SunMayBeBlocked(const LaneConstants& k, const V3& o) {
+  if (k.box_empty) return hn::FirstN(DF(), 0);
+  const V3 lower = Splat3(k.box_lower), upper = Splat3(k.box_upper);
+  const V3 to_lower = Sub3(o, lower), to_upper = Sub3(o, upper);
+  const V3 far_corner = {hn::Max(hn::Abs(to_lower.x), hn::Abs(to_upper.x)),
+                         hn::Max(hn::Abs(to_lower.y), hn::Abs(to_upper.y)),
+                         hn::Max(hn::Abs(to_lower.z), hn::Abs(to_upper.z))};
+  const VF margin = hn::Add(hn::Mul(hn::Mul(Length3(far_corner), Splat(k.sun_tan)), Splat(1.01f)), Splat(0.1f));
+  const VF o_a[3] = {o.x, o.y, o.z};
+  const float lo_a[3] = {k.box_lower.x, k.box_lower.y, k.box_lower.z};
+  const float up_a[3] = {k.box_upper.x, k.box_upper.y, k.box_upper.z};
+  const float d_a[3] = {k.sun_axis.x, k.sun_axis.y, k.sun_axis.z};
+  VF t0 = Splat(0.0f), t1 = Splat(std::numeric_limits<float>::infinity());
+  MF miss = hn::FirstN(DF(), 0);
+  for (int a = 0; a < 3; ++a) {
+    const VF lo = hn::Sub(Splat(lo_a[a]), margin), up = hn::Add(Splat(up_a[a]), margin);
+    if (d_a[a] == 0.0f) {
+      miss = hn::Or(miss, hn::Or(hn::Lt(o_a[a], lo), hn::Gt(o_a[a], up)));
+      continue;
+    }
+    const VF inv = Splat(1.0f / d_a[a]);
+    const VF n0 = hn::Mul(hn::Sub(lo, o_a[a]), inv), f0 = hn::Mul(hn::Sub(up, o_a[a]), inv);
+    const MF swap = hn::Gt(n0, f0);
+    t0 = hn::Max(t0, hn::IfThenElse(swap, f0, n0));
+    t1 = hn::Min(t1, hn::IfThenElse(swap, n0, f0));
+    miss = hn::Or(miss, hn::Gt(t0, t1));  // t0 only grows and t1 only shrinks: a miss stays one
+  }
+  return hn::Not(miss);
 }
 
 }  // namespace HWY_NAMESPACE

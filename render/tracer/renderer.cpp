@@ -101,7 +101,8 @@ Renderer::~Renderer() = default;
 void Renderer::setTerrain(std::shared_ptr<const rig::Terrain> terrain, const GroundRegion& region,
                           const TerrainMeshParams& params) {
   if (!terrain || terrain->flat()) return;
-  auto mesh = std::make_unique<const TerrainMesh>(makeTerrainMesh(*terrain, region, params));
+  std::unique_ptr<const TerrainMesh> mesh;
+  state_->arena.execute([&] { mesh = std::make_unique<const TerrainMesh>(makeTerrainMesh(*terrain, region, params)); });
   state_->arena.execute([&] { state_->scene.setGroundMesh(mesh->positions, mesh->indices); });
   // The sun is the renderer's for its whole life, so its horizon over the hills is worked out once too.
   const double sun_radius = std::max(0.0, settings_.sun_angular_radius_deg) * std::numbers::pi / 180.0;
@@ -183,7 +184,7 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
     state_->scene.commit();
     stats_.commit_ms = msSince(t0);
     const Integrator integrator(settings_, state_->scene, state_->by_geometry, state_->terrain.get(),
-                                state_->ground_floor, state_->hills.get());
+                                state_->ground_floor, state_->hills.get(), state_->ground_mesh.get());
 
     const auto t1 = Clock::now();
     // simple_partitioner: tiles of at most 16 x 16, whatever the thread count.

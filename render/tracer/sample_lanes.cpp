@@ -236,6 +236,90 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
   }
 }
 
+// GroundLanes over a heightfield. What differs from the plane: the point keeps its height, the
+// normal comes from the lanes (made unit here), the footprint stretches by the view's angle to that
+// normal, and the shadow rays' origin (as ShadingLanes makes it) is lifted along the normal. Open
+// ground takes exactly the light the surface path would give it untraced: (albedo cos) sun + albedo sky.
+void TerrainGroundLanes(const LaneConstants& k, CameraLanes& L) {
+  const DF df;
+  const size_t lanes = hn::Lanes(df);
+  const VF inf = Splat(std::numeric_limits<float>::infinity());
+  const VF zero = Splat(0.0f);
+  for (size_t i = 0; i < L.padded; i += lanes) {
+    const VF t = Load(L.t_shade, i);
+    const MF ground = hn::Lt(t, inf);
+    if (hn::AllFalse(df, ground)) {
+      StoreMask(ground, L.open, i);
+      continue;
+    }
+    const VF dx = Load(L.dx, i), dy = Load(L.dy, i), dz = Load(L.dz, i);
+    const VF px = hn::Add(Load(L.ox, i), hn::Mul(t, dx)), py = hn::Add(Load(L.oy, i), hn::Mul(t, dy));
+    const VF pz = hn::Add(Load(L.oz, i), hn::Mul(t, dz));
+    VF nx = Load(L.gnx, i), ny = Load(L.gny, i), nz = Load(L.gnz, i);
+    const VF length = hn::Sqrt(hn::Add(hn::Add(hn::Mul(nx, nx), hn::Mul(ny, ny)), hn::Mul(nz, nz)));
+    const MF usable = hn::Gt(length, zero);
+    nx = hn::IfThenElse(usable, hn::Div(nx, length), zero);
+    ny = hn::IfThenElse(usable, hn::Div(ny, length), Splat(1.0f));
+    nz = hn::IfThenElse(usable, hn::Div(nz, length), zero);
+    Store(nx, L.gnx, i), Store(ny, L.gny, i), Store(nz, L.gnz, i);
+    const VF cos_view = hn::Max(hn::Abs(hn::Add(hn::Add(hn::Mul(nx, dx), hn::Mul(ny, dy)), hn::Mul(nz, dz))), Splat(0.02f));
+    const VF footprint = hn::Add(Splat(k.footprint_at_0), hn::Mul(Splat(k.footprint_per_cm), t));
+    const VF width = hn::Div(hn::Div(footprint, cos_view), Splat(k.square_cm));
+    const VF odd = Checker(hn::Div(px, Splat(k.square_cm)), hn::Div(pz, Splat(k.square_cm)), width);
+    const VF ar = Mix(Splat(k.color_a.x), Splat(k.color_b.x), odd);
+    const VF ag = Mix(Splat(k.color_a.y), Splat(k.color_b.y), odd);
+    const VF ab = Mix(Splat(k.color_a.z), Splat(k.color_b.z), odd);
+    const VF haze = Haze(k, t);
+    const VF depth = hn::Add(hn::Add(hn::Mul(hn::Sub(px, Splat(k.position.x)), Splat(k.forward.x)),
+                                     hn::Mul(hn::Sub(py, Splat(k.position.y)), Splat(k.forward.y))),
+                             hn::Mul(hn::Sub(pz, Splat(k.position.z)), Splat(k.forward.z)));
+    Store(ar, L.albedo_r, i), Store(ag, L.albedo_g, i), Store(ab, L.albedo_b, i);
+    Store(haze, L.haze, i), Store(depth, L.depth, i);
+    MF open = hn::And(hn::And(ground, hn::Gt(ny, zero)), LoadMask(L.hills_open, i));
+    if (!k.sun_region || !k.open_ground_shortcuts) {
+      open = hn::FirstN(df, 0);
+    } else {
+      // ShadingLanes' origin: p lifted along the (geometric = shading) normal.
+      const VF extent = hn::Max(hn::Max(hn::Abs(px), hn::Abs(py)), hn::Abs(pz));
+      const VF offset = hn::Add(Splat(2e-3f), hn::Mul(Splat(3e-5f), extent));
+      const VF rx = hn::Add(px, hn::Mul(offset, nx)), ry = hn::Add(py, hn::Mul(offset, ny));
+      const VF rz = hn::Add(pz, hn::Mul(offset, nz));
+      // The sun is open outside its rectangle (ShadingLanes' shortcut) or wherever the full test
+      // against the characters' box says so (what ShadingLanes tests inside it): a low sun's rectangle
+      // is long, and its oblique shadow fills little of it.
+      const MF outside = hn::Or(hn::Or(hn::Lt(rx, Splat(k.sun_lower_x)), hn::Gt(rx, Splat(k.sun_upper_x))),
+                                hn::Or(hn::Lt(rz, Splat(k.sun_lower_z)), hn::Gt(rz, Splat(k.sun_upper_z))));
+      const MF excluded = hn::And(hn::Ge(ry, Splat(k.ground_floor)), outside);
+      open = hn::And(open, hn::Or(excluded, hn::Not(SunMayBeBlocked(k, V3{rx, ry, rz}))));
+      if (!k.box_empty) {  // farther than ao_distance from the characters' box (as ShadingLanes tests it)
+        const VF ex = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.x), rx), hn::Sub(rx, Splat(k.box_upper.x))), zero);
+        const VF ey = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.y), ry), hn::Sub(ry, Splat(k.box_upper.y))), zero);
+        const VF ez = hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.z), rz), hn::Sub(rz, Splat(k.box_upper.z))), zero);
+        const VF distance = hn::Sqrt(hn::Add(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)), hn::Mul(ez, ez)));
+        open = hn::And(open, hn::Gt(distance, Splat(k.ao_distance)));
+      }
+    }
+    StoreMask(open, L.open, i);
+    if (hn::AllFalse(df, open)) continue;
+    // ShadingLanes' reflected(sun axis): cos with the normal, nothing when the sun is below the surface.
+    const VF cos_n = hn::Add(hn::Add(hn::Mul(nx, Splat(k.sun_axis.x)), hn::Mul(ny, Splat(k.sun_axis.y))),
+                             hn::Mul(nz, Splat(k.sun_axis.z)));
+    const MF lit = hn::Gt(cos_n, zero);
+    auto sun = [&](VF a, float radiance) { return hn::IfThenElse(lit, hn::Mul(hn::Mul(cos_n, a), Splat(radiance)), zero); };
+    const VF ar2 = hn::Add(sun(ar, k.sun_radiance.x), hn::Mul(ar, Splat(k.sky_irradiance.x)));
+    const VF ag2 = hn::Add(sun(ag, k.sun_radiance.y), hn::Mul(ag, Splat(k.sky_irradiance.y)));
+    const VF ab2 = hn::Add(sun(ab, k.sun_radiance.z), hn::Mul(ab, Splat(k.sky_irradiance.z)));
+    const MF hazed = hn::Lt(haze, Splat(1.0f));
+    const VF clear = hn::Sub(Splat(1.0f), haze);
+    auto fade = [&](VF r, float horizon) {
+      return hn::IfThenElse(hazed, hn::Add(hn::Mul(r, haze), hn::Mul(Splat(horizon), clear)), r);
+    };
+    Store(fade(ar2, k.horizon.x), L.radiance_r, i);
+    Store(fade(ag2, k.horizon.y), L.radiance_g, i);
+    Store(fade(ab2, k.horizon.z), L.radiance_b, i);
+  }
+}
+
 void SkyLanes(const LaneConstants& k, CameraLanes& L) {
   const size_t lanes = hn::Lanes(DF());
   for (size_t i = 0; i < L.padded; i += lanes) {
@@ -388,6 +472,7 @@ HWY_EXPORT(CameraRayLanes);
 HWY_EXPORT(BoxTestLanes);
 HWY_EXPORT(BoxTestRays);
 HWY_EXPORT(GroundLanes);
+HWY_EXPORT(TerrainGroundLanes);
 HWY_EXPORT(SkyLanes);
 HWY_EXPORT(CheckerLanes);
 HWY_EXPORT(CompiledTarget);
@@ -407,10 +492,11 @@ void CameraLanes::resize(std::size_t n) {
   size = n;
   padded = (n + kPad - 1) / kPad * kPad;
   for (auto* v : {&ux, &uy, &cx, &cy, &ox, &oy, &oz, &dx, &dy, &dz, &t_ground, &t_shade, &albedo_r, &albedo_g,
-                  &albedo_b, &haze, &depth, &radiance_r, &radiance_g, &radiance_b, &sky_r, &sky_g, &sky_b})
+                  &albedo_b, &haze, &depth, &radiance_r, &radiance_g, &radiance_b, &sky_r, &sky_g, &sky_b, &gnx, &gny, &gnz})
     v->resize(padded, 0.0f);
   may_hit.resize(padded, 0);
   open.resize(padded, 0);
+  hills_open.resize(padded, 0);
 }
 
 void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground) {
@@ -431,6 +517,9 @@ void RayLanes::pad() {
   std::fill(t_far.begin() + std::ptrdiff_t(size), t_far.begin() + std::ptrdiff_t(padded), 0.0f);  // no ray
 }
 void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundLanes)(k, lanes); }
+void terrainGroundLanes(const LaneConstants& k, CameraLanes& lanes) {
+  HWY_DYNAMIC_DISPATCH(TerrainGroundLanes)(k, lanes);
+}
 void skyLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(SkyLanes)(k, lanes); }
 void filteredCheckerLanes(const float* s, const float* t, const float* width, float* out, std::size_t n) {
   HWY_DYNAMIC_DISPATCH(CheckerLanes)(s, t, width, out, n);

@@ -51,6 +51,11 @@ struct CameraLanes {
   std::vector<float> radiance_r, radiance_g, radiance_b;
   std::vector<int32_t> open;
   std::vector<float> sky_r, sky_g, sky_b;
+  // Uneven ground, set by the caller where t_shade is finite before terrainGroundLanes: the ground's
+  // normal at the hit (the heightfield's vertex normals interpolated; the kernel makes it unit in place)
+  // and whether the hills certainly leave the sun open there (all bits) or may not (0).
+  std::vector<float> gnx, gny, gnz;
+  std::vector<int32_t> hills_open;
 };
 
 // A batch's shadow and sky rays as arrays, for the box test: `t_far` is each ray's far end. start()
@@ -134,6 +139,10 @@ void boxTestLanes(const LaneConstants& k, CameraLanes& lanes);
 void boxTestLanes(const LaneConstants& k, RayLanes& rays);
 // The flat ground's surface and, where it is open, its radiance, for samples with a finite t_shade.
 void groundLanes(const LaneConstants& k, CameraLanes& lanes);
+// The same over uneven ground: the point along the ray (not snapped to a plane), shaded with the
+// normal in gnx..gnz. Open ground there also needs the hills to leave the sun open (hills_open) and
+// the normal to face up (the shading's shortcut for the sky holds for upward ground only).
+void terrainGroundLanes(const LaneConstants& k, CameraLanes& lanes);
 // The background radiance of every sample (the sky gradient, or the orthographic sky).
 void skyLanes(const LaneConstants& k, CameraLanes& lanes);
 

@@ -7,6 +7,10 @@
 #include <utility>
 #include <stdexcept>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 namespace stirrup::render {
 namespace {
 
@@ -22,6 +26,40 @@ void growOutward(double edge, double sign, double spacing, const TerrainMeshPara
 }
 
 }  // namespace
+
+GridLineIndex::GridLineIndex(const std::vector<double>& lines) {
+  if (lines.size() < 2) return;
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < lines.size(); ++i) narrowest = std::min(narrowest, lines[i + 1] - lines[i]);
+  if (!(narrowest > 0.0)) return;
+  const double span = lines.back() - lines.front();
+  const double buckets = std::ceil(span / narrowest) + 1.0;
+  if (!(buckets < 4.0e7)) return;  // absurdly fine: left to binary search
+  origin_ = lines.front();
+  inv_bucket_ = 1.0 / narrowest;
+  first_.resize(std::size_t(buckets) + 1);
+  std::size_t i = 0;
+  for (std::size_t b = 0; b < first_.size(); ++b) {
+    const double start = origin_ + double(b) * narrowest;
+    while (i + 1 < lines.size() && lines[i + 1] <= start) ++i;
+    first_[b] = uint32_t(i);
+  }
+}
+
+std::size_t GridLineIndex::cell(const std::vector<double>& lines, double v) const {
+  std::size_t i;
+  if (first_.empty()) {
+    i = std::size_t(std::upper_bound(lines.begin(), lines.end(), v) - lines.begin());
+    i = i == 0 ? 0 : i - 1;
+  } else {
+    const double f = (v - origin_) * inv_bucket_;
+    i = first_[std::size_t(std::clamp(f, 0.0, double(first_.size() - 1)))];
+    // The bucket's rounding may be one off either way; a bucket is never wider than a cell.
+    while (i > 0 && lines[i] > v) --i;
+    while (i + 1 < lines.size() && lines[i + 1] <= v) ++i;
+  }
+  return std::min(i, lines.size() - 2);
+}
 
 std::vector<double> terrainGridLines(double lo, double hi, double spacing, const TerrainMeshParams& params) {
   if (!(spacing > 0.0) || !(lo <= hi) || !(params.growth > 1.0))
@@ -46,16 +84,24 @@ TerrainMesh makeTerrainMesh(const rig::Terrain& terrain, const GroundRegion& reg
   TerrainMesh mesh;
   mesh.xs = xs;
   mesh.zs = zs;
-  mesh.positions.reserve(xs.size() * zs.size());
+  mesh.x_index = GridLineIndex(mesh.xs);
+  mesh.z_index = GridLineIndex(mesh.zs);
+  const std::size_t nx_lines = xs.size();
+  mesh.positions.resize(xs.size() * zs.size());
+  mesh.normals.resize(xs.size() * zs.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, zs.size()), [&](const tbb::blocked_range<std::size_t>& rows) {
+    for (std::size_t j = rows.begin(); j < rows.end(); ++j) {
+      for (std::size_t i = 0; i < nx_lines; ++i) {
+        mesh.positions[j * nx_lines + i] = glm::vec3(float(xs[i]), float(terrain.height(xs[i], zs[j])), float(zs[j]));
+        mesh.normals[j * nx_lines + i] = glm::vec3(terrain.normal(xs[i], zs[j]));
+      }
+    }
+  });
   mesh.min_height = std::numeric_limits<float>::infinity();
   mesh.max_height = -std::numeric_limits<float>::infinity();
-  for (double z : zs) {
-    for (double x : xs) {
-      const float h = float(terrain.height(x, z));
-      mesh.positions.emplace_back(float(x), h, float(z));
-      mesh.min_height = std::min(mesh.min_height, h);
-      mesh.max_height = std::max(mesh.max_height, h);
-    }
+  for (const glm::vec3& p : mesh.positions) {
+    mesh.min_height = std::min(mesh.min_height, p.y);
+    mesh.max_height = std::max(mesh.max_height, p.y);
   }
   const uint32_t nx = uint32_t(xs.size());
   mesh.indices.reserve((xs.size() - 1) * (zs.size() - 1) * 6);
@@ -72,8 +118,7 @@ TerrainMesh makeTerrainMesh(const rig::Terrain& terrain, const GroundRegion& reg
 double TerrainMesh::heightAt(double x, double z) const {
   if (xs.size() < 2 || zs.size() < 2 || !(x >= xs.front() && x <= xs.back() && z >= zs.front() && z <= zs.back()))
     return -std::numeric_limits<double>::infinity();
-  const std::size_t i = std::min<std::size_t>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin(), xs.size() - 1) - 1;
-  const std::size_t j = std::min<std::size_t>(std::upper_bound(zs.begin(), zs.end(), z) - zs.begin(), zs.size() - 1) - 1;
+  const std::size_t i = x_index.cell(xs, x), j = z_index.cell(zs, z);
   const std::size_t nx = xs.size(), a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
   const double tx = (x - xs[i]) / (xs[i + 1] - xs[i]), tz = (z - zs[j]) / (zs[j + 1] - zs[j]);
   const double ha = positions[a].y, hb = positions[b].y, hc = positions[c].y, hd = positions[d].y;
@@ -106,8 +151,15 @@ SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, do
                        const GroundRegion& region, const SunHorizonParams& params)
     : mesh_(&mesh) {
   if (mesh.xs.size() < 2 || mesh.zs.size() < 2) return;
-  for (std::size_t j = 0; j + 1 < mesh.zs.size(); ++j)
-    for (std::size_t i = 0; i + 1 < mesh.xs.size(); ++i) steepest_ = std::max(steepest_, mesh.cellSlope(i, j));
+  const std::size_t cells_x = mesh.xs.size() - 1, cells_z = mesh.zs.size() - 1;
+  steepest_ = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, cells_z), 0.0,
+      [&](const tbb::blocked_range<std::size_t>& rows, double most) {
+        for (std::size_t j = rows.begin(); j < rows.end(); ++j)
+          for (std::size_t i = 0; i < cells_x; ++i) most = std::max(most, mesh.cellSlope(i, j));
+        return most;
+      },
+      [](double a, double b) { return std::max(a, b); });  // exact in any order
   const double length = std::sqrt(toward_sun.x * toward_sun.x + toward_sun.y * toward_sun.y + toward_sun.z * toward_sun.z);
   if (!(length > 0.0)) return;
   const double elevation = std::asin(std::clamp(toward_sun.y / length, -1.0, 1.0));
@@ -141,18 +193,10 @@ SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, do
   // A point asked about is within the texel (half-diagonal) and the slack of its centre.
   rho_ = texel_ * std::sqrt(0.5) + kMaxSlackCm * std::sqrt(2.0);
   const double near = std::max(params.near_cm, texel_);  // s0
-  const double step = 0.5 * texel_;                  // the far field's samples along the sun's track
+  const double step = 0.5 * texel_;                      // the far field's samples along the sun's track
   const double run = (double(mesh.max_height) - double(mesh.min_height)) / tan_far + step;  // past it nothing rises above the lowest point
   const double between = (steepest_ + tan_far) * step * 0.5;  // the most the maximised function rises between samples
   clear_.assign(nx_ * nz_, std::numeric_limits<float>::infinity());
-  auto cellRise = [&](std::size_t i, std::size_t j) {
-    const std::size_t n = mesh.xs.size(), a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-    const double dx = mesh.xs[i + 1] - mesh.xs[i], dz = mesh.zs[j + 1] - mesh.zs[j];
-    const double ha = mesh.positions[a].y, hb = mesh.positions[b].y, hc = mesh.positions[c].y, hd = mesh.positions[d].y;
-    auto rise = [&](double gx, double gz) { return gx * ax + gz * az + std::hypot(gx, gz) * chord; };
-    return std::max(rise((hd - hc) / dx, (hc - ha) / dz), rise((hb - ha) / dx, (hd - hb) / dz));  // (a c d), (a d b)
-  };
-  const std::vector<double>&xs = mesh.xs, &zs = mesh.zs;
   auto cellRange = [](const std::vector<double>& lines, double lo, double hi) {
     const std::size_t first = std::size_t(std::max<std::ptrdiff_t>(
         0, std::upper_bound(lines.begin(), lines.end(), lo) - lines.begin() - 1));
@@ -160,28 +204,99 @@ SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, do
                                                    lines.size() - 1);
     return std::pair<std::size_t, std::size_t>(first, last);  // cells [first, last)
   };
+  const std::vector<double>&xs = mesh.xs, &zs = mesh.zs;
+
+  // Near field: the fastest any triangle within reach of a texel rises along a disc ray's ground track
+  // (its gradient along the sun's azimuth, plus its steepness times the track's turn), the maximum
+  // over a box of cells taken row by row (each cell row's maximum over each texel column's cells),
+  // then over the rows of each texel row's box.
+  std::vector<std::pair<std::size_t, std::size_t>> columns(nx_), rows(nz_);
+  for (std::size_t ti = 0; ti < nx_; ++ti) {
+    const double px = x0_ + (double(ti) + 0.5) * texel_;
+    columns[ti] = cellRange(xs, px - near - rho_, px + near + rho_);
+  }
   for (std::size_t tj = 0; tj < nz_; ++tj) {
     const double pz = z0_ + (double(tj) + 0.5) * texel_;
-    const auto [zc0, zc1] = cellRange(zs, pz - near - rho_, pz + near + rho_);
-    for (std::size_t ti = 0; ti < nx_; ++ti) {
-      const double px = x0_ + (double(ti) + 0.5) * texel_;
-      // Near field: the fastest any triangle within reach rises along a disc ray's ground track (its
-      // gradient along the sun's azimuth, plus its steepness times the track's turn).
-      const auto [xc0, xc1] = cellRange(xs, px - near - rho_, px + near + rho_);
-      double local = 0.0;
-      for (std::size_t j = zc0; j < zc1 && local < tan_low_; ++j)
-        for (std::size_t i = xc0; i < xc1; ++i) local = std::max(local, cellRise(i, j));
-      if (!(local < tan_low_)) continue;  // too steep near by to tell: traced
-      // Far field: the highest the mesh comes above a line rising tan_far along the sun's track.
-      double highest = -std::numeric_limits<double>::infinity();
-      for (double s = near; s <= run + near + step; s += step)  // every run in [near, run + near] within half a step of a sample
-        highest = std::max(highest, mesh.heightAt(px + s * ax, pz + s * az) - s * tan_far);
-      const double clear = highest + steepest_ * rho_ + between + kHeightEpsilonCm;
-      float stored = float(clear);
-      if (double(stored) < clear) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
-      clear_[tj * nx_ + ti] = stored;
-    }
+    rows[tj] = cellRange(zs, pz - near - rho_, pz + near + rho_);
   }
+  const std::size_t row_first = rows.front().first, row_last = rows.back().second;  // boxes are monotone
+  const std::size_t col_first = columns.front().first, col_last = columns.back().second;
+  auto cellRise = [&](std::size_t i, std::size_t j) {
+    const std::size_t n = mesh.xs.size(), a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+    const double dx = mesh.xs[i + 1] - mesh.xs[i], dz = mesh.zs[j + 1] - mesh.zs[j];
+    const double ha = mesh.positions[a].y, hb = mesh.positions[b].y, hc = mesh.positions[c].y, hd = mesh.positions[d].y;
+    auto rise = [&](double gx, double gz) { return gx * ax + gz * az + std::hypot(gx, gz) * chord; };
+    return std::max(rise((hd - hc) / dx, (hc - ha) / dz), rise((hb - ha) / dx, (hd - hb) / dz));  // (a c d), (a d b)
+  };
+  std::vector<float> row_rise((row_last - row_first) * nx_);  // [cell row - row_first][texel column]
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(row_first, row_last), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<double> rise(col_last - col_first);
+    for (std::size_t j = r.begin(); j < r.end(); ++j) {
+      for (std::size_t i = col_first; i < col_last; ++i) rise[i - col_first] = cellRise(i, j);
+      for (std::size_t ti = 0; ti < nx_; ++ti) {
+        double most = 0.0;
+        for (std::size_t i = columns[ti].first; i < columns[ti].second; ++i) most = std::max(most, rise[i - col_first]);
+        float stored = float(most);  // rounded up: the bound may only grow
+        if (double(stored) < most) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
+        row_rise[(j - row_first) * nx_ + ti] = stored;
+      }
+    }
+  });
+
+  // Far field: the highest the mesh comes above a line rising tan_far along the sun's track, from
+  // s0 on. With a the sun's azimuth and G(q) = max over s >= 0 of [mesh(q + s a) - s tan_far], a
+  // texel's far field is G(p + s0 a) - s0 tan_far. G is swept once along lines parallel to a, `step`
+  // apart (G(q) = max(mesh(q), G(q + step a) - step tan_far) at the samples), instead of marching from
+  // every texel. Between the samples along a line G rises at most `between`; off them, G changes no
+  // faster than the mesh's steepest slope (each shifted copy of the mesh does not), so a texel takes
+  // the nearest sample plus steepest times the distance to it.
+  const double wx = -az, wz = ax;  // across the track
+  double u_lo = std::numeric_limits<double>::infinity(), u_hi = -u_lo, v_lo = u_lo, v_hi = -u_lo;
+  for (const double cx : {x0_, x0_ + double(nx_) * texel_})
+    for (const double cz : {z0_, z0_ + double(nz_) * texel_}) {
+      const double qx = cx + near * ax, qz = cz + near * az;
+      u_lo = std::min(u_lo, qx * ax + qz * az), u_hi = std::max(u_hi, qx * ax + qz * az);
+      v_lo = std::min(v_lo, qx * wx + qz * wz), v_hi = std::max(v_hi, qx * wx + qz * wz);
+    }
+  const std::size_t lines = std::size_t(std::ceil((v_hi - v_lo) / step)) + 1;
+  const std::size_t samples = std::size_t(std::ceil((u_hi - u_lo + run + step) / step)) + 1;
+  std::vector<float> swept(lines * samples);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t l = r.begin(); l < r.end(); ++l) {
+      const double v = v_lo + double(l) * step;
+      double g = -std::numeric_limits<double>::infinity();
+      for (std::size_t k = samples; k-- > 0;) {
+        const double u = u_lo + double(k) * step;
+        g = std::max(mesh.heightAt(u * ax + v * wx, u * az + v * wz), g - step * tan_far);
+        float stored = float(g);
+        if (double(stored) < g) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
+        swept[l * samples + k] = stored;
+      }
+    }
+  });
+
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nz_), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t tj = r.begin(); tj < r.end(); ++tj) {
+      const double pz = z0_ + (double(tj) + 0.5) * texel_;
+      for (std::size_t ti = 0; ti < nx_; ++ti) {
+        double local = 0.0;
+        for (std::size_t j = rows[tj].first; j < rows[tj].second && local < tan_low_; ++j)
+          local = std::max(local, double(row_rise[(j - row_first) * nx_ + ti]));
+        if (!(local < tan_low_)) continue;  // too steep near by to tell: traced
+        const double px = x0_ + (double(ti) + 0.5) * texel_;
+        const double qx = px + near * ax, qz = pz + near * az;
+        const double u = qx * ax + qz * az, v = qx * wx + qz * wz;
+        const std::size_t k = std::min(samples - 1, std::size_t(std::max(0.0, std::round((u - u_lo) / step))));
+        const std::size_t l = std::min(lines - 1, std::size_t(std::max(0.0, std::round((v - v_lo) / step))));
+        const double off = std::hypot(u - (u_lo + double(k) * step), v - (v_lo + double(l) * step));
+        const double highest = double(swept[l * samples + k]) + between + steepest_ * off - near * tan_far;
+        const double clear = highest + steepest_ * rho_ + kHeightEpsilonCm;
+        float stored = float(clear);
+        if (double(stored) < clear) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
+        clear_[tj * nx_ + ti] = stored;
+      }
+    }
+  });
 }
 
 bool SunHorizon::open(const glm::vec3& p, float slack, bool above_mesh_known) const {
