@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
@@ -30,7 +31,33 @@ struct MoviesOptions {
   bool finish = false;
   bool list = false;
   bool progress = false;
+  std::string timings;  // a TSV of where the time went, movie by movie
 };
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// One row a movie: its rendered frames, the seconds its frames took (set-up included) and the seconds
+// its movie, sheet and plot took, in the set's order. Written to a temporary name, then renamed.
+void writeTimings(const std::filesystem::path& file, const std::vector<render::MovieResult>& results,
+                  const std::vector<double>& render_s, const std::vector<double>& finish_s) {
+  const std::filesystem::path partial = file.string() + ".partial";
+  {
+    std::ofstream o(partial);
+    if (!o) throw InputError("--timings: " + file.string() + ": cannot write (does its folder exist?)");
+    o << "movie\tframes\trender_s\tfinish_s\trender_s_per_frame\n";
+    char line[512];
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const int frames = results[i].frames;
+      std::snprintf(line, sizeof line, "%s\t%d\t%.3f\t%.3f\t%.4f\n", results[i].name.c_str(), frames, render_s[i],
+                    finish_s[i], frames > 0 ? render_s[i] / frames : 0.0);
+      o << line;
+    }
+    if (!o.flush()) throw InputError("--timings: " + file.string() + ": write failed");
+  }
+  std::filesystem::rename(partial, file);
+}
 
 void runMovies(const MoviesOptions& o) {
   namespace fs = std::filesystem;
@@ -41,6 +68,11 @@ void runMovies(const MoviesOptions& o) {
     return;
   }
   if (!o.frames.empty() && o.finish) throw InputError("--frames: renders frames only; --finish makes movies of frames already rendered, not both");
+  if (!o.timings.empty() && !o.frames.empty()) throw InputError("--timings: a farm task's share (--frames) makes no movie to time");
+  if (!o.timings.empty()) {  // checked before any frame is rendered
+    const fs::path folder = fs::absolute(o.timings).parent_path();
+    if (!fs::is_directory(folder)) throw InputError("--timings: " + o.timings + ": cannot write (does its folder exist?)");
+  }
   if (!o.frames.empty() && jobs.size() != 1)
     throw InputError("--frames: expected exactly one movie with --only NAME, got " + std::to_string(jobs.size()));
   const fs::path out = o.set.out;
@@ -58,20 +90,29 @@ void runMovies(const MoviesOptions& o) {
   ProgressBar bar("movies", total, o.progress);
   int done = 0;
   const auto start = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < jobs.size() && !o.finish; ++i)
+  std::vector<double> render_s(jobs.size(), 0.0), finish_s(jobs.size(), 0.0);
+  for (std::size_t i = 0; i < jobs.size() && !o.finish; ++i) {
+    const auto movie_start = std::chrono::steady_clock::now();
     render::renderMovieFrames(jobs[i], mo, frames[i], o.resume, [&] { bar.step(++done); });
+    render_s[i] = secondsSince(movie_start);
+  }
   if (!o.frames.empty()) return;  // a farm task: the finishing job makes the movie
 
   // Stage 2: movies, contact sheets, plots, the index.
   std::map<fs::path, fs::path> plots;  // scene file -> its plot
   std::vector<render::MovieResult> results;
-  for (const auto& j : jobs) {
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const render::MovieJob& j = jobs[i];
+    const auto movie_start = std::chrono::steady_clock::now();
     if (!plots.count(j.scene)) plots[j.scene] = render::writeMovementPlot(j.scene, out);
     render::MovieResult r = render::finishMovie(j, mo);
     r.plot = plots[j.scene];
+    finish_s[i] = secondsSince(movie_start);
+    r.seconds = render_s[i] + finish_s[i];
     results.push_back(std::move(r));
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = secondsSince(start);
+  if (!o.timings.empty()) writeTimings(o.timings, results, render_s, finish_s);
   const fs::path index = render::writeIndexPage(out, results);
   // The one line a script needs; details live in the index.
   std::printf("%s\n", index.string().c_str());
@@ -102,6 +143,9 @@ void addMoviesCommand(CLI::App& app) {
                 "(a farm's last step); an error names the first missing frame");
   cmd->add_flag("--list", opts->list, "Print the movies of the set (name, scene, camera) and exit");
   cmd->add_flag("--progress", opts->progress, "Show the progress bar even when stderr is not a terminal");
+  cmd->add_option("--timings", opts->timings,
+                  "Also write where the time went as a TSV, a row a movie: frames, seconds rendering them (set-up "
+                  "included), seconds making the movie, sheet and plot");
   cmd->callback([opts] { runMovies(*opts); });
 }
 

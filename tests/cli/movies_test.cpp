@@ -1,10 +1,12 @@
 // stirrup movies end to end, small: a few movies at 96x54, 3 frames each, draft quality. Checks the
 // movies with ffprobe, the index's links, and the index in a real headless Chromium.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -174,6 +176,46 @@ TEST(MoviesStages, FramesThenFinishMakeTheSameMovieAsOneRun) {
   EXPECT_FALSE(fs::exists(two / "frames/trot_side/trot_side.0001.sheet.exr"));  // kept frames are the PNGs
   fs::remove_all(one);
   fs::remove_all(two);
+}
+
+// --timings writes a row a movie, in the set's order, whose seconds add up to no more than the run.
+TEST(MoviesTimings, ARowAMovieWithItsFramesAndSeconds) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / ("test_movies_timings_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path tsv = dir / "times.tsv";
+  const auto start = std::chrono::steady_clock::now();
+  const CommandResult r = runStirrupHere("movies --only trot_side,walk_side --frames-limit 2 --preset draft "
+                                         "--resolution 96x54 --date 2026-01-01 --timings " + quote(tsv.string()) +
+                                         " --out " + quote((dir / "out").string()));
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = readText(tsv);
+  ASSERT_EQ(lineCount(text), 3u) << text;
+  EXPECT_EQ(text.substr(0, text.find('\n')), "movie\tframes\trender_s\tfinish_s\trender_s_per_frame");
+  const std::regex row("(\\w+)\t(\\d+)\t([0-9.]+)\t([0-9.]+)\t([0-9.]+)");
+  double total = 0.0;
+  std::vector<std::string> names;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), row); it != std::sregex_iterator(); ++it) {
+    names.push_back((*it)[1].str());
+    EXPECT_EQ((*it)[2].str(), "2");
+    const double render_s = std::stod((*it)[3].str()), finish_s = std::stod((*it)[4].str());
+    EXPECT_GT(render_s, 0.0);
+    EXPECT_GT(finish_s, 0.0);
+    EXPECT_NEAR(std::stod((*it)[5].str()), render_s / 2.0, 1e-3);
+    total += render_s + finish_s;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"trot_side", "walk_side"}));
+  EXPECT_LE(total, wall);
+  EXPECT_FALSE(fs::exists(tsv.string() + ".partial"));
+  // A folder that is not there is a one-line error, before any frame is rendered.
+  const CommandResult bad = runStirrupHere("movies --only trot_side --frames-limit 1 --preset draft --resolution 96x54 "
+                                           "--timings " + quote((dir / "nowhere/t.tsv").string()) + " --out " +
+                                           quote((dir / "out2").string()));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.err, "stirrup: --timings: " + (dir / "nowhere/t.tsv").string() + ": cannot write (does its folder exist?)\n");
+  EXPECT_FALSE(fs::exists(dir / "out2" / "trot_side.mp4"));  // refused before rendering anything
+  fs::remove_all(dir);
 }
 
 TEST(MoviesStages, MisusedStageOptionsAreOneLineErrors) {
