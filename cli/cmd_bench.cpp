@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -153,8 +154,14 @@ struct SceneResult {
   double fps = 0;
   double pairs = 0, skinned_vertices = 0, triangles = 0;     // per frame
   std::array<double, 3> pairs_at_level{};                   // per frame
-  double trot_ms = 0;   // the built-in trot's frame (pose to trace) at this preset, this run
+  // The frame (pose to trace) against others measured frame for frame with the scene's, interleaved
+  // so that a busy machine slows them alike: the scene's own, the built-in trot's at this preset, and
+  // over a terrain the same shot on flat ground (0: the scene has no terrain).
+  double scene_ms = 0, trot_ms = 0, flat_ms = 0;
 };
+
+// A frame's pose-to-trace time (ms), as the split above sums it.
+double frameTotalMs(const render::FrameTimings& t) { return t.pose_ms + t.skin_ms - t.build_ms + t.trace_ms; }
 
 SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOptions& o,
                              const std::filesystem::path& scratch) {
@@ -191,23 +198,36 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   r.bake /= n, r.skin /= n, r.build /= n, r.bvh /= n, r.trace /= n, r.skinned_vertices /= n, r.triangles /= n;
   for (double& l : r.pairs_at_level) l /= n;
   r.pairs = std::max(1, shot.pairCount());
-  r.peak_bytes = peakMemoryBytes();
-  return r;
-}
+  r.peak_bytes = peakMemoryBytes();  // the scene's: the shots below come after
 
-// The built-in trot's frame at a preset: pose, skin, BVH and trace (ms), after a warm-up.
-double trotFrameMs(const render::QualityPreset& preset, const BenchOptions& o) {
-  render::SceneSpec scene = benchScene();
-  render::applyPreset(scene, preset);
-  render::Shot shot(scene, rig::RigProfile::thesis(), scene.cameras.front(), o.threads);
-  shot.renderFrame(1);
-  double ms = 0;
-  for (int i = 0; i < o.frames; ++i) {
-    shot.renderFrame(1 + i % 72);
-    const render::FrameTimings& t = shot.lastTimings();
-    ms += t.pose_ms + t.skin_ms + t.trace_ms;
+  // The ratios: the same frames again, each followed by a frame of the built-in trot and, over a
+  // terrain, by the same frame of the shot with its ground made flat (its clip, cameras and characters
+  // made again on the plane), so the ratio is what the terrain costs.
+  render::SceneSpec trot_scene = benchScene();
+  render::applyPreset(trot_scene, preset);
+  render::Shot trot(trot_scene, rig::RigProfile::thesis(), trot_scene.cameras.front(), o.threads);
+  trot.renderFrame(1);
+  std::unique_ptr<render::Shot> flat;
+  if (scene.terrain && !scene.terrain->flat()) {
+    render::SceneSpec flat_scene = scene;
+    flat_scene.terrain.reset();
+    flat = std::make_unique<render::Shot>(flat_scene, render::resolveProfile(flat_scene),
+                                          render::findCamera(flat_scene, o.camera), o.threads);
+    flat->setDetailLevel(o.detail);
+    flat->renderFrame(frames.front());
   }
-  return ms / o.frames;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    shot.renderFrame(frames[i]);
+    r.scene_ms += frameTotalMs(shot.lastTimings());
+    trot.renderFrame(1 + int(i % 72));
+    r.trot_ms += frameTotalMs(trot.lastTimings());
+    if (flat) {
+      flat->renderFrame(frames[i]);
+      r.flat_ms += frameTotalMs(flat->lastTimings());
+    }
+  }
+  r.scene_ms /= n, r.trot_ms /= n, r.flat_ms /= n;
+  return r;
 }
 
 void runSceneBench(const BenchOptions& o) {
@@ -219,14 +239,12 @@ void runSceneBench(const BenchOptions& o) {
     // The scene first, so the peak memory is the scene's (the trot's is far smaller).
     for (const render::QualityPreset& p : render::qualityPresets())
       if (o.preset.empty() || o.preset == p.name) results.push_back(benchScenePreset(p, o, scratch));
-    for (SceneResult& r : results) r.trot_ms = trotFrameMs(render::findPreset(r.preset), o);
   } catch (...) {
     fs::remove_all(scratch);
     throw;
   }
   fs::remove_all(scratch);
   const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
-  const auto frameMs = [](const SceneResult& r) { return r.bake + r.skin + r.bvh + r.trace; };
   if (o.json) {
     nlohmann::json presets = nlohmann::json::object();
     for (const SceneResult& r : results) {
@@ -235,7 +253,9 @@ void runSceneBench(const BenchOptions& o) {
           {"ms", {{"bake", r.bake}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write},
                   {"build", r.build}}},
           {"pairs", r.pairs}, {"skinned_vertices", r.skinned_vertices}, {"refit_triangles", r.triangles},
-          {"pairs_at_level", r.pairs_at_level}, {"trot_ms", r.trot_ms}, {"times_trot", frameMs(r) / r.trot_ms}};
+          {"pairs_at_level", r.pairs_at_level}, {"trot_ms", r.trot_ms}, {"times_trot", r.scene_ms / r.trot_ms},
+          {"flat_ms", r.flat_ms > 0 ? nlohmann::json(r.flat_ms) : nlohmann::json(nullptr)},
+          {"times_flat", r.flat_ms > 0 ? nlohmann::json(r.scene_ms / r.flat_ms) : nlohmann::json(nullptr)}};
     }
     const nlohmann::json out = {{"scene", o.scene}, {"presets", presets}, {"threads", threads},
                                 {"detail", o.detail}, {"simd", render::simdTargetName()}};
@@ -245,21 +265,24 @@ void runSceneBench(const BenchOptions& o) {
   std::printf("stirrup bench: %s, %d thread%s, %d frame%s a preset, levels of detail %s (ms per frame)\n\n",
               o.scene.c_str(), threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s",
               o.detail < 0 ? "by size on screen" : ("all at level " + std::to_string(o.detail)).c_str());
-  std::printf("%-7s %7s %6s %6s %6s %8s %6s %6s %8s %7s %8s %9s %9s %7s %8s\n", "preset", "fps", "bake", "skin",
-              "bvh", "trace", "write", "build", "x trot", "setup", "peak MB", "skin kv/f", "refit kt/f", "kt/pair",
-              "levels");
+  std::printf("%-7s %7s %6s %6s %6s %8s %6s %6s %8s %8s %7s %8s %9s %9s %7s %8s\n", "preset", "fps", "bake", "skin",
+              "bvh", "trace", "write", "build", "x trot", "x flat", "setup", "peak MB", "skin kv/f", "refit kt/f",
+              "kt/pair", "levels");
   for (const SceneResult& r : results) {
     char levels[48];
     std::snprintf(levels, sizeof levels, "%.0f/%.0f/%.0f", r.pairs_at_level[0], r.pairs_at_level[1], r.pairs_at_level[2]);
-    std::printf("%-7s %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %6.1f %7.2fx %6.1fs %8.0f %9.0f %9.0f %7.1f %8s\n",
-                r.preset.c_str(), r.fps, r.bake, r.skin, r.bvh, r.trace, r.write, r.build, frameMs(r) / r.trot_ms,
+    char flat[16] = "       -";
+    if (r.flat_ms > 0) std::snprintf(flat, sizeof flat, "%7.2fx", r.scene_ms / r.flat_ms);
+    std::printf("%-7s %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %6.1f %7.2fx %8s %6.1fs %8.0f %9.0f %9.0f %7.1f %8s\n",
+                r.preset.c_str(), r.fps, r.bake, r.skin, r.bvh, r.trace, r.write, r.build, r.scene_ms / r.trot_ms, flat,
                 r.setup_s, r.peak_bytes / 1e6,
                 r.skinned_vertices / 1e3, r.triangles / 1e3, r.triangles / 1e3 / r.pairs, levels);
   }
   std::printf("\nbake: every pair's channels; skin: posing and skinning every pair at its level; bvh: the refit;\n"
               "build: building levels of detail the frame was the first to need (once per pair and level, like\n"
               "the set-up: in fps, which is wall clock, not in x trot); x trot: the frame (bake, skin, bvh,\n"
-              "trace) over the built-in trot's at the same preset, this run;\n"
+              "trace) over the built-in trot's at the same preset, measured frame for frame in turn with it;\n"
+              "x flat: over the same frame of the shot on flat ground (a scene with a terrain), likewise;\n"
               "skin kv/f, refit kt/f: thousands of vertices skinned and triangles refitted a frame (kt/pair: per\n"
               "pair); levels: pairs at full, half and quarter detail a frame (render/scene/detail_level.h);\n"
               "peak MB: the process's peak resident memory.\n");
@@ -318,7 +341,8 @@ void addBenchCommand(CLI::App& app) {
       "rays replayed through Embree alone. Example: stirrup bench --json --threads 2\n"
       "With --scene, renders --frames of that scene's frames (spread over them) with its camera and\n"
       "prints the same split, the pairs' skinning and refit counts, levels of detail, set-up time and\n"
-      "peak memory, and the frame against the trot's. Example: stirrup bench --scene scenes/cavalry.json -p review");
+      "peak memory, and the frame against the trot's and, over a terrain, against the same shot on flat ground.\n"
+      "Example: stirrup bench --scene scenes/cavalry.json -p review");
   cmd->add_flag("--json", opts->json, "Print one JSON object instead of the table");
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--frames,-n", opts->frames, "Timed frames per preset")->check(CLI::Range(1, 1000));

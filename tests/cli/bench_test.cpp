@@ -68,7 +68,7 @@ TEST(BenchCommand, SceneJsonHasTheCrowdsCountsAndMemory) {
     ASSERT_EQ(j.at("presets").size(), 1u);
     const nlohmann::json& p = j.at("presets").at("draft");
     for (const char* key : {"fps", "setup_s", "peak_memory_bytes", "skinned_vertices", "refit_triangles", "trot_ms",
-                            "times_trot"})
+                            "times_trot", "flat_ms", "times_flat"})  // ride_out is over hills: it has a flat twin
       expectPositiveNumber(p.at(key), key);
     for (const char* part : {"bake", "skin", "bvh", "trace", "write"}) expectPositiveNumber(p.at("ms").at(part), part);
     EXPECT_EQ(p.at("pairs"), 8);
@@ -80,6 +80,15 @@ TEST(BenchCommand, SceneJsonHasTheCrowdsCountsAndMemory) {
   }
   EXPECT_GT(at[0].at("skinned_vertices").get<double>(), 8.0 * at[1].at("skinned_vertices").get<double>());
   EXPECT_GT(at[0].at("refit_triangles").get<double>(), 8.0 * at[1].at("refit_triangles").get<double>());
+  // A scene on flat ground has no flat twin to measure against.
+  const CommandResult flat = runStirrup("bench --json --frames 1 --preset draft --scene " +
+                                        quote(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json"));
+  ASSERT_EQ(flat.exit_code, 0) << flat.err;
+  const nlohmann::json parsed = nlohmann::json::parse(flat.out);
+  const nlohmann::json& trot = parsed.at("presets").at("draft");
+  EXPECT_TRUE(trot.at("flat_ms").is_null());
+  EXPECT_TRUE(trot.at("times_flat").is_null());
+  expectPositiveNumber(trot.at("times_trot"), "times_trot");
   const CommandResult bad = runStirrup("bench --scene /nowhere/crowd.json --frames 1 --preset draft");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_EQ(bad.err.find('\n'), bad.err.size() - 1) << bad.err;  // one line
