@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -14,18 +15,6 @@ namespace {
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 // How much the heightfield's slab is widened before camera rays are clipped to it (cm).
 constexpr float kSlabPadCm = 1.0f;
-
-// The part [t0, t1] of a ray's [0, t_max] between heights low and high; false when there is none.
-bool slabInterval(const glm::vec3& o, const glm::vec3& d, float t_max, float low, float high, float& t0, float& t1) {
-  if (d.y == 0.0f) {
-    t0 = 0.0f, t1 = t_max;
-    return o.y >= low && o.y <= high;
-  }
-  const float ta = (low - o.y) / d.y, tb = (high - o.y) / d.y;
-  t0 = std::max(0.0f, std::min(ta, tb));
-  t1 = std::min(t_max, std::max(ta, tb));
-  return t0 <= t1;
-}
 
 }  // namespace
 
@@ -254,6 +243,7 @@ LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
   k.target_distance = camera.targetDistanceF();
   k.ground_extent = ground_extent_;
   k.t_visible = visibleDistance(camera);
+  k.slab_low = slab_low_, k.slab_high = slab_high_;
   k.square_cm = settings_.ground_square_cm;
   k.color_a = settings_.ground_color_a, k.color_b = settings_.ground_color_b;
   k.haze_visibility = settings_.haze.visibility_cm, k.haze_ortho_depth = settings_.haze.ortho_depth_cm;
@@ -318,9 +308,6 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
   cameraRayLanes(constants, lanes, !terrain_);
   if (terrain_) {
-    const std::size_t packets = (n + 15) / 16 * 16;
-    scratch.ground_t0.resize(packets);
-    scratch.ground_t1.resize(packets);
     scratch.ground_prim.resize(n);
     scratch.ground_u.resize(n);
     scratch.ground_v.resize(n);
@@ -343,14 +330,7 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     c.t_ground = lanes.t_ground[k];
     ++tally.rays;
     if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
-    if (terrain_) {
-      // Only the part of the ray within the heightfield's slab can meet it: above the hills (the sky
-      // of most views) nothing is traced, and the rest is traced from where it enters the slab.
-      float& t0 = scratch.ground_t0[k];
-      float& t1 = scratch.ground_t1[k];
-      if (!slabInterval(c.origin, c.dir, constants.t_visible, slab_low_, slab_high_, t0, t1)) t0 = kInfinity, t1 = 0.0f;
-      continue;
-    }
+    if (terrain_) continue;  // the heightfield first (pass 1b)
     queueCharacterRay(c, k);
   }
 
@@ -363,27 +343,37 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    // Only the part of a ray within the heightfield's slab can meet it (cameraRayLanes): above the
+    // hills (the sky of most views) nothing is traced, the rest from where it enters the slab.
     alignas(64) RTCRayHit16 packet;
     alignas(64) int valid[16];
+    for (std::size_t i = 0; i < 16; ++i) {
+      packet.ray.time[i] = 0.0f;
+      packet.ray.mask[i] = 0xffffffffu;
+      packet.ray.id[i] = 0;
+      packet.ray.flags[i] = 0;
+    }
+    // The lanes are padded to whole vectors of 16: a packet reads 16 of each array as they are.
+    static_assert(CameraLanes::kPad % 16 == 0);
+    auto copy16 = [](float* to, const std::vector<float>& from, std::size_t first) {
+      std::memcpy(to, from.data() + first, 16 * sizeof(float));
+    };
     for (std::size_t first = 0; first < n; first += 16) {
       const std::size_t count = std::min<std::size_t>(16, n - first);
       bool any = false;
       for (std::size_t i = 0; i < 16; ++i) {
-        const std::size_t k = first + i;
-        valid[i] = i < count && scratch.ground_t0[k] <= scratch.ground_t1[k] ? -1 : 0;
+        valid[i] = i < count && lanes.t_enter[first + i] <= lanes.t_leave[first + i] ? -1 : 0;
         any = any || valid[i];
-        if (!valid[i]) continue;
-        packet.ray.org_x[i] = lanes.ox[k], packet.ray.org_y[i] = lanes.oy[k], packet.ray.org_z[i] = lanes.oz[k];
-        packet.ray.dir_x[i] = lanes.dx[k], packet.ray.dir_y[i] = lanes.dy[k], packet.ray.dir_z[i] = lanes.dz[k];
-        packet.ray.tnear[i] = scratch.ground_t0[k], packet.ray.tfar[i] = scratch.ground_t1[k];
-        packet.ray.time[i] = 0.0f;
-        packet.ray.mask[i] = 0xffffffffu;
-        packet.ray.id[i] = 0;
-        packet.ray.flags[i] = 0;
         packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
       }
-      if (any) rtcIntersect16(valid, ground_, &context, &packet);
+      if (any) {
+        copy16(packet.ray.org_x, lanes.ox, first), copy16(packet.ray.org_y, lanes.oy, first);
+        copy16(packet.ray.org_z, lanes.oz, first), copy16(packet.ray.dir_x, lanes.dx, first);
+        copy16(packet.ray.dir_y, lanes.dy, first), copy16(packet.ray.dir_z, lanes.dz, first);
+        copy16(packet.ray.tnear, lanes.t_enter, first), copy16(packet.ray.tfar, lanes.t_leave, first);
+        rtcIntersect16(valid, ground_, &context, &packet);
+      }
       for (std::size_t i = 0; i < count; ++i) {
         const std::size_t k = first + i;
         const bool hit = valid[i] && packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;

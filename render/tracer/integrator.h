@@ -77,9 +77,8 @@ struct TileScratch {
   std::vector<LightSequences> lights;  // the sun and sky sequences of the pixels that need them
   std::vector<CameraSample> samples;
   std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
-  // Uneven ground, per camera sample: the part of its ray within the heightfield's slab (t0 > t1: none),
-  // and the triangle it hit there (-1: none) with Embree's barycentrics.
-  std::vector<float> ground_t0, ground_t1, ground_u, ground_v;
+  // Uneven ground, per camera sample: the triangle its ray hit (-1: none) with Embree's barycentrics.
+  std::vector<float> ground_u, ground_v;
   std::vector<int32_t> ground_prim;
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)

@@ -121,6 +121,16 @@ void CameraRayLanes(const LaneConstants& k, CameraLanes& L, bool flat_ground) {
     Store(dx, L.dx, i), Store(dy, L.dy, i), Store(dz, L.dz, i);
     if (!flat_ground) {
       Store(inf, L.t_ground, i);
+      // Between heights low and high: t = (h - o.y) / d.y, both ends ordered and clipped to
+      // [0, t_visible]; a level ray is inside the slab along its whole length, or nowhere.
+      const MF level = hn::Eq(dy, Splat(0.0f));
+      const VF safe = hn::IfThenElse(level, Splat(1.0f), dy);
+      const VF ta = hn::Div(hn::Sub(Splat(k.slab_low), oy), safe), tb = hn::Div(hn::Sub(Splat(k.slab_high), oy), safe);
+      VF t0 = hn::Max(Splat(0.0f), hn::Min(ta, tb)), t1 = hn::Min(Splat(k.t_visible), hn::Max(ta, tb));
+      const MF inside = hn::And(hn::Ge(oy, Splat(k.slab_low)), hn::Le(oy, Splat(k.slab_high)));
+      t0 = hn::IfThenElse(level, hn::IfThenElse(inside, Splat(0.0f), inf), t0);
+      t1 = hn::IfThenElse(level, hn::IfThenElse(inside, Splat(k.t_visible), Splat(0.0f)), t1);
+      Store(t0, L.t_enter, i), Store(t1, L.t_leave, i);
       continue;
     }
     // The plane y = 0: t = -o.y / d.y, kept when 0 < t < t_visible and the hit is on the square.
@@ -492,7 +502,8 @@ void CameraLanes::resize(std::size_t n) {
   size = n;
   padded = (n + kPad - 1) / kPad * kPad;
   for (auto* v : {&ux, &uy, &cx, &cy, &ox, &oy, &oz, &dx, &dy, &dz, &t_ground, &t_shade, &albedo_r, &albedo_g,
-                  &albedo_b, &haze, &depth, &radiance_r, &radiance_g, &radiance_b, &sky_r, &sky_g, &sky_b, &gnx, &gny, &gnz})
+                  &albedo_b, &haze, &depth, &radiance_r, &radiance_g, &radiance_b, &sky_r, &sky_g, &sky_b, &gnx, &gny, &gnz,
+                  &t_enter, &t_leave})
     v->resize(padded, 0.0f);
   may_hit.resize(padded, 0);
   open.resize(padded, 0);

@@ -41,6 +41,9 @@ struct CameraLanes {
   // whether it may meet the characters' box (all bits set) or certainly does not (0).
   std::vector<float> ox, oy, oz, dx, dy, dz, t_ground;
   std::vector<int32_t> may_hit;
+  // Uneven ground: the part [t_enter, t_leave] of each camera ray within the heightfield's slab (and
+  // the visible distance); t_enter > t_leave where there is none.
+  std::vector<float> t_enter, t_leave;
   // Shading: `t_shade` is the ground's distance where the sample sees the ground (set by the caller:
   // t_ground unless a character is nearer, else infinity). The ground kernel fills its albedo, aerial
   // perspective and view depth, and for open ground (sun certainly unblocked, sky certainly open) its
@@ -98,6 +101,8 @@ struct LaneConstants {
   float target_distance = 0;
   // Ground plane y = 0 within |x|, |z| <= extent, seen up to t_visible along a ray.
   float ground_extent = 0, t_visible = 0;
+  // Uneven ground: every point of the heightfield lies between these heights.
+  float slab_low = 0, slab_high = 0;
   float square_cm = 50.0f;
   glm::vec3 color_a{0.0f}, color_b{0.0f};
   float haze_visibility = 1.0f, haze_ortho_depth = 1.0f;
@@ -130,8 +135,8 @@ struct LaneConstants {
 };
 
 // Camera rays of samples [0, size): ox..dz. With `flat_ground` also the plane's t_ground and the box
-// test against it; otherwise t_ground = infinity and the caller traces the terrain, then runs
-// boxTestLanes.
+// test against it; otherwise t_ground = infinity, [t_enter, t_leave] the ray's part within the
+// heightfield's slab, and the caller traces the terrain, then runs boxTestLanes.
 void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground);
 // may_hit: whether each ray may meet the characters' box before its far end (a camera ray's t_ground,
 // an occlusion ray's t_far; call RayLanes::pad first).
