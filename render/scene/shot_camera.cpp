@@ -58,9 +58,8 @@ ShotCamera::ShotCamera(ShotEvaluator& characters, const CameraSpec& camera)
       request.shown = shownAs(preset);  // a treadmill or a held pose as the view shows them
       request.level.fixed = whole_crowd ? kDetailLevels - 1 : 0;
       request.only_pair = whole_crowd ? -1 : seat_pair;
-      // Positions alone, and of a pair only the vertices the view reads; of a whole crowd only each
-      // horse's and rider's box (the same to the bit as every vertex's, skinning a few of them).
-      request.until = whole_crowd ? EvalStage::Box : EvalStage::Points;
+      // Positions alone, and of a pair only the vertices the view reads.
+      request.until = EvalStage::Points;
       request.point_stride = whole_crowd ? 1 : kFramingPointStride;
     }
     horse.assign(frames.size(), {});

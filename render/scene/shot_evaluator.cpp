@@ -24,7 +24,6 @@
 #include "rig/motion/crowd.h"
 #include "rig/motion/shifted_clip.h"
 #include "rig/skin.h"
-#include "rig/skin_box.h"
 
 namespace stirrup::render {
 namespace {
@@ -55,8 +54,6 @@ struct ShotEvaluator::Pairs {
     rig::HorseParams horse;
     rig::RiderParams rider;
     std::shared_ptr<const rig::Character> built_horse, built_rider;
-    // Their meshes' clusters for EvalStage::Box, made when a Box request first needs them.
-    std::shared_ptr<const rig::SkinBoxIndex> horse_box, rider_box;
   };
   struct Pair {
     std::unique_ptr<rig::Clip> clip;          // the scene's clip, or rig::makePairClip
@@ -109,23 +106,6 @@ struct ShotEvaluator::Pairs {
         throw std::logic_error("ShotEvaluator: a level of detail's skeleton differs from the coarsest level's");
     }
   }
-  // The box indexes of the (pair, level)s in `needed`, built already, that have none yet, in parallel.
-  void indexBoxes(const std::vector<std::pair<std::size_t, int>>& needed) {
-    std::vector<std::size_t> todo;
-    for (const auto& [i, k] : needed) {
-      const std::size_t b = pairs[i].builds[std::size_t(k)];
-      if (!builds[b].horse_box && std::find(todo.begin(), todo.end(), b) == todo.end()) todo.push_back(b);
-    }
-    arena.execute([&] {
-      tbb::parallel_for(std::size_t(0), 2 * todo.size(), [&](std::size_t j) {
-        Build& b = builds[todo[j / 2]];
-        if (j % 2 == 0)
-          b.horse_box = std::make_shared<const rig::SkinBoxIndex>(b.built_horse->mesh);
-        else
-          b.rider_box = std::make_shared<const rig::SkinBoxIndex>(b.built_rider->mesh);
-      });
-    });
-  }
   // A pair's coarsest level, which it is posed with.
   void buildCoarsest(const std::vector<std::size_t>& which) {
     std::vector<std::pair<std::size_t, int>> needed;
@@ -146,7 +126,7 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
     p.seat = pair.seat;
     p.builds = {0};
     ps.builds.push_back({rig::HorseParams{}, rig::RiderParams{}, std::make_shared<const rig::Character>(std::move(pair.horse)),
-                         std::make_shared<const rig::Character>(std::move(pair.rider)), nullptr, nullptr});
+                         std::make_shared<const rig::Character>(std::move(pair.rider))});
     ps.pairs.push_back(std::move(p));
   } else {
     const std::string source = scene.file.string();
@@ -190,7 +170,7 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
                       spec.skin, k};
         auto [it, inserted] = build_of.emplace(key, ps.builds.size());
         if (inserted) {
-          Pairs::Build b{spec.horse(), spec.rider(), nullptr, nullptr, nullptr, nullptr};
+          Pairs::Build b{spec.horse(), spec.rider(), nullptr, nullptr};
           b.horse.cell *= kDetailCellFactor[k];
           b.rider.cell *= kDetailCellFactor[k];
           ps.builds.push_back(std::move(b));
@@ -329,16 +309,6 @@ void ShotEvaluator::poseStage(const FrameRequest& request, std::size_t i, PairFr
 
 void ShotEvaluator::skinStage(const FrameRequest& request, std::size_t i, PairFrame& f) const {
   const Pairs::Build& b = pairs_->build(i, f.level);
-  if (request.until == EvalStage::Box) {
-    const rig::SkinnedBox horse = b.horse_box->box(b.built_horse->mesh, b.built_horse->skeleton, f.pose.horse);
-    const rig::SkinnedBox rider = b.rider_box->box(b.built_rider->mesh, b.built_rider->skeleton, f.pose.rider);
-    f.horse_lo = horse.lo, f.horse_hi = horse.hi, f.rider_lo = rider.lo, f.rider_hi = rider.hi;
-    f.horse_positions.clear();
-    f.horse_normals.clear();
-    f.rider_positions.clear();
-    f.rider_normals.clear();
-    return;
-  }
   if (request.until == EvalStage::Points) {
     rig::skinPositions(b.built_horse->mesh, b.built_horse->skeleton, f.pose.horse, request.point_stride, f.horse_positions);
     rig::skinPositions(b.built_rider->mesh, b.built_rider->skeleton, f.pose.rider, request.point_stride, f.rider_positions);
@@ -380,7 +350,6 @@ void ShotEvaluator::evaluate(const FrameRequest& request, ShotFrame& out) {
   std::vector<std::pair<std::size_t, int>> needed;
   for (std::size_t i : which) needed.emplace_back(i, out.pairs[i].level);
   ps.buildLevels(needed);
-  if (request.until == EvalStage::Box) ps.indexBoxes(needed);
   timings_.build_ms += ps.build_ms;
   each([&](std::size_t i) { skinStage(request, i, out.pairs[i]); });
   timings_.skin_ms = msSince(t0);
@@ -393,18 +362,15 @@ void ShotEvaluator::evaluateEach(const std::vector<FrameRequest>& requests,
   Pairs& ps = *pairs_;
   // Every character the requests need, built first (building is the one thing that changes the
   // evaluator), so the frames below only read it.
-  std::set<std::pair<std::size_t, int>> needed, boxed;
+  std::set<std::pair<std::size_t, int>> needed;
   for (const FrameRequest& r : requests) {
     if (r.only_pair >= pairCount()) throw std::invalid_argument("ShotEvaluator::evaluateEach: no pair " + std::to_string(r.only_pair));
     if (r.level.fixed < 0) throw std::invalid_argument("ShotEvaluator::evaluateEach: expected every request's level fixed");
     if (r.until == EvalStage::Bake) continue;
-    for (std::size_t i : pairsAsked(r, ps.pairs.size())) {
+    for (std::size_t i : pairsAsked(r, ps.pairs.size()))
       needed.emplace(i, r.until == EvalStage::Pose ? ps.levels - 1 : std::clamp(r.level.fixed, 0, ps.levels - 1));
-      if (r.until == EvalStage::Box) boxed.emplace(i, std::clamp(r.level.fixed, 0, ps.levels - 1));
-    }
   }
   ps.buildLevels({needed.begin(), needed.end()});
-  ps.indexBoxes({boxed.begin(), boxed.end()});
   ps.arena.execute([&] {
     tbb::parallel_for(std::size_t(0), requests.size(), [&](std::size_t k) {
       const FrameRequest& request = requests[k];
@@ -431,11 +397,13 @@ void appendPoints(const PairFrame& pair, int stride, std::vector<glm::dvec3>& ho
 }
 
 void appendCorners(const PairFrame& pair, std::vector<glm::vec3>& horse, std::vector<glm::vec3>& rider) {
-  const auto corners = [](const glm::vec3& lo, const glm::vec3& hi, std::vector<glm::vec3>& out) {
+  const auto corners = [](const std::vector<glm::vec3>& points, std::vector<glm::vec3>& out) {
+    glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+    for (const glm::vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     for (int c = 0; c < 8; ++c) out.emplace_back(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
   };
-  corners(pair.horse_lo, pair.horse_hi, horse);
-  corners(pair.rider_lo, pair.rider_hi, rider);
+  corners(pair.horse_positions, horse);
+  corners(pair.rider_positions, rider);
 }
 
 }  // namespace stirrup::render

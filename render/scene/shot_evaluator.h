@@ -50,10 +50,8 @@ struct LevelChoice {
 
 // How far a frame is evaluated: baked only, posed too, or skinned too. Points skins the positions of
 // every FrameRequest::point_stride-th vertex alone (rig::skinPositions: the same bits as Skin's, no
-// normals): what framing a view needs. Box finds only the boxes of the horse's and the rider's skinned
-// vertices (rig/skin_box.h: the min and max of every vertex's position, to the bit, skinning the few
-// that can reach them): what framing a whole crowd needs.
-enum class EvalStage { Bake, Pose, Box, Points, Skin };
+// normals): what framing a view needs.
+enum class EvalStage { Bake, Pose, Points, Skin };
 
 struct FrameRequest {
   int frame = 1;
@@ -68,12 +66,9 @@ struct FrameRequest {
 struct PairFrame {
   rig::BakedFrame baked;  // frame: the frame asked for; seconds: the shot's time of the frame shown
   rig::MountedPose pose;  // world matrices of both skeletons (EvalStage::Pose and on)
-  int level = 0;          // the level skinned (EvalStage::Box, Points and Skin)
-  // EvalStage::Skin: every vertex; EvalStage::Points: every point_stride-th vertex's position, no
-  // normals; EvalStage::Box: none.
+  int level = 0;          // the level skinned (EvalStage::Points and Skin)
+  // EvalStage::Skin: every vertex; EvalStage::Points: every point_stride-th vertex's position, no normals.
   std::vector<glm::vec3> horse_positions, horse_normals, rider_positions, rider_normals;
-  // EvalStage::Box: the min and max of every skinned vertex's position, the horse's and the rider's.
-  glm::vec3 horse_lo{0.0f}, horse_hi{0.0f}, rider_lo{0.0f}, rider_hi{0.0f};
 };
 
 struct ShotFrame {
@@ -154,7 +149,7 @@ std::string crowdPairName(int pair, int pair_count);
 
 // Every `stride`-th skinned vertex of a pair's horse and rider, appended as world points.
 void appendPoints(const PairFrame& pair, int stride, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
-// The 8 corners of a pair's horse's and rider's boxes as EvalStage::Box found them, appended.
+// The 8 corners of a pair's horse's and rider's bounding boxes, appended.
 void appendCorners(const PairFrame& pair, std::vector<glm::vec3>& horse, std::vector<glm::vec3>& rider);
 
 }  // namespace stirrup::render

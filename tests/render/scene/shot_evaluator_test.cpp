@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -205,56 +204,6 @@ TEST(ShotEvaluator, TheSameFrameAtAnyThreadCount) {
   }
   EXPECT_NE(*std::min_element(levels.begin(), levels.end()), *std::max_element(levels.begin(), levels.end()))
       << "the camera should see the pairs at different levels";
-}
-
-// EvalStage::Box gives each pair's horse's and rider's boxes as the min and max of every skinned
-// vertex (EvalStage::Skin's positions), to the bit, through evaluate() and evaluateEach at one and
-// two threads: a single pair and a crowd at its coarsest level (what framing a whole crowd reads).
-TEST(ShotEvaluator, BoxStageIsTheBoxOfEverySkinnedVertex) {
-  const auto boxOf = [](const std::vector<glm::vec3>& points, glm::vec3& lo, glm::vec3& hi) {
-    lo = glm::vec3(std::numeric_limits<float>::infinity()), hi = -lo;
-    for (const glm::vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  };
-  for (const SceneSpec& scene : {trot(), crowdOfFour()}) {
-    const int level = scene.pairs.empty() ? 0 : kDetailLevels - 1;
-    std::vector<FrameRequest> requests;
-    for (int frame : {1, 19, 40}) {
-      FrameRequest r;
-      r.frame = frame;
-      r.until = EvalStage::Box;
-      r.level.fixed = level;
-      requests.push_back(r);
-    }
-    ShotEvaluator alone(scene, resolveProfile(scene), 1);
-    for (int threads : {1, 2}) {
-      ShotEvaluator batch(scene, resolveProfile(scene), threads);
-      std::vector<ShotFrame> got(requests.size());
-      batch.evaluateEach(requests, [&](std::size_t k, ShotFrame& f) { got[k] = f; });
-      for (std::size_t k = 0; k < requests.size(); ++k) {
-        FrameRequest skin = requests[k];
-        skin.until = EvalStage::Skin;
-        ShotFrame whole, box;
-        alone.evaluate(skin, whole);
-        alone.evaluate(requests[k], box);
-        for (std::size_t i = 0; i < whole.pairs.size(); ++i) {
-          const std::string what = scene.name + " frame " + std::to_string(requests[k].frame) + " pair " + std::to_string(i);
-          glm::vec3 lo, hi;
-          boxOf(whole.pairs[i].horse_positions, lo, hi);
-          EXPECT_EQ(box.pairs[i].horse_lo, lo) << what;
-          EXPECT_EQ(box.pairs[i].horse_hi, hi) << what;
-          EXPECT_EQ(got[k].pairs[i].horse_lo, lo) << what;
-          EXPECT_EQ(got[k].pairs[i].horse_hi, hi) << what;
-          boxOf(whole.pairs[i].rider_positions, lo, hi);
-          EXPECT_EQ(box.pairs[i].rider_lo, lo) << what;
-          EXPECT_EQ(box.pairs[i].rider_hi, hi) << what;
-          EXPECT_EQ(got[k].pairs[i].rider_lo, lo) << what;
-          EXPECT_EQ(got[k].pairs[i].rider_hi, hi) << what;
-          EXPECT_TRUE(box.pairs[i].horse_positions.empty()) << what;
-          EXPECT_LT(box.pairs[i].horse_lo.y, box.pairs[i].horse_hi.y) << what;
-        }
-      }
-    }
-  }
 }
 
 // evaluateEach gives every request's frame as evaluate() does, to the bit, whatever the thread count:
