@@ -7,11 +7,14 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <tuple>
 
 #include "cli/commands.h"
 #include "cli/movie_set_options.h"
 #include "cli/options.h"
 #include "render/scene/data_dir.h"
+#include "render/scene/preset.h"
+#include "render/scene/profile_resolver.h"
 #include "render/farm/farm_jobs.h"
 #include "render/farm/farm_shots.h"
 #include "render/farm/slurm.h"
@@ -120,7 +123,15 @@ void runSubmit(const SubmitOptions& o, const CLI::App& cmd) {
     }
     for (const std::string& s : o.sets) args.insert(args.end(), {"--set", s});
     // The scene as the tasks must find it: absolute, after the data-folder lookup of a relative path.
-    plan = render::farm::planRender(request, fs::absolute(render::findSceneFile(o.scene)), o.camera, o.frames, args);
+    const fs::path scene_file = fs::absolute(render::findSceneFile(o.scene));
+    // A view camera framed once, here, as the tasks see the scene (preset, size, profile settings):
+    // every chunk reads it from the plan instead of framing the view again.
+    render::SceneSpec scene = render::loadScene(scene_file);
+    if (cmd.count("--preset")) render::applyPreset(scene, render::findPreset(o.set.preset));
+    if (!o.set.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.set.resolution);
+    const auto framed = render::farm::planCamera(scene, render::resolveProfile(scene, parseSets(o.sets)),
+                                                 render::findCamera(scene, o.camera));
+    plan = render::farm::planRender(request, scene_file, o.camera, o.frames, args, framed);
   }
 
   if (o.dry_run) {

@@ -9,6 +9,7 @@
 #include "cli/output_folder.h"
 #include "cli/options.h"
 #include "cli/progress.h"
+#include "render/farm/farm_shots.h"
 #include "render/scene/frame_sequence.h"
 #include "render/tracer/frame_writer.h"
 #include "render/tracer/image.h"
@@ -38,6 +39,7 @@ struct RenderOptions {
   int padding = render::kDefaultFramePadding;
   bool progress = false;
   bool resume = false;
+  std::string camera_plan;  // a farm plan (farm.json) whose framed camera this shot uses
   bool encode_only = false;
   bool allow_impossible = false;
 };
@@ -75,7 +77,14 @@ void runRender(const RenderOptions& o) {
     return;
   }
 
-  render::Shot shot(scene, profile, camera, o.threads);
+  // A farm task's camera, framed once when the farm was planned (render/farm/farm_plan.h).
+  render::CameraSpec shown = camera;
+  if (!o.camera_plan.empty()) {
+    std::string where;
+    const render::farm::PlannedCamera planned = render::farm::plannedCameraOf(o.camera_plan, shot_name, where);
+    shown = render::farm::plannedCameraSpec(scene, profile, camera, planned, where);
+  }
+  render::Shot shot(scene, profile, shown, o.threads);
   ProgressBar bar("render " + scene.name + "_" + camera.name, static_cast<int>(frames.size()), o.progress);
   std::vector<fs::path> written;
   render::FrameWriter writer;
@@ -133,6 +142,9 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, render::kMaxFramePadding));
   cmd->add_flag("--resume", opts->resume, "Skip frames whose file already exists");
+  cmd->add_option("--camera-plan", opts->camera_plan,
+                  "Use the view camera framed in this farm plan (OUT/farm.json; stirrup farm's tasks pass it) instead "
+                  "of framing the view again");
   cmd->add_flag("--allow-impossible", opts->allow_impossible,
                 "Render a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
   cmd->add_flag("--encode-only", opts->encode_only,

@@ -187,6 +187,7 @@ std::vector<glm::dquat> CurveSpine::framesAt(const SpineControllers& c, double s
   out.reserve(fractions.size());
   glm::dquat frame = controllerFrames(c)[0];
   double at = 0.0, previous = 0.0;
+  glm::dvec3 here = spline.point(at);  // spline.point(at), carried from step to step
   for (const double f : fractions) {
     if (!(f >= previous && f <= 1.0))
       throw std::invalid_argument("CurveSpine::framesAt: fractions must ascend within 0..1");
@@ -194,8 +195,9 @@ std::vector<glm::dquat> CurveSpine::framesAt(const SpineControllers& c, double s
     const double target = f >= 1.0 ? end : spline.parameterAtArcLength(length * f);
     while (at < target) {
       const double next = std::min(at + step, target);
-      frame = transportFrame(frame, spline.point(at), spline.point(next), spline.tangent(next));
-      at = next;
+      const glm::dvec3 there = spline.point(next);
+      frame = transportFrame(frame, here, there, spline.tangent(next));
+      at = next, here = there;
     }
     const glm::dvec3 axis = spline.tangent(at);
     out.push_back(glm::normalize(glm::angleAxis(radians(c.top.x * f), axis) * frame));
@@ -203,7 +205,7 @@ std::vector<glm::dquat> CurveSpine::framesAt(const SpineControllers& c, double s
   return out;
 }
 
-SpineResult CurveSpine::solve(const SpineControllers& c, double stretch) const {
+SpineResult CurveSpine::solve(const SpineControllers& c, double stretch, SpineDetail detail) const {
   if (!(std::isfinite(stretch) && stretch > 0.0))
     throw std::invalid_argument("CurveSpine: stretch " + std::to_string(stretch) + " is not positive");
   const int n = segments_;
@@ -215,9 +217,11 @@ SpineResult CurveSpine::solve(const SpineControllers& c, double stretch) const {
   r.curve_points = {r.fk[0], 0.5 * (r.fk[0] + r.fk[1]), 0.5 * (r.fk[1] + r.fk[2]), 0.5 * (r.fk[2] + r.fk[3]),
                     r.fk[3]};
   r.length = spline.length();
-  r.ten_null_length = tenNullLengthEstimate(spline);
-  r.samples.reserve(kSampleCount);
-  for (int k = 0; k < kSampleCount; ++k) r.samples.push_back(spline.pointAtArcLength(r.length * k / (kSampleCount - 1)));
+  if (detail == SpineDetail::Full) {
+    r.ten_null_length = tenNullLengthEstimate(spline);
+    r.samples.reserve(kSampleCount);
+    for (int k = 0; k < kSampleCount; ++k) r.samples.push_back(spline.pointAtArcLength(r.length * k / (kSampleCount - 1)));
+  }
 
   // Every joint on the curve, the first and last at its ends; bones equal in the layout's measure.
   r.layout = layout_;
@@ -255,12 +259,14 @@ SpineResult CurveSpine::solve(const SpineControllers& c, double stretch) const {
   std::vector<glm::dquat> rmf(n + 1);
   glm::dquat frame = frames[0];
   double at = 0.0;
+  glm::dvec3 here = spline.point(at);  // spline.point(at), carried from step to step
   const double step = end / (kFrameStepsPerSegment * SpineCurve::kSegmentCount);
   for (int j = 0; j <= n; ++j) {
     while (at < targets[j]) {
       const double next = std::min(at + step, targets[j]);
-      frame = transportFrame(frame, spline.point(at), spline.point(next), spline.tangent(next));
-      at = next;
+      const glm::dvec3 there = spline.point(next);
+      frame = transportFrame(frame, here, there, spline.tangent(next));
+      at = next, here = there;
     }
     rmf[j] = frame;
   }

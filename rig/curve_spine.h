@@ -60,6 +60,14 @@ enum class ChainLayout {
   EqualChord,      // bones of equal straight length: the chain is the inscribed equilateral polyline
 };
 
+// What solve() works out: everything (the `stirrup spine` report and tests read the curve's samples and
+// Raisani's length estimate), or the joints alone, which is all a pose reads (rig/pose.cpp): the 129
+// samples are most of a solve's arc-length lookups. The joints are the same to the bit either way.
+enum class SpineDetail {
+  Full,    // every field of SpineResult
+  Joints,  // SpineResult::samples left empty and ten_null_length 0; every other field as Full's
+};
+
 struct SpineResult {
   std::array<glm::dvec3, 4> fk;               // FK joints: root, tips of bones 1, 2, 3
   std::array<glm::dvec3, 5> curve_points;     // root, three bone midpoints, tip of bone 3
@@ -105,7 +113,8 @@ class CurveSpine {
   // The curve, joints and frames for one pose. `stretch` (> 0) scales the three FK bone lengths and so
   // the whole spine along its curve — the squash and stretch of Kuhnel's equation 9 acting on the
   // chain; use stretchForOffset to turn a vertical offset in cm into a stretch.
-  SpineResult solve(const SpineControllers& controllers, double stretch = 1.0) const;
+  SpineResult solve(const SpineControllers& controllers, double stretch = 1.0,
+                    SpineDetail detail = SpineDetail::Full) const;
 
   // The curve's frames at arc-length fractions (ascending, each in [0, 1]): the rotation-minimizing
   // frame transported from the lower controller's frame, as solve() transports it, with the top

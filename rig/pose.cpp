@@ -334,7 +334,7 @@ void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider
   };
   const std::array<glm::dquat, 3> frames = spine.controllerFrames(controllers);
   if (layout.laid_on_curve) {
-    const SpineResult solved = spine.solve(controllers, stretch);
+    const SpineResult solved = spine.solve(controllers, stretch, SpineDetail::Joints);  // no samples: a pose reads the joints
     glm::dmat4 parent(1.0);  // the pelvis
     for (int k = 0; k < 3; ++k) {
       const glm::dmat4 world = place(solved.fk[k], frames[k]);

@@ -1,5 +1,6 @@
 #include "render/farm/farm_plan.h"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <system_error>
@@ -75,6 +76,45 @@ std::string requiredString(JsonObjectReader& r, const std::string& key) {
   return r.string(key, "");
 }
 
+json cameraJson(const PlannedCamera& c) {
+  // Numbers are written with 17 significant digits (nlohmann's), so they read back to the bit.
+  return {{"name", c.name},
+          {"key", c.key},
+          {"position", c.position},
+          {"target", c.target},
+          {"up", c.up},
+          {"seat_from_pivot_cm", c.seat_from_pivot_cm},
+          {"ortho_height_cm", c.ortho_height_cm},
+          {"fov_deg", c.fov_deg}};
+}
+
+PlannedCamera readCamera(JsonObjectReader& r) {
+  PlannedCamera c;
+  c.name = requiredString(r, "name");
+  c.key = requiredString(r, "key");
+  const auto finite3 = [&](const std::string& key) {
+    if (!r.has(key)) r.fail(key, "expected an array of 3 numbers (missing)");
+    const std::array<double, 3> v = r.numbers<3>(key, {});
+    for (std::size_t i = 0; i < 3; ++i)
+      if (!std::isfinite(v[i])) r.fail(key + "[" + std::to_string(i) + "]", "expected a finite number");
+    return v;
+  };
+  c.position = finite3("position");
+  c.target = finite3("target");
+  if (c.target == c.position) r.fail("target", "expected a point other than the camera's position");
+  c.up = finite3("up");
+  if (c.up == std::array<double, 3>{0.0, 0.0, 0.0}) r.fail("up", "expected a direction, not 0 0 0");
+  c.seat_from_pivot_cm = finite3("seat_from_pivot_cm");
+  if (!r.has("ortho_height_cm")) r.fail("ortho_height_cm", "expected a number above 0 (missing)");
+  c.ortho_height_cm = r.number("ortho_height_cm", 0.0);
+  if (!(c.ortho_height_cm > 0.0 && std::isfinite(c.ortho_height_cm))) r.fail("ortho_height_cm", "expected a number above 0");
+  if (!r.has("fov_deg")) r.fail("fov_deg", "expected a number between 0 and 180 (missing)");
+  c.fov_deg = r.number("fov_deg", 0.0);
+  if (!(c.fov_deg > 0.0 && c.fov_deg < 180.0)) r.fail("fov_deg", "expected a number between 0 and 180");
+  r.finish();
+  return c;
+}
+
 }  // namespace
 
 std::vector<std::vector<int>> chunkFrames(const std::vector<int>& frames, int chunk) {
@@ -146,6 +186,7 @@ void writeManifest(const FarmPlan& plan) {
                           {"outputs", shot.outputs},
                           {"array_jobs", shot.array_jobs},
                           {"chunks", chunks}});
+    if (shot.camera) j["shots"].back()["camera"] = cameraJson(*shot.camera);
   }
   j["finish_command"] = plan.finish_command;
   j["finish_jobs"] = plan.finish_jobs;
@@ -157,6 +198,11 @@ FarmPlan readManifest(const fs::path& out) {
   const fs::path file = manifestFile(out);
   if (!fs::is_regular_file(file))
     throw InputError(file.string() + ": no farm manifest here (expected the output folder of stirrup farm submit)");
+  return readManifestFile(file);
+}
+
+FarmPlan readManifestFile(const fs::path& file) {
+  if (!fs::is_regular_file(file)) throw InputError(file.string() + ": no such farm manifest");
   const json j = readJsonFile(file);
   if (!j.is_object()) throw InputError(file.string() + ": expected a JSON object");
   JsonObjectReader r(file.string(), "", j);
@@ -201,6 +247,10 @@ FarmPlan readManifest(const fs::path& out) {
       c.files = requiredStrings(cr, "files");
       cr.finish();
       shot.chunks.push_back(std::move(c));
+    }
+    if (sr.has("camera")) {
+      JsonObjectReader cr = sr.object("camera");
+      shot.camera = readCamera(cr);
     }
     sr.finish();
     plan.shots.push_back(std::move(shot));

@@ -4,7 +4,9 @@
 // shot (OUT/farm/NAME.sbatch, a job array: task i renders chunk i) plus OUT/farm/finish.sbatch.
 #pragma once
 
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,17 @@ struct FarmChunk {
   std::vector<std::string> files;  // what it writes, relative to the output folder
 };
 
+// A `render` shot's view camera as framed once when the plan was made (render/scene/view.h): every
+// chunk's task reads it (stirrup render --camera-plan) instead of framing the view again, about a
+// second a chunk. `key` names what the framing read (render/farm/farm_shots.h framingKey): a task
+// whose scene, size or profile differs refuses the camera.
+struct PlannedCamera {
+  std::string name;  // the scene's camera
+  std::string key;
+  std::array<double, 3> position{}, target{}, up{}, seat_from_pivot_cm{};
+  double ortho_height_cm = 0.0, fov_deg = 0.0;
+};
+
 struct FarmShot {
   std::string name;
   // The task's command line; the script adds --threads (the task's CPUs) and --frames (its chunk).
@@ -33,6 +46,7 @@ struct FarmShot {
   std::vector<std::string> outputs;     // relative; the shot is finished when all of them exist
   std::string frames_dir;               // relative; where its chunks write
   std::vector<std::string> array_jobs;  // the job arrays that ran its chunks: submit's, then each resume's
+  std::optional<PlannedCamera> camera;  // a render shot's framed view camera (none: no view, or a movie)
 };
 
 struct FarmPlan {
@@ -64,6 +78,8 @@ void writeScripts(const FarmPlan& plan);
 // The manifest, written atomically; read back with one-line InputErrors naming the file and the field.
 void writeManifest(const FarmPlan& plan);
 FarmPlan readManifest(const std::filesystem::path& out);
+// The manifest file itself (OUT/farm.json, or a copy of it under another name).
+FarmPlan readManifestFile(const std::filesystem::path& file);
 
 // Single-quoted for a POSIX shell.
 std::string shellQuote(const std::string& word);

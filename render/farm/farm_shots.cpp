@@ -3,14 +3,21 @@
 #include <sys/vfs.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <map>
 #include <system_error>
 
 #include "render/scene/frame_sequence.h"
 #include "render/scene/scene.h"
+#include "render/scene/shot_camera.h"
+#include "render/scene/shot_evaluator.h"
+#include "render/scene/view.h"
 #include "rig/error.h"
 #include "rig/io/frame_range.h"
+#include "rig/io/rig_profile_json.h"
 
 namespace stirrup::render::farm {
 namespace fs = std::filesystem;
@@ -31,7 +38,8 @@ FarmPlan emptyPlan(const FarmRequest& r, const std::string& kind) {
 }  // namespace
 
 FarmPlan planRender(const FarmRequest& r, const fs::path& scene_file, const std::string& camera_name,
-                    const std::string& frames_spec, const std::vector<std::string>& render_args) {
+                    const std::string& frames_spec, const std::vector<std::string>& render_args,
+                    const std::optional<PlannedCamera>& framed) {
   const SceneSpec scene = loadScene(scene_file);
   const CameraSpec& camera = findCamera(scene, camera_name);
   const std::vector<int> frames = rig::parseFrameList(frames_spec.empty() ? scene.frames : frames_spec, "--frames");
@@ -45,6 +53,12 @@ FarmPlan planRender(const FarmRequest& r, const fs::path& scene_file, const std:
   shot.command.insert(shot.command.end(), shot_args.begin(), shot_args.end());
   shot.command.insert(shot.command.end(), render_args.begin(), render_args.end());
   shot.command.push_back("--resume");
+  if (framed) {
+    if (framed->name != camera.name)
+      throw std::invalid_argument("planRender: the framed camera is " + framed->name + "'s, not " + camera.name + "'s");
+    shot.camera = framed;
+    shot.command.insert(shot.command.end(), {"--camera-plan", manifestFile(r.out).string()});
+  }
   shot.frames_dir = ".";
   const FrameSequence frames_named = FrameSequence::named("", name, ".png");  // as `stirrup render` names them
   shot.outputs = {name + ".mp4"};
@@ -63,6 +77,65 @@ FarmPlan planRender(const FarmRequest& r, const fs::path& scene_file, const std:
   plan.finish_command.insert(plan.finish_command.end(), {"--frames", rig::formatFrameList(frames), "--encode-only",
                                                          "--movie", (r.out / (name + ".mp4")).string()});
   return plan;
+}
+
+std::string framingKey(const SceneSpec& scene, const rig::RigProfile& profile) {
+  std::string text;
+  if (!scene.file.empty()) {
+    std::ifstream in(scene.file, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  text += "\nframes " + scene.frames + "\nsize " + std::to_string(scene.width) + "x" + std::to_string(scene.height);
+  text += "\nprofile " + rig::profileToJson(profile).dump();
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+std::optional<PlannedCamera> planCamera(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
+                                        int threads) {
+  if (camera.view.empty()) return std::nullopt;
+  ShotEvaluator characters(scene, profile, threads);
+  const ShotCamera framed(characters, camera);
+  const CameraSpec& s = framed.spec();
+  PlannedCamera c;
+  c.name = camera.name;
+  c.key = framingKey(scene, profile);
+  c.position = s.position, c.target = s.target, c.up = s.up, c.seat_from_pivot_cm = s.seat_from_pivot_cm;
+  c.ortho_height_cm = s.ortho_height_cm, c.fov_deg = s.fov_deg;
+  return c;
+}
+
+CameraSpec plannedCameraSpec(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
+                             const PlannedCamera& planned, const std::string& where) {
+  if (planned.name != camera.name)
+    throw InputError(where + ".name: expected \"" + camera.name + "\" (the camera rendered), got \"" + planned.name + "\"");
+  if (camera.view.empty())
+    throw InputError(where + ": expected no camera for " + camera.name + ", which has no view to frame");
+  const std::string key = framingKey(scene, profile);
+  if (planned.key != key)
+    throw InputError(where + ".key: expected " + key + " (the scene, its frames, the image size and the rig profile as they "
+                     "are now), got " + planned.key + ": they changed since the plan was made; submit the farm again");
+  CameraSpec spec = camera;
+  applyViewPreset(spec);
+  spec.view.clear();  // framed already: Shot takes it as it is
+  spec.position = planned.position, spec.target = planned.target, spec.up = planned.up;
+  spec.seat_from_pivot_cm = planned.seat_from_pivot_cm;
+  spec.ortho_height_cm = planned.ortho_height_cm, spec.fov_deg = planned.fov_deg;
+  return spec;
+}
+
+PlannedCamera plannedCameraOf(const fs::path& file, const std::string& shot, std::string& where) {
+  const FarmPlan plan = readManifestFile(file);
+  for (std::size_t i = 0; i < plan.shots.size(); ++i) {
+    if (plan.shots[i].name != shot) continue;
+    where = file.string() + ": shots[" + std::to_string(i) + "].camera";
+    if (!plan.shots[i].camera) throw InputError(where + ": expected the framed camera of " + shot + " (missing)");
+    return *plan.shots[i].camera;
+  }
+  throw InputError(file.string() + ": shots: expected a shot named " + shot + " (the scene's and camera's names)");
 }
 
 FarmPlan planMovies(const FarmRequest& r, const std::vector<MovieJob>& jobs, const MovieOptions& options,

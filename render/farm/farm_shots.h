@@ -4,11 +4,14 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "render/farm/farm_plan.h"
 #include "render/review/movie_set.h"
+#include "render/scene/scene.h"
+#include "rig/rig_profile.h"
 
 namespace stirrup::render::farm {
 
@@ -24,8 +27,29 @@ struct FarmRequest {
 // One shot: `scene` through `camera`; `frames` empty means the scene's. `render_args` are further
 // `stirrup render` options both the tasks and the finishing encode get (--preset, --resolution, --set).
 // Frames are OUT/SCENE_CAMERA.####.png; the finishing job encodes OUT/SCENE_CAMERA.mp4.
+// With `framed` (planCamera's, for the scene as the tasks will see it), the plan keeps the framed
+// camera and every task reads it (--camera-plan OUT/farm.json) instead of framing the view again.
 FarmPlan planRender(const FarmRequest& request, const std::filesystem::path& scene, const std::string& camera,
-                    const std::string& frames, const std::vector<std::string>& render_args);
+                    const std::string& frames, const std::vector<std::string>& render_args,
+                    const std::optional<PlannedCamera>& framed = std::nullopt);
+
+// What a view's framing reads, as a hash: the scene file's text, the frames it is framed over, the
+// image's size and the resolved rig profile. A camera planned for one key is refused for another.
+std::string framingKey(const SceneSpec& scene, const rig::RigProfile& profile);
+// `camera` (a view camera of `scene`) framed now, as the characters and the clip place it
+// (render/scene/shot_camera.h), for a plan; none for a camera without a view (nothing to frame).
+std::optional<PlannedCamera> planCamera(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
+                                        int threads = 0);
+// The camera a shot renders with instead of framing `camera` again: its view's preset with the
+// planned position, target, up, size and lens, and no view left to frame (Shot takes it as it is).
+// `where` names the plan's camera in errors ("FILE: shots[0].camera"): a one-line InputError when
+// it is another camera's or was framed for another key.
+CameraSpec plannedCameraSpec(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
+                             const PlannedCamera& planned, const std::string& where);
+// The planned camera of the shot `shot` in the manifest `file`, and where it is ("FILE:
+// shots[0].camera", for plannedCameraSpec's errors): an InputError naming the file when the plan has
+// no such shot or the shot no camera.
+PlannedCamera plannedCameraOf(const std::filesystem::path& file, const std::string& shot, std::string& where);
 
 // The movie set `jobs` with `options`; `movie_args` are the `stirrup movies` options that reproduce
 // `options` (cli/movie_set_options.h). `subset`: the finishing job names the movies with --only.

@@ -239,6 +239,35 @@ TEST(CurveSpine, JointsOnCurveBonesEqualChainAsLongAsCurve) {
   }
 }
 
+// A pose asks for the joints alone (SpineDetail::Joints): every joint, frame and length is the full
+// solve's to the bit, for both layouts and a stretch; only the samples and the ten-null estimate are
+// left out.
+TEST(CurveSpine, JointsDetailIsTheFullSolveWithoutTheSamples) {
+  for (ChainLayout layout : {ChainLayout::EqualArcLength, ChainLayout::EqualChord}) {
+    const CurveSpine spine(kBones, CurveSpine::kRiderSegments, layout);
+    for (const SpineControllers& c : extremePoses()) {
+      const SpineResult full = spine.solve(c, 1.07);
+      const SpineResult joints = spine.solve(c, 1.07, SpineDetail::Joints);
+      ASSERT_EQ(full.samples.size(), std::size_t(CurveSpine::kSampleCount));
+      EXPECT_TRUE(joints.samples.empty());
+      EXPECT_EQ(joints.ten_null_length, 0.0);
+      EXPECT_GT(full.ten_null_length, 0.0);
+      EXPECT_EQ(joints.length, full.length);
+      EXPECT_EQ(joints.bone_length, full.bone_length);
+      EXPECT_EQ(joints.chain_deficit, full.chain_deficit);
+      EXPECT_EQ(joints.layout_converged, full.layout_converged);
+      EXPECT_EQ(joints.joint_arc_lengths, full.joint_arc_lengths);
+      EXPECT_EQ(joints.twist_deg, full.twist_deg);
+      ASSERT_EQ(joints.joints.size(), full.joints.size());
+      for (std::size_t j = 0; j < full.joints.size(); ++j) {
+        EXPECT_EQ(joints.joints[j].position, full.joints[j].position) << j;
+        EXPECT_EQ(joints.joints[j].rotation, full.joints[j].rotation) << j;
+        EXPECT_EQ(joints.untwisted_rotations[j], full.untwisted_rotations[j]) << j;
+      }
+    }
+  }
+}
+
 // The other layout, for tools that want equal straight bones: the chords are equal and the joints on
 // the curve; the chain is then the inscribed polyline, shorter than the curve by the chord-vs-arc
 // deficit, which solve() reports. With 3 or 32 bones a ±179° fold can leave the equal-chord system

@@ -1,6 +1,8 @@
 #include "render/farm/farm_plan.h"
 
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -110,6 +112,72 @@ TEST(FarmPlan, ManifestReadsBackAsWritten) {
   EXPECT_EQ(back.shots[0].chunks[1].files, plan.shots[0].chunks[1].files);
   EXPECT_EQ(back.finish_command, plan.finish_command);
   EXPECT_EQ(back.finish_jobs, std::vector<std::string>{"42"});
+  fs::remove_all(dir);
+}
+
+// A render shot's framed camera reads back to the bit (17 significant digits), and a bad one is a
+// one-line error naming the file and the camera's field.
+TEST(FarmPlan, APlannedCameraReadsBackToTheBitAndABadOneNamesItsField) {
+  const fs::path dir = scratch("camera");
+  FarmPlan plan = twoChunkPlan(dir);
+  PlannedCamera c;
+  c.name = "side";
+  c.key = "0123456789abcdef";
+  c.position = {0.1, -1.0 / 3.0, 1234.5678901234567};
+  c.target = {2.0 / 3.0, 100.0, -0.0};
+  c.up = {0.0, 1.0, 0.0};
+  c.seat_from_pivot_cm = {35.25, 61.0, 1e-300};
+  c.ortho_height_cm = 317.77777777777777;
+  c.fov_deg = 26.991466561840441;
+  plan.shots[0].camera = c;
+  writeManifest(plan);
+  const FarmPlan back = readManifestFile(manifestFile(dir));
+  ASSERT_TRUE(back.shots[0].camera.has_value());
+  const PlannedCamera& b = *back.shots[0].camera;
+  EXPECT_EQ(b.name, c.name);
+  EXPECT_EQ(b.key, c.key);
+  EXPECT_EQ(b.position, c.position);
+  EXPECT_EQ(b.target, c.target);
+  EXPECT_EQ(b.up, c.up);
+  EXPECT_EQ(b.seat_from_pivot_cm, c.seat_from_pivot_cm);
+  EXPECT_EQ(b.ortho_height_cm, c.ortho_height_cm);
+  EXPECT_EQ(b.fov_deg, c.fov_deg);
+
+  const std::string file = manifestFile(dir).string();
+  const auto broken = [&](const std::function<void(PlannedCamera&)>& change) {
+    FarmPlan p = plan;
+    change(*p.shots[0].camera);
+    writeManifest(p);
+    return errorOf([&] { readManifest(dir); });
+  };
+  EXPECT_EQ(broken([](PlannedCamera& k) { k.fov_deg = 180.0; }),
+            file + ": shots[0].camera.fov_deg: expected a number between 0 and 180");
+  EXPECT_EQ(broken([](PlannedCamera& k) { k.ortho_height_cm = -2.0; }),
+            file + ": shots[0].camera.ortho_height_cm: expected a number above 0");
+  EXPECT_EQ(broken([](PlannedCamera& k) { k.target = k.position; }),
+            file + ": shots[0].camera.target: expected a point other than the camera's position");
+  EXPECT_EQ(broken([](PlannedCamera& k) { k.up = {0.0, 0.0, 0.0}; }), file + ": shots[0].camera.up: expected a direction, not 0 0 0");
+  // Hand-edited: a missing field, a word for a number.
+  std::string text;
+  writeManifest(plan);
+  {
+    std::ifstream in(file);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto rewrite = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    ASSERT_NE(t.find(from), std::string::npos) << from;
+    t.replace(t.find(from), from.size(), to);
+    std::ofstream(file) << t;
+  };
+  rewrite("\"key\": \"0123456789abcdef\",", "");
+  EXPECT_EQ(errorOf([&] { readManifest(dir); }), file + ": shots[0].camera.key: expected a string (missing)");
+  const std::size_t fov = text.find("\"fov_deg\": ");
+  ASSERT_NE(fov, std::string::npos);
+  rewrite(text.substr(fov, text.find_first_of(",\n}", fov) - fov), "\"fov_deg\": \"wide\"");
+  const std::string wide = errorOf([&] { readManifest(dir); });
+  EXPECT_EQ(wide.rfind(file + ": shots[0].camera.fov_deg: ", 0), 0u) << wide;
+  EXPECT_EQ(wide.find('\n'), std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -1,10 +1,14 @@
 #include "render/farm/farm_shots.h"
 
+#include <cstring>
+#include <optional>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "render/scene/profile_resolver.h"
+#include "render/shot.h"
 #include "tests/input_error.h"
 
 namespace stirrup::render::farm {
@@ -40,6 +44,65 @@ TEST(FarmShots, ARenderShotIsCutIntoChunksOfItsFrames) {
             (std::vector<std::string>{"/opt/stirrup/bin/stirrup", "render", scene.string(), "--camera", "side", "--out",
                                       "/shared/trot", "--preset", "draft", "--frames", "1-10", "--encode-only", "--movie",
                                       "/shared/trot/trot_side.mp4"}));
+}
+
+// A view camera framed once into the plan: a chunk rendered with it (stirrup render --camera-plan)
+// has every camera and every pixel of the chunk rendered by framing the view itself; the plan's
+// command passes it, the manifest gives it back to the bit, and a camera of another camera, scene or
+// size is a one-line error naming the file and the field.
+TEST(FarmShots, APlannedCameraRendersAChunkByteForByteAsFramingDoes) {
+  SceneSpec scene = loadScene(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "trot.json");
+  scene.width = 96, scene.height = 54, scene.samples = 1;
+  const rig::RigProfile profile = resolveProfile(scene);
+  const CameraSpec& camera = findCamera(scene, "persp");
+  ASSERT_FALSE(camera.view.empty());
+  const std::optional<PlannedCamera> planned = planCamera(scene, profile, camera, 2);
+  ASSERT_TRUE(planned.has_value());
+  EXPECT_FALSE(planCamera(scene, profile, [&] { CameraSpec c = camera; c.view.clear(); return c; }()).has_value());
+
+  // Through the manifest, as a task reads it.
+  const fs::path out = fs::path(STIRRUP_BINARY_DIR) / ("farm_camera_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  fs::create_directories(out);
+  const FarmPlan plan = planRender(request(out, 2), scene.file, "persp", "10-13", {}, planned);
+  const std::vector<std::string>& command = plan.shots[0].command;
+  ASSERT_GE(command.size(), 2u);
+  EXPECT_EQ(command[command.size() - 2], "--camera-plan");
+  EXPECT_EQ(command.back(), manifestFile(out).string());
+  writeManifest(plan);
+  std::string where;
+  const PlannedCamera read = plannedCameraOf(manifestFile(out), "trot_persp", where);
+  EXPECT_EQ(where, manifestFile(out).string() + ": shots[0].camera");
+  const CameraSpec shown = plannedCameraSpec(scene, profile, camera, read, where);
+  EXPECT_TRUE(shown.view.empty());
+
+  Shot framing(scene, profile, camera, 2);
+  Shot reading(scene, profile, shown, 2);
+  EXPECT_EQ(framing.camera().position, shown.position);
+  EXPECT_EQ(framing.camera().target, shown.target);
+  for (int frame : plan.shots[0].chunks[1].frames) {  // the second chunk: 12, 13
+    const Camera a = framing.cameraAtFrame(frame), b = reading.cameraAtFrame(frame);
+    EXPECT_EQ(a.position, b.position) << frame;
+    EXPECT_EQ(a.target, b.target) << frame;
+    EXPECT_EQ(a.up, b.up) << frame;
+    EXPECT_EQ(a.fov_deg, b.fov_deg) << frame;
+    const Image x = framing.renderFrame(frame), y = reading.renderFrame(frame);
+    ASSERT_EQ(x.rgba.size(), y.rgba.size());
+    EXPECT_EQ(0, std::memcmp(x.rgba.data(), y.rgba.data(), x.rgba.size() * sizeof(glm::vec4))) << frame;
+    EXPECT_EQ(x.depth, y.depth) << frame;
+  }
+
+  const std::string file = manifestFile(out).string();
+  EXPECT_EQ(errorOf([&] { plannedCameraSpec(scene, profile, findCamera(scene, "side"), read, where); }),
+            file + ": shots[0].camera.name: expected \"side\" (the camera rendered), got \"persp\"");
+  SceneSpec bigger = scene;
+  bigger.width = 192, bigger.height = 108;
+  const std::string key = errorOf([&] { plannedCameraSpec(bigger, profile, camera, read, where); });
+  EXPECT_EQ(key.rfind(file + ": shots[0].camera.key: expected ", 0), 0u) << key;
+  EXPECT_NE(key.find("submit the farm again"), std::string::npos) << key;
+  EXPECT_EQ(errorOf([&] { plannedCameraOf(manifestFile(out), "trot_side", where); }),
+            file + ": shots: expected a shot named trot_side (the scene's and camera's names)");
+  fs::remove_all(out);
 }
 
 TEST(FarmShots, AnUnknownCameraIsTheScenesOwnError) {
