@@ -154,11 +154,12 @@ FarmPlan planMovies(const FarmRequest& r, const std::vector<MovieJob>& jobs, con
     shot.frames_dir = relativeTo(movieFrameDir(job, o), r.out);
     for (const fs::path& f : movieOutputs(job, o)) shot.outputs.push_back(relativeTo(f, r.out));
     int task = 0;
+    const std::vector<int> sheet_frames = movieSheetFrames(job, o);  // the scene read once, not once a frame
     for (std::vector<int>& chunk : chunkFrames(movieFrameList(job, o), r.chunk)) {
       FarmChunk c;
       c.task = ++task;
       for (int f : chunk)
-        for (const fs::path& file : movieFrameFiles(job, o, f)) c.files.push_back(relativeTo(file, r.out));
+        for (const fs::path& file : movieFrameFiles(job, o, f, sheet_frames)) c.files.push_back(relativeTo(file, r.out));
       c.frames = std::move(chunk);
       shot.chunks.push_back(std::move(c));
     }

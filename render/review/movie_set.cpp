@@ -202,10 +202,19 @@ std::vector<fs::path> movieOutputs(const MovieJob& job, const MovieOptions& o) {
   return files;
 }
 
-std::vector<fs::path> movieFrameFiles(const MovieJob& job, const MovieOptions& o, int frame) {
+std::vector<int> movieSheetFrames(const MovieJob& job, const MovieOptions& o) {
+  return contactFrames(movieFrameList(job, o), o.contact_count);
+}
+
+std::vector<fs::path> movieFrameFiles(const MovieJob& job, const MovieOptions& o, int frame,
+                                      const std::vector<int>& sheet_frames) {
   std::vector<fs::path> files = {framePng(job, o, frame)};
-  if (onSheet(contactFrames(movieFrameList(job, o), o.contact_count), frame)) files.push_back(sheetExr(job, o, frame));
+  if (onSheet(sheet_frames, frame)) files.push_back(sheetExr(job, o, frame));
   return files;
+}
+
+std::vector<fs::path> movieFrameFiles(const MovieJob& job, const MovieOptions& o, int frame) {
+  return movieFrameFiles(job, o, frame, movieSheetFrames(job, o));
 }
 
 int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vector<int>& wanted, bool resume,
@@ -291,7 +300,7 @@ MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
   const std::vector<int> sheet_frames = contactFrames(frames, o.contact_count);
   std::vector<fs::path> files;
   for (int f : frames) {
-    for (const fs::path& file : movieFrameFiles(job, o, f))
+    for (const fs::path& file : movieFrameFiles(job, o, f, sheet_frames))  // (the scene read once, above)
       if (!fs::is_regular_file(file))
         throw InputError(job.name + ": frame " + std::to_string(f) + " is missing (" + file.string() + ")");
     files.push_back(framePng(job, o, f));

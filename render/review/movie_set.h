@@ -80,8 +80,13 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& options, const st
 std::filesystem::path movieFrameDir(const MovieJob& job, const MovieOptions& options);
 // What stage 2 writes for the movie: NAME.mp4 and/or NAME.mov, and NAME_sheet.png.
 std::vector<std::filesystem::path> movieOutputs(const MovieJob& job, const MovieOptions& options);
+// The frames of `job` its contact sheet shows (every stage-1 run writes their EXRs too).
+std::vector<int> movieSheetFrames(const MovieJob& job, const MovieOptions& options);
 // The files stage 1 writes for `frame` (the PNG, and the EXR when the frame is on the contact sheet).
+// Finding the sheet's frames reads the scene: a caller asking about many frames passes them, found once.
 std::vector<std::filesystem::path> movieFrameFiles(const MovieJob& job, const MovieOptions& options, int frame);
+std::vector<std::filesystem::path> movieFrameFiles(const MovieJob& job, const MovieOptions& options, int frame,
+                                                   const std::vector<int>& sheet_frames);
 
 // Stage 2, from stage 1's files: the slate, the encoded movies and the contact sheet; then the frames are
 // removed unless keep_frames. InputError naming the first missing frame (nothing is encoded then).
