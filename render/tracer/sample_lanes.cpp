@@ -180,6 +180,34 @@ VF Haze(const LaneConstants& k, VF t) {
   return hn::Mul(hn::Mul(x, x), x);
 }
 
+// The ground's look at sample i, stored: its filtered checker's albedo at (px, pz) for a footprint
+// stretched by the view's cosine with the ground, and the haze at distance t.
+struct GroundLook {
+  VF ar, ag, ab, haze;
+};
+GroundLook StoreGroundLook(const LaneConstants& k, CameraLanes& L, size_t i, VF t, VF px, VF pz, VF cos_view) {
+  const VF footprint = hn::Add(Splat(k.footprint_at_0), hn::Mul(Splat(k.footprint_per_cm), t));
+  const VF width = hn::Div(hn::Div(footprint, cos_view), Splat(k.square_cm));
+  const VF odd = Checker(hn::Div(px, Splat(k.square_cm)), hn::Div(pz, Splat(k.square_cm)), width);
+  const GroundLook g = {Mix(Splat(k.color_a.x), Splat(k.color_b.x), odd), Mix(Splat(k.color_a.y), Splat(k.color_b.y), odd),
+                        Mix(Splat(k.color_a.z), Splat(k.color_b.z), odd), Haze(k, t)};
+  Store(g.ar, L.albedo_r, i), Store(g.ag, L.albedo_g, i), Store(g.ab, L.albedo_b, i);
+  Store(g.haze, L.haze, i);
+  return g;
+}
+
+// Open ground's light (r, g, b) at sample i, faded into the horizon by the haze, stored.
+void StoreOpenLight(const LaneConstants& k, CameraLanes& L, size_t i, VF haze, VF r, VF g, VF b) {
+  const MF hazed = hn::Lt(haze, Splat(1.0f));
+  const VF clear = hn::Sub(Splat(1.0f), haze);
+  auto fade = [&](VF c, float horizon) {
+    return hn::IfThenElse(hazed, hn::Add(hn::Mul(c, haze), hn::Mul(Splat(horizon), clear)), c);
+  };
+  Store(fade(r, k.horizon.x), L.radiance_r, i);
+  Store(fade(g, k.horizon.y), L.radiance_g, i);
+  Store(fade(b, k.horizon.z), L.radiance_b, i);
+}
+
 void GroundLanes(const LaneConstants& k, CameraLanes& L) {
   const DF df;
   const size_t lanes = hn::Lanes(df);
@@ -195,20 +223,13 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
     // The plane's surface (Integrator::gatherSurface reads it from here): the point (y exactly 0), the
     // footprint, the checker.
     const VF px = hn::Add(ox, hn::Mul(t, dx)), pz = hn::Add(oz, hn::Mul(t, dz));
-    const VF cos_view = hn::Max(hn::Abs(dy), Splat(0.02f));
-    const VF footprint = hn::Add(Splat(k.footprint_at_0), hn::Mul(Splat(k.footprint_per_cm), t));
-    const VF width = hn::Div(hn::Div(footprint, cos_view), Splat(k.square_cm));
-    const VF odd = Checker(hn::Div(px, Splat(k.square_cm)), hn::Div(pz, Splat(k.square_cm)), width);
-    const VF ar = Mix(Splat(k.color_a.x), Splat(k.color_b.x), odd);
-    const VF ag = Mix(Splat(k.color_a.y), Splat(k.color_b.y), odd);
-    const VF ab = Mix(Splat(k.color_a.z), Splat(k.color_b.z), odd);
-    const VF haze = Haze(k, t);
+    const GroundLook look = StoreGroundLook(k, L, i, t, px, pz, hn::Max(hn::Abs(dy), Splat(0.02f)));
+    const VF ar = look.ar, ag = look.ag, ab = look.ab, haze = look.haze;
     // CameraFrame::viewDepthF(p).
     const VF depth = hn::Add(hn::Add(hn::Mul(hn::Sub(px, Splat(k.position.x)), Splat(k.forward.x)),
                                      hn::Mul(hn::Sub(Splat(0.0f), Splat(k.position.y)), Splat(k.forward.y))),
                              hn::Mul(hn::Sub(pz, Splat(k.position.z)), Splat(k.forward.z)));
-    Store(ar, L.albedo_r, i), Store(ag, L.albedo_g, i), Store(ab, L.albedo_b, i);
-    Store(haze, L.haze, i), Store(depth, L.depth, i);
+    Store(depth, L.depth, i);
     // Open ground, seen from above: the shadow rays' origin (as ShadingLanes makes it) outside the
     // sun's rectangle, and farther than ao_distance from the characters' box.
     const VF offset = hn::Add(Splat(2e-3f), hn::Mul(Splat(3e-5f), hn::Max(hn::Max(hn::Abs(px), Splat(0.0f)), hn::Abs(pz))));
@@ -235,14 +256,7 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
     const VF ar2 = hn::Add(hn::Mul(hn::Mul(ar, cos_n), Splat(k.sun_radiance.x)), hn::Mul(ar, Splat(k.sky_irradiance.x)));
     const VF ag2 = hn::Add(hn::Mul(hn::Mul(ag, cos_n), Splat(k.sun_radiance.y)), hn::Mul(ag, Splat(k.sky_irradiance.y)));
     const VF ab2 = hn::Add(hn::Mul(hn::Mul(ab, cos_n), Splat(k.sun_radiance.z)), hn::Mul(ab, Splat(k.sky_irradiance.z)));
-    const MF hazed = hn::Lt(haze, Splat(1.0f));
-    const VF clear = hn::Sub(Splat(1.0f), haze);
-    auto fade = [&](VF r, float horizon) {
-      return hn::IfThenElse(hazed, hn::Add(hn::Mul(r, haze), hn::Mul(Splat(horizon), clear)), r);
-    };
-    Store(fade(ar2, k.horizon.x), L.radiance_r, i);
-    Store(fade(ag2, k.horizon.y), L.radiance_g, i);
-    Store(fade(ab2, k.horizon.z), L.radiance_b, i);
+    StoreOpenLight(k, L, i, haze, ar2, ag2, ab2);
   }
 }
 
@@ -273,18 +287,12 @@ void TerrainGroundLanes(const LaneConstants& k, CameraLanes& L) {
     nz = hn::IfThenElse(usable, hn::Div(nz, length), zero);
     Store(nx, L.gnx, i), Store(ny, L.gny, i), Store(nz, L.gnz, i);
     const VF cos_view = hn::Max(hn::Abs(hn::Add(hn::Add(hn::Mul(nx, dx), hn::Mul(ny, dy)), hn::Mul(nz, dz))), Splat(0.02f));
-    const VF footprint = hn::Add(Splat(k.footprint_at_0), hn::Mul(Splat(k.footprint_per_cm), t));
-    const VF width = hn::Div(hn::Div(footprint, cos_view), Splat(k.square_cm));
-    const VF odd = Checker(hn::Div(px, Splat(k.square_cm)), hn::Div(pz, Splat(k.square_cm)), width);
-    const VF ar = Mix(Splat(k.color_a.x), Splat(k.color_b.x), odd);
-    const VF ag = Mix(Splat(k.color_a.y), Splat(k.color_b.y), odd);
-    const VF ab = Mix(Splat(k.color_a.z), Splat(k.color_b.z), odd);
-    const VF haze = Haze(k, t);
+    const GroundLook look = StoreGroundLook(k, L, i, t, px, pz, cos_view);
+    const VF ar = look.ar, ag = look.ag, ab = look.ab, haze = look.haze;
     const VF depth = hn::Add(hn::Add(hn::Mul(hn::Sub(px, Splat(k.position.x)), Splat(k.forward.x)),
                                      hn::Mul(hn::Sub(py, Splat(k.position.y)), Splat(k.forward.y))),
                              hn::Mul(hn::Sub(pz, Splat(k.position.z)), Splat(k.forward.z)));
-    Store(ar, L.albedo_r, i), Store(ag, L.albedo_g, i), Store(ab, L.albedo_b, i);
-    Store(haze, L.haze, i), Store(depth, L.depth, i);
+    Store(depth, L.depth, i);
     MF open = hn::And(hn::And(ground, hn::Gt(ny, zero)), LoadMask(L.hills_open, i));
     if (!k.sun_region || !k.open_ground_shortcuts) {
       open = hn::FirstN(df, 0);
@@ -319,14 +327,7 @@ void TerrainGroundLanes(const LaneConstants& k, CameraLanes& L) {
     const VF ar2 = hn::Add(sun(ar, k.sun_radiance.x), hn::Mul(ar, Splat(k.sky_irradiance.x)));
     const VF ag2 = hn::Add(sun(ag, k.sun_radiance.y), hn::Mul(ag, Splat(k.sky_irradiance.y)));
     const VF ab2 = hn::Add(sun(ab, k.sun_radiance.z), hn::Mul(ab, Splat(k.sky_irradiance.z)));
-    const MF hazed = hn::Lt(haze, Splat(1.0f));
-    const VF clear = hn::Sub(Splat(1.0f), haze);
-    auto fade = [&](VF r, float horizon) {
-      return hn::IfThenElse(hazed, hn::Add(hn::Mul(r, haze), hn::Mul(Splat(horizon), clear)), r);
-    };
-    Store(fade(ar2, k.horizon.x), L.radiance_r, i);
-    Store(fade(ag2, k.horizon.y), L.radiance_g, i);
-    Store(fade(ab2, k.horizon.z), L.radiance_b, i);
+    StoreOpenLight(k, L, i, haze, ar2, ag2, ab2);
   }
 }
 

@@ -102,6 +102,17 @@ rig::Terrain testHills() {
 }
 const GroundRegion kHillsRegion{-2000.0, -2000.0, 2000.0, 2000.0};
 
+// The sphere of `scene` over `terrain` in kHillsRegion, rendered with `settings` at `frame`.
+template <class Scene>
+Image renderOverHills(const Scene& scene, const std::shared_ptr<const rig::Terrain>& terrain,
+                      const RenderSettings& settings, int frame) {
+  Renderer r(settings);
+  r.setTerrain(terrain, kHillsRegion);
+  const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
+  r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+  return r.render(scene.camera, frame);
+}
+
 // A top-down orthographic camera over (x, z), `size` cm across.
 Camera lookingDownAt(double x, double z, double size) {
   Camera c;
@@ -185,11 +196,7 @@ TEST(Renderer, UnevenGroundBytesDoNotDependOnTheThreadCount) {
   auto renderWith = [&](int threads) {
     RenderSettings s = scene.settings;
     s.threads = threads;
-    Renderer r(s);
-    r.setTerrain(terrain, kHillsRegion);
-    const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
-    r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
-    return r.render(scene.camera, 3);
+    return renderOverHills(scene, terrain, s, 3);
   };
   EXPECT_TRUE(sameBytes(renderWith(1), renderWith(2)));
 }
@@ -211,11 +218,7 @@ TEST(Renderer, HillShadowBytesDoNotDependOnTheThreadCountOrTarget) {
   auto renderWith = [&](int threads) {
     RenderSettings s = scene.settings;
     s.threads = threads;
-    Renderer r(s);
-    r.setTerrain(terrain, kHillsRegion);
-    const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
-    r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
-    return r.render(scene.camera, 5);
+    return renderOverHills(scene, terrain, s, 5);
   };
   const Image one = renderWith(1);
   EXPECT_TRUE(sameBytes(one, renderWith(2)));
@@ -244,11 +247,7 @@ TEST(Renderer, OpenHillsTakeTheLightTheirSunRaysWouldGive) {
   auto renderWith = [&](bool shortcuts) {
     RenderSettings s = scene.settings;
     s.open_ground_shortcuts = shortcuts;
-    Renderer r(s);
-    r.setTerrain(terrain, kHillsRegion);
-    const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
-    r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
-    return r.render(scene.camera, 2);
+    return renderOverHills(scene, terrain, s, 2);
   };
   const Image lanes = renderWith(true), traced = renderWith(false);
   int ground = 0;
