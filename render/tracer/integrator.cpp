@@ -337,14 +337,12 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   // Pass 1b (uneven ground): the camera rays against the heightfield in packets of 16 neighbouring
   // samples, copied from the lanes as they are (structure of arrays, no per-ray structures to fill or
   // for Embree to regroup), each ray from where it enters the heightfield's slab to where it leaves
-  // it; a packet wholly above the hills is not traced. The ground's distance then bounds the search
+  // it (cameraRayLanes); a packet wholly above the hills (the sky of most views) is not traced. The ground's distance then bounds the search
   // through the characters as the plane's does.
   if (terrain_ && n > 0) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    // Only the part of a ray within the heightfield's slab can meet it (cameraRayLanes): above the
-    // hills (the sky of most views) nothing is traced, the rest from where it enters the slab.
     alignas(64) RTCRayHit16 packet;
     alignas(64) int valid[16];
     for (std::size_t i = 0; i < 16; ++i) {
