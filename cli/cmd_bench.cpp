@@ -143,7 +143,7 @@ PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions
     r.pose += t.pose_ms;
     r.skin += t.skin_ms;
     r.bvh += t.bvh_ms;
-    r.trace += t.trace_ms - t.bvh_ms;
+    r.trace += t.trace_ms - t.bvh_ms - t.wait_ms;
     r.wait += t.wait_ms;
     frame_ms += t.frame_ms;
     rays += double(t.rays);
@@ -207,7 +207,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
     writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"),
                       r.png_level, write_ms);
     r.bake += t.pose_ms, r.skin += t.skin_ms - t.build_ms, r.build += t.build_ms, r.bvh += t.bvh_ms,
-        r.trace += t.trace_ms - t.bvh_ms;
+        r.trace += t.trace_ms - t.bvh_ms - t.wait_ms;
     r.wait += t.wait_ms;
     r.skinned_vertices += double(t.skinned_vertices);
     r.triangles += double(t.triangles);

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <future>
+#include <functional>
 #include <stdexcept>
 
 #include "render/scene/detail_level.h"
@@ -216,29 +216,24 @@ Image Shot::renderFrame(int frame, std::optional<int> next_frame, RayLog* log) {
   // With any building (build_ms); evaluated ahead, the skinning's own time and the copy into the renderer.
   timings_.skin_ms = (timings_.evaluated_ahead ? eval.skin_ms : eval_ms - timings_.pose_ms) + msSince(t0);
 
-  // The next frame's evaluation, on its own thread while this one traces. It writes ahead_ and the
-  // evaluator (which the renderer never reads); its camera lives here until it is joined below.
+  // The next frame's evaluation, as one more task on the renderer's threads while this one commits and
+  // traces. It writes ahead_ and the evaluator (which the renderer never reads); its camera lives here.
   const Camera next_camera = next_frame ? cameraAtFrame(*next_frame) : camera;
-  std::future<void> ahead;
+  std::function<void()> evaluate_next;
   if (next_frame) {
-    ahead = std::async(std::launch::async, [this, request = frameRequest(*next_frame, next_camera)] {
+    evaluate_next = [this, request = frameRequest(*next_frame, next_camera)] {
       characters_->evaluate(request, ahead_);
       ahead_timings_ = characters_->lastTimings();
-    });
+    };
   }
   t0 = Clock::now();
-  Image image = renderer_->render(camera, frame, log);  // on a throw, ahead's destructor joins it
+  Image image = renderer_->render(camera, frame, log, evaluate_next);  // the evaluation's error, if any
   timings_.trace_ms = msSince(t0);
   timings_.bvh_ms = renderer_->lastStats().commit_ms;
   timings_.rays = renderer_->lastStats().rays;
   timings_.triangles = renderer_->lastStats().triangles;
-  timings_.wait_ms = 0;
-  if (ahead.valid()) {
-    t0 = Clock::now();
-    ahead.get();  // the evaluation's error, if any
-    timings_.wait_ms = msSince(t0);
-    ahead_frame_ = *next_frame;
-  }
+  timings_.wait_ms = renderer_->lastStats().wait_ms;
+  if (next_frame) ahead_frame_ = *next_frame;
   timings_.frame_ms = msSince(call0);
   return image;
 }

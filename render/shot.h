@@ -33,8 +33,8 @@ struct FrameTimings {
   // The frame's bake, pose and skinning ran ahead, while the frame before it traced (Shot::renderFrame's
   // next_frame); pose_ms and skin_ms are then their own times on that thread, not time this frame waited.
   bool evaluated_ahead = false;
-  // After this frame's trace, the time spent waiting for the next frame's evaluation to finish (0
-  // when none was asked for or it finished first).
+  // After this frame's trace, the time spent waiting for the next frame's evaluation to finish (part
+  // of trace_ms; about 0 when none was asked for or it finished first).
   double wait_ms = 0;
   // renderFrame's wall-clock time, call to return: evaluating (unless done ahead), the BVH update, the
   // trace and any wait. With frames overlapped it is less than the sum of the parts.
@@ -60,9 +60,10 @@ class Shot {
 
   // With `log`, the frame's rays are also kept in it (see Renderer::render).
   Image renderFrame(int frame, RayLog* log = nullptr);
-  // Frames overlapped: renders `frame` and, while it traces, evaluates `next_frame` (bake, pose and
-  // skin: the frame the caller renders next) on another thread, so that frame's renderFrame starts at
-  // its BVH update. Returns once both are done (an evaluation's error is thrown here), so nothing of
+  // Frames overlapped: renders `frame` and, while it commits and traces, evaluates `next_frame` (bake,
+  // pose and skin: the frame the caller renders next) as one more task on the renderer's threads
+  // (Renderer::render's `alongside`: no more threads than asked for), so that frame's renderFrame
+  // starts at its BVH update. Returns once both are done (an evaluation's error is thrown here), so nothing of
   // the shot runs between calls and shots sharing characters may still take turns. The pixels are
   // the same as rendering each frame on its own: the evaluation writes only a frame the renderer does
   // not read (it is handed to the renderer, as before, when its frame renders), and every stage is a
