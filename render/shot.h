@@ -60,7 +60,7 @@ class Shot {
 
   // With `log`, the frame's rays are also kept in it (see Renderer::render).
   Image renderFrame(int frame, RayLog* log = nullptr);
-  // Frames overlapped: renders `frame` and, while it commits and traces, evaluates `next_frame` (bake,
+  // Frames overlapped: renders `frame` and, while it traces, evaluates `next_frame` (bake,
   // pose and skin: the frame the caller renders next) as one more task on the renderer's threads
   // (Renderer::render's `alongside`: no more threads than asked for), so that frame's renderFrame
   // starts at its BVH update. Returns once both are done (an evaluation's error is thrown here), so nothing of

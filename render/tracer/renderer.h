@@ -137,11 +137,10 @@ class Renderer {
 
   // Commits the changes since the last call and traces the frame. Deterministic for (scene, frame).
   // With `log`, also keeps the frame's rays in it (slower; for benchmarks only).
-  // With `alongside`, also runs it as one more task on the renderer's threads while the frame commits
-  // and traces, and returns when both are done (its exception is rethrown here). The tile loop and
-  // the commit are isolated from it, so a thread waiting in them never takes it up; it runs on a
-  // thread with nothing else to do, and the threads stay as many as RenderSettings::threads (frames
-  // overlapped: the shot evaluates its next frame so, render/shot.h). It must not touch the renderer.
+  // With `alongside`, also runs it as one more task on the renderer's threads once the BVH is
+  // committed, while the frame traces, and returns when both are done (its exception is rethrown
+  // here). The threads stay as many as RenderSettings::threads (frames overlapped: the shot evaluates
+  // its next frame so, render/shot.h). It must not touch the renderer.
   Image render(const Camera& camera, int frame, RayLog* log = nullptr, const std::function<void()>& alongside = {});
 
   // Casts the logged rays through Embree alone on the renderer's threads, in streams of 256
