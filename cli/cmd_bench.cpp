@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,20 @@ struct BenchOptions {
   std::string camera;     // its camera (empty: the first)
   std::string preset;     // one preset (empty: every one)
   int detail = -1;        // levels of detail: -1 automatic, 0-2 every pair at that level
+  int png_compression = -1;  // the frames' zlib level; -1: as `stirrup render` picks it for the preset
+  bool no_overlap = false;   // evaluate each frame before its trace instead of during the one before
 };
+
+// The frame rendered after frames[i], for Shot::renderFrame to evaluate during frames[i]'s trace.
+std::optional<int> nextOf(const BenchOptions& o, const std::vector<int>& frames, std::size_t i) {
+  if (o.no_overlap || i + 1 >= frames.size()) return std::nullopt;
+  return frames[i + 1];
+}
+
+// The zlib level a benched frame is written at: the option's, or what `stirrup render` would use.
+int pngLevel(const BenchOptions& o, const render::SceneSpec& scene) {
+  return o.png_compression >= 0 ? o.png_compression : render::defaultPngCompression(scene);
+}
 
 // The benchmark scene: scenes/trot.json's content, built in so the numbers never depend on a file
 // someone edited. The quality is set per preset.
@@ -67,9 +81,11 @@ struct PresetResult {
   std::string name;
   int samples = 0;
   double pose = 0, skin = 0, bvh = 0, trace = 0, write = 0;  // ms per frame
+  double wait = 0;  // ms per frame waiting after the trace for the next frame's evaluation
   double rays_per_frame = 0;
   double rays_per_second = 0, bound_rays_per_second = 0;
   double fps = 0;
+  int png_level = 0;  // the zlib level the frames were written at
 };
 
 using Clock = std::chrono::steady_clock;
@@ -82,10 +98,10 @@ constexpr double kMaxLoggedRays = 8e6;
 // Writes the frame as a PNG on the writer's thread, as `stirrup render` does, adding the write's own
 // time to write_ms (touched only by the writer thread; read after its last wait()).
 void writeInBackground(render::FrameWriter& writer, render::Image&& image, const std::filesystem::path& file,
-                       double& write_ms) {
-  writer.submit([image = std::move(image), file, &write_ms] {
+                       int png_level, double& write_ms) {
+  writer.submit([image = std::move(image), file, png_level, &write_ms] {
     const auto w0 = Clock::now();
-    render::writePng(image, file);
+    render::writePng(image, file, png_level);
     write_ms += secondsSince(w0) * 1000.0;
   });
 }
@@ -98,6 +114,7 @@ PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions
   PresetResult r;
   r.name = std::string(preset.name);
   r.samples = preset.samples;
+  r.png_level = pngLevel(o, scene);
 
   // Warm-up, and the rays of one frame: render frame 1 once to count them, again keeping them
   // (sampled when there are many), then replay them while the BVH is that frame's.
@@ -114,26 +131,33 @@ PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions
   // writes included; the write column is a write's own time on its thread.
   double rays = 0;
   double write_ms = 0;  // touched only by the writer thread, read after its last wait()
+  double frame_ms = 0;  // renderFrame's own wall-clock time, summed
+  std::vector<int> frames;
+  for (int i = 0; i < o.frames; ++i) frames.push_back(1 + i % 72);
   render::FrameWriter writer;
   const auto run0 = Clock::now();
   for (int i = 0; i < o.frames; ++i) {
-    const int frame = 1 + i % 72;
-    render::Image image = shot.renderFrame(frame);
+    render::Image image = shot.renderFrame(frames[std::size_t(i)], nextOf(o, frames, std::size_t(i)));
     const render::FrameTimings& t = shot.lastTimings();
-    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"), write_ms);
+    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"),
+                      r.png_level, write_ms);
     r.pose += t.pose_ms;
     r.skin += t.skin_ms;
     r.bvh += t.bvh_ms;
-    r.trace += t.trace_ms - t.bvh_ms;
+    r.trace += t.trace_ms - t.bvh_ms - t.wait_ms;
+    r.wait += t.wait_ms;
+    frame_ms += t.frame_ms;
     rays += double(t.rays);
   }
   writer.wait();
   const double run_s = secondsSince(run0);
   r.write = write_ms;
   const double n = double(o.frames);
-  r.pose /= n, r.skin /= n, r.bvh /= n, r.trace /= n, r.write /= n;
+  r.pose /= n, r.skin /= n, r.bvh /= n, r.trace /= n, r.write /= n, r.wait /= n;
   r.rays_per_frame = rays / n;
-  const double compute_s = (r.pose + r.skin + r.bvh + r.trace) / 1000.0;
+  // The frame's time without the write: renderFrame's wall clock (with frames overlapped, the pose and
+  // skin that ran during the previous trace are not in it; the trace they slowed and any wait are).
+  const double compute_s = frame_ms / n / 1000.0;
   r.rays_per_second = compute_s > 0.0 ? r.rays_per_frame / compute_s : 0.0;
   r.fps = run_s > 0.0 ? n / run_s : 0.0;
   return r;
@@ -150,6 +174,7 @@ struct SceneResult {
   std::string preset;
   double setup_s = 0, peak_bytes = 0;
   double bake = 0, skin = 0, bvh = 0, trace = 0, write = 0;  // ms per frame; skin without build
+  double wait = 0;      // ms per frame waiting after the trace for the next frame's evaluation
   double build = 0;     // ms per frame building levels of detail first needed (a one-time cost)
   double fps = 0;
   double pairs = 0, skinned_vertices = 0, triangles = 0;     // per frame
@@ -158,6 +183,7 @@ struct SceneResult {
   // so that a busy machine slows them alike: the scene's own, the built-in trot's at this preset, and
   // over a terrain the same shot on flat ground (0: the scene has no terrain).
   double scene_ms = 0, trot_ms = 0, flat_ms = 0;
+  int png_level = 0;    // the zlib level the frames were written at
 };
 
 // A frame's pose-to-trace time (ms), as the split above sums it.
@@ -169,6 +195,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   render::applyPreset(scene, preset);
   SceneResult r;
   r.preset = std::string(preset.name);
+  r.png_level = pngLevel(o, scene);
   const auto setup0 = Clock::now();
   render::Shot shot(scene, render::resolveProfile(scene), render::findCamera(scene, o.camera), o.threads);
   shot.setDetailLevel(o.detail);
@@ -182,11 +209,13 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   render::FrameWriter writer;
   const auto run0 = Clock::now();
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    render::Image image = shot.renderFrame(frames[i]);
+    render::Image image = shot.renderFrame(frames[i], nextOf(o, frames, i));
     const render::FrameTimings& t = shot.lastTimings();
-    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"), write_ms);
+    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"),
+                      r.png_level, write_ms);
     r.bake += t.pose_ms, r.skin += t.skin_ms - t.build_ms, r.build += t.build_ms, r.bvh += t.bvh_ms,
-        r.trace += t.trace_ms - t.bvh_ms;
+        r.trace += t.trace_ms - t.bvh_ms - t.wait_ms;
+    r.wait += t.wait_ms;
     r.skinned_vertices += double(t.skinned_vertices);
     r.triangles += double(t.triangles);
     for (int k = 0; k < 3; ++k) r.pairs_at_level[std::size_t(k)] += t.pairs_at_level[std::size_t(k)];
@@ -195,6 +224,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   const double n = double(frames.size());
   r.fps = n / secondsSince(run0);
   r.write = write_ms / n;
+  r.wait /= n;
   r.bake /= n, r.skin /= n, r.build /= n, r.bvh /= n, r.trace /= n, r.skinned_vertices /= n, r.triangles /= n;
   for (double& l : r.pairs_at_level) l /= n;
   r.pairs = std::max(1, shot.pairCount());
@@ -251,30 +281,33 @@ void runSceneBench(const BenchOptions& o) {
       presets[r.preset] = {
           {"fps", r.fps}, {"setup_s", r.setup_s}, {"peak_memory_bytes", r.peak_bytes},
           {"ms", {{"bake", r.bake}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write},
-                  {"build", r.build}}},
+                  {"build", r.build}, {"wait", r.wait}}},
           {"pairs", r.pairs}, {"skinned_vertices", r.skinned_vertices}, {"refit_triangles", r.triangles},
           {"pairs_at_level", r.pairs_at_level}, {"trot_ms", r.trot_ms}, {"times_trot", r.scene_ms / r.trot_ms},
           {"flat_ms", r.flat_ms > 0 ? nlohmann::json(r.flat_ms) : nlohmann::json(nullptr)},
-          {"times_flat", r.flat_ms > 0 ? nlohmann::json(r.scene_ms / r.flat_ms) : nlohmann::json(nullptr)}};
+          {"times_flat", r.flat_ms > 0 ? nlohmann::json(r.scene_ms / r.flat_ms) : nlohmann::json(nullptr)},
+          {"png_level", r.png_level}};
     }
     const nlohmann::json out = {{"scene", o.scene}, {"presets", presets}, {"threads", threads},
-                                {"detail", o.detail}, {"simd", render::simdTargetName()}};
+                                {"detail", o.detail}, {"simd", render::simdTargetName()}, {"overlap", !o.no_overlap}};
     std::printf("%s\n", out.dump().c_str());
     return;
   }
-  std::printf("stirrup bench: %s, %d thread%s, %d frame%s a preset, levels of detail %s (ms per frame)\n\n",
+  std::printf("stirrup bench: %s, %d thread%s, %d frame%s a preset, levels of detail %s, frames %s (ms per frame)\n\n",
               o.scene.c_str(), threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s",
-              o.detail < 0 ? "by size on screen" : ("all at level " + std::to_string(o.detail)).c_str());
-  std::printf("%-7s %7s %6s %6s %6s %8s %6s %6s %8s %8s %7s %8s %9s %9s %7s %8s\n", "preset", "fps", "bake", "skin",
-              "bvh", "trace", "write", "build", "x trot", "x flat", "setup", "peak MB", "skin kv/f", "refit kt/f",
-              "kt/pair", "levels");
+              o.detail < 0 ? "by size on screen" : ("all at level " + std::to_string(o.detail)).c_str(),
+              o.no_overlap ? "one after another" : "overlapped");
+  std::printf("%-7s %7s %6s %6s %6s %8s %6s %6s %3s %6s %8s %8s %7s %8s %9s %9s %7s %8s\n", "preset", "fps", "bake",
+              "skin", "bvh", "trace", "wait", "write", "png", "build", "x trot", "x flat", "setup", "peak MB", "skin kv/f",
+              "refit kt/f", "kt/pair", "levels");
   for (const SceneResult& r : results) {
     char levels[48];
     std::snprintf(levels, sizeof levels, "%.0f/%.0f/%.0f", r.pairs_at_level[0], r.pairs_at_level[1], r.pairs_at_level[2]);
     char flat[16] = "       -";
     if (r.flat_ms > 0) std::snprintf(flat, sizeof flat, "%7.2fx", r.scene_ms / r.flat_ms);
-    std::printf("%-7s %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %6.1f %7.2fx %8s %6.1fs %8.0f %9.0f %9.0f %7.1f %8s\n",
-                r.preset.c_str(), r.fps, r.bake, r.skin, r.bvh, r.trace, r.write, r.build, r.scene_ms / r.trot_ms, flat,
+    std::printf("%-7s %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %6.1f %3d %6.1f %7.2fx %8s %6.1fs %8.0f %9.0f %9.0f %7.1f %8s\n",
+                r.preset.c_str(), r.fps, r.bake, r.skin, r.bvh, r.trace, r.wait, r.write, r.png_level, r.build,
+                r.scene_ms / r.trot_ms, flat,
                 r.setup_s, r.peak_bytes / 1e6,
                 r.skinned_vertices / 1e3, r.triangles / 1e3, r.triangles / 1e3 / r.pairs, levels);
   }
@@ -285,6 +318,8 @@ void runSceneBench(const BenchOptions& o) {
               "x flat: over the same frame of the shot on flat ground (a scene with a terrain), likewise;\n"
               "skin kv/f, refit kt/f: thousands of vertices skinned and triangles refitted a frame (kt/pair: per\n"
               "pair); levels: pairs at full, half and quarter detail a frame (render/scene/detail_level.h);\n"
+              "overlapped: each frame's bake, pose and skin run while the frame before it traces; wait: after a\n"
+              "trace, waiting for the next frame's evaluation; png: the zlib level the frames were written at;\n"
               "peak MB: the process's peak resident memory.\n");
 }
 
@@ -309,25 +344,30 @@ void runBench(const BenchOptions& o) {
       presets[r.name] = {{"fps", r.fps},
                          {"rays_per_second", r.rays_per_second},
                          {"bound_rays_per_second", r.bound_rays_per_second},
-                         {"ms", {{"pose", r.pose}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write}}}};
+                         {"png_level", r.png_level},
+                         {"ms", {{"pose", r.pose}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write},
+                                 {"wait", r.wait}}}};
     }
     const nlohmann::json out = {{"presets", presets}, {"threads", threads}, {"resolution", {640, 360}},
-                                {"simd", render::simdTargetName()}};
+                                {"simd", render::simdTargetName()}, {"overlap", !o.no_overlap}};
     std::printf("%s\n", out.dump().c_str());
     return;
   }
-  std::printf("stirrup bench: trot side view, 640x360, %d thread%s, %d frame%s a preset, SIMD %s (ms per frame)\n\n",
-              threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s", render::simdTargetName().c_str());
-  std::printf("%-7s %4s %7s %6s %6s %6s %8s %6s %9s %9s %10s %6s\n", "preset", "spp", "fps", "pose", "skin",
-              "bvh", "trace", "write", "Mrays/f", "Mrays/s", "bound Mr/s", "ratio");
+  std::printf("stirrup bench: trot side view, 640x360, %d thread%s, %d frame%s a preset, SIMD %s, frames %s (ms per frame)\n\n",
+              threads, threads == 1 ? "" : "s", o.frames, o.frames == 1 ? "" : "s", render::simdTargetName().c_str(),
+              o.no_overlap ? "one after another" : "overlapped");
+  std::printf("%-7s %4s %7s %6s %6s %6s %8s %6s %6s %3s %9s %9s %10s %6s\n", "preset", "spp", "fps", "pose", "skin",
+              "bvh", "trace", "wait", "write", "png", "Mrays/f", "Mrays/s", "bound Mr/s", "ratio");
   for (const PresetResult& r : results) {
-    std::printf("%-7s %4d %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %9.2f %9.2f %10.2f %5.0f%%\n", r.name.c_str(),
-                r.samples, r.fps, r.pose, r.skin, r.bvh, r.trace, r.write, r.rays_per_frame / 1e6,
+    std::printf("%-7s %4d %7.2f %6.1f %6.1f %6.1f %8.1f %6.1f %6.1f %3d %9.2f %9.2f %10.2f %5.0f%%\n", r.name.c_str(),
+                r.samples, r.fps, r.pose, r.skin, r.bvh, r.trace, r.wait, r.write, r.png_level, r.rays_per_frame / 1e6,
                 r.rays_per_second / 1e6, r.bound_rays_per_second / 1e6,
                 r.bound_rays_per_second > 0 ? 100.0 * r.rays_per_second / r.bound_rays_per_second : 0.0);
   }
   std::printf("\nratio: the renderer's rays per second (frame time without write) over the bound, the same\n"
-              "rays cast through Embree alone with no shading.\n");
+              "rays cast through Embree alone with no shading; overlapped: each frame's pose and skin run while\n"
+              "the frame before it traces; wait: after a trace, waiting for the next frame's evaluation;\n"
+              "png: the zlib level the frames were written at.\n");
 }
 
 }  // namespace
@@ -350,6 +390,11 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--camera,-c", opts->camera, "With --scene: its camera (default: the first)");
   cmd->add_option("--preset,-p", opts->preset, "With --scene: only this preset (draft, review, final)")
       ->check(CLI::IsMember({"draft", "review", "final"}));
+  cmd->add_option("--png-compression", opts->png_compression,
+                  "zlib level of the written frames, 0-9 (default: as stirrup render picks it, 0 for draft, else 1)")
+      ->check(CLI::Range(render::kPngCompressionMin, render::kPngCompressionMax));
+  cmd->add_flag("--no-overlap", opts->no_overlap,
+                "Evaluate each frame before its trace, as before frames were overlapped (for comparison)");
   cmd->add_option("--detail", opts->detail, "With --scene: -1 picks each pair's level of detail by its size on "
                   "screen (default), 0-2 draws every pair at that level")->check(CLI::Range(-1, 2));
   cmd->callback([opts] { runBench(*opts); });

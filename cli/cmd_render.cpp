@@ -2,6 +2,7 @@
 // with the compositing passes), and a movie with --movie.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -37,6 +38,7 @@ struct RenderOptions {
   bool exr = false;
   int threads = 0;
   int padding = render::kDefaultFramePadding;
+  int png_compression = -1;  // -1: the scene's default (render::defaultPngCompression)
   bool progress = false;
   bool resume = false;
   std::string camera_plan;  // a farm plan (farm.json) whose framed camera this shot uses
@@ -84,24 +86,34 @@ void runRender(const RenderOptions& o) {
     const render::farm::PlannedCamera planned = render::farm::plannedCameraOf(o.camera_plan, shot_name, where);
     shown = render::farm::plannedCameraSpec(scene, profile, camera, planned, where);
   }
+  const int png_level = o.png_compression >= 0 ? o.png_compression : render::defaultPngCompression(scene);
   render::Shot shot(scene, profile, shown, o.threads);
   ProgressBar bar("render " + scene.name + "_" + camera.name, static_cast<int>(frames.size()), o.progress);
+  // The frames to render (with --resume, those not yet written), so each can be evaluated while the
+  // one before it traces (render::Shot::renderFrame's next frame).
+  std::vector<int> to_render;
+  for (int frame : frames) {
+    const bool complete = (!png || fs::exists(png_frames.path(frame))) && (!exr || fs::exists(exr_frames.path(frame)));
+    if (!(o.resume && complete)) to_render.push_back(frame);
+  }
   std::vector<fs::path> written;
   render::FrameWriter writer;
   int done = 0;
+  std::size_t next = 0;  // into to_render
   for (int frame : frames) {
     const fs::path png_file = png_frames.path(frame), exr_file = exr_frames.path(frame);
-    const bool complete = (!png || fs::exists(png_file)) && (!exr || fs::exists(exr_file));
-    if (!(o.resume && complete)) {
+    if (next < to_render.size() && to_render[next] == frame) {
+      ++next;
       render::warnImpossibleFrame(scene, frame);
-      render::Image image = shot.renderFrame(frame);
+      const std::optional<int> next_frame = next < to_render.size() ? std::optional<int>(to_render[next]) : std::nullopt;
+      render::Image image = shot.renderFrame(frame, next_frame);
       const render::ExrMetadata metadata =
           exr ? render::exrFrameMetadata(shot.cameraAtFrame(frame), camera.name, frame, render::frameTime(scene, frame),
                                          scene.name)
               : render::ExrMetadata{};
       // Written while the next frame renders (render/tracer/frame_writer.h); still each to a temporary name.
-      writer.submit([image = std::move(image), metadata, png_file, exr_file, png, exr] {
-        if (png) render::writePng(image, png_file);
+      writer.submit([image = std::move(image), metadata, png_file, exr_file, png, exr, png_level] {
+        if (png) render::writePng(image, png_file, png_level);
         if (exr) render::writeExr(image, exr_file, metadata);
       });
     }
@@ -138,6 +150,11 @@ void addRenderCommand(CLI::App& app) {
                   "png (sRGB review frames), exr (linear half float with RGBA, N, Z, matte and objectId "
                   "passes and the camera in the header) or both")
       ->check(CLI::IsMember({"png", "exr", "both"}));
+  cmd->add_option("--png-compression", opts->png_compression,
+                  "zlib level of the PNG frames, 0 (stored: the fastest write, the largest file) to 9 (the "
+                  "smallest file); the pixels are the same at every level. Default: 0 for a draft (one sample "
+                  "a pixel), else 1")
+      ->check(CLI::Range(render::kPngCompressionMin, render::kPngCompressionMax));
   cmd->add_flag("--exr", opts->exr, "Also write the EXR frames (same as --format both)");
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, render::kMaxFramePadding));

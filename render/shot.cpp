@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <stdexcept>
 
 #include "render/scene/detail_level.h"
@@ -90,6 +91,7 @@ void Shot::setDetailLevel(int level) {
   if (level < -1 || level >= kDetailLevels)
     throw std::invalid_argument("Shot::setDetailLevel: expected -1 to " + std::to_string(kDetailLevels - 1));
   detail_level_ = level;
+  ahead_frame_.reset();
 }
 
 int Shot::pairCount() const { return characters_->isCrowd() ? characters_->pairCount() : 0; }
@@ -182,26 +184,57 @@ void Shot::showMeshes() {
   }
 }
 
-Image Shot::renderFrame(int frame, RayLog* log) {
-  const Camera camera = cameraAtFrame(frame);
+FrameRequest Shot::frameRequest(int frame, const Camera& camera) const {
   FrameRequest request;
   request.frame = frame;
   request.shown = shownAs(camera_->spec(), rigid_rider_);
   request.level = {detail_level_, &camera, scene_.width, scene_.height};
+  return request;
+}
+
+Image Shot::renderFrame(int frame, RayLog* log) { return renderFrame(frame, std::nullopt, log); }
+
+Image Shot::renderFrame(int frame, std::optional<int> next_frame, RayLog* log) {
+  const auto call0 = Clock::now();
+  const Camera camera = cameraAtFrame(frame);
   auto t0 = Clock::now();
-  characters_->evaluate(request, frame_);
-  const EvalTimings& eval = characters_->lastTimings();
+  EvalTimings eval;
+  timings_.evaluated_ahead = ahead_frame_ == frame;
+  if (timings_.evaluated_ahead) {
+    std::swap(frame_, ahead_);
+    eval = ahead_timings_;
+  } else {
+    characters_->evaluate(frameRequest(frame, camera), frame_);
+    eval = characters_->lastTimings();
+  }
+  ahead_frame_.reset();
   timings_.pose_ms = eval.bake_ms + eval.pose_ms;
   timings_.build_ms = eval.build_ms;
-  showMeshes();
-  timings_.skin_ms = msSince(t0) - timings_.pose_ms;  // with any building (build_ms)
-
+  const double eval_ms = msSince(t0);
   t0 = Clock::now();
-  Image image = renderer_->render(camera, frame, log);
+  showMeshes();
+  // With any building (build_ms); evaluated ahead, the skinning's own time and the copy into the renderer.
+  timings_.skin_ms = (timings_.evaluated_ahead ? eval.skin_ms : eval_ms - timings_.pose_ms) + msSince(t0);
+
+  // The next frame's evaluation, as one more task on the renderer's threads while this one commits and
+  // traces. It writes ahead_ and the evaluator (which the renderer never reads); its camera lives here.
+  const Camera next_camera = next_frame ? cameraAtFrame(*next_frame) : camera;
+  std::function<void()> evaluate_next;
+  if (next_frame) {
+    evaluate_next = [this, request = frameRequest(*next_frame, next_camera)] {
+      characters_->evaluate(request, ahead_);
+      ahead_timings_ = characters_->lastTimings();
+    };
+  }
+  t0 = Clock::now();
+  Image image = renderer_->render(camera, frame, log, evaluate_next);  // the evaluation's error, if any
   timings_.trace_ms = msSince(t0);
   timings_.bvh_ms = renderer_->lastStats().commit_ms;
   timings_.rays = renderer_->lastStats().rays;
   timings_.triangles = renderer_->lastStats().triangles;
+  timings_.wait_ms = renderer_->lastStats().wait_ms;
+  if (next_frame) ahead_frame_ = *next_frame;
+  timings_.frame_ms = msSince(call0);
   return image;
 }
 

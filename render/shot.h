@@ -9,6 +9,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "render/scene/camera.h"
@@ -29,6 +30,15 @@ struct FrameTimings {
   // skin_ms: a one-time cost, like the set-up's.
   double build_ms = 0;
   double bvh_ms = 0;   // the BVH update, part of trace_ms
+  // The frame's bake, pose and skinning ran ahead, while the frame before it traced (Shot::renderFrame's
+  // next_frame); pose_ms and skin_ms are then their own times on that thread, not time this frame waited.
+  bool evaluated_ahead = false;
+  // After this frame's trace, the time spent waiting for the next frame's evaluation to finish (part
+  // of trace_ms; about 0 when none was asked for or it finished first).
+  double wait_ms = 0;
+  // renderFrame's wall-clock time, call to return: evaluating (unless done ahead), the BVH update, the
+  // trace and any wait. With frames overlapped it is less than the sum of the parts.
+  double frame_ms = 0;
   uint64_t rays = 0;   // camera, shadow and sky rays of the frame
   size_t triangles = 0;             // shown (refitted), every pair at its level
   uint64_t skinned_vertices = 0;    // of the horses and riders shown
@@ -50,6 +60,15 @@ class Shot {
 
   // With `log`, the frame's rays are also kept in it (see Renderer::render).
   Image renderFrame(int frame, RayLog* log = nullptr);
+  // Frames overlapped: renders `frame` and, while it traces, evaluates `next_frame` (bake,
+  // pose and skin: the frame the caller renders next) as one more task on the renderer's threads
+  // (Renderer::render's `alongside`: no more threads than asked for), so that frame's renderFrame
+  // starts at its BVH update. Returns once both are done (an evaluation's error is thrown here), so nothing of
+  // the shot runs between calls and shots sharing characters may still take turns. The pixels are
+  // the same as rendering each frame on its own: the evaluation writes only a frame the renderer does
+  // not read (it is handed to the renderer, as before, when its frame renders), and every stage is a
+  // pure function of the frame. A next frame that is not the one rendered next is evaluated again.
+  Image renderFrame(int frame, std::optional<int> next_frame, RayLog* log = nullptr);
   Renderer& renderer() { return *renderer_; }
   // The characters it evaluates (every pair of the scene).
   ShotEvaluator& characters() { return *characters_; }
@@ -74,7 +93,10 @@ class Shot {
   void pairPoints(int pair, int frame, int stride, std::vector<glm::dvec3>& horse, std::vector<glm::dvec3>& rider);
   // The rider rigidly fixed to the saddle (every rider channel at rest): what the rig adds, for the
   // layered comparison (render/review/layer.h).
-  void setRigidRider(bool rigid) { rigid_rider_ = rigid; }
+  void setRigidRider(bool rigid) {
+    rigid_rider_ = rigid;
+    ahead_frame_.reset();
+  }
   // A crowd's levels of detail (render/scene/detail_level.h): -1 (the default) picks each pair's level from
   // its size on screen; 0 to 2 draws every pair at that level (benchmarks, the switch's test).
   void setDetailLevel(int level);
@@ -87,12 +109,19 @@ class Shot {
   // The characters at a frame as this shot shows them (its camera's hold and treadmill, the rigid
   // rider), every pair at full detail or only `pair`.
   void evaluatePoints(int frame, int pair);
+  // The request renderFrame evaluates a frame with, seen through `camera` (its levels of detail).
+  FrameRequest frameRequest(int frame, const Camera& camera) const;
 
   SceneSpec scene_;
   std::shared_ptr<ShotEvaluator> characters_;
   std::unique_ptr<ShotCamera> camera_;
   std::unique_ptr<Renderer> renderer_;
   ShotFrame frame_;  // the characters' last evaluated frame
+  // The frame evaluated ahead (renderFrame's next_frame), its number and its evaluation's timings;
+  // cleared when anything that changes a frame's request changes.
+  ShotFrame ahead_;
+  std::optional<int> ahead_frame_;
+  EvalTimings ahead_timings_;
   // Each pair's meshes in the renderer, per level (horse, rider; -1 until first shown).
   std::vector<std::vector<std::array<int, 2>>> meshes_;
   FrameTimings timings_;

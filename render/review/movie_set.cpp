@@ -268,11 +268,15 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
   // Burn-ins and the writes of frame f happen on the writer's thread while f + 1 renders.
   FrameWriter writer;
   const bool side_by_side = style.mode == LayerMode::SideBySide;
-  for (int f : frames) {
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const int f = frames[k];
+    // Each frame evaluated while the one before traces (Shot::renderFrame); the rigid panel's shot
+    // shares the characters and takes its turn after, each joining its evaluation before it returns.
+    const std::optional<int> next = k + 1 < frames.size() ? std::optional<int>(frames[k + 1]) : std::nullopt;
     warnImpossibleFrame(scene, f);
-    Image image = shot.renderFrame(f);
+    Image image = shot.renderFrame(f, next);
     if (rigid) {
-      image = layerFrame(image, rigid->renderFrame(f), style);
+      image = layerFrame(image, rigid->renderFrame(f, next), style);
     } else if (footage) {
       const std::optional<int> theirs = footage->theirFrame(f);
       const Image other = style.mode == LayerMode::SideBySide && theirs ? footage->source(*theirs)

@@ -3,6 +3,7 @@
 #include <array>
 #include <string>
 
+#include "render/tracer/image.h"
 #include "rig/error.h"
 
 namespace stirrup::render {
@@ -29,6 +30,13 @@ void applyPreset(SceneSpec& scene, const QualityPreset& p) {
   scene.samples = p.samples;
   scene.light_samples = p.light_samples;
   scene.ao_samples = p.ao_samples;
+}
+
+int defaultPngCompression(const SceneSpec& scene) {
+  const QualityPreset& draft = findPreset("draft");
+  const bool is_draft = scene.samples <= draft.samples && scene.light_samples <= draft.light_samples &&
+                        scene.ao_samples <= draft.ao_samples;
+  return is_draft ? kDraftPngCompression : kReviewPngCompression;
 }
 
 }  // namespace stirrup::render

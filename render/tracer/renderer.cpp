@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #if defined(__SSE__) || defined(__x86_64__)
 #include <xmmintrin.h>
@@ -162,7 +163,7 @@ void Renderer::setMeshEnabled(int mesh, bool enabled) {
   state_->scene.setEnabled(state_->geometry_of_mesh[size_t(mesh)], enabled);
 }
 
-Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
+Image Renderer::render(const Camera& camera, int frame, RayLog* log, const std::function<void()>& alongside) {
   const int w = settings_.width, h = settings_.height;
   const CameraFrame camera_frame(camera, w, h);
   Image image(w, h);
@@ -179,10 +180,14 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
   auto& buffers = state_->tile_buffers;
   const size_t stride = log ? size_t(std::max(1, log->pixel_stride)) : 0;
   std::atomic<uint64_t> rays{0};
-  state_->arena.execute([&] {
+  tbb::task_group side;
+  const auto traceFrame = [&] {
     const auto t0 = Clock::now();
     state_->scene.commit();
     stats_.commit_ms = msSince(t0);
+    // After the commit: the refit has every thread (on two cores it scales with them, and taking
+    // one away for the side task only moved its time onto the trace).
+    if (alongside) side.run(alongside);
     const Integrator integrator(settings_, state_->scene, state_->by_geometry, state_->terrain.get(),
                                 state_->ground_floor, state_->hills.get(), state_->ground_mesh.get());
 
@@ -229,6 +234,17 @@ Image Renderer::render(const Camera& camera, int frame, RayLog* log) {
         },
         tbb::simple_partitioner());
     stats_.trace_ms = msSince(t1);
+  };
+  state_->arena.execute([&] {
+    try {
+      tbb::this_task_arena::isolate([&] { traceFrame(); });
+    } catch (...) {
+      if (alongside) side.wait();  // its own error is dropped: the frame's is already leaving
+      throw;
+    }
+    const auto w0 = Clock::now();
+    if (alongside) side.wait();
+    stats_.wait_ms = msSince(w0);
   });
   stats_.triangles = state_->scene.enabledTriangleCount();
   stats_.rays = rays.load();

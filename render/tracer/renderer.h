@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -97,6 +98,7 @@ struct RenderSettings {
 struct RenderStats {
   double commit_ms = 0;  // BVH rebuild or refit
   double trace_ms = 0;   // tracing and shading
+  double wait_ms = 0;    // after the trace, waiting for render()'s `alongside` to finish
   size_t triangles = 0;  // of the meshes shown (a crowd's pairs at their levels of detail)
   uint64_t rays = 0;     // camera, shadow and sky rays of the frame (including those culled before Embree)
 };
@@ -135,7 +137,11 @@ class Renderer {
 
   // Commits the changes since the last call and traces the frame. Deterministic for (scene, frame).
   // With `log`, also keeps the frame's rays in it (slower; for benchmarks only).
-  Image render(const Camera& camera, int frame, RayLog* log = nullptr);
+  // With `alongside`, also runs it as one more task on the renderer's threads once the BVH is
+  // committed, while the frame traces, and returns when both are done (its exception is rethrown
+  // here). The threads stay as many as RenderSettings::threads (frames overlapped: the shot evaluates
+  // its next frame so, render/shot.h). It must not touch the renderer.
+  Image render(const Camera& camera, int frame, RayLog* log = nullptr, const std::function<void()>& alongside = {});
 
   // Casts the logged rays through Embree alone on the renderer's threads, in streams of 256
   // consecutive rays with rtcIntersect1M / rtcOccluded1M as the integrator does, and returns the wall-clock

@@ -23,7 +23,8 @@ TEST(BenchCommand, JsonHasEveryPresetAndPositiveFiniteNumbers) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);  // exactly one JSON object on stdout
   ASSERT_TRUE(j.is_object());
-  EXPECT_EQ(j.size(), 4u);
+  EXPECT_EQ(j.size(), 5u);
+  EXPECT_EQ(j.at("overlap"), true);  // frames overlapped unless --no-overlap
   EXPECT_EQ(j.at("resolution"), nlohmann::json::array({640, 360}));
   // The SIMD target the integrator's kernels ran on, as Highway names it.
   ASSERT_TRUE(j.at("simd").is_string());
@@ -40,17 +41,40 @@ TEST(BenchCommand, JsonHasEveryPresetAndPositiveFiniteNumbers) {
     SCOPED_TRACE(name);
     ASSERT_TRUE(presets.contains(name));
     const nlohmann::json& p = presets.at(name);
-    EXPECT_EQ(p.size(), 4u);
+    EXPECT_EQ(p.size(), 5u);
+    // Drafts are written stored (zlib level 0), review and final at level 1 (defaultPngCompression).
+    EXPECT_EQ(p.at("png_level"), std::string(name) == "draft" ? 0 : 1);
     expectPositiveNumber(p.at("fps"), "fps");
     expectPositiveNumber(p.at("rays_per_second"), "rays_per_second");
     expectPositiveNumber(p.at("bound_rays_per_second"), "bound_rays_per_second");
     const nlohmann::json& ms = p.at("ms");
     ASSERT_TRUE(ms.is_object());
-    EXPECT_EQ(ms.size(), 5u);
+    EXPECT_EQ(ms.size(), 6u);
     for (const char* part : {"pose", "skin", "bvh", "trace", "write"}) expectPositiveNumber(ms.at(part), part);
+    // Waiting for the next frame's evaluation after a trace can be nothing at all, never less.
+    ASSERT_TRUE(ms.at("wait").is_number());
+    EXPECT_GE(ms.at("wait").get<double>(), 0.0);
   }
   // That more samples cost more is a timing, measured by BM_TrotFramePreset (tests/bench/render_bench.cpp),
   // not asserted here.
+}
+
+// --no-overlap and --png-compression reach the JSON: frames one after another (nothing to wait for), and
+// every preset's frames written at the level asked for.
+TEST(BenchCommand, NoOverlapAndAPngLevelAreWhatTheJsonSays) {
+  const std::string scene = quote(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
+  const CommandResult r =
+      runStirrup("bench --json --frames 2 --preset draft --no-overlap --png-compression 6 --scene " + scene);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("overlap"), false);
+  const nlohmann::json& p = j.at("presets").at("draft");
+  EXPECT_EQ(p.at("png_level"), 6);
+  // Nothing runs beside the trace, so the wait is only the clock read around it (well under 0.1 ms).
+  EXPECT_LT(p.at("ms").at("wait").get<double>(), 0.1);
+  const CommandResult bad = runStirrup("bench --json --frames 1 --png-compression 10");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--png-compression"), std::string::npos) << bad.err;
 }
 
 // stirrup bench --scene: a crowd's split, counts and memory for one preset. The counts are checked

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -218,6 +219,58 @@ TEST(Shot, ShotsSharingTheirCharactersRenderAsShotsOfTheirOwn) {
     shared.characterPoints(frame, 1, horse_b, rider_b);
     EXPECT_NE(rider_a, rider_b) << "frame " << frame;
   }
+}
+
+bool sameBytes(const Image& a, const Image& b) {
+  return a.rgba == b.rgba && a.depth == b.depth && a.matte == b.matte && a.normal == b.normal &&
+         a.object_id == b.object_id;
+}
+
+// Frames overlapped (issue 35): a frame evaluated while the one before it traced renders the same bytes,
+// colour and every pass, as the frame rendered on its own by a shot of its own, on another thread count.
+// A crowd seen in perspective, so each pair's level of detail follows the camera of the frame evaluated
+// ahead (and levels are built during another frame's trace). A frame asked ahead but not rendered next
+// is evaluated again.
+TEST(Shot, FramesOverlappedRenderTheBytesOfFramesAlone) {
+  const SceneSpec scene = crowdScene();
+  Shot ahead(scene, resolveProfile(scene), findCamera(scene, "persp"), 0);
+  Shot alone(scene, resolveProfile(scene), findCamera(scene, "persp"), 1);
+  const std::vector<int> frames = {1, 9, 2, 24};
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const Image a = ahead.renderFrame(frames[k], k + 1 < frames.size() ? std::optional<int>(frames[k + 1]) : std::nullopt);
+    EXPECT_EQ(ahead.lastTimings().evaluated_ahead, k > 0) << "frame " << frames[k];
+    EXPECT_TRUE(sameBytes(a, alone.renderFrame(frames[k]))) << "frame " << frames[k];
+  }
+  ahead.renderFrame(5, 6);
+  const Image other = ahead.renderFrame(7);  // 6 was evaluated ahead, not 7
+  EXPECT_FALSE(ahead.lastTimings().evaluated_ahead);
+  EXPECT_TRUE(sameBytes(other, alone.renderFrame(7)));
+}
+
+// Two shots sharing their characters (a layered movie's panels) may each evaluate the next frame while
+// they trace, taking turns: each renders what a shot of its own renders. Switching the rider to rigid
+// after a frame was evaluated ahead drops that frame: it was evaluated with the rigged rider.
+TEST(Shot, ShotsSharingTheirCharactersMayEachEvaluateAhead) {
+  const SceneSpec scene = pathOverHills();
+  CameraSpec camera;
+  camera.ortho_height_cm = 400;
+  Shot rigged(scene, resolveProfile(scene), camera, 0);
+  Shot rigid(rigged.sharedCharacters(), camera, 0);
+  rigid.setRigidRider(true);
+  Shot own_rigged(scene, resolveProfile(scene), camera, 1), own_rigid(scene, resolveProfile(scene), camera, 1);
+  own_rigid.setRigidRider(true);
+  const std::vector<int> frames = {3, 4, 40, 41};
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const std::optional<int> next = k + 1 < frames.size() ? std::optional<int>(frames[k + 1]) : std::nullopt;
+    const Image a = rigged.renderFrame(frames[k], next), b = rigid.renderFrame(frames[k], next);
+    EXPECT_TRUE(sameBytes(a, own_rigged.renderFrame(frames[k]))) << "frame " << frames[k];
+    EXPECT_TRUE(sameBytes(b, own_rigid.renderFrame(frames[k]))) << "frame " << frames[k];
+  }
+  rigged.renderFrame(60, 61);
+  rigged.setRigidRider(true);
+  const Image switched = rigged.renderFrame(61);
+  EXPECT_FALSE(rigged.lastTimings().evaluated_ahead);
+  EXPECT_TRUE(sameBytes(switched, own_rigid.renderFrame(61)));
 }
 
 // Changing one pair's profile (pair 1: english -> novice) changes only pixels within that pair's reach

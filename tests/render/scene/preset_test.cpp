@@ -39,6 +39,20 @@ TEST(QualityPreset, EachPresetCostsMoreThanTheOneBefore) {
   EXPECT_LT(rays(p[1]), rays(p[2]));
 }
 
+TEST(QualityPreset, DraftWritesItsPngsStoredTheOthersAtLevelOne) {
+  SceneSpec scene;
+  applyPreset(scene, findPreset("draft"));
+  EXPECT_EQ(defaultPngCompression(scene), 0);
+  applyPreset(scene, findPreset("review"));
+  EXPECT_EQ(defaultPngCompression(scene), 1);
+  applyPreset(scene, findPreset("final"));
+  EXPECT_EQ(defaultPngCompression(scene), 1);
+  // One camera sample a pixel but four sky rays each is not a draft.
+  applyPreset(scene, findPreset("draft"));
+  scene.ao_samples = 4;
+  EXPECT_EQ(defaultPngCompression(scene), 1);
+}
+
 TEST(QualityPreset, FindsEachByName) {
   for (const QualityPreset& p : qualityPresets()) EXPECT_EQ(&findPreset(p.name), &p);
 }

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -192,6 +193,78 @@ TEST(Image, FailedWriteLeavesNoFile) {
   EXPECT_THROW(writePng(gradient(4, 4), file), std::runtime_error);
   EXPECT_FALSE(fs::exists(file));
   EXPECT_THROW(writePng(Image{}, tempDir() / "empty.png"), std::invalid_argument);
+}
+
+// Bytes a PNG of `img` must decode to: the sRGB code of each channel, from the formula (not the writer).
+std::vector<uint8_t> expectedSrgbBytes(const Image& img) {
+  std::vector<uint8_t> bytes;
+  for (const glm::vec4& p : img.rgba)
+    for (int c = 0; c < 3; ++c) bytes.push_back(linearToSrgb8(p[c]));
+  return bytes;
+}
+
+// An image whose rows differ in every channel (odd sizes, so no row is a whole number of words).
+Image speckled(int w, int h) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      img.at(x, y) = {float((x * 7 + y * 13) % 31) / 30.0f, float(x) / float(w - 1), float(y) / float(h - 1), 1.0f};
+  return img;
+}
+
+std::vector<uint8_t> readPngBytes(const fs::path& file) {
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) return {};
+  std::vector<uint8_t> px(size_t(in->spec().width) * size_t(in->spec().height) * 3);
+  if (in->spec().nchannels != 3 || !in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data())) return {};
+  return px;
+}
+
+// PNG is lossless: the zlib level changes the file's size and the write's time, never the pixels.
+TEST(Image, PngAtEveryZlibLevelHoldsTheSamePixels) {
+  const Image img = speckled(97, 61);
+  const std::vector<uint8_t> expected = expectedSrgbBytes(img);
+  std::vector<uintmax_t> sizes;
+  for (const int level : {kPngCompressionMin, kDraftPngCompression, kReviewPngCompression, 6, kPngCompressionMax}) {
+    const fs::path file = tempDir() / ("level" + std::to_string(level) + ".png");
+    writePng(img, file, level);
+    EXPECT_EQ(readPngBytes(file), expected) << "level " << level;
+    sizes.push_back(fs::file_size(file));
+  }
+  // Level 0 stores the rows as they are: the file holds every pixel's 3 bytes and a filter byte a row.
+  EXPECT_GE(sizes[0], uintmax_t(97 * 61 * 3 + 61));
+  // A compressing level makes it smaller (the blue channel is one value a row).
+  EXPECT_LT(sizes[2], sizes[0]);
+  EXPECT_LE(sizes[4], sizes[2]);
+}
+
+// Another decoder than OpenImageIO's reads a stored PNG (draft's) and a level-1 one (review's) to the
+// same pixels: ffmpeg, as the movie encoder reads the frames.
+TEST(Image, FfmpegDecodesStoredAndCompressedPngsToTheSamePixels) {
+  if (std::system("ffmpeg -version > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg is not installed";
+  const Image img = speckled(45, 23);
+  const std::vector<uint8_t> expected = expectedSrgbBytes(img);
+  for (const int level : {kDraftPngCompression, kReviewPngCompression}) {
+    const fs::path file = tempDir() / ("ffmpeg" + std::to_string(level) + ".png");
+    writePng(img, file, level);
+    const std::string cmd = "ffmpeg -v error -i '" + file.string() + "' -f rawvideo -pix_fmt rgb24 -";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::vector<uint8_t> decoded(expected.size() + 1);  // one more: a longer stream is a failure too
+    const size_t n = std::fread(decoded.data(), 1, decoded.size(), pipe);
+    EXPECT_EQ(pclose(pipe), 0) << cmd;
+    decoded.resize(n);
+    EXPECT_EQ(decoded, expected) << "level " << level;
+  }
+}
+
+TEST(Image, APngCompressionOutsideZlibsLevelsIsRejected) {
+  for (const int level : {-1, 10}) {
+    const fs::path file = tempDir() / ("bad" + std::to_string(level) + ".png");
+    EXPECT_THROW(writePng(gradient(4, 4), file, level), std::invalid_argument);
+    EXPECT_FALSE(fs::exists(file));
+    EXPECT_FALSE(fs::exists(fs::path(file.string() + ".tmp")));
+  }
 }
 
 TEST(Image, WriteReplacesAnExistingFileWhole) {

@@ -486,6 +486,29 @@ TEST(Renderer, BytesDoNotDependOnTheThreadCount) {
   EXPECT_TRUE(sameBytes(one, three));
 }
 
+// A task run beside the frame (frames overlapped: the shot's next frame) runs to its end before render
+// returns, on one thread or several, leaves the frame's bytes as they are, and its error comes out of render.
+TEST(Renderer, ATaskBesideTheFrameRunsToItsEndAndChangesNoByte) {
+  SmallScene scene;
+  for (const int threads : {1, 2}) {
+    RenderSettings s = scene.settings;
+    s.threads = threads;
+    Renderer r(s);
+    const int mesh = r.addMesh({ObjectId::Horse, scene.sphere.indices, scene.sphere.colors, scene.sphere.positions.size()});
+    r.updateMesh(mesh, scene.sphere.positions, scene.sphere.normals);
+    std::vector<double> work(200000);
+    bool done = false;
+    const Image beside = r.render(scene.camera, 1, nullptr, [&] {
+      for (std::size_t i = 0; i < work.size(); ++i) work[i] = std::sqrt(double(i));
+      done = true;
+    });
+    EXPECT_TRUE(done) << threads << " threads";
+    EXPECT_EQ(work.back(), std::sqrt(double(work.size() - 1)));
+    EXPECT_TRUE(sameBytes(beside, scene.render(threads))) << threads << " threads";
+    EXPECT_THROW(r.render(scene.camera, 1, nullptr, [] { throw std::runtime_error("beside"); }), std::runtime_error);
+  }
+}
+
 TEST(Renderer, RenderingTwiceGivesTheSameBytes) {
   SmallScene scene;
   RenderSettings s = scene.settings;
