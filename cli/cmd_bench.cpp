@@ -173,6 +173,7 @@ double peakMemoryBytes() {
 struct SceneResult {
   std::string preset;
   double setup_s = 0, peak_bytes = 0;
+  render::SetupTimings setup;  // the set-up's parts (ms)
   double bake = 0, skin = 0, bvh = 0, trace = 0, write = 0;  // ms per frame; skin without build
   double wait = 0;      // ms per frame waiting after the trace for the next frame's evaluation
   double build = 0;     // ms per frame building levels of detail first needed (a one-time cost)
@@ -200,6 +201,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   render::Shot shot(scene, render::resolveProfile(scene), render::findCamera(scene, o.camera), o.threads);
   shot.setDetailLevel(o.detail);
   r.setup_s = secondsSince(setup0);
+  r.setup = shot.setupTimings();
   // o.frames of the scene's frames, spread evenly over them.
   const std::vector<int> all = rig::parseFrameList(scene.frames, "frames");
   std::vector<int> frames;
@@ -280,6 +282,8 @@ void runSceneBench(const BenchOptions& o) {
     for (const SceneResult& r : results) {
       presets[r.preset] = {
           {"fps", r.fps}, {"setup_s", r.setup_s}, {"peak_memory_bytes", r.peak_bytes},
+          {"setup_ms", {{"characters", r.setup.characters_ms}, {"terrain", r.setup.terrain_ms},
+                        {"framing", r.setup.framing_ms}}},
           {"ms", {{"bake", r.bake}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write},
                   {"build", r.build}, {"wait", r.wait}}},
           {"pairs", r.pairs}, {"skinned_vertices", r.skinned_vertices}, {"refit_triangles", r.triangles},
@@ -311,6 +315,10 @@ void runSceneBench(const BenchOptions& o) {
                 r.setup_s, r.peak_bytes / 1e6,
                 r.skinned_vertices / 1e3, r.triangles / 1e3, r.triangles / 1e3 / r.pairs, levels);
   }
+  std::printf("\n%-7s %7s %11s %8s %8s\n", "set-up", "total", "characters", "terrain", "framing");
+  for (const SceneResult& r : results)
+    std::printf("%-7s %6.2fs %10.2fs %7.2fs %7.2fs\n", r.preset.c_str(), r.setup_s, r.setup.characters_ms / 1e3,
+                r.setup.terrain_ms / 1e3, r.setup.framing_ms / 1e3);
   std::printf("\nbake: every pair's channels; skin: posing and skinning every pair at its level; bvh: the refit;\n"
               "build: building levels of detail the frame was the first to need (once per pair and level, like\n"
               "the set-up: in fps, which is wall clock, not in x trot); x trot: the frame (bake, skin, bvh,\n"
@@ -320,7 +328,9 @@ void runSceneBench(const BenchOptions& o) {
               "pair); levels: pairs at full, half and quarter detail a frame (render/scene/detail_level.h);\n"
               "overlapped: each frame's bake, pose and skin run while the frame before it traces; wait: after a\n"
               "trace, waiting for the next frame's evaluation; png: the zlib level the frames were written at;\n"
-              "peak MB: the process's peak resident memory.\n");
+              "peak MB: the process's peak resident memory; set-up: making the shot, of which reading, seating\n"
+              "and building the characters and their clips, meshing the terrain (normals, sun horizon), and\n"
+              "framing the view camera over every frame it shows.\n");
 }
 
 void runBench(const BenchOptions& o) {

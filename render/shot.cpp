@@ -49,7 +49,19 @@ MeshDesc meshOf(ObjectId id, const rig::Character& c) {
 
 Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
            BvhUpdate bvh)
-    : Shot(std::make_shared<ShotEvaluator>(scene, profile, threads), camera, threads, bvh) {}
+    : Shot(buildCharacters(scene, profile, threads), camera, threads, bvh) {}
+
+Shot::BuiltCharacters Shot::buildCharacters(const SceneSpec& scene, const rig::RigProfile& profile, int threads) {
+  const auto t0 = Clock::now();
+  BuiltCharacters built{std::make_shared<ShotEvaluator>(scene, profile, threads)};
+  built.ms = msSince(t0);
+  return built;
+}
+
+Shot::Shot(BuiltCharacters built, const CameraSpec& camera, int threads, BvhUpdate bvh)
+    : Shot(std::move(built.characters), camera, threads, bvh) {
+  setup_.characters_ms = built.ms;
+}
 
 Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, int threads, BvhUpdate bvh)
     : scene_(characters->scene()), characters_(std::move(characters)) {
@@ -71,9 +83,11 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
   settings.open_ground_shortcuts = characters_->pairCount() < 2;
   renderer_ = std::make_unique<Renderer>(settings);
   if (scene.terrain && !scene.terrain->flat()) {
+    const auto t0 = Clock::now();
     std::vector<const rig::Clip*> tracks;
     for (int i = 0; i < characters_->pairCount(); ++i) tracks.push_back(&characters_->shownClip(i));
     renderer_->setTerrain(scene.terrain, trackRegion(scene_, tracks));
+    setup_.terrain_ms = msSince(t0);
   }
   // A pair of one level (a single pair: its characters as read or built) joins the renderer now, with
   // the renderer's own geometry ids; a crowd's levels join when first shown (showMeshes).
@@ -83,7 +97,9 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
     for (int i = 0; i < characters_->pairCount(); ++i)
       meshes_[std::size_t(i)][0] = {renderer_->addMesh(meshOf(ObjectId::Horse, characters_->horse(i))),
                                     renderer_->addMesh(meshOf(ObjectId::Rider, characters_->rider(i)))};
+  const auto t0 = Clock::now();
   camera_ = std::make_unique<ShotCamera>(*characters_, camera);
+  setup_.framing_ms = msSince(t0);
   addObstacles();
 }
 

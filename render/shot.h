@@ -45,6 +45,13 @@ struct FrameTimings {
   std::array<int, 3> pairs_at_level{};  // a crowd's pairs at each level of detail (render/scene/detail_level.h)
 };
 
+// Where a shot's set-up went (ms, wall clock): reading, seating and building the characters and their
+// clips (0 for a shot made from an evaluator already built), meshing the terrain with its normals and
+// sun horizon, and framing the view camera over every frame it shows.
+struct SetupTimings {
+  double characters_ms = 0, terrain_ms = 0, framing_ms = 0;
+};
+
 class Shot {
  public:
   // threads: 0 = all cores. The profile is resolved by the caller (name, file and overrides).
@@ -77,6 +84,7 @@ class Shot {
   // pair's, or the crowd's middle) with its profile; every pair's is characters().evaluate's.
   rig::BakedFrame bake(int frame) const;
   const FrameTimings& lastTimings() const { return timings_; }
+  const SetupTimings& setupTimings() const { return setup_; }
 
   // The render camera at a frame (follow cameras travel with the horse; render/scene/camera_motion.h).
   Camera cameraAt(const rig::BakedFrame& baked) const;
@@ -102,6 +110,13 @@ class Shot {
   void setDetailLevel(int level);
 
  private:
+  // The scene's characters built, with the time they took (SetupTimings::characters_ms).
+  struct BuiltCharacters {
+    std::shared_ptr<ShotEvaluator> characters;
+    double ms = 0;
+  };
+  static BuiltCharacters buildCharacters(const SceneSpec& scene, const rig::RigProfile& profile, int threads);
+  Shot(BuiltCharacters built, const CameraSpec& camera, int threads, BvhUpdate bvh);
   void addObstacles();
   // Adds the meshes of each pair's level shown in frame_ that the renderer does not hold yet, shows
   // those levels and hides the others, and updates the shown meshes' vertices.
@@ -125,6 +140,7 @@ class Shot {
   // Each pair's meshes in the renderer, per level (horse, rider; -1 until first shown).
   std::vector<std::vector<std::array<int, 2>>> meshes_;
   FrameTimings timings_;
+  SetupTimings setup_;
   bool rigid_rider_ = false;
   int detail_level_ = -1;
 };

@@ -4,6 +4,7 @@
 
 #include "render/scene/camera_motion.h"
 #include "render/scene/detail_level.h"
+#include "render/scene/point_arena.h"
 #include "render/scene/view.h"
 #include "rig/error.h"
 #include "rig/motion/crowd_middle_clip.h"
@@ -49,8 +50,8 @@ ShotCamera::ShotCamera(ShotEvaluator& characters, const CameraSpec& camera)
   const glm::vec3 lever = horse.skeleton.restPosition(horse.role("saddle")) - horse.skeleton.restPosition(horse.role("root"));
   preset.seat_from_pivot_cm = {lever.x, lever.y, lever.z};
   const bool whole_crowd = characters.isCrowd() && follow < 0;
-  const auto points = [&](const std::vector<int>& frames, std::vector<std::vector<glm::vec3>>& horse,
-                          std::vector<std::vector<glm::vec3>>& rider) {
+  PointArena arena;  // every frame's points, until the view is framed
+  const auto points = [&](const std::vector<int>& frames, std::vector<CharacterFramePoints>& out) {
     std::vector<FrameRequest> requests(frames.size());
     for (std::size_t k = 0; k < frames.size(); ++k) {
       FrameRequest& request = requests[k];
@@ -62,17 +63,17 @@ ShotCamera::ShotCamera(ShotEvaluator& characters, const CameraSpec& camera)
       request.until = EvalStage::Points;
       request.point_stride = whole_crowd ? 1 : kFramingPointStride;
     }
-    horse.assign(frames.size(), {});
-    rider.assign(frames.size(), {});
+    out.assign(frames.size(), {});
     // The frames in parallel, each writing only its own slot.
     characters.evaluateEach(requests, [&](std::size_t k, ShotFrame& frame) {
       if (whole_crowd) {
-        for (const PairFrame& p : frame.pairs) appendCorners(p, horse[k], rider[k]);
+        std::vector<glm::vec3> horse, rider;
+        for (const PairFrame& p : frame.pairs) appendCorners(p, horse, rider);
+        out[k] = {arena.keep(horse), arena.keep(rider)};
         return;
       }
-      PairFrame& p = frame.pairs[std::size_t(seat_pair)];
-      horse[k] = std::move(p.horse_positions);
-      rider[k] = std::move(p.rider_positions);
+      const PairFrame& p = frame.pairs[std::size_t(seat_pair)];
+      out[k] = {arena.keep(p.horse_positions), arena.keep(p.rider_positions)};
     });
   };
   // The follow filter of every frame runs in parallel too, on the evaluator's threads.

@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <tuple>
@@ -357,6 +358,30 @@ void ShotEvaluator::evaluate(const FrameRequest& request, ShotFrame& out) {
 
 void ShotEvaluator::run(const std::function<void()>& job) { pairs_->arena.execute(job); }
 
+namespace {
+
+// Frames whose buffers can be used again: one a frame in flight at most.
+class FramePool {
+ public:
+  std::unique_ptr<ShotFrame> take() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (spare_.empty()) return std::make_unique<ShotFrame>();
+    std::unique_ptr<ShotFrame> f = std::move(spare_.back());
+    spare_.pop_back();
+    return f;
+  }
+  void give(std::unique_ptr<ShotFrame> f) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    spare_.push_back(std::move(f));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<ShotFrame>> spare_;
+};
+
+}  // namespace
+
 void ShotEvaluator::evaluateEach(const std::vector<FrameRequest>& requests,
                                  const std::function<void(std::size_t, ShotFrame&)>& use) {
   Pairs& ps = *pairs_;
@@ -371,12 +396,29 @@ void ShotEvaluator::evaluateEach(const std::vector<FrameRequest>& requests,
       needed.emplace(i, r.until == EvalStage::Pose ? ps.levels - 1 : std::clamp(r.level.fixed, 0, ps.levels - 1));
   }
   ps.buildLevels({needed.begin(), needed.end()});
+  FramePool spare_frames;
   ps.arena.execute([&] {
     tbb::parallel_for(std::size_t(0), requests.size(), [&](std::size_t k) {
       const FrameRequest& request = requests[k];
       const std::vector<std::size_t> which = pairsAsked(request, ps.pairs.size());
-      ShotFrame frame;
+      // A frame whose buffers an earlier frame used (its points' vectors keep their capacity), so
+      // skinning does not fault in fresh memory for every frame; taken from a pool, not per thread,
+      // since a thread waiting in the pairs' loop below may start another frame.
+      std::unique_ptr<ShotFrame> reused = spare_frames.take();
+      ShotFrame& frame = *reused;
       frame.pairs.resize(ps.pairs.size());
+      for (PairFrame& f : frame.pairs) {
+        f.level = 0, f.baked = {}, f.pose = {};
+        // Emptied, their capacity kept: a stage that does not write them leaves them as a fresh frame's.
+        f.horse_positions.clear(), f.horse_normals.clear(), f.rider_positions.clear(), f.rider_normals.clear();
+      }
+      if (which.size() < frame.pairs.size()) {
+        // Pairs not asked for are left as a fresh frame has them.
+        std::vector<bool> asked(frame.pairs.size(), false);
+        for (std::size_t i : which) asked[i] = true;
+        for (std::size_t i = 0; i < frame.pairs.size(); ++i)
+          if (!asked[i]) frame.pairs[i] = PairFrame{};
+      }
       bakeStage(request, which, frame);
       if (request.until != EvalStage::Bake) {
         tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t j) {
@@ -386,6 +428,7 @@ void ShotEvaluator::evaluateEach(const std::vector<FrameRequest>& requests,
         });
       }
       use(k, frame);
+      spare_frames.give(std::move(reused));
     });
   });
 }

@@ -58,7 +58,8 @@ Basis basisOf(const Camera& c) {
 // more copy of every frame's points), or for `close` the rider's above the saddle alone. Skinned
 // positions are floats; every use below reads them as doubles, exactly.
 struct FramePoints {
-  std::vector<glm::vec3> horse, rider;
+  std::span<const glm::vec3> horse, rider;
+  std::vector<glm::vec3> kept;  // the rider's points a view keeps of its own (keepViewPoints), when it keeps some
   // f(p) for every point, the horse's then the rider's.
   template <typename F>
   void each(F&& f) const {
@@ -70,13 +71,14 @@ struct FramePoints {
 void keepViewPoints(const CameraSpec& spec, FramePoints& points) {
   if (spec.view != "close") return;
   // The rider above the saddle: the upper 55% of the rider's height at this frame.
-  std::vector<glm::vec3>& rider = points.rider;
   double lo = kInf, hi = -kInf;
-  for (const glm::dvec3 p : rider) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+  for (const glm::dvec3 p : points.rider) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
   const double cut = lo + 0.45 * (hi - lo);
-  rider.erase(std::remove_if(rider.begin(), rider.end(), [&](const glm::vec3& p) { return !(double(p.y) >= cut); }),
-              rider.end());
-  points.horse.clear();
+  points.kept.clear();
+  for (const glm::vec3& p : points.rider)
+    if (double(p.y) >= cut) points.kept.push_back(p);
+  points.rider = points.kept;
+  points.horse = {};
 }
 
 glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
@@ -191,15 +193,15 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
   applyViewPreset(spec);
   if (frames.empty()) throw std::invalid_argument("frameView: no frames");
   // The points of every frame, once.
-  std::vector<std::vector<glm::vec3>> horse, rider;
-  points(frames, horse, rider);
+  std::vector<CharacterFramePoints> shown;
+  points(frames, shown);
+  if (shown.size() != frames.size()) throw std::logic_error("frameView: expected the points of every frame");
   std::vector<FramePoints> pts(frames.size());
   eachFrame(frames.size(), [&](std::size_t i) {
-    pts[i] = {std::move(horse[i]), std::move(rider[i])};
+    pts[i].horse = shown[i].horse;
+    pts[i].rider = shown[i].rider;
     keepViewPoints(spec, pts[i]);
   });
-  horse.clear();
-  rider.clear();
 
   if (spec.view == "top") return frameTopView(spec, scene, clip, pts);
   // Where the camera's motion takes it at every frame, once: the passes below move and size the

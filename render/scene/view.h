@@ -17,6 +17,7 @@
 #pragma once
 
 #include <functional>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -33,10 +34,13 @@ void applyViewPreset(CameraSpec& spec);
 // The frames a view is framed over: the scene's frames, and 1..orbit_frames for an orbit.
 std::vector<int> framingFrames(const CameraSpec& spec, const SceneSpec& scene);
 
-// World positions of (a subset of) the horse's and the rider's skinned vertices at each of `frames`, as
-// shown: horse[k] and rider[k] (both resized to one a frame) are frames[k]'s.
-using CharacterPoints = std::function<void(const std::vector<int>& frames, std::vector<std::vector<glm::vec3>>& horse,
-                                           std::vector<std::vector<glm::vec3>>& rider)>;
+// A frame's world positions of (a subset of) the horse's and the rider's skinned vertices, as shown,
+// held by the caller (a PointArena: render/scene/point_arena.h) until frameView returns.
+struct CharacterFramePoints {
+  std::span<const glm::vec3> horse, rider;
+};
+// The points of each of `frames`: points (resized to one a frame) [k] is frames[k]'s.
+using CharacterPoints = std::function<void(const std::vector<int>& frames, std::vector<CharacterFramePoints>& points)>;
 
 // The view camera framed over `frames`: position, target and size resolved. `spec` must have a view.
 CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& clip,
