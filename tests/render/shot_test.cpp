@@ -221,6 +221,28 @@ TEST(Shot, ShotsSharingTheirCharactersRenderAsShotsOfTheirOwn) {
   }
 }
 
+// The set-up's parts (bench --scene reports them): a shot that builds its characters, meshes hills and
+// frames a named view times all three; a shot sharing another's characters builds none; flat ground
+// meshes nothing.
+TEST(Shot, SetupTimingsSayWhatTheShotBuilt) {
+  const SceneSpec hills = pathOverHills();
+  CameraSpec side;
+  side.name = "side";
+  side.view = "side";
+  Shot own(hills, resolveProfile(hills), side, 1);
+  EXPECT_GT(own.setupTimings().characters_ms, 0.0);
+  EXPECT_GT(own.setupTimings().terrain_ms, 0.0);
+  EXPECT_GT(own.setupTimings().framing_ms, 0.0);
+  Shot shared(own.sharedCharacters(), side, 1);
+  EXPECT_EQ(shared.setupTimings().characters_ms, 0.0);
+  EXPECT_GT(shared.setupTimings().terrain_ms, 0.0);
+  SceneSpec flat = hills;
+  flat.terrain.reset();
+  Shot on_flat(flat, resolveProfile(flat), side, 1);
+  EXPECT_EQ(on_flat.setupTimings().terrain_ms, 0.0);
+  EXPECT_GT(on_flat.setupTimings().framing_ms, 0.0);
+}
+
 bool sameBytes(const Image& a, const Image& b) {
   return a.rgba == b.rgba && a.depth == b.depth && a.matte == b.matte && a.normal == b.normal &&
          a.object_id == b.object_id;
