@@ -3,7 +3,7 @@
 #include <array>
 #include <string>
 
-#include "render/tracer/image.h"
+#include "render/scene/png_compression.h"
 #include "rig/error.h"
 
 namespace stirrup::render {

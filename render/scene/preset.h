@@ -26,10 +26,10 @@ const QualityPreset& findPreset(std::string_view name);
 // Sets the scene's samples, light_samples and ao_samples to the preset's.
 void applyPreset(SceneSpec& scene, const QualityPreset& p);
 
-// The zlib level a scene's PNG frames are written at unless asked otherwise (render/tracer/image.h): a
-// draft (the draft preset's one camera sample a pixel, or fewer samples of any kind) writes them
-// stored, uncompressed, because at draft speed the write competes with the trace for the cores; the
-// others at review's level 1.
+// The zlib level a scene's PNG frames are written at unless asked otherwise (the levels:
+// render/scene/png_compression.h): a draft (the draft preset's one camera sample a pixel, or fewer
+// samples of any kind) writes them stored, uncompressed, because at draft speed the write competes with
+// the trace for the cores; the others at review's level 1.
 int defaultPngCompression(const SceneSpec& scene);
 
 }  // namespace stirrup::render

@@ -19,6 +19,7 @@
 #include <glm/vec4.hpp>
 
 #include "render/scene/camera.h"
+#include "render/scene/png_compression.h"  // the zlib levels writePng takes
 
 namespace stirrup::render {
 
@@ -53,16 +54,6 @@ uint8_t linearToSrgb8(float linear);
 // linearToSrgb8 of the RGB of every pixel into `rgb` (3 bytes a pixel), the same bytes through a table
 // instead of a pow per channel.
 void encodeSrgb8(std::span<const glm::vec4> rgba, std::span<uint8_t> rgb);
-
-// PNG's zlib levels (0: stored, no compression, to 9: smallest). Every level holds the same pixels (PNG
-// is lossless); they trade the write's time for the file's size. Level 1 is the review frames' default
-// (a 640x360 frame in about 6 ms, against 40 at zlib's default 6); level 0 is draft's: the frame's
-// bytes are stored as they are (about 0.7 MB at 640x360, three to four times level 1's file), and the
-// write is little more than the sRGB encode, the checksums and the copy to disk (docs/performance.md,
-// "Frames overlapped").
-inline constexpr int kPngCompressionMin = 0, kPngCompressionMax = 9;
-inline constexpr int kReviewPngCompression = 1;
-inline constexpr int kDraftPngCompression = 0;
 
 // Review image: opaque 8-bit sRGB RGB (the sky is part of the picture; alpha is left out so viewers
 // and movie encoders never show the sky as transparent), at zlib level `compression` (0 to 9; else
