@@ -407,17 +407,11 @@ void ShotEvaluator::evaluateEach(const std::vector<FrameRequest>& requests,
       std::unique_ptr<ShotFrame> reused = spare_frames.take();
       ShotFrame& frame = *reused;
       frame.pairs.resize(ps.pairs.size());
+      // Every pair as a fresh frame has it, its vectors emptied with their capacity kept: a pair not
+      // asked for, or a stage that does not write a vector, leaves it as a fresh frame's.
       for (PairFrame& f : frame.pairs) {
         f.level = 0, f.baked = {}, f.pose = {};
-        // Emptied, their capacity kept: a stage that does not write them leaves them as a fresh frame's.
         f.horse_positions.clear(), f.horse_normals.clear(), f.rider_positions.clear(), f.rider_normals.clear();
-      }
-      if (which.size() < frame.pairs.size()) {
-        // Pairs not asked for are left as a fresh frame has them.
-        std::vector<bool> asked(frame.pairs.size(), false);
-        for (std::size_t i : which) asked[i] = true;
-        for (std::size_t i = 0; i < frame.pairs.size(); ++i)
-          if (!asked[i]) frame.pairs[i] = PairFrame{};
       }
       bakeStage(request, which, frame);
       if (request.until != EvalStage::Bake) {
