@@ -330,7 +330,7 @@ void runSceneBench(const BenchOptions& o) {
               "trace, waiting for the next frame's evaluation; png: the zlib level the frames were written at;\n"
               "peak MB: the process's peak resident memory; set-up: making the shot, of which reading, seating\n"
               "and building the characters and their clips, meshing the terrain (normals, sun horizon), and\n"
-              "framing the view camera over every frame it shows.\n");
+              "framing the view camera over every frame it shows (the terrain is built alongside the framing).\n");
 }
 
 void runBench(const BenchOptions& o) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <future>
 #include <stdexcept>
 
 #include "render/scene/detail_level.h"
@@ -82,13 +83,28 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
   // far from it (RenderSettings::open_ground_shortcuts); one pair's box is its own.
   settings.open_ground_shortcuts = characters_->pairCount() < 2;
   renderer_ = std::make_unique<Renderer>(settings);
-  if (scene.terrain && !scene.terrain->flat()) {
-    const auto t0 = Clock::now();
-    std::vector<const rig::Clip*> tracks;
-    for (int i = 0; i < characters_->pairCount(); ++i) tracks.push_back(&characters_->shownClip(i));
-    renderer_->setTerrain(scene.terrain, trackRegion(scene_, tracks));
-    setup_.terrain_ms = msSince(t0);
+  // The terrain (its mesh, the ground's BVH, the sun's horizon over the hills) and the view's framing
+  // need nothing of each other, so the terrain is built on a thread of its own while the view is framed:
+  // neither keeps both cores busy throughout (the BVH's build least), and together they do. The
+  // renderer is not touched by the framing, nor the evaluator by the terrain (it only samples clips).
+  std::future<void> terrain;
+  if (scene.terrain && !scene.terrain->flat())
+    terrain = std::async(std::launch::async, [this, &scene] {
+      const auto t0 = Clock::now();
+      std::vector<const rig::Clip*> tracks;
+      for (int i = 0; i < characters_->pairCount(); ++i) tracks.push_back(&characters_->shownClip(i));
+      renderer_->setTerrain(scene.terrain, trackRegion(scene_, tracks));
+      setup_.terrain_ms = msSince(t0);
+    });
+  const auto t0 = Clock::now();
+  try {
+    camera_ = std::make_unique<ShotCamera>(*characters_, camera);
+  } catch (...) {
+    if (terrain.valid()) terrain.wait();  // never unwind while the terrain's thread uses this shot
+    throw;
   }
+  setup_.framing_ms = msSince(t0);
+  if (terrain.valid()) terrain.get();  // its error, if any, is the shot's
   // A pair of one level (a single pair: its characters as read or built) joins the renderer now, with
   // the renderer's own geometry ids; a crowd's levels join when first shown (showMeshes).
   meshes_.assign(std::size_t(characters_->pairCount()),
@@ -97,9 +113,6 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
     for (int i = 0; i < characters_->pairCount(); ++i)
       meshes_[std::size_t(i)][0] = {renderer_->addMesh(meshOf(ObjectId::Horse, characters_->horse(i))),
                                     renderer_->addMesh(meshOf(ObjectId::Rider, characters_->rider(i)))};
-  const auto t0 = Clock::now();
-  camera_ = std::make_unique<ShotCamera>(*characters_, camera);
-  setup_.framing_ms = msSince(t0);
   addObstacles();
 }
 

@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <optional>
 #include <system_error>
+
+#include <tbb/parallel_for.h>
 
 #include "render/scene/data_dir.h"
 #include "render/scene/reference_spec.h"
@@ -93,11 +96,21 @@ void checkLimits(SceneSpec& s) {
   const std::string file = s.file.string();
   if (const auto params = rig::pathClipParams(s.clip))
     s.limits.push_back({std::make_shared<const rig::PathLimitCheck>(*params, s.terrain.get(), file, "clip"), 0.0});
-  for (std::size_t i = 0; i < s.pairs.size(); ++i) {
-    const std::string field = (s.crowd ? "crowd.pairs[" : "riders[") + std::to_string(i) + "]";
-    s.limits.push_back({std::make_shared<const rig::PathLimitCheck>(s.pairs[i].path, s.terrain.get(), file, field),
-                        s.pairs[i].clip_offset_s});
-  }
+  // Each pair's path read in parallel (each check walks its whole path); kept in pair order.
+  std::vector<SceneSpec::PathLimits> pairs(s.pairs.size());
+  std::vector<std::exception_ptr> errors(s.pairs.size());
+  tbb::parallel_for(std::size_t(0), s.pairs.size(), [&](std::size_t i) {
+    try {
+      const std::string field = (s.crowd ? "crowd.pairs[" : "riders[") + std::to_string(i) + "]";
+      pairs[i] = {std::make_shared<const rig::PathLimitCheck>(s.pairs[i].path, s.terrain.get(), file, field),
+                  s.pairs[i].clip_offset_s};
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  s.limits.insert(s.limits.end(), pairs.begin(), pairs.end());
   if (s.allow_impossible) return;
   for (const SceneSpec::PathLimits& l : s.limits)
     if (const std::string e = l.check->error(); !e.empty())
@@ -259,7 +272,7 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
   if (r.has("crowd")) {
     JsonObjectReader c = r.object("crowd");
     s.crowd = rig::parseCrowdSpec(c);
-    s.pairs = rig::generateCrowd(*s.crowd, s.terrain, s.fps, file);
+    s.pairs = rig::generateCrowd(*s.crowd, s.terrain, s.fps, file, &s.pair_clips);
   } else if (const nlohmann::json* riders = r.value("riders")) {
     if (!riders->is_array() || riders->empty())
       r.fail("riders", "expected a non-empty array of riders, got " + describeJson(*riders));
@@ -267,8 +280,9 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
       JsonObjectReader p(file, "riders[" + std::to_string(i) + "]", (*riders)[i]);
       s.pairs.push_back(rig::parsePairSpec(p));
     }
-    rig::validatePairs(s.pairs, s.terrain, s.fps, 0, file, "riders");
+    s.pair_clips = rig::validatePairs(s.pairs, s.terrain, s.fps, 0, file, "riders");
   }
+  s.pair_clips_terrain = s.terrain;
   if (s.crowd && !r.has("frames")) s.frames = "1-" + std::to_string(rig::crowdFrames(*s.crowd, s.terrain, s.fps, file));
   for (std::size_t i = 0; i < s.cameras.size(); ++i) {
     const CameraSpec& c = s.cameras[i];

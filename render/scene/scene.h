@@ -93,6 +93,11 @@ struct SceneSpec {
   // (rig::crowdFrames).
   std::optional<rig::CrowdSpec> crowd;
   std::vector<rig::PairSpec> pairs;
+  // Each pair's clip as loading checked it (rig::validatePairs) on `pair_clips_terrain`: a shot of the
+  // scene takes them instead of making them again, while the scene's terrain is still that one (a copy
+  // set on other ground makes its own). Whoever changes a pair's path after loading clears them.
+  rig::PairClips pair_clips;
+  std::shared_ptr<const rig::Terrain> pair_clips_terrain;
   // Limits a horse has (rig/motion/horse_limits.h), read along every path of the scene (its path clip,
   // or each pair's). A path beyond one is refused when the scene loads, unless `allow_impossible` (the
   // scene field, or SceneLoadOptions from --allow-impossible): then it loads, and each frame that

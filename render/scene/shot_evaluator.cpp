@@ -57,7 +57,7 @@ struct ShotEvaluator::Pairs {
     std::shared_ptr<const rig::Character> built_horse, built_rider;
   };
   struct Pair {
-    std::unique_ptr<rig::Clip> clip;          // the scene's clip, or rig::makePairClip
+    std::shared_ptr<const rig::Clip> clip;    // the scene's clip, or the pair's (made as the scene loaded)
     std::unique_ptr<rig::ShiftedClip> shown;  // a crowd pair's clip at its start phase
     double clip_offset_s = 0;
     rig::RigProfile profile, rigid_profile;
@@ -146,20 +146,25 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
     using Key = std::tuple<double, double, double, std::string, std::string, std::string, std::string, int>;
     std::map<Key, std::size_t> build_of;
     ps.pairs.resize(scene.pairs.size());
-    // Each pair's clip (a path clip: its footfalls scanned, a few ms a second of ride), the pairs in
-    // parallel; a bad pair's error is the first bad pair's, whatever the threads.
-    std::vector<std::exception_ptr> errors(scene.pairs.size());
-    ps.arena.execute([&] {
-      tbb::parallel_for(std::size_t(0), scene.pairs.size(), [&](std::size_t i) {
-        try {
-          ps.pairs[i].clip = rig::makePairClip(scene.pairs[i], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
-        } catch (...) {
-          errors[i] = std::current_exception();
-        }
+    // Each pair's clip (a path clip: its footfalls scanned, a few ms a second of ride): the ones the
+    // scene made as it loaded, unless its ground has changed since; else made here, the pairs in
+    // parallel, a bad pair's error the first bad pair's whatever the threads.
+    if (scene.pair_clips.size() == scene.pairs.size() && scene.pair_clips_terrain == scene.terrain) {
+      for (std::size_t i = 0; i < scene.pairs.size(); ++i) ps.pairs[i].clip = scene.pair_clips[i];
+    } else {
+      std::vector<std::exception_ptr> errors(scene.pairs.size());
+      ps.arena.execute([&] {
+        tbb::parallel_for(std::size_t(0), scene.pairs.size(), [&](std::size_t i) {
+          try {
+            ps.pairs[i].clip = rig::makePairClip(scene.pairs[i], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
+          } catch (...) {
+            errors[i] = std::current_exception();
+          }
+        });
       });
-    });
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
+      for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+    }
     for (std::size_t i = 0; i < scene.pairs.size(); ++i) {
       const rig::PairSpec& spec = scene.pairs[i];
       Pairs::Pair& p = ps.pairs[i];

@@ -78,27 +78,47 @@ void EmbreeScene::setGround(float half_extent_cm) {
 }
 
 void EmbreeScene::setGroundMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices) {
-  if (indices.size() % 3 != 0) throw std::invalid_argument("ground mesh: index count is not a multiple of 3");
+  if (indices.size() % 6 != 0)
+    throw std::invalid_argument("ground mesh: index count is not a multiple of 6 (a cell's two triangles)");
   for (uint32_t i : indices)
     if (i >= positions.size()) throw std::invalid_argument("ground mesh: index " + std::to_string(i) + " out of range");
+  // Each cell's triangles (a c d), (a d b) as Embree's quad (c d b a): Embree splits a quad (v0 v1 v2 v3)
+  // into (v0 v1 v3) = (c d a) and (v2 v3 v1) = (b a d), the same two triangles wound the same way.
+  const std::size_t cells = indices.size() / 6;
+  for (std::size_t q = 0; q < cells; ++q) {
+    const uint32_t* t = &indices[6 * q];
+    if (t[3] != t[0] || t[4] != t[2])
+      throw std::invalid_argument("ground mesh: triangles " + std::to_string(2 * q) + " and " + std::to_string(2 * q + 1) +
+                                  " do not share their first and last vertex as (a c d), (a d b)");
+  }
   if (ground_quad_) {
     rtcDetachGeometry(ground_, 0);
     rtcReleaseGeometry(ground_quad_);
   }
-  ground_quad_ = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  ground_quad_ = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(ground_quad_, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         3 * sizeof(float), positions.size()));
-  auto* t = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(ground_quad_, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                           3 * sizeof(uint32_t), indices.size() / 3));
+  auto* quads = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(ground_quad_, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
+                                                               4 * sizeof(uint32_t), cells));
   throwOnDeviceError(device_, "ground mesh buffers", last_error_);
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
   std::memcpy(v, positions.data(), positions.size_bytes());
-  std::memcpy(t, indices.data(), indices.size_bytes());
+  for (std::size_t q = 0; q < cells; ++q) {
+    const uint32_t* t = &indices[6 * q];  // a c d, a d b
+    quads[4 * q + 0] = t[1], quads[4 * q + 1] = t[2], quads[4 * q + 2] = t[5], quads[4 * q + 3] = t[0];
+  }
   rtcSetGeometryBuildQuality(ground_quad_, RTC_BUILD_QUALITY_MEDIUM);
   rtcCommitGeometry(ground_quad_);
   rtcAttachGeometryByID(ground_, ground_quad_, 0);
   rtcCommitScene(ground_);
   throwOnDeviceError(device_, "ground mesh commit", last_error_);
+}
+
+GroundTriangleHit groundTriangleHit(unsigned cell, float u, float v) {
+  // The first triangle (v0 v1 v3) = (c d a) gives its own barycentrics: c 1-u-v, d u, a v. The second
+  // (v2 v3 v1) = (b a d) gives u = 1-u', v = 1-v' for its a u', d v': so a 1-u, d 1-v, b u+v-1.
+  if (u + v <= 1.0f) return {2 * cell, 1.0f - u - v, u};
+  return {2 * cell + 1, 1.0f - v, u + v - 1.0f};
 }
 
 unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint32_t> indices,

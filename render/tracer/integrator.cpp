@@ -376,9 +376,11 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
         const std::size_t k = first + i;
         const bool hit = valid[i] && packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
         scratch.samples[k].t_ground = lanes.t_ground[k] = hit ? packet.ray.tfar[i] : kInfinity;
-        scratch.ground_prim[k] = hit ? int32_t(packet.hit.primID[i]) : -1;
-        scratch.ground_u[k] = hit ? packet.hit.u[i] : 0.0f;
-        scratch.ground_v[k] = hit ? packet.hit.v[i] : 0.0f;
+        const GroundTriangleHit g = hit ? groundTriangleHit(packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i])
+                                        : GroundTriangleHit{0, 0.0f, 0.0f};
+        scratch.ground_prim[k] = hit ? int32_t(g.triangle) : -1;
+        scratch.ground_u[k] = g.b1;
+        scratch.ground_v[k] = g.b2;
       }
     }
     boxTestLanes(constants, lanes);

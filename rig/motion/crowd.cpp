@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <numbers>
 #include <random>
+#include <tuple>
+
+#include <tbb/parallel_for.h>
 
 #include "rig/characters/palette.h"
 #include "rig/characters/proportions.h"
@@ -205,7 +209,7 @@ Spacing minimumSpacing(const CrowdSpec& spec, const std::string& source) {
 }
 
 std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, double fps,
-                                    const std::string& source) {
+                                    const std::string& source, PairClips* clips) {
   checkSpec(spec, source);
   const std::string at = source + ": crowd.";
   // The lead's own clip checks its points and speeds first, so their errors name crowd.lead.
@@ -284,45 +288,53 @@ std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const
     p.path.seed = clip_seed;
     pairs.push_back(std::move(p));
   }
-  validatePairs(pairs, std::move(terrain), fps, frames, source, "crowd");
+  PairClips made = validatePairs(pairs, std::move(terrain), fps, frames, source, "crowd");
+  if (clips) *clips = std::move(made);
   return pairs;
 }
 
-void validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Terrain> terrain, double fps, int frames,
-                   const std::string& source, const std::string& field) {
+PairClips validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Terrain> terrain, double fps, int frames,
+                        const std::string& source, const std::string& field) {
   if (pairs.empty() || pairs.size() > static_cast<std::size_t>(kMaxCrowdPairs))
     throw InputError(source + ": " + field + ": expected 1 to " + std::to_string(kMaxCrowdPairs) + " pairs, got " +
                      std::to_string(pairs.size()));
-  std::vector<std::unique_ptr<PathClip>> clips;
-  std::vector<const Clip*> views;
-  std::vector<double> offsets;
-  std::vector<PairExtent> extents;
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const PairSpec& p = pairs[i];
-    const std::string at = source + ": " + field + "[" + std::to_string(i) + "].";
-    for (const auto& [key, v, allowed, unit] :
-         {std::tuple{"withers_height_cm", p.withers_height_cm, kWithersHeightRangeCm, " cm"},
-          std::tuple{"rider_height_cm", p.rider_height_cm, kRiderHeightRangeCm, " cm"},
-          std::tuple{"rider_build", p.rider_build, kRiderBuildRange, ""}})
-      if (!allowed.contains(v))
-        throw InputError(at + key + ": expected " + rangeText(allowed) + unit + ", got " + numberText(v));
-    if (!findHorseCoat(p.coat))
-      throw InputError(at + "coat: expected one of " + paletteNames(horseCoats()) + ", got \"" + p.coat + "\"");
-    for (const auto& [key, name, list] : {std::tuple{"jacket", &p.jacket, &riderJackets()},
-                                          std::tuple{"hair", &p.hair, &riderHair()}, std::tuple{"skin", &p.skin, &riderSkins()}})
-      if (!findNamedColor(*list, *name))
-        throw InputError(at + key + ": expected one of " + paletteNames(*list) + ", got \"" + *name + "\"");
-    const auto& known = crowdProfiles();
-    if (std::find(known.begin(), known.end(), p.profile) == known.end())
-      throw InputError(at + "profile: expected one of thesis, english, novice, got \"" + p.profile + "\"");
-    if (!(p.clip_offset_s >= 0.0 && p.clip_offset_s <= kMaxStartOffsetS))
-      throw InputError(at + "start_offset_s: expected seconds from 0 to " + numberText(kMaxStartOffsetS) + ", got " +
-                       numberText(p.clip_offset_s));
-    clips.push_back(makePairClip(p, terrain, source + ": " + field + "[" + std::to_string(i) + "]"));
-    views.push_back(clips.back().get());
-    offsets.push_back(p.clip_offset_s);
-    extents.push_back(pairExtent(p.horse(), p.rider()));
-  }
+  PairClips clips(pairs.size());
+  std::vector<const Clip*> views(pairs.size());
+  std::vector<double> offsets(pairs.size());
+  std::vector<PairExtent> extents(pairs.size());
+  std::vector<std::exception_ptr> errors(pairs.size());
+  tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t i) {
+    try {
+      const PairSpec& p = pairs[i];
+      const std::string at = source + ": " + field + "[" + std::to_string(i) + "].";
+      for (const auto& [key, v, allowed, unit] :
+           {std::tuple{"withers_height_cm", p.withers_height_cm, kWithersHeightRangeCm, " cm"},
+            std::tuple{"rider_height_cm", p.rider_height_cm, kRiderHeightRangeCm, " cm"},
+            std::tuple{"rider_build", p.rider_build, kRiderBuildRange, ""}})
+        if (!allowed.contains(v))
+          throw InputError(at + key + ": expected " + rangeText(allowed) + unit + ", got " + numberText(v));
+      if (!findHorseCoat(p.coat))
+        throw InputError(at + "coat: expected one of " + paletteNames(horseCoats()) + ", got \"" + p.coat + "\"");
+      for (const auto& [key, name, list] : {std::tuple{"jacket", &p.jacket, &riderJackets()},
+                                            std::tuple{"hair", &p.hair, &riderHair()}, std::tuple{"skin", &p.skin, &riderSkins()}})
+        if (!findNamedColor(*list, *name))
+          throw InputError(at + key + ": expected one of " + paletteNames(*list) + ", got \"" + *name + "\"");
+      const auto& known = crowdProfiles();
+      if (std::find(known.begin(), known.end(), p.profile) == known.end())
+        throw InputError(at + "profile: expected one of thesis, english, novice, got \"" + p.profile + "\"");
+      if (!(p.clip_offset_s >= 0.0 && p.clip_offset_s <= kMaxStartOffsetS))
+        throw InputError(at + "start_offset_s: expected seconds from 0 to " + numberText(kMaxStartOffsetS) + ", got " +
+                         numberText(p.clip_offset_s));
+      clips[i] = makePairClip(p, terrain, source + ": " + field + "[" + std::to_string(i) + "]");
+      views[i] = clips[i].get();
+      offsets[i] = p.clip_offset_s;
+      extents[i] = pairExtent(p.horse(), p.rider());
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   if (frames <= 0) {
     // While any pair still rides.
     double end_s = 0.0;
@@ -345,6 +357,7 @@ void validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Ter
     throw InputError(source + ": " + field + ": " + field + "[" + std::to_string(o->a) + "] and " + field + "[" +
                      std::to_string(o->b) + "]" + when + "expected paths that keep every two horses apart at every frame");
   }
+  return clips;
 }
 
 }  // namespace stirrup::rig

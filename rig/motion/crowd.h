@@ -126,11 +126,15 @@ struct Spacing {
 // generateCrowd rejects a formation closer than this; its frame-by-frame check is the guarantee.
 Spacing minimumSpacing(const CrowdSpec& spec, const std::string& source);
 
+// Each pair's clip as validatePairs made it, in pair order: a scene keeps them, so that a shot does not
+// make them again (a path clip scans its footfalls: some milliseconds a second of ride).
+using PairClips = std::vector<std::shared_ptr<const PathClip>>;
+
 // The pairs of a crowd spec, checked (validatePairs). Errors are one-line InputErrors
 // "SOURCE: crowd.FIELD: expected ..." (source e.g. "scenes/cavalry.json"). The shot runs for the
-// lead's clip: crowdFrames(spec) frames at fps.
+// lead's clip: crowdFrames(spec) frames at fps. `clips`, if given, receives validatePairs' clips.
 std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, double fps,
-                                    const std::string& source);
+                                    const std::string& source, PairClips* clips = nullptr);
 
 // Frames a crowd's shot needs at fps: the lead path's clip, from frame 1 at t = 0 to its end.
 int crowdFrames(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, double fps, const std::string& source);
@@ -138,8 +142,9 @@ int crowdFrames(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, d
 // Checks pairs given directly (FIELD e.g. "riders") or generated ("crowd"): count, proportions,
 // profiles, their paths (PathClip's own checks), and that no two footprints meet at any of `frames`
 // frames (frames <= 0: until the last pair's clip ends). Throws InputError "SOURCE: FIELD[i].KEY: expected ..." or "SOURCE: FIELD: pairs 3 and 7
-// overlap at frame 41 (1.667 s): ...".
-void validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Terrain> terrain, double fps, int frames,
+// overlap at frame 41 (1.667 s): ...". The pairs are checked and their clips made in parallel; the error
+// is the first bad pair's, whatever the threads.
+PairClips validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Terrain> terrain, double fps, int frames,
                    const std::string& source, const std::string& field);
 
 // The pair's clip over the terrain (null: flat), its hooves turned about its own horse's rest places.

@@ -1,5 +1,6 @@
 // stirrup bench --json: the shape the issue asks for, with every number positive and finite. Timings
 // themselves are not checked (a shared machine makes them noise); docs/performance.md records measured ones.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -95,11 +96,13 @@ TEST(BenchCommand, SceneJsonHasTheCrowdsCountsAndMemory) {
                             "times_trot", "flat_ms", "times_flat"})  // ride_out is over hills: it has a flat twin
       expectPositiveNumber(p.at(key), key);
     for (const char* part : {"bake", "skin", "bvh", "trace", "write"}) expectPositiveNumber(p.at("ms").at(part), part);
-    // The set-up's parts: ride_out has characters, hills and a framed view, and the parts are in the whole.
+    // The set-up's parts: ride_out has characters, hills and a framed view, and the parts are in the whole
+    // (the hills are built alongside the framing, so the two overlap).
     const nlohmann::json& setup = p.at("setup_ms");
     ASSERT_EQ(setup.size(), 3u);
     for (const char* part : {"characters", "terrain", "framing"}) expectPositiveNumber(setup.at(part), part);
-    EXPECT_LE(setup.at("characters").get<double>() + setup.at("terrain").get<double>() + setup.at("framing").get<double>(),
+    EXPECT_LE(setup.at("characters").get<double>() +
+                  std::max(setup.at("terrain").get<double>(), setup.at("framing").get<double>()),
               p.at("setup_s").get<double>() * 1000.0);
     EXPECT_EQ(p.at("pairs"), 8);
     const nlohmann::json& levels = p.at("pairs_at_level");

@@ -117,6 +117,32 @@ TEST(ShotEvaluator, EachPairOfACrowdIsBakedPosedAndSkinnedAsItsOwn) {
   for (std::size_t i = 1; i < 4; ++i) EXPECT_NE(out.pairs[i].baked.rider.value, out.pairs[0].baked.rider.value);
 }
 
+// A scene's pair clips are made once, as it loads (each path's footfalls scanned, its limits checked), and
+// a shot takes them; a copy of the scene set on other ground makes its own, on that ground.
+TEST(ShotEvaluator, TakesThePairClipsTheSceneMadeUnlessItsGroundChanged) {
+  for (const SceneSpec& scene : {crowdOfFour(), loadScene(STIRRUP_SOURCE_DIR "/scenes/ride_out.json")}) {
+    SCOPED_TRACE(scene.name);
+    ASSERT_EQ(scene.pair_clips.size(), scene.pairs.size());
+    EXPECT_EQ(scene.pair_clips_terrain, scene.terrain);
+    ShotEvaluator eval(scene, resolveProfile(scene), 2);
+    for (int i = 0; i < eval.pairCount(); ++i) EXPECT_EQ(&eval.clip(i), scene.pair_clips[std::size_t(i)].get());
+  }
+  const SceneSpec hills = loadScene(STIRRUP_SOURCE_DIR "/scenes/ride_out.json");
+  ASSERT_TRUE(hills.terrain && !hills.terrain->flat());
+  SceneSpec flat = hills;
+  flat.terrain.reset();
+  ShotEvaluator on_flat(flat, resolveProfile(flat), 2);
+  int differ = 0;
+  for (int i = 0; i < on_flat.pairCount(); ++i) {
+    SCOPED_TRACE("pair " + std::to_string(i));
+    EXPECT_NE(&on_flat.clip(i), hills.pair_clips[std::size_t(i)].get());
+    const auto own = rig::makePairClip(flat.pairs[std::size_t(i)], nullptr, "test");
+    EXPECT_EQ(on_flat.clip(i).sample(2.0).controls.value, own->sample(2.0).controls.value);
+    differ += on_flat.clip(i).sample(2.0).controls.value != hills.pair_clips[std::size_t(i)]->sample(2.0).controls.value;
+  }
+  EXPECT_EQ(differ, on_flat.pairCount());  // the hills move every horse
+}
+
 // A held pose shows the held frame's bake at every frame (its frame number the one asked for); a
 // treadmill takes the travel out; the rigid rider has every channel at rest and is posed with the
 // profile marked rigid; only_pair evaluates that pair and leaves the others as they were.

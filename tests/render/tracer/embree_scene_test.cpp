@@ -42,6 +42,54 @@ TEST(EmbreeScene, TheGroundIsASquareAtHeightZero) {
   EXPECT_FALSE(trace(scene.characters(), {100, 1000, -200}, down));  // the ground is not a character
 }
 
+// A heightfield's cells, traced as Embree quads: a hit converted to its triangle and barycentrics
+// (groundTriangleHit) is the point the ray hit, on both triangles of a cell, over a warped 3 x 3 grid of
+// vertices (rows along z, a cell's triangles (a c d), (a d b) as TerrainMesh makes them).
+TEST(EmbreeScene, AGroundHitIsItsTrianglesPoint) {
+  std::vector<glm::vec3> positions;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) positions.push_back({100.0f * i, 10.0f * float((i * 7 + j * 3) % 5), 100.0f * j});
+  std::vector<uint32_t> indices;
+  for (uint32_t j = 0; j < 2; ++j)
+    for (uint32_t i = 0; i < 2; ++i) {
+      const uint32_t a = j * 3 + i, b = a + 1, c = a + 3, d = c + 1;
+      indices.insert(indices.end(), {a, c, d, a, d, b});
+    }
+  EmbreeScene scene;
+  scene.setGroundMesh(positions, indices);
+  int seen[8] = {};
+  for (float x = 13.0f; x < 200.0f; x += 29.0f)
+    for (float z = 7.0f; z < 200.0f; z += 31.0f) {
+      SCOPED_TRACE("x " + std::to_string(x) + " z " + std::to_string(z));
+      RTCRayHit rh{};
+      rh.ray.org_x = x, rh.ray.org_y = 500.0f, rh.ray.org_z = z;
+      rh.ray.dir_y = -1.0f;
+      rh.ray.tfar = 1e30f, rh.ray.mask = 0xffffffffu;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      rtcIntersect1(scene.ground(), &context, &rh);
+      ASSERT_NE(rh.hit.geomID, RTC_INVALID_GEOMETRY_ID);
+      const GroundTriangleHit g = groundTriangleHit(rh.hit.primID, rh.hit.u, rh.hit.v);
+      ASSERT_LT(g.triangle, indices.size() / 3);
+      ++seen[g.triangle];
+      const uint32_t* t = &indices[3 * g.triangle];
+      const glm::vec3 p = (1.0f - g.b1 - g.b2) * positions[t[0]] + g.b1 * positions[t[1]] + g.b2 * positions[t[2]];
+      EXPECT_NEAR(p.x, x, 1e-3f);
+      EXPECT_NEAR(p.z, z, 1e-3f);
+      EXPECT_NEAR(p.y, 500.0f - rh.ray.tfar, 1e-3f);
+      EXPECT_GE(g.b1, -1e-6f);
+      EXPECT_GE(g.b2, -1e-6f);
+      EXPECT_LE(g.b1 + g.b2, 1.0f + 1e-6f);
+    }
+  for (int t = 0; t < 8; ++t) EXPECT_GT(seen[t], 0) << "triangle " << t;
+  // Triangles not in a cell's pairs are refused.
+  std::vector<uint32_t> unpaired = indices;
+  std::swap(unpaired[3], unpaired[4]);
+  EXPECT_THROW(scene.setGroundMesh(positions, unpaired), std::invalid_argument);
+  EXPECT_THROW(scene.setGroundMesh(positions, std::vector<uint32_t>{0, 3, 4}), std::invalid_argument);
+}
+
 TEST(EmbreeScene, MeshesFollowTheirVerticesInEveryUpdateMode) {
   for (BvhUpdate mode : {BvhUpdate::Rebuild, BvhUpdate::RebuildPerMesh, BvhUpdate::RebuildPerMeshLow, BvhUpdate::Refit}) {
     SCOPED_TRACE(static_cast<int>(mode));

@@ -381,6 +381,25 @@ TEST(Crowd, ExplicitPairsAreChecked) {
   EXPECT_EQ(check({a, b}), "s.json: riders[1].speed: expected a ride of at most 120 s, got 133.333 s");
 }
 
+// The pairs are checked and their clips made in parallel; the error is still the first bad pair's,
+// whichever thread finds one first, and the clips come back in pair order, one a pair.
+TEST(Crowd, TheFirstBadPairIsTheErrorAndTheClipsComeInOrder) {
+  const auto check = [](const std::vector<PairSpec>& pairs) {
+    return errorOf([&] { validatePairs(pairs, nullptr, 24, 0, "s.json", "riders"); });
+  };
+  std::vector<PairSpec> pairs;
+  for (int i = 0; i < 12; ++i) pairs.push_back(rider({{0, 500.0 * i}, {2000 + 100.0 * i, 500.0 * i}}, 300));
+  const PairClips clips = validatePairs(pairs, nullptr, 24, 0, "s.json", "riders");
+  ASSERT_EQ(clips.size(), pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    EXPECT_EQ(clips[i]->sample(1.0).travel_z_cm, makePairClip(pairs[i], nullptr, "t")->sample(1.0).travel_z_cm) << i;
+  pairs[9].coat = "purple";
+  pairs[4].path.points = {{0, 2000}};  // one point: its clip's own error
+  pairs[7].rider_build = 2;
+  for (int run = 0; run < 5; ++run)
+    EXPECT_EQ(check(pairs), "s.json: riders[4]: points: expected at least two points [x, z] (cm), got 1");
+}
+
 TEST(Crowd, OverlappingExplicitPathsAreRejected) {
   const auto check = [](const std::vector<PairSpec>& pairs) {
     return errorOf([&] { validatePairs(pairs, nullptr, 24, 0, "s.json", "riders"); });
