@@ -114,13 +114,6 @@ void EmbreeScene::setGroundMesh(std::span<const glm::vec3> positions, std::span<
   throwOnDeviceError(device_, "ground mesh commit", last_error_);
 }
 
-GroundTriangleHit groundTriangleHit(unsigned cell, float u, float v) {
-  // The first triangle (v0 v1 v3) = (c d a) gives its own barycentrics: c 1-u-v, d u, a v. The second
-  // (v2 v3 v1) = (b a d) gives u = 1-u', v = 1-v' for its a u', d v': so a 1-u, d 1-v, b u+v-1.
-  if (u + v <= 1.0f) return {2 * cell, 1.0f - u - v, u};
-  return {2 * cell + 1, 1.0f - v, u + v - 1.0f};
-}
-
 unsigned EmbreeScene::addTriangleMesh(size_t vertex_count, std::span<const uint32_t> indices,
                                       std::span<const glm::vec3> rest_positions, int wanted_id) {
   if (wanted_id >= 0 && std::size_t(wanted_id) < meshes_.size() && meshes_[std::size_t(wanted_id)].geometry)

@@ -45,7 +45,13 @@ struct GroundTriangleHit {
   uint32_t triangle;
   float b1, b2;
 };
-GroundTriangleHit groundTriangleHit(unsigned cell, float u, float v);
+// A quad hit as its triangle (inline: every camera ray that meets the hills asks).
+inline GroundTriangleHit groundTriangleHit(unsigned cell, float u, float v) {
+  // The first triangle (v0 v1 v3) = (c d a) gives its own barycentrics: c 1-u-v, d u, a v. The second
+  // (v2 v3 v1) = (b a d) gives u = 1-u', v = 1-v' for its a u', d v': so a 1-u, d 1-v, b u+v-1.
+  if (u + v <= 1.0f) return {2 * cell, 1.0f - u - v, u};
+  return {2 * cell + 1, 1.0f - v, u + v - 1.0f};
+}
 
 class EmbreeScene {
  public:
