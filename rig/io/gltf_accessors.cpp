@@ -32,6 +32,29 @@ bool keepAndDecodeImage(tinygltf::Image* image, const int index, std::string* /*
   return true;
 }
 
+// The buffer bytes an accessor's view holds, checked: the view and its buffer exist, and `count`
+// elements of `element_bytes` every `stride` bytes from the accessor's offset fit in the view and the
+// buffer (in 64 bits, so no count overflows the test). Returns the first element's bytes.
+const unsigned char* viewBytes(const tinygltf::Model& model, const tinygltf::Accessor& a, std::size_t stride,
+                               std::size_t element_bytes, const std::string& where, const char* runs_past) {
+  if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
+    throw InputError(where + ": bufferView " + std::to_string(a.bufferView) + ": no such buffer view (the file has " +
+                     std::to_string(model.bufferViews.size()) + ")");
+  const tinygltf::BufferView& v = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+  if (v.buffer < 0 || v.buffer >= static_cast<int>(model.buffers.size()))
+    throw InputError(where + ": bufferView " + std::to_string(a.bufferView) + ".buffer " + std::to_string(v.buffer) +
+                     ": no such buffer (the file has " + std::to_string(model.buffers.size()) + ")");
+  const tinygltf::Buffer& b = model.buffers[static_cast<std::size_t>(v.buffer)];
+  const unsigned long long count = a.count, base = static_cast<unsigned long long>(v.byteOffset) + a.byteOffset;
+  // Element i's last byte is base + stride * i + element_bytes - 1; a count beyond any buffer is refused
+  // before the product can overflow.
+  const unsigned long long limit = b.data.size();
+  if (count > 0 && (count - 1 > limit || base + stride * (count - 1) + element_bytes > limit ||
+                    (v.byteLength > 0 && a.byteOffset + stride * (count - 1) + element_bytes > v.byteLength)))
+    throw InputError(where + ": " + runs_past);
+  return b.data.data() + base;
+}
+
 }  // namespace
 
 tinygltf::Model readGltfFile(const std::filesystem::path& file, const std::string& where, GltfImageBytes* images) {
@@ -54,19 +77,22 @@ std::vector<float> readAccessor(const tinygltf::Model& model, int index, int com
   if (a.sparse.isSparse) throw InputError(where + ": sparse accessors are not supported");
   if (tinygltf::GetNumComponentsInType(a.type) != components)
     throw InputError(where + ": expected " + std::to_string(components) + " components per element");
-  std::vector<float> out(a.count * components, 0.0f);
-  if (a.bufferView < 0) return out;
-  const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
-  const tinygltf::Buffer& b = model.buffers.at(v.buffer);
   const int csize = tinygltf::GetComponentSizeInBytes(a.componentType);
   if (csize <= 0) throw InputError(where + ": unknown component type");
-  const std::size_t stride = v.byteStride ? v.byteStride : static_cast<std::size_t>(csize * components);
-  const std::size_t base = v.byteOffset + a.byteOffset;
-  if (a.count > 0 && base + stride * (a.count - 1) + csize * components > b.data.size())
-    throw InputError(where + ": accessor runs past its buffer");
+  if (a.bufferView < 0) {
+    // No view: zeros (glTF 2.0, 3.6.2.1), as many as the accessor says, if that is a real count.
+    if (a.count > (std::size_t(1) << 28)) throw InputError(where + ": accessor count " + std::to_string(a.count) + " without a buffer view");
+    return std::vector<float>(a.count * components, 0.0f);
+  }
+  const std::size_t element = static_cast<std::size_t>(csize) * components;
+  const std::size_t view_stride = static_cast<std::size_t>(a.bufferView) < model.bufferViews.size()
+                                      ? model.bufferViews[static_cast<std::size_t>(a.bufferView)].byteStride : 0;
+  const std::size_t stride = view_stride ? view_stride : element;
+  const unsigned char* first = viewBytes(model, a, stride, element, where, "accessor runs past its buffer");
+  std::vector<float> out(a.count * components, 0.0f);
   for (std::size_t i = 0; i < a.count; ++i)
     for (int k = 0; k < components; ++k) {
-      const unsigned char* p = b.data.data() + base + stride * i + static_cast<std::size_t>(csize) * k;
+      const unsigned char* p = first + stride * i + static_cast<std::size_t>(csize) * k;
       float value = 0.0f;
       switch (a.componentType) {
         case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); break;
@@ -92,15 +118,23 @@ std::vector<float> readAccessor(const tinygltf::Model& model, int index, int com
 }
 
 std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index, const std::string& where) {
-  const tinygltf::Accessor& a = model.accessors.at(index);
-  const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
-  const tinygltf::Buffer& b = model.buffers.at(v.buffer);
-  const int csize = tinygltf::GetComponentSizeInBytes(a.componentType);
-  const std::size_t base = v.byteOffset + a.byteOffset;
-  if (base + a.count * static_cast<std::size_t>(csize) > b.data.size()) throw InputError(where + ": indices run past the buffer");
+  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+    throw InputError(where + ": accessor " + std::to_string(index) + ": no such accessor (the file has " +
+                     std::to_string(model.accessors.size()) + ")");
+  const tinygltf::Accessor& a = model.accessors[static_cast<std::size_t>(index)];
+  if (a.sparse.isSparse) throw InputError(where + ": sparse accessors are not supported");
+  if (a.type != TINYGLTF_TYPE_SCALAR) throw InputError(where + ": expected scalar indices, one a vertex");
+  if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    throw InputError(where + ": expected indices of unsigned bytes, shorts or ints (componentType 5121, 5123 or 5125), got " +
+                     std::to_string(a.componentType));
+  if (a.bufferView < 0) throw InputError(where + ": expected indices in a buffer view, got none");
+  const std::size_t csize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(a.componentType));
+  // Indices are tightly packed (glTF 2.0 forbids a stride on their view).
+  const unsigned char* first = viewBytes(model, a, csize, csize, where, "indices run past the buffer");
   std::vector<std::uint32_t> out(a.count);
   for (std::size_t i = 0; i < a.count; ++i) {
-    const unsigned char* p = b.data.data() + base + i * csize;
+    const unsigned char* p = first + i * csize;
     if (csize == 1) out[i] = *p;
     else if (csize == 2) { std::uint16_t u; std::memcpy(&u, p, 2); out[i] = u; }
     else { std::memcpy(&out[i], p, 4); }

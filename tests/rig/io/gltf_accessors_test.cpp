@@ -104,6 +104,43 @@ TEST(GltfAccessors, IndicesOfEveryWidth) {
             "x.glb: indices: indices run past the buffer");
 }
 
+// Whatever a file's accessors point at, a read is a one-line error naming `where` and what is missing,
+// never an exception of another kind (the indices once threw std::out_of_range).
+TEST(GltfAccessors, BadReferencesAreOneLineErrors) {
+  const auto shorts = [] { return model<std::uint16_t>({0, 1, 2}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 3); };
+  const tinygltf::Model m = shorts();
+  EXPECT_EQ(errorOf([&] { readIndices(m, 4, "x.glb: meshes[0].primitives[0].indices"); }),
+            "x.glb: meshes[0].primitives[0].indices: accessor 4: no such accessor (the file has 1)");
+  EXPECT_EQ(errorOf([&] { readIndices(m, -1, "w"); }), "w: accessor -1: no such accessor (the file has 1)");
+  tinygltf::Model bad_view = shorts();
+  bad_view.accessors[0].bufferView = 3;
+  EXPECT_EQ(errorOf([&] { readIndices(bad_view, 0, "w"); }), "w: bufferView 3: no such buffer view (the file has 1)");
+  EXPECT_EQ(errorOf([&] { readAccessor(bad_view, 0, 1, "w"); }), "w: bufferView 3: no such buffer view (the file has 1)");
+  tinygltf::Model no_view = shorts();
+  no_view.accessors[0].bufferView = -1;
+  EXPECT_EQ(errorOf([&] { readIndices(no_view, 0, "w"); }), "w: expected indices in a buffer view, got none");
+  tinygltf::Model bad_buffer = shorts();
+  bad_buffer.bufferViews[0].buffer = 2;
+  EXPECT_EQ(errorOf([&] { readIndices(bad_buffer, 0, "w"); }), "w: bufferView 0.buffer 2: no such buffer (the file has 1)");
+  EXPECT_EQ(errorOf([&] { readAccessor(bad_buffer, 0, 1, "w"); }), "w: bufferView 0.buffer 2: no such buffer (the file has 1)");
+  const tinygltf::Model floats = model<float>({0, 1, 2}, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 3);
+  EXPECT_EQ(errorOf([&] { readIndices(floats, 0, "w"); }),
+            "w: expected indices of unsigned bytes, shorts or ints (componentType 5121, 5123 or 5125), got 5126");
+  tinygltf::Model pairs = shorts();
+  pairs.accessors[0].type = TINYGLTF_TYPE_VEC2;
+  EXPECT_EQ(errorOf([&] { readIndices(pairs, 0, "w"); }), "w: expected scalar indices, one a vertex");
+  // A count no buffer could hold (its byte size would overflow 64 bits) runs past the buffer.
+  tinygltf::Model huge = shorts();
+  huge.accessors[0].count = std::size_t(1) << 62;
+  EXPECT_EQ(errorOf([&] { readIndices(huge, 0, "w"); }), "w: indices run past the buffer");
+  EXPECT_EQ(errorOf([&] { readAccessor(huge, 0, 1, "w"); }), "w: accessor runs past its buffer");
+  // Within the buffer but past its view.
+  tinygltf::Model past_view = shorts();
+  past_view.bufferViews[0].byteLength = 4;
+  EXPECT_EQ(errorOf([&] { readIndices(past_view, 0, "w"); }), "w: indices run past the buffer");
+  EXPECT_EQ(readIndices(shorts(), 0, "w"), (std::vector<std::uint32_t>{0, 1, 2}));
+}
+
 TEST(GltfAccessors, FilesReadOrSayWhyNot) {
   const fs::path dir = fs::temp_directory_path() / ("stirrup_gltf_accessors_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
