@@ -129,8 +129,8 @@ void runSubmit(const SubmitOptions& o, const CLI::App& cmd) {
     render::SceneSpec scene = render::loadScene(scene_file);
     if (cmd.count("--preset")) render::applyPreset(scene, render::findPreset(o.set.preset));
     if (!o.set.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.set.resolution);
-    const auto framed = render::farm::planCamera(scene, render::resolveProfile(scene, parseSets(o.sets)),
-                                                 render::findCamera(scene, o.camera));
+    const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));
+    const auto framed = render::farm::planCamera(scene, profile, render::findCamera(scene, o.camera));
     plan = render::farm::planRender(request, scene_file, o.camera, o.frames, args, framed);
   }
 

@@ -59,7 +59,7 @@ void runRender(const RenderOptions& o) {
   if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
-  const rig::RigProfile profile = render::resolveProfile(scene, parseSets(o.sets));
+  const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
   const OutputFolder folder(dir);  // taken back if the render fails before writing a frame
   const std::string shot_name = scene.name + "_" + camera.name;
@@ -143,8 +143,8 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--movie,-m", opts->movie, "Also encode the frames as an H.264 .mp4 movie");
   cmd->add_option("--preset", opts->preset, "Quality preset: draft, review or final (default: the scene's quality)");
   cmd->add_option("--set,-s", opts->sets,
-                  "Override one rig-profile parameter after the scene's, KEY=NUMBER (repeatable), e.g. --set eq7.w2_scale=0.015 "
-                  "(stirrup rig params lists them)");
+                  "Override one rig-profile parameter after the scene's (every pair's in a crowd), KEY=NUMBER (repeatable), "
+                  "e.g. --set eq7.w2_scale=0.015 (stirrup rig params lists them)");
   cmd->add_option("--resolution", opts->resolution, "WIDTHxHEIGHT instead of the scene's (e.g. 320x180)");
   cmd->add_option("--format", opts->format,
                   "png (sRGB review frames), exr (linear half float with RGBA, N, Z, matte and objectId "

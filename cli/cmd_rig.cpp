@@ -71,11 +71,8 @@ void runParams(const RigOptions& o) {
 // (render/scene/shot_evaluator.h) with its own profile, the scene's overrides and then --set applied.
 void runBalance(const RigOptions& o) {
   render::SceneSpec scene = render::loadScene(o.scene);
-  rig::RigProfile profile = render::resolveProfile(scene);
-  const nlohmann::json sets = parseSets(o.sets);
-  rig::applyProfileOverrides(profile, sets, "--set");  // checked here, so an error names --set
   // A crowd's pairs resolve their own profiles from the scene: --set joins its overrides, after them.
-  for (const auto& [key, value] : sets.items()) scene.profile_overrides[key] = value;
+  const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));
   render::ShotEvaluator characters(scene, profile, 0);
   const bool crowd = characters.isCrowd();
   std::ostringstream out;

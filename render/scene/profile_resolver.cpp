@@ -61,6 +61,12 @@ rig::RigProfile resolveProfile(const SceneSpec& scene, const nlohmann::json& set
   return p;
 }
 
+rig::RigProfile resolveProfileForEveryPair(SceneSpec& scene, const nlohmann::json& sets) {
+  rig::RigProfile p = resolveProfile(scene, sets);  // checked here, so that an error names --set
+  for (const auto& [key, value] : sets.items()) scene.profile_overrides[key] = value;
+  return p;
+}
+
 rig::RigProfile resolveProfile(const std::string& value, const nlohmann::json& sets) {
   rig::RigProfile p = findProfile(value, profileSearch(), "--profile");
   rig::applyProfileOverrides(p, sets, "--set");

@@ -48,6 +48,11 @@ rig::RigProfile findProfile(const std::string& value, const ProfileSearch& searc
 // then `sets` (the command line's --set, named "--set" in errors).
 rig::RigProfile resolveProfile(const SceneSpec& scene, const nlohmann::json& sets = nlohmann::json::object());
 
+// The scene's profile as above, and `sets` joined to the scene's profile_overrides after its own: a
+// crowd's pairs resolve their own profiles from the scene (ShotEvaluator), so the command line's --set
+// reaches every pair, not only the scene's profile. Errors in `sets` name "--set".
+rig::RigProfile resolveProfileForEveryPair(SceneSpec& scene, const nlohmann::json& sets);
+
 // The command line's --profile VALUE found by profileSearch(), then `sets` (--set).
 rig::RigProfile resolveProfile(const std::string& value, const nlohmann::json& sets = nlohmann::json::object());
 

@@ -160,6 +160,36 @@ TEST(RenderOverrides, SetChangesTheRiderAndBadKeysAreOneLineErrors) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A crowd's pairs resolve their own profiles (each pair names one): --set reaches them too (it once
+// changed only the scene's own profile, which no pair of a crowd rides with), and a bad key still names
+// --set. Two riders, one thesis, one english, lifted alike.
+TEST(RenderOverrides, SetReachesEveryPairOfACrowd) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "render_exr_test" / "crowd_set";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path scene = dir / "two.json";
+  std::ofstream(scene) << R"({"name": "two", "frames": "1-6", "resolution": [96, 54],
+    "riders": [
+      {"points": [[0, -200], [2000, -200]], "speed": [[0, 300]], "profile": "thesis", "seed": 1},
+      {"points": [[0, 200], [2000, 200]], "speed": [[0, 300]], "profile": "english", "seed": 2}],
+    "cameras": [{"name": "side", "view": "side", "follow_pair": 0}, {"name": "other", "view": "side", "follow_pair": 1}]})";
+  for (const char* camera : {"side", "other"}) {
+    SCOPED_TRACE(camera);
+    for (const char* run : {"plain", "lifted"}) {
+      const std::string set = std::string(run) == "lifted" ? " --set eq7.w2_scale=0.05" : "";
+      const CommandResult r = runStirrup("render " + quote(scene.string()) + " --camera " + camera + " --frames 5 --preset draft" +
+                                         set + " --out " + quote((dir / run).string()));
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    const std::string frame = std::string("two_") + camera + ".0005.png";
+    EXPECT_NE(readText(dir / "plain" / frame), readText(dir / "lifted" / frame));
+  }
+  const CommandResult unknown = runStirrup("render " + quote(scene.string()) + " --set eq7.nope=1 --out " + quote((dir / "bad").string()));
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_EQ(lineCount(unknown.err), 1u) << unknown.err;
+  EXPECT_NE(unknown.err.find("--set: eq7.nope: unknown rig profile parameter"), std::string::npos) << unknown.err;
+}
+
 TEST(RenderExr, APresetChangesTheSamples) {
   const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "render_exr_test" / "presets";
   fs::remove_all(dir);
