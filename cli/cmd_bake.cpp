@@ -33,11 +33,12 @@ struct BakeOptions {
   std::string output;
   bool rider_only = false;
   bool allow_impossible = false;
+  int detail = 0;
 };
 
 // The whole shot as one glTF (render/scene/shot_bake.h).
-void writeBakedGlb(render::ShotEvaluator& characters, const std::vector<int>& frames, const std::string& output) {
-  rig::writeFileAtomically(output, rig::bakedShotGlb(render::bakeShot(characters, frames)));
+void writeBakedGlb(render::ShotEvaluator& characters, const std::vector<int>& frames, int level, const std::string& output) {
+  rig::writeFileAtomically(output, rig::bakedShotGlb(render::bakeShot(characters, frames, level)));
 }
 
 // A crowd writes one file a pair: FILE's name with the pair's before its extension (out/c.csv ->
@@ -119,11 +120,15 @@ void runBake(const BakeOptions& o) {
     throw InputError("bake: -o: expected a .glb file, got " + o.output);
   // Every pair of the scene (one, or a crowd's), on all cores: the frames are the same at any count.
   render::ShotEvaluator characters(scene, render::resolveProfile(scene), 0);
+  if (o.detail > 0 && (!characters.isCrowd() || o.output.empty() || o.rider_only))
+    throw InputError("bake: --detail " + std::to_string(o.detail) +
+                     ": expected 0 unless -o bakes a crowd (a single pair has only its own characters; --rider-only and "
+                     "--channels write no mesh)");
   if (!o.output.empty()) {
     if (o.rider_only)
       writeRiderGlb(characters, frames, o.output);
     else
-      writeBakedGlb(characters, frames, o.output);
+      writeBakedGlb(characters, frames, o.detail, o.output);
   }
   if (!o.channels.empty()) writeChannels(characters, frames, o.channels);
 }
@@ -147,6 +152,7 @@ void addBakeCommand(CLI::App& app) {
       "(pair03_horse, pair03_rider: the pair's index from 0), their joints named as the skeleton names them;\n"
       "--channels and --rider-only write one file a pair, the pair's name before the extension\n"
       "(out/cavalry.csv -> out/cavalry_pair00.csv ... out/cavalry_pair29.csv), each as a single pair's.\n"
+      "--detail 1 or 2 bakes a crowd's meshes at half or quarter detail: a file of a fraction of the size.\n"
       "Example: stirrup bake scenes/trot.json --channels out/trot.csv\n"
       "         stirrup bake scenes/rear.json -o out/rear.glb\n"
       "         stirrup bake scenes/cavalry.json -o out/cavalry.glb");
@@ -156,6 +162,10 @@ void addBakeCommand(CLI::App& app) {
   cmd->add_option("-o,--output", opts->output, "Write the baked shot as glTF 2.0 (.glb)");
   cmd->add_flag("--rider-only", opts->rider_only,
                 "With -o: write only the rider's skeleton animation, in the rider file's joint names");
+  cmd->add_option("--detail", opts->detail,
+                  "With -o on a crowd: every pair's meshes at this level of detail, 0 full (default), 1 half, 2 quarter "
+                  "(the cell the render uses for far pairs; the same skeletons and animation, a smaller file)")
+      ->check(CLI::Range(0, 2));
   cmd->add_flag("--allow-impossible", opts->allow_impossible,
                 "Bake a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
   cmd->callback([opts] { runBake(*opts); });

@@ -1,6 +1,8 @@
 #include "render/scene/shot_bake.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "render/scene/camera.h"
 #include "render/scene/shot_camera.h"
@@ -28,7 +30,10 @@ constexpr int kBakedGroundMaxCells = 600;
 
 }  // namespace
 
-rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames) {
+rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames, int level) {
+  if (level < 0 || level >= characters.levelCount())
+    throw std::invalid_argument("bakeShot: no level " + std::to_string(level) + " (the shot has " +
+                                std::to_string(characters.levelCount()) + ")");
   const SceneSpec& scene = characters.scene();
   std::sort(frames.begin(), frames.end());
   frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
@@ -38,8 +43,8 @@ rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames) {
   for (int i = 0; i < characters.pairCount(); ++i) {
     rig::BakedPair pair;
     pair.name = characters.pairName(i);
-    pair.horse = &characters.horseAt(i, 0);
-    pair.rider = &characters.riderAt(i, 0);
+    pair.horse = &characters.horseAt(i, level);
+    pair.rider = &characters.riderAt(i, level);
     pair.seat = characters.seat(i);
     shot.pairs.push_back(std::move(pair));
   }

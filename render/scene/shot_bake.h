@@ -13,7 +13,9 @@
 namespace stirrup::render {
 
 // The frames sorted, each once. Pair i of the shot is the evaluator's pair i, named by its pairName;
-// its characters are the evaluator's (they must outlive the result).
-rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames);
+// its characters are the evaluator's at `level` of detail (render/scene/detail_level.h: 0 full, 1 half,
+// 2 quarter; a single pair has only 0), which must outlive the result. Every level has the same
+// skeleton, so the animation is the same at each: only the meshes are coarser.
+rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames, int level = 0);
 
 }  // namespace stirrup::render

@@ -20,6 +20,7 @@
 #include <tiny_gltf.h>
 
 #include "render/scene/camera.h"
+#include "render/scene/detail_level.h"
 #include "render/scene/profile_resolver.h"
 #include "render/scene/scene.h"
 #include "render/shot.h"
@@ -521,6 +522,62 @@ TEST(BakeGltf, ACrowdsRiderOnlyIsOneFileAPair) {
   }
   EXPECT_FALSE(fs::exists(dir / "rider_pair03.glb"));
   EXPECT_NE(first_rotation[0], first_rotation[1]) << "two pairs' riders move alike";
+}
+
+// --detail bakes a crowd's meshes coarser: every pair's horse and rider with exactly the vertices of its
+// characters built at that level's cell, the same animation to the value, a fraction of the file. A
+// single pair, --channels and --rider-only refuse it; 3 is out of range.
+TEST(BakeGltf, ACrowdBakesAtACoarserDetail) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_detail";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path scene_file = dir / "crowd.json";
+  std::ofstream(scene_file) << R"({"riders": [
+    {"points": [[0, -300], [3000, -300]], "speed": [[0, 300]], "seed": 1, "withers_height_cm": 150},
+    {"points": [[0, 300], [3000, 300]], "speed": [[0, 300]], "seed": 2, "rider_height_cm": 185}]})";
+  const render::SceneSpec scene = render::loadScene(scene_file);
+  std::uintmax_t bytes[3] = {};
+  std::vector<float> rotations[3];
+  for (int level : {0, 2}) {
+    SCOPED_TRACE("level " + std::to_string(level));
+    const fs::path glb = dir / ("crowd" + std::to_string(level) + ".glb");
+    const CommandResult r = runStirrup("bake " + quote(scene_file.string()) + " --frames 1-6 --detail " +
+                                       std::to_string(level) + " -o " + quote(glb.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    bytes[level] = fs::file_size(glb);
+    const tinygltf::Model model = loadGlb(glb);
+    std::set<int> positions;  // a character's primitives share one POSITION accessor
+    for (const tinygltf::Mesh& mesh : model.meshes)
+      for (const tinygltf::Primitive& prim : mesh.primitives) positions.insert(prim.attributes.at("POSITION"));
+    std::size_t vertices = 0;
+    for (int a : positions) vertices += model.accessors.at(std::size_t(a)).count;
+    std::size_t built = 0;
+    for (const rig::PairSpec& spec : scene.pairs) {
+      rig::HorseParams hp = spec.horse();
+      rig::RiderParams rp = spec.rider();
+      hp.cell *= render::kDetailCellFactor[level];
+      rp.cell *= render::kDetailCellFactor[level];
+      built += rig::buildHorse(hp).mesh.positions.size() + rig::buildRider(rp, hp.mount).mesh.positions.size();
+    }
+    EXPECT_EQ(vertices, built);
+    ASSERT_EQ(model.animations.size(), 1u);
+    rotations[level] = accessorData<float>(model, model.animations[0].samplers[1].output);
+  }
+  EXPECT_EQ(rotations[0], rotations[2]);
+  EXPECT_LT(bytes[2] * 4, bytes[0]) << bytes[2] << " bytes at quarter detail, " << bytes[0] << " at full";
+  const CommandResult single = runStirrup("bake " + quote(STIRRUP_SOURCE_DIR "/scenes/trot.json") + " --frames 1-2 --detail 1 -o " +
+                                          quote((dir / "trot.glb").string()));
+  EXPECT_EQ(single.exit_code, 1);
+  EXPECT_EQ(lineCount(single.err), 1u) << single.err;
+  EXPECT_NE(single.err.find("--detail 1: expected 0 unless -o bakes a crowd"), std::string::npos) << single.err;
+  EXPECT_FALSE(fs::exists(dir / "trot.glb"));
+  const CommandResult channels = runStirrup("bake " + quote(scene_file.string()) + " --frames 1-2 --detail 2 --channels " +
+                                            quote((dir / "c.csv").string()));
+  EXPECT_EQ(channels.exit_code, 1);
+  EXPECT_NE(channels.err.find("--detail 2: expected 0"), std::string::npos) << channels.err;
+  const CommandResult three = runStirrup("bake " + quote(scene_file.string()) + " --detail 3 -o " + quote((dir / "x.glb").string()));
+  EXPECT_NE(three.exit_code, 0);
+  EXPECT_NE(three.err.find("--detail"), std::string::npos) << three.err;
 }
 
 // Over a terrain the baked file holds the ground (node "ground", scale 0.01, its mesh in cm): its
