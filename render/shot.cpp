@@ -87,9 +87,10 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
   // need nothing of each other, so the terrain is built on a thread of its own while the view is framed:
   // neither keeps both cores busy throughout (the BVH's build least), and together they do. The
   // renderer is not touched by the framing, nor the evaluator by the terrain (it only samples clips).
+  // Asked for one thread, the shot keeps to one: the terrain waits for the framing.
   std::future<void> terrain;
   if (scene.terrain && !scene.terrain->flat())
-    terrain = std::async(std::launch::async, [this, &scene] {
+    terrain = std::async(threads == 1 ? std::launch::deferred : std::launch::async, [this, &scene] {
       const auto t0 = Clock::now();
       std::vector<const rig::Clip*> tracks;
       for (int i = 0; i < characters_->pairCount(); ++i) tracks.push_back(&characters_->shownClip(i));
@@ -100,7 +101,8 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
   try {
     camera_ = std::make_unique<ShotCamera>(*characters_, camera);
   } catch (...) {
-    if (terrain.valid()) terrain.wait();  // never unwind while the terrain's thread uses this shot
+    // Never unwind while the terrain's thread uses this shot (a deferred one has not started: drop it).
+    if (terrain.valid() && terrain.wait_for(std::chrono::seconds(0)) != std::future_status::deferred) terrain.wait();
     throw;
   }
   setup_.framing_ms = msSince(t0);

@@ -48,7 +48,8 @@ struct FrameTimings {
 // Where a shot's set-up went (ms, wall clock): reading, seating and building the characters and their
 // clips (0 for a shot made from an evaluator already built), meshing the terrain with its normals and
 // sun horizon, and framing the view camera over every frame it shows. The terrain is built on a thread
-// of its own alongside the framing, so the set-up takes the characters plus the longer of the two.
+// of its own alongside the framing, so the set-up takes the characters plus the longer of the two (at
+// one thread, after the framing: their sum).
 struct SetupTimings {
   double characters_ms = 0, terrain_ms = 0, framing_ms = 0;
 };
