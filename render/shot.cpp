@@ -97,14 +97,10 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
       renderer_->setTerrain(scene.terrain, trackRegion(scene_, tracks));
       setup_.terrain_ms = msSince(t0);
     });
+  // If the framing throws, `terrain` (a local, gone before the members) waits for its thread in its
+  // destructor, as std::async's futures do, so nothing the thread uses is unwound under it.
   const auto t0 = Clock::now();
-  try {
-    camera_ = std::make_unique<ShotCamera>(*characters_, camera);
-  } catch (...) {
-    // Never unwind while the terrain's thread uses this shot (a deferred one has not started: drop it).
-    if (terrain.valid() && terrain.wait_for(std::chrono::seconds(0)) != std::future_status::deferred) terrain.wait();
-    throw;
-  }
+  camera_ = std::make_unique<ShotCamera>(*characters_, camera);
   setup_.framing_ms = msSince(t0);
   if (terrain.valid()) terrain.get();  // its error, if any, is the shot's
   // A pair of one level (a single pair: its characters as read or built) joins the renderer now, with

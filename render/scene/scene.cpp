@@ -2,11 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <optional>
 #include <system_error>
-
-#include <tbb/parallel_for.h>
 
 #include "render/scene/data_dir.h"
 #include "render/scene/reference_spec.h"
@@ -18,6 +15,7 @@
 #include "rig/io/gltf_character.h"
 #include "rig/io/json_fields.h"
 #include "rig/io/terrain_json.h"
+#include "rig/parallel_first_error.h"
 
 namespace stirrup::render {
 namespace {
@@ -98,18 +96,11 @@ void checkLimits(SceneSpec& s) {
     s.limits.push_back({std::make_shared<const rig::PathLimitCheck>(*params, s.terrain.get(), file, "clip"), 0.0});
   // Each pair's path read in parallel (each check walks its whole path); kept in pair order.
   std::vector<SceneSpec::PathLimits> pairs(s.pairs.size());
-  std::vector<std::exception_ptr> errors(s.pairs.size());
-  tbb::parallel_for(std::size_t(0), s.pairs.size(), [&](std::size_t i) {
-    try {
-      const std::string field = (s.crowd ? "crowd.pairs[" : "riders[") + std::to_string(i) + "]";
-      pairs[i] = {std::make_shared<const rig::PathLimitCheck>(s.pairs[i].path, s.terrain.get(), file, field),
-                  s.pairs[i].clip_offset_s};
-    } catch (...) {
-      errors[i] = std::current_exception();
-    }
+  rig::parallelForFirstError(s.pairs.size(), [&](std::size_t i) {
+    const std::string field = (s.crowd ? "crowd.pairs[" : "riders[") + std::to_string(i) + "]";
+    pairs[i] = {std::make_shared<const rig::PathLimitCheck>(s.pairs[i].path, s.terrain.get(), file, field),
+                s.pairs[i].clip_offset_s};
   });
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
   s.limits.insert(s.limits.end(), pairs.begin(), pairs.end());
   if (s.allow_impossible) return;
   for (const SceneSpec::PathLimits& l : s.limits)

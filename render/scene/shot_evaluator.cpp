@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <exception>
 #include <functional>
 #include <limits>
 #include <map>
@@ -24,6 +23,7 @@
 #include "rig/io/clip_factory.h"
 #include "rig/motion/crowd.h"
 #include "rig/motion/shifted_clip.h"
+#include "rig/parallel_first_error.h"
 #include "rig/skin.h"
 
 namespace stirrup::render {
@@ -152,18 +152,11 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
     if (scene.pair_clips.size() == scene.pairs.size() && scene.pair_clips_terrain == scene.terrain) {
       for (std::size_t i = 0; i < scene.pairs.size(); ++i) ps.pairs[i].clip = scene.pair_clips[i];
     } else {
-      std::vector<std::exception_ptr> errors(scene.pairs.size());
       ps.arena.execute([&] {
-        tbb::parallel_for(std::size_t(0), scene.pairs.size(), [&](std::size_t i) {
-          try {
-            ps.pairs[i].clip = rig::makePairClip(scene.pairs[i], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
-          } catch (...) {
-            errors[i] = std::current_exception();
-          }
+        rig::parallelForFirstError(scene.pairs.size(), [&](std::size_t i) {
+          ps.pairs[i].clip = rig::makePairClip(scene.pairs[i], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
         });
       });
-      for (const std::exception_ptr& e : errors)
-        if (e) std::rethrow_exception(e);
     }
     for (std::size_t i = 0; i < scene.pairs.size(); ++i) {
       const rig::PairSpec& spec = scene.pairs[i];

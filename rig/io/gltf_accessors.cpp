@@ -32,11 +32,15 @@ bool keepAndDecodeImage(tinygltf::Image* image, const int index, std::string* /*
   return true;
 }
 
-// The buffer bytes an accessor's view holds, checked: the view and its buffer exist, and `count`
-// elements of `element_bytes` every `stride` bytes from the accessor's offset fit in the view and the
-// buffer (in 64 bits, so no count overflows the test). Returns the first element's bytes.
-const unsigned char* viewBytes(const tinygltf::Model& model, const tinygltf::Accessor& a, std::size_t stride,
-                               std::size_t element_bytes, const std::string& where, const char* runs_past) {
+// Where an accessor's elements are, checked: the view and its buffer exist, and `count` elements of
+// `element_bytes`, `stride` bytes apart from the accessor's offset, fit in the view and the buffer (in 64
+// bits, so no count overflows the test).
+struct ElementBytes {
+  const unsigned char* first;
+  std::size_t stride;  // the view's byteStride, or packed (always, for indices: glTF forbids them one)
+};
+ElementBytes elementBytes(const tinygltf::Model& model, const tinygltf::Accessor& a, std::size_t element_bytes,
+                          bool strided, const std::string& where, const char* runs_past) {
   if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
     throw InputError(where + ": bufferView " + std::to_string(a.bufferView) + ": no such buffer view (the file has " +
                      std::to_string(model.bufferViews.size()) + ")");
@@ -45,6 +49,7 @@ const unsigned char* viewBytes(const tinygltf::Model& model, const tinygltf::Acc
     throw InputError(where + ": bufferView " + std::to_string(a.bufferView) + ".buffer " + std::to_string(v.buffer) +
                      ": no such buffer (the file has " + std::to_string(model.buffers.size()) + ")");
   const tinygltf::Buffer& b = model.buffers[static_cast<std::size_t>(v.buffer)];
+  const std::size_t stride = strided && v.byteStride ? v.byteStride : element_bytes;
   const unsigned long long count = a.count, base = static_cast<unsigned long long>(v.byteOffset) + a.byteOffset;
   // Element i's last byte is base + stride * i + element_bytes - 1; a count beyond any buffer is refused
   // before the product can overflow.
@@ -52,7 +57,7 @@ const unsigned char* viewBytes(const tinygltf::Model& model, const tinygltf::Acc
   if (count > 0 && (count - 1 > limit || base + stride * (count - 1) + element_bytes > limit ||
                     (v.byteLength > 0 && a.byteOffset + stride * (count - 1) + element_bytes > v.byteLength)))
     throw InputError(where + ": " + runs_past);
-  return b.data.data() + base;
+  return {b.data.data() + base, stride};
 }
 
 }  // namespace
@@ -84,11 +89,8 @@ std::vector<float> readAccessor(const tinygltf::Model& model, int index, int com
     if (a.count > (std::size_t(1) << 28)) throw InputError(where + ": accessor count " + std::to_string(a.count) + " without a buffer view");
     return std::vector<float>(a.count * components, 0.0f);
   }
-  const std::size_t element = static_cast<std::size_t>(csize) * components;
-  const std::size_t view_stride = static_cast<std::size_t>(a.bufferView) < model.bufferViews.size()
-                                      ? model.bufferViews[static_cast<std::size_t>(a.bufferView)].byteStride : 0;
-  const std::size_t stride = view_stride ? view_stride : element;
-  const unsigned char* first = viewBytes(model, a, stride, element, where, "accessor runs past its buffer");
+  const auto [first, stride] =
+      elementBytes(model, a, static_cast<std::size_t>(csize) * components, true, where, "accessor runs past its buffer");
   std::vector<float> out(a.count * components, 0.0f);
   for (std::size_t i = 0; i < a.count; ++i)
     for (int k = 0; k < components; ++k) {
@@ -130,8 +132,7 @@ std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index, 
                      std::to_string(a.componentType));
   if (a.bufferView < 0) throw InputError(where + ": expected indices in a buffer view, got none");
   const std::size_t csize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(a.componentType));
-  // Indices are tightly packed (glTF 2.0 forbids a stride on their view).
-  const unsigned char* first = viewBytes(model, a, csize, csize, where, "indices run past the buffer");
+  const unsigned char* first = elementBytes(model, a, csize, false, where, "indices run past the buffer").first;
   std::vector<std::uint32_t> out(a.count);
   for (std::size_t i = 0; i < a.count; ++i) {
     const unsigned char* p = first + i * csize;

@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <numbers>
 #include <random>
 #include <tuple>
-
-#include <tbb/parallel_for.h>
 
 #include "rig/characters/palette.h"
 #include "rig/characters/proportions.h"
 #include "rig/error.h"
 #include "rig/motion/ground_path.h"
+#include "rig/parallel_first_error.h"
 
 namespace stirrup::rig {
 namespace {
@@ -302,39 +300,32 @@ PairClips validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<cons
   std::vector<const Clip*> views(pairs.size());
   std::vector<double> offsets(pairs.size());
   std::vector<PairExtent> extents(pairs.size());
-  std::vector<std::exception_ptr> errors(pairs.size());
-  tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t i) {
-    try {
-      const PairSpec& p = pairs[i];
-      const std::string at = source + ": " + field + "[" + std::to_string(i) + "].";
-      for (const auto& [key, v, allowed, unit] :
-           {std::tuple{"withers_height_cm", p.withers_height_cm, kWithersHeightRangeCm, " cm"},
-            std::tuple{"rider_height_cm", p.rider_height_cm, kRiderHeightRangeCm, " cm"},
-            std::tuple{"rider_build", p.rider_build, kRiderBuildRange, ""}})
-        if (!allowed.contains(v))
-          throw InputError(at + key + ": expected " + rangeText(allowed) + unit + ", got " + numberText(v));
-      if (!findHorseCoat(p.coat))
-        throw InputError(at + "coat: expected one of " + paletteNames(horseCoats()) + ", got \"" + p.coat + "\"");
-      for (const auto& [key, name, list] : {std::tuple{"jacket", &p.jacket, &riderJackets()},
-                                            std::tuple{"hair", &p.hair, &riderHair()}, std::tuple{"skin", &p.skin, &riderSkins()}})
-        if (!findNamedColor(*list, *name))
-          throw InputError(at + key + ": expected one of " + paletteNames(*list) + ", got \"" + *name + "\"");
-      const auto& known = crowdProfiles();
-      if (std::find(known.begin(), known.end(), p.profile) == known.end())
-        throw InputError(at + "profile: expected one of thesis, english, novice, got \"" + p.profile + "\"");
-      if (!(p.clip_offset_s >= 0.0 && p.clip_offset_s <= kMaxStartOffsetS))
-        throw InputError(at + "start_offset_s: expected seconds from 0 to " + numberText(kMaxStartOffsetS) + ", got " +
-                         numberText(p.clip_offset_s));
-      clips[i] = makePairClip(p, terrain, source + ": " + field + "[" + std::to_string(i) + "]");
-      views[i] = clips[i].get();
-      offsets[i] = p.clip_offset_s;
-      extents[i] = pairExtent(p.horse(), p.rider());
-    } catch (...) {
-      errors[i] = std::current_exception();
-    }
+  parallelForFirstError(pairs.size(), [&](std::size_t i) {
+    const PairSpec& p = pairs[i];
+    const std::string at = source + ": " + field + "[" + std::to_string(i) + "].";
+    for (const auto& [key, v, allowed, unit] :
+         {std::tuple{"withers_height_cm", p.withers_height_cm, kWithersHeightRangeCm, " cm"},
+          std::tuple{"rider_height_cm", p.rider_height_cm, kRiderHeightRangeCm, " cm"},
+          std::tuple{"rider_build", p.rider_build, kRiderBuildRange, ""}})
+      if (!allowed.contains(v))
+        throw InputError(at + key + ": expected " + rangeText(allowed) + unit + ", got " + numberText(v));
+    if (!findHorseCoat(p.coat))
+      throw InputError(at + "coat: expected one of " + paletteNames(horseCoats()) + ", got \"" + p.coat + "\"");
+    for (const auto& [key, name, list] : {std::tuple{"jacket", &p.jacket, &riderJackets()},
+                                          std::tuple{"hair", &p.hair, &riderHair()}, std::tuple{"skin", &p.skin, &riderSkins()}})
+      if (!findNamedColor(*list, *name))
+        throw InputError(at + key + ": expected one of " + paletteNames(*list) + ", got \"" + *name + "\"");
+    const auto& known = crowdProfiles();
+    if (std::find(known.begin(), known.end(), p.profile) == known.end())
+      throw InputError(at + "profile: expected one of thesis, english, novice, got \"" + p.profile + "\"");
+    if (!(p.clip_offset_s >= 0.0 && p.clip_offset_s <= kMaxStartOffsetS))
+      throw InputError(at + "start_offset_s: expected seconds from 0 to " + numberText(kMaxStartOffsetS) + ", got " +
+                       numberText(p.clip_offset_s));
+    clips[i] = makePairClip(p, terrain, source + ": " + field + "[" + std::to_string(i) + "]");
+    views[i] = clips[i].get();
+    offsets[i] = p.clip_offset_s;
+    extents[i] = pairExtent(p.horse(), p.rider());
   });
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
   if (frames <= 0) {
     // While any pair still rides.
     double end_s = 0.0;
