@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -214,6 +213,16 @@ TileScratch::~TileScratch() = default;
 TileScratch::TileScratch(TileScratch&&) noexcept = default;
 TileScratch& TileScratch::operator=(TileScratch&&) noexcept = default;
 
+// Embree's stream arrays must start on 16 bytes, as every allocation of the default new does here.
+static_assert(__STDCPP_DEFAULT_NEW_ALIGNMENT__ >= 16);
+
+void TileScratch::GroundStream::resize(std::size_t n) {
+  if (time.size() >= n) return;
+  for (auto* f : {&time, &ng_x, &ng_y, &ng_z, &u, &v}) f->resize(n, 0.0f);
+  mask.resize(n, 0xffffffffu);
+  for (auto* f : {&id, &flags, &prim, &geom, &inst}) f->resize(n, 0u);
+}
+
 namespace {
 
 // Camera samples per batch: a batch's rays and results (about 200 bytes a sample) stay within the
@@ -244,6 +253,13 @@ LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
   k.ground_extent = ground_extent_;
   k.t_visible = visibleDistance(camera);
   k.slab_low = slab_low_, k.slab_high = slab_high_;
+  if (hills_) {
+    const SunHorizon::LaneView view = hills_->laneView();
+    k.hills_clear = view.clear, k.hills_everywhere_open = view.everywhere_open;
+    k.hills_x0 = view.x0, k.hills_z0 = view.z0, k.hills_inv_texel = view.inv_texel;
+    k.hills_nx = view.nx, k.hills_nz = view.nz;
+    k.hills_max_slack = view.max_slack, k.hills_height_margin = view.height_margin;
+  }
   k.square_cm = settings_.ground_square_cm;
   k.color_a = settings_.ground_color_a, k.color_b = settings_.ground_color_b;
   k.haze_visibility = settings_.haze.visibility_cm, k.haze_ortho_depth = settings_.haze.ortho_depth_cm;
@@ -307,11 +323,6 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   }
   stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
   cameraRayLanes(constants, lanes, !terrain_);
-  if (terrain_) {
-    scratch.ground_prim.resize(n);
-    scratch.ground_u.resize(n);
-    scratch.ground_v.resize(n);
-  }
   auto queueCharacterRay = [&](TileScratch::CameraSample& c, std::size_t k) {
     c.ray = -1;
     // Most camera rays of a review view pass beside the characters' box: no call into Embree.
@@ -334,54 +345,32 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     queueCharacterRay(c, k);
   }
 
-  // Pass 1b (uneven ground): the camera rays against the heightfield in packets of 16 neighbouring
-  // samples, copied from the lanes as they are (structure of arrays, no per-ray structures to fill or
-  // for Embree to regroup), each ray from where it enters the heightfield's slab to where it leaves
-  // it (cameraRayLanes); a packet wholly above the hills (the sky of most views) is not traced. The ground's distance then bounds the search
-  // through the characters as the plane's does.
+  // Pass 1b (uneven ground): the camera rays against the heightfield as one structure-of-arrays stream
+  // that Embree reads from the lanes in place (no per-ray structures to fill, no copies), coherent,
+  // each ray from where it enters the heightfield's slab to where it leaves it (cameraRayLanes); a ray
+  // wholly above the hills (the sky of most views) has t_enter > t_leave, which Embree skips. The
+  // ground's distance then bounds the search through the characters as the plane's does.
   if (terrain_ && n > 0) {
+    TileScratch::GroundStream& g = scratch.ground;
+    g.resize(n);
+    std::fill_n(g.geom.begin(), n, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
+    RTCRayHitNp stream;
+    stream.ray = {lanes.ox.data(), lanes.oy.data(), lanes.oz.data(), lanes.t_enter.data(),
+                  lanes.dx.data(), lanes.dy.data(), lanes.dz.data(), g.time.data(),
+                  lanes.t_leave.data(), g.mask.data(), g.id.data(), g.flags.data()};
+    stream.hit.Ng_x = g.ng_x.data(), stream.hit.Ng_y = g.ng_y.data(), stream.hit.Ng_z = g.ng_z.data();
+    stream.hit.u = g.u.data(), stream.hit.v = g.v.data();
+    stream.hit.primID = g.prim.data(), stream.hit.geomID = g.geom.data();
+    for (unsigned*& inst : stream.hit.instID) inst = g.inst.data();
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(64) RTCRayHit16 packet;
-    alignas(64) int valid[16];
-    for (std::size_t i = 0; i < 16; ++i) {
-      packet.ray.time[i] = 0.0f;
-      packet.ray.mask[i] = 0xffffffffu;
-      packet.ray.id[i] = 0;
-      packet.ray.flags[i] = 0;
-    }
-    // The lanes are padded to whole vectors of 16: a packet reads 16 of each array as they are.
-    static_assert(CameraLanes::kPad % 16 == 0);
-    auto copy16 = [](float* to, const std::vector<float>& from, std::size_t first) {
-      std::memcpy(to, from.data() + first, 16 * sizeof(float));
-    };
-    for (std::size_t first = 0; first < n; first += 16) {
-      const std::size_t count = std::min<std::size_t>(16, n - first);
-      bool any = false;
-      for (std::size_t i = 0; i < 16; ++i) {
-        valid[i] = i < count && lanes.t_enter[first + i] <= lanes.t_leave[first + i] ? -1 : 0;
-        any = any || valid[i];
-        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-      }
-      if (any) {
-        copy16(packet.ray.org_x, lanes.ox, first), copy16(packet.ray.org_y, lanes.oy, first);
-        copy16(packet.ray.org_z, lanes.oz, first), copy16(packet.ray.dir_x, lanes.dx, first);
-        copy16(packet.ray.dir_y, lanes.dy, first), copy16(packet.ray.dir_z, lanes.dz, first);
-        copy16(packet.ray.tnear, lanes.t_enter, first), copy16(packet.ray.tfar, lanes.t_leave, first);
-        rtcIntersect16(valid, ground_, &context, &packet);
-      }
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t k = first + i;
-        const bool hit = valid[i] && packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
-        scratch.samples[k].t_ground = lanes.t_ground[k] = hit ? packet.ray.tfar[i] : kInfinity;
-        const GroundTriangleHit g = hit ? groundTriangleHit(packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i])
-                                        : GroundTriangleHit{0, 0.0f, 0.0f};
-        scratch.ground_prim[k] = hit ? int32_t(g.triangle) : -1;
-        scratch.ground_u[k] = g.b1;
-        scratch.ground_v[k] = g.b2;
-      }
+    rtcIntersectNp(ground_, &context, &stream, unsigned(n));
+    for (std::size_t k = 0; k < n; ++k) {
+      const bool hit = g.geom[k] != RTC_INVALID_GEOMETRY_ID;
+      scratch.samples[k].t_ground = lanes.t_ground[k] = hit ? lanes.t_leave[k] : kInfinity;  // tfar: the hit's
+      // The normal while the hit is at hand (a character nearer makes it unused: few samples).
+      if (hit) groundNormal(scratch.samples[k], g.prim[k], g.u[k], g.v[k], lanes, k);
     }
     boxTestLanes(constants, lanes);
     for (std::size_t k = 0; k < n; ++k) queueCharacterRay(scratch.samples[k], k);
@@ -403,7 +392,6 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     const TileScratch::CameraSample& c = scratch.samples[k];
     const bool character_hit = c.ray >= 0 && scratch.camera_rays[std::size_t(c.ray)].hit.geomID != RTC_INVALID_GEOMETRY_ID;
     lanes.t_shade[k] = character_hit ? kInfinity : c.t_ground;
-    if (terrain_ && lanes.t_shade[k] != kInfinity) groundNormal(scratch, lanes, k);
   }
   if (terrain_) {
     terrainGroundLanes(constants, lanes);
@@ -652,8 +640,13 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
     S.hills[m] = 0;
     if (terrain_) {
       const glm::vec3 p = c.origin + t * c.dir;
-      S.ground_y[m] = float(terrain_->height(double(p.x), double(p.z)));
-      S.hills[m] = hillsMayBlockSun(p, false) ? -1 : 0;
+      // The mesh as traced under the hit: within a fraction of a centimetre of the terrain's own height,
+      // and a lookup where the terrain's noise costs many; the horizon map (of that mesh) then needs
+      // no lookup of its own. Off the mesh, the terrain and the map's own test.
+      const double mesh_height = ground_mesh_ ? ground_mesh_->heightAt(double(p.x), double(p.z)) : -kInfinity;
+      const bool on_mesh = std::isfinite(mesh_height);
+      S.ground_y[m] = float(on_mesh ? mesh_height : terrain_->height(double(p.x), double(p.z)));
+      S.hills[m] = (on_mesh ? hillsMayBlockSunAbove(p, mesh_height) : hillsMayBlockSun(p, false)) ? -1 : 0;
     }
     c.id = mesh.id;
     c.haze = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
@@ -691,30 +684,42 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
   S.ngx[m] = S.nx[m] = n.x, S.ngy[m] = S.ny[m] = n.y, S.ngz[m] = S.nz[m] = n.z;
 }
 
-void Integrator::groundNormal(const TileScratch& scratch, CameraLanes& lanes, std::size_t k) const {
-  const TileScratch::CameraSample& c = scratch.samples[k];
-  const glm::vec3 p = c.origin + c.t_ground * c.dir;
+void Integrator::groundNormal(const TileScratch::CameraSample& c, unsigned cell, float u, float v, CameraLanes& lanes,
+                              std::size_t k) const {
   glm::vec3 n;
   if (ground_mesh_) {
-    // The hit triangle's vertex normals, weighted by Embree's barycentrics (u for its second vertex,
-    // v for its third); made unit in the lanes.
-    const uint32_t* tri = &ground_mesh_->indices[std::size_t(scratch.ground_prim[k]) * 3];
-    const float b1 = scratch.ground_u[k], b2 = scratch.ground_v[k], b0 = 1.0f - b1 - b2;
+    // The hit triangle's vertex normals, weighted by its barycentrics (b1 for its second vertex, b2 for
+    // its third); made unit in the lanes.
+    const GroundTriangleHit g = groundTriangleHit(cell, u, v);
+    const uint32_t* tri = &ground_mesh_->indices[std::size_t(g.triangle) * 3];
+    const float b1 = g.b1, b2 = g.b2, b0 = 1.0f - b1 - b2;
     n = b0 * ground_mesh_->normals[tri[0]] + b1 * ground_mesh_->normals[tri[1]] + b2 * ground_mesh_->normals[tri[2]];
   } else {
+    const glm::vec3 p = c.origin + c.t_ground * c.dir;
     n = glm::vec3(terrain_->normal(double(p.x), double(p.z)));
   }
   lanes.gnx[k] = n.x, lanes.gny[k] = n.y, lanes.gnz[k] = n.z;
-  lanes.hills_open[k] = hillsMayBlockSun(p, true) ? 0 : -1;
 }
+
+namespace {
+
+// How far from p a secondary ray leaves: lifted by at most 2e-3 + 3e-5 * its largest coordinate
+// (shading_lanes.cpp), and the lanes' p can differ from this one in its last bits: a little more.
+float secondaryRaySlack(const glm::vec3& p) {
+  const float extent = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
+  return 3e-3f + 4e-5f * extent;
+}
+
+}  // namespace
 
 bool Integrator::hillsMayBlockSun(const glm::vec3& p, bool on_ground) const {
   if (!hills_) return true;
-  // The secondary rays leave from p lifted by at most 2e-3 + 3e-5 * its largest coordinate
-  // (shading_lanes.cpp), and the lanes' p can differ from this one in its last bits: a little more.
-  const float extent = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
-  const float slack = 3e-3f + 4e-5f * extent;
-  return !hills_->open(p, slack, on_ground);
+  return !hills_->open(p, secondaryRaySlack(p), on_ground);
+}
+
+bool Integrator::hillsMayBlockSunAbove(const glm::vec3& p, double ground_height) const {
+  if (!hills_) return true;
+  return !hills_->openAbove(p, secondaryRaySlack(p), ground_height);
 }
 
 float Integrator::visibleDistance(const CameraFrame& camera) const {

@@ -77,9 +77,13 @@ struct TileScratch {
   std::vector<LightSequences> lights;  // the sun and sky sequences of the pixels that need them
   std::vector<CameraSample> samples;
   std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
-  // Uneven ground, per camera sample: the triangle its ray hit (-1: none) with Embree's barycentrics.
-  std::vector<float> ground_u, ground_v;
-  std::vector<int32_t> ground_prim;
+  // Uneven ground: what Embree's structure-of-arrays stream reads and writes beside the camera lanes
+  // (which it reads in place): the rays' constant fields and the hits.
+  struct GroundStream {
+    void resize(std::size_t n);  // keeps the capacity
+    std::vector<float> time, ng_x, ng_y, ng_z, u, v;
+    std::vector<unsigned> mask, id, flags, prim, geom, inst;
+  } ground;
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
   std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
@@ -140,12 +144,16 @@ class Integrator {
   // the batch's occlusion rays, or -1 when t_far leaves no ray.
   int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
                         TileScratch& scratch, RayTally& tally) const;
-  // The ground's normal (not yet unit) and whether the hills leave the sun open, at camera sample k's
-  // ground hit, into the lanes.
-  void groundNormal(const TileScratch& scratch, CameraLanes& lanes, std::size_t k) const;
+  // The ground's normal (not yet unit) at camera sample k's ground hit, Embree's quad `cell` at (u, v),
+  // into the lanes.
+  void groundNormal(const TileScratch::CameraSample& c, unsigned cell, float u, float v, CameraLanes& lanes,
+                    std::size_t k) const;
   // Whether the hills may block some ray of the sun's disc from a surface at p (true with terrain and no
   // horizon map). `on_ground`: p is a hit on the heightfield (so on or above it).
   bool hillsMayBlockSun(const glm::vec3& p, bool on_ground) const;
+  // hillsMayBlockSun(p, false) for a point above the ground mesh's height there, `mesh_height` (the
+  // horizon map is of that mesh: Renderer::setTerrain).
+  bool hillsMayBlockSunAbove(const glm::vec3& p, double mesh_height) const;
   // How far along a camera ray the ground is seen before the haze ends it.
   float visibleDistance(const CameraFrame& camera) const;
   void setGroundSunRegion();

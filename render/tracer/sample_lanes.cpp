@@ -293,7 +293,30 @@ void TerrainGroundLanes(const LaneConstants& k, CameraLanes& L) {
                                      hn::Mul(hn::Sub(py, Splat(k.position.y)), Splat(k.forward.y))),
                              hn::Mul(hn::Sub(pz, Splat(k.position.z)), Splat(k.forward.z)));
     Store(depth, L.depth, i);
-    MF open = hn::And(hn::And(ground, hn::Gt(ny, zero)), LoadMask(L.hills_open, i));
+    // The hills' horizon map (SunHorizon::open for a point on the mesh, in floats: laneView), with the
+    // secondary rays' slack (Integrator's secondaryRaySlack: their offset and the last bits of p).
+    const VF extent = hn::Max(hn::Max(hn::Abs(px), hn::Abs(py)), hn::Abs(pz));
+    const VF slack = hn::Add(Splat(3e-3f), hn::Mul(Splat(4e-5f), extent));
+    MF hills_open = hn::And(ground, hn::Le(slack, Splat(k.hills_max_slack)));
+    if (!k.hills_everywhere_open) {
+      if (!k.hills_clear) {
+        hills_open = hn::FirstN(df, 0);
+      } else {
+        const DI di;
+        const VF fx = hn::Mul(hn::Sub(px, Splat(k.hills_x0)), Splat(k.hills_inv_texel));
+        const VF fz = hn::Mul(hn::Sub(pz, Splat(k.hills_z0)), Splat(k.hills_inv_texel));
+        const MF inside = hn::And(hn::And(hn::Ge(fx, zero), hn::Ge(fz, zero)),
+                                  hn::And(hn::Lt(fx, Splat(float(k.hills_nx))), hn::Lt(fz, Splat(float(k.hills_nz)))));
+        hills_open = hn::And(hills_open, inside);
+        const auto texel = hn::Add(hn::Mul(hn::ConvertTo(di, fz), hn::Set(di, k.hills_nx)), hn::ConvertTo(di, fx));
+        const auto safe = hn::IfThenElseZero(hn::RebindMask(di, hills_open), texel);
+        const VF clear = hn::GatherIndex(df, k.hills_clear, safe);
+        const VF above = hn::Sub(py, hn::Add(slack, Splat(k.hills_height_margin)));
+        hills_open = hn::And(hills_open, hn::Gt(above, clear));
+      }
+    }
+    StoreMask(hills_open, L.hills_open, i);
+    MF open = hn::And(hn::And(ground, hn::Gt(ny, zero)), hills_open);
     if (!k.sun_region || !k.open_ground_shortcuts) {
       open = hn::FirstN(df, 0);
     } else {

@@ -55,8 +55,8 @@ struct CameraLanes {
   std::vector<int32_t> open;
   std::vector<float> sky_r, sky_g, sky_b;
   // Uneven ground, set by the caller where t_shade is finite before terrainGroundLanes: the ground's
-  // normal at the hit (the heightfield's vertex normals interpolated; the kernel makes it unit in place)
-  // and whether the hills certainly leave the sun open there (all bits) or may not (0).
+  // normal at the hit (the heightfield's vertex normals interpolated; the kernel makes it unit in place).
+  // The kernel sets whether the hills certainly leave the sun open there (all bits) or may not (0).
   std::vector<float> gnx, gny, gnz;
   std::vector<int32_t> hills_open;
 };
@@ -103,6 +103,12 @@ struct LaneConstants {
   float ground_extent = 0, t_visible = 0;
   // Uneven ground: every point of the heightfield lies between these heights.
   float slab_low = 0, slab_high = 0;
+  // Uneven ground: where the hills certainly leave the sun open (SunHorizon::laneView; with no map,
+  // nowhere: clear null and not everywhere_open).
+  const float* hills_clear = nullptr;
+  bool hills_everywhere_open = false;
+  float hills_x0 = 0, hills_z0 = 0, hills_inv_texel = 0, hills_max_slack = 0, hills_height_margin = 0;
+  int32_t hills_nx = 0, hills_nz = 0;
   float square_cm = 50.0f;
   glm::vec3 color_a{0.0f}, color_b{0.0f};
   float haze_visibility = 1.0f, haze_ortho_depth = 1.0f;
@@ -145,8 +151,9 @@ void boxTestLanes(const LaneConstants& k, RayLanes& rays);
 // The flat ground's surface and, where it is open, its radiance, for samples with a finite t_shade.
 void groundLanes(const LaneConstants& k, CameraLanes& lanes);
 // The same over uneven ground: the point along the ray (not snapped to a plane), shaded with the
-// normal in gnx..gnz. Open ground there also needs the hills to leave the sun open (hills_open) and
-// the normal to face up (the shading's shortcut for the sky holds for upward ground only).
+// normal in gnx..gnz. Open ground there also needs the hills to leave the sun open (the horizon map's
+// test, kept in hills_open) and the normal to face up (the shading's shortcut for the sky holds for
+// upward ground only).
 void terrainGroundLanes(const LaneConstants& k, CameraLanes& lanes);
 // The background radiance of every sample (the sky gradient, or the orthographic sky).
 void skyLanes(const LaneConstants& k, CameraLanes& lanes);

@@ -144,6 +144,11 @@ namespace {
 constexpr double kMaxSlackCm = 1.0;
 // Heights are stored in floats: this much more is asked of a point than the bound in doubles says.
 constexpr double kHeightEpsilonCm = 0.01;
+// The lanes' test (laneView) finds a point's texel and its height less the slack in floats: over the
+// map (a kilometre at most) its texel is off by well under this much of the horizontal slack
+// the map allows, and this much more height is asked of the point for its rounding.
+constexpr double kLaneSlackMarginCm = 0.05;
+constexpr double kLaneHeightMarginCm = 1e-3;
 
 }  // namespace
 
@@ -300,12 +305,33 @@ SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, do
 }
 
 bool SunHorizon::open(const glm::vec3& p, float slack, bool above_mesh_known) const {
+  if (!above_mesh_known) return openAbove(p, slack, mesh_->heightAt(p.x, p.z));
   if (!(double(slack) <= kMaxSlackCm)) return false;
-  if (!above_mesh_known) {
-    // Every point within the slack must be on or above the mesh, which rises at most `steepest_` per unit run.
-    const double floor = mesh_->heightAt(p.x, p.z) + steepest_ * double(slack) * std::sqrt(2.0) + kHeightEpsilonCm;
-    if (!(double(p.y) - double(slack) >= floor)) return false;
+  return openOnMesh(p, slack);
+}
+
+bool SunHorizon::openAbove(const glm::vec3& p, float slack, double mesh_height) const {
+  if (!(double(slack) <= kMaxSlackCm)) return false;
+  // Every point within the slack must be on or above the mesh, which rises at most `steepest_` per unit run.
+  const double floor = mesh_height + steepest_ * double(slack) * std::sqrt(2.0) + kHeightEpsilonCm;
+  if (!(double(p.y) - double(slack) >= floor)) return false;
+  return openOnMesh(p, slack);
+}
+
+SunHorizon::LaneView SunHorizon::laneView() const {
+  LaneView v;
+  v.everywhere_open = everywhere_open_;
+  v.max_slack = float(kMaxSlackCm - kLaneSlackMarginCm);
+  v.height_margin = float(kLaneHeightMarginCm);
+  if (nx_ > 0 && !everywhere_open_) {
+    v.clear = clear_.data();
+    v.x0 = float(x0_), v.z0 = float(z0_), v.inv_texel = float(1.0 / texel_);
+    v.nx = int32_t(nx_), v.nz = int32_t(nz_);
   }
+  return v;
+}
+
+bool SunHorizon::openOnMesh(const glm::vec3& p, float slack) const {
   if (everywhere_open_) return true;
   if (nx_ == 0) return false;
   const double fx = (double(p.x) - x0_) / texel_, fz = (double(p.z) - z0_) / texel_;

@@ -114,13 +114,32 @@ class SunHorizon {
   // the mesh, for points on or above the mesh. `above_mesh_known`: p is known to be on or above the
   // mesh (a ground hit); else p is checked against heightAt.
   bool open(const glm::vec3& p, float slack, bool above_mesh_known) const;
+  // open(p, slack, false) for a caller that has the mesh's height under p already (heightAt(p.x, p.z)
+  // of the mesh this map was made for): one lookup of the mesh fewer.
+  bool openAbove(const glm::vec3& p, float slack, double mesh_height) const;
   bool everywhereOpen() const { return everywhere_open_; }
+  // The map as plain numbers, for the same test in SIMD lanes on ground points (on the mesh), in floats
+  // (render/tracer/sample_lanes.cpp): p is open when its slack is at most max_slack and everywhere_open,
+  // or when (p.x - x0) inv_texel and (p.z - z0) inv_texel fall in the map and p.y less its slack and
+  // height_margin is above that texel's clear height. max_slack and height_margin leave room for the
+  // floats' rounding (a texel by a hundredth of a centimetre off, a height by its last bits), which the
+  // map's horizontal slack and height epsilon cover.
+  struct LaneView {
+    const float* clear = nullptr;  // nx * nz heights, row by row along x; null: nothing known
+    bool everywhere_open = false;
+    float x0 = 0.0f, z0 = 0.0f, inv_texel = 0.0f;
+    int32_t nx = 0, nz = 0;
+    float max_slack = 0.0f, height_margin = 0.0f;
+  };
+  LaneView laneView() const;
   double steepestSlope() const { return steepest_; }
   // The map's size (0 x 0 when everywhere open or the sun is too low to tell anything).
   std::size_t width() const { return nx_; }
   std::size_t depth() const { return nz_; }
 
  private:
+  bool openOnMesh(const glm::vec3& p, float slack) const;  // open() once p is known on or above the mesh
+
   const TerrainMesh* mesh_;
   bool everywhere_open_ = false;
   double steepest_ = 0.0, tan_low_ = 0.0;

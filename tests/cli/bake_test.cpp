@@ -498,7 +498,9 @@ TEST(BakeGltf, RiderOnlyWritesTheRiderAlone) {
 // --rider-only on a crowd writes one file a pair (the pair's name before the extension), each the
 // rider's skeleton alone, keyed at every frame; two pairs' riders move differently.
 TEST(BakeGltf, ACrowdsRiderOnlyIsOneFileAPair) {
-  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_rider_only" / "crowd";
+  // A folder of its own: RiderOnlyWritesTheRiderAlone empties test_bake_rider_only/ and CTest may run
+  // the two at once.
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_rider_only_crowd";
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "crowd.json") << R"({"riders": [

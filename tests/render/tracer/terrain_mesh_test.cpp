@@ -230,6 +230,7 @@ TEST(SunHorizon, WhereItSaysOpenNoSunRayMeetsTheMesh) {
     ++points;
     const bool open = horizon.open(q, 0.05f, false);
     said_open += open;
+    ASSERT_EQ(horizon.openAbove(q, 0.05f, mesh.heightAt(x, z)), open) << x << " " << z;  // the height given
     for (int r = 0; r <= 16; ++r) {  // the axis, then 16 directions on the disc's rim
       glm::dvec3 d = axis;
       if (r > 0) {
