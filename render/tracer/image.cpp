@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -65,8 +66,10 @@ namespace {
 // linearToSrgb8 without a pow per channel, byte for byte the same. The function is monotonic, so it is
 // fixed by the 255 inputs at which it steps up: step_[k] is the smallest float whose code is k, found
 // once by bisection over the bit patterns of the floats in [0, 1] (ordered like the integers for
-// non-negative floats). A pixel's code is then found from a 4096-bin table over [0, 1] and at most a
-// few comparisons with the steps (near 0, where sRGB is steepest, a bin spans two codes at most).
+// non-negative floats). A pixel's code is then its 4096-bin table entry over [0, 1] plus one comparison
+// with the next step: sRGB's steepest slope (its linear toe, 12.92 x 255 codes a unit) crosses 0.8 of a
+// code in a bin, so a bin holds at most one step (checked when the table is made). Compared, not looped:
+// whether a value lies past its bin's step is a coin toss a branch would mispredict.
 class SrgbEncoder {
  public:
   SrgbEncoder() {
@@ -79,24 +82,28 @@ class SrgbEncoder {
       }
       step_[k] = std::bit_cast<float>(hi);
     }
+    step_[256] = std::numeric_limits<float>::infinity();  // no code past 255
     for (int b = 0; b < kBins; ++b) {
       const float start = float(b) / float(kBins);
       int k = 0;
       while (k < 255 && step_[k + 1] <= start) ++k;
       bin_code_[b] = uint8_t(k);
     }
+    for (int b = 0; b < kBins; ++b) {
+      const int last = b + 1 < kBins ? bin_code_[b + 1] : 255;  // the next bin's first code
+      if (last - bin_code_[b] > 1) throw std::logic_error("SrgbEncoder: a bin holds two steps");
+    }
   }
   uint8_t operator()(float v) const {
     if (!(v > 0.0f)) return 0;  // and NaN
     if (v >= 1.0f) return 255;
-    int k = bin_code_[std::min(int(v * float(kBins)), kBins - 1)];
-    while (k < 255 && v >= step_[k + 1]) ++k;
-    return uint8_t(k);
+    const int k = bin_code_[std::min(int(v * float(kBins)), kBins - 1)];
+    return uint8_t(k + int(v >= step_[k + 1]));
   }
 
  private:
   static constexpr int kBins = 4096;
-  std::array<float, 256> step_{};
+  std::array<float, 257> step_{};
   std::array<uint8_t, kBins> bin_code_{};
 };
 

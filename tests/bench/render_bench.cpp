@@ -3,12 +3,15 @@
 // Run: build/tests/bench/stirrup_bench --benchmark_filter=Trot
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "render/scene/preset.h"
 #include "render/scene/profile_resolver.h"
 #include "render/scene/scene.h"
 #include "render/shot.h"
+#include "render/tracer/image.h"
 #include "rig/pose.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
@@ -80,6 +83,23 @@ void BM_TrotFramePreset(benchmark::State& state) {
   state.SetLabel(std::string(preset.name));
 }
 BENCHMARK(BM_TrotFramePreset)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The 8-bit sRGB encoding of a rendered 640 x 360 trot frame (review), as every PNG write makes it on the
+// writer's thread: what a frame's write costs before zlib.
+void BM_EncodeSrgb8(benchmark::State& state) {
+  render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  render::applyPreset(scene, render::qualityPresets()[1]);
+  const rig::RigProfile profile = render::resolveProfile(scene);
+  render::Shot shot(scene, profile, scene.cameras.front(), 0);
+  const render::Image image = shot.renderFrame(30);
+  std::vector<uint8_t> bytes(image.rgba.size() * 3);
+  for (auto _ : state) {
+    render::encodeSrgb8(image.rgba, bytes);
+    benchmark::DoNotOptimize(bytes.data());
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(image.rgba.size()));
+}
+BENCHMARK(BM_EncodeSrgb8)->Unit(benchmark::kMicrosecond);
 
 // The BVH update modes on the trot side view (review preset, as the movies render): a frame's BVH
 // update and trace, in ms per frame. The renderer's default (Refit) is the one with the least of the
