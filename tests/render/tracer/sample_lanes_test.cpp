@@ -19,6 +19,7 @@
 #include "render/tracer/integrator.h"
 #include "render/tracer/lights.h"
 #include "render/tracer/terrain_mesh.h"
+#include "tests/render/tracer/steep_hills.h"
 
 namespace stirrup::render {
 namespace {
@@ -204,19 +205,9 @@ TEST(SampleLanes, OpenGroundIsLitAsTheScalarShadingLightsIt) {
 // the lanes agree with the map's own test (in doubles) on nearly every point, and answer much of the
 // lit ground. Then the same on every SIMD target, bit for bit.
 TEST(SampleLanes, HillsAreOpenToTheSunOnlyWhereNoSunRayMeetsThem) {
-  rig::HillsParams hills;
-  hills.seed = 7;
-  hills.amplitude_cm = 500.0;
-  hills.wavelength_cm = 1500.0;
-  const rig::Terrain terrain = rig::Terrain::hills(hills, "test");
-  const GroundRegion region{-1500.0, -1500.0, 1500.0, 1500.0};
-  const TerrainMesh mesh = makeTerrainMesh(terrain, region);
-  const double radius = 2.0 * std::numbers::pi / 180.0, elevation = 8.0 * std::numbers::pi / 180.0;
-  const glm::dvec3 sun(std::cos(elevation) * 0.8, std::sin(elevation), std::cos(elevation) * 0.6);
-  const SunHorizon horizon(mesh, sun, radius, region);
+  const test::SteepHills hills;
+  const SunHorizon& horizon = hills.horizon;
   ASSERT_FALSE(horizon.everywhereOpen());
-  EmbreeScene scene;
-  scene.setGroundMesh(mesh.positions, mesh.indices);
 
   LaneConstants k = constantsFor(CameraFrame(sideCamera(Camera::Projection::Perspective), 640, 360));
   const SunHorizon::LaneView view = horizon.laneView();
@@ -241,16 +232,13 @@ TEST(SampleLanes, HillsAreOpenToTheSunOnlyWhereNoSunRayMeetsThem) {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    rtcIntersect1(scene.ground(), &context, &rh);
+    rtcIntersect1(hills.scene.ground(), &context, &rh);
     ASSERT_NE(rh.hit.geomID, RTC_INVALID_GEOMETRY_ID);
     lanes.t_shade[i] = rh.ray.tfar;
     lanes.gnx[i] = 0.0f, lanes.gny[i] = 1.0f, lanes.gnz[i] = 0.0f;
   }
   terrainGroundLanes(k, lanes);
 
-  const glm::dvec3 axis = glm::normalize(sun);
-  const glm::dvec3 side = glm::normalize(glm::cross(axis, glm::dvec3(0.0, 1.0, 0.0)));
-  const glm::dvec3 up = glm::cross(side, axis);
   int said_open = 0, lit = 0, agree = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const float t = lanes.t_shade[i];
@@ -261,24 +249,11 @@ TEST(SampleLanes, HillsAreOpenToTheSunOnlyWhereNoSunRayMeetsThem) {
     said_open += open;
     agree += open == horizon.open(p, slack, true);
     const glm::vec3 origin = p + glm::vec3(0.0f, 2e-3f + 3e-5f * extent, 0.0f);  // ShadingLanes' lift
+    const std::array<bool, 17> blocked = hills.discBlocked(origin);
+    lit += !blocked[0];
     for (int r = 0; r <= 16; ++r) {
-      glm::dvec3 d = axis;
-      if (r > 0) {
-        const double a = 2.0 * std::numbers::pi * double(r - 1) / 16.0;
-        d = glm::normalize(axis * std::cos(radius) + (side * std::cos(a) + up * std::sin(a)) * std::sin(radius));
-      }
-      RTCRay ray{};
-      ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
-      ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
-      ray.tfar = 1e7f;
-      ray.mask = 0xffffffffu;
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      rtcOccluded1(scene.ground(), &context, &ray);
-      const bool blocked = ray.tfar < 0.0f;
-      if (r == 0) lit += !blocked;
       if (open) {
-        ASSERT_FALSE(blocked) << "said open at " << p.x << " " << p.z << ", ray " << r << " meets the mesh";
+        ASSERT_FALSE(blocked[std::size_t(r)]) << "said open at " << p.x << " " << p.z << ", ray " << r << " meets the mesh";
       }
     }
   }

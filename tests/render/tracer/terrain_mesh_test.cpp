@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "render/tracer/embree_scene.h"
+#include "tests/render/tracer/steep_hills.h"
 
 namespace stirrup::render {
 namespace {
@@ -201,23 +202,11 @@ TEST(SunHorizon, AHighSunOverGentleHillsIsOpenEverywhere) {
 // meets the mesh (traced through Embree, the rim and the centre of the disc); and the map is of use,
 // answering much of the lit ground while the hills shadow half of it (sun 8 degrees up, 5 m hills 15 m apart).
 TEST(SunHorizon, WhereItSaysOpenNoSunRayMeetsTheMesh) {
-  rig::HillsParams p;
-  p.seed = 7;
-  p.amplitude_cm = 500.0;
-  p.wavelength_cm = 1500.0;
-  const rig::Terrain terrain = rig::Terrain::hills(p, "test");
-  const GroundRegion region{-1500.0, -1500.0, 1500.0, 1500.0};
-  const TerrainMesh mesh = makeTerrainMesh(terrain, region);
-  const double radius = 2.0 * std::numbers::pi / 180.0, elevation = 8.0 * std::numbers::pi / 180.0;
-  const glm::dvec3 sun(std::cos(elevation) * 0.8, std::sin(elevation), std::cos(elevation) * 0.6);
-  const SunHorizon horizon(mesh, sun, radius, region);
+  const test::SteepHills hills;
+  const TerrainMesh& mesh = hills.mesh;
+  const SunHorizon& horizon = hills.horizon;
   ASSERT_FALSE(horizon.everywhereOpen());
   ASSERT_GT(horizon.width(), 0u);
-  EmbreeScene scene;
-  scene.setGroundMesh(mesh.positions, mesh.indices);
-  const glm::dvec3 axis = glm::normalize(sun);
-  const glm::dvec3 side = glm::normalize(glm::cross(axis, glm::dvec3(0.0, 1.0, 0.0)));
-  const glm::dvec3 up = glm::cross(side, axis);
   uint32_t state = 11u;
   auto uniform = [&state] {
     state = state * 1664525u + 1013904223u;
@@ -231,24 +220,11 @@ TEST(SunHorizon, WhereItSaysOpenNoSunRayMeetsTheMesh) {
     const bool open = horizon.open(q, 0.05f, false);
     said_open += open;
     ASSERT_EQ(horizon.openAbove(q, 0.05f, mesh.heightAt(x, z)), open) << x << " " << z;  // the height given
-    for (int r = 0; r <= 16; ++r) {  // the axis, then 16 directions on the disc's rim
-      glm::dvec3 d = axis;
-      if (r > 0) {
-        const double a = 2.0 * std::numbers::pi * double(r - 1) / 16.0;
-        d = glm::normalize(axis * std::cos(radius) + (side * std::cos(a) + up * std::sin(a)) * std::sin(radius));
-      }
-      RTCRay ray{};
-      ray.org_x = q.x, ray.org_y = q.y, ray.org_z = q.z;
-      ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
-      ray.tfar = 1e7f;
-      ray.mask = 0xffffffffu;
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      rtcOccluded1(scene.ground(), &context, &ray);
-      const bool hit = ray.tfar < 0.0f;
-      if (r == 0) blocked_axis += hit;
+    const std::array<bool, 17> blocked = hills.discBlocked(q);
+    blocked_axis += blocked[0];
+    for (int r = 0; r <= 16; ++r) {
       if (open) {
-        ASSERT_FALSE(hit) << "said open at " << x << " " << z << ", ray " << r << " meets the mesh";
+        ASSERT_FALSE(blocked[std::size_t(r)]) << "said open at " << x << " " << z << ", ray " << r << " meets the mesh";
       }
     }
   }
