@@ -659,25 +659,20 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
   c.id = ObjectId::Ground;
   const float t = c.t_ground;
   glm::vec3 p = c.origin + t * c.dir;
-  glm::vec3 n;
+  // The ground's look came from the lanes (groundLanes or terrainGroundLanes).
+  S.ar[m] = lanes.albedo_r[j], S.ag[m] = lanes.albedo_g[j], S.ab[m] = lanes.albedo_b[j];
+  S.depth[m] = lanes.depth[j];
+  c.haze = lanes.haze[j];
+  // On the heightfield mesh as hit: the normal interpolated from the mesh's vertex normals (the
+  // terrain's own, smooth and upward), which is also the geometric one the secondary rays leave along
+  // (they meet only the characters and the hills). Never flipped toward the camera: at a hill's grazing
+  // far side a ray can meet a facet whose smooth normal already faces away, and flipping it there left
+  // black specks on the horizon. On the plane: the point exactly on it, so the rays' offset lifts it the
+  // same everywhere, and the side the camera sees.
+  glm::vec3 n(lanes.gnx[j], lanes.gny[j], lanes.gnz[j]);
   if (!terrain_) {
-    // The plane's surface came from the lanes (groundLanes). The point is exactly on the plane, so
-    // the rays' offset lifts it the same everywhere.
     p.y = 0.0f;
     n = glm::vec3(0.0f, c.dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
-    S.ar[m] = lanes.albedo_r[j], S.ag[m] = lanes.albedo_g[j], S.ab[m] = lanes.albedo_b[j];
-    S.depth[m] = lanes.depth[j];
-    c.haze = lanes.haze[j];
-  } else {
-    // On the heightfield mesh as hit, its surface from the lanes (terrainGroundLanes): the normal
-    // interpolated from the mesh's vertex normals (the terrain's own, smooth and upward), which is also
-    // the geometric one the secondary rays leave along (they meet only the characters and the hills).
-    // Never flipped toward the camera: at a hill's grazing far side a ray can meet a facet whose
-    // smooth normal already faces away, and flipping it there left black specks on the horizon.
-    n = glm::vec3(lanes.gnx[j], lanes.gny[j], lanes.gnz[j]);
-    S.ar[m] = lanes.albedo_r[j], S.ag[m] = lanes.albedo_g[j], S.ab[m] = lanes.albedo_b[j];
-    S.depth[m] = lanes.depth[j];
-    c.haze = lanes.haze[j];
   }
   S.hills[m] = terrain_ && !lanes.hills_open[j] ? -1 : 0;
   S.px[m] = p.x, S.py[m] = p.y, S.pz[m] = p.z;
