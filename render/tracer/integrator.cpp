@@ -253,13 +253,7 @@ LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
   k.ground_extent = ground_extent_;
   k.t_visible = visibleDistance(camera);
   k.slab_low = slab_low_, k.slab_high = slab_high_;
-  if (hills_) {
-    const SunHorizon::LaneView view = hills_->laneView();
-    k.hills_clear = view.clear, k.hills_everywhere_open = view.everywhere_open;
-    k.hills_x0 = view.x0, k.hills_z0 = view.z0, k.hills_inv_texel = view.inv_texel;
-    k.hills_nx = view.nx, k.hills_nz = view.nz;
-    k.hills_max_slack = view.max_slack, k.hills_height_margin = view.height_margin;
-  }
+  if (hills_) k.hills = hills_->laneView();
   k.square_cm = settings_.ground_square_cm;
   k.color_a = settings_.ground_color_a, k.color_b = settings_.ground_color_b;
   k.haze_visibility = settings_.haze.visibility_cm, k.haze_ortho_depth = settings_.haze.ortho_depth_cm;

@@ -297,21 +297,21 @@ void TerrainGroundLanes(const LaneConstants& k, CameraLanes& L) {
     // secondary rays' slack (Integrator's secondaryRaySlack: their offset and the last bits of p).
     const VF extent = hn::Max(hn::Max(hn::Abs(px), hn::Abs(py)), hn::Abs(pz));
     const VF slack = hn::Add(Splat(3e-3f), hn::Mul(Splat(4e-5f), extent));
-    MF hills_open = hn::And(ground, hn::Le(slack, Splat(k.hills_max_slack)));
-    if (!k.hills_everywhere_open) {
-      if (!k.hills_clear) {
+    MF hills_open = hn::And(ground, hn::Le(slack, Splat(k.hills.max_slack)));
+    if (!k.hills.everywhere_open) {
+      if (!k.hills.clear) {
         hills_open = hn::FirstN(df, 0);
       } else {
         const DI di;
-        const VF fx = hn::Mul(hn::Sub(px, Splat(k.hills_x0)), Splat(k.hills_inv_texel));
-        const VF fz = hn::Mul(hn::Sub(pz, Splat(k.hills_z0)), Splat(k.hills_inv_texel));
+        const VF fx = hn::Mul(hn::Sub(px, Splat(k.hills.x0)), Splat(k.hills.inv_texel));
+        const VF fz = hn::Mul(hn::Sub(pz, Splat(k.hills.z0)), Splat(k.hills.inv_texel));
         const MF inside = hn::And(hn::And(hn::Ge(fx, zero), hn::Ge(fz, zero)),
-                                  hn::And(hn::Lt(fx, Splat(float(k.hills_nx))), hn::Lt(fz, Splat(float(k.hills_nz)))));
+                                  hn::And(hn::Lt(fx, Splat(float(k.hills.nx))), hn::Lt(fz, Splat(float(k.hills.nz)))));
         hills_open = hn::And(hills_open, inside);
-        const auto texel = hn::Add(hn::Mul(hn::ConvertTo(di, fz), hn::Set(di, k.hills_nx)), hn::ConvertTo(di, fx));
+        const auto texel = hn::Add(hn::Mul(hn::ConvertTo(di, fz), hn::Set(di, k.hills.nx)), hn::ConvertTo(di, fx));
         const auto safe = hn::IfThenElseZero(hn::RebindMask(di, hills_open), texel);
-        const VF clear = hn::GatherIndex(df, k.hills_clear, safe);
-        const VF above = hn::Sub(py, hn::Add(slack, Splat(k.hills_height_margin)));
+        const VF clear = hn::GatherIndex(df, k.hills.clear, safe);
+        const VF above = hn::Sub(py, hn::Add(slack, Splat(k.hills.height_margin)));
         hills_open = hn::And(hills_open, hn::Gt(above, clear));
       }
     }

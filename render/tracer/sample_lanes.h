@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/tracer/sampler.h"
+#include "render/tracer/terrain_mesh.h"
 
 namespace stirrup::render {
 
@@ -103,12 +104,9 @@ struct LaneConstants {
   float ground_extent = 0, t_visible = 0;
   // Uneven ground: every point of the heightfield lies between these heights.
   float slab_low = 0, slab_high = 0;
-  // Uneven ground: where the hills certainly leave the sun open (SunHorizon::laneView; with no map,
-  // nowhere: clear null and not everywhere_open).
-  const float* hills_clear = nullptr;
-  bool hills_everywhere_open = false;
-  float hills_x0 = 0, hills_z0 = 0, hills_inv_texel = 0, hills_max_slack = 0, hills_height_margin = 0;
-  int32_t hills_nx = 0, hills_nz = 0;
+  // Uneven ground: where the hills certainly leave the sun open (SunHorizon::laneView; the default,
+  // no map and not everywhere open: nowhere).
+  SunHorizon::LaneView hills;
   float square_cm = 50.0f;
   glm::vec3 color_a{0.0f}, color_b{0.0f};
   float haze_visibility = 1.0f, haze_ortho_depth = 1.0f;

@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <numbers>
 #include <random>
 #include <vector>
 
@@ -15,10 +14,8 @@
 #include <gtest/gtest.h>
 
 #include "render/scene/camera.h"
-#include "render/tracer/embree_scene.h"
 #include "render/tracer/integrator.h"
 #include "render/tracer/lights.h"
-#include "render/tracer/terrain_mesh.h"
 #include "tests/render/tracer/steep_hills.h"
 
 namespace stirrup::render {
@@ -210,12 +207,8 @@ TEST(SampleLanes, HillsAreOpenToTheSunOnlyWhereNoSunRayMeetsThem) {
   ASSERT_FALSE(horizon.everywhereOpen());
 
   LaneConstants k = constantsFor(CameraFrame(sideCamera(Camera::Projection::Perspective), 640, 360));
-  const SunHorizon::LaneView view = horizon.laneView();
-  ASSERT_NE(view.clear, nullptr);
-  k.hills_clear = view.clear, k.hills_everywhere_open = view.everywhere_open;
-  k.hills_x0 = view.x0, k.hills_z0 = view.z0, k.hills_inv_texel = view.inv_texel;
-  k.hills_nx = view.nx, k.hills_nz = view.nz;
-  k.hills_max_slack = view.max_slack, k.hills_height_margin = view.height_margin;
+  k.hills = horizon.laneView();
+  ASSERT_NE(k.hills.clear, nullptr);
 
   // Rays straight down onto the hills (a margin past the map on two sides: those are never open).
   const std::size_t n = 4000;
