@@ -346,8 +346,8 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   // ground's distance then bounds the search through the characters as the plane's does.
   if (terrain_ && n > 0) {
     TileScratch::GroundStream& g = scratch.ground;
-    g.resize(n);
-    std::fill_n(g.geom.begin(), n, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
+    g.resize(lanes.padded);
+    std::fill_n(g.geom.begin(), lanes.padded, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
     RTCRayHitNp stream;
     stream.ray = {lanes.ox.data(), lanes.oy.data(), lanes.oz.data(), lanes.t_enter.data(),
                   lanes.dx.data(), lanes.dy.data(), lanes.dz.data(), g.time.data(),
@@ -360,14 +360,24 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersectNp(ground_, &context, &stream, unsigned(n));
-    for (std::size_t k = 0; k < n; ++k) {
-      const bool hit = g.geom[k] != RTC_INVALID_GEOMETRY_ID;
-      scratch.samples[k].t_ground = lanes.t_ground[k] = hit ? lanes.t_leave[k] : kInfinity;  // tfar: the hit's
-      // The normal while the hit is at hand (a character nearer makes it unused: few samples).
-      if (hit) groundNormal(scratch.samples[k], g.prim[k], g.u[k], g.v[k], lanes, k);
+    // Each hit's distance (its tfar) and the ground's normal there, while the hits are at hand (a
+    // character nearer makes the normal unused: few samples).
+    if (ground_mesh_) {
+      groundHitLanes({g.geom.data(), g.prim.data(), g.u.data(), g.v.data(), ground_mesh_->indices.data(),
+                      ground_mesh_->normals.data()},
+                     lanes);
+    } else {
+      for (std::size_t k = 0; k < n; ++k) {
+        const bool hit = g.geom[k] != RTC_INVALID_GEOMETRY_ID;
+        scratch.samples[k].t_ground = lanes.t_ground[k] = hit ? lanes.t_leave[k] : kInfinity;
+        if (hit) terrainNormal(scratch.samples[k], lanes, k);
+      }
     }
     boxTestLanes(constants, lanes);
-    for (std::size_t k = 0; k < n; ++k) queueCharacterRay(scratch.samples[k], k);
+    for (std::size_t k = 0; k < n; ++k) {
+      scratch.samples[k].t_ground = lanes.t_ground[k];
+      queueCharacterRay(scratch.samples[k], k);
+    }
   }
 
   // Pass 2: the camera rays that may meet the characters, as one coherent stream.
@@ -673,20 +683,9 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
   S.ngx[m] = S.nx[m] = n.x, S.ngy[m] = S.ny[m] = n.y, S.ngz[m] = S.nz[m] = n.z;
 }
 
-void Integrator::groundNormal(const TileScratch::CameraSample& c, unsigned cell, float u, float v, CameraLanes& lanes,
-                              std::size_t k) const {
-  glm::vec3 n;
-  if (ground_mesh_) {
-    // The hit triangle's vertex normals, weighted by its barycentrics (b1 for its second vertex, b2 for
-    // its third); made unit in the lanes.
-    const GroundTriangleHit g = groundTriangleHit(cell, u, v);
-    const uint32_t* tri = &ground_mesh_->indices[std::size_t(g.triangle) * 3];
-    const float b1 = g.b1, b2 = g.b2, b0 = 1.0f - b1 - b2;
-    n = b0 * ground_mesh_->normals[tri[0]] + b1 * ground_mesh_->normals[tri[1]] + b2 * ground_mesh_->normals[tri[2]];
-  } else {
-    const glm::vec3 p = c.origin + c.t_ground * c.dir;
-    n = glm::vec3(terrain_->normal(double(p.x), double(p.z)));
-  }
+void Integrator::terrainNormal(const TileScratch::CameraSample& c, CameraLanes& lanes, std::size_t k) const {
+  const glm::vec3 p = c.origin + c.t_ground * c.dir;
+  const glm::vec3 n(terrain_->normal(double(p.x), double(p.z)));
   lanes.gnx[k] = n.x, lanes.gny[k] = n.y, lanes.gnz[k] = n.z;
 }
 

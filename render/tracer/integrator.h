@@ -144,10 +144,10 @@ class Integrator {
   // the batch's occlusion rays, or -1 when t_far leaves no ray.
   int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
                         TileScratch& scratch, RayTally& tally) const;
-  // The ground's normal (not yet unit) at camera sample k's ground hit, Embree's quad `cell` at (u, v),
-  // into the lanes.
-  void groundNormal(const TileScratch::CameraSample& c, unsigned cell, float u, float v, CameraLanes& lanes,
-                    std::size_t k) const;
+  // Without the heightfield's mesh (tests that give the terrain alone): the terrain's own normal at
+  // camera sample k's ground hit (at c.t_ground), into the lanes. With it, groundHitLanes interpolates
+  // the mesh's vertex normals.
+  void terrainNormal(const TileScratch::CameraSample& c, CameraLanes& lanes, std::size_t k) const;
   // Whether the hills may block some ray of the sun's disc from a surface at p (true with terrain and no
   // horizon map). `on_ground`: p is a hit on the heightfield (so on or above it).
   bool hillsMayBlockSun(const glm::vec3& p, bool on_ground) const;

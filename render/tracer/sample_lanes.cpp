@@ -260,6 +260,47 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
   }
 }
 
+// The heightfield's hits as Embree left them in the stream (GroundHits), lane by lane: t_ground, and the
+// normal interpolated from the hit triangle's vertex normals as Integrator::groundNormal makes it
+// (groundTriangleHit's triangle and barycentrics, b0 = 1 - b1 - b2, then b0 n0 + b1 n1 + b2 n2). The
+// triangle's indices and normals are gathered; a miss's cell is not read (Embree leaves it as it was).
+void GroundHitLanes(const GroundHits& h, CameraLanes& L) {
+  const DF df;
+  const DI di;
+  const size_t lanes = hn::Lanes(df);
+  const VF inf = Splat(std::numeric_limits<float>::infinity());
+  const VF zero = Splat(0.0f), one = Splat(1.0f);
+  const auto invalid = hn::Set(di, int32_t(-1));  // RTC_INVALID_GEOMETRY_ID
+  const auto* indices = reinterpret_cast<const int32_t*>(h.indices);
+  const float* normals = reinterpret_cast<const float*>(h.normals);
+  for (size_t i = 0; i < L.padded; i += lanes) {
+    const auto geom = hn::LoadU(di, reinterpret_cast<const int32_t*>(h.geom) + i);
+    const MF hit = hn::RebindMask(df, hn::Ne(geom, invalid));
+    Store(hn::IfThenElse(hit, Load(L.t_leave, i), inf), L.t_ground, i);
+    if (hn::AllFalse(df, hit)) continue;
+    const auto cell = hn::IfThenElseZero(hn::RebindMask(di, hit), hn::LoadU(di, reinterpret_cast<const int32_t*>(h.prim) + i));
+    const VF u = hn::LoadU(df, h.u + i), v = hn::LoadU(df, h.v + i);
+    // groundTriangleHit: the quad's first triangle where u + v <= 1, else its second.
+    const MF first = hn::Le(hn::Add(u, v), one);
+    const VF b1 = hn::IfThenElse(first, hn::Sub(hn::Sub(one, u), v), hn::Sub(one, v));
+    const VF b2 = hn::IfThenElse(first, u, hn::Sub(hn::Add(u, v), one));
+    const VF b0 = hn::Sub(hn::Sub(one, b1), b2);
+    const auto second = hn::IfThenElseZero(hn::RebindMask(di, hn::Not(first)), hn::Set(di, 1));
+    const auto corner0 = hn::Mul(hn::Add(hn::Add(cell, cell), second), hn::Set(di, 3));  // 3 x triangle
+    V3 n = {zero, zero, zero};
+    const VF weights[3] = {b0, b1, b2};
+    for (int c = 0; c < 3; ++c) {
+      const auto vertex = hn::GatherIndex(di, indices, hn::Add(corner0, hn::Set(di, c)));
+      const auto at = hn::IfThenElseZero(hn::RebindMask(di, hit), hn::Mul(vertex, hn::Set(di, 3)));
+      const V3 nc = {hn::GatherIndex(df, normals, at), hn::GatherIndex(df, normals, hn::Add(at, hn::Set(di, 1))),
+                     hn::GatherIndex(df, normals, hn::Add(at, hn::Set(di, 2)))};
+      n = c == 0 ? Scale3(weights[0], nc) : Add3(n, Scale3(weights[c], nc));
+    }
+    Store(hn::IfThenElseZero(hit, n.x), L.gnx, i), Store(hn::IfThenElseZero(hit, n.y), L.gny, i);
+    Store(hn::IfThenElseZero(hit, n.z), L.gnz, i);
+  }
+}
+
 // GroundLanes over a heightfield. What differs from the plane: the point keeps its height, the
 // normal comes from the lanes (made unit here), the footprint stretches by the view's angle to that
 // normal, and the shadow rays' origin (as ShadingLanes makes it) is lifted along the normal. Open
@@ -507,6 +548,7 @@ HWY_EXPORT(BoxTestLanes);
 HWY_EXPORT(BoxTestRays);
 HWY_EXPORT(GroundLanes);
 HWY_EXPORT(TerrainGroundLanes);
+HWY_EXPORT(GroundHitLanes);
 HWY_EXPORT(SkyLanes);
 HWY_EXPORT(CheckerLanes);
 HWY_EXPORT(CompiledTarget);
@@ -555,6 +597,7 @@ void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPA
 void terrainGroundLanes(const LaneConstants& k, CameraLanes& lanes) {
   HWY_DYNAMIC_DISPATCH(TerrainGroundLanes)(k, lanes);
 }
+void groundHitLanes(const GroundHits& hits, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundHitLanes)(hits, lanes); }
 void skyLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(SkyLanes)(k, lanes); }
 void filteredCheckerLanes(const float* s, const float* t, const float* width, float* out, std::size_t n) {
   HWY_DYNAMIC_DISPATCH(CheckerLanes)(s, t, width, out, n);

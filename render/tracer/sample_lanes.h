@@ -146,6 +146,18 @@ void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground
 // an occlusion ray's t_far; call RayLanes::pad first).
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes);
 void boxTestLanes(const LaneConstants& k, RayLanes& rays);
+// What Embree wrote for the camera rays against the heightfield (EmbreeScene::setGroundMesh's quads),
+// one entry per sample, padded as the lanes are (a padding entry's geom invalid), and the mesh the cells
+// index (TerrainMesh: three indices a triangle, one normal a vertex).
+struct GroundHits {
+  const unsigned *geom = nullptr, *prim = nullptr;  // geomID (RTC_INVALID_GEOMETRY_ID: a miss) and the cell
+  const float *u = nullptr, *v = nullptr;           // the quad's barycentrics
+  const uint32_t* indices = nullptr;
+  const glm::vec3* normals = nullptr;
+};
+// t_ground (t_leave where the ray hit, else infinity) and, where it hit, gnx..gnz: the hit triangle's
+// vertex normals weighted by its barycentrics (groundTriangleHit), not yet unit.
+void groundHitLanes(const GroundHits& hits, CameraLanes& lanes);
 // The flat ground's surface and, where it is open, its radiance, for samples with a finite t_shade.
 void groundLanes(const LaneConstants& k, CameraLanes& lanes);
 // The same over uneven ground: the point along the ray (not snapped to a plane), shaded with the

@@ -2,6 +2,7 @@
 // on every instruction set this CPU runs.
 #include "render/tracer/sample_lanes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -262,6 +263,94 @@ TEST(SampleLanes, HillsAreOpenToTheSunOnlyWhereNoSunRayMeetsThem) {
     terrainGroundLanes(k, again);
     for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(again.hills_open[i] != 0, lanes.hills_open[i] != 0) << target << " " << i;
   }
+}
+
+// The heightfield's hits as Embree leaves them, read in lanes: where a ray hit, t_ground is its distance
+// and the normal is the mesh's vertex normals interpolated at the hit point, on the triangle the point
+// lies on (found here from the point's (x, z) in the grid, not from Embree's barycentrics); where it
+// missed, t_ground is infinity. Rays from above at many slants meet both triangles of many cells; some
+// point up and miss. The same bits on every target.
+TEST(SampleLanes, GroundHitsGiveTheMeshNormalAtTheHitPoint) {
+  const test::SteepHills hills;
+  const TerrainMesh& mesh = hills.mesh;
+  const std::size_t n = 3001;
+  CameraLanes lanes;
+  lanes.resize(n);
+  std::vector<unsigned> geom(lanes.padded, RTC_INVALID_GEOMETRY_ID), prim(lanes.padded, 12345u);
+  std::vector<float> u(lanes.padded, 0.0f), v(lanes.padded, 0.0f), tfar(lanes.padded, 0.0f);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> across(-1400.0f, 1400.0f), slant(-0.8f, 0.8f);
+  int misses = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool up = i % 10 == 3;
+    const glm::vec3 d = glm::normalize(glm::vec3(slant(rng), up ? 1.0f : -1.0f, slant(rng)));
+    lanes.ox[i] = across(rng), lanes.oy[i] = 900.0f, lanes.oz[i] = across(rng);
+    lanes.dx[i] = d.x, lanes.dy[i] = d.y, lanes.dz[i] = d.z;
+    lanes.t_leave[i] = 1e7f;
+    RTCRayHit rh{};
+    rh.ray.org_x = lanes.ox[i], rh.ray.org_y = lanes.oy[i], rh.ray.org_z = lanes.oz[i];
+    rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+    rh.ray.tfar = lanes.t_leave[i], rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(hills.scene.ground(), &context, &rh);
+    ASSERT_EQ(rh.hit.geomID == RTC_INVALID_GEOMETRY_ID, up) << i;
+    misses += up;
+    if (up) continue;
+    geom[i] = rh.hit.geomID, prim[i] = rh.hit.primID, u[i] = rh.hit.u, v[i] = rh.hit.v;
+    lanes.t_leave[i] = rh.ray.tfar;  // as the stream leaves it: tfar is the hit's distance
+  }
+  ASSERT_GT(misses, 0);
+  const GroundHits hits{geom.data(), prim.data(), u.data(), v.data(), mesh.indices.data(), mesh.normals.data()};
+
+  TargetPin restore;
+  std::vector<float> first;
+  int upper = 0, lower = 0;
+  for (const std::string& target : simdTargets()) {
+    pinSimdTarget(target);
+    CameraLanes again = lanes;
+    groundHitLanes(hits, again);
+    std::vector<float> out;
+    for (std::size_t i = 0; i < n; ++i) {
+      out.insert(out.end(), {again.t_ground[i], again.gnx[i], again.gny[i], again.gnz[i]});
+      if (geom[i] == RTC_INVALID_GEOMETRY_ID) {
+        EXPECT_TRUE(std::isinf(again.t_ground[i])) << target << " " << i;
+        continue;
+      }
+      ASSERT_EQ(again.t_ground[i], lanes.t_leave[i]) << target << " " << i;
+      // The point's cell and triangle in the grid, and its barycentrics there.
+      const float t = again.t_ground[i];
+      const double x = lanes.ox[i] + t * lanes.dx[i], z = lanes.oz[i] + t * lanes.dz[i];
+      const auto cell = [](const std::vector<double>& lines, double c) {
+        const auto it = std::upper_bound(lines.begin(), lines.end(), c);
+        return std::size_t(std::clamp<std::ptrdiff_t>(it - lines.begin() - 1, 0, std::ptrdiff_t(lines.size()) - 2));
+      };
+      const std::size_t ci = cell(mesh.xs, x), cj = cell(mesh.zs, z), nx = mesh.xs.size();
+      const double tx = (x - mesh.xs[ci]) / (mesh.xs[ci + 1] - mesh.xs[ci]);
+      const double tz = (z - mesh.zs[cj]) / (mesh.zs[cj + 1] - mesh.zs[cj]);
+      const std::size_t a = cj * nx + ci, b = a + 1, c = a + nx, d = c + 1;
+      glm::dvec3 expected;
+      if (tz >= tx) {  // (a c d)
+        expected = (1.0 - tz) * glm::dvec3(mesh.normals[a]) + (tz - tx) * glm::dvec3(mesh.normals[c]) +
+                   tx * glm::dvec3(mesh.normals[d]);
+        upper += target == simdTargets().front();
+      } else {  // (a d b)
+        expected = (1.0 - tx) * glm::dvec3(mesh.normals[a]) + (tx - tz) * glm::dvec3(mesh.normals[b]) +
+                   tz * glm::dvec3(mesh.normals[d]);
+        lower += target == simdTargets().front();
+      }
+      const glm::dvec3 got(again.gnx[i], again.gny[i], again.gnz[i]);
+      ASSERT_LT(glm::length(got - expected), 2e-4) << target << " sample " << i << " at " << x << " " << z;
+    }
+    if (first.empty()) {
+      first = out;
+    } else {
+      EXPECT_EQ(std::memcmp(out.data(), first.data(), out.size() * sizeof(float)), 0) << target;
+    }
+  }
+  EXPECT_GT(upper, 500);  // both triangles of the cells were hit, many times
+  EXPECT_GT(lower, 500);
 }
 
 // Every kernel, run on every target this CPU has, gives the same bits (the premise of a frame's bytes
