@@ -119,10 +119,14 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
     : scene_(scene), pairs_(std::make_unique<Pairs>(threads)) {
   Pairs& ps = *pairs_;
   if (scene.pairs.empty()) {
-    // The one pair: the scene's characters (as read or built, seated by the rig) on the scene's clip.
-    rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+    // The one pair: the scene's characters (as read or built, seated by the rig) on the scene's clip,
+    // on the shot's threads (building a character meshes it in parallel).
     Pairs::Pair p;
-    p.clip = rig::makeClip(scene.clip, pair.horse);  // a path clip turns hooves about this horse's rest places
+    rig::RiddenPair pair;
+    ps.arena.execute([&] {
+      pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+      p.clip = rig::makeClip(scene.clip, pair.horse);  // a path clip turns hooves about this horse's rest places
+    });
     p.profile = profile;
     p.seat = pair.seat;
     p.builds = {0};

@@ -22,12 +22,16 @@ void rememberError(void* user, RTCError, const char* message) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(BvhUpdate update) : update_(update) {
-  // No "threads=" setting: Embree's builders run on TBB, inside whatever arena calls commit().
+EmbreeScene::EmbreeScene(BvhUpdate update, int threads) : update_(update) {
+  // Embree's builders run on TBB threads of its own choosing unless the device is told how many it
+  // may use: "threads=N" caps TBB's parallelism (process-wide, at the most any live device asks for)
+  // while the device lives, so a renderer asked for N threads builds on N.
   // (Embree 3.13 has no switch to ignore ~/.embree3; such a file could still pin another ISA.)
   // STIRRUP_EMBREE_CONFIG adds to the device config, e.g. "isa=sse4.2" to pin the instruction set
   // the way a farm of mixed CPUs would run it (the golden noise floor is measured so; README).
+  if (threads < 0) throw std::invalid_argument("EmbreeScene: expected a thread count of 0 (all cores) or more");
   std::string config = "verbose=0";
+  if (threads > 0) config += ",threads=" + std::to_string(threads);
   if (const char* extra = std::getenv("STIRRUP_EMBREE_CONFIG"); extra && *extra) config += std::string(",") + extra;
   device_ = rtcNewDevice(config.c_str());
   if (!device_) {

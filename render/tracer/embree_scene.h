@@ -55,7 +55,8 @@ inline GroundTriangleHit groundTriangleHit(unsigned cell, float u, float v) {
 
 class EmbreeScene {
  public:
-  explicit EmbreeScene(BvhUpdate update = BvhUpdate::Rebuild);
+  // `threads`: how many threads Embree's BVH builds may use (0: every core).
+  explicit EmbreeScene(BvhUpdate update = BvhUpdate::Rebuild, int threads = 0);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;

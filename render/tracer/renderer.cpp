@@ -77,7 +77,7 @@ struct TileBuffers {
 
 struct Renderer::State {
   explicit State(const RenderSettings& s)
-      : scene(s.bvh_update), arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic) {}
+      : scene(s.bvh_update, s.threads), arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic) {}
 
   EmbreeScene scene;
   tbb::task_arena arena;
@@ -94,7 +94,8 @@ struct Renderer::State {
 Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
   validate(settings_);
   state_ = std::make_unique<State>(settings_);
-  state_->scene.setGround(settings_.ground_half_extent_cm);
+  // Embree builds a BVH on the threads of the arena it is called from: the renderer's.
+  state_->arena.execute([&] { state_->scene.setGround(settings_.ground_half_extent_cm); });
 }
 
 Renderer::~Renderer() = default;
@@ -107,7 +108,8 @@ void Renderer::setTerrain(std::shared_ptr<const rig::Terrain> terrain, const Gro
   state_->arena.execute([&] { state_->scene.setGroundMesh(mesh->positions, mesh->indices); });
   // The sun is the renderer's for its whole life, so its horizon over the hills is worked out once too.
   const double sun_radius = std::max(0.0, settings_.sun_angular_radius_deg) * std::numbers::pi / 180.0;
-  state_->hills = std::make_unique<const SunHorizon>(*mesh, settings_.sun_direction, sun_radius, region);
+  state_->arena.execute(
+      [&] { state_->hills = std::make_unique<const SunHorizon>(*mesh, settings_.sun_direction, sun_radius, region); });
   state_->ground_mesh = std::move(mesh);
   state_->terrain = std::move(terrain);
   state_->ground_floor = state_->ground_mesh->min_height;

@@ -3,8 +3,12 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_scheduler_observer.h>
 
 #include <algorithm>
+#include <atomic>
+#include <thread>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -241,6 +245,37 @@ TEST(Shot, SetupTimingsSayWhatTheShotBuilt) {
   Shot on_flat(flat, resolveProfile(flat), side, 1);
   EXPECT_EQ(on_flat.setupTimings().terrain_ms, 0.0);
   EXPECT_GT(on_flat.setupTimings().framing_ms, 0.0);
+}
+
+// Asked for one thread, a shot sets up (its characters, the terrain's mesh, BVH and sun horizon, the
+// view's framing) and renders on the caller's thread alone: no TBB worker joins the caller's arena,
+// where a parallel loop outside the shot's own one-thread arenas would run (a farm node told
+// --threads 1 shares its cores with others).
+TEST(Shot, AskedForOneThreadNoWorkerJoinsItsSetUpOrFrames) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: there are no workers to join";
+  struct WorkerCount : tbb::task_scheduler_observer {
+    std::atomic<int> joined{0};
+    void on_scheduler_entry(bool is_worker) override { joined += is_worker ? 1 : 0; }
+  } workers;
+  workers.observe(true);
+  SceneSpec hills = pathOverHills();
+  hills.sun_direction = {0.9, 0.22, 0.35};  // low: the hills' horizon map is built
+  CameraSpec side;
+  side.name = "side";
+  side.view = "side";
+  {
+    Shot shot(hills, resolveProfile(hills), side, 1);
+    shot.renderFrame(12);
+    shot.renderFrame(13, 14);  // and with the next frame evaluated ahead
+    shot.renderFrame(14);
+    EXPECT_EQ(workers.joined.load(), 0);
+  }
+  // The observer does see a loop run in the caller's arena (so the count above can fail).
+  std::atomic<int> sum{0};
+  for (int tries = 0; tries < 200 && workers.joined == 0; ++tries)
+    tbb::parallel_for(0, 100000, [&](int i) { sum += i % 3; });
+  workers.observe(false);
+  EXPECT_GT(workers.joined.load(), 0) << "no worker joined even a plain loop";
 }
 
 bool sameBytes(const Image& a, const Image& b) {
