@@ -369,8 +369,8 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     } else {
       for (std::size_t k = 0; k < n; ++k) {
         const bool hit = g.geom[k] != RTC_INVALID_GEOMETRY_ID;
-        scratch.samples[k].t_ground = lanes.t_ground[k] = hit ? lanes.t_leave[k] : kInfinity;
-        if (hit) terrainNormal(scratch.samples[k], lanes, k);
+        lanes.t_ground[k] = hit ? lanes.t_leave[k] : kInfinity;
+        if (hit) terrainNormal(lanes, k);
       }
     }
     boxTestLanes(constants, lanes);
@@ -683,8 +683,9 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
   S.ngx[m] = S.nx[m] = n.x, S.ngy[m] = S.ny[m] = n.y, S.ngz[m] = S.nz[m] = n.z;
 }
 
-void Integrator::terrainNormal(const TileScratch::CameraSample& c, CameraLanes& lanes, std::size_t k) const {
-  const glm::vec3 p = c.origin + c.t_ground * c.dir;
+void Integrator::terrainNormal(CameraLanes& lanes, std::size_t k) const {
+  const float t = lanes.t_ground[k];
+  const glm::vec3 p(lanes.ox[k] + t * lanes.dx[k], lanes.oy[k] + t * lanes.dy[k], lanes.oz[k] + t * lanes.dz[k]);
   const glm::vec3 n(terrain_->normal(double(p.x), double(p.z)));
   lanes.gnx[k] = n.x, lanes.gny[k] = n.y, lanes.gnz[k] = n.z;
 }

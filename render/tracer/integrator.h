@@ -145,9 +145,9 @@ class Integrator {
   int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
                         TileScratch& scratch, RayTally& tally) const;
   // Without the heightfield's mesh (tests that give the terrain alone): the terrain's own normal at
-  // camera sample k's ground hit (at c.t_ground), into the lanes. With it, groundHitLanes interpolates
-  // the mesh's vertex normals.
-  void terrainNormal(const TileScratch::CameraSample& c, CameraLanes& lanes, std::size_t k) const;
+  // camera sample k's ground hit (its ray at the lanes' t_ground), into the lanes. With it,
+  // groundHitLanes interpolates the mesh's vertex normals.
+  void terrainNormal(CameraLanes& lanes, std::size_t k) const;
   // Whether the hills may block some ray of the sun's disc from a surface at p (true with terrain and no
   // horizon map). `on_ground`: p is a hit on the heightfield (so on or above it).
   bool hillsMayBlockSun(const glm::vec3& p, bool on_ground) const;

@@ -104,12 +104,13 @@ void Renderer::setTerrain(std::shared_ptr<const rig::Terrain> terrain, const Gro
                           const TerrainMeshParams& params) {
   if (!terrain || terrain->flat()) return;
   std::unique_ptr<const TerrainMesh> mesh;
-  state_->arena.execute([&] { mesh = std::make_unique<const TerrainMesh>(makeTerrainMesh(*terrain, region, params)); });
-  state_->arena.execute([&] { state_->scene.setGroundMesh(mesh->positions, mesh->indices); });
   // The sun is the renderer's for its whole life, so its horizon over the hills is worked out once too.
   const double sun_radius = std::max(0.0, settings_.sun_angular_radius_deg) * std::numbers::pi / 180.0;
-  state_->arena.execute(
-      [&] { state_->hills = std::make_unique<const SunHorizon>(*mesh, settings_.sun_direction, sun_radius, region); });
+  state_->arena.execute([&] {  // on the renderer's threads, as every build of the shot
+    mesh = std::make_unique<const TerrainMesh>(makeTerrainMesh(*terrain, region, params));
+    state_->scene.setGroundMesh(mesh->positions, mesh->indices);
+    state_->hills = std::make_unique<const SunHorizon>(*mesh, settings_.sun_direction, sun_radius, region);
+  });
   state_->ground_mesh = std::move(mesh);
   state_->terrain = std::move(terrain);
   state_->ground_floor = state_->ground_mesh->min_height;

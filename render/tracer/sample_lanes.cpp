@@ -261,15 +261,16 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
 }
 
 // The heightfield's hits as Embree left them in the stream (GroundHits), lane by lane: t_ground, and the
-// normal interpolated from the hit triangle's vertex normals as Integrator::groundNormal makes it
-// (groundTriangleHit's triangle and barycentrics, b0 = 1 - b1 - b2, then b0 n0 + b1 n1 + b2 n2). The
-// triangle's indices and normals are gathered; a miss's cell is not read (Embree leaves it as it was).
+// normal interpolated from the hit triangle's vertex normals: groundTriangleHit's triangle and
+// barycentrics, b0 = 1 - b1 - b2, then b0 n0 + b1 n1 + b2 n2, in that order (so every target rounds
+// alike). The triangle's indices and normals are gathered; a miss reads cell 0 (Embree leaves a miss's
+// cell as it was) and stores a zero normal.
 void GroundHitLanes(const GroundHits& h, CameraLanes& L) {
   const DF df;
   const DI di;
   const size_t lanes = hn::Lanes(df);
   const VF inf = Splat(std::numeric_limits<float>::infinity());
-  const VF zero = Splat(0.0f), one = Splat(1.0f);
+  const VF one = Splat(1.0f);
   const auto invalid = hn::Set(di, int32_t(-1));  // RTC_INVALID_GEOMETRY_ID
   const auto* indices = reinterpret_cast<const int32_t*>(h.indices);
   const float* normals = reinterpret_cast<const float*>(h.normals);
@@ -287,15 +288,12 @@ void GroundHitLanes(const GroundHits& h, CameraLanes& L) {
     const VF b0 = hn::Sub(hn::Sub(one, b1), b2);
     const auto second = hn::IfThenElseZero(hn::RebindMask(di, hn::Not(first)), hn::Set(di, 1));
     const auto corner0 = hn::Mul(hn::Add(hn::Add(cell, cell), second), hn::Set(di, 3));  // 3 x triangle
-    V3 n = {zero, zero, zero};
-    const VF weights[3] = {b0, b1, b2};
-    for (int c = 0; c < 3; ++c) {
-      const auto vertex = hn::GatherIndex(di, indices, hn::Add(corner0, hn::Set(di, c)));
-      const auto at = hn::IfThenElseZero(hn::RebindMask(di, hit), hn::Mul(vertex, hn::Set(di, 3)));
-      const V3 nc = {hn::GatherIndex(df, normals, at), hn::GatherIndex(df, normals, hn::Add(at, hn::Set(di, 1))),
-                     hn::GatherIndex(df, normals, hn::Add(at, hn::Set(di, 2)))};
-      n = c == 0 ? Scale3(weights[0], nc) : Add3(n, Scale3(weights[c], nc));
-    }
+    auto vertexNormal = [&](int c) {  // the triangle's c-th vertex's normal
+      const auto at = hn::Mul(hn::GatherIndex(di, indices, hn::Add(corner0, hn::Set(di, c))), hn::Set(di, 3));
+      return V3{hn::GatherIndex(df, normals, at), hn::GatherIndex(df, normals, hn::Add(at, hn::Set(di, 1))),
+                hn::GatherIndex(df, normals, hn::Add(at, hn::Set(di, 2)))};
+    };
+    const V3 n = Add3(Add3(Scale3(b0, vertexNormal(0)), Scale3(b1, vertexNormal(1))), Scale3(b2, vertexNormal(2)));
     Store(hn::IfThenElseZero(hit, n.x), L.gnx, i), Store(hn::IfThenElseZero(hit, n.y), L.gny, i);
     Store(hn::IfThenElseZero(hit, n.z), L.gnz, i);
   }
