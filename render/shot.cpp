@@ -20,12 +20,17 @@ double msSince(Clock::time_point t0) {
 
 glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
-// Uneven ground is meshed finely this far around the horse's track: the horse's length and more, so
-// its hooves and the ground around it in every view stand on the fine grid.
-constexpr double kFineGroundMarginCm = 1000.0;
+MeshDesc meshOf(ObjectId id, const rig::Character& c) {
+  MeshDesc desc{id, c.mesh.indices, c.mesh.colors, c.mesh.positions.size(), c.mesh.positions};
+  desc.uvs = c.mesh.uvs;
+  desc.triangle_textures = c.mesh.triangle_textures;
+  desc.textures = c.mesh.textures;
+  return desc;
+}
 
-// The box (x, z) the horses' travel frames cross over the scene's frames, grown by the margin.
-GroundRegion trackRegion(const SceneSpec& scene, const std::vector<const rig::Clip*>& clips) {
+}  // namespace
+
+GroundRegion fineGroundRegion(const SceneSpec& scene, const std::vector<const rig::Clip*>& clips) {
   GroundRegion r{1e300, 1e300, -1e300, -1e300};
   for (int f : rig::parseFrameList(scene.frames, "frames")) {
     for (const rig::Clip* clip : clips) {
@@ -37,16 +42,6 @@ GroundRegion trackRegion(const SceneSpec& scene, const std::vector<const rig::Cl
   return {r.x0 - kFineGroundMarginCm, r.z0 - kFineGroundMarginCm, r.x1 + kFineGroundMarginCm,
           r.z1 + kFineGroundMarginCm};
 }
-
-MeshDesc meshOf(ObjectId id, const rig::Character& c) {
-  MeshDesc desc{id, c.mesh.indices, c.mesh.colors, c.mesh.positions.size(), c.mesh.positions};
-  desc.uvs = c.mesh.uvs;
-  desc.triangle_textures = c.mesh.triangle_textures;
-  desc.textures = c.mesh.textures;
-  return desc;
-}
-
-}  // namespace
 
 Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
            BvhUpdate bvh)
@@ -94,7 +89,7 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
       const auto t0 = Clock::now();
       std::vector<const rig::Clip*> tracks;
       for (int i = 0; i < characters_->pairCount(); ++i) tracks.push_back(&characters_->shownClip(i));
-      renderer_->setTerrain(scene.terrain, trackRegion(scene_, tracks));
+      renderer_->setTerrain(scene.terrain, fineGroundRegion(scene_, tracks));
       setup_.terrain_ms = msSince(t0);
     });
   // If the framing throws, `terrain` (a local, gone before the members) waits for its thread in its
