@@ -24,12 +24,13 @@
 namespace stirrup::render {
 
 // Uneven ground is meshed finely (TerrainMeshParams::fine_spacing_cm) this far around the box of the
-// horses' travel points: a hoof lands within about 1.5 m of its horse's travel point (half a body length
-// and the stride's reach), so every hoof and the ground a metre and a half beyond it stand on the fine
-// grid. Past that the cells widen by TerrainMeshParams::growth each (31, 39, 49 cm ...), the mesh
-// leaving Terrain::height by at most |height''| cell² / 8 where nothing stands on it. It was 10 m until
-// issue 35's seventh pass: the wider band made half again as many ground quads for Embree to traverse
-// (docs/performance.md) and no visible difference.
+// horses' travel points. The default horse's hooves land within about 1 m of that box (half a body
+// length and the stride's reach; Shot.TheFineGroundReachesEveryHoofWithRoomToSpare measures it), so
+// every hoof and the ground 1.5 m beyond it stand on the fine grid, and a horse twice as long still
+// stands on it. Past it the cells widen by TerrainMeshParams::growth each (31, 39, 49 cm ...), the mesh
+// leaving Terrain::height by at most |height''| cell² / 8 where nothing stands. It was 10 m until issue
+// 35's seventh pass: half again as many ground quads for Embree to traverse (docs/performance.md) and
+// no visible difference.
 inline constexpr double kFineGroundMarginCm = 300.0;
 
 // The box (x, z) the horses' travel frames cross over the scene's frames, grown by kFineGroundMarginCm:
