@@ -85,23 +85,19 @@ TEST(Shot, StandsTheHorseOnTheSceneTerrain) {
 }
 
 // The fine grid reaches every hoof with a metre and a half to spare: in every default scene over hills,
-// each hoof of each horse at every third frame (a crowd's every twelfth; posed, in world space) lies within the fine region
-// shrunk by 150 cm. Fails if kFineGroundMarginCm is cut below a hoof's reach from its travel point
-// plus that band.
+// each hoof of each horse (posed, in world space) at every third frame, a crowd's at every twelfth,
+// lies within the fine region shrunk by 150 cm. Fails if kFineGroundMarginCm is cut below a hoof's
+// reach beyond its travel points' box plus that band (the least room left is about 2 m).
 TEST(Shot, TheFineGroundReachesEveryHoofWithRoomToSpare) {
   constexpr double kSpareCm = 150.0;
-  int scenes = 0;
-  // A crowd's many pairs at every twelfth frame.
   for (const auto& [name, stride] : {std::pair{"trail", 3}, {"cross_country", 3}, {"ride_out", 3}, {"cavalry", 12}}) {
     const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
     ASSERT_TRUE(scene.terrain && !scene.terrain->flat()) << name;
-    ++scenes;
     ShotEvaluator evaluator(scene, resolveProfile(scene), 0);
     std::vector<const rig::Clip*> tracks;
     for (int i = 0; i < evaluator.pairCount(); ++i) tracks.push_back(&evaluator.shownClip(i));
     const GroundRegion fine = fineGroundRegion(scene, tracks);
     const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
-    double least_spare = 1e300;
     ShotFrame out;
     for (std::size_t f = 0; f < frames.size(); f += std::size_t(stride)) {
       FrameRequest request;
@@ -115,16 +111,12 @@ TEST(Shot, TheFineGroundReachesEveryHoofWithRoomToSpare) {
           ASSERT_GE(joint, 0) << name << " " << leg;
           const glm::vec3 hoof(out.pairs[std::size_t(pair)].pose.horse[std::size_t(joint)][3]);
           const double spare = std::min({hoof.x - fine.x0, fine.x1 - hoof.x, hoof.z - fine.z0, fine.z1 - hoof.z});
-          least_spare = std::min(least_spare, spare);
           EXPECT_GE(spare, kSpareCm) << name << " frame " << frames[f] << " pair " << pair << " " << leg << "Hoof at "
                                      << hoof.x << ", " << hoof.z;
         }
       }
     }
-    // The margin is not wildly more than the hooves need either (the band is what Embree traverses).
-    EXPECT_LT(least_spare, kFineGroundMarginCm) << name;
   }
-  EXPECT_EQ(scenes, 4);
 }
 
 // Columns whose bottom row is brighter than the row four above it (by 0.06, a tenth of the sky): a
