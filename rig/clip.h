@@ -4,9 +4,11 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
 #include "rig/channels.h"
@@ -19,6 +21,15 @@ namespace stirrup::rig {
 // clip turns it about the same place the horse's skeleton does.
 inline constexpr std::array<glm::dvec2, 4> kDefaultHoofRest = {
     glm::dvec2{52.0, -13.0}, glm::dvec2{52.0, 13.0}, glm::dvec2{-69.0, -14.0}, glm::dvec2{-69.0, 14.0}};
+
+// A horse playing its own keyed animation (rig/io/keyed_horse_clip.h) is posed as the file keys it, not
+// from its controls: each joint's matrix in the travel frame (travelMatrix takes it to the world), one per
+// joint of the horse the clip was made for. `keyed` marks the file's joints; the others (points the rig
+// added: tack, grips) hang from their parents as they do at rest.
+struct KeyedHorsePose {
+  std::vector<glm::mat4> joint;
+  std::vector<char> keyed;
+};
 
 struct HorseFrame {
   HorseChannels controls;   // contract channels (cm, degrees), offsets from rest in the travel frame
@@ -47,6 +58,9 @@ struct HorseFrame {
   double head_rz = 0.0;
   double tail_rz = 0.0;
   double tail_ry = 0.0;
+  // Set when the clip keys the horse's joints itself (KeyedHorsePose): posing takes them as they are, and
+  // the controls above are measured from them (the rider rig reads those).
+  std::shared_ptr<const KeyedHorsePose> keyed_pose;
 };
 
 // Something the horse moves over that a review shot must show: the fence of a jump. Placed in the

@@ -246,8 +246,38 @@ std::vector<glm::mat4> poseHorseSettled(const Character& horse, const HorseFrame
 
 }  // namespace
 
+namespace {
+
+// A horse keyed by its clip (HorseFrame::keyed_pose): its joints where the file keys them, the points the
+// rig added hanging from their parents as at rest. A hoof is down within kKeyedContactCm of its rest
+// height; nothing is solved, so nothing falls short.
+std::vector<glm::mat4> poseKeyedHorse(const Character& horse, const HorseFrame& frame, HorseReach* reach) {
+  const Skeleton& s = horse.skeleton;
+  const KeyedHorsePose& keyed = *frame.keyed_pose;
+  if (keyed.joint.size() != s.size() || keyed.keyed.size() != s.size())
+    throw std::invalid_argument("poseHorse: the keyed pose was made for another horse (" + std::to_string(keyed.joint.size()) +
+                                " joints, the horse has " + std::to_string(s.size()) + ")");
+  const glm::mat4 travel = travelMatrix(frame);
+  std::vector<glm::mat4> world(s.size());
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int p = s.joints[j].parent;
+    if (keyed.keyed[j]) world[j] = travel * keyed.joint[j];
+    else world[j] = p < 0 ? travel * s.joints[j].rest_local : world[std::size_t(p)] * s.joints[j].rest_local;
+  }
+  if (reach) {
+    *reach = {};
+    static constexpr std::array<HorseChannel, 4> kLift = {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy,
+                                                          HorseChannel::lbHoofTy, HorseChannel::rbHoofTy};
+    for (std::size_t leg = 0; leg < 4; ++leg) reach->planted[leg] = frame.controls[kLift[leg]] <= kKeyedContactCm;
+  }
+  return world;
+}
+
+}  // namespace
+
 std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params,
                                  HorseReach* reach) {
+  if (frame.keyed_pose) return poseKeyedHorse(horse, frame, reach);
   HorseReach r;
   std::vector<glm::mat4> world = poseHorseSettled(horse, frame, params, &r, 0.0f);
   // A planted leg short of its print: the body settles onto it, as far as max_stance_settle_cm. Each

@@ -76,6 +76,10 @@ struct HorseReach {
   bool overReached(int leg) const { return short_cm[std::size_t(leg)] >= kOverReachCm; }
   bool any() const { return overReached(0) || overReached(1) || overReached(2) || overReached(3); }
 };
+// A horse keyed by its clip (HorseFrame::keyed_pose) is posed as keyed instead; a keyed hoof is down
+// within kKeyedContactCm of its rest height: a hand-keyed stance is not exactly at rest height, as a
+// generated one is [E].
+inline constexpr double kKeyedContactCm = 0.5;
 std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame,
                                  const HorsePoseParams& params = {}, HorseReach* reach = nullptr);
 

@@ -137,7 +137,9 @@ std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
   if (!scene.pairs.empty())
     throw InputError(scene.file.string() + ": " + (scene.crowd ? "crowd" : "riders") +
                      ": expected a scene of one horse and rider here (each pair of a crowd rides its own clip)");
-  if (scene.horse == "default" || scene.clip.generator != "path") return rig::makeClip(scene.clip);
+  // A path turns its hooves about the horse's rest places, and a horse's own file plays on it as keyed:
+  // both need the horse.
+  if (scene.horse == "default" || (scene.clip.generator != "path" && scene.clip.file.empty())) return rig::makeClip(scene.clip);
   return rig::makeClip(scene.clip, rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping));
 }
 
@@ -197,6 +199,10 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
   }
   s.fps = r.number("fps", s.fps);
   if (!(s.fps > 0.0 && s.fps <= 240.0)) r.fail("fps", "expected frames per second between 0 and 240");
+  // A horse's own animation (or another horse's, read through its roles) plays whole unless the scene
+  // says which frames.
+  if (!s.clip.file.empty() && !r.has("frames") && !rig::readsControlNodes(s.clip))
+    s.frames = "1-" + std::to_string(std::max(1, int(std::lround(rig::fileClipDuration(s.clip) * s.fps)) + 1));
   s.frames = r.string("frames", s.frames);
   rig::parseFrameList(s.frames, file + ": frames");
   if (const nlohmann::json* res = r.value("resolution")) {

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -56,6 +57,7 @@ struct HorseTackParams {
 // What the rig measured and placed, in the horse's rest space (cm).
 struct HorseTackReport {
   bool added = false;          // false: the horse had its tack
+  bool own_saddle = false;     // the horse's mesh has its own saddle: the seat is on it, no saddle added
   int back_joint = -1;         // the joint the saddle hangs from
   glm::vec3 withers{0.0f};     // the withers point used
   glm::vec3 seat{0.0f};        // the seat centre
@@ -66,7 +68,10 @@ struct HorseTackReport {
 
 // Adds the tack to a horse without the tack roles (with all five it is left as it is). Throws
 // InputError naming `file` (for messages) when the horse's mesh has no back over the saddle's place
-// or no head to put a bit in.
-HorseTackReport addHorseTack(Character& horse, const std::string& file, const HorseTackParams& params = {});
+// or no head to put a bit in. `own_saddle` flags, vertex by vertex, a saddle modelled with the horse
+// (rig/io/gltf_character.h finds it by name): its seat is the saddle's seat (the deepest point along its
+// middle), and only the stirrups, bridle and reins are added.
+HorseTackReport addHorseTack(Character& horse, const std::string& file, const HorseTackParams& params = {},
+                             const std::vector<char>* own_saddle = nullptr);
 
 }  // namespace stirrup::rig

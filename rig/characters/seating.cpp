@@ -316,10 +316,364 @@ bool restIsStanding(const Character& rider) {
   return true;
 }
 
+namespace {
+
+// One seating in progress: the rider as she is being seated (rig points added), what is decided about
+// her joints, and the horse's seat, stirrups and rein grips in saddle space. The steps below fill it in
+// order: trunk (a standing rider only), leathers, legs, arms; then the joints are placed.
+struct LegFit {
+  glm::vec3 knee{0.0f}, ankle{0.0f}, pole{0.0f};
+  float turn_deg = 0.0f, clearance = 0.0f, knee_radius = 0.0f, calf_radius = 0.0f;
+  bool at_reach = false;
+};
+
+struct Seating {
+  Character c;
+  SeatReport report;
+  std::vector<glm::vec3> mesh;  // her mesh at rest, as her file binds it (before this seating)
+  float stature = 0.0f;
+  glm::mat4 trunk{1.0f};        // where her pelvis and everything it carries go (identity: kept)
+  std::vector<std::optional<glm::mat4>> set;  // the seating of joints placed explicitly
+  // The horse, saddle space (the saddle's rest is translation-only).
+  glm::vec3 seat{0.0f};
+  std::array<glm::vec3, 2> stirrup{}, grip{};
+  HorseWidth width;
+  // Decided: the treads' height (saddle space), how far the leathers change and the treads move out.
+  float tread_y = 0.0f, leather_drop = 0.0f, tread_out = 0.0f;
+  std::array<LegFit, 2> legs{};
+
+  glm::vec3 at(int j) const { return c.skeleton.restPosition(j); }
+  std::string jointName(int j) const { return "\"" + c.skeleton.joints[std::size_t(j)].name + "\""; }
+};
+
+Seating startSeating(Character rider, const Character& horse, const std::vector<glm::vec3>& mesh, float stature, SeatReport report) {
+  Seating w;
+  w.c = std::move(rider);
+  w.report = std::move(report);
+  w.mesh = mesh;
+  w.stature = stature;
+  w.set.assign(w.c.skeleton.size(), std::nullopt);
+  w.seat = horse.skeleton.restPosition(horse.role("saddle"));
+  w.stirrup = {horse.skeleton.restPosition(horse.role("lStirrup")) - w.seat, horse.skeleton.restPosition(horse.role("rStirrup")) - w.seat};
+  w.grip = {horse.skeleton.restPosition(horse.role("lRein")) - w.seat, horse.skeleton.restPosition(horse.role("rRein")) - w.seat};
+  w.width = horseWidth(horse, w.seat);
+  return w;
+}
+
+// A standing rider's trunk: turned so the pelvis-to-neck line leans as the generated rider's does at
+// rest, the hip joints over the seat, as high above it as her seat bones are below them; the head
+// turned up toward the generated rider's (a few degrees at most).
+void seatTrunk(Seating& w, const SeatParams& params) {
+  const RiderParams built;
+  const Character& c = w.c;
+  const int pelvis = c.role("pelvis"), neck = c.role("neck"), head = c.role("head");
+  const glm::vec3 trunk_now = w.at(neck) - w.at(pelvis);
+  if (glm::length(trunk_now) < 1.0f)
+    throw InputError("roles.neck: joint " + w.jointName(neck) + " is where the pelvis " + w.jointName(pelvis) + " is (expected the base of the neck)");
+  const glm::mat3 trunk_turn = arc(trunk_now, built.neck - built.pelvis);
+  const glm::vec3 hips_now = 0.5f * (w.at(c.role("lHip")) + w.at(c.role("rHip")));
+  float depth = kSeatDepthPerStature * w.stature;
+  {
+    const float half = 0.5f * std::abs(w.at(c.role("lHip")).z - w.at(c.role("rHip")).z) + 2.0f;
+    float lowest = 1e30f;
+    for (std::size_t v = 0; v < w.mesh.size(); ++v) {
+      float on_pelvis = 0.0f;
+      for (int k = 0; k < kMaxInfluences; ++k)
+        if (c.mesh.joints[v][k] == pelvis) on_pelvis += c.mesh.weights[v][k];
+      const glm::vec3& p = w.mesh[v];
+      if (on_pelvis >= 0.25f && std::abs(p.z - hips_now.z) <= half && p.y < hips_now.y) lowest = std::min(lowest, p.y);
+    }
+    if (lowest < 1e29f) depth = std::clamp(hips_now.y - lowest, kSeatDepthMin * w.stature, kSeatDepthMax * w.stature);
+  }
+  w.report.seat_depth_cm = depth;
+  const glm::vec3 hips_seated(-params.hip_behind_seat_centre_cm, depth, 0.0f);
+  w.trunk = translate(hips_seated) * glm::mat4(trunk_turn) * translate(-hips_now);
+  w.set[std::size_t(pelvis)] = w.trunk;
+
+  const glm::vec3 n = apply(w.trunk, w.at(neck));
+  const glm::vec3 up_now = trunk_turn * (w.at(head) - w.at(neck));
+  glm::mat3 fix = arc(up_now, built.head - built.neck);
+  const float angle = degrees(std::acos(std::clamp((fix[0][0] + fix[1][1] + fix[2][2] - 1.0f) * 0.5f, -1.0f, 1.0f)));
+  if (angle > kMaxHeadTurnDeg) fix = glm::mat3(1.0f);  // a head modelled looking far off: keep it
+  w.set[std::size_t(neck)] = translate(n) * glm::mat4(fix) * translate(-n) * w.trunk;
+}
+
+// Leathers: with the leg hanging long beside the horse (hip to ankle straight, out to the stirrup's
+// side), the tread at the ankle, then taken up by the style.
+void setLeathers(Seating& w, const SeatParams& params) {
+  const Character& c = w.c;
+  float tread_y = 0.0f;
+  w.report.leg_cm = 0.0f;
+  for (int side = 0; side < 2; ++side) {
+    const std::string n = side == 0 ? "l" : "r";
+    const glm::vec3 h = apply(w.trunk, w.at(c.role(n + "Hip")));
+    const float leg = glm::length(w.at(c.role(n + "Knee")) - w.at(c.role(n + "Hip"))) +
+                      glm::length(w.at(c.role(n + "Ankle")) - w.at(c.role(n + "Knee")));
+    const float out_to_stirrup = std::max(std::abs(w.stirrup[std::size_t(side)].z) - std::abs(h.z), 0.0f);
+    tread_y += 0.5f * (h.y - std::sqrt(std::max(leg * leg - out_to_stirrup * out_to_stirrup, 0.0f)) +
+                       params.stirrup_holes_up * kLeatherHoleCm);
+    w.report.leg_cm += 0.5f * leg;
+  }
+  w.tread_y = tread_y;
+  w.leather_drop = tread_y - 0.5f * (w.stirrup[0].y + w.stirrup[1].y);  // + raises the treads
+  w.report.tread_below_seat_cm = -tread_y;
+  w.report.leather_change_cm = -w.leather_drop;
+}
+
+// One leg: the sole's contact on the tread (moved `tread_out` away from the horse), heel down; the knee
+// bent forward and out, turned further out (up to kMaxKneeTurnDeg) until the leg clears the horse.
+LegFit fitLeg(const Seating& w, const SeatParams& params, int side, float tread_out) {
+  const Character& c = w.c;
+  const std::string n = side == 0 ? "l" : "r";
+  const float out_sign = side == 0 ? -1.0f : 1.0f;
+  const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), radians(params.heel_down_deg), glm::vec3(0, 0, 1)));
+  const int hip = c.role(n + "Hip"), knee = c.role(n + "Knee"), ankle = c.role(n + "Ankle"), ball = c.role(n + "Ball");
+  const glm::vec3 hs = w.at(hip), ks = w.at(knee), as = w.at(ankle), bs = w.at(ball);
+  const float thigh = glm::length(ks - hs), shin = glm::length(as - ks);
+  if (thigh < 1.0f || shin < 1.0f)
+    throw InputError("roles." + n + "Knee: joint " + w.jointName(knee) + " leaves a thigh or shin of no length (expected the knee between " +
+                     w.jointName(hip) + " and " + w.jointName(ankle) + ")");
+  const glm::vec3 h = apply(w.trunk, hs);
+  const glm::vec3 tread(w.stirrup[std::size_t(side)].x, w.tread_y, w.stirrup[std::size_t(side)].z + out_sign * tread_out);
+  LegFit fit;
+  fit.ankle = tread + heel_down * (as - bs);
+  const glm::vec3 d = fit.ankle - h;
+  const float reach = glm::length(d);
+  fit.at_reach = reach >= thigh + shin - params.limb_soften_cm;
+  const glm::vec3 dir = d / std::max(reach, 1e-3f);
+  const float r = std::min(reach, thigh + shin - params.limb_soften_cm);
+  const float along = (thigh * thigh - shin * shin + r * r) / (2.0f * r);
+  const float across = std::sqrt(std::max(thigh * thigh - along * along, 0.0f));
+  const glm::vec3 pole = mirror(params.knee_pole_dir, -out_sign);  // the parameter is the left side's
+  const glm::vec3 u0 = glm::normalize(pole - dir * glm::dot(pole, dir));
+  glm::vec3 v0 = glm::normalize(glm::cross(dir, u0));
+  if (v0.z * out_sign < 0.0f) v0 = -v0;
+  const glm::vec3 centre = h + dir * along;
+  const std::vector<int> thigh_joints = segmentJoints(c.skeleton, hip, knee), shin_joints = segmentJoints(c.skeleton, knee, ankle);
+  std::vector<int> knee_joints = thigh_joints;
+  knee_joints.insert(knee_joints.end(), shin_joints.begin(), shin_joints.end());
+  const float knee_r = limbRadius(c, w.mesh, knee_joints, ks, as, 0.0f, 5.0f, 0.033f * w.stature);
+  float thigh_r = 0.0f;  // the widest of the thigh's upper, middle and lower part
+  for (float a : {0.25f, 0.5f, 0.75f})
+    thigh_r = std::max(thigh_r, limbRadius(c, w.mesh, thigh_joints, hs, ks, a, 0.1f * thigh, 0.047f * w.stature));
+  const float calf_r = limbRadius(c, w.mesh, shin_joints, ks, as, 0.35f, 0.15f * shin, 0.033f * w.stature);
+  fit.knee_radius = knee_r;
+  fit.calf_radius = calf_r;
+  // The smallest clearance along the leg (the thigh's middle and lower part, the knee, the shin).
+  // The thigh lies on the saddle (thigh_clearance_cm from it, for the pelvis's roll at the trot), the knee
+  // and calf stand clear of it by knee_clearance_cm, which the rider channels' knee and foot movements
+  // eat into.
+  const auto clearance = [&](glm::vec3 k) {
+    float worst = 1e30f;
+    const auto check = [&](glm::vec3 p, float radius, float room) {
+      const float wide = w.width.near(p, out_sign, 4.0f);
+      if (wide > -1e29f) worst = std::min(worst, p.z * out_sign - radius - wide - room);
+    };
+    for (float t : {0.25f, 0.5f, 0.75f}) check(h + (k - h) * t, thigh_r, params.thigh_clearance_cm);
+    check(k, knee_r, params.knee_clearance_cm);
+    // The calf with the foot where the channels can take it: in toward the belly by the posing limit
+    // (RiderPoseParams::max_foot_in_cm), the heel turned in about the ball by its limit
+    // (max_foot_twist_deg), and the leg swung back (the stirrup's swing moves the calf back by about
+    // half the foot's).
+    const RiderPoseParams limits;
+    const glm::vec2 heel(as.x - bs.x, as.z - bs.z);
+    const float twist_in = glm::length(heel) * std::sin(radians(limits.max_foot_twist_deg));
+    const glm::vec3 foot_in = fit.ankle - glm::vec3(0.0f, 0.0f, out_sign * (limits.max_foot_in_cm + twist_in));
+    const glm::vec3 swung_back(-0.5f * limits.max_foot_swing_cm, 0.0f, 0.0f);
+    for (float t : {0.25f, 0.5f, 0.75f}) {
+      check(k + (fit.ankle - k) * t, calf_r, params.knee_clearance_cm);
+      check(k + (foot_in - k) * t, calf_r, 0.0f);
+      check(k + (foot_in - k) * t + swung_back, calf_r, 0.0f);
+    }
+    return worst;  // >= 0: clear
+  };
+  fit.clearance = -1e30f;
+  for (float phi = 0.0f; phi <= kMaxKneeTurnDeg + 1e-3f; phi += kKneeTurnStepDeg) {
+    const glm::vec3 k = centre + across * (std::cos(radians(phi)) * u0 + std::sin(radians(phi)) * v0);
+    const float cl = clearance(k);
+    if (cl > fit.clearance) fit.clearance = cl, fit.turn_deg = phi, fit.knee = k;
+    if (cl >= 0.0f) break;
+  }
+  fit.pole = centre + (fit.knee - centre) * 10.0f;
+  return fit;
+}
+
+// Both legs; where even the knees' turn leaves a leg against the horse (a thick calf against the flap),
+// the treads move out with the leathers hanging wider, as a rider's legs push them.
+void fitLegs(Seating& w, const SeatParams& params) {
+  w.tread_out = 0.0f;
+  for (int attempt = 0;; ++attempt) {
+    w.legs = {fitLeg(w, params, 0, w.tread_out), fitLeg(w, params, 1, w.tread_out)};
+    const float short_by = -std::min(w.legs[0].clearance, w.legs[1].clearance);
+    if (short_by <= 0.01f || attempt >= kMaxTreadOutSteps || w.tread_out >= kMaxTreadOutCm) break;
+    w.tread_out = std::min(w.tread_out + short_by, kMaxTreadOutCm);
+  }
+  w.report.tread_out_cm = w.tread_out;
+  const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), radians(params.heel_down_deg), glm::vec3(0, 0, 1)));
+  for (int side = 0; side < 2; ++side) {
+    const std::string n = side == 0 ? "l" : "r";
+    const LegFit& fit = w.legs[std::size_t(side)];
+    w.report.knee_turn_out_deg = std::max(w.report.knee_turn_out_deg, fit.turn_deg);
+    if (fit.at_reach) w.report.notes.push_back(n + " leg: the tread is at the end of its reach");
+    if (fit.clearance < 0.0f) w.report.notes.push_back(n + " leg: " + numberText(-fit.clearance) + " cm short of clear of the horse");
+    const int hip = w.c.role(n + "Hip"), knee = w.c.role(n + "Knee"), ankle = w.c.role(n + "Ankle");
+    const glm::vec3 hs = w.at(hip), ks = w.at(knee), as = w.at(ankle);
+    // The standing knee bends forward; the seated one toward the knee chosen.
+    const LimbPose limb = solveLimb(hs, ks, as, ks + glm::vec3(50.0f, 0.0f, 0.0f), apply(w.trunk, hs), fit.ankle, fit.pole, 0.0f);
+    w.set[std::size_t(hip)] = limb.upper * translate(-hs);
+    w.set[std::size_t(knee)] = limb.middle * translate(-ks);
+    w.set[std::size_t(ankle)] = translate(limb.end) * glm::mat4(heel_down) * translate(-as);
+  }
+}
+
+// The palm's normal at rest: the flattest direction of the hand's mesh, signed as a hand hangs from an
+// arm held out (palm down in a T-pose, in toward the body with the arms relaxed).
+glm::vec3 palmNormal(const Seating& w, int wrist, glm::vec3 hand_now, float out_sign) {
+  glm::vec3 palm = -out_sign * glm::cross(hand_now, glm::vec3(1.0f, 0.0f, 0.0f));
+  if (glm::length(palm) < 0.2f) palm = glm::vec3(0.0f, -1.0f, 0.0f);
+  palm = glm::normalize(palm - hand_now * glm::dot(palm, hand_now));
+  const std::vector<char> below = subtree(w.c.skeleton, wrist);
+  glm::vec3 mean(0.0f);
+  std::vector<glm::vec3> pts;
+  for (std::size_t v = 0; v < w.mesh.size(); ++v)
+    if (below[std::size_t(dominantJoint(w.c.mesh, v))]) pts.push_back(w.mesh[v]), mean += w.mesh[v];
+  if (pts.size() < 12) return palm;
+  mean /= float(pts.size());
+  glm::mat3 cov(0.0f);
+  for (const glm::vec3& p : pts) cov += glm::outerProduct(p - mean, p - mean);
+  // The smallest eigenvector by inverse iteration on the covariance made positive definite.
+  const glm::mat3 inv = glm::inverse(cov + glm::mat3(1e-3f * (cov[0][0] + cov[1][1] + cov[2][2])));
+  glm::vec3 e = palm;
+  for (int it = 0; it < 32; ++it) e = glm::normalize(inv * e);
+  e = glm::normalize(e - hand_now * glm::dot(e, hand_now));
+  if (glm::length(e) > 0.5f) palm = glm::dot(e, palm) < 0.0f ? -e : e;
+  return palm;
+}
+
+// Arms: the grip on the rein, the hand pointing forward and in with the thumb up, the elbow back and
+// down; a rider whose arms do not reach keeps her hands as far forward as they go.
+void fitArms(Seating& w, const SeatParams& params) {
+  const Character& c = w.c;
+  for (int side = 0; side < 2; ++side) {
+    const std::string n = side == 0 ? "l" : "r";
+    const float out_sign = side == 0 ? -1.0f : 1.0f;
+    const int shoulder = c.role(n + "Shoulder"), elbow = c.role(n + "Elbow"), wrist = c.role(n + "Wrist"), hand = c.role(n + "Hand");
+    const glm::vec3 ss = w.at(shoulder), es = w.at(elbow), ws = w.at(wrist), gs = w.at(hand);
+    const float upper = glm::length(es - ss), fore = glm::length(ws - es);
+    if (upper < 1.0f || fore < 1.0f)
+      throw InputError("roles." + n + "Elbow: joint " + w.jointName(elbow) + " leaves an upper arm or forearm of no length (expected the elbow between " +
+                       w.jointName(shoulder) + " and " + w.jointName(wrist) + ")");
+    const glm::vec3 hand_now = glm::length(gs - ws) > 1e-3f ? glm::normalize(gs - ws) : glm::normalize(ws - es);
+    const glm::vec3 palm = palmNormal(w, wrist, hand_now, out_sign);
+    const glm::vec3 hand_dir = glm::normalize(mirror(params.hand_dir, -out_sign));
+    const glm::vec3 palm_seated = glm::vec3(0.0f, 0.0f, -out_sign);  // toward the midline: thumbs up
+    const glm::mat3 hand_turn = frame(hand_dir, palm_seated) * glm::transpose(frame(hand_now, palm));
+    const glm::vec3 sh = apply(w.trunk, ss);
+    glm::vec3 target = w.grip[std::size_t(side)] - hand_turn * (gs - ws);
+    const float reach = glm::length(target - sh), most = kArmReach * (upper + fore);
+    if (reach > most) {
+      w.report.hand_shortfall_cm = std::max(w.report.hand_shortfall_cm, reach - most);
+      target = sh + (target - sh) * (most / reach);
+    }
+    const glm::vec3 pole = 0.5f * (sh + target) + glm::normalize(mirror(params.elbow_pole_dir, -out_sign)) * 40.0f;
+    const LimbPose limb = solveLimb(ss, es, ws, es + glm::vec3(-40.0f, 0.0f, 0.0f), sh, target, pole, 0.0f);
+    w.set[std::size_t(shoulder)] = limb.upper * translate(-ss);
+    w.set[std::size_t(elbow)] = limb.middle * translate(-es);
+    w.set[std::size_t(wrist)] = translate(limb.end) * glm::mat4(hand_turn) * translate(-ws);
+  }
+  if (w.report.hand_shortfall_cm > 0.0f)
+    w.report.notes.push_back("hands " + numberText(w.report.hand_shortfall_cm) + " cm short of the rein grips (arms too short)");
+}
+
+// The horse's side where her legs lie, for posing to keep her knees and calves out of it.
+Character::LegGuard legGuard(const Seating& w) {
+  Character::LegGuard g;
+  g.x0 = kGuardMin.x;
+  g.y0 = kGuardMin.y;
+  g.cell_cm = kGuardCellCm;
+  g.nx = static_cast<int>(std::ceil((kGuardMax.x - kGuardMin.x) / kGuardCellCm));
+  g.ny = static_cast<int>(std::ceil((kGuardMax.y - kGuardMin.y) / kGuardCellCm));
+  g.half_width.assign(std::size_t(g.nx) * std::size_t(g.ny), -std::numeric_limits<float>::infinity());
+  for (const glm::vec3& p : w.width.points) {
+    const int i = static_cast<int>(std::floor((p.x - g.x0) / g.cell_cm)), j = static_cast<int>(std::floor((p.y - g.y0) / g.cell_cm));
+    if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) continue;
+    float& half = g.half_width[std::size_t(j) * std::size_t(g.nx) + std::size_t(i)];
+    half = std::max(half, std::abs(p.z));
+  }
+  g.knee_radius_cm = std::max(w.legs[0].knee_radius, w.legs[1].knee_radius);
+  g.calf_radius_cm = std::max(w.legs[0].calf_radius, w.legs[1].calf_radius);
+  g.room_cm = kGuardRoomCm;
+  return g;
+}
+
+// Every joint where the steps put it, or carried by its parent (the trunk for joints above the
+// pelvis): a translation-only rest at its seated place, the file's mesh kept by the bind offsets.
+Character placeJoints(const Seating& w) {
+  const Skeleton& s = w.c.skeleton;
+  const std::size_t nj = s.size();
+  std::vector<glm::mat4> m(nj);
+  for (std::size_t j = 0; j < nj; ++j) {
+    const int p = s.joints[j].parent;
+    m[j] = w.set[j] ? *w.set[j] : (p >= 0 ? m[std::size_t(p)] : w.trunk);
+  }
+  Character seated = w.c;
+  Skeleton& ss = seated.skeleton;
+  std::vector<glm::vec3> q(nj);
+  for (std::size_t j = 0; j < nj; ++j) {
+    q[j] = apply(m[j], w.at(static_cast<int>(j)));
+    const int p = ss.joints[j].parent;
+    ss.joints[j].rest_local = translate(q[j] - (p >= 0 ? q[std::size_t(p)] : glm::vec3(0.0f)));
+    ss.joints[j].inverse_bind = translate(-q[j]);
+    ss.joints[j].bind_offset = m[j] * w.c.skeleton.joints[j].bind_offset;
+  }
+  seated.leg_guard = legGuard(w);
+  return seated;
+}
+
+// The horse's stirrups at the leathers just set (the irons move; the leathers, bound to the saddle and
+// the stirrup, stretch or shorten), and out where her legs pushed them.
+void moveStirrups(Character& horse, const Seating& w, SeatReport& report) {
+  for (const char* role : {"lStirrup", "rStirrup"}) {
+    const int j = horse.role(role);
+    bool shared = false;
+    for (const auto& [other, k] : horse.roles) shared = shared || (k == j && other != role);
+    if (shared) {
+      report.notes.push_back(std::string("the horse's ") + role + " is not a joint of its own: its leathers were left as they are");
+      continue;
+    }
+    const float out_sign = std::string(role) == "lStirrup" ? -1.0f : 1.0f;
+    const glm::mat4 drop = translate(glm::vec3(0.0f, w.leather_drop, out_sign * w.tread_out));
+    const std::vector<char> below = subtree(horse.skeleton, j);
+    horse.skeleton.joints[std::size_t(j)].rest_local = drop * horse.skeleton.joints[std::size_t(j)].rest_local;
+    for (std::size_t k = 0; k < horse.skeleton.size(); ++k)
+      if (below[k]) {
+        Joint& jt = horse.skeleton.joints[k];
+        jt.inverse_bind = jt.inverse_bind * glm::inverse(drop);
+        jt.bind_offset = drop * jt.bind_offset;
+      }
+  }
+}
+
+}  // namespace
+
+std::string seatedMisfit(const Character& rider, const Character& horse) {
+  const glm::vec3 seat = horse.skeleton.restPosition(horse.role("saddle"));
+  std::string why;
+  for (int side = 0; side < 2; ++side) {
+    const std::string n = side == 0 ? "l" : "r";
+    const auto ball = optionalRole(rider, n + "Ball"), hand = optionalRole(rider, n + "Hand");
+    const glm::vec3 tread = horse.skeleton.restPosition(horse.role(n + "Stirrup")) - seat;
+    const glm::vec3 grip = horse.skeleton.restPosition(horse.role(n + "Rein")) - seat;
+    if (ball && glm::length(rider.skeleton.restPosition(*ball) - tread) > kSeatedFitCm)
+      why += (why.empty() ? "" : "; ") + n + " foot " + numberText(glm::length(rider.skeleton.restPosition(*ball) - tread)) + " cm off its tread";
+    if (hand && glm::length(rider.skeleton.restPosition(*hand) - grip) > kSeatedFitCm)
+      why += (why.empty() ? "" : "; ") + n + " hand " + numberText(glm::length(rider.skeleton.restPosition(*hand) - grip)) + " cm off its rein";
+  }
+  return why;
+}
+
 SeatedRider seatRider(const Character& rider, const Character& horse, const SeatParams& params) {
-  SeatedRider out;
-  out.horse = horse;
-  SeatReport& report = out.report;
+  SeatReport report;
   report.stirrup_holes_up = params.stirrup_holes_up;
   Character c = rider;
   const bool standing = restIsStanding(c);
@@ -329,316 +683,40 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
     const auto hand = optionalRole(c, n + "Hand"), ball = optionalRole(c, n + "Ball");
     complete = complete && hand && *hand != c.role(n + "Wrist") && ball && *ball != c.role(n + "Ankle");
   }
-  if (!standing && complete) {
-    out.rider = std::move(c);
-    return out;
-  }
-  const std::vector<glm::vec3> standing_mesh = restMesh(c);
-  const float stature = statureOf(standing_mesh);
+  // A rider modelled seated keeps her rest where it fits this horse (her feet on its treads, her hands
+  // on its reins: the generated rider on the horse she was built for); on another horse her legs and
+  // arms are fitted to it as a standing rider's are, her trunk kept as modelled.
+  const std::string misfit = standing || !complete ? std::string() : seatedMisfit(c, horse);
+  if (!standing && complete && misfit.empty()) return {std::move(c), horse, report};
+  const std::vector<glm::vec3> mesh = restMesh(c);
+  const float stature = statureOf(mesh);
   report.stature_cm = stature;
-  addMissingPoints(c, standing_mesh, stature, standing, report);
-  if (!standing) {
-    out.rider = std::move(c);
-    return out;
+  addMissingPoints(c, mesh, stature, standing, report);
+  if (!standing && seatedMisfit(c, horse).empty()) return {std::move(c), horse, report};
+  if (standing) {
+    report.seated_by_rig = true;
+    // Where her trunk folds (the balance stage's pivot): her hip joints' midpoint, which the pelvis joint
+    // of a user's rig need not be.
+    addRigPoint(c, "hipCentre", c.role("pelvis"),
+                0.5f * (c.skeleton.restPosition(c.role("lHip")) + c.skeleton.restPosition(c.role("rHip"))), report);
+  } else {
+    report.fitted_to_horse = true;
+    report.notes.push_back("modelled seated, fitted to this horse (" + (misfit.empty() ? seatedMisfit(c, horse) : misfit) + ")");
   }
-  report.seated_by_rig = true;
-  // Where her trunk folds (the balance stage's pivot): her hip joints' midpoint, which the pelvis joint
-  // of a user's rig need not be.
-  addRigPoint(c, "hipCentre", c.role("pelvis"),
-              0.5f * (c.skeleton.restPosition(c.role("lHip")) + c.skeleton.restPosition(c.role("rHip"))), report);
-  const Skeleton& s = c.skeleton;
-  const std::size_t nj = s.size();
-  const auto at = [&](int j) { return s.restPosition(j); };
-  const auto jointName = [&](int j) { return "\"" + s.joints[j].name + "\""; };
-
-  // The horse's seat, stirrups and rein grips, in saddle space (the saddle's rest is translation-only).
-  const glm::vec3 seat = horse.skeleton.restPosition(horse.role("saddle"));
-  const std::array<glm::vec3, 2> stirrup = {horse.skeleton.restPosition(horse.role("lStirrup")) - seat,
-                                            horse.skeleton.restPosition(horse.role("rStirrup")) - seat};
-  const std::array<glm::vec3, 2> grip = {horse.skeleton.restPosition(horse.role("lRein")) - seat,
-                                         horse.skeleton.restPosition(horse.role("rRein")) - seat};
-  const HorseWidth width = horseWidth(horse, seat);
-
-  // Trunk: turned so the pelvis-to-neck line leans as the generated rider's does at rest, the hip
-  // joints over the seat, as high above it as her seat bones are below them.
-  const RiderParams built;
-  const int pelvis = c.role("pelvis"), neck = c.role("neck"), head = c.role("head");
-  const glm::vec3 trunk_now = at(neck) - at(pelvis);
-  if (glm::length(trunk_now) < 1.0f)
-    throw InputError("roles.neck: joint " + jointName(neck) + " is where the pelvis " + jointName(pelvis) + " is (expected the base of the neck)");
-  const glm::mat3 trunk_turn = arc(trunk_now, built.neck - built.pelvis);
-  const glm::vec3 hips_now = 0.5f * (at(c.role("lHip")) + at(c.role("rHip")));
-  float depth = kSeatDepthPerStature * stature;
-  {
-    const float half = 0.5f * std::abs(at(c.role("lHip")).z - at(c.role("rHip")).z) + 2.0f;
-    float lowest = 1e30f;
-    for (std::size_t v = 0; v < standing_mesh.size(); ++v) {
-      float on_pelvis = 0.0f;
-      for (int k = 0; k < kMaxInfluences; ++k)
-        if (c.mesh.joints[v][k] == pelvis) on_pelvis += c.mesh.weights[v][k];
-      const glm::vec3& p = standing_mesh[v];
-      if (on_pelvis >= 0.25f && std::abs(p.z - hips_now.z) <= half && p.y < hips_now.y) lowest = std::min(lowest, p.y);
-    }
-    if (lowest < 1e29f) depth = std::clamp(hips_now.y - lowest, kSeatDepthMin * stature, kSeatDepthMax * stature);
+  Seating w = startSeating(std::move(c), horse, mesh, stature, std::move(report));
+  if (standing) seatTrunk(w, params);
+  setLeathers(w, params);
+  fitLegs(w, params);
+  fitArms(w, params);
+  SeatedRider out{placeJoints(w), horse, std::move(w.report)};
+  if (standing) {
+    out.rider.spine_bend_gain = spineBendGain(out.rider);
+    out.report.spine_bend_gain = out.rider.spine_bend_gain;
+    out.rider.balance_com_height_cm =
+        kReferenceComHeightCm * (out.report.tread_below_seat_cm + out.report.seat_depth_cm) / kReferenceHipsToTreadCm;
+    out.report.balance_com_height_cm = out.rider.balance_com_height_cm;
   }
-  report.seat_depth_cm = depth;
-  const glm::vec3 hips_seated(-params.hip_behind_seat_centre_cm, depth, 0.0f);
-  const glm::mat4 trunk = translate(hips_seated) * glm::mat4(trunk_turn) * translate(-hips_now);
-
-  std::vector<std::optional<glm::mat4>> set(nj);  // the seating of joints placed explicitly
-  set[pelvis] = trunk;
-
-  // Head up: the neck-to-head line turned toward the generated rider's (a few degrees at most).
-  {
-    const glm::vec3 n = apply(trunk, at(neck));
-    const glm::vec3 up_now = trunk_turn * (at(head) - at(neck));
-    glm::mat3 fix = arc(up_now, built.head - built.neck);
-    const float angle = degrees(std::acos(std::clamp((fix[0][0] + fix[1][1] + fix[2][2] - 1.0f) * 0.5f, -1.0f, 1.0f)));
-    if (angle > kMaxHeadTurnDeg) fix = glm::mat3(1.0f);  // a head modelled looking far off: keep it
-    set[neck] = translate(n) * glm::mat4(fix) * translate(-n) * trunk;
-  }
-
-  // Leathers: with the leg hanging long beside the horse (hip to ankle straight, out to the
-  // stirrup's side), the tread at the ankle, then taken up by the style.
-  float tread_y = 0.0f;
-  report.leg_cm = 0.0f;
-  for (int side = 0; side < 2; ++side) {
-    const std::string n = side == 0 ? "l" : "r";
-    const glm::vec3 h = apply(trunk, at(c.role(n + "Hip")));
-    const float leg = glm::length(at(c.role(n + "Knee")) - at(c.role(n + "Hip"))) +
-                      glm::length(at(c.role(n + "Ankle")) - at(c.role(n + "Knee")));
-    const float out_to_stirrup = std::max(std::abs(stirrup[side].z) - std::abs(h.z), 0.0f);
-    tread_y += 0.5f * (h.y - std::sqrt(std::max(leg * leg - out_to_stirrup * out_to_stirrup, 0.0f)) +
-                       params.stirrup_holes_up * kLeatherHoleCm);
-    report.leg_cm += 0.5f * leg;
-  }
-  const float leather_drop = tread_y - 0.5f * (stirrup[0].y + stirrup[1].y);  // + raises the treads
-  report.tread_below_seat_cm = -tread_y;
-  report.leather_change_cm = -leather_drop;
-
-  // Legs: the sole's contact on the tread, heel down; the knee bent forward and out, turned further
-  // out where the horse's width needs it; where even that leaves a leg against the horse (a thick calf
-  // against the flap), the treads move out with the leathers hanging wider, as a rider's legs push them.
-  struct LegFit {
-    glm::vec3 knee{0.0f}, ankle{0.0f}, pole{0.0f};
-    float turn_deg = 0.0f, clearance = 0.0f, knee_radius = 0.0f, calf_radius = 0.0f;
-    bool at_reach = false;
-  };
-  const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), radians(params.heel_down_deg), glm::vec3(0, 0, 1)));
-  const auto fitLeg = [&](int side, float tread_out) {
-    const std::string n = side == 0 ? "l" : "r";
-    const float out_sign = side == 0 ? -1.0f : 1.0f;
-    const int hip = c.role(n + "Hip"), knee = c.role(n + "Knee"), ankle = c.role(n + "Ankle"), ball = c.role(n + "Ball");
-    const glm::vec3 hs = at(hip), ks = at(knee), as = at(ankle), bs = at(ball);
-    const float thigh = glm::length(ks - hs), shin = glm::length(as - ks);
-    if (thigh < 1.0f || shin < 1.0f)
-      throw InputError("roles." + n + "Knee: joint " + jointName(knee) + " leaves a thigh or shin of no length (expected the knee between " +
-                       jointName(hip) + " and " + jointName(ankle) + ")");
-    const glm::vec3 h = apply(trunk, hs);
-    const glm::vec3 tread(stirrup[side].x, tread_y, stirrup[side].z + out_sign * tread_out);
-    LegFit fit;
-    fit.ankle = tread + heel_down * (as - bs);
-    const glm::vec3 d = fit.ankle - h;
-    const float reach = glm::length(d);
-    fit.at_reach = reach >= thigh + shin - params.limb_soften_cm;
-    const glm::vec3 dir = d / std::max(reach, 1e-3f);
-    const float r = std::min(reach, thigh + shin - params.limb_soften_cm);
-    const float along = (thigh * thigh - shin * shin + r * r) / (2.0f * r);
-    const float across = std::sqrt(std::max(thigh * thigh - along * along, 0.0f));
-    const glm::vec3 pole = mirror(params.knee_pole_dir, -out_sign);  // the parameter is the left side's
-    const glm::vec3 u0 = glm::normalize(pole - dir * glm::dot(pole, dir));
-    glm::vec3 v0 = glm::normalize(glm::cross(dir, u0));
-    if (v0.z * out_sign < 0.0f) v0 = -v0;
-    const glm::vec3 centre = h + dir * along;
-    const std::vector<int> thigh_joints = segmentJoints(c.skeleton, hip, knee), shin_joints = segmentJoints(c.skeleton, knee, ankle);
-    std::vector<int> knee_joints = thigh_joints;
-    knee_joints.insert(knee_joints.end(), shin_joints.begin(), shin_joints.end());
-    const float knee_r = limbRadius(c, standing_mesh, knee_joints, ks, as, 0.0f, 5.0f, 0.033f * stature);
-    float thigh_r = 0.0f;  // the widest of the thigh's upper, middle and lower part
-    for (float along : {0.25f, 0.5f, 0.75f})
-      thigh_r = std::max(thigh_r, limbRadius(c, standing_mesh, thigh_joints, hs, ks, along, 0.1f * thigh, 0.047f * stature));
-    const float calf_r = limbRadius(c, standing_mesh, shin_joints, ks, as, 0.35f, 0.15f * shin, 0.033f * stature);
-    fit.knee_radius = knee_r;
-    fit.calf_radius = calf_r;
-    // The smallest clearance along the leg (the thigh's middle and lower part, the knee, the shin).
-    // The thigh lies on the saddle (thigh_clearance_cm from it, for the pelvis's roll at the trot), the knee
-    // and calf stand clear of it by knee_clearance_cm, which the rider channels' knee and foot movements
-    // eat into.
-    const auto clearance = [&](glm::vec3 k) {
-      float worst = 1e30f;
-      const auto check = [&](glm::vec3 p, float radius, float room) {
-        const float w = width.near(p, out_sign, 4.0f);
-        if (w > -1e29f) worst = std::min(worst, p.z * out_sign - radius - w - room);
-      };
-      for (float t : {0.25f, 0.5f, 0.75f}) check(h + (k - h) * t, thigh_r, params.thigh_clearance_cm);
-      check(k, knee_r, params.knee_clearance_cm);
-      // The calf with the foot where the channels can take it: in toward the belly by the posing limit
-      // (RiderPoseParams::max_foot_in_cm), the heel turned in about the ball by its limit
-      // (max_foot_twist_deg), and the leg swung back (the stirrup's swing moves the calf back by about
-      // half the foot's).
-      const RiderPoseParams limits;
-      const glm::vec2 heel(as.x - bs.x, as.z - bs.z);
-      const float twist_in = glm::length(heel) * std::sin(radians(limits.max_foot_twist_deg));
-      const glm::vec3 foot_in = fit.ankle - glm::vec3(0.0f, 0.0f, out_sign * (limits.max_foot_in_cm + twist_in));
-      const glm::vec3 swung_back(-0.5f * limits.max_foot_swing_cm, 0.0f, 0.0f);
-      for (float t : {0.25f, 0.5f, 0.75f}) {
-        check(k + (fit.ankle - k) * t, calf_r, params.knee_clearance_cm);
-        check(k + (foot_in - k) * t, calf_r, 0.0f);
-        check(k + (foot_in - k) * t + swung_back, calf_r, 0.0f);
-      }
-      return worst;  // >= 0: clear
-    };
-    fit.clearance = -1e30f;
-    for (float phi = 0.0f; phi <= kMaxKneeTurnDeg + 1e-3f; phi += kKneeTurnStepDeg) {
-      const glm::vec3 k = centre + across * (std::cos(radians(phi)) * u0 + std::sin(radians(phi)) * v0);
-      const float cl = clearance(k);
-      if (cl > fit.clearance) fit.clearance = cl, fit.turn_deg = phi, fit.knee = k;
-      if (cl >= 0.0f) break;
-    }
-    fit.pole = centre + (fit.knee - centre) * 10.0f;
-    return fit;
-  };
-  float tread_out = 0.0f;
-  std::array<LegFit, 2> legs{};
-  for (int attempt = 0;; ++attempt) {
-    legs = {fitLeg(0, tread_out), fitLeg(1, tread_out)};
-    const float short_by = -std::min(legs[0].clearance, legs[1].clearance);
-    if (short_by <= 0.01f || attempt >= kMaxTreadOutSteps || tread_out >= kMaxTreadOutCm) break;
-    tread_out = std::min(tread_out + short_by, kMaxTreadOutCm);
-  }
-  report.tread_out_cm = tread_out;
-  for (int side = 0; side < 2; ++side) {
-    const std::string n = side == 0 ? "l" : "r";
-    const LegFit& fit = legs[side];
-    report.knee_turn_out_deg = std::max(report.knee_turn_out_deg, fit.turn_deg);
-    if (fit.at_reach) report.notes.push_back(n + " leg: the tread is at the end of its reach");
-    if (fit.clearance < 0.0f)
-      report.notes.push_back(n + " leg: " + numberText(-fit.clearance) + " cm short of clear of the horse");
-    const int hip = c.role(n + "Hip"), knee = c.role(n + "Knee"), ankle = c.role(n + "Ankle");
-    const glm::vec3 hs = at(hip), ks = at(knee), as = at(ankle);
-    // The standing knee bends forward; the seated one toward the knee chosen.
-    const LimbPose limb = solveLimb(hs, ks, as, ks + glm::vec3(50.0f, 0.0f, 0.0f), apply(trunk, hs), fit.ankle, fit.pole, 0.0f);
-    set[hip] = limb.upper * translate(-hs);
-    set[knee] = limb.middle * translate(-ks);
-    set[ankle] = translate(limb.end) * glm::mat4(heel_down) * translate(-as);
-  }
-
-  // Arms: the grip on the rein, the hand pointing forward and in with the thumb up, the elbow back and
-  // down; a rider whose arms do not reach keeps her hands as far forward as they go.
-  for (int side = 0; side < 2; ++side) {
-    const std::string n = side == 0 ? "l" : "r";
-    const float out_sign = side == 0 ? -1.0f : 1.0f;
-    const int shoulder = c.role(n + "Shoulder"), elbow = c.role(n + "Elbow"), wrist = c.role(n + "Wrist"), hand = c.role(n + "Hand");
-    const glm::vec3 ss = at(shoulder), es = at(elbow), ws = at(wrist), gs = at(hand);
-    const float upper = glm::length(es - ss), fore = glm::length(ws - es);
-    if (upper < 1.0f || fore < 1.0f)
-      throw InputError("roles." + n + "Elbow: joint " + jointName(elbow) + " leaves an upper arm or forearm of no length (expected the elbow between " +
-                       jointName(shoulder) + " and " + jointName(wrist) + ")");
-    // The palm's normal at rest: the flattest direction of the hand's mesh, signed as a hand hangs from
-    // an arm held out (palm down in a T-pose, in toward the body with the arms relaxed).
-    const glm::vec3 hand_now = glm::length(gs - ws) > 1e-3f ? glm::normalize(gs - ws) : glm::normalize(ws - es);
-    glm::vec3 palm = -out_sign * glm::cross(hand_now, glm::vec3(1.0f, 0.0f, 0.0f));
-    if (glm::length(palm) < 0.2f) palm = glm::vec3(0.0f, -1.0f, 0.0f);
-    palm = glm::normalize(palm - hand_now * glm::dot(palm, hand_now));
-    {
-      const std::vector<char> below = subtree(s, wrist);
-      glm::vec3 mean(0.0f);
-      std::vector<glm::vec3> pts;
-      for (std::size_t v = 0; v < standing_mesh.size(); ++v)
-        if (below[dominantJoint(c.mesh, v)]) pts.push_back(standing_mesh[v]), mean += standing_mesh[v];
-      if (pts.size() >= 12) {
-        mean /= float(pts.size());
-        glm::mat3 cov(0.0f);
-        for (const glm::vec3& p : pts) cov += glm::outerProduct(p - mean, p - mean);
-        // The smallest eigenvector by inverse iteration on the covariance made positive definite.
-        const glm::mat3 inv = glm::inverse(cov + glm::mat3(1e-3f * (cov[0][0] + cov[1][1] + cov[2][2])));
-        glm::vec3 e = palm;
-        for (int it = 0; it < 32; ++it) e = glm::normalize(inv * e);
-        e = glm::normalize(e - hand_now * glm::dot(e, hand_now));
-        if (glm::length(e) > 0.5f) palm = glm::dot(e, palm) < 0.0f ? -e : e;
-      }
-    }
-    const glm::vec3 hand_dir = glm::normalize(mirror(params.hand_dir, -out_sign));
-    const glm::vec3 palm_seated = glm::vec3(0.0f, 0.0f, -out_sign);  // toward the midline: thumbs up
-    const glm::mat3 hand_turn = frame(hand_dir, palm_seated) * glm::transpose(frame(hand_now, palm));
-    const glm::vec3 sh = apply(trunk, ss);
-    glm::vec3 w = grip[side] - hand_turn * (gs - ws);
-    const float reach = glm::length(w - sh), most = kArmReach * (upper + fore);
-    if (reach > most) {
-      report.hand_shortfall_cm = std::max(report.hand_shortfall_cm, reach - most);
-      w = sh + (w - sh) * (most / reach);
-    }
-    const glm::vec3 pole = 0.5f * (sh + w) + glm::normalize(mirror(params.elbow_pole_dir, -out_sign)) * 40.0f;
-    const LimbPose limb = solveLimb(ss, es, ws, es + glm::vec3(-40.0f, 0.0f, 0.0f), sh, w, pole, 0.0f);
-    set[shoulder] = limb.upper * translate(-ss);
-    set[elbow] = limb.middle * translate(-es);
-    set[wrist] = translate(limb.end) * glm::mat4(hand_turn) * translate(-ws);
-  }
-  if (report.hand_shortfall_cm > 0.0f)
-    report.notes.push_back("hands " + numberText(report.hand_shortfall_cm) + " cm short of the rein grips (arms too short)");
-
-  // Every joint: placed, or carried by its parent (the trunk for joints above the pelvis).
-  std::vector<glm::mat4> m(nj);
-  for (std::size_t j = 0; j < nj; ++j) {
-    const int p = s.joints[j].parent;
-    m[j] = set[j] ? *set[j] : (p >= 0 ? m[p] : trunk);
-  }
-  Character seated = c;
-  Skeleton& ss = seated.skeleton;
-  std::vector<glm::vec3> q(nj);
-  for (std::size_t j = 0; j < nj; ++j) {
-    q[j] = apply(m[j], at(static_cast<int>(j)));
-    const int p = ss.joints[j].parent;
-    ss.joints[j].rest_local = translate(q[j] - (p >= 0 ? q[p] : glm::vec3(0.0f)));
-    ss.joints[j].inverse_bind = translate(-q[j]);
-    ss.joints[j].bind_offset = m[j] * c.skeleton.joints[j].bind_offset;
-  }
-  // The horse's side where her legs lie, for posing to keep her knees and calves out of it.
-  {
-    Character::LegGuard& g = seated.leg_guard;
-    g.x0 = kGuardMin.x;
-    g.y0 = kGuardMin.y;
-    g.cell_cm = kGuardCellCm;
-    g.nx = static_cast<int>(std::ceil((kGuardMax.x - kGuardMin.x) / kGuardCellCm));
-    g.ny = static_cast<int>(std::ceil((kGuardMax.y - kGuardMin.y) / kGuardCellCm));
-    g.half_width.assign(std::size_t(g.nx) * g.ny, -std::numeric_limits<float>::infinity());
-    for (const glm::vec3& p : width.points) {
-      const int i = static_cast<int>(std::floor((p.x - g.x0) / g.cell_cm)), j = static_cast<int>(std::floor((p.y - g.y0) / g.cell_cm));
-      if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) continue;
-      float& w = g.half_width[std::size_t(j) * g.nx + i];
-      w = std::max(w, std::abs(p.z));
-    }
-    g.knee_radius_cm = std::max(legs[0].knee_radius, legs[1].knee_radius);
-    g.calf_radius_cm = std::max(legs[0].calf_radius, legs[1].calf_radius);
-    g.room_cm = kGuardRoomCm;
-  }
-  seated.spine_bend_gain = spineBendGain(seated);
-  report.spine_bend_gain = seated.spine_bend_gain;
-  seated.balance_com_height_cm = kReferenceComHeightCm * (report.tread_below_seat_cm + report.seat_depth_cm) / kReferenceHipsToTreadCm;
-  report.balance_com_height_cm = seated.balance_com_height_cm;
-  out.rider = std::move(seated);
-
-  // The horse's stirrups at the leathers just set (the irons move; the leathers, bound to the saddle
-  // and the stirrup, stretch or shorten).
-  for (const char* role : {"lStirrup", "rStirrup"}) {
-    const int j = out.horse.role(role);
-    bool shared = false;
-    for (const auto& [other, k] : out.horse.roles) shared = shared || (k == j && other != role);
-    if (shared) {
-      report.notes.push_back(std::string("the horse's ") + role + " is not a joint of its own: its leathers were left as they are");
-      continue;
-    }
-    const float out_sign = std::string(role) == "lStirrup" ? -1.0f : 1.0f;
-    const glm::mat4 drop = translate(glm::vec3(0.0f, leather_drop, out_sign * tread_out));
-    const std::vector<char> below = subtree(out.horse.skeleton, j);
-    out.horse.skeleton.joints[j].rest_local = drop * out.horse.skeleton.joints[j].rest_local;
-    for (std::size_t k = 0; k < out.horse.skeleton.size(); ++k)
-      if (below[k]) {
-        Joint& jt = out.horse.skeleton.joints[k];
-        jt.inverse_bind = jt.inverse_bind * glm::inverse(drop);
-        jt.bind_offset = drop * jt.bind_offset;
-      }
-  }
+  moveStirrups(out.horse, w, out.report);
   return out;
 }
 

@@ -68,6 +68,9 @@ struct SeatParams {
 // What the seating decided, for the bake's record and `stirrup character map`'s report.
 struct SeatReport {
   bool seated_by_rig = false;     // false: the rider's rest was already seated
+  // A rider modelled seated (the generated one among them) on a horse whose treads and reins are not
+  // where her feet and hands are: her legs and arms fitted to it as a standing rider's, her trunk kept.
+  bool fitted_to_horse = false;
   float stirrup_holes_up = 0;     // the leathers taken up this many holes from the hanging-leg length
   float stature_cm = 0;           // the rider's height, crown to sole, standing
   float leg_cm = 0;               // hip joint to ankle, straight
@@ -101,6 +104,16 @@ Character::FoldGuard foldGuard(const Character& rider, const Character& horse);
 // True when the rider's rest is standing: both thighs hang within 30° of straight down.
 bool restIsStanding(const Character& rider);
 
+// A seated rider fits a horse as she is when the ball of each foot is on its stirrup tread and each hand
+// on its rein's grip, within this (cm) at rest: the generated rider on the horse she was built for
+// (0 cm; docs/characters.md, "Contact") [E].
+inline constexpr float kSeatedFitCm = 1.0f;
+// Why a seated rider does not fit `horse` as she is ("l foot 6.2 cm off its tread; ..."), or "" when she
+// does (or lacks the ball and hand roles to tell).
+std::string seatedMisfit(const Character& rider, const Character& horse);
+
+// A rider modelled seated who does not fit the horse (seatedMisfit) keeps her trunk and has her legs and
+// arms fitted as below, the leathers set to her leg (SeatReport::fitted_to_horse).
 // Seats `rider` on `horse` (both at rest; the rider in stirrup's axes, +X the way she faces, +Y up,
 // cm, anywhere in space). The horse needs its saddle, stirrup and rein roles; the rider her roles
 // (rig/io/character_mapping.h). Throws InputError naming the role and joint when the rider's geometry

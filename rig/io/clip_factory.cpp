@@ -9,7 +9,14 @@
 
 #include "rig/error.h"
 #include "rig/pose.h"
+#include <tiny_gltf.h>
+
+#include "rig/io/auto_mapping.h"
+#include "rig/io/character_mapping.h"
+#include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_animation.h"
 #include "rig/io/gltf_clip.h"
+#include "rig/io/keyed_horse_clip.h"
 #include "rig/motion/movement_clips.h"
 #include "rig/motion/path_clip.h"
 
@@ -325,6 +332,54 @@ std::vector<std::string> clipGeneratorParameters(const std::string& generator) {
   return out;
 }
 
+namespace {
+
+// Whether a mapping file maps a character's roles ("roles") rather than a clip's controls ("nodes").
+bool isCharacterMapping(const std::filesystem::path& file) {
+  const nlohmann::json json = readJsonFile(file);
+  return json.is_object() && json.contains("roles");
+}
+
+// Every node a clip written by stirrup has (kClipControlNames) is a node of the file.
+bool hasControlNodes(const std::filesystem::path& file) {
+  const tinygltf::Model model = readGltfFile(file, file.string());
+  for (const char* control : kClipControlNames)
+    if (std::none_of(model.nodes.begin(), model.nodes.end(), [&](const tinygltf::Node& n) { return n.name == control; }))
+      return false;
+  return true;
+}
+
+// A horse's animation read through its roles: the spec's character mapping, or the file mapped by
+// itself as a horse; `ridden` is the scene's horse when the file is its own.
+std::unique_ptr<Clip> keyedClip(const ClipSpec& spec, const Character* ridden) {
+  if (ridden) return std::make_unique<KeyedHorseClip>(spec.file, spec.animation, keyedHorseMapping(*ridden), ridden);
+  if (spec.character_mapping) {
+    const CharacterMapping m = loadCharacterMapping(spec.mapping, CharacterKind::Horse);
+    return std::make_unique<KeyedHorseClip>(spec.file, spec.animation, keyedHorseMapping(m, spec.file.string()), nullptr);
+  }
+  const AutoMapping m = autoMapCharacterFile(spec.file, CharacterKind::Horse);
+  return std::make_unique<KeyedHorseClip>(spec.file, spec.animation, keyedHorseMapping(m.mapping, spec.file.string()), nullptr);
+}
+
+bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code ec;
+  return std::filesystem::equivalent(a, b, ec);
+}
+
+}  // namespace
+
+bool readsControlNodes(const ClipSpec& spec) {
+  if (spec.file.empty() || spec.character_mapping) return false;
+  if (spec.control_nodes) return *spec.control_nodes;
+  return !spec.mapping.empty() || hasControlNodes(spec.file);
+}
+
+double fileClipDuration(const ClipSpec& spec) {
+  ClipMapping m = spec.mapping.empty() || spec.character_mapping ? ClipMapping{} : loadClipMapping(spec.mapping);
+  const std::string animation = spec.animation.empty() ? m.animation : spec.animation;
+  return GltfAnimation(readGltfFile(spec.file, spec.file.string()), spec.file.string(), animation).duration();
+}
+
 ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_dir) {
   ClipSpec spec;
   spec.source = r.file() + ": " + r.fieldPath("").substr(0, r.fieldPath("").size() ? r.fieldPath("").size() - 1 : 0);
@@ -335,11 +390,21 @@ ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_di
     if (r.has("mapping")) spec.mapping = base_dir / r.string("mapping", "");
     spec.animation = r.string("animation", "");
     r.finish();
-    // Open it now so a missing file, node or animation is reported at load time.
-    ClipMapping m = spec.mapping.empty() ? contractMapping() : loadClipMapping(spec.mapping);
-    if (!spec.animation.empty()) m.animation = spec.animation;
+    // Open it now so a missing file, mapping, node, role or animation is reported at load time.
     if (!std::filesystem::exists(spec.file)) r.fail("file", "no such file: " + spec.file.string());
-    GltfClip check(spec.file, m);
+    if (!spec.mapping.empty() && !std::filesystem::exists(spec.mapping)) r.fail("mapping", "no such file: " + spec.mapping.string());
+    spec.character_mapping = !spec.mapping.empty() && isCharacterMapping(spec.mapping);
+    spec.control_nodes = readsControlNodes(spec);
+    if (*spec.control_nodes) {
+      ClipMapping m = spec.mapping.empty() ? contractMapping() : loadClipMapping(spec.mapping);
+      if (!spec.animation.empty()) m.animation = spec.animation;
+      GltfClip check(spec.file, m);
+    } else if (spec.character_mapping) {
+      keyedClip(spec, nullptr);
+    } else {
+      // A horse's own animation: its roles come with the scene's horse; the animation is checked now.
+      GltfAnimation check(readGltfFile(spec.file, spec.file.string()), spec.file.string(), spec.animation);
+    }
     return spec;
   }
   spec.generator = r.string("generator", "trot");
@@ -374,6 +439,7 @@ std::optional<GaitParams> steadyGaitParams(const ClipSpec& spec) {
 
 std::unique_ptr<Clip> makeClip(const ClipSpec& spec) {
   if (!spec.file.empty()) {
+    if (!readsControlNodes(spec)) return keyedClip(spec, nullptr);
     ClipMapping m = spec.mapping.empty() ? contractMapping() : loadClipMapping(spec.mapping);
     if (!spec.animation.empty()) m.animation = spec.animation;
     return std::make_unique<GltfClip>(spec.file, m);
@@ -393,6 +459,8 @@ std::optional<PathClipParams> pathClipParams(const ClipSpec& spec) {
 }
 
 std::unique_ptr<Clip> makeClip(const ClipSpec& spec, const Character& horse) {
+  if (!spec.file.empty() && !horse.source.file.empty() && sameFile(spec.file, horse.source.file) && !readsControlNodes(spec))
+    return keyedClip(spec, &horse);
   ClipSpec own = spec;
   own.hoof_rest = restHoofPlaces(horse);
   return makeClip(own);

@@ -27,7 +27,13 @@ struct ClipSpec {
   std::string generator = "trot";     // empty when the clip is a file
   nlohmann::json params = nlohmann::json::object();  // the generator's parameters, as given (checked)
   std::filesystem::path file;         // glTF clip (resolved against the scene's folder)
-  std::filesystem::path mapping;      // empty: the file's nodes are named as the contract's controls
+  // A clip mapping ("nodes": rig/io/gltf_clip.h), a character mapping of the file's horse ("roles":
+  // rig/io/character_mapping.h, as `stirrup character map` writes it), or empty: the file's nodes named
+  // as the contract's controls (a stirrup clip), else the file is a horse whose animation is read through
+  // its roles (the scene's horse's own mapping when it is the scene's horse, else found by itself).
+  std::filesystem::path mapping;
+  bool character_mapping = false;     // `mapping` holds roles
+  std::optional<bool> control_nodes;  // readsControlNodes, found once by parseClipSpec
   std::string animation;
   std::string source = "clip";        // "FILE: clip" for messages
   // The ground the clip moves over (the scene's "terrain"); null = flat. A path clip plants its hooves
@@ -50,10 +56,18 @@ ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_di
 // The gait a steady-gait spec plays (walk, trot, canter, gallop), else nullopt.
 std::optional<GaitParams> steadyGaitParams(const ClipSpec& spec);
 
+// Without the horse, a horse's own animation (a file clip whose file is the scene's horse) is read as
+// any other horse's: its controls only, for the default horse. makeClip(spec, horse) keys the horse itself.
 std::unique_ptr<Clip> makeClip(const ClipSpec& spec);
 // A path clip's parameters (the default horse's rest hoof places unless spec.hoof_rest), else nullopt.
 std::optional<PathClipParams> pathClipParams(const ClipSpec& spec);
-// The clip for this horse: a path clip turns its hooves about the horse's own rest places.
+// The clip for this horse: a path clip turns its hooves about the horse's own rest places, and a clip
+// whose file is the horse's own plays its animation on it exactly as keyed (rig/io/keyed_horse_clip.h).
 std::unique_ptr<Clip> makeClip(const ClipSpec& spec, const Character& horse);
+// Whether the spec's file holds the contract's control nodes (a clip stirrup wrote), read as a clip
+// mapping's nodes; otherwise a file clip without a clip mapping is a horse read through its roles.
+bool readsControlNodes(const ClipSpec& spec);
+// A file clip's animation length (seconds): a scene that plays one and names no frames plays all of it.
+double fileClipDuration(const ClipSpec& spec);
 
 }  // namespace stirrup::rig

@@ -76,46 +76,99 @@ tinygltf::Model readGltfFile(const std::filesystem::path& file, const std::strin
   return model;
 }
 
+namespace {
+
+// One component at p as a float: float data as it is, integers as their value or, normalised, mapped
+// to [0, 1] (unsigned) or [-1, 1] (signed) as glTF 2.0 section 3.11 says.
+float componentValue(const unsigned char* p, int component_type, bool normalized, const std::string& where) {
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float x; std::memcpy(&x, p, 4); return x; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? float(*p) / 255.0f : float(*p);
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const float x = float(static_cast<std::int8_t>(*p));
+      return normalized ? std::max(x / 127.0f, -1.0f) : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t u;
+      std::memcpy(&u, p, 2);
+      return normalized ? float(u) / 65535.0f : float(u);
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      std::int16_t q;
+      std::memcpy(&q, p, 2);
+      return normalized ? std::max(float(q) / 32767.0f, -1.0f) : float(q);
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      std::uint32_t u;
+      std::memcpy(&u, p, 4);
+      return static_cast<float>(u);
+    }
+    default: throw InputError(where + ": unsupported component type " + std::to_string(component_type));
+  }
+}
+
+// A sparse accessor's substitutions (glTF 2.0, section 3.6.2.3) applied to `out`: `count` indices of an
+// unsigned type, each below the accessor's count, and as many elements of values.
+void applySparse(const tinygltf::Model& model, const tinygltf::Accessor& a, int components, int csize,
+                 const std::string& where, std::vector<float>& out) {
+  const auto& sp = a.sparse;
+  if (sp.count < 0 || static_cast<std::size_t>(sp.count) > a.count)
+    throw InputError(where + ": sparse.count " + std::to_string(sp.count) + ": expected 0.." + std::to_string(a.count));
+  if (sp.count == 0) return;
+  if (sp.indices.byteOffset < 0 || sp.values.byteOffset < 0) throw InputError(where + ": sparse: expected byte offsets of 0 or more");
+  tinygltf::Accessor indices;
+  indices.bufferView = sp.indices.bufferView;
+  indices.byteOffset = static_cast<std::size_t>(sp.indices.byteOffset);
+  indices.count = static_cast<std::size_t>(sp.count);
+  const int isize = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(sp.indices.componentType));
+  if (sp.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+      sp.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      sp.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    throw InputError(where + ": sparse.indices: expected unsigned bytes, shorts or ints (componentType 5121, 5123 or 5125)");
+  const unsigned char* ip =
+      elementBytes(model, indices, static_cast<std::size_t>(isize), false, where + ": sparse.indices", "indices run past their buffer").first;
+  tinygltf::Accessor values;
+  values.bufferView = sp.values.bufferView;
+  values.byteOffset = static_cast<std::size_t>(sp.values.byteOffset);
+  values.count = indices.count;
+  const std::size_t element = static_cast<std::size_t>(csize) * components;
+  const unsigned char* vp = elementBytes(model, values, element, false, where + ": sparse.values", "values run past their buffer").first;
+  for (std::size_t i = 0; i < indices.count; ++i) {
+    const float index = componentValue(ip + i * static_cast<std::size_t>(isize), sp.indices.componentType, false, where);
+    if (!(index < static_cast<float>(a.count)))
+      throw InputError(where + ": sparse.indices[" + std::to_string(i) + "]: " + std::to_string(static_cast<std::uint64_t>(index)) +
+                       " is past the accessor's " + std::to_string(a.count) + " elements");
+    const std::size_t at = static_cast<std::size_t>(index);
+    for (int k = 0; k < components; ++k)
+      out[at * components + k] = componentValue(vp + i * element + static_cast<std::size_t>(csize) * k, a.componentType, a.normalized, where);
+  }
+}
+
+}  // namespace
+
 std::vector<float> readAccessor(const tinygltf::Model& model, int index, int components, const std::string& where) {
-  if (index < 0 || index >= static_cast<int>(model.accessors.size())) throw InputError(where + ": no such accessor");
+  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+    throw InputError(where + ": accessor " + std::to_string(index) + ": no such accessor (the file has " +
+                     std::to_string(model.accessors.size()) + ")");
   const tinygltf::Accessor& a = model.accessors[index];
-  if (a.sparse.isSparse) throw InputError(where + ": sparse accessors are not supported");
   if (tinygltf::GetNumComponentsInType(a.type) != components)
     throw InputError(where + ": expected " + std::to_string(components) + " components per element");
   const int csize = tinygltf::GetComponentSizeInBytes(a.componentType);
-  if (csize <= 0) throw InputError(where + ": unknown component type");
+  if (csize <= 0) throw InputError(where + ": unknown component type " + std::to_string(a.componentType));
+  std::vector<float> out;
   if (a.bufferView < 0) {
     // No view: zeros (glTF 2.0, 3.6.2.1), as many as the accessor says, if that is a real count.
     if (a.count > (std::size_t(1) << 28)) throw InputError(where + ": accessor count " + std::to_string(a.count) + " without a buffer view");
-    return std::vector<float>(a.count * components, 0.0f);
+    out.assign(a.count * components, 0.0f);
+  } else {
+    const auto [first, stride] =
+        elementBytes(model, a, static_cast<std::size_t>(csize) * components, true, where, "accessor runs past its buffer");
+    out.assign(a.count * components, 0.0f);
+    for (std::size_t i = 0; i < a.count; ++i)
+      for (int k = 0; k < components; ++k)
+        out[i * components + k] = componentValue(first + stride * i + static_cast<std::size_t>(csize) * k, a.componentType, a.normalized, where);
   }
-  const auto [first, stride] =
-      elementBytes(model, a, static_cast<std::size_t>(csize) * components, true, where, "accessor runs past its buffer");
-  std::vector<float> out(a.count * components, 0.0f);
-  for (std::size_t i = 0; i < a.count; ++i)
-    for (int k = 0; k < components; ++k) {
-      const unsigned char* p = first + stride * i + static_cast<std::size_t>(csize) * k;
-      float value = 0.0f;
-      switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = *p; if (a.normalized) value /= 255.0f; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          std::uint16_t u;
-          std::memcpy(&u, p, 2);
-          value = u;
-          if (a.normalized) value /= 65535.0f;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-          std::uint32_t u;
-          std::memcpy(&u, p, 4);
-          value = static_cast<float>(u);
-          break;
-        }
-        default: throw InputError(where + ": unsupported component type");
-      }
-      out[i * components + k] = value;
-    }
+  if (a.sparse.isSparse) applySparse(model, a, components, csize, where, out);
   return out;
 }
 

@@ -56,11 +56,12 @@ void setRest(tinygltf::Node& n, const Tracks& tr) {
 }  // namespace
 
 tinygltf::Value seatExtras(const SeatReport& seat) {
-  if (!seat.seated_by_rig && seat.added_points.empty()) return tinygltf::Value();
+  if (!seat.seated_by_rig && !seat.fitted_to_horse && seat.added_points.empty()) return tinygltf::Value();
   tinygltf::Value::Object o;
   o["seated_by_rig"] = tinygltf::Value(seat.seated_by_rig);
+  if (seat.fitted_to_horse) o["fitted_to_horse"] = tinygltf::Value(true);
   const auto number = [&](const char* key, float v) { o[key] = tinygltf::Value(double(v)); };
-  if (seat.seated_by_rig) {
+  if (seat.seated_by_rig || seat.fitted_to_horse) {
     number("stirrup_holes_up", seat.stirrup_holes_up);
     number("tread_below_seat_cm", seat.tread_below_seat_cm);
     number("leather_change_cm", seat.leather_change_cm);
@@ -111,11 +112,8 @@ std::vector<unsigned char> bakedShotGlb(const BakedShot& shot) {
       const std::string role = which == 0 ? "horse:" : "rider:";
       GltfCharacterNodes n = appendCharacterGltf(model, bin, c, role);
       if (!named.empty()) {
-        // Each armature is its own and named after its pair: a generated character's joints need no
-        // "horse:" to tell them apart, and keep the skeleton's own names (those the shipped characters'
-        // files have), so one script drives every pair's bones.
-        if (c.source.file.empty())
-          for (int node : n.joint_nodes) model.nodes[std::size_t(node)].name.erase(0, role.size());
+        // Each armature is its own and named after its pair; its joints keep their skeleton's own names,
+        // so one script drives every pair's bones.
         model.nodes[std::size_t(n.mesh_node)].name.insert(0, named);
         model.skins[std::size_t(n.skin)].name.insert(0, named);
         tinygltf::Mesh& mesh = model.meshes[std::size_t(model.nodes[std::size_t(n.mesh_node)].mesh)];

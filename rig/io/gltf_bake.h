@@ -7,8 +7,8 @@
 // (scale 0.01: stirrup works in centimetres, glTF in metres), which is its skin's `skeleton`, so a DCC
 // builds one armature per character: "horse" and "rider" for a scene of one pair; in a crowd each pair's
 // "pair03_horse" and "pair03_rider" (BakedPair::name), its meshes and skins named after it too, while
-// its joints keep their skeleton's own names ("root", "pelvis": those of the shipped characters'
-// files; a single generated pair's take "horse:" and "rider:"), so one script drives every pair's bones. Camera nodes are roots, in metres, unscaled,
+// its joints keep their skeleton's own names ("root", "pelvis": those of the shipped characters' files,
+// whether a scene names them or "default"), so one script drives every pair's bones. Camera nodes are roots, in metres, unscaled,
 // so no viewer has to decide whether a parent's scale changes an orthographic magnification. One glTF
 // animation holds every channel, grouped pair by pair (horse, rider), then the cameras: Blender 3.4
 // makes one action per object from it (one per armature and per camera) and plays them all, whereas it

@@ -118,9 +118,9 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
   const int first = static_cast<int>(model.nodes.size());
   for (std::size_t j = 0; j < s.size(); ++j) {
     tinygltf::Node n;
-    // A user's joints keep the file's own names (the prefix would stop their tools matching bones by
-    // name); the generated characters' role names take the character's prefix.
-    n.name = (c.source.file.empty() ? prefix : std::string()) + names[j];
+    // Joints keep their skeleton's own names, whatever the scene called the character (docs/round-trip.md,
+    // "Names"): each character is an armature of its own, and a script finds a bone by one name.
+    n.name = names[j];
     const glm::mat4& l = s.joints[j].rest_local;
     const glm::vec3 t(l[3]);
     const glm::quat q = glm::normalize(glm::quat_cast(glm::mat3(l)));
@@ -304,7 +304,7 @@ void writeCharacterGlb(const Character& c, const std::filesystem::path& file) { 
 namespace {
 
 Character loadCharacterGltfUnchecked(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping,
-                                     AutoMapping* auto_mapped) {
+                                     AutoMapping* auto_mapped, HorseTackReport* tack) {
   const std::string f = file.string();
   const std::string kind_name(characterKindName(kind));
   if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
@@ -458,6 +458,13 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   };
   std::map<std::pair<std::map<std::string, int>, std::vector<float>>, std::vector<VertexBlock>> blocks;
   std::map<int, int> texture_of;  // the file's texture -> index into m.textures
+  // A horse modelled with its own saddle: the vertices of primitives whose node, mesh or material is
+  // called a saddle (rig/characters/horse_tack.h seats the rider on it instead of adding one).
+  std::vector<char> own_saddle;
+  const auto saddleNamed = [](std::string name) {
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    return name.find("saddle") != std::string::npos;
+  };
   for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
     const tinygltf::Node& node = model.nodes[ni];
     if (node.mesh < 0 || node.skin != 0) continue;
@@ -537,6 +544,10 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
         for (std::size_t v = 0; v < n; ++v) m.uvs[first_vertex + v] = tex.transform({uv[v * 2], uv[v * 2 + 1]});
       }
       if (fresh) {
+        const bool saddle = kind == CharacterKind::Horse &&
+                            (saddleNamed(node.name) || saddleNamed(mesh.name) ||
+                             (prim.material >= 0 && saddleNamed(model.materials.at(prim.material).name)));
+        own_saddle.resize(m.positions.size() + n, saddle ? 1 : 0);
         for (std::size_t v = 0; v < n; ++v) {
           m.positions.push_back(toRig({pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]}));
           glm::vec3 nn = rot * glm::vec3(nor[v * 3], nor[v * 3 + 1], nor[v * 3 + 2]);
@@ -594,17 +605,20 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       if (m.normals[v] == glm::vec3(0.0f))
         m.normals[v] = glm::length(acc[v]) > 0.0f ? glm::normalize(acc[v]) : glm::vec3(0.0f, 1.0f, 0.0f);
   }
-  // A horse that names no tack gets the rig's (rig/characters/horse_tack.h).
-  if (kind == CharacterKind::Horse) addHorseTack(c, where);
+  // A horse that names no tack gets the rig's (rig/characters/horse_tack.h), on its own saddle if it has one.
+  if (kind == CharacterKind::Horse) {
+    const HorseTackReport report = addHorseTack(c, where, HorseTackParams{}, &own_saddle);
+    if (tack) *tack = report;
+  }
   return c;
 }
 
 }  // namespace
 
 Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping,
-                            AutoMapping* auto_mapped) {
+                            AutoMapping* auto_mapped, HorseTackReport* tack) {
   try {
-    return loadCharacterGltfUnchecked(file, kind, mapping, auto_mapped);
+    return loadCharacterGltfUnchecked(file, kind, mapping, auto_mapped, tack);
   } catch (const std::out_of_range&) {
     // An index the checks above do not cover (a mesh, material or accessor index past its array): the
     // .at() lookups throw, and the user gets one line naming the file (found by fuzzing).

@@ -38,8 +38,9 @@ int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const v
 
 // Appends `character` to `model`: nodes, mesh, materials, skin. Binary data goes to `bin` (which
 // becomes buffer 0 when the model is written); the caller adds the returned root nodes to a scene.
-// `prefix` is prepended to node names (for two characters in one file), but not to a user's joints:
-// a character read from a file keeps its joints' own names, each character being an armature of its own.
+// `prefix` is prepended to the mesh's, skin's and materials' names (for two characters in one file), never
+// to a joint's: joints keep their skeleton's own names (a file's, or a generated character's roles), each
+// character being an armature of its own.
 GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsigned char>& bin,
                                        const Character& character, const std::string& prefix = "");
 // Appends float data as a tightly packed buffer view and accessor; returns the accessor.
@@ -60,6 +61,7 @@ std::vector<unsigned char> characterGlb(const Character& character);
 void writeCharacterGlb(const Character& character, const std::filesystem::path& file);
 
 struct AutoMapping;
+struct HorseTackReport;
 
 // Loads a skinned glTF (.glb or .gltf) as a character of `kind`. With `mapping` null, the role table
 // the file carries (written by writeCharacterGlb) is used, or, in a file without one, the mapping the
@@ -68,8 +70,10 @@ struct AutoMapping;
 // missing, a joint not in the file, a mapped role off its chain (rig/io/character_mapping.h
 // roleChainProblem). A horse that names no tack gets the rig's (rig/characters/horse_tack.h); one that
 // names it in part, or whose mesh has no back or head for it, is an error too.
+// `tack`, when given, receives what the rig did about a horse's tack (rig/characters/horse_tack.h).
 Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind,
-                            const CharacterMapping* mapping = nullptr, AutoMapping* auto_mapped = nullptr);
+                            const CharacterMapping* mapping = nullptr, AutoMapping* auto_mapped = nullptr,
+                            HorseTackReport* tack = nullptr);
 
 // What a scene's "characters" entry names: "default" (the built-in generator), or a glTF file with
 // an optional mapping file (empty: the file's own role table, or the mapping it gets by itself, whose

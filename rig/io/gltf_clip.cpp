@@ -13,29 +13,15 @@
 #include <glm/gtx/euler_angles.hpp>
 #include <tiny_gltf.h>
 
+#include "rig/channel_rotation.h"
 #include "rig/error.h"
+#include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_animation.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/io/json_fields.h"
 
 namespace stirrup::rig {
 namespace {
-
-constexpr double kDeg = 180.0 / std::numbers::pi;
-constexpr double kRad = std::numbers::pi / 180.0;
-
-// Rotation channels by meaning (rig-channels.md): rz + = pitch front up (about +Z, X toward Y), rx + =
-// roll toward the right (about +X, Y toward +Z), ry + = yaw to the right (about -Y). Composed yaw, then
-// pitch, then roll.
-glm::dquat rotationFromChannels(double rx, double ry, double rz) {
-  const glm::dmat4 m = glm::eulerAngleYZX(-ry * kRad, rz * kRad, rx * kRad);
-  return glm::quat_cast(glm::dmat3(m));
-}
-
-std::array<double, 3> channelsFromRotation(const glm::dquat& q) {
-  double y = 0, z = 0, x = 0;
-  glm::extractEulerAngleYZX(glm::dmat4(glm::mat3_cast(q)), y, z, x);
-  return {x * kDeg, -y * kDeg, z * kDeg};  // rx, ry, rz
-}
 
 // ---- writing ----
 
@@ -218,26 +204,10 @@ ClipMapping loadClipMapping(const std::filesystem::path& file) {
 // ---- reading ----
 
 struct GltfClip::Impl {
-  tinygltf::Model model;
+  std::unique_ptr<GltfAnimation> animation;
   ClipMapping mapping;
   std::string file;
-  int animation = 0;
-  double duration = 0.0;
-  std::vector<int> parent;
   std::map<std::string, int> control_node;  // control name -> node index
-  // Per node: the sampler driving its translation / rotation / scale (-1 = rest value).
-  struct Drive {
-    int translation = -1, rotation = -1, scale = -1;
-  };
-  std::vector<Drive> drive;
-  // Sampler data, decoded once.
-  struct Track {
-    std::vector<float> times, values;
-    int components = 3;
-    bool step = false;
-    bool cubic = false;  // CUBICSPLINE: values hold (in-tangent, value, out-tangent) per key
-  };
-  std::vector<Track> tracks;
   // Skeleton mode: the travel frame's axes in file space, and rest / ground values per control.
   glm::dmat3 to_travel{1.0};
   std::map<std::string, glm::dvec3> rest_position;
@@ -247,7 +217,7 @@ struct GltfClip::Impl {
 
   // `extras.obstacles` of the node bound to the root control: an array of objects with travel_cm,
   // height_cm (> 0), and optionally width_cm and depth_cm (> 0). Absent: no obstacles.
-  void readObstacles() {
+  void readObstacles(const tinygltf::Model& model) {
     const int root = control_node.at("horse");
     const tinygltf::Value& extras = model.nodes[static_cast<std::size_t>(root)].extras;
     if (!extras.IsObject() || !extras.Has("obstacles")) return;
@@ -279,235 +249,27 @@ struct GltfClip::Impl {
     }
   }
 
-  // An accessor's elements as floats: float data, or normalised integers (glTF allows them for
-  // rotations), dense or sparse (a sparse accessor replaces some elements of its base, or of zeros).
-  std::vector<float> readFloats(int accessor_index, int components) const {
-    const std::string where = file + ": accessor " + std::to_string(accessor_index);
-    if (accessor_index < 0 || accessor_index >= static_cast<int>(model.accessors.size()))
-      throw InputError(where + ": no such accessor");
-    const tinygltf::Accessor& a = model.accessors[accessor_index];
-    const int type_components = tinygltf::GetNumComponentsInType(a.type);
-    if (type_components != components)
-      throw InputError(where + ": expected " + std::to_string(components) + " components per element, got " +
-                       std::to_string(type_components));
-    const bool is_float = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
-    if (!is_float && !a.normalized)
-      throw InputError(where + ": expected float or normalised integer data");
-    std::vector<float> out(a.count * components, 0.0f);
-    if (a.bufferView >= 0) readElements(where, a.bufferView, a.byteOffset, a.componentType, a.count, components, out.data());
-    if (a.sparse.isSparse) {
-      const int n = a.sparse.count;
-      std::vector<uint32_t> indices(n);
-      const tinygltf::BufferView& iv = bufferView(where + " sparse indices", a.sparse.indices.bufferView);
-      const tinygltf::Buffer& ib = model.buffers.at(iv.buffer);
-      const int isize = tinygltf::GetComponentSizeInBytes(a.sparse.indices.componentType);
-      if (isize != 1 && isize != 2 && isize != 4) throw InputError(where + ": sparse indices: expected an unsigned integer type");
-      for (int i = 0; i < n; ++i) {
-        const std::size_t at = iv.byteOffset + a.sparse.indices.byteOffset + std::size_t(i) * isize;
-        if (at + isize > ib.data.size()) throw InputError(where + ": sparse indices read past their buffer");
-        uint32_t v = 0;
-        if (isize == 1) v = ib.data[at];
-        if (isize == 2) { uint16_t x; std::memcpy(&x, &ib.data[at], 2); v = x; }
-        if (isize == 4) std::memcpy(&v, &ib.data[at], 4);
-        if (v >= a.count) throw InputError(where + ": sparse index " + std::to_string(v) + " is past the accessor's " + std::to_string(a.count) + " elements");
-        indices[i] = v;
-      }
-      std::vector<float> values(std::size_t(n) * components);
-      readElements(where + " sparse values", a.sparse.values.bufferView, a.sparse.values.byteOffset, a.componentType, n,
-                   components, values.data());
-      for (int i = 0; i < n; ++i)
-        std::copy_n(&values[std::size_t(i) * components], components, &out[std::size_t(indices[i]) * components]);
-    }
-    return out;
-  }
-
-  const tinygltf::BufferView& bufferView(const std::string& where, int index) const {
-    if (index < 0 || index >= static_cast<int>(model.bufferViews.size())) throw InputError(where + ": no such bufferView");
-    const tinygltf::BufferView& v = model.bufferViews[index];
-    if (v.buffer < 0 || v.buffer >= static_cast<int>(model.buffers.size())) throw InputError(where + ": no such buffer");
-    return v;
-  }
-
-  // `count` elements of `components` values each, converted to float (normalised integers mapped to
-  // [0, 1] or [-1, 1] as the glTF specification says).
-  void readElements(const std::string& where, int view_index, std::size_t offset, int component_type, std::size_t count,
-                    int components, float* out) const {
-    const tinygltf::BufferView& v = bufferView(where, view_index);
-    const tinygltf::Buffer& b = model.buffers[v.buffer];
-    const int size = tinygltf::GetComponentSizeInBytes(component_type);
-    if (size <= 0) throw InputError(where + ": unknown component type " + std::to_string(component_type));
-    const std::size_t stride = v.byteStride ? v.byteStride : std::size_t(components) * size;
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t at = v.byteOffset + offset + i * stride;
-      if (at + std::size_t(components) * size > b.data.size()) throw InputError(where + " reads past its buffer");
-      for (int j = 0; j < components; ++j) {
-        const unsigned char* p = &b.data[at + std::size_t(j) * size];
-        float x = 0.0f;
-        switch (component_type) {
-          case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&x, p, 4); break;
-          case TINYGLTF_COMPONENT_TYPE_BYTE: x = std::max(float(static_cast<int8_t>(*p)) / 127.0f, -1.0f); break;
-          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: x = float(*p) / 255.0f; break;
-          case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t q; std::memcpy(&q, p, 2); x = std::max(float(q) / 32767.0f, -1.0f); break; }
-          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t q; std::memcpy(&q, p, 2); x = float(q) / 65535.0f; break; }
-          default: throw InputError(where + ": expected float or normalised integer data");
-        }
-        out[i * components + j] = x;
-      }
-    }
-  }
-
-  // A track's value at t (clamped to its keys), `components` wide.
-  std::vector<double> evaluate(const Track& tr, double t) const {
-    const int c = tr.components;
-    std::vector<double> out(c);
-    const auto& ts = tr.times;
-    std::size_t i1 = std::upper_bound(ts.begin(), ts.end(), float(t)) - ts.begin();
-    // Element k's value: CUBICSPLINE keys store (in-tangent, value, out-tangent).
-    const std::size_t vs = tr.cubic ? 3 : 1, vo = tr.cubic ? 1 : 0;
-    const auto value = [&](std::size_t k, int j) { return double(tr.values[((k * vs) + vo) * c + j]); };
-    if (i1 == 0 || i1 >= ts.size() || tr.step) {
-      const std::size_t k = i1 == 0 ? 0 : i1 - 1;
-      for (int j = 0; j < c; ++j) out[j] = value(k, j);
-      return out;
-    }
-    const std::size_t i0 = i1 - 1;
-    const double td = std::max(1e-12, double(ts[i1] - ts[i0]));
-    const double u = (t - ts[i0]) / td;
-    if (tr.cubic) {
-      // glTF 2.0 Appendix C: cubic Hermite with tangents scaled by the key interval.
-      const double u2 = u * u, u3 = u2 * u;
-      const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
-      for (int j = 0; j < c; ++j) {
-        const double out_tangent = tr.values[(i0 * 3 + 2) * c + j], in_tangent = tr.values[(i1 * 3) * c + j];
-        out[j] = h00 * value(i0, j) + h10 * td * out_tangent + h01 * value(i1, j) + h11 * td * in_tangent;
-      }
-      if (c == 4) {
-        const double n = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
-        if (n > 0.0)
-          for (double& x : out) x /= n;
-      }
-      return out;
-    }
-    if (c == 4) {
-      const glm::dquat a(value(i0, 3), value(i0, 0), value(i0, 1), value(i0, 2));
-      const glm::dquat b(value(i1, 3), value(i1, 0), value(i1, 1), value(i1, 2));
-      const glm::dquat q = glm::slerp(a, b, u);
-      return {q.x, q.y, q.z, q.w};
-    }
-    for (int j = 0; j < c; ++j) out[j] = value(i0, j) * (1 - u) + value(i1, j) * u;
-    return out;
-  }
-
-  struct Trs {
-    glm::dvec3 t{0.0};
-    glm::dquat r{1.0, 0.0, 0.0, 0.0};
-    glm::dvec3 s{1.0};
-  };
-  Trs local(int node, std::optional<double> t) const {
-    const tinygltf::Node& n = model.nodes[node];
-    Trs x;
-    if (n.translation.size() == 3) x.t = {n.translation[0], n.translation[1], n.translation[2]};
-    if (n.rotation.size() == 4) x.r = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
-    if (n.scale.size() == 3) x.s = {n.scale[0], n.scale[1], n.scale[2]};
-    if (t) {
-      const Drive& d = drive[node];
-      if (d.translation >= 0) { auto v = evaluate(tracks[d.translation], *t); x.t = {v[0], v[1], v[2]}; }
-      if (d.rotation >= 0) { auto v = evaluate(tracks[d.rotation], *t); x.r = glm::normalize(glm::dquat(v[3], v[0], v[1], v[2])); }
-      if (d.scale >= 0) { auto v = evaluate(tracks[d.scale], *t); x.s = {v[0], v[1], v[2]}; }
-    }
-    return x;
-  }
-  glm::dmat4 localMatrix(int node, std::optional<double> t) const {
-    const tinygltf::Node& n = model.nodes[node];
-    if (n.matrix.size() == 16) {
-      glm::dmat4 m;
-      for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = n.matrix[i];
-      return m;
-    }
-    const Trs x = local(node, t);
-    return glm::translate(glm::dmat4(1.0), x.t) * glm::dmat4(glm::mat3_cast(x.r)) * glm::scale(glm::dmat4(1.0), x.s);
-  }
-  glm::dmat4 world(int node, std::optional<double> t) const {
-    glm::dmat4 m = localMatrix(node, t);
-    for (int p = parent[node]; p >= 0; p = parent[p]) m = localMatrix(p, t) * m;
-    return m;
-  }
+  double duration() const { return animation->duration(); }
+  GltfTrs local(int node, std::optional<double> t) const { return animation->localTrs(node, t); }
+  glm::dmat4 world(int node, std::optional<double> t) const { return animation->world(node, t); }
 };
-
-namespace {
-glm::dquat rotationOf(const glm::dmat4& m) {
-  glm::dmat3 r(m);
-  for (int i = 0; i < 3; ++i) r[i] = glm::normalize(r[i]);
-  return glm::normalize(glm::quat_cast(r));
-}
-}  // namespace
 
 GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping) try : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.file = file.string();
   m.mapping = mapping;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool ok = file.extension() == ".glb" ? loader.LoadBinaryFromFile(&m.model, &err, &warn, file.string())
-                                             : loader.LoadASCIIFromFile(&m.model, &err, &warn, file.string());
-  if (!ok) {
-    std::string line = err.empty() ? "not a readable glTF file" : err;
-    std::replace(line.begin(), line.end(), '\n', ' ');
-    throw InputError(m.file + ": " + line);
-  }
+  const tinygltf::Model model = readGltfFile(file, m.file);
   const std::string where = mapping.file.empty() ? m.file : mapping.file.string();
-  // Nodes by name, and their parents.
-  m.parent = gltfNodeParents(m.model, m.file);
+  // Nodes by name.
   for (const auto& [control, node_name] : mapping.nodes) {
     int found = -1;
-    for (std::size_t i = 0; i < m.model.nodes.size(); ++i)
-      if (m.model.nodes[i].name == node_name) found = static_cast<int>(i);
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+      if (model.nodes[i].name == node_name) found = static_cast<int>(i);
     if (found < 0) throw InputError(where + ": nodes." + control + ": no node named \"" + node_name + "\" in " + m.file);
     m.control_node[control] = found;
   }
-  // The animation.
-  if (m.model.animations.empty()) throw InputError(m.file + ": the file has no animation");
-  if (!mapping.animation.empty()) {
-    m.animation = -1;
-    std::string known;
-    for (std::size_t i = 0; i < m.model.animations.size(); ++i) {
-      if (m.model.animations[i].name == mapping.animation) m.animation = static_cast<int>(i);
-      known += (known.empty() ? "" : ", ") + m.model.animations[i].name;
-    }
-    if (m.animation < 0)
-      throw InputError(m.file + ": no animation named \"" + mapping.animation + "\" (the file has " + known + ")");
-  }
-  const tinygltf::Animation& anim = m.model.animations[m.animation];
-  m.drive.assign(m.model.nodes.size(), {});
-  for (const tinygltf::AnimationChannel& ch : anim.channels) {
-    if (ch.target_node < 0) continue;
-    const tinygltf::AnimationSampler& s = anim.samplers.at(ch.sampler);
-    if (ch.target_path == "weights") continue;
-    const std::string where = m.file + ": animation \"" + anim.name + "\": sampler " + std::to_string(ch.sampler);
-    if (s.interpolation != "LINEAR" && s.interpolation != "STEP" && s.interpolation != "CUBICSPLINE")
-      throw InputError(where + ": interpolation: expected LINEAR, STEP or CUBICSPLINE, got \"" + s.interpolation + "\"");
-    Impl::Track tr;
-    const int comps = ch.target_path == "rotation" ? 4 : 3;
-    tr.components = comps;
-    tr.step = s.interpolation == "STEP";
-    tr.cubic = s.interpolation == "CUBICSPLINE";
-    tr.times = m.readFloats(s.input, 1);
-    tr.values = m.readFloats(s.output, comps);
-    if (tr.times.empty()) continue;
-    if (tr.values.size() != tr.times.size() * comps * (tr.cubic ? 3 : 1))
-      throw InputError(where + ": output: expected " + std::to_string(tr.times.size() * (tr.cubic ? 3 : 1)) +
-                       " elements for " + std::to_string(tr.times.size()) + " keys, got " +
-                       std::to_string(tr.values.size() / comps));
-    for (std::size_t k = 1; k < tr.times.size(); ++k)
-      if (!(tr.times[k] > tr.times[k - 1]))
-        throw InputError(where + ": input: key times must increase (key " + std::to_string(k) + ")");
-    m.duration = std::max(m.duration, double(tr.times.back()));
-    m.tracks.push_back(std::move(tr));
-    const int k = static_cast<int>(m.tracks.size()) - 1;
-    Impl::Drive& d = m.drive.at(ch.target_node);
-    (ch.target_path == "translation" ? d.translation : ch.target_path == "rotation" ? d.rotation : d.scale) = k;
-  }
-  if (mapping.mode == ClipMapping::Mode::Controls && m.control_node.count("horse")) m.readObstacles();
+  m.animation = std::make_unique<GltfAnimation>(model, m.file, mapping.animation);
+  if (mapping.mode == ClipMapping::Mode::Controls && m.control_node.count("horse")) m.readObstacles(model);
   if (mapping.mode == ClipMapping::Mode::Skeleton) {
     const glm::dvec3 fwd = glm::normalize(glm::dvec3(mapping.forward[0], mapping.forward[1], mapping.forward[2]));
     const glm::dvec3 up = glm::normalize(glm::dvec3(mapping.up[0], mapping.up[1], mapping.up[2]));
@@ -518,7 +280,7 @@ GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping
     for (const auto& [control, node] : m.control_node) {
       const glm::dmat4 w = m.world(node, std::nullopt);
       m.rest_position[control] = m.to_travel * glm::dvec3(w[3]);
-      m.rest_rotation[control] = rotationOf(w);
+      m.rest_rotation[control] = gltfRotationOf(w);
     }
     // Ground under each hoof: its rest height, or the lowest it reaches in the clip.
     for (const char* hoof : {"lfHoof", "rfHoof", "lbHoof", "rbHoof"}) {
@@ -526,18 +288,18 @@ GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping
       if (mapping.ground_at_lowest) {
         g = 1e300;
         for (int i = 0; i <= 200; ++i) {
-          const glm::dmat4 w = m.world(m.control_node[hoof], m.duration * i / 200.0);
+          const glm::dmat4 w = m.world(m.control_node[hoof], m.duration() * i / 200.0);
           g = std::min(g, (m.to_travel * glm::dvec3(w[3])).y);
         }
       }
       m.ground[hoof] = g;
     }
-    if (mapping.speed_auto && m.duration > 0.0) {
+    if (mapping.speed_auto && m.duration() > 0.0) {
       // The hoof nearest the ground carries the horse: the travel that keeps it still in the world.
       constexpr int kSteps = 400;
       double back = 0.0;
       for (int i = 0; i < kSteps; ++i) {
-        const double t0 = m.duration * i / kSteps, t1 = m.duration * (i + 1) / kSteps;
+        const double t0 = m.duration() * i / kSteps, t1 = m.duration() * (i + 1) / kSteps;
         double lowest = 1e300, dx = 0.0;
         for (const char* hoof : {"lfHoof", "rfHoof", "lbHoof", "rbHoof"}) {
           const glm::dvec3 a = m.to_travel * glm::dvec3(m.world(m.control_node[hoof], t0)[3]);
@@ -549,7 +311,7 @@ GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping
         }
         back -= dx;
       }
-      m.mapping.speed_cm_s = std::max(0.0, back / m.duration * mapping.scale_cm);
+      m.mapping.speed_cm_s = std::max(0.0, back / m.duration() * mapping.scale_cm);
     }
   }
 } catch (const std::out_of_range&) {
@@ -561,20 +323,20 @@ GltfClip::GltfClip(const std::filesystem::path& file, const ClipMapping& mapping
 GltfClip::~GltfClip() = default;
 
 std::string GltfClip::name() const {
-  const auto& a = impl_->model.animations[impl_->animation];
-  return a.name.empty() ? impl_->file : a.name;
+  const std::string& a = impl_->animation->name();
+  return a.empty() ? impl_->file : a;
 }
 
-double GltfClip::duration() const { return impl_->duration; }
+double GltfClip::duration() const { return impl_->duration(); }
 
 std::vector<Obstacle> GltfClip::obstacles() const { return impl_->obstacles; }
 
 HorseFrame GltfClip::sample(double seconds) const {
   const Impl& m = *impl_;
   // Loop the file's animation (travel keeps accumulating) or hold its ends.
-  const bool loop = m.mapping.loop && m.duration > 0.0;
-  const double t = loop ? seconds - m.duration * std::floor(seconds / m.duration) : std::clamp(seconds, 0.0, m.duration);
-  const double cycles = loop ? std::floor(seconds / m.duration) : 0.0;
+  const bool loop = m.mapping.loop && m.duration() > 0.0;
+  const double t = loop ? seconds - m.duration() * std::floor(seconds / m.duration()) : std::clamp(seconds, 0.0, m.duration());
+  const double cycles = loop ? std::floor(seconds / m.duration()) : 0.0;
   HorseFrame f;
   using H = HorseChannel;
   const auto hoofChannels = [](const std::string& c) -> std::array<H, 3> {
@@ -588,15 +350,15 @@ HorseFrame GltfClip::sample(double seconds) const {
     // Node-local values relative to the node's rest pose in the file are the channels.
     const auto trs = [&](const char* c) {
       const int node = m.control_node.at(c);
-      const Impl::Trs rest = m.local(node, std::nullopt);
-      Impl::Trs x = m.local(node, t);
+      const GltfTrs rest = m.local(node, std::nullopt);
+      GltfTrs x = m.local(node, t);
       x.t -= rest.t;
       x.r = glm::inverse(rest.r) * x.r;
       return x;
     };
     if (has("horse")) {
       const int root = m.control_node.at("horse");
-      const double per_cycle = m.local(root, m.duration).t.x - m.local(root, 0.0).t.x;
+      const double per_cycle = m.local(root, m.duration()).t.x - m.local(root, 0.0).t.x;
       const auto root_trs = trs("horse");
       f.travel_cm = root_trs.t.x + cycles * per_cycle;
       // A root that moves sideways and turns drives the travel frame along its path (issue 15): its
@@ -636,7 +398,7 @@ HorseFrame GltfClip::sample(double seconds) const {
     return m.to_travel * glm::dvec3(m.world(m.control_node.at(c), t)[3]);
   };
   const auto relativeRotation = [&](const std::string& c) {
-    const glm::dquat q = rotationOf(m.world(m.control_node.at(c), t)) * glm::inverse(m.rest_rotation.at(c));
+    const glm::dquat q = gltfRotationOf(m.world(m.control_node.at(c), t)) * glm::inverse(m.rest_rotation.at(c));
     return channelsFromRotation(glm::quat_cast(m.to_travel * glm::mat3_cast(q) * glm::transpose(m.to_travel)));
   };
   for (const char* hoof : {"lfHoof", "rfHoof", "lbHoof", "rbHoof"}) {

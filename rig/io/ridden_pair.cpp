@@ -20,9 +20,10 @@ RiddenPair seatPair(Character horse, Character rider, const RigProfile& profile)
   pair.horse = std::move(seated.horse);
   pair.rider = std::move(seated.rider);
   pair.seat = std::move(seated.report);
-  // A rider the rig seated folds against a horse she was not built for; a rider modelled seated (the
-  // shipped rider read from its file among them) is left to her own proportions.
-  if (pair.seat.seated_by_rig) pair.rider.fold_guard = foldGuard(pair.rider, pair.horse);
+  // A rider the rig seated, or fitted to a horse she was not modelled on, folds against a horse she was
+  // not built for; a rider modelled seated on her own horse (the shipped rider read from its file on the
+  // shipped horse among them) is left to her own proportions.
+  if (pair.seat.seated_by_rig || pair.seat.fitted_to_horse) pair.rider.fold_guard = foldGuard(pair.rider, pair.horse);
   return pair;
 }
 

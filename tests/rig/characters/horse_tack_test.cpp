@@ -143,7 +143,8 @@ TEST(HorseTack, TackNamedInPartIsAnError) {
 // with `against_default_pair`, where the default rider's is on the generated horse, in the saddle's
 // frame), her feet on the treads, no leg vertex more than 2 cm inside the horse, every bone of the
 // horse's file its length.
-void rideTheTrot(const Character& horse, const Character& rider, const std::string& who, bool against_default_pair) {
+void rideTheTrot(const Character& horse, const Character& rider, const std::string& who, bool against_default_pair,
+                 const std::string& horse_name = "Fox") {
   const Character& horse0 = test::defaultHorse();
   const Character& rider0 = test::defaultRider();
   const RigProfile profile = RigProfile::thesis();
@@ -230,7 +231,7 @@ void rideTheTrot(const Character& horse, const Character& rider, const std::stri
     }
     EXPECT_LE(c.depth_cm, 2.0) << who << ", frame " << f << ": a leg vertex inside the horse";
   }
-  std::printf("Fox at the trot, %s, %d frames: seat %.2f cm from the default pair's, %.2f cm from the seat centre, feet %.2f cm, legs %.2f cm deep (%s), bones %.3f cm\n", who.c_str(), frames, worst_seat,
+  std::printf("%s at the trot, %s, %d frames: seat %.2f cm from the default pair's, %.2f cm from the seat centre, feet %.2f cm, legs %.2f cm deep (%s), bones %.3f cm\n", horse_name.c_str(), who.c_str(), frames, worst_seat,
               worst_on_saddle, worst_feet, worst_legs, deepest.c_str(), worst_bone);
   EXPECT_EQ(frames, 72);
 }
@@ -273,6 +274,42 @@ TEST(HorseTack, AStandingUserRiderIsSeatedOnTheFoxsTackAndRidesTheTrot) {
               spec.name.c_str(), pair.seat.tread_below_seat_cm, pair.seat.knee_turn_out_deg, pair.seat.tread_out_cm,
               pair.seat.hand_shortfall_cm);
   rideTheTrot(pair.horse, pair.rider, spec.name, false);
+}
+
+// The default rider, built seated for the generated horse, on a horse 22 cm wider in the barrel (a
+// draught horse's 72 cm, barrel_radii.z 36 against 25) that has no tack of its own: the rig's treads hang out
+// from its barrel, her feet are off them as built, so the rig fits her legs and arms to it as it seats a
+// standing rider (her trunk kept), and she rides the trot with no leg vertex inside the horse. As built
+// (not fitted) her knees and calves would be inside it: the check can fail.
+TEST(HorseTack, TheDefaultRiderIsFittedToAWideHorse) {
+  HorseParams params;
+  params.tack = false;
+  params.barrel_radii.z = 36.0f;
+  Character horse = buildHorse(params);
+  horse.source.file = "wide-horse.glb";  // a user's horse, as a file would give it
+  addHorseTack(horse, "wide-horse.glb");
+  const Character& rider = test::defaultRider();
+  EXPECT_NE(seatedMisfit(rider, horse), "");
+  EXPECT_EQ(seatedMisfit(rider, test::defaultHorse()), "") << "on the horse she was built for she fits as she is";
+  const RiddenPair pair = seatPair(horse, rider, RigProfile::thesis());
+  ASSERT_TRUE(pair.seat.fitted_to_horse);
+  EXPECT_FALSE(pair.seat.seated_by_rig);
+  // Her trunk as built: the pelvis and neck where the generated rider has them.
+  for (const char* role : {"pelvis", "neck", "head"})
+    EXPECT_LT(glm::length(pair.rider.skeleton.restPosition(pair.rider.role(role)) - rider.skeleton.restPosition(rider.role(role))), 1e-3f)
+        << role;
+  std::printf("default rider on a wide horse: tread %.1f cm below the seat, knees out %.0f deg, treads out %.1f cm\n",
+              pair.seat.tread_below_seat_cm, pair.seat.knee_turn_out_deg, pair.seat.tread_out_cm);
+  rideTheTrot(pair.horse, pair.rider, "default rider, fitted", true, "wide horse");
+  // As built, on the same horse (the treads where the rig hung them): her legs inside it.
+  const std::vector<glm::mat4> rider_rest = restWorlds(rider.skeleton), horse_rest = restWorlds(horse.skeleton);
+  std::vector<glm::vec3> hp, hn, rp, rn;
+  skinMesh(horse.mesh, horse.skeleton, horse_rest, hp, hn);
+  skinMesh(rider.mesh, rider.skeleton, rider_rest, rp, rn);
+  const glm::vec3 seat = horse.skeleton.restPosition(horse.role("saddle"));
+  for (glm::vec3& q : rp) q += seat;  // she is built in saddle space
+  const ContactDepth as_built = deepestRiderVertexInside(hp, hn, horse.mesh.indices, horseLooseTack(horse), rp);
+  EXPECT_GT(as_built.depth_cm, 4.0) << "the unfitted rider's deepest vertex inside the wide horse";
 }
 
 }  // namespace

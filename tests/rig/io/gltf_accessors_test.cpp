@@ -79,16 +79,61 @@ TEST(GltfAccessors, AnAccessorWithoutAViewIsZeros) {
 
 TEST(GltfAccessors, AccessorsThatDoNotFitAreOneLineErrors) {
   const tinygltf::Model floats = model<float>({1, 2, 3}, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 1);
-  EXPECT_EQ(errorOf([&] { readAccessor(floats, 1, 3, "x.glb: POSITION"); }), "x.glb: POSITION: no such accessor");
+  EXPECT_EQ(errorOf([&] { readAccessor(floats, 1, 3, "x.glb: POSITION"); }),
+            "x.glb: POSITION: accessor 1: no such accessor (the file has 1)");
   EXPECT_EQ(errorOf([&] { readAccessor(floats, 0, 2, "x.glb: POSITION"); }), "x.glb: POSITION: expected 2 components per element");
   tinygltf::Model past = floats;
   past.accessors[0].count = 2;  // 24 bytes from a 12-byte buffer
   EXPECT_EQ(errorOf([&] { readAccessor(past, 0, 3, "x.glb: POSITION"); }), "x.glb: POSITION: accessor runs past its buffer");
-  tinygltf::Model sparse = floats;
-  sparse.accessors[0].sparse.isSparse = true;
-  EXPECT_EQ(errorOf([&] { readAccessor(sparse, 0, 3, "w"); }), "w: sparse accessors are not supported");
-  const tinygltf::Model signed_bytes = model<std::int8_t>({-1}, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_SCALAR, 1);
-  EXPECT_EQ(errorOf([&] { readAccessor(signed_bytes, 0, 1, "w"); }), "w: unsupported component type");
+  tinygltf::Model unknown = floats;
+  unknown.accessors[0].componentType = 5000;  // no type of glTF's
+  EXPECT_EQ(errorOf([&] { readAccessor(unknown, 0, 3, "w"); }), "w: unknown component type 5000");
+}
+
+// Signed integers: normalised, -127 and -32767 are -1 and the one value below them clamps to -1 (glTF 2.0,
+// section 3.11); plain, their value. Animation samplers use them for rotations.
+TEST(GltfAccessors, SignedIntegers) {
+  EXPECT_EQ(readAccessor(model<std::int8_t>({-128, -127, 0, 127}, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, 1, true), 0, 4, "w"),
+            (std::vector<float>{-1.0f, -1.0f, 0.0f, 1.0f}));
+  EXPECT_EQ(readAccessor(model<std::int16_t>({-32768, 16384}, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC2, 1, true), 0, 2, "w"),
+            (std::vector<float>{-1.0f, 16384.0f / 32767.0f}));
+  EXPECT_EQ(readAccessor(model<std::int8_t>({-5, 7}, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC2, 1), 0, 2, "w"),
+            (std::vector<float>{-5.0f, 7.0f}));
+}
+
+// A sparse accessor: four zeros (no view) with elements 1 and 3 replaced (glTF 2.0, section 3.6.2.3);
+// indices past the accessor and values past their buffer are one-line errors.
+TEST(GltfAccessors, SparseElementsReplaceTheBase) {
+  // Buffer: two unsigned short indices (1, 3), then two float values (10, 30).
+  tinygltf::Model m = model<std::uint16_t>({1, 3, 0, 0x4120, 0, 0x41F0}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 2);
+  tinygltf::BufferView values;
+  values.buffer = 0;
+  values.byteOffset = 4;
+  values.byteLength = 8;
+  m.bufferViews[0].byteLength = 4;
+  m.bufferViews.push_back(values);
+  tinygltf::Accessor& a = m.accessors[0];
+  a.bufferView = -1;
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.count = 4;
+  a.sparse.isSparse = true;
+  a.sparse.count = 2;
+  a.sparse.indices.bufferView = 0;
+  a.sparse.indices.byteOffset = 0;  // (tinygltf leaves these unset until it reads a file)
+  a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  a.sparse.values.bufferView = 1;
+  a.sparse.values.byteOffset = 0;
+  EXPECT_EQ(readAccessor(m, 0, 1, "w"), (std::vector<float>{0.0f, 10.0f, 0.0f, 30.0f}));
+  tinygltf::Model past = m;
+  past.accessors[0].count = 3;
+  EXPECT_EQ(errorOf([&] { readAccessor(past, 0, 1, "w"); }), "w: sparse.indices[1]: 3 is past the accessor's 3 elements");
+  tinygltf::Model short_values = m;
+  short_values.bufferViews[1].byteLength = 4;
+  EXPECT_EQ(errorOf([&] { readAccessor(short_values, 0, 1, "w"); }), "w: sparse.values: values run past their buffer");
+  tinygltf::Model float_indices = m;
+  float_indices.accessors[0].sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  EXPECT_EQ(errorOf([&] { readAccessor(float_indices, 0, 1, "w"); }),
+            "w: sparse.indices: expected unsigned bytes, shorts or ints (componentType 5121, 5123 or 5125)");
 }
 
 TEST(GltfAccessors, IndicesOfEveryWidth) {
