@@ -10,7 +10,8 @@
 namespace stirrup::rig {
 namespace {
 
-constexpr float kDeg = 3.14159265358979f / 180.0f;
+constexpr float kPi = 3.14159265358979f;
+constexpr float kDeg = kPi / 180.0f;
 // Bisection steps for the stretch fraction: 2^-24 of the stretch, far below a micron of reach.
 constexpr int kStretchSteps = 24;
 
@@ -106,7 +107,29 @@ glm::mat4 hoofRoll(const HorseLegTarget& t, glm::vec3 n, glm::vec3 forward, glm:
          glm::translate(glm::mat4(1.0f), -contact);
 }
 
+// Joints on the way from `top` down to `below` (both excluded) carried rigidly by `top`'s motion, as
+// they hang at rest: a split bone's further segments.
+void carryBetween(const Skeleton& s, int top, int below, std::span<glm::mat4> world) {
+  std::vector<int> path = s.pathFrom(top, below);
+  if (!path.empty()) path.pop_back();
+  for (int j : path) {
+    const int p = s.joints[j].parent;
+    world[j] = world[p] * s.joints[p].inverse_bind * s.restWorld(j);
+  }
+}
+
 }  // namespace
+
+int horseLegShoulder(const Skeleton& s, int pivot, int upper) {
+  const std::vector<int> path = s.pathFrom(pivot, upper);  // pivot's child .. upper
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const glm::vec3 before = s.restPosition(s.joints[path[i]].parent), at = s.restPosition(path[i]);
+    const glm::vec3 after = s.restPosition(path[i + 1]);
+    if (glm::length(at - before) <= 0.0f || glm::length(after - at) <= 0.0f) continue;
+    if (kPi - angleAt(at, before, after) > kInLineDeg * kDeg) return path[i];
+  }
+  return -1;
+}
 
 float horseLegFullReach(const Skeleton& s, const HorseLegJoints& leg, const HorseLegParams& params) {
   return virtualChain(restLeg(s, leg), leg.shoulder >= 0, leg.fore, params).reach(1.0f);
@@ -175,6 +198,8 @@ float solveHorseLeg(const Skeleton& s, const HorseLegJoints& leg, const HorseLeg
   } else {
     world[leg.pivot] = placed(pivot, boneRotation(r.upper - r.pivot, rest_side, upper - pivot, body_side));
   }
+
+  carryBetween(s, two_part ? leg.shoulder : leg.pivot, leg.upper, world);
 
   // The two bones below, bending toward their rest pole carried by the upper part.
   const int upper_parent = s.joints[leg.upper].parent;

@@ -44,6 +44,15 @@ struct HorseLegJoints {
   bool fore = true;
 };
 
+// A split bone's segments lie in one line (Rigify cuts a long bone exactly, DEF-thigh.L and
+// DEF-thigh.L.001): a joint within this angle of straight between its bones is no bend of the limb.
+inline constexpr float kInLineDeg = 1.0f;
+
+// The joint carrying the humerus below a fore leg's scapula: the first joint on the way from `pivot`
+// down to `upper` where the limb bends, or -1 where none does (a femur from the hip joint to the
+// stifle, whole or in segments). The segments of a split bone (joints in line) are passed over.
+int horseLegShoulder(const Skeleton& s, int pivot, int upper);
+
 // Where the leg must go, in world: the hoof's sole centre and its orientation (the pastern fold, with
 // the travel frame's heading and pitch).
 struct HorseLegTarget {
@@ -52,7 +61,9 @@ struct HorseLegTarget {
 };
 
 // Writes world matrices of the leg's joints (pivot down to hoof) into `world`, whose other entries
-// (the pivot's parent in particular) must already be posed. Every joint is placed by a rotation and a
+// (the pivot's parent in particular) must already be posed. Joints between the pivot (or shoulder) and
+// the upper joint, a split bone's segments, are carried rigidly by the bone above them; joints below
+// the upper joint that no member names are left to the caller to carry. Every joint is placed by a rotation and a
 // translation that keep each bone its rest length: a target beyond the leg's reach (even with the hoof
 // rolled) leaves the leg at its full reach, short of it. Returns how far short (cm): the distance from
 // the fetlock where the solve put it to where the (rolled) target wants it; 0 within reach, up to the

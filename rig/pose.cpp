@@ -214,7 +214,7 @@ std::vector<glm::mat4> poseHorseSettled(const Character& horse, const HorseFrame
       HorseLegJoints joints;
       joints.fore = leg < 2;
       joints.pivot = horse.role(n + "Pivot");
-      joints.shoulder = s.joints[upper].parent == joints.pivot ? -1 : s.joints[upper].parent;
+      joints.shoulder = horseLegShoulder(s, joints.pivot, upper);
       joints.upper = upper;
       joints.middle = middle;
       joints.fetlock = fetlock;

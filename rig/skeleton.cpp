@@ -39,6 +39,29 @@ std::vector<int> Skeleton::pathFrom(int ancestor, int joint) const {
   return {};
 }
 
+int nearestBoneJoint(const glm::dvec3& p, const std::vector<int>& parent, const std::vector<glm::dvec3>& position,
+                     const std::vector<char>& usable, double* distance) {
+  int best = -1;
+  double bd = std::numeric_limits<double>::infinity();
+  const auto consider = [&](int owner, double d) {
+    if (d < bd) bd = d, best = owner;
+  };
+  const int n = static_cast<int>(parent.size());
+  for (int j = 0; j < n; ++j) {
+    if (!usable[j]) continue;
+    consider(j, glm::length(p - position[j]));
+    const int a = parent[j];
+    if (a < 0 || !usable[a]) continue;
+    const glm::dvec3 bone = position[j] - position[a];
+    const double len2 = glm::dot(bone, bone);
+    if (!(len2 > 0.0)) continue;
+    const double t = glm::dot(p - position[a], bone) / len2;
+    if (t > 0.0 && t < 1.0) consider(a, glm::length(p - (position[a] + t * bone)));  // the ends are the joints' own points
+  }
+  if (distance) *distance = bd;
+  return best;
+}
+
 std::vector<char> hangLooseRoots(std::vector<int>& parent, const std::vector<glm::vec3>& position, int core) {
   const int n = static_cast<int>(parent.size());
   if (n == 0) return {};
@@ -55,18 +78,19 @@ std::vector<char> hangLooseRoots(std::vector<int>& parent, const std::vector<glm
     for (int j = 1; j < n; ++j)
       if (glm::length(position[j] - middle) < glm::length(position[core] - middle)) core = j;
   }
+  const std::vector<glm::dvec3> at(position.begin(), position.end());
+  const std::vector<int> file_parent = parent;  // bones are the file's: a root's hanging is no bone
   const int main_root = root_of[core];
   std::vector<char> attached(n, 0), hung(n, 0);
   for (int j = 0; j < n; ++j) attached[j] = root_of[j] == main_root;
   for (;;) {
     int best_root = -1, best_to = -1;
-    float best = std::numeric_limits<float>::infinity();
+    double best = std::numeric_limits<double>::infinity();
     for (int r = 0; r < n; ++r) {
       if (parent[r] >= 0 || attached[r]) continue;
-      for (int a = 0; a < n; ++a) {
-        const float d = glm::length(position[r] - position[a]);
-        if (attached[a] && d < best) best = d, best_root = r, best_to = a;
-      }
+      double d = 0.0;
+      const int to = nearestBoneJoint(at[r], file_parent, at, attached, &d);
+      if (to >= 0 && d < best) best = d, best_root = r, best_to = to;
     }
     if (best_root < 0) break;
     parent[best_root] = best_to;

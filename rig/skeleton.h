@@ -57,8 +57,18 @@ struct Skeleton {
   std::vector<int> pathFrom(int ancestor, int joint) const;
 };
 
+// The joint whose bone passes nearest `p`, among the joints `usable` marks (-1 when there are none). A
+// bone runs from a joint to each of its usable children: a point along it belongs to its upper joint
+// (the one it turns with, as a Blender bone spans its head to its tail), a point past either end to the
+// joint there; a joint without usable children is a point. A loose root is hung beside the bone it lies
+// against, not from whichever joint is nearest: a horse's scapula lies along the withers' bone nearer
+// the neck's first joint than the withers' own. `distance` gets how far the bone passes.
+int nearestBoneJoint(const glm::dvec3& p, const std::vector<int>& parent, const std::vector<glm::dvec3>& position,
+                     const std::vector<char>& usable, double* distance = nullptr);
+
 // A joint forest made one body: `parent` (-1 for a root, any order) gets each further root hung from the
-// nearest joint (by `position`) of the body built so far, so every joint moves with the body. The body
+// joint whose bone passes nearest it (nearestBoneJoint, by `position`) in the body built so far, so
+// every joint moves with the body. The body
 // starts from the tree holding `core` (a rider's pelvis, a horse's root), or with none (-1) from the
 // tree holding the joint nearest the middle of all joints (the trunk, not a limb that happens to have
 // more joints). Blender's Rigify exported with its deform bones only is such a forest: the limbs' and

@@ -88,49 +88,62 @@ std::vector<SideGroup> sideGroups(CharacterKind kind) {
           {{"Rein"}, "Rein"}};
 }
 
-}  // namespace
+// A convention as the report names it: "mixamo", "rigify horse (deform bones)".
+std::string conventionText(const NamedRoles& n) { return n.form.empty() ? n.convention : n.convention + " (" + n.form + ")"; }
+std::string conventionText(const AutoMappingReport& r) { return r.method_form.empty() ? r.method : r.method + " (" + r.method_form + ")"; }
 
-AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const AutoMappingParams& params) {
-  const std::string kind_name = kindName(kind);
-  if (s.size() > kMaxAutoMappedJoints)
-    throw InputError(s.file + ": " + std::to_string(s.size()) + " joints: too many to map by itself (at most " +
-                     std::to_string(kMaxAutoMappedJoints) + "); write a mapping file (docs/characters.md, \"User characters\")");
-  AutoMapping out;
-  AutoMappingReport& rep = out.report;
-  rep.file = s.file;
-  rep.kind = kind;
-  std::map<std::string, int> roles;
+// How the roles were found, as the report's first line says it: "mixamo joint names", "rigify horse
+// (deform bones)", "by topology (names ignored)".
+std::string methodText(const AutoMappingReport& r) {
+  if (r.method == "topology") return "by topology (" + r.method_note + ")";
+  return r.method_form.empty() ? r.method + " joint names" : conventionText(r);
+}
+
+// What the roles are and why, found by step 1 or 2.
+struct Roles {
+  std::map<std::string, int> at;
   std::map<std::string, std::string> why;
+};
 
-  // 1. Names, when one convention names every required role on chains that hang together.
+// The parents the importer will pose the roles in: a horse's legs hung from their pivots where the
+// file lost what held them (hangLegsFromPivots; the mapping skeleton's hung joints were roots of it).
+std::vector<int> posingParents(const MappingSkeleton& s, CharacterKind kind, const std::map<std::string, int>& roles) {
+  std::vector<int> parent = s.parent;
+  if (kind == CharacterKind::Horse) hangLegsFromPivots(roles, parent, s.hung);
+  return parent;
+}
+
+// Steps 1 and 2: names when one convention names every required role on chains that hang together,
+// else the skeleton's shape (and a horse's tack by name); then a rider's upperChest.
+Roles chooseRoles(const MappingSkeleton& s, CharacterKind kind, const AutoMappingParams& params, AutoMappingReport& rep) {
+  Roles out;
   const std::vector<NamedRoles> named = rolesByNames(s, kind);
   const NamedRoles* chosen = nullptr;
   std::string first_problem;
   for (const NamedRoles& n : named) {
     if (!params.use_names) break;
     if (!n.missing.empty()) continue;
-    const std::string problem = roleChainProblem(kind, n.roles, s.parent, s.names);
+    const std::string problem = roleChainProblem(kind, n.roles, posingParents(s, kind, n.roles), s.names);
     if (problem.empty()) {
       chosen = &n;
       break;
     }
-    if (first_problem.empty()) first_problem = n.convention + " names, but " + problem;
+    if (first_problem.empty()) first_problem = conventionText(n) + " names, but " + problem;
   }
-  const bool by_names = chosen != nullptr;
-  if (by_names) {
+  if (chosen) {
     rep.method = chosen->convention;
-    roles = chosen->roles;
-    why = chosen->why;
+    rep.method_form = chosen->form;
+    out.at = chosen->roles;
+    out.why = chosen->why;
   } else {
-    // 2. The skeleton's shape.
     const std::size_t required = requiredRoles(kind).size();
     if (!params.use_names)
       rep.method_note = "names ignored" + (named.empty() || named.front().missing.size() == required ? std::string()
-                                           : "; they look like " + named.front().convention);
+                                           : "; they look like " + conventionText(named.front()));
     else if (!first_problem.empty())
       rep.method_note = first_problem;
     else if (!named.empty() && named.front().score >= 3)
-      rep.method_note = "names partly " + named.front().convention + " (" +
+      rep.method_note = "names partly " + conventionText(named.front()) + " (" +
                         std::to_string(required - named.front().missing.size()) + " of " + std::to_string(required) +
                         " required roles)";
     else
@@ -142,31 +155,84 @@ AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const
       // What the names nearly said is worth knowing when the shape says nothing.
       if (!params.use_names || named.empty() || named.front().score < 3) throw;
       const NamedRoles& best = named.front();
-      std::string missing;
-      for (const std::string& r : best.missing) missing += (missing.empty() ? "" : ", ") + r;
-      throw InputError(std::string(e.what()) + "; its joint names look like " + best.convention +
-                       (first_problem.empty() ? " but name no " + missing : " but " + first_problem.substr(first_problem.find("but ") + 4)));
+      throw InputError(std::string(e.what()) + "; its joint names look like " + conventionText(best) +
+                       (first_problem.empty() ? " but name no " + joinList(best.missing)
+                                              : " but " + first_problem.substr(first_problem.find("but ") + 4)));
     }
     rep.method = "topology";
-    roles = std::move(t.roles);
-    why = std::move(t.why);
+    out.at = std::move(t.roles);
+    out.why = std::move(t.why);
     rep.warnings = std::move(t.warnings);
     if (kind == CharacterKind::Horse && params.use_names)  // tack has no shape of its own: only joints named for it
       for (const auto& [role, key, side] : {std::tuple<const char*, const char*, int>{"saddle", "saddle", 0},
                                             {"lStirrup", "stirrup", 1}, {"rStirrup", "stirrup", -1},
                                             {"lRein", "rein", 1}, {"rRein", "rein", -1}})
         if (const int j = s.find(role) >= 0 ? s.find(role) : jointByKey(s, key, side); j >= 0) {
-          roles[role] = j;
-          why[role] = "name";
+          out.at[role] = j;
+          out.why[role] = "name";
         }
   }
-  if (kind == CharacterKind::Rider && !roles.count("upperChest"))
-    if (const int j = upperChestJoint(s, roles); j >= 0) {
-      roles["upperChest"] = j;
-      why["upperChest"] = "hierarchy: the spine joint both shoulders hang from";
+  if (kind == CharacterKind::Rider && !out.at.count("upperChest"))
+    if (const int j = upperChestJoint(s, out.at); j >= 0) {
+      out.at["upperChest"] = j;
+      out.why["upperChest"] = "hierarchy: the spine joint both shoulders hang from";
     }
+  return out;
+}
 
-  // 3. Axes.
+// A rider's forward when her toes do not say it: the feet's vertices ahead of the ankles, else the
+// chest's vertices ahead of the spine.
+glm::dvec3 riderForwardFromMesh(const MappingSkeleton& s, const std::map<std::string, int>& roles, const glm::dvec3& up, double tiny,
+                                AutoMappingReport& rep) {
+  const auto flat = [&](const glm::dvec3& v) { return v - glm::dot(v, up) * up; };
+  const int la = roles.at("lAnkle"), ra = roles.at("rAnkle");
+  glm::dvec3 forward(0.0), sum(0.0);
+  std::size_t n = 0;
+  for (std::size_t v = 0; v < s.vertices.size(); ++v) {
+    const int j = s.vertex_joint[v];
+    if (s.contains(la, j)) sum += s.vertices[v] - s.position[la], ++n;
+    if (s.contains(ra, j)) sum += s.vertices[v] - s.position[ra], ++n;
+  }
+  if (n > 0) forward = flat(sum / static_cast<double>(n));
+  rep.forward_how = "the feet's vertices lie ahead of the ankles";
+  if (glm::length(forward) > tiny) return forward;
+  const std::vector<int> spine = s.pathDown(roles.at("pelvis"), roles.at("neck"));
+  glm::dvec3 joints(0.0);
+  sum = glm::dvec3(0.0);
+  n = 0;
+  for (int j : spine) joints += s.position[j] / static_cast<double>(spine.size());
+  for (std::size_t v = 0; v < s.vertices.size(); ++v)
+    if (std::find(spine.begin(), spine.end(), s.vertex_joint[v]) != spine.end()) sum += s.vertices[v], ++n;
+  const glm::dvec3 across = glm::normalize(flat(s.position[roles.at("lHip")] - s.position[roles.at("rHip")]));
+  if (n > 0) {
+    const glm::dvec3 f = flat(sum / static_cast<double>(n) - joints);
+    forward = f - glm::dot(f, across) * across;
+  }
+  rep.forward_how = "the chest's vertices lie ahead of the spine";
+  return forward;
+}
+
+// A horse stands on its hooves in its rest pose: the way from the hooves up to the back lies within
+// kMaxHorseTiltDeg of the file's up, glTF's +Y or a Z-up file's +Z. A horse lying on its side, or a
+// skeleton turned so its legs point sideways, is refused rather than mapped with its side as up.
+void checkHorseStands(const MappingSkeleton& s, const std::map<std::string, int>& roles, const glm::dvec3& up_measured) {
+  const glm::dvec3 u = glm::normalize(up_measured);
+  const double cos_max = std::cos(kMaxHorseTiltDeg * std::numbers::pi / 180.0);
+  if (u.y >= cos_max || u.z >= cos_max) return;
+  bool snap = false;
+  const glm::dvec3 down = snapped(-u, snap);
+  throw InputError(s.file + ": cannot map as a horse: its rest pose does not stand on its hooves: its legs reach from the back (\"" +
+                   s.names[roles.at("root")] + "\") to the hooves (\"" + s.names[roles.at("lfHoof")] + "\", ...) toward " +
+                   directionText(down) + " (expected down, -Y in glTF or -Z in a Z-up file: turn the horse upright in its file, "
+                   "standing on its hooves, and export it again)");
+}
+
+// Step 3: up from the feet toward the head (a horse: from the hooves toward the back), forward the
+// way the toes point (a horse: from the hips toward the chest), each snapped to the file's nearest
+// axis within kAxisSnapDeg.
+std::pair<glm::dvec3, glm::dvec3> findAxes(const MappingSkeleton& s, CharacterKind kind, const std::map<std::string, int>& roles,
+                                           AutoMappingReport& rep) {
+  const std::string kind_name = kindName(kind);
   const auto pos = [&](const std::string& role) { return s.position[static_cast<std::size_t>(roles.at(role))]; };
   glm::dvec3 up_measured, forward_measured(0.0);
   if (kind == CharacterKind::Rider) {
@@ -185,6 +251,7 @@ AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const
   if (!(glm::length(up_measured) > 0.0))
     throw InputError(s.file + ": cannot map as a " + kind_name + ": cannot tell up (its " +
                      (kind == CharacterKind::Rider ? "head and ankles" : "back and hooves") + " are at one height)");
+  if (kind == CharacterKind::Horse && roles.count("lfHoof")) checkHorseStands(s, roles, up_measured);
   bool up_snapped = false;
   const glm::dvec3 up = snapped(up_measured, up_snapped);
   const auto flat = [&](const glm::dvec3& v) { return v - glm::dot(v, up) * up; };
@@ -192,37 +259,11 @@ AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const
   for (const glm::dvec3& p : s.position) size = std::max(size, glm::length(p - s.position[0]));
   const double tiny = 1e-6 * std::max(size, 1e-30);
   if (kind == CharacterKind::Rider) {
-    const int la = roles.at("lAnkle"), ra = roles.at("rAnkle");
     if (roles.count("lBall") && roles.count("rBall")) {
       forward_measured = flat(pos("lBall") - pos("lAnkle") + pos("rBall") - pos("rAnkle"));
       rep.forward_how = "the toes point ahead of the ankles";
     }
-    if (!(glm::length(forward_measured) > tiny)) {
-      glm::dvec3 sum(0.0);
-      std::size_t n = 0;
-      for (std::size_t v = 0; v < s.vertices.size(); ++v) {
-        const int j = s.vertex_joint[v];
-        if (s.contains(la, j)) sum += s.vertices[v] - s.position[la], ++n;
-        if (s.contains(ra, j)) sum += s.vertices[v] - s.position[ra], ++n;
-      }
-      if (n > 0) forward_measured = flat(sum / static_cast<double>(n));
-      rep.forward_how = "the feet's vertices lie ahead of the ankles";
-    }
-    if (!(glm::length(forward_measured) > tiny)) {
-      // The chest's front: the spine's vertices lie ahead of its joints.
-      const std::vector<int> spine = s.pathDown(roles.at("pelvis"), roles.at("neck"));
-      glm::dvec3 sum(0.0), joints(0.0);
-      std::size_t n = 0;
-      for (int j : spine) joints += s.position[j] / static_cast<double>(spine.size());
-      for (std::size_t v = 0; v < s.vertices.size(); ++v)
-        if (std::find(spine.begin(), spine.end(), s.vertex_joint[v]) != spine.end()) sum += s.vertices[v], ++n;
-      const glm::dvec3 across = glm::normalize(flat(pos("lHip") - pos("rHip")));
-      if (n > 0) {
-        const glm::dvec3 f = flat(sum / static_cast<double>(n) - joints);
-        forward_measured = f - glm::dot(f, across) * across;
-      }
-      rep.forward_how = "the chest's vertices lie ahead of the spine";
-    }
+    if (!(glm::length(forward_measured) > tiny)) forward_measured = riderForwardFromMesh(s, roles, up, tiny, rep);
   } else {
     forward_measured = flat(pos("chest") - pos("root"));
     rep.forward_how = "from the hips toward the chest, the end the neck and head leave";
@@ -237,28 +278,37 @@ AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const
   if (!forward_snapped) rep.warnings.push_back("forward is " + directionText(forward) + ", not along one of the file's axes");
   rep.up = directionText(up);
   rep.forward = directionText(forward);
+  return {up, forward};
+}
 
-  // Sides: the character's right is forward x up.
-  const glm::dvec3 right = glm::cross(forward, up);
+// Sides: the character's right is forward x up; a group whose "l" member lies on the right changes
+// places with its "r" member.
+void settleSides(const MappingSkeleton& s, CharacterKind kind, const glm::dvec3& right, bool by_names, Roles& roles,
+                 AutoMappingReport& rep) {
   for (const SideGroup& g : sideGroups(kind)) {
     const auto name = [](const char* side, const std::string& part) { return std::string(side) + part; };  // "l" + "fUpper"
-    const int l = roleJoint(roles, name("l", g.reference)), r = roleJoint(roles, name("r", g.reference));
+    const int l = roleJoint(roles.at, name("l", g.reference)), r = roleJoint(roles.at, name("r", g.reference));
     if (l < 0 || r < 0 || !(glm::dot(s.position[l] - s.position[r], right) > 0.0)) continue;
     for (const std::string& part : g.parts) {
       const std::string lrole = name("l", part), rrole = name("r", part);
-      const int lj = roleJoint(roles, lrole), rj = roleJoint(roles, rrole);
-      roles.erase(lrole), roles.erase(rrole);
-      if (rj >= 0) roles[lrole] = rj;
-      if (lj >= 0) roles[rrole] = lj;
-      std::swap(why[lrole], why[rrole]);
-      if (why[lrole].empty()) why.erase(lrole);
-      if (why[rrole].empty()) why.erase(rrole);
+      const int lj = roleJoint(roles.at, lrole), rj = roleJoint(roles.at, rrole);
+      roles.at.erase(lrole), roles.at.erase(rrole);
+      if (rj >= 0) roles.at[lrole] = rj;
+      if (lj >= 0) roles.at[rrole] = lj;
+      std::swap(roles.why[lrole], roles.why[rrole]);
+      if (roles.why[lrole].empty()) roles.why.erase(lrole);
+      if (roles.why[rrole].empty()) roles.why.erase(rrole);
     }
     if (by_names)
-      rep.warnings.push_back("the " + rep.method + " names put the " + g.reference + " called left on the character's right (a mirrored file?): sides swapped");
+      rep.warnings.push_back("the " + conventionText(rep) + " names put the " + g.reference +
+                             " called left on the character's right (a mirrored file?): sides swapped");
   }
+}
 
-  // 4. Scale and offset.
+// Step 4: the mesh's height along up read in the common units, the one giving the most plausible
+// height; a horse's lowest point put on the ground.
+void findScale(const MappingSkeleton& s, CharacterKind kind, const glm::dvec3& up, AutoMappingReport& rep, CharacterMapping& m) {
+  const std::string kind_name = kindName(kind);
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const glm::dvec3& v : s.vertices) lo = std::min(lo, glm::dot(v, up)), hi = std::max(hi, glm::dot(v, up));
   rep.height_file = hi - lo;
@@ -283,39 +333,55 @@ AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const
                     ", so scaled to " + fixed(nominal, 0) + " cm";
     rep.warnings.push_back("no common unit gives a plausible height: scaled to " + fixed(nominal, 0) + " cm");
   }
-  CharacterMapping& m = out.mapping;
   m.scale_cm = scale;
-  m.up = {up.x, up.y, up.z};
-  m.forward = {forward.x, forward.y, forward.z};
   if (rider) {
     rep.offset_how = "none (the rig seats her on the horse)";
   } else {
     m.offset_cm = {0.0, -lo * scale, 0.0};
     rep.offset_how = "the lowest point of the mesh on the ground (" + fixed(-lo * scale, 2) + " cm up)";
   }
+}
+
+}  // namespace
+
+AutoMapping autoMapCharacter(const MappingSkeleton& s, CharacterKind kind, const AutoMappingParams& params) {
+  if (s.size() > kMaxAutoMappedJoints)
+    throw InputError(s.file + ": " + std::to_string(s.size()) + " joints: too many to map by itself (at most " +
+                     std::to_string(kMaxAutoMappedJoints) + "); write a mapping file (docs/characters.md, \"User characters\")");
+  AutoMapping out;
+  AutoMappingReport& rep = out.report;
+  rep.file = s.file;
+  rep.kind = kind;
+  Roles roles = chooseRoles(s, kind, params, rep);
+  const auto [up, forward] = findAxes(s, kind, roles.at, rep);
+  settleSides(s, kind, glm::cross(forward, up), rep.method != "topology", roles, rep);
+  CharacterMapping& m = out.mapping;
+  m.up = {up.x, up.y, up.z};
+  m.forward = {forward.x, forward.y, forward.z};
+  findScale(s, kind, up, rep, m);
 
   // The roles, checked once more as the importer will check them.
-  if (const std::string problem = roleChainProblem(kind, roles, s.parent, s.names); !problem.empty())
+  if (const std::string problem = roleChainProblem(kind, roles.at, posingParents(s, kind, roles.at), s.names); !problem.empty())
     throw InputError(s.file + ": " + problem + " (the automatic mapping chose it; write a mapping file)");
-  if (rider) {
-    const glm::dvec3 spine = pos("neck") - pos("pelvis");
+  if (kind == CharacterKind::Rider) {
+    const glm::dvec3 spine = s.position[roles.at.at("neck")] - s.position[roles.at.at("pelvis")];
     const double tilt = std::acos(std::clamp(glm::dot(glm::normalize(spine), up), -1.0, 1.0)) * 180.0 / std::numbers::pi;
     if (!(tilt < kMaxSpineTiltDeg))
-      throw InputError(s.file + ": cannot map as a rider: her spine from \"" + s.names[roles.at("pelvis")] + "\" to \"" +
-                       s.names[roles.at("neck")] + "\" leans " + fixed(tilt, 0) +
+      throw InputError(s.file + ": cannot map as a rider: her spine from \"" + s.names[roles.at.at("pelvis")] + "\" to \"" +
+                       s.names[roles.at.at("neck")] + "\" leans " + fixed(tilt, 0) +
                        " degrees from the vertical (expected a character standing upright; a four-legged one? try --as horse)");
   }
   for (const std::vector<std::string>* list : {&requiredRoles(kind), &optionalRoles(kind)})
     for (const std::string& role : *list)
-      if (const auto it = roles.find(role); it != roles.end()) {
+      if (const auto it = roles.at.find(role); it != roles.at.end()) {
         m.roles[role] = s.names[it->second];
-        rep.roles.push_back({role, s.names[it->second], why.count(role) ? why.at(role) : std::string("name")});
+        rep.roles.push_back({role, s.names[it->second], roles.why.count(role) ? roles.why.at(role) : std::string("name")});
       }
   for (const std::string& role : requiredRoles(kind))
-    if (!roles.count(role)) rep.not_mapped.push_back(role);
+    if (!roles.at.count(role)) rep.not_mapped.push_back(role);
   for (const std::string& role : lookedForOptional(kind))
-    if (!roles.count(role)) rep.optional_not_mapped.push_back(role);
-  if (rider) rep.left_to_rig = {"lowerBack", "waist", "chest", "braid1", "braid2", "braid3", "coatTail"};
+    if (!roles.at.count(role)) rep.optional_not_mapped.push_back(role);
+  if (kind == CharacterKind::Rider) rep.left_to_rig = {"lowerBack", "waist", "chest", "braid1", "braid2", "braid3", "coatTail"};
   return out;
 }
 
@@ -330,7 +396,7 @@ AutoMapping autoMapCharacterFile(const std::filesystem::path& file, CharacterKin
 nlohmann::ordered_json autoMappingJson(const AutoMapping& a) {
   const AutoMappingReport& r = a.report;
   std::string comment = "made by stirrup character map from " + std::filesystem::path(r.file).filename().string() + " (" +
-                        (r.method == "topology" ? "by topology: " + r.method_note : r.method + " joint names") + "; up " + r.up + ": " + r.up_how +
+                        (r.method == "topology" ? "by topology: " + r.method_note : methodText(r)) + "; up " + r.up + ": " + r.up_how +
                         "; forward " + r.forward + ": " + r.forward_how + "; " + r.scale_how;
   if (!r.not_mapped.empty()) comment += "; not mapped: " + joinList(r.not_mapped);
   if (!r.optional_not_mapped.empty()) comment += "; optional, not found: " + joinList(r.optional_not_mapped);
@@ -370,7 +436,7 @@ std::string autoMappingReportText(const AutoMapping& a) {
   const AutoMappingReport& r = a.report;
   std::ostringstream o;
   o << r.file << " as a " << kindName(r.kind) << ": "
-    << (r.method == "topology" ? "by topology (" + r.method_note + ")" : r.method + " joint names") << "\n";
+    << methodText(r) << "\n";
   o << "  up       " << r.up << "  (" << r.up_how << ")\n";
   o << "  forward  " << r.forward << "  (" << r.forward_how << ")\n";
   o << "  scale    " << fixed(a.mapping.scale_cm, a.mapping.scale_cm < 10 ? 4 : 2) << " cm per file unit  (" << r.scale_how << ")\n";
@@ -392,7 +458,7 @@ std::string autoMappingSummary(const AutoMapping& a) {
   const AutoMappingReport& r = a.report;
   const std::size_t required = requiredRoles(r.kind).size();
   std::string line1 = r.file + ": no role table: mapped as a " + kindName(r.kind) + " by " +
-                      (r.method == "topology" ? "topology" : r.method + " joint names") + "; up " + r.up + ", forward " +
+                      (r.method == "topology" ? "topology" : methodText(r)) + "; up " + r.up + ", forward " +
                       r.forward + ", " + fixed(a.mapping.scale_cm, a.mapping.scale_cm < 10 ? 4 : 2) + " cm per unit" +
                       (r.unit.empty() ? "" : " (" + r.unit + ")");
   std::string line2 = "  " + std::to_string(required - r.not_mapped.size()) + " of " + std::to_string(required) + " roles";

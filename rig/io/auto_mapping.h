@@ -5,7 +5,7 @@
 //
 //   input:  the file's skeleton (rig/io/mapping_skeleton.h) and the kind (rider or horse)
 //   output: a CharacterMapping, and a report: the convention recognised ("mixamo", "rigify", "unreal",
-//           "vrm", "humanik", "stirrup") or "topology", per role the joint chosen and why, the axes and
+//           "vrm", "humanik", "stirrup", "rigify horse" with its form) or "topology", per role the joint chosen and why, the axes and
 //           scale found and how, the roles not found, warnings.
 //
 // Steps: (1) the joint names, when one convention names every required role and its chains hang
@@ -38,6 +38,10 @@ inline constexpr double kHorseHeightMinCm = 100.0, kHorseHeightMaxCm = 260.0, kH
 // A rider's spine (pelvis to neck) leans at most this far from up: a character standing upright, not
 // one on all fours mapped as a rider [E].
 inline constexpr double kMaxSpineTiltDeg = 50.0;
+// A horse's rest pose stands on its hooves: the way from its hooves up to its back lies within this of
+// the file's up (glTF's +Y, or +Z in a Z-up file) [E: a standing rest pose is square to the ground; 45
+// degrees is halfway to a horse lying on its side].
+inline constexpr double kMaxHorseTiltDeg = 45.0;
 // A skeleton larger than this is not mapped by itself (the topology compares every pair of joints).
 inline constexpr int kMaxAutoMappedJoints = 2000;
 
@@ -52,7 +56,8 @@ struct RoleChoice {
 struct AutoMappingReport {
   std::string file;
   CharacterKind kind = CharacterKind::Rider;
-  std::string method;          // "mixamo", "humanik", "unreal", "rigify", "vrm", "stirrup" or "topology"
+  std::string method;          // "mixamo", "humanik", "unreal", "rigify", "vrm", "stirrup", "rigify horse" or "topology"
+  std::string method_form;     // the convention's form, when it has several: "metarig names", "deform bones"
   std::string method_note;     // why the names did not decide, when they did not
   std::vector<RoleChoice> roles;  // required roles first, then optional, in requiredRoles/optionalRoles order
   std::string up, forward;     // "+Y", "-Z", or a measured direction

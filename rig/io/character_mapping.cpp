@@ -170,6 +170,27 @@ std::string roleChainProblem(CharacterKind kind, const std::map<std::string, int
   return "";
 }
 
+std::vector<int> hangLegsFromPivots(const std::map<std::string, int>& roles, std::vector<int>& parent,
+                                    const std::vector<char>& file_root) {
+  const int n = static_cast<int>(parent.size());
+  const auto holds = [&](int a, int j) {  // `a` is `j` or above it
+    for (int steps = 0; j >= 0 && steps <= n; j = parent[j], ++steps)
+      if (j == a) return true;
+    return false;
+  };
+  std::vector<int> hung;
+  for (const char* leg : {"lf", "rf", "lb", "rb"}) {
+    const auto pivot = roles.find(std::string(leg) + "Pivot"), upper = roles.find(std::string(leg) + "Upper");
+    if (pivot == roles.end() || upper == roles.end() || holds(pivot->second, upper->second)) continue;
+    int top = upper->second;
+    for (int steps = 0; !file_root[top] && parent[top] >= 0 && steps <= n; ++steps) top = parent[top];
+    if (!file_root[top] || holds(top, pivot->second)) continue;
+    parent[top] = pivot->second;
+    hung.push_back(top);
+  }
+  return hung;
+}
+
 glm::dmat4 mappingToRig(const CharacterMapping& m) {
   const glm::dvec3 fw = glm::normalize(glm::dvec3(m.forward[0], m.forward[1], m.forward[2]));
   const glm::dvec3 up = glm::normalize(glm::dvec3(m.up[0], m.up[1], m.up[2]));

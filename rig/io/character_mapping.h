@@ -68,6 +68,14 @@ CharacterMapping loadCharacterMapping(const std::filesystem::path& file, Charact
 std::string roleChainProblem(CharacterKind kind, const std::map<std::string, int>& roles, const std::vector<int>& parent,
                              const std::vector<std::string>& names, const std::string& hint = "");
 
+// A horse's legs hang from their pivots, as the roles say they do: where a leg names a Pivot that is
+// not above its Upper and the top of Upper's chain is a root of the file (`file_root`), that root is
+// hung from the Pivot. Blender's deform-bones-only export of a Rigify horse leaves the humerus
+// (DEF-upper_arm.L) a root of its own: the bone that held it, ORG-shoulder.L, is not in the file, the
+// scapula DEF-shoulder.L is. Returns the joints hung.
+std::vector<int> hangLegsFromPivots(const std::map<std::string, int>& roles, std::vector<int>& parent,
+                                    const std::vector<char>& file_root);
+
 // The file's space to stirrup's: axes from forward and up (right = forward x up), times scale_cm,
 // then offset_cm. Joints and vertices of a mapped character are read through it.
 glm::dmat4 mappingToRig(const CharacterMapping& mapping);

@@ -408,12 +408,19 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
         parent[j] = node_joint[n];
         break;
       }
+  // A Rigify rig's deform bones as Rigify means them (rigifyDeformParents).
+  rigifyDeformParents(parent, joint_names);
   // Joint bind positions from the inverse bind matrices (identity when absent), in the file's space.
   std::vector<glm::vec3> file_bind(nj);
   for (int j = 0; j < nj; ++j) file_bind[j] = glm::vec3(glm::inverse(ibm[j])[3]);
-  // A skin of several roots is one body (Skeleton's hangLooseRoots).
+  // A horse's legs hang from their pivots where the file lost what held them; a skin of several roots
+  // is then one body (Skeleton's hangLooseRoots).
+  std::vector<char> root_in_file(nj, 0);
+  for (int j = 0; j < nj; ++j) root_in_file[j] = parent[j] < 0;
+  const std::vector<int> on_pivots = kind == CharacterKind::Horse ? hangLegsFromPivots(role_joint, parent, root_in_file) : std::vector<int>{};
   const auto core = role_joint.find(kind == CharacterKind::Rider ? "pelvis" : "root");
-  const std::vector<char> file_root = hangLooseRoots(parent, file_bind, core == role_joint.end() ? -1 : core->second);
+  std::vector<char> file_root = hangLooseRoots(parent, file_bind, core == role_joint.end() ? -1 : core->second);
+  for (int j : on_pivots) file_root[j] = 1;
   // A mapping's roles on their chains (an elbow below its shoulder, ...), in the hierarchy the rig will
   // pose. (A role table is stirrup's own writing, taken as it is.)
   if (mapping)

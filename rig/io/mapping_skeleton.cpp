@@ -1,5 +1,6 @@
 #include "rig/io/mapping_skeleton.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -14,6 +15,8 @@
 #include "rig/error.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_nodes.h"
+#include "rig/io/skeleton_topology.h"
+#include "rig/skeleton.h"
 
 namespace stirrup::rig {
 namespace {
@@ -58,34 +61,67 @@ void readVrmBones(const tinygltf::Model& model, const std::map<int, int>& node_j
   }
 }
 
+// Trees of a forest (`members[r]`: the joints of the tree rooted at r) that have a mirror image: another
+// tree of as many joints, each joint's reflection through the plane between the two roots landing
+// within `tolerance` of one of its joints. A pair of limbs is such; the trunk never is.
+std::vector<char> mirroredTrees(const std::vector<std::vector<int>>& members, const std::vector<glm::dvec3>& position,
+                                double tolerance) {
+  const int n = static_cast<int>(members.size());
+  std::vector<char> twin(n, 0);
+  const auto mirrors = [&](int a, int b) {
+    const glm::dvec3 d = position[a] - position[b];
+    if (members[a].size() != members[b].size() || !(glm::length(d) > tolerance)) return false;
+    const glm::dvec3 middle = 0.5 * (position[a] + position[b]), normal = glm::normalize(d);
+    for (int x : members[a]) {
+      const glm::dvec3 image = position[x] - 2.0 * glm::dot(position[x] - middle, normal) * normal;
+      bool hit = false;
+      for (int y : members[b]) hit = hit || glm::length(position[y] - image) <= tolerance;
+      if (!hit) return false;
+    }
+    return true;
+  };
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n && !members[a].empty(); ++b)
+      if (!members[b].empty() && mirrors(a, b)) twin[a] = twin[b] = 1;
+  return twin;
+}
+
 // A skin of several roots (Blender's Rigify exported with its deform bones only: the limbs and the
-// face are roots) made one tree for finding roles: every further root hangs from the nearest joint of
-// the trunk's tree, the one holding the joint nearest the middle of the mesh. Unlike the importer's
-// hangLooseRoots (which hangs each root from the body built so far), a mirror-image pair of loose
-// limbs then hangs from one joint, never one from the other, as the topology's rules expect; the
-// roles found lie on the same chains in either tree (a limb keeps its own hierarchy).
+// face are roots) made one tree for finding roles: every further root hangs from the joint of the
+// trunk's tree whose bone passes nearest it (nearestBoneJoint). The trunk's tree is, of the trees with
+// a bone and no mirror image (a pair of loose limbs is mirrored; a lone joint, like Rigify's DEF-chest,
+// has no bone), the one whose bones pass nearest the middle of the mesh: a horse's thighs can pass
+// nearer its barrel's middle than its spine does. Unlike the importer's hangLooseRoots (which hangs
+// each root from the body built so far), a mirror-image pair of loose limbs then hangs from one joint,
+// never one from the other, as the topology's rules expect; the roles found lie on the same chains in
+// either tree (a limb keeps its own hierarchy).
 void hangFromTrunk(std::vector<int>& parent, const std::vector<glm::dvec3>& position, const glm::dvec3& middle,
                    std::vector<char>& hung) {
   const int n = static_cast<int>(parent.size());
   hung.assign(n, 0);
   std::vector<int> root_of(n);
+  std::vector<std::vector<int>> members(n);
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
   for (int j = 0; j < n; ++j) {
     int r = j;
     for (int steps = 0; parent[r] >= 0 && steps <= n; ++steps) r = parent[r];
     root_of[j] = r;
+    members[r].push_back(j);
+    lo = glm::min(lo, position[j]), hi = glm::max(hi, position[j]);
   }
-  int core = 0;
-  for (int j = 1; j < n; ++j)
-    if (glm::length(position[j] - middle) < glm::length(position[core] - middle)) core = j;
-  const int trunk = root_of[core];
+  const glm::dvec3 extent = hi - lo;
+  const std::vector<char> twin = mirroredTrees(members, position, kMirrorTolerance * std::max({extent.x, extent.y, extent.z}));
+  std::vector<char> candidate(n, 0);  // joints of unmirrored trees, on a bone
+  for (int j = 0; j < n; ++j)
+    if (parent[j] >= 0 && !twin[root_of[j]]) candidate[j] = candidate[parent[j]] = 1;
+  if (std::find(candidate.begin(), candidate.end(), 1) == candidate.end()) candidate.assign(n, 1);
+  const int trunk = root_of[nearestBoneJoint(middle, parent, position, candidate)];
+  std::vector<char> in_trunk(n, 0);
+  for (int j = 0; j < n; ++j) in_trunk[j] = root_of[j] == trunk;
+  const std::vector<int> file_parent = parent;
   for (int r = 0; r < n; ++r) {
     if (parent[r] >= 0 || r == trunk) continue;
-    int best = -1;
-    double bd = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < n; ++a)
-      if (root_of[a] == trunk)
-        if (const double d = glm::length(position[r] - position[a]); d < bd) bd = d, best = a;
-    parent[r] = best;
+    parent[r] = nearestBoneJoint(position[r], file_parent, position, in_trunk);
     hung[r] = 1;
   }
 }
@@ -133,6 +169,28 @@ int MappingSkeleton::find(const std::string& name) const {
   for (int j = 0; j < size(); ++j)
     if (names[j] == name) return j;
   return -1;
+}
+
+void rigifyDeformParents(std::vector<int>& parent, const std::vector<std::string>& names) {
+  const int n = static_cast<int>(parent.size());
+  std::map<std::string, int> by_name;
+  for (int j = 0; j < n; ++j) by_name.emplace(names[j], j);
+  const auto prefixed = [&](int j, const char* prefix) { return names[j].rfind(prefix, 0) == 0; };
+  const auto holds = [&](int a, int j) {  // `a` is `j` or above it
+    for (int steps = 0; j >= 0 && steps <= n; j = parent[j], ++steps)
+      if (j == a) return true;
+    return false;
+  };
+  for (int j = 0; j < n; ++j) {
+    if (!prefixed(j, "DEF-")) continue;
+    for (int p = parent[j], steps = 0; p >= 0 && steps <= n && !prefixed(p, "DEF-"); p = parent[p], ++steps) {
+      if (!prefixed(p, "ORG-")) continue;
+      const auto it = by_name.find("DEF-" + names[p].substr(4));
+      if (it == by_name.end() || it->second == j || holds(j, it->second)) continue;
+      parent[j] = it->second;
+      break;
+    }
+  }
 }
 
 std::vector<std::string> gltfJointNames(const tinygltf::Model& model) {
@@ -186,7 +244,8 @@ MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std:
     s.position.emplace_back(bind[j]);
   }
 
-  // Parents: the nearest ancestor node that is a joint; further roots hung from the body.
+  // Parents: the nearest ancestor node that is a joint (a Rigify rig's deform bones as Rigify means
+  // them); further roots hung from the body.
   const std::vector<int> node_parent = gltfNodeParents(model, f);
   std::map<int, int> node_joint;
   for (int j = 0; j < nj; ++j) node_joint.emplace(skin.joints[j], j);
@@ -197,6 +256,7 @@ MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std:
         s.parent[j] = it->second;
         break;
       }
+  rigifyDeformParents(s.parent, s.names);
 
   // The mesh: every primitive of every node skinned by skins[0].
   s.weighted.assign(nj, 0);

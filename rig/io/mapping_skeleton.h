@@ -51,6 +51,17 @@ struct MappingSkeleton {
   int find(const std::string& name) const;  // -1 when there is none
 };
 
+// The hierarchy of a Rigify rig's deform bones as Rigify means it, where the file holds its other bones
+// too (Blender's glTF exporter writes every bone by default): Rigify hangs each DEF- bone from the
+// ORG- copy of its meta-rig bone's parent, or from mechanism and control bones that follow the ORG-
+// bones only through constraints, which a file does not carry. Posing those parents would leave the
+// deform bones behind (the generated horse's skull under ORG-head, beside the DEF- neck the rig
+// turns). So a DEF- bone whose nearest DEF- or ORG- ancestor is ORG-X hangs from DEF-X (or, where X is
+// the bone's own original, from DEF-Y of ORG-X's own nearest ORG- ancestor ORG-Y): DEF-upper_arm.L
+// under DEF-shoulder.L, DEF-skull under DEF-head, DEF-thigh.L under DEF-pelvis.L. Other joints keep
+// their parents. `parent` is one per joint, -1 for a root.
+void rigifyDeformParents(std::vector<int>& parent, const std::vector<std::string>& names);
+
 // The names the importer gives the first skin's joints: each node's name, or "jointN" (N the joint's
 // index in the skin) for a joint without a name or with the name of an earlier joint, so every joint
 // has a name of its own a mapping file can use.

@@ -4,6 +4,10 @@
 #include <cctype>
 #include <string>
 
+#include <glm/geometric.hpp>
+
+#include "rig/io/skeleton_topology.h"
+
 namespace stirrup::rig {
 namespace {
 
@@ -101,6 +105,7 @@ NamedRoles byTable(const MappingSkeleton& s, const Convention& c, const std::vec
   NamedRoles r;
   r.convention = c.name;
   const auto usable = [&](int j) {
+    if (names[j].helper) return false;
     if (c.needs_tool && names[j].tool != c.needs_tool) return false;
     if (c.refuses_tool && names[j].tool == c.refuses_tool) return false;
     return true;
@@ -144,6 +149,144 @@ NamedRoles byTable(const MappingSkeleton& s, const Convention& c, const std::vec
   return r;
 }
 
+// ---- Quadrupeds.
+
+// A quadruped naming convention: which bone's head (its joint) plays each leg role, and the numbered
+// chains of the back, neck and tail.
+struct QuadrupedLegBone {
+  const char* part;               // the role's part ("fUpper": lfUpper and rfUpper)
+  std::vector<const char*> keys;  // the normalised names (JointName::key) that may carry it, the first found winning
+};
+struct QuadrupedNames {
+  const char* convention;
+  std::vector<QuadrupedLegBone> legs;
+  std::vector<const char*> body_start;  // joints before the back's numbered chain (Biped's Pelvis)
+  const char* body;                     // the back's chain: "spine001" ... or "spine", "spine1", ...
+  const char* neck;
+  const char* head;
+  const char* tail;
+  bool bare_is_first;                   // the chain's word alone is its first joint (Biped's "Spine", "Neck", "Tail")
+};
+
+// Blender's Rigify horse meta-rig (the add-on bundled with Blender 3.4, rigify/metarigs/Animals/horse.py;
+// character-notes section 4): the fore leg's scapula (shoulder: its head the pivot), humerus
+// (upper_arm), radius (forearm: its head the elbow), cannon (forefoot: the knee), pastern (f_toe: the
+// fetlock) and f_hoof; the hind leg's femur (thigh: the hip joint), tibia (lower_leg: the stifle),
+// cannon (hind_foot: the hock), pastern (r_toe: the fetlock) and r_hoof; the back spine.001 (over
+// the croup, the tail's parent) .. spine.006 (the withers), the neck neck.001 .., the head, the tail
+// tail.001 ... The generated rig's DEF- deform bones carry the same names.
+const QuadrupedNames kRigifyHorse = {"rigify horse",
+                                     {{"fPivot", {"shoulder"}}, {"fUpper", {"forearm"}}, {"fMiddle", {"forefoot"}},
+                                      {"fFetlock", {"ftoe"}}, {"fHoof", {"fhoof"}}, {"bPivot", {"thigh"}},
+                                      {"bUpper", {"lowerleg"}}, {"bMiddle", {"hindfoot"}}, {"bFetlock", {"rtoe"}},
+                                      {"bHoof", {"rhoof"}}},
+                                     {},
+                                     "spine",
+                                     "neck",
+                                     "head",
+                                     "tail",
+                                     false};
+
+// Autodesk 3ds Max's Biped (Character Studio) with four leg links, the Structure rollout's "horse
+// link: an additional, lower leg bone suitable for animating quadrupeds" (3ds Max Help, Biped
+// Structure rollout, "Leg Links"); its bones as MAXScript's biped.getNode lists them (3ds Max
+// MAXScript Help, "Biped Node Hierarchy"): #lleg L Thigh, L Calf, L HorseLink, L Foot, toes L Toe0..;
+// #larm L Clavicle, L UpperArm, L Forearm, L Hand, fingers L Finger0, L Finger01..; Pelvis, Spine,
+// Spine1.., Neck, Neck1.., Head, Tail, Tail1.., each name after the biped's root name ("Bip01 L
+// Thigh"). A horse built on it [E: the usual reading, the arms as fore legs]: the femur Thigh, tibia
+// Calf (the stifle), cannon HorseLink (the hock), pastern Foot (the fetlock), hoof Toe0; the scapula
+// Clavicle, humerus UpperArm, radius Forearm (the elbow), cannon Hand (the knee), pastern Finger0 (the
+// fetlock), hoof Finger01 (or Finger0 itself when a finger has one link).
+const QuadrupedNames kBipedHorse = {"3ds max biped",
+                                    {{"fPivot", {"clavicle"}}, {"fUpper", {"forearm"}}, {"fMiddle", {"hand"}},
+                                     {"fFetlock", {"finger0"}}, {"fHoof", {"finger01", "finger0"}}, {"bPivot", {"thigh"}},
+                                     {"bUpper", {"calf"}}, {"bMiddle", {"horselink"}}, {"bFetlock", {"foot"}},
+                                     {"bHoof", {"toe0"}}},
+                                    {"pelvis"},
+                                    "spine",
+                                    "neck",
+                                    "head",
+                                    "tail",
+                                    true};
+
+// "spine004" with `word` "spine" -> 4; the word alone -> 0 where `bare` says so; else -1.
+int numbered(const std::string& key, const std::string& word, bool bare) {
+  if (key == word) return bare ? 0 : -1;
+  if (key.size() <= word.size() || key.rfind(word, 0) != 0) return -1;
+  for (std::size_t i = word.size(); i < key.size(); ++i)
+    if (!isDigit(key[i])) return -1;
+  return std::stoi(key.substr(word.size()));
+}
+
+// A quadruped's roles by one convention's names among the joints `usable` says (a form of it): legs
+// by name (a split bone's first segment: its key has no ".001"); the trunk's roles by the rules the
+// topology uses (horseTrunkRoles) on the numbered chains; the withers the back's joint nearest the
+// scapulae's pivots (the fore Pivots).
+template <typename Usable>
+NamedRoles quadrupedByNames(const MappingSkeleton& s, const std::vector<JointName>& names, const QuadrupedNames& c,
+                            const Usable& usable) {
+  NamedRoles r;
+  r.convention = c.convention;
+  const auto byKey = [&](const std::string& key, int side) {
+    for (int j = 0; j < s.size(); ++j)
+      if (usable(j) && names[j].key == key && names[j].side == side) return j;
+    return -1;
+  };
+  const auto chain = [&](const std::string& word) {
+    std::vector<std::pair<int, int>> found;  // number, joint
+    for (int j = 0; j < s.size(); ++j)
+      if (const int k = numbered(names[j].key, word, c.bare_is_first); usable(j) && names[j].side == 0 && k >= 0) found.push_back({k, j});
+    std::sort(found.begin(), found.end());
+    std::vector<int> out;
+    for (const auto& [k, j] : found) out.push_back(j);
+    return out;
+  };
+  for (const QuadrupedLegBone& b : c.legs)
+    for (const auto& [side, prefix] : {std::pair<int, const char*>{1, "l"}, {-1, "r"}})
+      for (const char* key : b.keys)
+        if (const int j = byKey(key, side); j >= 0) {
+          r.roles[prefix + std::string(b.part)] = j;
+          r.why[prefix + std::string(b.part)] = "name";
+          break;
+        }
+  HorseChains h;
+  for (const char* key : c.body_start)
+    if (const int j = byKey(key, 0); j >= 0) h.body.push_back(j);
+  for (int j : chain(c.body)) h.body.push_back(j);
+  h.neck = chain(c.neck);
+  h.tail = chain(c.tail);
+  h.head = byKey(c.head, 0);
+  const auto role = [&](const char* name) { return r.roles.count(name) ? r.roles.at(name) : -1; };
+  h.hind_roots = {role("lbPivot"), role("rbPivot")};
+  h.fore_roots = {role("lfPivot"), role("rfPivot")};
+  horseTrunkRoles(s, h, std::string(c.convention) + " names", r.roles, r.why);
+  for (const char* named : {"head", "neck1", "tail1"})
+    if (r.roles.count(named)) r.why[named] = "name";
+  if (h.fore_roots[0] >= 0 && h.fore_roots[1] >= 0 && !h.body.empty()) {
+    const glm::dvec3 scapulae = 0.5 * (s.position[h.fore_roots[0]] + s.position[h.fore_roots[1]]);
+    int withers = h.body.front();
+    for (int j : h.body)
+      if (glm::length(s.position[j] - scapulae) < glm::length(s.position[withers] - scapulae)) withers = j;
+    r.roles["withers"] = withers;
+    r.why["withers"] = std::string(c.convention) + " names: the back's joint nearest the scapulae's pivots";
+  }
+  return r;
+}
+
+// The horse conventions, each form: Rigify's generated deform bones (DEF-), its meta-rig's names (no
+// prefix: an all-bones export's controls also have none, but never the leg and spine names), and
+// Biped's names (after its root name).
+std::vector<NamedRoles> quadrupedsByNames(const MappingSkeleton& s, const std::vector<JointName>& names) {
+  const auto none = [&](int j) { return names[j].tool.empty(); };
+  const auto deform = [&](int j) { return names[j].tool == "rigify" && !names[j].helper; };
+  const auto biped = [&](int j) { return names[j].tool == "biped"; };
+  std::vector<NamedRoles> out = {quadrupedByNames(s, names, kRigifyHorse, deform), quadrupedByNames(s, names, kRigifyHorse, none),
+                                 quadrupedByNames(s, names, kBipedHorse, biped)};
+  out[0].form = "deform bones";
+  out[1].form = "metarig names";
+  return out;
+}
+
 }  // namespace
 
 JointName normalizeJointName(std::string_view raw) {
@@ -171,11 +314,15 @@ JointName normalizeJointName(std::string_view raw) {
     if (wordAndDigits(tokens[0], "mixamorig")) {
       out.tool = "mixamo";
       tokens.erase(tokens.begin());
+    } else if (wordAndDigits(tokens[0], "bip") && tokens[0].size() > 3 && tokens.size() > 1) {
+      out.tool = "biped";  // 3ds Max Biped's root name, "Bip01 L Thigh"
+      tokens.erase(tokens.begin());
     } else if (wordAndDigits(tokens[0], "character") && tokens.size() > 1) {
       out.tool = "humanik";
       tokens.erase(tokens.begin());
     } else if ((t0 == "def" || t0 == "org" || t0 == "mch") && tokens.size() > 1) {
       out.tool = "rigify";
+      out.helper = t0 != "def";
       tokens.erase(tokens.begin());
     } else if (t0 == "j" && tokens.size() > 2) {
       const std::string t1 = lower(tokens[1]);
@@ -186,15 +333,20 @@ JointName normalizeJointName(std::string_view raw) {
       }
     }
   }
-  // The side: a token of its own ("L", "r", "Left"), or "Left"/"Right" starting or ending a camel-case word.
-  std::vector<std::string> kept;
-  for (const std::string& t : tokens) {
+  // The side: a token of its own ("L", "r", "Left"), the last such (Rigify's horse has "r_toe.L", the
+  // rear leg's toe on the left), or "Left"/"Right" starting or ending a camel-case word.
+  const auto sideToken = [&](const std::string& t) {
     const std::string tl = lower(t);
-    if (tokens.size() > 1 && (tl == "l" || tl == "left" || tl == "r" || tl == "right")) {
-      if (out.side == 0) out.side = (tl[0] == 'l') ? 1 : -1;
-      continue;
-    }
-    std::string word = t;
+    return tokens.size() > 1 && (tl == "l" || tl == "left" || tl == "r" || tl == "right");
+  };
+  std::size_t side_at = tokens.size();
+  for (std::size_t i = 0; i < tokens.size(); ++i)
+    if (sideToken(tokens[i])) side_at = i;
+  if (side_at < tokens.size()) out.side = lower(tokens[side_at])[0] == 'l' ? 1 : -1;
+  std::vector<std::string> kept;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    if (i == side_at) continue;
+    std::string word = tokens[i];
     for (const auto& [prefix, side] : {std::pair<std::string, int>{"left", 1}, {"right", -1}}) {
       if (word.size() > prefix.size() && lower(word.substr(0, prefix.size())) == prefix &&
           (isUpper(word[prefix.size()]) || isDigit(word[prefix.size()]))) {
@@ -238,9 +390,14 @@ std::vector<NamedRoles> rolesByNames(const MappingSkeleton& s, CharacterKind kin
     finishScore(r, kind);
     if (r.score > 0) found.push_back(r);
   }
+  std::vector<JointName> names;
+  for (const std::string& n : s.names) names.push_back(normalizeJointName(n));
+  if (kind == CharacterKind::Horse)
+    for (NamedRoles& r : quadrupedsByNames(s, names)) {
+      finishScore(r, kind);
+      if (r.score > 0) found.push_back(r);
+    }
   if (kind == CharacterKind::Rider) {
-    std::vector<JointName> names;
-    for (const std::string& n : s.names) names.push_back(normalizeJointName(n));
     // A VRM file's own table first: it is what the file says each bone is.
     if (!s.vrm_bones.empty()) {
       NamedRoles r;

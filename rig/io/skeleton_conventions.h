@@ -10,6 +10,14 @@
 //   rigify   Blender Rigify's deform bones (DEF-spine, DEF-upper_arm.L, DEF-forearm.L, DEF-thigh.L, ...)
 //   vrm      a VRM file's own humanoid bone table (VRMC_vrm / VRM), else VRoid Studio's J_Bip_ names
 //   stirrup  stirrup's own role names as joint names (a stirrup file whose role table was lost)
+// and for a horse:
+//   rigify horse  Blender Rigify's horse meta-rig (rigify/metarigs/Animals/horse.py: spine.001..,
+//                 neck.001.., head, tail.001.., shoulder/upper_arm/forearm/forefoot/f_toe/f_hoof.L,
+//                 thigh/lower_leg/hind_foot/r_toe/r_hoof.L) in two forms: the meta-rig's own names, and
+//                 the generated rig's DEF- deform bones (long bones split in segments, the first
+//                 segment's head the joint; ORG- and MCH- bones and the controls are never a role)
+//   3ds max biped Autodesk 3ds Max's Biped with four leg links (the "horse link"), "Bip01 L Thigh", ...
+//   stirrup       as above
 #pragma once
 
 #include <map>
@@ -28,13 +36,18 @@ namespace stirrup::rig {
 struct JointName {
   std::string key;   // lower case, no namespace, tool prefix, side or separators
   int side = 0;      // +1 the character's left, -1 its right, 0 none given
-  std::string tool;  // the tool its prefix names: "mixamo", "humanik" (Character1_), "rigify" (DEF-), "vroid" (J_Bip_/J_Adj_), ""
+  std::string tool;  // the tool its prefix names: "mixamo", "humanik" (Character1_), "rigify" (DEF-, ORG-, MCH-), "vroid"
+                     // (J_Bip_/J_Adj_), "biped" (3ds Max's root name, Bip01), ""
+  // A tool's helper bone: Rigify's ORG- copies of the meta-rig and MCH- mechanism bones, which deform
+  // nothing and play no role (an all-bones export of a generated rig holds them beside the DEF- bones).
+  bool helper = false;
 };
 JointName normalizeJointName(std::string_view name);
 
 // What one convention's names give.
 struct NamedRoles {
-  std::string convention;                    // "mixamo", "humanik", "unreal", "rigify", "vrm", "stirrup"
+  std::string convention;                    // "mixamo", "humanik", "unreal", "rigify", "vrm", "stirrup", "rigify horse", "3ds max biped"
+  std::string form;                          // which form of the convention: "metarig names", "deform bones", or ""
   std::map<std::string, int> roles;          // role -> joint
   std::map<std::string, std::string> why;    // role -> how the name decided it
   std::vector<std::string> missing;          // required roles its names do not give

@@ -15,14 +15,25 @@
 //    ground), the wrist the first joint the fingers branch from; shoulder and elbow, hip and knee are
 //    the joints whose bone lengths and spacing fit human proportions best (Winter 2009), so a clavicle,
 //    a breast bone or the second half of a split bone (Rigify's ".001") is passed over.
-//  * A horse (quadruped): two pairs of legs reaching the ground. The fore pair branches at the end
-//    whose chain (neck and head) rises higher; the other end's chain is the tail. Each leg's lowest
-//    joint is its hoof, the joints above it the fetlock, the middle (knee or hock) and the upper
-//    (elbow or stifle) joints, a fifth joint up its pivot.
+//  * A horse (quadruped): two pairs of legs reaching the ground, read from the skeleton alone: every
+//    joint counts whatever the mesh weights (JointCount::Skeleton), so a mane skinned in one file and
+//    not in another, or legs left unweighted, change nothing. From each pair's branch a walk leaves
+//    the trunk the other way, at each joint into the neighbour whose joints reach farthest that way
+//    (horseEndWalk): the front one (the file's own joints, down the hierarchy) reaches the head, the
+//    rear one the tail. The fore pair's end is the one whose walk rises higher. Side branches (a mane,
+//    ears, a jaw, eyes, a nose, the breast, the pelvis's wings, a saddle joint) never take a trunk,
+//    neck, head or tail role: the walk passes them by (they reach less far forward or back than the
+//    chain that holds the head or the tail's tip), and it stops at the head, the joint a mirror-image
+//    pair (ears, eyes) branches from, or the chain's end. The neck starts at the walk's first joint
+//    ahead of the fore legs' roots (Rigify's withers bone, spine.006, lies behind them). Each leg is
+//    counted from the ground up, a split bone's segments passed over: its lowest joint the hoof, then
+//    the fetlock, the middle (knee or hock) and the upper (elbow or stifle) joints, its root the pivot
+//    when there are five or more. The trunk's roles follow from the chains (horseTrunkRoles).
 // Sides are provisional here (the first of each pair is "l"): the mapping settles them once it knows
 // which way the character faces.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -65,6 +76,20 @@ inline constexpr double kNeckMinRise = -0.2;
 // A quadruped's legs end within this fraction of its height of the ground.
 inline constexpr double kFootBand = 0.25;
 
+// Split bones: Rigify cuts a long bone into segments of one length in one line (DEF-forefoot.L and
+// DEF-forefoot.L.001). A leg joint within kSplitBoneDeg of straight between two bones whose lengths
+// differ by at most kSplitLengthTolerance of the longer is such a cut, not a joint of the limb [E:
+// Rigify's cuts are exact to float precision; the Rigify horse's straightest real joint, the fore knee,
+// bends 6 degrees between bones of 0.36 and 0.26 m].
+inline constexpr double kSplitBoneDeg = 1.0;
+inline constexpr double kSplitLengthTolerance = 0.02;
+
+// Which joints the rules count. A rider's: those carrying skin weight and those above them (end joints
+// and unweighted helpers do not). A horse's: every joint but an end marker, an unweighted leaf under
+// a weighted joint (Mixamo's ..._End, a hoof's tip joint): the one place weights decide, where the
+// skeleton cannot tell a tip marker at the sole from a hoof joint there.
+enum class JointCount { Weighted, Skeleton };
+
 struct LimbPair {
   int a = -1, b = -1;   // the limbs' roots, mirror images
   int branch = -1;      // the joint they branch from (their lowest common ancestor)
@@ -72,7 +97,7 @@ struct LimbPair {
 };
 
 // Mirror-image limb pairs, longest first.
-std::vector<LimbPair> mirroredLimbs(const MappingSkeleton& s);
+std::vector<LimbPair> mirroredLimbs(const MappingSkeleton& s, JointCount count = JointCount::Weighted);
 
 // The limb from `root` out: at every joint the child whose joints reach farthest from the root.
 // Joints neither weighted nor above a weighted joint (end joints, helpers) are left out.
@@ -83,6 +108,27 @@ struct TopologyRoles {
   std::map<std::string, std::string> why;   // role -> the rule that chose it
   std::vector<std::string> warnings;
 };
+
+// A horse's skeleton as its names or its shape show it, from which both take the trunk's roles by the
+// same rules (horseTrunkRoles).
+struct HorseChains {
+  std::vector<int> body;  // the back's joints from the rear (one may lie behind the hind legs, as Rigify's
+                          // spine.001 over the croup) to the last before the neck, in order
+  std::vector<int> neck;  // the neck's joints from the body to the one the head hangs from
+  int head = -1;
+  std::vector<int> tail;  // the tail's joints from its root along its longest line
+  std::array<int, 2> hind_roots{-1, -1}, fore_roots{-1, -1};  // where each pair of legs leaves the body
+                                                              // (the hip joints, the scapulae's pivots)
+};
+
+// The trunk's roles: `root` and `chest` where the hind and fore legs hang (the body's joint both legs'
+// roots hang from in the file itself; where they hang from a side bone, as Rigify's thighs from its
+// pelvis bones, or were loose roots, the body's joint whose bone passes nearest their roots); backMid
+// the middle joint of the body from root to chest; neck1 the neck's first joint, neck2 its middle one
+// (shared with neck1 when it has one), the head; tail1, tail2, tail3 spread along the tail (a shorter
+// tail shares its last). `how` starts each reason ("topology", "rigify horse names").
+void horseTrunkRoles(const MappingSkeleton& s, const HorseChains& c, const std::string& how, std::map<std::string, int>& roles,
+                     std::map<std::string, std::string>& why);
 
 // A biped's roles; an InputError naming the file and what was found when the skeleton is not one.
 TopologyRoles riderByTopology(const MappingSkeleton& s);

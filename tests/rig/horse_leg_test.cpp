@@ -6,6 +6,7 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "tests/rig/default_characters.h"
@@ -50,6 +51,28 @@ int contactEdge(const std::array<glm::vec3, 3>& p, float ground_tolerance) {
 constexpr float kLateLandingCm = 1.5f;
 constexpr float kOnGroundCm = 0.5f;  // an edge this close to the ground stands on it (the contact bound)
 constexpr double kLateLandingShare = 0.02;
+TEST(HorseLeg, TheShoulderIsWhereTheLimbBendsBelowThePivotNeverASplitBonesSegment) {
+  // A fore leg: scapula pivot, the humerus from the shoulder joint cut in two segments in line (as
+  // Rigify's DEF-upper_arm.L and DEF-upper_arm.L.001), the elbow. A hind leg: the femur from the hip
+  // joint in two segments in line, the stifle.
+  Skeleton s;
+  const auto at = [&](const std::string& name, int parent, glm::vec3 p) {
+    const glm::vec3 from = parent < 0 ? glm::vec3(0.0f) : s.restPosition(parent);
+    return s.addJoint(name, parent, glm::translate(glm::mat4(1.0f), p - from));
+  };
+  const int scapula = at("scapula", -1, {40, 138, 13});
+  const int shoulder = at("shoulder", scapula, {50, 110, 15});
+  const int humerus2 = at("shoulder.001", shoulder, {45, 97, 15});  // halfway to the elbow
+  const int elbow = at("elbow", humerus2, {40, 84, 15});
+  const int hip = at("hip", -1, {-62, 124, 14});
+  const int femur2 = at("hip.001", hip, {-58, 107, 14});
+  const int stifle = at("stifle", femur2, {-54, 90, 14});
+  EXPECT_EQ(horseLegShoulder(s, scapula, elbow), shoulder);
+  EXPECT_EQ(horseLegShoulder(s, hip, stifle), -1);
+  EXPECT_EQ(horseLegShoulder(s, shoulder, elbow), -1);  // a humerus alone is one bone, whole or split
+  (void)humerus2;
+}
+
 TEST(HorseLeg, PlantedHoovesHoldTheirGroundAtEveryGait) {
   const HorseLegParams p;
   for (const char* gait : {"walk", "trot", "canter", "gallop"}) {

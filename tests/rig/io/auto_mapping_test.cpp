@@ -5,11 +5,17 @@
 // names and by topology alone. The axes and units are found in files the generator wrote in metres
 // facing +Z, and in files turned to Z-up and written in centimetres or inches. Blender's own Rigify export
 // (skipped without Blender), the Khronos Fox as a horse (skipped without the asset) and stirrup's horse
-// with its role table stripped map as their own names say. A character that is not what it is mapped
-// as, or a role off its chain, is a one-line error.
+// with its role table stripped map as their own names say. Blender's Rigify horse (skipped without
+// Blender), as its meta-rig, its generated rig with every bone and with its deform bones only, maps
+// every role to the bone at its anatomical place by names and by shape, one role table whatever its
+// mesh weights, and rides a gallop with every bone whole. A character that is not what it is mapped
+// as (a horse lying on its side), a role off its chain or a joint not in the file is a one-line error.
 #include "rig/io/auto_mapping.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -25,8 +31,13 @@
 #include "rig/error.h"
 #include "rig/io/character_mapping.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/clip_factory.h"
+#include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_humanoid.h"
+#include "rig/io/mapping_skeleton.h"
+#include "rig/pose.h"
 #include "tests/input_error.h"
+#include "tests/rig/io/stick_horse.h"
 #include "tests/rig/user_riders.h"
 
 namespace stirrup::rig {
@@ -240,6 +251,193 @@ TEST(AutoMapping, TheFoxMapsAsAHorseAndLoadsWithTheRigsTack) {
   for (const char* role : {"saddle", "lStirrup", "rStirrup", "lRein", "rRein"}) EXPECT_TRUE(c.skeleton.joints[c.role(role)].rig_point) << role;
 }
 
+// ---- Horses we did not make: Blender's Rigify horse.
+
+// scripts/blender-rigify-horses' files (one Blender run, about 10 s, made once per run of this test
+// binary): the meta-rig with a thin body, a full body (mane, ears and jaw weighted too) and only the
+// trunk weighted; the generated rig with every bone, and with its deform bones only (thin and full
+// bodies). "" without Blender.
+const std::string& rigifyHorses() {
+  static const std::string dir = []() -> std::string {
+    if (std::system("command -v blender >/dev/null 2>&1") != 0) return "";
+    const fs::path d = testDir("blender_rigify_horses");
+    if (std::system(("'" STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horses' '" + d.string() + "' >/dev/null 2>&1").c_str()) != 0)
+      return "failed";
+    return d.string();
+  }();
+  return dir;
+}
+
+#define RIGIFY_HORSES_OR_SKIP()                                                                                           \
+  do {                                                                                                                    \
+    if (rigifyHorses().empty())                                                                                           \
+      GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy): Blender's Rigify horse is not made"; \
+    ASSERT_NE(rigifyHorses(), "failed") << "scripts/blender-rigify-horses failed";                                        \
+  } while (0)
+
+AutoMapping mapRigifyHorse(const std::string& form, bool use_names) {
+  AutoMappingParams params;
+  params.use_names = use_names;
+  return autoMapCharacterFile(fs::path(rigifyHorses()) / (form + ".glb"), CharacterKind::Horse, params);
+}
+
+// The Rigify horse's roles at their anatomical places (character-notes section 4; docs/characters.md,
+// "Mapping by itself"), bone names with `prefix` ("DEF-" for the generated rig): a bone's head is its
+// joint. The thighs hang from the pelvis bones, so the hips are the back's joint whose bone passes
+// over the hip joints, spine.001 (from spine.001's head over the croup to spine.002's); the chest
+// spine.005, which the scapulae hang from in the meta-rig; backMid the middle of spine.001..spine.005;
+// the withers spine.006, the back's joint nearest the scapulae's tops; neck.001..neck.004 the neck,
+// neck2 its middle (neck.003); the tail spread over tail.001..tail.005 (tail.001, .003, .004); per leg
+// the scapula's pivot (shoulder) or hip joint (thigh), the elbow (forearm) or stifle (lower_leg), the
+// knee (forefoot) or hock (hind_foot), the fetlock (f_toe, r_toe) and the hoof: never a ".001".
+std::map<std::string, std::string> rigifyHorseRoles(const std::string& prefix) {
+  std::map<std::string, std::string> r = {{"root", "spine.001"}, {"backMid", "spine.003"}, {"chest", "spine.005"}, {"withers", "spine.006"},
+                                          {"neck1", "neck.001"}, {"neck2", "neck.003"},    {"head", "head"},       {"tail1", "tail.001"},
+                                          {"tail2", "tail.003"}, {"tail3", "tail.004"}};
+  for (const auto& [l, side] : {std::pair<std::string, std::string>{"l", ".L"}, {"r", ".R"}})
+    for (const auto& [part, bone] : std::vector<std::pair<std::string, std::string>>{
+             {"fPivot", "shoulder"}, {"fUpper", "forearm"}, {"fMiddle", "forefoot"}, {"fFetlock", "f_toe"}, {"fHoof", "f_hoof"},
+             {"bPivot", "thigh"}, {"bUpper", "lower_leg"}, {"bMiddle", "hind_foot"}, {"bFetlock", "r_toe"}, {"bHoof", "r_hoof"}})
+      r[l + part] = bone + side;
+  for (auto& [role, bone] : r) bone = prefix + bone;
+  return r;
+}
+
+TEST(AutoMappingRigifyHorse, TheMetarigMapsEveryRoleByNameAndByShape) {
+  RIGIFY_HORSES_OR_SKIP();
+  const AutoMapping named = mapRigifyHorse("metarig-thin", true);
+  EXPECT_EQ(named.report.method, "rigify horse");
+  EXPECT_EQ(named.report.method_form, "metarig names");
+  EXPECT_EQ(named.mapping.roles, rigifyHorseRoles(""));
+  EXPECT_EQ(named.mapping.up, arr(0, 1, 0));       // exported +Y up
+  EXPECT_EQ(named.mapping.forward, arr(0, 0, 1));  // the horse faces -Y in Blender: +Z in glTF
+  EXPECT_EQ(named.report.unit, "metres");
+  EXPECT_TRUE(named.report.warnings.empty());
+  // By its shape alone, the same joints; the withers are found by name only.
+  std::map<std::string, std::string> shape = rigifyHorseRoles("");
+  shape.erase("withers");
+  const AutoMapping t = mapRigifyHorse("metarig-thin", false);
+  EXPECT_EQ(t.report.method, "topology");
+  EXPECT_EQ(t.mapping.roles, shape);
+  EXPECT_EQ(t.mapping.forward, arr(0, 0, 1));
+}
+
+TEST(AutoMappingRigifyHorse, TheSameSkeletonMapsTheSameWhateverItsMeshWeights) {
+  // One skeleton, three bodies: thin (legs, trunk, neck, head, tail weighted), full (the mane, ears,
+  // jaw, eyes, nostrils, breast and pelvis bones weighted too, the mane reaching above the head), and
+  // the trunk alone weighted (legs, neck, head and tail carry no weight): one role table, by names
+  // and by shape. Likewise the generated rig's deform bones under a thin and a full body.
+  RIGIFY_HORSES_OR_SKIP();
+  for (const bool use_names : {true, false}) {
+    const AutoMapping thin = mapRigifyHorse("metarig-thin", use_names);
+    for (const char* body : {"metarig-full", "metarig-trunk"})
+      EXPECT_EQ(mapRigifyHorse(body, use_names).mapping.roles, thin.mapping.roles) << body << (use_names ? ", by names" : ", by shape");
+    EXPECT_EQ(mapRigifyHorse("generated-deform-full", use_names).mapping.roles, mapRigifyHorse("generated-deform", use_names).mapping.roles)
+        << (use_names ? "by names" : "by shape");
+  }
+}
+
+TEST(AutoMappingRigifyHorse, TheGeneratedRigsDeformBonesMapByNameAndByShape) {
+  RIGIFY_HORSES_OR_SKIP();
+  // Exported with its deform bones only, the limbs, tail and face bones are roots (their parents are
+  // ORG- bones, not in the file): each hangs beside the trunk's bone it lies against.
+  const fs::path file = fs::path(rigifyHorses()) / "generated-deform.glb";
+  const MappingSkeleton s = mappingSkeletonFromGltf(readGltfFile(file, file.string()), file.string());
+  const auto parentOf = [&](const char* j) { return s.names[s.parent[s.find(j)]]; };
+  EXPECT_EQ(parentOf("DEF-thigh.L"), "DEF-spine.001");
+  EXPECT_EQ(parentOf("DEF-tail.001"), "DEF-spine.001");
+  EXPECT_EQ(parentOf("DEF-shoulder.L"), "DEF-spine.006");   // nearer DEF-neck.001's joint than DEF-spine.006's, along spine.006's bone
+  EXPECT_EQ(parentOf("DEF-upper_arm.L"), "DEF-spine.006");
+  EXPECT_EQ(parentOf("DEF-skull"), "DEF-head");
+  // By names: the scapulae were loose, so the chest is the back's joint whose bone passes nearest
+  // them, DEF-spine.006 (the meta-rig hangs them from spine.005).
+  std::map<std::string, std::string> expected = rigifyHorseRoles("DEF-");
+  expected["chest"] = "DEF-spine.006";
+  const AutoMapping named = mapRigifyHorse("generated-deform", true);
+  EXPECT_EQ(named.report.method, "rigify horse");
+  EXPECT_EQ(named.report.method_form, "deform bones");
+  EXPECT_EQ(named.mapping.roles, expected);
+  // `stirrup character map` and a scene naming the file alone say which convention and form matched.
+  EXPECT_EQ(autoMappingReportText(named).rfind(file.string() + " as a horse: rigify horse (deform bones)\n", 0), 0u);
+  EXPECT_EQ(autoMappingSummary(named).rfind(file.string() + ": no role table: mapped as a horse by rigify horse (deform bones); up +Y", 0), 0u)
+      << autoMappingSummary(named);
+  // By shape, two roles differ: the fore legs' pivots are DEF-upper_arm.L/.R, the humerus's head, for
+  // the scapula DEF-shoulder.L is a lone root beside the limb's chain (nothing in the file says it
+  // carries the humerus: its parent, ORG-shoulder.L, is not exported); and the withers are not guessed.
+  expected["lfPivot"] = "DEF-upper_arm.L";
+  expected["rfPivot"] = "DEF-upper_arm.R";
+  expected.erase("withers");
+  EXPECT_EQ(mapRigifyHorse("generated-deform", false).mapping.roles, expected);
+}
+
+TEST(AutoMappingRigifyHorse, TheGeneratedRigWithEveryBoneMapsByItsDeformBones) {
+  RIGIFY_HORSES_OR_SKIP();
+  // Its 454 bones: the ORG- copies, MCH- mechanism and controls ("head", "shoulder.L", "thigh_ik.L") are
+  // never a role. DEF-shoulder.L hangs from DEF-spine.005 as its original does (rigifyDeformParents).
+  const AutoMapping named = mapRigifyHorse("generated-all", true);
+  EXPECT_EQ(named.report.method_form, "deform bones");
+  EXPECT_EQ(named.mapping.roles, rigifyHorseRoles("DEF-"));
+  // By shape alone it cannot be mapped: every limb is there five times over, deform, original, FK, IK
+  // and tweak bones at one place, which no skeleton rule tells apart; the error says where it stopped.
+  const fs::path file = fs::path(rigifyHorses()) / "generated-all.glb";
+  EXPECT_EQ(errorOf([&] { mapRigifyHorse("generated-all", false); }),
+            file.string() + ": cannot map as a horse by topology: both pairs of legs branch from joint \"ORG-spine.002\" (expected the "
+                            "hind legs at the hips and the fore legs at the chest) (write a mapping file: docs/characters.md, \"Mapping by itself\")");
+}
+
+// The angle (degrees) a joint turns the line of bones through it: from its parent's bone to its child's.
+double turnAt(const std::vector<glm::mat4>& w, int parent, int j, int child) {
+  const glm::dvec3 in = glm::dvec3(w[j][3]) - glm::dvec3(w[parent][3]), out = glm::dvec3(w[child][3]) - glm::dvec3(w[j][3]);
+  return std::acos(std::clamp(glm::dot(glm::normalize(in), glm::normalize(out)), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+TEST(AutoMappingRigifyHorse, EveryFormRidesAGallopWithEveryBoneWholeAndItsLength) {
+  // Loaded through the mapping it gets by itself and posed through a gallop stride (the legs reach
+  // farthest): no bone of the file changes length, and a split bone stays one straight bone (the joint
+  // between its segments, DEF-forearm.L.001, never bends: the leg bends at the anatomical joints); the
+  // humerus of the deform-bones-only export hangs from its scapula (the lfPivot role).
+  RIGIFY_HORSES_OR_SKIP();
+  for (const char* form : {"metarig-full", "generated-all", "generated-deform"}) {
+    const Character horse = loadCharacterGltf(fs::path(rigifyHorses()) / (std::string(form) + ".glb"), CharacterKind::Horse);
+    const Skeleton& s = horse.skeleton;
+    EXPECT_FALSE(s.pathFrom(horse.role("lfPivot"), horse.role("lfUpper")).empty()) << form << ": the humerus hangs from the scapula";
+    // Bones in line at rest through a joint "X.001" under "X": Rigify's split segments (and its ears'
+    // second bones), with the child the bone runs on to.
+    std::vector<std::array<int, 3>> splits;  // parent, segment, child
+    const std::vector<glm::mat4> rest = restWorlds(s);
+    for (std::size_t j = 0; j < s.size(); ++j) {
+      const int p = s.joints[j].parent;
+      if (p < 0 || s.joints[j].name != s.joints[p].name + ".001") continue;
+      for (std::size_t c = 0; c < s.size(); ++c)
+        if (s.joints[c].parent == int(j) && turnAt(rest, p, int(j), int(c)) < 0.1) splits.push_back({p, int(j), int(c)});
+    }
+    if (std::string(form) != "metarig-full") {  // the leg's three split bones each, DEF-forearm.L.001 among them
+      EXPECT_TRUE(std::any_of(splits.begin(), splits.end(), [&](const std::array<int, 3>& x) { return s.joints[x[1]].name == "DEF-forearm.L.001"; }))
+          << form;
+    }
+    ClipSpec spec;
+    spec.generator = "gallop";
+    spec.source = "test";
+    const auto clip = makeClip(spec, horse);
+    double worst = 0.0, worst_turn = 0.0;
+    std::string worst_bone, worst_split;
+    for (int i = 0; i < 24; ++i) {
+      const std::vector<glm::mat4> w = poseHorse(horse, clip->sample(clip->duration() * i / 24.0));
+      for (std::size_t j = 0; j < s.size(); ++j) {
+        const int p = s.joints[j].parent;
+        if (p < 0 || s.joints[j].rig_point) continue;
+        const double rest = glm::length(s.restPosition(int(j)) - s.restPosition(p));
+        const double off = std::abs(glm::length(glm::vec3(w[j][3]) - glm::vec3(w[p][3])) - rest);
+        if (off > worst) worst = off, worst_bone = s.joints[j].name;
+      }
+      for (const auto& [p, j, c] : splits)
+        if (const double turn = turnAt(w, p, j, c); turn > worst_turn) worst_turn = turn, worst_split = s.joints[j].name;
+    }
+    EXPECT_LE(worst, 0.02) << form << ": bone " << worst_bone << " changes length";
+    EXPECT_LE(worst_turn, 0.5) << form << ": the split bone at " << worst_split << " bends";
+  }
+}
+
 // stirrup's own horse with its role table lost on the way (re-exported by a tool that drops extras).
 struct StrippedHorse {
   fs::path named, unnamed;
@@ -381,6 +579,49 @@ TEST(AutoMapping, WhenTheShapeSaysNothingTheErrorSaysWhatTheNamesNearlySaid) {
             file.string() + ": cannot map as a rider by topology: found 1 mirror-image limb pair among 43 joints (expected two: "
                             "arms and legs) (write a mapping file: docs/characters.md, \"Mapping by itself\"); its joint names look like "
                             "mixamo but name no lHip");
+}
+
+// The stick horse (tests/rig/io/stick_horse.h) turned by `rotation`: joints and mesh alike.
+MappingSkeleton turnedHorse(const glm::dmat3& rotation) {
+  MappingSkeleton s = test::stickHorse();
+  for (glm::dvec3& p : s.position) p = rotation * p;
+  for (glm::dvec3& v : s.vertices) v = rotation * v;
+  return s;
+}
+
+TEST(AutoMapping, AHorseMustStandOnItsHooves) {
+  // Upright in a Z-up file (turned +90 degrees about X: +Y -> +Z, +Z -> -Y): mapped, with its up.
+  const glm::dmat3 z_up(glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1), glm::dvec3(0, -1, 0));
+  const AutoMapping a = autoMapCharacter(turnedHorse(z_up), CharacterKind::Horse);
+  EXPECT_EQ(a.mapping.up, arr(0, 0, 1));
+  EXPECT_EQ(a.mapping.forward, arr(0, -1, 0));
+  std::map<std::string, std::string> expected = test::stickHorseRoles();
+  expected["saddle"] = "saddle";  // tack by its name
+  EXPECT_EQ(a.mapping.roles, expected);
+  // Lying on its side (turned +90 degrees about its forward axis, Z: +Y -> -X), its legs pointing
+  // sideways: refused, saying which way they point.
+  const glm::dmat3 on_its_side(glm::dvec3(0, 1, 0), glm::dvec3(-1, 0, 0), glm::dvec3(0, 0, 1));
+  const std::string lying = "horse.glb: cannot map as a horse: its rest pose does not stand on its hooves: its legs reach from the "
+                            "back (\"spine1\") to the hooves (\"foreHoofL\", ...) toward +X (expected down, -Y in glTF or -Z in a "
+                            "Z-up file: turn the horse upright in its file, standing on its hooves, and export it again)";
+  EXPECT_EQ(errorOf([&] { autoMapCharacter(turnedHorse(on_its_side), CharacterKind::Horse); }), lying);
+  // Upside down (turned 180 degrees about Z): likewise, its legs toward +Y.
+  const glm::dmat3 upside_down(glm::dvec3(-1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1));
+  EXPECT_NE(errorOf([&] { autoMapCharacter(turnedHorse(upside_down), CharacterKind::Horse); }).find("does not stand on its hooves"),
+            std::string::npos);
+}
+
+TEST(AutoMapping, AHorsesMappingNamingAJointNotInTheFileSaysWhichFileAndJoint) {
+  const fs::path dir = testDir("horse_missing_joint");
+  const StrippedHorse h = stripHorse(dir);
+  nlohmann::ordered_json j = autoMappingJson(autoMapCharacterFile(h.named, CharacterKind::Horse));
+  j["roles"]["lfUpper"] = "lfElbow.001";
+  std::ofstream(dir / "map.json") << j.dump(2);
+  const CharacterMapping m = loadCharacterMapping(dir / "map.json", CharacterKind::Horse);
+  EXPECT_EQ(errorOf([&] { loadCharacterGltf(h.named, CharacterKind::Horse, &m); }),
+            (dir / "map.json").string() + ": roles.lfUpper: no joint named \"lfElbow.001\" in " + h.named.string() +
+                " (change it to one of the file's joints: stirrup character map " + h.named.string() +
+                " --as horse lists them with the roles they seem to play)");
 }
 
 TEST(AutoMapping, ARoleOffItsChainIsAOneLineErrorNamingTheRoleAndTheJoint) {

@@ -1,9 +1,10 @@
 // A file's skeleton as the automatic mapping reads it: the importer's joint names (unnamed and repeated
 // names made "jointN", and the importer takes a mapping file naming them so), loose roots hung from the
-// trunk (a detached pair of limbs from one joint), the weighted joints, and a VRM file's own humanoid
-// bone table in its 1.0 and 0.x forms.
+// trunk (a detached pair of limbs from one joint), the weighted joints, a VRM file's own humanoid bone
+// table in its 1.0 and 0.x forms, and a Rigify rig's deform bones hung as Rigify means them.
 #include "rig/io/mapping_skeleton.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -115,6 +116,27 @@ TEST(MappingSkeleton, ReadsAVrmFilesOwnHumanoidBoneTableInBothVersions) {
   const MappingSkeleton s = mappingSkeletonFromGltf(m, "vrm0.glb");
   EXPECT_EQ(s.vrm_table, "VRM");
   EXPECT_EQ(s.vrm_bones, (std::map<std::string, int>{{"hips", s.find("J_Bip_C_Hips")}, {"leftFoot", s.find("J_Bip_L_Foot")}}));
+}
+
+TEST(MappingSkeleton, RigifysDeformBonesHangFromTheDeformBonesOfTheirOriginalsParents) {
+  // An all-bones export of a generated Rigify rig, in part: the DEF- bones' parents are ORG- copies of
+  // the meta-rig (or controls above them), as Blender writes them.
+  const std::vector<std::string> names = {"root",           "DEF-spine.001", "tweak_spine.005", "ORG-spine.005",  "DEF-spine.005",
+                                          "ORG-shoulder.L", "DEF-shoulder.L", "DEF-upper_arm.L", "DEF-upper_arm.L.001", "ORG-head",
+                                          "DEF-head",       "ORG-skull",      "DEF-skull",       "MCH-jaw_master", "DEF-jaw"};
+  std::vector<int> parent = {-1, 0, 0, 2, 1, 3, 5, 5, 7, 3, 4, 9, 11, 9, 13};
+  rigifyDeformParents(parent, names);
+  const auto parentOf = [&](const std::string& n) {
+    const int j = static_cast<int>(std::find(names.begin(), names.end(), n) - names.begin());
+    return parent[j] < 0 ? std::string("-") : names[parent[j]];
+  };
+  EXPECT_EQ(parentOf("DEF-upper_arm.L"), "DEF-shoulder.L");      // ORG-shoulder.L's deform bone
+  EXPECT_EQ(parentOf("DEF-shoulder.L"), "DEF-spine.005");        // its own original's parent's
+  EXPECT_EQ(parentOf("DEF-skull"), "DEF-head");                  // past its own ORG-skull to ORG-head's
+  EXPECT_EQ(parentOf("DEF-jaw"), "DEF-head");                    // past the mechanism bone
+  EXPECT_EQ(parentOf("DEF-upper_arm.L.001"), "DEF-upper_arm.L");  // a deform parent is kept
+  EXPECT_EQ(parentOf("DEF-spine.001"), "root");                  // no ORG- bone above: as the file has it
+  EXPECT_EQ(parentOf("ORG-head"), "ORG-spine.005");               // other bones keep their parents
 }
 
 }  // namespace

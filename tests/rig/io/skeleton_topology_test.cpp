@@ -1,6 +1,9 @@
 // Roles from a skeleton's shape alone, on stick figures laid out by hand (centimetres, +Y up, facing
 // +Z, left at +X): mirror-image limb pairs and where they branch, the biped's roles along them, the
-// spine joint the shoulders hang from, and what is said when a skeleton is not a biped.
+// spine joint the shoulders hang from, and what is said when a skeleton is not a biped. A horse shaped
+// like Blender's Rigify horse (tests/rig/io/stick_horse.h) maps to the joints its anatomy gives
+// whatever its mesh weights, with its leg bones split in segments or not, and a horse with three legs
+// is an error naming the leg without a partner.
 #include "rig/io/skeleton_topology.h"
 
 #include <cmath>
@@ -9,11 +12,12 @@
 
 #include "rig/error.h"
 #include "tests/input_error.h"
+#include "tests/rig/io/stick_horse.h"
 
 namespace stirrup::rig {
 namespace {
 
-using test::errorOf;
+using stirrup::test::errorOf;
 
 struct Figure {
   MappingSkeleton s;
@@ -140,6 +144,51 @@ TEST(SkeletonTopology, AnArmLongerOnOneSideIsNoMirrorImage) {
   const std::vector<LimbPair> pairs = mirroredLimbs(s);
   ASSERT_EQ(pairs.size(), 1u);
   EXPECT_EQ(pairs[0].branch, joint(s, "pelvis"));
+}
+
+// ---- A horse.
+
+std::map<std::string, std::string> namedRoles(const MappingSkeleton& s, const TopologyRoles& t) {
+  std::map<std::string, std::string> out;
+  for (const auto& [role, j] : t.roles) out[role] = s.names[j];
+  return out;
+}
+
+TEST(SkeletonTopology, AHorsesRolesDoNotDependOnWhatItsMeshWeights) {
+  // The mane ends higher than the head, the ears and nostrils branch from the head, the thighs hang
+  // from pelvis wings (a mirror pair of their own), the tail from the back joint behind the hips, a
+  // saddle joint from the back: none of it takes a trunk, neck, head or tail role, whether the mesh
+  // weights it (full), not (thin), or weights the back alone (trunk: legs, neck and tail unweighted).
+  using W = test::StickHorseOptions::Weights;
+  for (const W w : {W::Thin, W::Full, W::Trunk}) {
+    test::StickHorseOptions o;
+    o.weights = w;
+    const MappingSkeleton s = test::stickHorse(o);
+    const TopologyRoles t = horseByTopology(s);
+    EXPECT_EQ(namedRoles(s, t), test::stickHorseRoles()) << "weights " << static_cast<int>(w);
+    EXPECT_TRUE(t.warnings.empty()) << t.warnings.front();
+  }
+}
+
+TEST(SkeletonTopology, ASplitBonesSegmentsArePassedOver) {
+  // Every leg bone in two equal segments in line, as Rigify's deform bones: the roles stay on the
+  // joints at the anatomical places (the first segments), never a ".001".
+  test::StickHorseOptions o;
+  o.split_legs = true;
+  const MappingSkeleton s = test::stickHorse(o);
+  const TopologyRoles t = horseByTopology(s);
+  EXPECT_EQ(namedRoles(s, t), test::stickHorseRoles());
+  EXPECT_EQ(t.why.at("lfUpper"), "topology: the leg's fourth joint from the ground (a split bone's segments passed over)");
+}
+
+TEST(SkeletonTopology, AHorseWithThreeLegsSaysWhichLegHasNoPartner) {
+  test::StickHorseOptions o;
+  o.three_legs = true;
+  const MappingSkeleton s = test::stickHorse(o);
+  EXPECT_EQ(errorOf([&] { horseByTopology(s); }),
+            "horse.glb: cannot map as a horse by topology: the leg from \"pelvisL\" down to \"hindHoofL\" has no mirror image on "
+            "the other side (found one pair of legs, from \"scapulaL\" and \"scapulaR\"; expected two pairs: a horse with four "
+            "legs, each the mirror image of its partner) (write a mapping file: docs/characters.md, \"Mapping by itself\")");
 }
 
 }  // namespace
