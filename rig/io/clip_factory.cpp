@@ -377,7 +377,9 @@ bool readsControlNodes(const ClipSpec& spec) {
 double fileClipDuration(const ClipSpec& spec) {
   ClipMapping m = spec.mapping.empty() || spec.character_mapping ? ClipMapping{} : loadClipMapping(spec.mapping);
   const std::string animation = spec.animation.empty() ? m.animation : spec.animation;
-  return GltfAnimation(readGltfFile(spec.file, spec.file.string()), spec.file.string(), animation).duration();
+  const GltfAnimation a(readGltfFile(spec.file, spec.file.string()), spec.file.string(), animation);
+  // A horse's own animation plays from its first key (rig/io/keyed_horse_clip.h); a clip of controls from 0.
+  return readsControlNodes(spec) ? a.duration() : a.duration() - a.start();
 }
 
 ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_dir) {

@@ -67,7 +67,8 @@ std::unique_ptr<Clip> makeClip(const ClipSpec& spec, const Character& horse);
 // Whether the spec's file holds the contract's control nodes (a clip stirrup wrote), read as a clip
 // mapping's nodes; otherwise a file clip without a clip mapping is a horse read through its roles.
 bool readsControlNodes(const ClipSpec& spec);
-// A file clip's animation length (seconds): a scene that plays one and names no frames plays all of it.
+// A file clip's animation length (seconds; a horse's own animation from its first key): a scene that
+// plays one and names no frames plays all of it.
 double fileClipDuration(const ClipSpec& spec);
 
 }  // namespace stirrup::rig

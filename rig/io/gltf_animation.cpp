@@ -100,6 +100,7 @@ GltfAnimation::GltfAnimation(const tinygltf::Model& model, const std::string& fi
     for (const float v : tr.values)
       if (!std::isfinite(v)) throw InputError(where + ": output: expected finite numbers");
     duration_ = std::max(duration_, double(tr.times.back()));
+    start_ = tracks_.empty() ? double(tr.times.front()) : std::min(start_, double(tr.times.front()));
     tracks_.push_back(std::move(tr));
     const int k = static_cast<int>(tracks_.size()) - 1;
     Drive& d = drive_[static_cast<std::size_t>(ch.target_node)];

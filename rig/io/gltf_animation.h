@@ -47,6 +47,9 @@ class GltfAnimation {
   int index() const { return index_; }
   // The last key time of any of its tracks (seconds; 0 for an animation without keys).
   double duration() const { return duration_; }
+  // The first key time of any of its tracks (0 for an animation without keys). Blender's exporter keys
+  // its frame F at F / fps, so an animation of frames 1-48 starts at 1/24 s.
+  double start() const { return start_; }
   int nodeCount() const { return static_cast<int>(rest_.size()); }
   const std::vector<int>& parents() const { return parent_; }
   // Whether any track moves the node.
@@ -75,6 +78,7 @@ class GltfAnimation {
   std::string name_;
   int index_ = 0;
   double duration_ = 0.0;
+  double start_ = 0.0;
   std::vector<GltfTrs> rest_;
   std::vector<int> parent_;
   std::vector<int> order_;  // nodes, parents before children

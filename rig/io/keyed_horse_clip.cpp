@@ -96,7 +96,10 @@ struct KeyedHorseClip::Impl {
   // The ridden horse's joints, when the frames key it (one per skeleton joint; node -1: not the file's).
   std::vector<FileJoint> ridden;
 
-  double duration() const { return animation->duration(); }
+  // The clip's time t is the animation's start() + t: its first key is the shot's first frame (Blender
+  // keys its frame F at F / fps, so frames 1-48 play as the shot's 1-48).
+  double start() const { return animation->start(); }
+  double duration() const { return animation->duration() - animation->start(); }
   glm::dmat4 posed(const FileJoint& j, const std::vector<glm::dmat4>& worlds) const {
     return world_to_rig * worlds[std::size_t(j.node)] * j.bind_to_rest;
   }
@@ -112,9 +115,10 @@ struct KeyedHorseClip::Impl {
   void fitTravel();
   void findAddedSpeed();
   Travel travelAt(double t) const;
+  // The animation's time that plays at the clip's `seconds`.
   double clipTime(double seconds) const {
-    if (in_place && duration() > 0.0) return seconds - duration() * std::floor(seconds / duration());
-    return std::clamp(seconds, 0.0, duration());
+    if (in_place && duration() > 0.0) return start() + seconds - duration() * std::floor(seconds / duration());
+    return start() + std::clamp(seconds, 0.0, duration());
   }
   HorseFrame frameAt(double seconds, bool controls) const;
 };
@@ -123,7 +127,7 @@ void KeyedHorseClip::Impl::fitTravel() {
   const std::size_t n = std::size_t(std::floor(duration() * kTravelTableHz)) + 2;
   std::vector<double> times(n), xs(n), zs(n), headings(n);
   for (std::size_t i = 0; i < n; ++i) {
-    times[i] = std::min(duration(), double(i) / kTravelTableHz);
+    times[i] = start() + std::min(duration(), double(i) / kTravelTableHz);
     const auto [p, h] = trunkAt(times[i]);
     xs[i] = p.x, zs[i] = p.y;
     // Unwrapped, so a horse turning round keeps turning rather than jumping by a full turn.
@@ -165,7 +169,7 @@ void KeyedHorseClip::Impl::findAddedSpeed() {
     return glm::dvec3(glm::inverse(travelAt(t).matrix()) * glm::dvec4(w, 1.0));
   };
   for (int i = 0; i < kSteps; ++i) {
-    const double t0 = duration() * i / kSteps, t1 = duration() * (i + 1) / kSteps;
+    const double t0 = start() + duration() * i / kSteps, t1 = start() + duration() * (i + 1) / kSteps;
     double lowest = 1e300, dx = 0.0;
     for (int k = 0; k < 4; ++k) {
       const glm::dvec3 a = hoofIn(k, t0), b = hoofIn(k, t1);
@@ -177,8 +181,9 @@ void KeyedHorseClip::Impl::findAddedSpeed() {
   added_speed = duration() > 0.0 ? std::max(0.0, back / duration()) : 0.0;
 }
 
+// The travel frame at the animation's time t.
 Travel KeyedHorseClip::Impl::travelAt(double t) const {
-  const double x = std::clamp(t, 0.0, duration()) * kTravelTableHz;
+  const double x = std::clamp(t - start(), 0.0, duration()) * kTravelTableHz;
   const std::size_t i = std::min(travel.size() - 1, std::size_t(x));
   const std::size_t j = std::min(travel.size() - 1, i + 1);
   const double u = std::clamp(x - double(i), 0.0, 1.0);

@@ -115,6 +115,20 @@ TEST(GltfAnimation, StepAndCubicKeys) {
   EXPECT_DOUBLE_EQ(anim.world(0, 1.0)[3].x, 4.0);
   EXPECT_NEAR(anim.world(1, 0.5)[3].y, 0.5, 1e-6);
   EXPECT_NEAR(anim.world(1, 0.25)[3].y, 0.15625, 1e-6);
+  EXPECT_DOUBLE_EQ(anim.start(), 0.0);
+}
+
+// Blender's exporter keys frame F at F / fps: an animation of frames 1-48 starts at 1/24 s.
+TEST(GltfAnimation, ItStartsAtItsFirstKey) {
+  tinygltf::Model m;
+  m.nodes.resize(2);
+  tinygltf::Animation a;
+  addChannel(m, a, 0, "translation", {1.0f / 24, 2.0f}, {0, 0, 0, 1, 0, 0});
+  addChannel(m, a, 1, "translation", {0.5f, 1.0f}, {0, 0, 0, 1, 0, 0});
+  m.animations.push_back(a);
+  const GltfAnimation anim(m, "x.glb", "");
+  EXPECT_FLOAT_EQ(float(anim.start()), 1.0f / 24);
+  EXPECT_DOUBLE_EQ(anim.duration(), 2.0);
 }
 
 TEST(GltfAnimation, AnAnimationByName) {
