@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "rig/error.h"
+
 namespace tinygltf {
 class Model;
 }
@@ -26,6 +28,15 @@ struct GltfImageBytes {
 // only a texture that is used is an error.
 tinygltf::Model readGltfFile(const std::filesystem::path& file, const std::string& where,
                              GltfImageBytes* images = nullptr);
+// Element `index` of one of the model's arrays (meshes, materials, accessors, ...), or a one-line
+// InputError naming where the index came from: "x.glb: nodes[4].mesh: 7: no such mesh (the file has 2)".
+template <class T>
+const T& gltfElement(const std::vector<T>& list, int index, const std::string& where, const char* what) {
+  if (index < 0 || static_cast<std::size_t>(index) >= list.size())
+    throw InputError(where + ": " + std::to_string(index) + ": no such " + what + " (the file has " + std::to_string(list.size()) + ")");
+  return list[static_cast<std::size_t>(index)];
+}
+
 // An accessor as floats (float, or normalised/unnormalised integers), `components` per element.
 std::vector<float> readAccessor(const tinygltf::Model& model, int index, int components, const std::string& where);
 // An index accessor (unsigned byte, short or int) as 32-bit indices.

@@ -475,10 +475,12 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
     const tinygltf::Node& node = model.nodes[ni];
     if (node.mesh < 0 || node.skin != 0) continue;
-    const tinygltf::Mesh& mesh = model.meshes.at(node.mesh);
+    const tinygltf::Mesh& mesh = gltfElement(model.meshes, node.mesh, f + ": nodes[" + std::to_string(ni) + "].mesh", "mesh");
     for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const tinygltf::Primitive& prim = mesh.primitives[pi];
       const std::string pw = f + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
+      const tinygltf::Material* material =
+          prim.material >= 0 ? &gltfElement(model.materials, prim.material, pw + ".material", "material") : nullptr;
       if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) throw InputError(pw + ": expected triangles");
       for (const char* a : {"POSITION", "JOINTS_0", "WEIGHTS_0"})
         if (!prim.attributes.count(a)) throw InputError(pw + ": expected a " + std::string(a) + " attribute");
@@ -492,8 +494,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       const std::size_t n = pos.size() / 3;
       if (nor.size() != n * 3 || jts.size() != n * 4 || wts.size() != n * 4) throw InputError(pw + ": attribute counts differ");
       glm::vec3 base(0.8f);
-      if (prim.material >= 0) {
-        const auto& bc = model.materials.at(prim.material).pbrMetallicRoughness.baseColorFactor;
+      if (material) {
+        const auto& bc = material->pbrMetallicRoughness.baseColorFactor;
         if (bc.size() >= 3) base = glm::vec3(float(bc[0]), float(bc[1]), float(bc[2]));
       }
       std::vector<float> col;
@@ -504,7 +506,7 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       }
       else if (prim.attributes.count("COLOR_0")) {
         const int ca = prim.attributes.at("COLOR_0");
-        const int comps = tinygltf::GetNumComponentsInType(model.accessors.at(ca).type);
+        const int comps = tinygltf::GetNumComponentsInType(gltfElement(model.accessors, ca, pw + ".COLOR_0", "accessor").type);
         if (comps != 3 && comps != 4) throw InputError(pw + ".COLOR_0: expected a VEC3 or VEC4 accessor");
         const std::vector<float> c0 = readAccessor(model, ca, comps, pw + ".COLOR_0");
         if (c0.size() != n * static_cast<std::size_t>(comps)) throw InputError(pw + ".COLOR_0: expected one colour a vertex");
@@ -514,8 +516,8 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       }
       // The base colour texture and the texture coordinates it reads.
       std::string material_name;  // "materials[3] \"fur\"", for errors
-      if (prim.material >= 0) {
-        const std::string& name = model.materials.at(prim.material).name;
+      if (material) {
+        const std::string& name = material->name;
         material_name = "materials[" + std::to_string(prim.material) + "]" + (name.empty() ? "" : " \"" + name + "\"");
       }
       const std::string mw = f + ": " + material_name;
@@ -553,7 +555,7 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       if (fresh) {
         const bool saddle = kind == CharacterKind::Horse &&
                             (saddleNamed(node.name) || saddleNamed(mesh.name) ||
-                             (prim.material >= 0 && saddleNamed(model.materials.at(prim.material).name)));
+                             (material && saddleNamed(material->name)));
         own_saddle.resize(m.positions.size() + n, saddle ? 1 : 0);
         for (std::size_t v = 0; v < n; ++v) {
           m.positions.push_back(toRig({pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]}));

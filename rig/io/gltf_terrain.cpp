@@ -42,7 +42,7 @@ std::shared_ptr<const TerrainMesh> load(const std::filesystem::path& file, const
     if (node.mesh < 0) continue;
     const glm::dmat4& m = worldOf(int(ni), worldOf);
     const std::string mw = where + ": meshes[" + std::to_string(node.mesh) + "]";
-    const tinygltf::Mesh& mesh = model.meshes.at(std::size_t(node.mesh));
+    const tinygltf::Mesh& mesh = gltfElement(model.meshes, node.mesh, where + ": nodes[" + std::to_string(ni) + "].mesh", "mesh");
     for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const tinygltf::Primitive& prim = mesh.primitives[pi];
       if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;  // points and lines carry no ground

@@ -1,5 +1,7 @@
 #include "rig/io/gltf_texture.h"
 
+#include "rig/io/gltf_accessors.h"
+
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -79,7 +81,7 @@ std::string mimeOf(const std::vector<unsigned char>& b) {
 GltfTextureRef baseColorTextureOf(const tinygltf::Model& model, int material, const std::string& where) {
   GltfTextureRef ref;
   if (material < 0) return ref;
-  const tinygltf::TextureInfo& info = model.materials.at(static_cast<std::size_t>(material)).pbrMetallicRoughness.baseColorTexture;
+  const tinygltf::TextureInfo& info = gltfElement(model.materials, material, where, "material").pbrMetallicRoughness.baseColorTexture;
   if (info.index < 0) return ref;
   if (info.index >= static_cast<int>(model.textures.size()))
     throw InputError(where + ".baseColorTexture.index: expected a texture " + range(model.textures.size()) + ", got " +
@@ -94,7 +96,7 @@ GltfTextureRef baseColorTextureOf(const tinygltf::Model& model, int material, co
 
 std::shared_ptr<const Texture> readGltfTexture(const tinygltf::Model& model, const GltfImageBytes& images, int index,
                                                const std::string& where) {
-  const tinygltf::Texture& t = model.textures.at(static_cast<std::size_t>(index));
+  const tinygltf::Texture& t = gltfElement(model.textures, index, where + ": texture", "texture");
   const std::string tw = where + ": textures[" + std::to_string(index) + "]";
   if (t.source < 0) {
     std::string extensions;

@@ -263,7 +263,7 @@ MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std:
   for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
     const tinygltf::Node& node = model.nodes[ni];
     if (node.mesh < 0 || node.skin != 0) continue;
-    const tinygltf::Mesh& mesh = model.meshes.at(node.mesh);
+    const tinygltf::Mesh& mesh = gltfElement(model.meshes, node.mesh, f + ": nodes[" + std::to_string(ni) + "].mesh", "mesh");
     for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const tinygltf::Primitive& prim = mesh.primitives[pi];
       const std::string pw = f + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";

@@ -139,6 +139,49 @@ TEST(HorseTack, TackNamedInPartIsAnError) {
             "lStirrup, rStirrup, lRein and rRein, or none, and the rig adds its own tack)");
 }
 
+// The bit follows the head, whichever way the head points at rest: the generated horse built bare with
+// its muzzle turned 30 degrees down about the poll (a head carried low, as a Rigify horse's head bone
+// points), and 20 degrees up: the bit is where the level head's bit goes when turned the same way, within
+// 3 cm.
+TEST(HorseTack, TheBitFollowsTheHeadWhicheverWayItPoints) {
+  Character level = bareHorse();
+  const glm::vec3 level_bit = addHorseTack(level, "bare.glb").bit;
+  for (const float turn : {-30.0f, 20.0f}) {
+    HorseParams p;
+    p.tack = false;
+    const glm::mat3 r = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(turn), glm::vec3(0.0f, 0.0f, 1.0f)));
+    p.muzzle = p.poll + r * (p.muzzle - p.poll);
+    Character horse = buildHorse(p);
+    const glm::vec3 bit = addHorseTack(horse, "bare.glb").bit;
+    const glm::vec3 expected = p.poll + r * (level_bit - p.poll);
+    EXPECT_LT(glm::length(bit - expected), 3.0f) << turn << " degrees: bit (" << bit.x << ", " << bit.y << ", " << bit.z << "), expected ("
+                                                 << expected.x << ", " << expected.y << ", " << expected.z << ")";
+  }
+}
+
+// The reins clear a horse bulkier at the shoulders than a horse (the generated horse built bare with the
+// base of its neck 60% thicker, 38 cm against 24): no rein vertex between the neck and the rider's hands
+// inside the body. Reins drawn straight from the neck's side to the hands, as before, were 5.4 cm inside
+// it on this horse.
+TEST(HorseTack, TheReinsClearBulkyShoulders) {
+  HorseParams p;
+  p.tack = false;
+  p.neck_base_radius *= 1.6f;
+  Character horse = buildHorse(p);
+  const std::size_t bare_vertices = horse.mesh.vertexCount();
+  addHorseTack(horse, "bulky.glb");
+  const std::vector<bool> loose = horseLooseTack(horse);
+  std::vector<glm::vec3> hp, hn, reins;
+  skinMesh(horse.mesh, horse.skeleton, restWorlds(horse.skeleton), hp, hn);
+  const float neck_x = horse.skeleton.restPosition(horse.role("neck1")).x;
+  for (std::size_t v = bare_vertices; v < hp.size(); ++v)
+    if (loose[v] && hp[v].x < neck_x && hp[v].y > horse.skeleton.restPosition(horse.role("saddle")).y - 40.0f) reins.push_back(hp[v]);
+  ASSERT_GT(reins.size(), 50u);
+  std::vector<bool> body(loose.begin(), loose.end());
+  const ContactDepth c = deepestRiderVertexInside(hp, hn, horse.mesh.indices, body, reins);
+  EXPECT_LT(c.depth_cm, 0.2) << "a rein vertex inside the body";
+}
+
 // `rider` on `horse` through every frame of the trot (scenes/trot.json): her seat on the saddle (and,
 // with `against_default_pair`, where the default rider's is on the generated horse, in the saddle's
 // frame), her feet on the treads, no leg vertex more than 2 cm inside the horse, every bone of the

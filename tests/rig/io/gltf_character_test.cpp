@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include "tests/rig/default_characters.h"
 #include <nlohmann/json.hpp>
@@ -139,6 +140,40 @@ TEST(GltfCharacter, FileWithoutRoleTableItCannotMapAsksForAMapping) {
 // The Khronos Fox as a horse: every horse role mapped onto its 24 joints (several roles share a
 // joint), converted from its units and axes. It loads, keeps its joints' bind places, and posed at
 // rest its hooves stay where they were built.
+// A file as another tool might write it wrongly: a node naming a mesh, a primitive naming a material, a
+// colour naming an accessor the file does not have. Each is one line naming where the index was.
+TEST(GltfCharacter, AnIndexPastItsArrayIsOneLineNamingIt) {
+  tinygltf::TinyGLTF io;
+  tinygltf::Model shipped;
+  std::string err, warn;
+  ASSERT_TRUE(io.LoadBinaryFromFile(&shipped, &err, &warn, (kCharacters / "horse.glb").string())) << err;
+  const fs::path dir = tempDir("bad_index");
+  int mesh_node = -1;
+  for (std::size_t n = 0; n < shipped.nodes.size(); ++n)
+    if (shipped.nodes[n].mesh >= 0) mesh_node = int(n);
+  ASSERT_GE(mesh_node, 0);
+  const auto broken = [&](const std::string& name, auto change) {
+    tinygltf::Model m = shipped;
+    change(m);
+    const fs::path f = dir / (name + ".glb");
+    EXPECT_TRUE(io.WriteGltfSceneToFile(&m, f.string(), true, true, false, true));
+    return std::make_pair(f.string(), errorOf([&] { loadCharacterGltf(f, CharacterKind::Horse); }));
+  };
+  {
+    const auto [f, e] = broken("mesh", [&](tinygltf::Model& m) { m.nodes[std::size_t(mesh_node)].mesh = 7; });
+    EXPECT_EQ(e, f + ": nodes[" + std::to_string(mesh_node) + "].mesh: 7: no such mesh (the file has 1)");
+  }
+  {
+    const auto [f, e] = broken("material", [](tinygltf::Model& m) { m.meshes[0].primitives[1].material = 99; });
+    EXPECT_EQ(e, f + ": meshes[0].primitives[1].material: 99: no such material (the file has " + std::to_string(shipped.materials.size()) + ")");
+  }
+  {
+    const auto [f, e] = broken("weights", [](tinygltf::Model& m) { m.meshes[0].primitives[0].attributes["WEIGHTS_0"] = 12345; });
+    EXPECT_EQ(e, f + ": meshes[0].primitives[0].WEIGHTS_0: accessor 12345: no such accessor (the file has " +
+                     std::to_string(shipped.accessors.size()) + ")");
+  }
+}
+
 TEST(GltfCharacter, FoxMapsOntoHorseRoles) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
