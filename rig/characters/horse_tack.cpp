@@ -333,21 +333,38 @@ glm::vec3 addBridle(SkinnedMesh& tack, const Character& horse, const HeadFrame& 
   return bit_l;
 }
 
-// The body's half-width at (x, y) from the midline: its skin's section there, within `slab` cm up or down,
-// the head and the tack left out (-inf: no skin there).
-float bodyHalfWidth(const SkinnedMesh& m, const std::vector<char>& in_head, float x, float y, float mid_z, float slab) {
+// The horse's half-width at (x, y) from the midline: its skin's section there, within `slab` cm up or
+// down (-inf: no skin there).
+float bodyHalfWidth(const SkinnedMesh& m, float x, float y, float mid_z, float slab) {
   float w = -kInf;
-  for (const glm::vec3& q : sectionAt(m, x, [&](int j) { return j >= 0 && !in_head[std::size_t(j)]; }))
+  for (const glm::vec3& q : sectionAt(m, x, [](int j) { return j >= 0; }))
     if (std::abs(q.y - y) <= slab) w = std::max(w, std::abs(q.z - mid_z));
   return w;
 }
 
-// The reins: from the bit along the sides of the neck's middle, in its upper half (40% of its depth down
-// from the crest: on the generated horse 5 cm above the generator's rein line), to the hand ends; where
-// the straight line from there to the hands would pass inside the body (a horse bulkier at the shoulders
-// than a horse's usual build), it is carried out over the skin with kReinClearanceCm to spare, the points
-// riding with the joints that move the body there.
+// Points along a rein from `from` to `to` (neither included) where the straight line would pass inside
+// the horse (a head, neck or shoulders bulkier than a horse's usual build): carried out over the skin with
+// kReinClearanceCm to spare, each riding with the joint that moves the skin nearest to it.
 constexpr float kReinClearanceCm = 1.5f;
+void carryReinOut(const SkinnedMesh& m, glm::vec3 from, glm::vec3 to, float mid_z, float side, float radius, std::vector<TubePoint>& pts) {
+  constexpr int kSamples = 8;
+  for (int k = 1; k < kSamples; ++k) {
+    glm::vec3 q = from + (to - from) * (float(k) / kSamples);
+    const float w = bodyHalfWidth(m, q.x, q.y, mid_z, 3.0f);
+    const float need = w + radius + kReinClearanceCm;
+    if (w == -kInf || std::abs(q.z - mid_z) >= need) continue;
+    q.z = mid_z + need * side;
+    int j = -1;
+    float best = kInf;
+    for (std::uint32_t v = 0; v < m.positions.size(); ++v)
+      if (const float d = glm::length(m.positions[v] - q); d < best) best = d, j = dominantJoint(m, {v});
+    pts.push_back({q, j});
+  }
+}
+
+// The reins: from the bit along the sides of the neck's middle, in its upper half (40% of its depth down
+// from the crest: on the generated horse 5 cm above the generator's rein line), to the hand ends, carried
+// out over the skin where a straight line would pass inside it (carryReinOut).
 void addReins(SkinnedMesh& tack, const Character& horse, const HeadFrame& h, const SeatPlace& at, glm::vec3 bit_l, glm::vec3 bit_r,
               const HorseTackParams& p) {
   const Skeleton& s = horse.skeleton;
@@ -372,27 +389,17 @@ void addReins(SkinnedMesh& tack, const Character& horse, const HeadFrame& h, con
   if (neck_half == 0.0f) neck_half = 0.5f * at.half_width;
   for (float side : {-1.0f, 1.0f}) {
     const int hand_joint = horse.role(side < 0 ? "lRein" : "rRein");
-    const glm::vec3 hand = s.restPosition(hand_joint);
+    const glm::vec3 hand = s.restPosition(hand_joint), bit = side < 0 ? bit_l : bit_r;
     const glm::vec3 mid{rein_x, rein_y, at.mid_z + (neck_half + 2.0f) * side};
-    std::vector<TubePoint> pts = {{side < 0 ? bit_l : bit_r, head}, {mid, neck_joint}};
-    constexpr int kSamples = 8;
-    for (int k = 1; k < kSamples; ++k) {
-      glm::vec3 q = mid + (hand - mid) * (float(k) / kSamples);
-      const float w = bodyHalfWidth(m, h.in_head, q.x, q.y, at.mid_z, 3.0f);
-      const float need = w + p.rein_radius + kReinClearanceCm;
-      if (w == -kInf || std::abs(q.z - at.mid_z) >= need) continue;
-      q.z = at.mid_z + need * side;
-      int j = dominantJoint(m, {static_cast<std::uint32_t>(0)});
-      float best = kInf;
-      for (std::uint32_t v = 0; v < m.positions.size(); ++v)  // the joint moving the skin nearest to the point
-        if (const float d = glm::length(m.positions[v] - q); d < best) best = d, j = dominantJoint(m, {v});
-      pts.push_back({q, j});
-    }
+    std::vector<TubePoint> pts = {{bit, head}};
+    carryReinOut(m, bit, mid, at.mid_z, side, p.rein_radius, pts);
+    pts.push_back({mid, neck_joint});
+    carryReinOut(m, mid, hand, at.mid_z, side, p.rein_radius, pts);
     pts.push_back({hand, hand_joint});
     TubeParams tp;
     tp.radius = p.rein_radius;
     tp.color = p.leather;
-    tp.sag = pts.size() > 3 ? 0.0f : 3.0f;  // carried over the shoulders the rein is taut there
+    tp.sag = pts.size() > 3 ? 0.0f : 3.0f;  // carried over the skin the rein is taut there
     tp.sides = p.rein_radius < 0.9f ? 6 : 8;
     appendTube(tack, pts, tp);
   }
