@@ -36,6 +36,7 @@
 #include "rig/io/gltf_humanoid.h"
 #include "rig/io/mapping_skeleton.h"
 #include "rig/pose.h"
+#include "tests/blender_fixture.h"
 #include "tests/input_error.h"
 #include "tests/rig/io/stick_horse.h"
 #include "tests/rig/user_riders.h"
@@ -253,16 +254,16 @@ TEST(AutoMapping, TheFoxMapsAsAHorseAndLoadsWithTheRigsTack) {
 
 // ---- Horses we did not make: Blender's Rigify horse.
 
-// scripts/blender-rigify-horses' files (one Blender run, about 10 s, made once per run of this test
-// binary): the meta-rig with a thin body, a full body (mane, ears and jaw weighted too) and only the
-// trunk weighted; the generated rig with every bone, and with its deform bones only (thin and full
-// bodies). "" without Blender.
+// scripts/blender-rigify-horses' files (one Blender run, about 10 s, made once for every test process of
+// a run: tests/blender_fixture.h): the meta-rig with a thin body, a full body (mane, ears and jaw weighted
+// too) and only the trunk weighted; the generated rig with every bone, and with its deform bones only
+// (thin and full bodies). "" without Blender.
 const std::string& rigifyHorses() {
   static const std::string dir = []() -> std::string {
-    if (std::system("command -v blender >/dev/null 2>&1") != 0) return "";
-    const fs::path d = testDir("blender_rigify_horses");
-    if (std::system(("'" STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horses' '" + d.string() + "' >/dev/null 2>&1").c_str()) != 0)
-      return "failed";
+    if (!stirrup::test::blenderInstalled()) return "";
+    const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_blender_horses" / "mapping";
+    const fs::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horses";
+    if (!stirrup::test::madeByBlender(d, script, "'" + script.string() + "' '" + d.string() + "'").ok) return "failed";
     return d.string();
   }();
   return dir;

@@ -1,0 +1,61 @@
+// Files a Blender script makes for tests (Blender's Rigify horses and riders), made once and shared by
+// every test process of a run. CTest runs each test in a process of its own, so a fixture held in a
+// static would launch Blender once per test; here the files are kept under the build folder with a stamp
+// naming the command and the script's contents, and remade only when either changes. A lock serialises
+// test processes running in parallel, so one makes the files and the others wait for them.
+#pragma once
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+
+namespace stirrup::test {
+
+inline bool blenderInstalled() { return std::system("command -v blender >/dev/null 2>&1") == 0; }
+
+struct BlenderMade {
+  bool ok = false;
+  std::string log;  // the script's output when it failed
+};
+
+// Runs `command` (a script under scripts/, named by `script`, writing into `dir`) unless `dir` already
+// holds what the same command and script made. The command's output goes to dir/make.log.
+inline BlenderMade madeByBlender(const std::filesystem::path& dir, const std::filesystem::path& script, const std::string& command) {
+  namespace fs = std::filesystem;
+  const auto slurp = [](const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  const std::string stamp = command + "\n" + std::to_string(std::hash<std::string>{}(slurp(script))) + "\n";
+  fs::create_directories(dir.parent_path());
+  const fs::path lock_file = dir.parent_path() / (dir.filename().string() + ".lock");
+  const int lock = ::open(lock_file.c_str(), O_CREAT | O_RDWR, 0644);
+  if (lock >= 0) ::flock(lock, LOCK_EX);
+  BlenderMade made;
+  if (fs::exists(dir / "stamp") && slurp(dir / "stamp") == stamp) {
+    made.ok = true;
+  } else {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path log = dir / "make.log";
+    made.ok = std::system((command + " >'" + log.string() + "' 2>&1").c_str()) == 0;
+    if (made.ok) std::ofstream(dir / "stamp", std::ios::binary) << stamp;
+    else made.log = slurp(log);
+  }
+  if (lock >= 0) {
+    ::flock(lock, LOCK_UN);
+    ::close(lock);
+  }
+  return made;
+}
+
+}  // namespace stirrup::test
