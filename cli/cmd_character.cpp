@@ -28,6 +28,7 @@
 #include "render/scene/scene.h"
 #include "render/shot.h"
 #include "rig/error.h"
+#include "rig/characters/horse_tack.h"
 #include "rig/io/auto_mapping.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_humanoid.h"
@@ -76,6 +77,24 @@ void renderPreview(const MapOptions& o, const std::string& mapping_file, rig::Ch
               kind == rig::CharacterKind::Rider ? "the rider on" : "the horse under", kind == rig::CharacterKind::Rider ? "horse" : "rider");
 }
 
+// What the rig does about a mapped horse's tack (rig/characters/horse_tack.h), one line: loading the horse
+// through the mapping adds it.
+std::string tackText(const std::string& file, const rig::AutoMapping& mapped) {
+  rig::HorseTackReport tack;
+  try {
+    rig::loadCharacterGltf(file, rig::CharacterKind::Horse, &mapped.mapping, nullptr, &tack);
+  } catch (const InputError& e) {
+    return "  tack     not placed: " + std::string(e.what()) + "\n";
+  }
+  if (!tack.added) return "  tack     the horse's own, mapped (saddle, stirrups and reins)\n";
+  char seat[96];
+  std::snprintf(seat, sizeof seat, "the seat at (%.1f, %.1f, %.1f) cm", tack.seat.x, tack.seat.y, tack.seat.z + 0.0f);
+  if (tack.own_saddle)
+    return std::string("  tack     the horse's own saddle (a mesh or material named saddle): the rider sits on it, ") + seat +
+           "; the rig adds stirrups, bridle and reins, not a second saddle\n";
+  return std::string("  tack     none in the file: the rig adds a saddle, stirrups, bridle and reins, ") + seat + "\n";
+}
+
 void runMap(const MapOptions& o) {
   namespace fs = std::filesystem;
   if (o.as != "rider" && o.as != "horse") throw InputError("character map: --as: expected rider or horse, got \"" + o.as + "\"");
@@ -86,6 +105,7 @@ void runMap(const MapOptions& o) {
   params.use_names = !o.ignore_names;
   const rig::AutoMapping mapped = rig::autoMapCharacterFile(o.file, kind, params);
   std::fputs(rig::autoMappingReportText(mapped).c_str(), stdout);
+  if (kind == rig::CharacterKind::Horse && mapped.report.not_mapped.empty()) std::fputs(tackText(o.file, mapped).c_str(), stdout);
   const std::string json = rig::autoMappingFileText(mapped);
   if (!o.output.empty()) {
     rig::writeFileAtomically(o.output, std::vector<unsigned char>(json.begin(), json.end()));

@@ -120,9 +120,10 @@ std::pair<float, int> topSurface(const SkinnedMesh& m, float x, float z) {
   return {top, top_joint};
 }
 
-// The deepest point of a horse's own saddle's seat: along its middle (within kOwnSeatMidlineCm of the
-// midline), the top surface in 2 cm slices fore and aft, and of those over the middle 60% of its length
-// (between the pommel and the cantle), the lowest.
+// The seat of a horse's own saddle: along its middle (within kOwnSeatMidlineCm of the midline), the top
+// surface in 2 cm slices fore and aft; the seat centre halfway between the pommel and the cantle (the
+// highest slice of the front half and of the back half), on the top surface there. A saddle's seat dips
+// between them, or (a simple model) rises gently: either way its centre is between them.
 constexpr float kOwnSeatMidlineCm = 4.0f;
 std::optional<glm::vec3> ownSeat(const SkinnedMesh& m, const std::vector<char>& own, float mid_z) {
   float lo = kInf, hi = -kInf;
@@ -137,11 +138,22 @@ std::optional<glm::vec3> ownSeat(const SkinnedMesh& m, const std::vector<char>& 
     const int b = std::min(bins - 1, static_cast<int>((q.x - lo) / 2.0f));
     top[std::size_t(b)] = std::max(top[std::size_t(b)], q.y);
   }
-  std::optional<glm::vec3> seat;
-  for (int b = bins / 5; b < bins - bins / 5; ++b)
-    if (top[std::size_t(b)] > -kInf && (!seat || top[std::size_t(b)] < seat->y))
-      seat = glm::vec3(lo + 2.0f * (float(b) + 0.5f), top[std::size_t(b)], mid_z);
-  return seat;
+  const auto highest = [&](int from, int to) {
+    int best = -1;
+    for (int b = from; b < to; ++b)
+      if (top[std::size_t(b)] > -kInf && (best < 0 || top[std::size_t(b)] > top[std::size_t(best)])) best = b;
+    return best;
+  };
+  const int cantle = highest(0, bins / 2), pommel = highest(bins / 2, bins);
+  if (cantle < 0 || pommel < 0) return std::nullopt;
+  int centre = (cantle + pommel) / 2;
+  for (int d = 0; top[std::size_t(centre)] == -kInf && d < bins; ++d)  // the nearest slice with a surface
+    for (int b : {centre - d, centre + d})
+      if (b >= 0 && b < bins && top[std::size_t(b)] > -kInf) {
+        centre = b;
+        break;
+      }
+  return glm::vec3(lo + 2.0f * (float(centre) + 0.5f), top[std::size_t(centre)], mid_z);
 }
 
 SeatPlace placeSeat(const Character& horse, const std::string& file, const HorseTackParams& p, const std::vector<char>* own_saddle) {

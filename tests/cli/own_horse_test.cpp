@@ -103,6 +103,9 @@ TEST_P(OwnHorse, MapsByNamePlaysItsWalkExactlyAndCarriesTheRider) {
   ASSERT_EQ(map.exit_code, 0) << map.err;
   EXPECT_NE(map.out.find(" as a horse: " + v.convention), std::string::npos) << map.out;
   EXPECT_NE(map.out.find(v.scale_says), std::string::npos) << map.out;
+  // A horse modelled with its saddle gets no second one; a bare horse gets the rig's.
+  const bool saddled = v.options.find("--saddle") != std::string::npos;
+  EXPECT_NE(map.out.find(saddled ? "  tack     the horse's own saddle" : "  tack     none in the file"), std::string::npos) << map.out;
   const nlohmann::json mapping = nlohmann::json::parse(readText(dir / "map.json"));
 
   const fs::path scene = writeScene(v, dir);

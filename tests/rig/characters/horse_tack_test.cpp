@@ -139,6 +139,34 @@ TEST(HorseTack, TackNamedInPartIsAnError) {
             "lStirrup, rStirrup, lRein and rRein, or none, and the rig adds its own tack)");
 }
 
+// A horse modelled with its own saddle (here the generator's, its tack roles left unmapped, as a user's
+// file whose saddle is a mesh of its own): the seat goes on that saddle, where the generator put its seat
+// centre, within 2 cm, and no second saddle is added (only leathers, irons, bridle and reins: a few
+// thousand vertices, against the generated saddle's tens of thousands).
+TEST(HorseTack, AHorsesOwnSaddleIsSatOnNotSaddledAgain) {
+  Character horse = buildHorse(HorseParams{});
+  const glm::vec3 seat = horse.skeleton.restPosition(horse.role("saddle"));
+  std::vector<char> own(horse.mesh.vertexCount(), 0);
+  for (std::size_t v = 0; v < own.size(); ++v) {
+    int best = 0;
+    for (int k = 1; k < kMaxInfluences; ++k)
+      if (horse.mesh.weights[v][k] > horse.mesh.weights[v][best]) best = k;
+    own[v] = horse.mesh.joints[v][best] == horse.role("saddle");
+  }
+  for (const char* role : kHorseTackRoles) horse.roles.erase(role);
+  const std::size_t before = horse.mesh.vertexCount();
+  const HorseTackReport r = addHorseTack(horse, "saddled.glb", HorseTackParams{}, &own);
+  ASSERT_TRUE(r.added);
+  EXPECT_TRUE(r.own_saddle);
+  EXPECT_LT(glm::length(r.seat - seat), 2.0f) << "seat (" << r.seat.x << ", " << r.seat.y << ", " << r.seat.z << "), the generator's ("
+                                              << seat.x << ", " << seat.y << ", " << seat.z << ")";
+  EXPECT_LT(horse.mesh.vertexCount() - before, 8000u) << "vertices added";
+  Character bare = bareHorse();
+  const std::size_t bare_before = bare.mesh.vertexCount();
+  addHorseTack(bare, "bare.glb");
+  EXPECT_GT(bare.mesh.vertexCount() - bare_before, 3 * (horse.mesh.vertexCount() - before)) << "the rig's own saddle is far more";
+}
+
 // The bit follows the head, whichever way the head points at rest: the generated horse built bare with
 // its muzzle turned 30 degrees down about the poll (a head carried low, as a Rigify horse's head bone
 // points), and 20 degrees up: the bit is where the level head's bit goes when turned the same way, within
