@@ -9,6 +9,7 @@
 #include <regex>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -21,6 +22,7 @@
 #include "rig/bake.h"
 #include "rig/io/ridden_pair.h"
 #include "rig/pose.h"
+#include "tests/blender_fixture.h"
 #include "tests/cli/run_command.h"
 #include "tests/rig/user_riders.h"
 
@@ -33,8 +35,6 @@ namespace fs = std::filesystem;
 constexpr double kToleranceCm = 1.0;
 // A 24-frame trot (one second at 24 fps: about one and a quarter strides at 1.26 Hz).
 constexpr int kFrames = 24;
-
-bool blenderInstalled() { return std::system("command -v blender >/dev/null 2>&1") == 0; }
 
 // One `check` line of the script's report.
 struct CheckLine {
@@ -63,13 +63,16 @@ struct Baked {
   nlohmann::json frames;        // the expected positions, as written
 };
 
-// Writes the user's rider and a trot scene naming it, bakes --rider-only, and writes stirrup's own
-// joint positions for every frame (metres, the file's glTF world) as the script's --check JSON.
-Baked bakeUserRider(const rig::test::UserRiderFiles& files, const fs::path& dir) {
+// Writes the user's rider and a scene naming it (the trot on the shipped horse, or `horse` and `clip` as
+// given: a user's horse and its own walk), bakes --rider-only, and writes stirrup's own joint positions
+// for every frame (metres, the file's glTF world) as the script's --check JSON.
+Baked bakeUserRider(const rig::test::UserRiderFiles& files, const fs::path& dir, const nlohmann::json& horse = {},
+                    const nlohmann::json& clip = {}) {
   nlohmann::json scene = nlohmann::json::parse(readText(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "trot.json"));
   scene["name"] = "trot";
-  scene["characters"] = {{"horse", STIRRUP_SOURCE_DIR "/scenes/characters/horse.glb"},
+  scene["characters"] = {{"horse", horse.is_null() ? nlohmann::json(STIRRUP_SOURCE_DIR "/scenes/characters/horse.glb") : horse},
                          {"rider", {{"file", files.glb.string()}, {"mapping", files.mapping.string()}}}};
+  if (!clip.is_null()) scene["clip"] = clip;
   scene["profile"] = STIRRUP_SOURCE_DIR "/scenes/profiles/thesis.json";
   scene["frames"] = "1-" + std::to_string(kFrames);
   scene["output"] = (dir / "out").string();
@@ -128,8 +131,9 @@ fs::path freshDir(const std::string& name) {
 // Bakes the rider, runs the script with --check on stirrup's positions (and on `moved`, a copy with
 // one joint moved 1.5 cm at frame 13, when asked) and checks the report's first line: every joint of
 // her file, every frame, within 1 cm. Returns the run for the caller's further checks.
-CommandResult applyAndCheck(const std::string& name, const rig::test::UserRiderFiles& files, const fs::path& dir, bool with_moved) {
-  const Baked b = bakeUserRider(files, dir);
+CommandResult applyAndCheck(const std::string& name, const rig::test::UserRiderFiles& files, const fs::path& dir, bool with_moved,
+                            const nlohmann::json& horse = {}, const nlohmann::json& clip = {}) {
+  const Baked b = bakeUserRider(files, dir, horse, clip);
   if (testing::Test::HasFailure()) return {};
   EXPECT_EQ(b.frames.size(), std::size_t(kFrames));
   EXPECT_EQ(b.frames[0]["joints"].size(), b.user_joints);  // the expectation names every joint of her file
@@ -261,6 +265,32 @@ TEST(BlenderApplyRider, BlendersOwnRigifyRiderLandsWhereStirrupPutsHer) {
   std::ofstream(files.mapping) << nlohmann::json{{"character", "rider"}, {"scale_cm", 100}, {"forward", {0, 0, 1}},
                                                  {"up", {0, 1, 0}}, {"roles", roles}}.dump(2);
   const CommandResult r = applyAndCheck("blender_rigify", files, dir, false);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+}
+
+// Blender's own Rigify human on Blender's own Rigify horse (scripts/blender-rigify-horse: the generated
+// rig's deform bones, its own saddle, a walk keyed in Blender), each mapped by `stirrup character map`
+// (no mapping written by hand), the horse's walk through its one mapping: every bone of her file within
+// 1 cm of stirrup's pose at every frame once the rider-only file is on her own armature in Blender.
+TEST(BlenderApplyRider, BlendersRigifyRiderOnBlendersRigifyHorseGoesBackToHerSkeleton) {
+  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  const fs::path made = fs::path(STIRRUP_BINARY_DIR) / "test_blender_horses";
+  const fs::path horse_script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse", rider_script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider";
+  const BlenderMade horse = madeByBlender(made / "walk", horse_script,
+                                          quote(horse_script.string()) + " " + quote((made / "walk" / "horse.glb").string()) +
+                                              " --form generated --bones deform --saddle --walk");
+  ASSERT_TRUE(horse.ok) << horse.log;
+  const BlenderMade rider = madeByBlender(made / "rider", rider_script, quote(rider_script.string()) + " " + quote((made / "rider" / "rider.glb").string()));
+  ASSERT_TRUE(rider.ok) << rider.log;
+  const fs::path dir = freshDir("rigify_on_rigify");
+  const rig::test::UserRiderFiles files{made / "rider" / "rider.glb", dir / "rider-map.json"};
+  const fs::path horse_map = dir / "horse-map.json", horse_glb = made / "walk" / "horse.glb";
+  for (const auto& [file, as, map] : {std::tuple{files.glb, "rider", files.mapping}, std::tuple{horse_glb, "horse", horse_map}}) {
+    const CommandResult r = runStirrup("character map " + quote(file.string()) + " --as " + as + " -o " + quote(map.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const nlohmann::json own = {{"file", horse_glb.string()}, {"mapping", horse_map.string()}};
+  const CommandResult r = applyAndCheck("rigify_on_rigify", files, dir, false, own, own);
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }
 
