@@ -352,6 +352,10 @@ bool hasControlNodes(const std::filesystem::path& file) {
 // A horse's animation read through its roles: the spec's character mapping, or the file mapped by
 // itself as a horse; `ridden` is the scene's horse when the file is its own.
 std::unique_ptr<Clip> keyedClip(const ClipSpec& spec, const Character* ridden) {
+  if (spec.terrain)
+    throw InputError(spec.source + ".file: " + spec.file.string() +
+                     ": a horse's animation read from its file rides on flat ground (its hooves are where they were keyed); "
+                     "remove the scene's \"terrain\"");
   if (ridden) return std::make_unique<KeyedHorseClip>(spec.file, spec.animation, keyedHorseMapping(*ridden), ridden);
   if (spec.character_mapping) {
     const CharacterMapping m = loadCharacterMapping(spec.mapping, CharacterKind::Horse);

@@ -3,6 +3,9 @@
 // motion looks like is tested with the movements (movement_clips_test.cpp, path_clip_test.cpp).
 #include "rig/io/clip_factory.h"
 
+#include <filesystem>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -10,13 +13,17 @@
 #include <nlohmann/json.hpp>
 
 #include "rig/error.h"
+#include "rig/io/gltf_character.h"
+#include "rig/motion/terrain.h"
 #include "rig/motion/movement.h"
 #include "tests/input_error.h"
+#include "tests/rig/io/baked_trot.h"
 
 namespace stirrup::rig {
 namespace {
 
-using test::errorOf;
+using stirrup::test::errorOf;
+namespace fs = std::filesystem;
 
 ClipSpec parse(const nlohmann::json& j) {
   JsonObjectReader r("scenes/x.json", "clip", j);
@@ -103,6 +110,57 @@ TEST(ClipSpec, SegmentGaitsKeyTheMiddleHalfOfEachSegment) {
   EXPECT_EQ(p->speed[1].speed, walk);
   EXPECT_FALSE(pathClipParams(parse({{"generator", "trot"}})));
   EXPECT_NE(dynamic_cast<const PathClip*>(makeClip(spec).get()), nullptr);
+}
+
+// ---- A horse's own animation (rig/io/keyed_horse_clip.h), read from a file with no control nodes: the
+// default horse's trot as stirrup bakes it (tests/rig/io/baked_trot.h).
+
+// With no mapping, a file that holds no control nodes is a horse: with the scene's horse made from that
+// very file, the clip keys the horse itself; without it (or on another horse), its controls alone.
+TEST(ClipSpec, AHorsesOwnFileKeysTheHorse) {
+  const ClipSpec spec = parse({{"file", test::bakedTrot().file.string()}});
+  EXPECT_TRUE(spec.generator.empty());
+  EXPECT_FALSE(spec.character_mapping);
+  EXPECT_FALSE(readsControlNodes(spec));
+  EXPECT_NEAR(fileClipDuration(spec), (test::kFrames - 1) / test::kFps, 1e-4);
+  const Character own = loadCharacterGltf(test::bakedTrot().file, CharacterKind::Horse);
+  EXPECT_TRUE(makeClip(spec, own)->sample(0.5).keyed_pose);
+  EXPECT_FALSE(makeClip(spec)->sample(0.5).keyed_pose);
+  EXPECT_FALSE(makeClip(spec, test::defaultHorse())->sample(0.5).keyed_pose);
+  // The controls are the same either way: the horse's own motion.
+  EXPECT_DOUBLE_EQ(makeClip(spec, own)->sample(0.5).controls[HorseChannel::lfHoofTy],
+                   makeClip(spec)->sample(0.5).controls[HorseChannel::lfHoofTy]);
+}
+
+// The mapping `stirrup character map` writes (roles) names the same file's joints for the clip: one
+// mapping for a horse and its animation. A joint it names that the file does not have is one line.
+TEST(ClipSpec, ACharacterMappingReadsTheAnimationThroughItsRoles) {
+  const fs::path dir = fs::temp_directory_path() / ("stirrup-clip-roles-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const Character own = loadCharacterGltf(test::bakedTrot().file, CharacterKind::Horse);
+  nlohmann::json roles;
+  for (const auto& [role, j] : own.roles) roles[role] = own.skeleton.joints[std::size_t(j)].name;
+  const fs::path map = dir / "trot-map.json";
+  std::ofstream(map) << nlohmann::json{{"character", "horse"}, {"roles", roles}}.dump();
+  const ClipSpec spec = parse({{"file", test::bakedTrot().file.string()}, {"mapping", map.string()}, {"animation", "trot"}});
+  EXPECT_TRUE(spec.character_mapping);
+  const auto clip = makeClip(spec);
+  EXPECT_GT(clip->sample(1.0).travel_cm - clip->sample(0.0).travel_cm, 300.0) << "a trot travels 360 cm a second";
+  roles["lfHoof"] = "lfHoofTip";
+  std::ofstream(map) << nlohmann::json{{"character", "horse"}, {"roles", roles}}.dump();
+  EXPECT_EQ(parseError({{"file", test::bakedTrot().file.string()}, {"mapping", map.string()}}),
+            map.string() + ": roles.lfHoof: no joint named \"lfHoofTip\" in " + test::bakedTrot().file.string());
+  fs::remove_all(dir);
+}
+
+// A horse's own animation is not set on uneven ground: its hooves are where they were keyed.
+TEST(ClipSpec, AHorsesOwnAnimationOnTerrainIsAOneLineError) {
+  ClipSpec spec = parse({{"file", test::bakedTrot().file.string()}});
+  spec.terrain = std::make_shared<Terrain>();
+  EXPECT_EQ(errorOf([&] { makeClip(spec); }),
+            "scenes/x.json: clip.file: " + test::bakedTrot().file.string() +
+                ": a horse's animation read from its file rides on flat ground (its hooves are where they were keyed); remove "
+                "the scene's \"terrain\"");
 }
 
 }  // namespace

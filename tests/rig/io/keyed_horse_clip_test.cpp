@@ -23,48 +23,16 @@
 #include "rig/pose.h"
 #include "rig/rider_rig.h"
 #include "tests/input_error.h"
+#include "tests/rig/io/baked_trot.h"
 #include "tests/rig/default_characters.h"
 
 namespace stirrup::rig {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kFps = 24.0;
-constexpr int kFrames = 48;
-
-struct BakedTrot {
-  fs::path file;
-  std::vector<MountedPose> poses;
-  std::vector<HorseFrame> frames;
-};
-
-// The default pair trotting for two seconds, posed as every consumer poses them, written as a bake.
-const BakedTrot& bakedTrot() {
-  static const BakedTrot trot = [] {
-    BakedTrot b;
-    const ProceduralGait gait(trotParams());
-    const RigProfile profile;
-    BakedShot shot;
-    shot.name = "trot";
-    shot.fps = kFps;
-    BakedPair pair;
-    pair.horse = &test::defaultHorse();
-    pair.rider = &test::defaultRider();
-    for (int f = 0; f < kFrames; ++f) {
-      const BakedFrame baked = bakeFrame(gait, profile, f + 1, f / kFps);
-      b.frames.push_back(baked.horse);
-      pair.poses.push_back(poseMounted(*pair.horse, *pair.rider, baked.horse, baked.rider, profile));
-      shot.seconds.push_back(float(f / kFps));
-    }
-    b.poses = pair.poses;
-    shot.pairs.push_back(pair);
-    const std::vector<unsigned char> bytes = bakedShotGlb(shot);
-    b.file = fs::temp_directory_path() / ("stirrup-keyed-trot-" + std::to_string(::getpid()) + ".glb");
-    std::ofstream(b.file, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-    return b;
-  }();
-  return trot;
-}
+using test::bakedTrot;
+using test::kFps;
+using test::kFrames;
 
 struct LoadedHorse {
   Character horse;
