@@ -1,4 +1,4 @@
-# The layout's include rules (README "How the code is laid out"). The code is cut into layers by the
+# The layout's include rules (docs/code-layout.md). The code is cut into layers by the
 # direction of its dependencies, lowest first:
 #   rig              the runtime: channels, clips, the rider rig, curve spine, IK, skeleton, pose, skinning
 #   rig/characters   the character generators and the seating of a user's rider
