@@ -21,6 +21,7 @@
 #include "rig/error.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/io/json_fields.h"
+#include "rig/io/keyed_horse_clip.h"
 
 namespace stirrup::cli {
 namespace {
@@ -180,12 +181,20 @@ void runInfo(const ClipOptions& o) {
   } else if (isGltf(o.clip)) {
     if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a file: " + o.params[0]);
     if (!std::filesystem::exists(o.clip)) throw InputError(o.clip + ": no such file");
-    rig::ClipMapping m = o.mapping.empty() ? rig::contractMapping() : rig::loadClipMapping(o.mapping);
-    if (!o.animation.empty()) m.animation = o.animation;
-    clip = std::make_unique<rig::GltfClip>(o.clip, m);
-    // A clip from another tool is a cycle: measure several loops; its stance hooves are rarely exactly 0.
-    const bool skeleton = m.mode == rig::ClipMapping::Mode::Skeleton;
-    io.end_s = clip->duration() * (o.loops > 0 ? o.loops : skeleton ? 4 : 1);
+    // Read as a scene's clip block reads it: a stirrup clip, a clip mapping, or a horse through its roles.
+    nlohmann::json block = {{"file", std::filesystem::absolute(o.clip).string()}};
+    if (!o.mapping.empty()) block["mapping"] = std::filesystem::absolute(o.mapping).string();
+    if (!o.animation.empty()) block["animation"] = o.animation;
+    JsonObjectReader r(o.clip, "", block);
+    const rig::ClipSpec spec = rig::parseClipSpec(r, "");
+    clip = rig::makeClip(spec);
+    // Another tool's animation: its stance hooves are rarely exactly down; a cycle (a skeleton mapping's,
+    // or a horse's animated in place) is measured over several loops.
+    const auto* keyed = dynamic_cast<const rig::KeyedHorseClip*>(clip.get());
+    const bool skeleton = keyed || (!spec.mapping.empty() && !spec.character_mapping &&
+                                    rig::loadClipMapping(spec.mapping).mode == rig::ClipMapping::Mode::Skeleton);
+    const bool cycle = keyed ? keyed->inPlace() : skeleton;
+    io.end_s = clip->duration() * (o.loops > 0 ? o.loops : cycle ? 4 : 1);
     if (skeleton) io.ground_cm = 0.5;
   } else {
     clip = rig::makeClip(generatorSpec("clip info", o.clip, o.params));
@@ -237,12 +246,13 @@ void addClipCommand(CLI::App& app) {
       "         stirrup clip info ../shared/assets/fox/Fox.glb --mapping scenes/fox-mapping.json --animation Run");
   in->add_option("clip", info->clip, "A .glb/.gltf file, a generator name, or a scene (.json: its clip; a path section by section)")->required();
   in->add_flag("--json", info->json, "Print JSON instead of a table");
-  in->add_option("--mapping", info->mapping, "Mapping file from the clip's nodes to the contract's controls");
+  in->add_option("--mapping", info->mapping,
+                 "Mapping file: a clip mapping (the file's nodes to the contract's controls) or a horse's character mapping (roles)");
   in->add_option("--animation", info->animation, "Animation in the file (default: the first)");
   in->add_option("--reference", info->reference, "Compare with this movement of gait-reference.md (walk, trot, canter, gallop, stop, jump, rear, buck)");
-  in->add_option("--loops", info->loops, "Loops of a file's animation to measure (default 1; 4 with a skeleton mapping)");
+  in->add_option("--loops", info->loops, "Loops of a file's animation to measure (default 1; 4 for a cycle from another tool)");
   in->add_option("--pair", info->pair, "A crowd scene's pair to measure, by index from 0 (default: every pair in turn)");
-  in->add_option("--ground-cm", info->ground_cm, "A hoof this low or lower is down (default 0.001; 0.5 for skeletons)");
+  in->add_option("--ground-cm", info->ground_cm, "A hoof this low or lower is down (default 0.001; 0.5 for another tool's animation)");
   in->allow_extras();
   in->callback([info, in] {
     info->params = in->remaining();

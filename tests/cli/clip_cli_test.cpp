@@ -37,6 +37,20 @@ TEST(ClipCli, MakeWritesAGlbThatInfoReadsBack) {
   EXPECT_TRUE(j["problems"].empty()) << j["problems"];
 }
 
+// A horse's own animation measured as it moves: a trot baked by stirrup is a horse whose file keys its
+// joints (no control nodes), read through its roles as a scene's clip reads it; its stride, speed, bounce
+// and pitch are the trot's (the posed horse's touchdowns, which land a little after the generator's
+// targets, are its own and not judged here).
+TEST(ClipCli, InfoOnAHorsesOwnAnimationMeasuresItsJoints) {
+  const fs::path baked = outDir() / "own-trot.glb";
+  ASSERT_EQ(runStirrup("bake " + quote(STIRRUP_SOURCE_DIR "/scenes/trot.json") + " -o " + quote(baked.string())).exit_code, 0);
+  const CommandResult r = runStirrup("clip info " + quote(baked.string()) + " --reference trot");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* line : {"stride frequency (Hz)        1.260   reference 1.24–1.28  ok", "speed (cm/s)                 360.0   reference 350–370  ok",
+                           "suspensions per stride       2.00   reference 2  ok", "rear pivot cycles/stride     2.00   reference 2  ok"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+}
+
 TEST(ClipCli, InfoOnAGeneratorShowsTheReference) {
   const CommandResult r = runStirrup("clip info gallop");
   ASSERT_EQ(r.exit_code, 0) << r.err;
