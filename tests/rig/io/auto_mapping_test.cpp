@@ -20,6 +20,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -254,16 +255,25 @@ TEST(AutoMapping, TheFoxMapsAsAHorseAndLoadsWithTheRigsTack) {
 
 // ---- Horses we did not make: Blender's Rigify horse.
 
-// scripts/blender-rigify-horses' files (one Blender run, about 10 s, made once for every test process of
-// a run: tests/blender_fixture.h): the meta-rig with a thin body, a full body (mane, ears and jaw weighted
-// too) and only the trunk weighted; the generated rig with every bone, and with its deform bones only
-// (thin and full bodies). "" without Blender.
+// scripts/blender-rigify-horse's files, each vertex weighted wholly to its nearest bone of the body's, so
+// that which joints a file weights is known (one Blender run of six horses, under 10 s, made once for
+// every test process of a run: tests/blender_fixture.h): the meta-rig with a thin body (legs, trunk,
+// neck, head and tail weighted), a full body (every bone weighted: the mane, ears, jaw, eyes, nostrils,
+// breast and pelvis bones too) and the thin body with only the spine weighted; the generated rig with
+// every bone, and with its deform bones only (thin and full bodies). "" without Blender.
 const std::string& rigifyHorses() {
   static const std::string dir = []() -> std::string {
     if (!stirrup::test::blenderInstalled()) return "";
     const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_blender_horses" / "mapping";
-    const fs::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horses";
-    if (!stirrup::test::madeByBlender(d, script, "'" + script.string() + "' '" + d.string() + "'").ok) return "failed";
+    const fs::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
+    const std::string command = "'" + script.string() + "' --batch '" + d.string() + "'" +
+                                " 'metarig-thin:--form metarig --weights nearest'"
+                                " 'metarig-full:--form metarig --body full --weights nearest'"
+                                " 'metarig-trunk:--form metarig --body trunk --weights nearest'"
+                                " 'generated-all:--form generated --bones all --weights nearest'"
+                                " 'generated-deform:--form generated --bones deform --weights nearest'"
+                                " 'generated-deform-full:--form generated --bones deform --body full --weights nearest'";
+    if (!stirrup::test::madeByBlender(d, script, command).ok) return "failed";
     return d.string();
   }();
   return dir;
@@ -273,7 +283,7 @@ const std::string& rigifyHorses() {
   do {                                                                                                                    \
     if (rigifyHorses().empty())                                                                                           \
       GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy): Blender's Rigify horse is not made"; \
-    ASSERT_NE(rigifyHorses(), "failed") << "scripts/blender-rigify-horses failed";                                        \
+    ASSERT_NE(rigifyHorses(), "failed") << "scripts/blender-rigify-horse failed";                                         \
   } while (0)
 
 AutoMapping mapRigifyHorse(const std::string& form, bool use_names) {
@@ -324,11 +334,41 @@ TEST(AutoMappingRigifyHorse, TheMetarigMapsEveryRoleByNameAndByShape) {
 }
 
 TEST(AutoMappingRigifyHorse, TheSameSkeletonMapsTheSameWhateverItsMeshWeights) {
-  // One skeleton, three bodies: thin (legs, trunk, neck, head, tail weighted), full (the mane, ears,
-  // jaw, eyes, nostrils, breast and pelvis bones weighted too, the mane reaching above the head), and
-  // the trunk alone weighted (legs, neck, head and tail carry no weight): one role table, by names
-  // and by shape. Likewise the generated rig's deform bones under a thin and a full body.
+  // One skeleton, three bodies: thin (legs, trunk, neck, head, tail weighted), full (every bone
+  // weighted: the mane, ears, jaw, eyes, nostrils, breast and pelvis bones too, the mane reaching above
+  // the head), and the trunk alone weighted (legs, neck, head and tail carry no weight): one role
+  // table, by names and by shape. Likewise the generated rig's deform bones under a thin and a full body.
   RIGIFY_HORSES_OR_SKIP();
+  // The files weight exactly those joints.
+  const auto weighted = [](const std::string& form) {
+    const fs::path file = fs::path(rigifyHorses()) / (form + ".glb");
+    const MappingSkeleton s = mappingSkeletonFromGltf(readGltfFile(file, file.string()), file.string());
+    std::set<std::string> w;
+    for (std::size_t j = 0; j < s.names.size(); ++j)
+      if (s.weighted[j]) w.insert(s.names[j]);
+    return w;
+  };
+  // The thin body's bones, the spine, neck, head, tail and legs (in the generated rig each long leg bone
+  // in two segments).
+  const auto thinBones = [](const std::string& prefix, bool split) {
+    std::set<std::string> w;
+    for (const char* b : {"spine.001", "spine.002", "spine.003", "spine.004", "spine.005", "spine.006", "neck.001", "neck.002", "neck.003",
+                          "neck.004", "head", "tail.001", "tail.002", "tail.003", "tail.004", "tail.005"})
+      w.insert(prefix + b);
+    for (const std::string side : {".L", ".R"}) {
+      for (const char* b : {"shoulder", "f_toe", "f_hoof", "r_toe", "r_hoof"}) w.insert(prefix + b + side);
+      for (const char* b : {"upper_arm", "forearm", "forefoot", "thigh", "lower_leg", "hind_foot"}) {
+        w.insert(prefix + b + side);
+        if (split) w.insert(prefix + b + side + ".001");
+      }
+    }
+    return w;
+  };
+  EXPECT_EQ(weighted("metarig-thin"), thinBones("", false));
+  EXPECT_EQ(weighted("metarig-trunk"), (std::set<std::string>{"spine.001", "spine.002", "spine.003", "spine.004", "spine.005", "spine.006"}));
+  EXPECT_EQ(weighted("metarig-full").size(), 70u);  // every bone
+  EXPECT_EQ(weighted("generated-deform"), thinBones("DEF-", true));
+  EXPECT_EQ(weighted("generated-deform-full").size(), 80u);  // every deform bone
   for (const bool use_names : {true, false}) {
     const AutoMapping thin = mapRigifyHorse("metarig-thin", use_names);
     for (const char* body : {"metarig-full", "metarig-trunk"})
