@@ -305,7 +305,8 @@ std::vector<unsigned char> characterGlb(const Character& c) {
 
 void writeCharacterGlb(const Character& c, const std::filesystem::path& file) { writeFileAtomically(file, characterGlb(c)); }
 
-std::optional<std::map<std::string, int>> gltfRoleTable(const tinygltf::Model& model, const std::string& f, int skin, CharacterKind kind) {
+std::optional<std::map<std::string, int>> gltfRoleTable(const tinygltf::Model& model, const std::string& f, int skin, CharacterKind kind,
+                                                        bool* by_joint_name) {
   const tinygltf::Value* by_index = nullptr;
   const tinygltf::Value* by_name = nullptr;
   for (const tinygltf::Node& n : model.nodes)
@@ -322,6 +323,7 @@ std::optional<std::map<std::string, int>> gltfRoleTable(const tinygltf::Model& m
   // By the joint's name where the table gives it: a tool that keeps extras may list the skin's joints in
   // another order (Blender's exporter lists them depth first), which leaves the indices pointing at others.
   const bool named = by_name && by_name->IsObject();
+  if (by_joint_name) *by_joint_name = named;
   const auto jointOf = [&](const std::string& role) -> std::optional<int> {
     if (named) {
       if (!by_name->Has(role)) return std::nullopt;

@@ -95,8 +95,10 @@ Character loadCharacterGltf(const GltfSkinSource& source, CharacterKind kind, co
 // extras.stirrup_role_joints where the file has them) for skin `skin`: role -> index into its joints,
 // the required roles of `kind` and the optional ones it names; nullopt when the file has no table for
 // the skin. A role missing or pointing at no joint is a one-line InputError naming `file` and the role.
+// `by_joint_name`, when given, is set when the table named the joints (a file stirrup wrote before
+// stirrup_role_joints, or one from a tool that dropped it, has indices only).
 std::optional<std::map<std::string, int>> gltfRoleTable(const tinygltf::Model& model, const std::string& file, int skin,
-                                                        CharacterKind kind);
+                                                        CharacterKind kind, bool* by_joint_name = nullptr);
 
 // What a scene's "characters" entry names: "default" (the built-in generator), or a glTF file with
 // an optional mapping file (empty: the file's own role table, or the mapping it gets by itself, whose
