@@ -22,7 +22,9 @@
 #include "rig/clip.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/io/clip_factory.h"
+#include "tests/cli/blender_script.h"
 #include "tests/cli/run_command.h"
+#include "tests/test_files.h"
 
 namespace stirrup::test {
 namespace {
@@ -256,19 +258,6 @@ fs::path bakeShot(const fs::path& dir, const std::string& scene, const std::stri
   return glb;
 }
 
-tinygltf::Model loadModel(const fs::path& glb) {
-  tinygltf::Model m;
-  tinygltf::TinyGLTF gltf;
-  std::string err, warn;
-  EXPECT_TRUE(gltf.LoadBinaryFromFile(&m, &err, &warn, glb.string())) << err;
-  return m;
-}
-
-void saveModel(tinygltf::Model& m, const fs::path& glb) {
-  tinygltf::TinyGLTF gltf;
-  ASSERT_TRUE(gltf.WriteGltfSceneToFile(&m, glb.string(), true, true, false, true));
-}
-
 int nodeNamed(const tinygltf::Model& m, const std::string& name) {
   for (std::size_t n = 0; n < m.nodes.size(); ++n)
     if (m.nodes[n].name == name) return int(n);
@@ -338,7 +327,7 @@ TEST_F(CheckCli, ABakedCrowdIsMeasuredPairByPair) {
 // other; her hands leave the reins by the 15 cm planted.
 TEST_F(CheckCli, ARiderKeyedIntoTheHorseFailsRiderInHorseAtThoseFrames) {
   const fs::path glb = bakeShot(dir, "trot.json", "1-12");
-  tinygltf::Model m = loadModel(glb);
+  tinygltf::Model m = readGlbModel(glb);
   const int pelvis = nodeNamed(m, "pelvis");
   ASSERT_GE(pelvis, 0);
   bool moved = false;
@@ -352,7 +341,7 @@ TEST_F(CheckCli, ARiderKeyedIntoTheHorseFailsRiderInHorseAtThoseFrames) {
   }
   ASSERT_TRUE(moved) << "the bake keys no translation of the pelvis";
   const fs::path sunk = dir / "sunk.glb";
-  saveModel(m, sunk);
+  writeGlbModel(m, sunk);
   const CommandResult r = runStirrup("check " + quote(sunk.string()) + " --json");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   const nlohmann::json report = nlohmann::json::parse(r.out);
@@ -376,14 +365,8 @@ TEST_F(CheckCli, ARiderKeyedIntoTheHorseFailsRiderInHorseAtThoseFrames) {
 // What Blender 3.4 makes of a bake: imported, exported again by its glTF exporter as it is, and again with
 // the rider armature moved 15 cm down (Blender's Z) and custom properties kept (the role table with it).
 constexpr const char* kBlenderReExport = R"(
-import sys
-import numpy as np
-np.bool = bool  # Blender 3.4's glTF importer still uses np.bool, removed in numpy 1.24
-import bpy
-src, untouched, moved = sys.argv[sys.argv.index("--") + 1:]
-for o in list(bpy.data.objects):
-    bpy.data.objects.remove(o)
-bpy.ops.import_scene.gltf(filepath=src)
+src, untouched, moved = args
+import_glb(src)
 bpy.ops.export_scene.gltf(filepath=untouched, export_format="GLB")
 bpy.data.objects["rider"].location.z -= 0.15
 bpy.ops.export_scene.gltf(filepath=moved, export_format="GLB", export_extras=True)
@@ -393,15 +376,13 @@ bpy.ops.export_scene.gltf(filepath=moved, export_format="GLB", export_extras=Tru
 // meshes under the armatures, no cameras, one animation) reads as the same shot and is clean; the rider
 // moved 15 cm into the horse fails rider-in-horse on every frame.
 TEST_F(CheckCli, BlendersReExportOfABakeIsMeasuredAndARiderMovedIntoTheHorseFails) {
-  if (runCommand("command -v blender >/dev/null").exit_code != 0)
-    GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
   const fs::path glb = bakeShot(dir, "trot.json", "1-24");
-  const fs::path script = dir / "reexport.py", untouched = dir / "untouched.glb", moved = dir / "moved.glb";
-  std::ofstream(script) << kBlenderReExport;
-  const CommandResult b = runCommand("blender -b --factory-startup --python-exit-code 3 --python " + quote(script.string()) + " -- " +
-                                     quote(glb.string()) + " " + quote(untouched.string()) + " " + quote(moved.string()));
+  const fs::path untouched = dir / "untouched.glb", moved = dir / "moved.glb";
+  const CommandResult b = runBlenderScript(dir / "reexport.py", kBlenderReExport,
+                                           quote(glb.string()) + " " + quote(untouched.string()) + " " + quote(moved.string()));
   ASSERT_EQ(b.exit_code, 0) << b.out << b.err;
-  const tinygltf::Model m = loadModel(untouched);
+  const tinygltf::Model m = readGlbModel(untouched);
   EXPECT_EQ(m.asset.generator.rfind("Khronos glTF Blender I/O", 0), 0u) << m.asset.generator;
   ASSERT_EQ(m.skins.size(), 2u);
   for (const tinygltf::Skin& skin : m.skins) EXPECT_EQ(skin.skeleton, -1);
@@ -412,7 +393,7 @@ TEST_F(CheckCli, BlendersReExportOfABakeIsMeasuredAndARiderMovedIntoTheHorseFail
   EXPECT_TRUE(m.cameras.empty());
   // Kept, the role table comes back as written, but Blender lists the joints depth first: the indices
   // point at other joints, the names (stirrup_role_joints) at the right ones.
-  const tinygltf::Model kept = loadModel(moved), baked = loadModel(glb);
+  const tinygltf::Model kept = readGlbModel(moved), baked = readGlbModel(glb);
   const auto jointNames = [](const tinygltf::Model& model, int skin) {
     std::vector<std::string> names;
     for (const int n : model.skins.at(std::size_t(skin)).joints) names.push_back(model.nodes[std::size_t(n)].name);
@@ -450,10 +431,10 @@ TEST_F(CheckCli, BlendersReExportOfABakeIsMeasuredAndARiderMovedIntoTheHorseFail
 TEST_F(CheckCli, BadBakedShotsAreOneLineErrors) {
   const fs::path glb = bakeShot(dir, "trot.json", "1-4");
   const auto broken = [&](const std::string& name, const std::function<void(tinygltf::Model&)>& change) {
-    tinygltf::Model m = loadModel(glb);
+    tinygltf::Model m = readGlbModel(glb);
     change(m);
     const fs::path f = dir / name;
-    saveModel(m, f);
+    writeGlbModel(m, f);
     const CommandResult r = runStirrup("check " + quote(f.string()));
     EXPECT_EQ(r.exit_code, 3) << r.out;
     EXPECT_EQ(r.out, "");

@@ -26,6 +26,7 @@
 #include "rig/io/gltf_clip.h"
 #include "rig/rig_profile.h"
 #include "tests/rig/default_characters.h"
+#include "tests/test_files.h"
 
 namespace stirrup::rig {
 namespace {
@@ -34,12 +35,7 @@ namespace fs = std::filesystem;
 using test::defaultHorse;
 using test::defaultRider;
 
-fs::path tempDir(const std::string& name) {
-  const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_gltf_shot" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path tempDir(const std::string& name) { return stirrup::test::freshTestDir("test_gltf_shot", name); }
 
 constexpr int kFrames = 24;
 constexpr double kFps = 24.0;
