@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include "tests/expect_near.h"
 #include "tests/input_error.h"
 
 namespace stirrup::rig {
@@ -76,11 +77,7 @@ tinygltf::Model slideAndTurn() {
   return m;
 }
 
-void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tol = 1e-6) {
-  EXPECT_NEAR(a.x, b.x, tol);
-  EXPECT_NEAR(a.y, b.y, tol);
-  EXPECT_NEAR(a.z, b.z, tol);
-}
+using test::expectNear;
 
 TEST(GltfAnimation, NodesMoveAsTheirKeysSay) {
   const GltfAnimation a(slideAndTurn(), "x.glb", "");

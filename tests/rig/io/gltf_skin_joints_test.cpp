@@ -14,6 +14,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/io/gltf_animation.h"
+#include "tests/expect_near.h"
 #include "tests/input_error.h"
 
 namespace stirrup::rig {
@@ -54,11 +55,8 @@ tinygltf::Model bakeLike() {
   return m;
 }
 
-void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tol = 1e-4) {
-  EXPECT_NEAR(a.x, b.x, tol);
-  EXPECT_NEAR(a.y, b.y, tol);
-  EXPECT_NEAR(a.z, b.z, tol);
-}
+// Centimetres from float keys and matrices.
+void expectNear(const glm::dvec3& a, const glm::dvec3& b) { test::expectNear(a, b, 1e-4); }
 
 TEST(GltfSkinJoints, AJointStandsWhereItsNodeIsInCentimetres) {
   tinygltf::Model m = bakeLike();
