@@ -296,6 +296,20 @@ TEST_F(CheckCli, ABakedTrotIsMeasuredAsAShot) {
   EXPECT_EQ(c["read_as"], "scene");
   EXPECT_EQ(s["frames"], c["frames"]);
   EXPECT_EQ(s["frames"], 24);
+
+  // Its armatures renamed and its role tables dropped (as another tool might): two skins the automatic
+  // mapping finds a horse and a rider in, by the joints' names, the same shot.
+  tinygltf::Model m = readGlbModel(glb);
+  m.nodes[std::size_t(nodeNamed(m, "horse"))].name = "Hengst";
+  m.nodes[std::size_t(nodeNamed(m, "rider"))].name = "Reiterin";
+  for (tinygltf::Node& n : m.nodes)
+    if (n.skin >= 0) n.extras = tinygltf::Value();
+  const fs::path renamed = dir / "renamed.glb";
+  writeGlbModel(m, renamed);
+  const CommandResult other = runStirrup("check " + quote(renamed.string()));
+  EXPECT_EQ(other.exit_code, 0) << other.out << other.err;
+  EXPECT_EQ(other.out.substr(0, other.out.find('\n')),
+            renamed.string() + ": a baked shot: 1 pair (Hengst and Reiterin), 24 frames at 24 fps, animation \"trot\"");
 }
 
 // A crowd's bake (ride_out, 8 pairs, its first 12 frames) over the scene's own ground: every pair by
