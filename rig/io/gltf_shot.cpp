@@ -25,7 +25,7 @@ constexpr std::array<const char*, 4> kHoofRoles = {"lfHoof", "rfHoof", "lbHoof",
 constexpr std::array<HorseChannel, 4> kHoofLift = {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy, HorseChannel::lbHoofTy,
                                                    HorseChannel::rbHoofTy};
 
-// Where the skin's joints are nodes of: joint by node.
+// Whether `node` is one of the skin's joints.
 bool isJointOf(const tinygltf::Skin& skin, int node) { return std::find(skin.joints.begin(), skin.joints.end(), node) != skin.joints.end(); }
 
 // The skin's top joint (index into its joints): the first with no joint of the skin above it.
@@ -279,12 +279,14 @@ MountedPose GltfShot::pose(std::size_t pair, int frame, const GroundHeight& grou
   f.keyed_pose = std::move(keyed);
   MountedPose out;
   out.horse = poseHorse(p.horse, f, {}, &out.reach);
-  // The rider as keyed (the loader adds her no points; one would hang from its parent).
+  // The rider as keyed (the loader adds her no points; one would hang from its parent as at rest).
   const Skeleton& rs = p.rider.skeleton;
   out.rider.resize(rider.joints.size());
-  for (std::size_t j = 0; j < rider.joints.size(); ++j)
-    out.rider[j] = rider.joints[j].node >= 0 ? posed(rider, rider.joints[j])
-                                             : out.rider[std::size_t(std::max(0, rs.joints[j].parent))] * rs.joints[j].rest_local;
+  for (std::size_t j = 0; j < rider.joints.size(); ++j) {
+    const int up = rs.joints[j].parent;
+    if (rider.joints[j].node >= 0) out.rider[j] = posed(rider, rider.joints[j]);
+    else out.rider[j] = up < 0 ? rs.joints[j].rest_local : out.rider[std::size_t(up)] * rs.joints[j].rest_local;
+  }
   return out;
 }
 
