@@ -52,8 +52,34 @@ GltfTrs restOf(const tinygltf::Node& n) {
 
 GltfAnimation::GltfAnimation(const tinygltf::Model& model, const std::string& file, const std::string& animation) {
   index_ = animationIndex(model, file, animation);
-  const tinygltf::Animation& anim = model.animations[static_cast<std::size_t>(index_)];
-  name_ = anim.name;
+  name_ = model.animations[static_cast<std::size_t>(index_)].name;
+  setUp(model, file);
+  addTracks(model, file, index_);
+}
+
+GltfAnimation GltfAnimation::together(const tinygltf::Model& model, const std::string& file) {
+  GltfAnimation a;
+  a.setUp(model, file);
+  for (std::size_t i = 0; i < model.animations.size(); ++i) {
+    const tinygltf::Animation& anim = model.animations[i];
+    const std::string name = anim.name.empty() ? "animations[" + std::to_string(i) + "]" : anim.name;
+    bool other_take = false;
+    for (const tinygltf::AnimationChannel& ch : anim.channels)
+      other_take = other_take || (ch.target_node >= 0 && ch.target_node < a.nodeCount() && a.animates(ch.target_node) &&
+                                  ch.target_path != "weights");
+    if (other_take) {
+      a.left_out_.push_back(name);
+      continue;
+    }
+    if (a.played_.empty()) a.index_ = static_cast<int>(i);
+    a.addTracks(model, file, static_cast<int>(i));
+    a.played_.push_back(name);
+    a.name_ += (a.name_.empty() ? "" : " + ") + name;
+  }
+  return a;
+}
+
+void GltfAnimation::setUp(const tinygltf::Model& model, const std::string& file) {
   parent_ = gltfNodeParents(model, file);
   for (const tinygltf::Node& n : model.nodes) rest_.push_back(restOf(n));
   // Parents before children: by depth, stable.
@@ -63,8 +89,11 @@ GltfAnimation::GltfAnimation(const tinygltf::Model& model, const std::string& fi
   order_.resize(rest_.size());
   for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
   std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) { return depth[std::size_t(a)] < depth[std::size_t(b)]; });
-
   drive_.assign(rest_.size(), {});
+}
+
+void GltfAnimation::addTracks(const tinygltf::Model& model, const std::string& file, int index) {
+  const tinygltf::Animation& anim = model.animations[static_cast<std::size_t>(index)];
   const std::string where_animation = file + ": animation \"" + anim.name + "\"";
   for (std::size_t c = 0; c < anim.channels.size(); ++c) {
     const tinygltf::AnimationChannel& ch = anim.channels[c];

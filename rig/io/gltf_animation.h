@@ -42,6 +42,11 @@ class GltfAnimation {
   // `animation`: the animation's name, or empty for the file's first. A file without animations, or
   // without one of that name, is an InputError naming the file (and the names it has).
   GltfAnimation(const tinygltf::Model& model, const std::string& file, const std::string& animation);
+  // Every animation of the file played together, as one shot: Blender's exporter writes a shot as one
+  // animation, or as one an armature (actions it finds off the NLA tracks), each keying its own nodes.
+  // An animation that keys a node an earlier one keys is another take of it and is left out (leftOut());
+  // a file without animations rests (duration 0). Its name joins the names played with " + ".
+  static GltfAnimation together(const tinygltf::Model& model, const std::string& file);
 
   const std::string& name() const { return name_; }
   int index() const { return index_; }
@@ -54,6 +59,9 @@ class GltfAnimation {
   const std::vector<int>& parents() const { return parent_; }
   // Whether any track moves the node.
   bool animates(int node) const;
+  // together(): the animations played and those left out (by name, "animations[i]" when unnamed).
+  const std::vector<std::string>& played() const { return played_; }
+  const std::vector<std::string>& leftOut() const { return left_out_; }
 
   // The node's local transform at time t, or as the file rests it (t empty).
   GltfTrs localTrs(int node, std::optional<double> t) const;
@@ -64,6 +72,12 @@ class GltfAnimation {
   std::vector<glm::dmat4> worlds(std::optional<double> t) const;
 
  private:
+  GltfAnimation() = default;
+  // The nodes' rests and hierarchy; no tracks.
+  void setUp(const tinygltf::Model& model, const std::string& file);
+  // Animation `index`'s tracks (each checked: a one-line InputError naming the file, the animation and the sampler).
+  void addTracks(const tinygltf::Model& model, const std::string& file, int index);
+
   struct Track {
     std::vector<float> times, values;
     int components = 3;
@@ -84,6 +98,7 @@ class GltfAnimation {
   std::vector<int> order_;  // nodes, parents before children
   std::vector<Drive> drive_;
   std::vector<Track> tracks_;
+  std::vector<std::string> played_, left_out_;
 };
 
 // A rotation's unit quaternion from a matrix whose columns may carry scale.

@@ -222,10 +222,14 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
     ibm.insert(ibm.end(), glm::value_ptr(bind), glm::value_ptr(bind) + 16);
   }
   skin.inverseBindMatrices = appendFloatAccessor(model, bin, ibm, 16, false);
-  tinygltf::Value::Object roles;
-  for (const auto& [role, j] : c.roles) roles[role] = tinygltf::Value(j);
+  tinygltf::Value::Object roles, role_joints;
+  for (const auto& [role, j] : c.roles) {
+    roles[role] = tinygltf::Value(j);
+    role_joints[role] = tinygltf::Value(names[std::size_t(j)]);
+  }
   tinygltf::Value::Object extras;
   extras["stirrup_roles"] = tinygltf::Value(roles);
+  extras["stirrup_role_joints"] = tinygltf::Value(role_joints);
   extras["stirrup_character"] = tinygltf::Value(c.name);
   for (std::size_t j = 0; j < s.size(); ++j)
     if (s.joints[j].parent < 0) {
@@ -301,160 +305,123 @@ std::vector<unsigned char> characterGlb(const Character& c) {
 
 void writeCharacterGlb(const Character& c, const std::filesystem::path& file) { writeFileAtomically(file, characterGlb(c)); }
 
+std::optional<std::map<std::string, int>> gltfRoleTable(const tinygltf::Model& model, const std::string& f, int skin, CharacterKind kind,
+                                                        bool* by_joint_name) {
+  const tinygltf::Value* by_index = nullptr;
+  const tinygltf::Value* by_name = nullptr;
+  for (const tinygltf::Node& n : model.nodes)
+    if (n.skin == skin && n.extras.IsObject() && n.extras.Has("stirrup_roles")) {
+      by_index = &n.extras.Get("stirrup_roles");
+      by_name = n.extras.Has("stirrup_role_joints") ? &n.extras.Get("stirrup_role_joints") : nullptr;
+    }
+  if (!by_index) return std::nullopt;
+  if (!by_index->IsObject())
+    throw InputError(f + ": the file's role table (extras.stirrup_roles) is not an object (expected role -> joint index)");
+  const std::vector<std::string> names = gltfJointNames(model, skin);
+  const int nj = static_cast<int>(names.size());
+  const std::string kind_name(characterKindName(kind));
+  // By the joint's name where the table gives it: a tool that keeps extras may list the skin's joints in
+  // another order (Blender's exporter lists them depth first), which leaves the indices pointing at others.
+  const bool named = by_name && by_name->IsObject();
+  if (by_joint_name) *by_joint_name = named;
+  const auto jointOf = [&](const std::string& role) -> std::optional<int> {
+    if (named) {
+      if (!by_name->Has(role)) return std::nullopt;
+      const tinygltf::Value& v = by_name->Get(role);
+      const auto it = v.IsString() ? std::find(names.begin(), names.end(), v.Get<std::string>()) : names.end();
+      if (it == names.end())
+        throw InputError(f + ": role " + role + ": the file's role table (extras.stirrup_role_joints) names no joint of skins[" +
+                         std::to_string(skin) + "] (expected one of its joints' names)");
+      return static_cast<int>(it - names.begin());
+    }
+    if (!by_index->Has(role)) return std::nullopt;
+    const tinygltf::Value& v = by_index->Get(role);
+    if (!v.IsInt() || v.Get<int>() < 0 || v.Get<int>() >= nj)
+      throw InputError(f + ": role " + role + ": expected a joint index 0.." + std::to_string(nj - 1) + " in the file's role table");
+    return v.Get<int>();
+  };
+  std::map<std::string, int> roles;
+  for (const std::string& role : requiredRoles(kind)) {
+    const std::optional<int> j = jointOf(role);
+    if (!j) throw InputError(f + ": role " + role + ": missing from the file's role table (expected a joint of the " + kind_name + ")");
+    roles[role] = *j;
+  }
+  for (const std::string& role : optionalRoles(kind))
+    if (const std::optional<int> j = jointOf(role)) roles[role] = *j;
+  return roles;
+}
+
 namespace {
 
-Character loadCharacterGltfUnchecked(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping,
-                                     AutoMapping* auto_mapped, HorseTackReport* tack) {
-  const std::string f = file.string();
-  const std::string kind_name(characterKindName(kind));
-  if (!std::filesystem::exists(file)) throw InputError(f + ": no such file (expected a skinned glTF " + kind_name + ")");
-  GltfImageBytes images;
-  const tinygltf::Model model = readGltfFile(file, f, &images);
-  const tinygltf::Skin& skin = checkedFirstSkin(model, f, kind_name);
-  const int nj = static_cast<int>(skin.joints.size());
-
-  // The joints' names as the character will carry them (unnamed joints: "jointN").
-  const std::vector<std::string> joint_names = gltfJointNames(model);
-  // Role -> index into skin.joints.
+// Which joints play the character's roles: role -> index into the skin's joints, and what told.
+struct SkinRoles {
   std::map<std::string, int> role_joint;
-  std::string where = f;
-  const bool has_role_table = [&] {
-    for (const tinygltf::Node& n : model.nodes)
-      if (n.skin == 0 && n.extras.IsObject() && n.extras.Has("stirrup_roles")) return true;
-    return false;
-  }();
-  std::optional<AutoMapping> automatic;
-  if (!mapping && !has_role_table) {
-    // No mapping file and no role table: the file is mapped by itself (rig/io/auto_mapping.h).
-    automatic = autoMapCharacter(mappingSkeletonFromGltf(model, f), kind);
-    mapping = &automatic->mapping;
+  std::string where;                     // the mapping file, or the glTF file, for messages
+  std::string hint;                      // how to change a role that is off its chain
+  std::optional<AutoMapping> automatic;  // the file mapped by itself
+  const CharacterMapping* given = nullptr;
+  const CharacterMapping* mapping() const { return automatic ? &automatic->mapping : given; }
+};
+
+// The roles from the mapping given, else the file's role table, else the mapping the file gets by
+// itself (rig/io/auto_mapping.h). Each a one-line InputError naming the file and the role.
+SkinRoles findSkinRoles(const tinygltf::Model& model, const std::string& f, int skin, CharacterKind kind,
+                        const CharacterMapping* mapping, const std::vector<std::string>& joint_names) {
+  const std::string kind_name(characterKindName(kind));
+  const int nj = static_cast<int>(joint_names.size());
+  SkinRoles out;
+  out.where = f;
+  out.given = mapping;
+  std::optional<std::map<std::string, int>> table;
+  if (!mapping) table = gltfRoleTable(model, f, skin, kind);
+  if (!mapping && !table) {
+    // No mapping file and no role table: the file is mapped by itself.
+    out.automatic = autoMapCharacter(mappingSkeletonFromGltf(model, f, skin), kind);
+    mapping = &out.automatic->mapping;
   }
-  const std::string hint = automatic ? "the automatic mapping chose it: map it in a mapping file, stirrup character map " + f +
-                                          " --as " + kind_name + " -o MAP.json"
-                                    : "change it in the mapping file";
-  if (mapping) {
-    where = mapping->file.empty() ? f : mapping->file.string();
-    const auto mapRole = [&](const std::string& role, const std::string& joint_name) {
-      int found = -1;
-      for (int j = 0; j < nj; ++j)
-        if (joint_names[j] == joint_name) found = j;
-      if (found < 0)
-        throw InputError(where + ": roles." + role + ": no joint named \"" + joint_name + "\" in " + f + " (change it to one of the file's joints: " +
-                         "stirrup character map " + f + " --as " + kind_name + " lists them with the roles they seem to play)");
-      role_joint[role] = found;
-    };
-    for (const std::string& role : requiredRoles(kind)) {
-      const auto it = mapping->roles.find(role);
-      if (it == mapping->roles.end()) {
-        if (automatic) {
-          std::string missing;
-          for (const std::string& r : automatic->report.not_mapped) missing += (missing.empty() ? "" : ", ") + r;
-          throw InputError(f + ": roles." + role + ": not found by the automatic mapping (by " + automatic->report.method +
-                           "; not mapped: " + missing + "; map them in a mapping file: stirrup character map " + f + " --as " +
-                           kind_name + " -o MAP.json, then add them)");
-        }
-        throw InputError(where + ": roles." + role + ": missing (expected the name of the " + kind_name + "'s " + role + " joint in " + f + ")");
+  out.hint = out.automatic ? "the automatic mapping chose it: map it in a mapping file, stirrup character map " + f + " --as " +
+                                 kind_name + " -o MAP.json"
+                           : "change it in the mapping file";
+  if (!mapping) {
+    out.role_joint = *table;
+    return out;
+  }
+  out.where = mapping->file.empty() ? f : mapping->file.string();
+  const auto mapRole = [&](const std::string& role, const std::string& joint_name) {
+    int found = -1;
+    for (int j = 0; j < nj; ++j)
+      if (joint_names[j] == joint_name) found = j;
+    if (found < 0)
+      throw InputError(out.where + ": roles." + role + ": no joint named \"" + joint_name + "\" in " + f + " (change it to one of the file's joints: " +
+                       "stirrup character map " + f + " --as " + kind_name + " lists them with the roles they seem to play)");
+    out.role_joint[role] = found;
+  };
+  for (const std::string& role : requiredRoles(kind)) {
+    const auto it = mapping->roles.find(role);
+    if (it == mapping->roles.end()) {
+      if (out.automatic) {
+        std::string missing;
+        for (const std::string& r : out.automatic->report.not_mapped) missing += (missing.empty() ? "" : ", ") + r;
+        throw InputError(f + ": roles." + role + ": not found by the automatic mapping (by " + out.automatic->report.method +
+                         "; not mapped: " + missing + "; map them in a mapping file: stirrup character map " + f + " --as " +
+                         kind_name + " -o MAP.json, then add them)");
       }
-      mapRole(role, it->second);
+      throw InputError(out.where + ": roles." + role + ": missing (expected the name of the " + kind_name + "'s " + role + " joint in " + f + ")");
     }
-    for (const std::string& role : optionalRoles(kind))
-      if (const auto it = mapping->roles.find(role); it != mapping->roles.end()) mapRole(role, it->second);
-  } else {
-    tinygltf::Value roles;
-    for (const tinygltf::Node& n : model.nodes)
-      if (n.skin == 0 && n.extras.IsObject() && n.extras.Has("stirrup_roles")) roles = n.extras.Get("stirrup_roles");
-    if (!roles.IsObject())
-      throw InputError(f + ": the file's role table (extras.stirrup_roles) is not an object (expected role -> joint index)");
-    for (const std::string& role : requiredRoles(kind)) {
-      const tinygltf::Value& v = roles.Get(role);
-      if (!v.IsInt() || v.Get<int>() < 0 || v.Get<int>() >= nj)
-        throw InputError(f + ": role " + role + ": missing from the file's role table (expected a joint of the " + kind_name + ")");
-      role_joint[role] = v.Get<int>();
-    }
-    for (const std::string& role : optionalRoles(kind)) {
-      if (!roles.Has(role)) continue;
-      const tinygltf::Value& v = roles.Get(role);
-      if (!v.IsInt() || v.Get<int>() < 0 || v.Get<int>() >= nj)
-        throw InputError(f + ": role " + role + ": expected a joint index 0.." + std::to_string(nj - 1) + " in the file's role table");
-      role_joint[role] = v.Get<int>();
-    }
+    mapRole(role, it->second);
   }
+  for (const std::string& role : optionalRoles(kind))
+    if (const auto it = mapping->roles.find(role); it != mapping->roles.end()) mapRole(role, it->second);
+  return out;
+}
 
-  // Axes: file -> stirrup (cm, +X forward, +Y up, +Z right).
-  glm::mat4 convert(1.0f);
-  glm::vec3 offset(0.0f);
-  if (mapping) {
-    convert = glm::mat4(mappingToRig(*mapping));
-    offset = glm::vec3(convert[3]);
-    convert[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  }
-  const auto toRig = [&](glm::vec3 p) { return glm::vec3(convert * glm::vec4(p, 1.0f)) + offset; };
-
-  // Joint bind positions from the inverse bind matrices (identity when absent).
-  std::vector<glm::mat4> ibm(nj, glm::mat4(1.0f));
-  if (skin.inverseBindMatrices >= 0) {
-    const std::vector<float> v = readAccessor(model, skin.inverseBindMatrices, 16, f + ": skins[0].inverseBindMatrices");
-    if (static_cast<int>(v.size()) != nj * 16) throw InputError(f + ": skins[0].inverseBindMatrices: expected one per joint");
-    for (int j = 0; j < nj; ++j) std::memcpy(glm::value_ptr(ibm[j]), v.data() + j * 16, 64);
-  }
-  // Parents: the nearest ancestor node that is a joint.
-  const std::vector<int> node_parent = gltfNodeParents(model, f);
-  std::map<int, int> node_joint;
-  for (int j = 0; j < nj; ++j) node_joint[skin.joints[j]] = j;
-  std::vector<int> parent(nj, -1);
-  for (int j = 0; j < nj; ++j)
-    for (int n = node_parent.at(skin.joints[j]); n >= 0; n = node_parent[n])
-      if (node_joint.count(n)) {
-        parent[j] = node_joint[n];
-        break;
-      }
-  // A Rigify rig's deform bones as Rigify means them (rigifyDeformParents).
-  rigifyDeformParents(parent, joint_names);
-  // Joint bind positions from the inverse bind matrices (identity when absent), in the file's space.
-  std::vector<glm::vec3> file_bind(nj);
-  for (int j = 0; j < nj; ++j) file_bind[j] = glm::vec3(glm::inverse(ibm[j])[3]);
-  // A horse's legs hang from their pivots where the file lost what held them; a skin of several roots
-  // is then one body (Skeleton's hangLooseRoots).
-  std::vector<char> root_in_file(nj, 0);
-  for (int j = 0; j < nj; ++j) root_in_file[j] = parent[j] < 0;
-  const std::vector<int> on_pivots = kind == CharacterKind::Horse ? hangLegsFromPivots(role_joint, parent, root_in_file) : std::vector<int>{};
-  const auto core = role_joint.find(kind == CharacterKind::Rider ? "pelvis" : "root");
-  std::vector<char> file_root = hangLooseRoots(parent, file_bind, core == role_joint.end() ? -1 : core->second);
-  for (int j : on_pivots) file_root[j] = 1;
-  // A mapping's roles on their chains (an elbow below its shoulder, ...), in the hierarchy the rig will
-  // pose. (A role table is stirrup's own writing, taken as it is.)
-  if (mapping)
-    if (const std::string problem = roleChainProblem(kind, role_joint, parent, joint_names, hint); !problem.empty())
-      throw InputError(where + ": " + problem);
-  // Parents first: depth order, stable.
-  std::vector<int> depth(nj, 0), order(nj);
-  for (int j = 0; j < nj; ++j)
-    for (int p = parent[j]; p >= 0; p = parent[p]) ++depth[j];
-  for (int j = 0; j < nj; ++j) order[j] = j;
-  // Kept as they are when the file lists parents first (as written here), else sorted by depth.
-  bool parents_first = true;
-  for (int j = 0; j < nj; ++j) parents_first = parents_first && parent[j] < j;
-  if (!parents_first) std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] < depth[b]; });
-  std::vector<int> new_index(nj);
-  for (int i = 0; i < nj; ++i) new_index[order[i]] = i;
-
-  Character c;
-  c.name = kind_name;
-  std::vector<glm::vec3> bind_pos(nj);
-  for (int j = 0; j < nj; ++j) bind_pos[j] = toRig(glm::vec3(glm::inverse(ibm[j])[3]));
-  for (int i = 0; i < nj; ++i) {
-    const int j = order[i];
-    const std::string& name = joint_names[j];
-    const int p = parent[j] < 0 ? -1 : new_index[parent[j]];
-    const glm::vec3 pp = p < 0 ? glm::vec3(0.0f) : bind_pos[parent[j]];
-    c.skeleton.addJoint(name, p, glm::translate(glm::mat4(1.0f), bind_pos[j] - pp));
-    c.skeleton.joints.back().file_root = file_root[j] != 0;
-  }
-  for (const auto& [role, j] : role_joint) c.roles[role] = new_index[j];
-
-  // Mesh: every primitive of every node skinned by skins[0].
-  SkinnedMesh& m = c.mesh;
-  const glm::mat3 rot = glm::mat3(convert) / static_cast<float>(mapping ? mapping->scale_cm : 1.0);
+// The mesh: every primitive of every node skinned by the skin, its vertices taken to rig space
+// (`toRig`, normals by `rot`) and bound to the rig's joints (`new_index`: the skin's joint -> the
+// skeleton's). `own_saddle` gets a flag a vertex: a horse's own saddle (below).
+void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, const std::string& f, int skin, CharacterKind kind,
+                  const std::vector<int>& new_index, const std::function<glm::vec3(glm::vec3)>& toRig, const glm::mat3& rot,
+                  SkinnedMesh& m, std::vector<char>& own_saddle) {
+  const int nj = static_cast<int>(new_index.size());
   // Primitives that share their attributes (as written here) share their vertices, when their colours
   // come from the same place (`_COLOR`, or the same material's base colour) and their texture
   // coordinates too: a block of vertices read without texture coordinates takes the first textured
@@ -467,14 +434,13 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
   std::map<int, int> texture_of;  // the file's texture -> index into m.textures
   // A horse modelled with its own saddle: the vertices of primitives whose node, mesh or material is
   // called a saddle (rig/characters/horse_tack.h seats the rider on it instead of adding one).
-  std::vector<char> own_saddle;
   const auto saddleNamed = [](std::string name) {
     std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     return name.find("saddle") != std::string::npos;
   };
   for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
     const tinygltf::Node& node = model.nodes[ni];
-    if (node.mesh < 0 || node.skin != 0) continue;
+    if (node.mesh < 0 || node.skin != skin) continue;
     const tinygltf::Mesh& mesh = gltfElement(model.meshes, node.mesh, f + ": nodes[" + std::to_string(ni) + "].mesh", "mesh");
     for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const tinygltf::Primitive& prim = mesh.primitives[pi];
@@ -569,7 +535,7 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
             const int j = static_cast<int>(jts[v * 4 + k]);
             wv[k] = wts[v * 4 + k];
             if (wv[k] > 0.0f) {
-              if (j < 0 || j >= nj) throw InputError(pw + ".JOINTS_0: joint index " + std::to_string(j) + " outside skins[0]");
+              if (j < 0 || j >= nj) throw InputError(pw + ".JOINTS_0: joint index " + std::to_string(j) + " outside skins[" + std::to_string(skin) + "]");
               jv[k] = static_cast<std::uint16_t>(new_index[j]);
             }
           }
@@ -593,8 +559,97 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
       if (!m.textures.empty()) m.triangle_textures.resize(m.indices.size() / 3, texture);
     }
   }
-  if (m.indices.empty()) throw InputError(f + ": no triangles skinned by skins[0]");
-  if (automatic && auto_mapped) *auto_mapped = *automatic;
+  if (m.indices.empty()) throw InputError(f + ": no triangles skinned by skins[" + std::to_string(skin) + "]");
+}
+
+Character loadSkinUnchecked(const GltfSkinSource& source, CharacterKind kind, const CharacterMapping* given, AutoMapping* auto_mapped,
+                            HorseTackReport* tack) {
+  const tinygltf::Model& model = *source.model;
+  const std::string& f = source.file;
+  const int skin_index = source.skin;
+  const std::string kind_name(characterKindName(kind));
+  const tinygltf::Skin& skin = checkedSkin(model, f, kind_name, skin_index);
+  const int nj = static_cast<int>(skin.joints.size());
+
+  // The joints' names as the character will carry them (unnamed joints: "jointN").
+  const std::vector<std::string> joint_names = gltfJointNames(model, skin_index);
+  const SkinRoles roles = findSkinRoles(model, f, skin_index, kind, given, joint_names);
+  const std::map<std::string, int>& role_joint = roles.role_joint;
+  const CharacterMapping* mapping = roles.mapping();
+  const std::string& where = roles.where;
+
+  // Axes: file -> stirrup (cm, +X forward, +Y up, +Z right).
+  glm::mat4 convert(1.0f);
+  glm::vec3 offset(0.0f);
+  if (mapping) {
+    convert = glm::mat4(mappingToRig(*mapping));
+    offset = glm::vec3(convert[3]);
+    convert[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  }
+  const auto toRig = [&](glm::vec3 p) { return glm::vec3(convert * glm::vec4(p, 1.0f)) + offset; };
+
+  // Joint bind positions from the inverse bind matrices (identity when absent).
+  const std::vector<glm::mat4> ibm = gltfInverseBinds(model, f, skin_index);
+  // Parents: the nearest ancestor node that is a joint.
+  const std::vector<int> node_parent = gltfNodeParents(model, f);
+  std::map<int, int> node_joint;
+  for (int j = 0; j < nj; ++j) node_joint[skin.joints[j]] = j;
+  std::vector<int> parent(nj, -1);
+  for (int j = 0; j < nj; ++j)
+    for (int n = node_parent.at(skin.joints[j]); n >= 0; n = node_parent[n])
+      if (node_joint.count(n)) {
+        parent[j] = node_joint[n];
+        break;
+      }
+  // A Rigify rig's deform bones as Rigify means them (rigifyDeformParents).
+  rigifyDeformParents(parent, joint_names);
+  // Joint bind positions from the inverse bind matrices (identity when absent), in the file's space.
+  std::vector<glm::vec3> file_bind(nj);
+  for (int j = 0; j < nj; ++j) file_bind[j] = glm::vec3(glm::inverse(ibm[j])[3]);
+  // A horse's legs hang from their pivots where the file lost what held them; a skin of several roots
+  // is then one body (Skeleton's hangLooseRoots).
+  std::vector<char> root_in_file(nj, 0);
+  for (int j = 0; j < nj; ++j) root_in_file[j] = parent[j] < 0;
+  const std::vector<int> on_pivots = kind == CharacterKind::Horse ? hangLegsFromPivots(role_joint, parent, root_in_file) : std::vector<int>{};
+  const auto core = role_joint.find(kind == CharacterKind::Rider ? "pelvis" : "root");
+  std::vector<char> file_root = hangLooseRoots(parent, file_bind, core == role_joint.end() ? -1 : core->second);
+  for (int j : on_pivots) file_root[j] = 1;
+  // A mapping's roles on their chains (an elbow below its shoulder, ...), in the hierarchy the rig will
+  // pose. (A role table is stirrup's own writing, taken as it is.)
+  if (mapping)
+    if (const std::string problem = roleChainProblem(kind, role_joint, parent, joint_names, roles.hint); !problem.empty())
+      throw InputError(where + ": " + problem);
+  // Parents first: depth order, stable.
+  std::vector<int> depth(nj, 0), order(nj);
+  for (int j = 0; j < nj; ++j)
+    for (int p = parent[j]; p >= 0; p = parent[p]) ++depth[j];
+  for (int j = 0; j < nj; ++j) order[j] = j;
+  // Kept as they are when the file lists parents first (as written here), else sorted by depth.
+  bool parents_first = true;
+  for (int j = 0; j < nj; ++j) parents_first = parents_first && parent[j] < j;
+  if (!parents_first) std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] < depth[b]; });
+  std::vector<int> new_index(nj);
+  for (int i = 0; i < nj; ++i) new_index[order[i]] = i;
+
+  Character c;
+  c.name = kind_name;
+  std::vector<glm::vec3> bind_pos(nj);
+  for (int j = 0; j < nj; ++j) bind_pos[j] = toRig(glm::vec3(glm::inverse(ibm[j])[3]));
+  for (int i = 0; i < nj; ++i) {
+    const int j = order[i];
+    const std::string& name = joint_names[j];
+    const int p = parent[j] < 0 ? -1 : new_index[parent[j]];
+    const glm::vec3 pp = p < 0 ? glm::vec3(0.0f) : bind_pos[parent[j]];
+    c.skeleton.addJoint(name, p, glm::translate(glm::mat4(1.0f), bind_pos[j] - pp));
+    c.skeleton.joints.back().file_root = file_root[j] != 0;
+  }
+  for (const auto& [role, j] : role_joint) c.roles[role] = new_index[j];
+
+  SkinnedMesh& m = c.mesh;
+  const glm::mat3 rot = glm::mat3(convert) / static_cast<float>(mapping ? mapping->scale_cm : 1.0);
+  std::vector<char> own_saddle;
+  readSkinMesh(model, *source.images, f, skin_index, kind, new_index, toRig, rot, m, own_saddle);
+  if (roles.automatic && auto_mapped) *auto_mapped = *roles.automatic;
   c.source.file = f;
   if (mapping) c.source.to_rig = mappingToRig(*mapping);
   if (!m.textures.empty()) m.uvs.resize(m.positions.size(), glm::vec2(0.0f));
@@ -624,15 +679,25 @@ Character loadCharacterGltfUnchecked(const std::filesystem::path& file, Characte
 
 }  // namespace
 
-Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping,
-                            AutoMapping* auto_mapped, HorseTackReport* tack) {
+Character loadCharacterGltf(const GltfSkinSource& source, CharacterKind kind, const CharacterMapping* mapping, AutoMapping* auto_mapped,
+                            HorseTackReport* tack) {
   try {
-    return loadCharacterGltfUnchecked(file, kind, mapping, auto_mapped, tack);
+    return loadSkinUnchecked(source, kind, mapping, auto_mapped, tack);
   } catch (const std::out_of_range&) {
     // An index the checks above do not cover (a mesh, material or accessor index past its array): the
     // .at() lookups throw, and the user gets one line naming the file (found by fuzzing).
-    throw InputError(file.string() + ": not a valid glTF file (an index points past the end of its array)");
+    throw InputError(source.file + ": not a valid glTF file (an index points past the end of its array)");
   }
+}
+
+Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind, const CharacterMapping* mapping,
+                            AutoMapping* auto_mapped, HorseTackReport* tack) {
+  const std::string f = file.string();
+  if (!std::filesystem::exists(file))
+    throw InputError(f + ": no such file (expected a skinned glTF " + std::string(characterKindName(kind)) + ")");
+  GltfImageBytes images;
+  const tinygltf::Model model = readGltfFile(file, f, &images);
+  return loadCharacterGltf(GltfSkinSource{&model, &images, f, 0}, kind, mapping, auto_mapped, tack);
 }
 
 Character resolveCharacter(CharacterKind kind, const std::string& file, const std::string& mapping_file) {

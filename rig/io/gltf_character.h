@@ -4,16 +4,19 @@
 // Writing: under a node "stirrup_cm" scaling centimetres to glTF's metres, the joints as nodes (named by their role where they have one), one skinned mesh with
 // smooth normals, triangles grouped into one primitive per base colour (one material each), at most
 // four joints per vertex, inverse bind matrices; the exact per-vertex colour in `_COLOR` and the role
-// table in the skinned mesh node's extras ("stirrup_roles": role -> index into skin.joints), so a file written
-// here loads back without a mapping file. Bytes are reproducible: the same character gives the same
+// table in the skinned mesh node's extras ("stirrup_roles": role -> index into skin.joints, and
+// "stirrup_role_joints": role -> the joint's name, which survives a tool listing the joints in another
+// order), so a file written here loads back without a mapping file. Bytes are reproducible: the same character gives the same
 // file.
 //
-// Reading: the first skin's joints and every mesh primitive bound to it. Joints are re-based to
+// Reading: one skin's joints (the first, unless told) and every mesh primitive bound to it. Joints are re-based to
 // translation-only rest transforms at their bind positions (the posing jobs work in world terms),
 // which leaves the bind-pose mesh unchanged.
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +65,15 @@ void writeCharacterGlb(const Character& character, const std::filesystem::path& 
 
 struct AutoMapping;
 struct HorseTackReport;
+struct GltfImageBytes;
+
+// One skin of a glTF file already read (readGltfFile, its images kept): the character to load.
+struct GltfSkinSource {
+  const tinygltf::Model* model = nullptr;
+  const GltfImageBytes* images = nullptr;
+  std::string file;  // for messages
+  int skin = 0;      // index into model.skins
+};
 
 // Loads a skinned glTF (.glb or .gltf) as a character of `kind`. With `mapping` null, the role table
 // the file carries (written by writeCharacterGlb) is used, or, in a file without one, the mapping the
@@ -74,6 +86,19 @@ struct HorseTackReport;
 Character loadCharacterGltf(const std::filesystem::path& file, CharacterKind kind,
                             const CharacterMapping* mapping = nullptr, AutoMapping* auto_mapped = nullptr,
                             HorseTackReport* tack = nullptr);
+
+// The same, from skin `source.skin` of a file already read (a baked shot holds a skin a character).
+Character loadCharacterGltf(const GltfSkinSource& source, CharacterKind kind, const CharacterMapping* mapping = nullptr,
+                            AutoMapping* auto_mapped = nullptr, HorseTackReport* tack = nullptr);
+
+// The role table stirrup writes on a skinned mesh node (extras.stirrup_roles, by the joints' names in
+// extras.stirrup_role_joints where the file has them) for skin `skin`: role -> index into its joints,
+// the required roles of `kind` and the optional ones it names; nullopt when the file has no table for
+// the skin. A role missing or pointing at no joint is a one-line InputError naming `file` and the role.
+// `by_joint_name`, when given, is set when the table named the joints (a file stirrup wrote before
+// stirrup_role_joints, or one from a tool that dropped it, has indices only).
+std::optional<std::map<std::string, int>> gltfRoleTable(const tinygltf::Model& model, const std::string& file, int skin,
+                                                        CharacterKind kind, bool* by_joint_name = nullptr);
 
 // What a scene's "characters" entry names: "default" (the built-in generator), or a glTF file with
 // an optional mapping file (empty: the file's own role table, or the mapping it gets by itself, whose

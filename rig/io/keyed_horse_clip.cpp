@@ -14,6 +14,7 @@
 #include "rig/error.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
+#include "rig/io/gltf_skin_joints.h"
 #include "rig/io/mapping_skeleton.h"
 
 namespace stirrup::rig {
@@ -36,15 +37,6 @@ struct Travel {
     return glm::translate(glm::dmat4(1.0), glm::dvec3(origin.x, 0.0, origin.y)) *
            glm::rotate(glm::dmat4(1.0), -heading, glm::dvec3(0.0, 1.0, 0.0));
   }
-};
-
-// Where a joint of the file is, and what takes its node's world transform to stirrup's world: the
-// posed joint in rig space is world_to_rig * world(node) * bind_to_rest, whose rotation is the joint's turn from
-// its rest (a loaded character's rest is translation-only, at its bind place).
-struct FileJoint {
-  int node = -1;
-  glm::dmat4 bind_to_rest{1.0};  // inverse bind * from_rig * rest world
-  glm::dvec3 rest{0.0};          // its rest place, rig space
 };
 
 // A uniform-weight straight-line fit of (t_i, y_i) over a window, read at t: a steady motion exactly.
@@ -80,12 +72,9 @@ KeyedHorseMapping keyedHorseMapping(const CharacterMapping& mapping, const std::
 struct KeyedHorseClip::Impl {
   std::string file;
   std::unique_ptr<GltfAnimation> animation;
-  glm::dmat4 to_rig{1.0};
-  // The file's world to stirrup's: to_rig after the inverse of the skin's bind (the root joint's world at
-  // rest times its inverse bind matrix: identity for most files; a file whose mesh is in other units than
-  // its joints, as stirrup's own, scales here).
-  glm::dmat4 world_to_rig{1.0};
-  std::map<std::string, FileJoint> role;  // the roles the controls read
+  // The file's joints in stirrup's world (rig/io/gltf_skin_joints.h).
+  std::unique_ptr<GltfSkinJoints> skin;
+  std::map<std::string, GltfFileJoint> role;  // the roles the controls read
   // The travel table: the fitted trunk at kTravelTableHz, and the trunk's rest.
   std::vector<Travel> travel;
   glm::dvec2 rest_trunk{0.0};
@@ -94,20 +83,20 @@ struct KeyedHorseClip::Impl {
   bool in_place = false;
   double added_speed = 0.0;  // in place: the travel added (cm/s)
   // The ridden horse's joints, when the frames key it (one per skeleton joint; node -1: not the file's).
-  std::vector<FileJoint> ridden;
+  std::vector<GltfFileJoint> ridden;
 
   // The clip's time t is the animation's start() + t: its first key is the shot's first frame (Blender
   // keys its frame F at F / fps, so frames 1-48 play as the shot's 1-48).
   double start() const { return animation->start(); }
   double duration() const { return animation->duration() - animation->start(); }
-  glm::dmat4 posed(const FileJoint& j, const std::vector<glm::dmat4>& worlds) const {
-    return world_to_rig * worlds[std::size_t(j.node)] * j.bind_to_rest;
-  }
+  glm::dmat4 posed(const GltfFileJoint& j, const std::vector<glm::dmat4>& worlds) const { return skin->posed(j, worlds[std::size_t(j.node)]); }
+  // A joint's place at the animation's time t.
+  glm::dvec3 placeAt(const GltfFileJoint& j, double t) const { return glm::dvec3(skin->posed(j, animation->world(j.node, t))[3]); }
 
   // The trunk's place on the ground and heading at t, unfitted.
   std::pair<glm::dvec2, double> trunkAt(double t) const {
-    const glm::dvec3 back(world_to_rig * animation->world(role.at("root").node, t) * role.at("root").bind_to_rest[3]);
-    const glm::dvec3 front(world_to_rig * animation->world(role.at("neck1").node, t) * role.at("neck1").bind_to_rest[3]);
+    const glm::dvec3 back = placeAt(role.at("root"), t);
+    const glm::dvec3 front = placeAt(role.at("neck1"), t);
     const glm::dvec3 mid = 0.5 * (back + front);
     return {{mid.x, mid.z}, std::atan2(front.z - back.z, front.x - back.x)};
   }
@@ -164,8 +153,7 @@ void KeyedHorseClip::Impl::findAddedSpeed() {
   constexpr int kSteps = 400;
   double back = 0.0;
   const auto hoofIn = [&](int k, double t) {
-    const FileJoint& j = role.at(kHoofRoles[std::size_t(k)]);
-    const glm::dvec3 w(world_to_rig * animation->world(j.node, t) * j.bind_to_rest[3]);
+    const glm::dvec3 w = placeAt(role.at(kHoofRoles[std::size_t(k)]), t);
     return glm::dvec3(glm::inverse(travelAt(t).matrix()) * glm::dvec4(w, 1.0));
   };
   for (int i = 0; i < kSteps; ++i) {
@@ -207,7 +195,7 @@ HorseFrame KeyedHorseClip::Impl::frameAt(double seconds, bool controls) const {
   const std::vector<glm::dmat4> worlds = animation->worlds(t);
   const auto inTravel = [&](const char* r) { return from_travel * posed(role.at(r), worlds); };
   for (std::size_t k = 0; k < 4; ++k) {
-    const FileJoint& j = role.at(kHoofRoles[k]);
+    const GltfFileJoint& j = role.at(kHoofRoles[k]);
     const glm::dvec3 p(inTravel(kHoofRoles[k])[3]);
     f.controls[kHoofChannels[k][0]] = p.x - j.rest.x;
     f.controls[kHoofChannels[k][1]] = std::max(0.0, p.y - j.rest.y);
@@ -256,51 +244,23 @@ KeyedHorseClip::KeyedHorseClip(const std::filesystem::path& file, const std::str
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.file = file.string();
-  m.to_rig = mapping.to_rig;
   if (!std::filesystem::exists(file)) throw InputError(m.file + ": no such file (expected a glTF horse with an animation)");
   const tinygltf::Model model = readGltfFile(file, m.file);
-  const tinygltf::Skin& skin = checkedFirstSkin(model, m.file, "horse");
-  const std::vector<std::string> names = gltfJointNames(model);
-  std::vector<glm::dmat4> ibm(skin.joints.size(), glm::dmat4(1.0));
-  if (skin.inverseBindMatrices >= 0) {
-    const std::vector<float> v = readAccessor(model, skin.inverseBindMatrices, 16, m.file + ": skins[0].inverseBindMatrices");
-    if (v.size() != skin.joints.size() * 16) throw InputError(m.file + ": skins[0].inverseBindMatrices: expected one per joint");
-    for (std::size_t j = 0; j < skin.joints.size(); ++j) ibm[j] = glm::dmat4(glm::make_mat4(v.data() + j * 16));
-  }
+  checkedSkin(model, m.file, "horse");
   m.animation = std::make_unique<GltfAnimation>(model, m.file, animation);
-  const glm::dmat4 from_rig = glm::inverse(m.to_rig);
-  // A file joint by name: its node, and what takes its node's world to its posed place (rest: its bind place).
-  const auto fileJoint = [&](const std::string& name, const glm::dmat4* rest_world) -> std::optional<FileJoint> {
-    const auto it = std::find(names.begin(), names.end(), name);
-    if (it == names.end()) return std::nullopt;
-    const std::size_t k = std::size_t(it - names.begin());
-    FileJoint j;
-    j.node = skin.joints[k];
-    j.rest = glm::dvec3(m.to_rig * glm::inverse(ibm[k])[3]);
-    j.bind_to_rest = ibm[k] * from_rig * (rest_world ? *rest_world : glm::translate(glm::dmat4(1.0), j.rest));
-    return j;
-  };
   for (const char* needed : {"root", "neck1", "lfHoof", "rfHoof", "lbHoof", "rbHoof"})
     if (!mapping.roles.count(needed))
       throw InputError(mapping.where + ": roles." + needed + ": missing (expected the horse's " + needed + " joint to read its animation)");
+  const std::vector<std::string> names = gltfJointNames(model);
+  // The file's units from the root joint's bind (gltfSkinUnits).
+  const auto root = std::find(names.begin(), names.end(), mapping.roles.at("root"));
+  if (root == names.end()) throw InputError(mapping.where + ": roles.root: no joint named \"" + mapping.roles.at("root") + "\" in " + m.file);
+  const double units = gltfSkinUnits(model, m.file, 0, int(root - names.begin()), *m.animation);
+  m.skin = std::make_unique<GltfSkinJoints>(model, m.file, 0, mapping.to_rig, units);
   for (const auto& [r, joint] : mapping.roles) {
-    const std::optional<FileJoint> j = fileJoint(joint, nullptr);
+    const std::optional<GltfFileJoint> j = m.skin->joint(joint);
     if (!j) throw InputError(mapping.where + ": roles." + r + ": no joint named \"" + joint + "\" in " + m.file);
     m.role[r] = *j;
-  }
-  {
-    // The units the file's world is in against its mesh's: the scale of the root joint's rest world times
-    // its inverse bind (1 where the rest is the bind, as Blender writes; 0.01 for stirrup's own files,
-    // whose joints hang under a metre node and bind in centimetres). Only the scale: a rest that differs
-    // from the bind by a motion (a bake's rest is its first frame) is the animation's own.
-    const auto root = std::find(names.begin(), names.end(), mapping.roles.at("root"));
-    const std::size_t k = std::size_t(root - names.begin());
-    const double det = glm::determinant(glm::dmat3(m.animation->world(skin.joints[k], std::nullopt) * ibm[k]));
-    const double units = std::cbrt(det);
-    if (!(units > 0.0) || !std::isfinite(units))
-      throw InputError(m.file + ": skins[0]: the root joint \"" + *root + "\" is bound with no size or mirrored (its inverse bind matrix "
-                       "and rest transform multiply to a determinant of " + numberText(det) + "; expected a positive scale)");
-    m.world_to_rig = m.to_rig * glm::scale(glm::dmat4(1.0), glm::dvec3(1.0 / units));
   }
   m.rest_trunk = glm::dvec2(0.5 * (m.role["root"].rest.x + m.role["neck1"].rest.x), 0.5 * (m.role["root"].rest.z + m.role["neck1"].rest.z));
   m.rest_heading = std::atan2(m.role["neck1"].rest.z - m.role["root"].rest.z, m.role["neck1"].rest.x - m.role["root"].rest.x);
@@ -312,7 +272,7 @@ KeyedHorseClip::KeyedHorseClip(const std::filesystem::path& file, const std::str
     for (std::size_t j = 0; j < s.size(); ++j) {
       if (s.joints[j].rig_point) continue;
       const glm::dmat4 rest = glm::dmat4(s.restWorld(int(j)));
-      const std::optional<FileJoint> fj = fileJoint(s.joints[j].name, &rest);
+      const std::optional<GltfFileJoint> fj = m.skin->joint(s.joints[j].name, &rest);
       if (!fj)
         throw InputError(m.file + ": no joint named \"" + s.joints[j].name + "\" (the scene's horse has it: is its clip the horse's own file?)");
       m.ridden[j] = *fj;

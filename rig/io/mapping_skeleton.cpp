@@ -193,10 +193,10 @@ void rigifyDeformParents(std::vector<int>& parent, const std::vector<std::string
   }
 }
 
-std::vector<std::string> gltfJointNames(const tinygltf::Model& model) {
+std::vector<std::string> gltfJointNames(const tinygltf::Model& model, int skin_index) {
   std::vector<std::string> names;
-  if (model.skins.empty()) return names;
-  const tinygltf::Skin& skin = model.skins[0];
+  if (skin_index < 0 || skin_index >= static_cast<int>(model.skins.size())) return names;
+  const tinygltf::Skin& skin = model.skins[std::size_t(skin_index)];
   std::set<std::string> used;
   for (std::size_t j = 0; j < skin.joints.size(); ++j) {
     const int node = skin.joints[j];
@@ -209,37 +209,48 @@ std::vector<std::string> gltfJointNames(const tinygltf::Model& model) {
   return names;
 }
 
-const tinygltf::Skin& checkedFirstSkin(const tinygltf::Model& model, const std::string& f, const std::string& what) {
+const tinygltf::Skin& checkedSkin(const tinygltf::Model& model, const std::string& f, const std::string& what, int skin_index) {
   if (model.skins.empty()) throw InputError(f + ": no skin (expected a skinned " + what + ")");
-  const tinygltf::Skin& skin = model.skins[0];
+  const std::string at = "skins[" + std::to_string(skin_index) + "]";
+  if (skin_index < 0 || skin_index >= static_cast<int>(model.skins.size()))
+    throw InputError(f + ": no " + at + " (the file has " + std::to_string(model.skins.size()) + " skins)");
+  const tinygltf::Skin& skin = model.skins[std::size_t(skin_index)];
   const int nj = static_cast<int>(skin.joints.size());
-  if (nj == 0) throw InputError(f + ": skins[0] has no joints");
+  if (nj == 0) throw InputError(f + ": " + at + " has no joints");
   for (int j = 0; j < nj; ++j)
     if (skin.joints[j] < 0 || skin.joints[j] >= static_cast<int>(model.nodes.size()))
-      throw InputError(f + ": skins[0].joints[" + std::to_string(j) + "]: expected a node index 0.." +
+      throw InputError(f + ": " + at + ".joints[" + std::to_string(j) + "]: expected a node index 0.." +
                        std::to_string(static_cast<int>(model.nodes.size()) - 1) + ", got " + std::to_string(skin.joints[j]));
   return skin;
 }
 
-MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& f) {
-  const tinygltf::Skin& skin = checkedFirstSkin(model, f, "character");
+std::vector<glm::mat4> gltfInverseBinds(const tinygltf::Model& model, const std::string& f, int skin_index) {
+  const tinygltf::Skin& skin = model.skins.at(std::size_t(skin_index));
+  const std::size_t nj = skin.joints.size();
+  std::vector<glm::mat4> ibm(nj, glm::mat4(1.0f));
+  if (skin.inverseBindMatrices < 0) return ibm;
+  const std::string where = f + ": skins[" + std::to_string(skin_index) + "].inverseBindMatrices";
+  const std::vector<float> v = readAccessor(model, skin.inverseBindMatrices, 16, where);
+  if (v.size() != nj * 16) throw InputError(where + ": expected one per joint");
+  for (std::size_t j = 0; j < nj; ++j) std::memcpy(glm::value_ptr(ibm[j]), v.data() + j * 16, 64);
+  return ibm;
+}
+
+MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& f, int skin_index) {
+  const tinygltf::Skin& skin = checkedSkin(model, f, "character", skin_index);
+  const std::string at = "skins[" + std::to_string(skin_index) + "]";
   const int nj = static_cast<int>(skin.joints.size());
   MappingSkeleton s;
   s.file = f;
-  s.names = gltfJointNames(model);
+  s.names = gltfJointNames(model, skin_index);
 
   // Bind places from the inverse bind matrices (identity when absent), as the importer reads them.
-  std::vector<glm::mat4> ibm(nj, glm::mat4(1.0f));
-  if (skin.inverseBindMatrices >= 0) {
-    const std::vector<float> v = readAccessor(model, skin.inverseBindMatrices, 16, f + ": skins[0].inverseBindMatrices");
-    if (static_cast<int>(v.size()) != nj * 16) throw InputError(f + ": skins[0].inverseBindMatrices: expected one per joint");
-    for (int j = 0; j < nj; ++j) std::memcpy(glm::value_ptr(ibm[j]), v.data() + j * 16, 64);
-  }
+  const std::vector<glm::mat4> ibm = gltfInverseBinds(model, f, skin_index);
   std::vector<glm::vec3> bind(nj);
   for (int j = 0; j < nj; ++j) {
     bind[j] = glm::vec3(glm::inverse(ibm[j])[3]);
     if (!std::isfinite(bind[j].x) || !std::isfinite(bind[j].y) || !std::isfinite(bind[j].z))
-      throw InputError(f + ": skins[0].inverseBindMatrices[" + std::to_string(j) + "]: expected an invertible matrix (joint \"" +
+      throw InputError(f + ": " + at + ".inverseBindMatrices[" + std::to_string(j) + "]: expected an invertible matrix (joint \"" +
                        s.names[j] + "\")");
     s.position.emplace_back(bind[j]);
   }
@@ -258,11 +269,11 @@ MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std:
       }
   rigifyDeformParents(s.parent, s.names);
 
-  // The mesh: every primitive of every node skinned by skins[0].
+  // The mesh: every primitive of every node skinned by the skin.
   s.weighted.assign(nj, 0);
   for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
     const tinygltf::Node& node = model.nodes[ni];
-    if (node.mesh < 0 || node.skin != 0) continue;
+    if (node.mesh < 0 || node.skin != skin_index) continue;
     const tinygltf::Mesh& mesh = gltfElement(model.meshes, node.mesh, f + ": nodes[" + std::to_string(ni) + "].mesh", "mesh");
     for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const tinygltf::Primitive& prim = mesh.primitives[pi];
@@ -281,7 +292,7 @@ MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std:
           const float w = wts[v * 4 + k];
           if (!(w > 0.0f)) continue;
           const int j = static_cast<int>(jts[v * 4 + k]);
-          if (j < 0 || j >= nj) throw InputError(pw + ".JOINTS_0: joint index " + std::to_string(j) + " outside skins[0]");
+          if (j < 0 || j >= nj) throw InputError(pw + ".JOINTS_0: joint index " + std::to_string(j) + " outside " + at);
           s.weighted[j] = 1;
           if (w > best_w) best = j, best_w = w;
         }
@@ -292,7 +303,7 @@ MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std:
       }
     }
   }
-  if (s.vertices.empty()) throw InputError(f + ": no skinned vertices in skins[0]'s meshes (expected a skinned character)");
+  if (s.vertices.empty()) throw InputError(f + ": no skinned vertices in " + at + "'s meshes (expected a skinned character)");
   glm::dvec3 middle(0.0);
   for (const glm::dvec3& v : s.vertices) middle += v / static_cast<double>(s.vertices.size());
   hangFromTrunk(s.parent, s.position, middle, s.hung);

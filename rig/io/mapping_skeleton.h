@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 namespace tinygltf {
@@ -62,17 +63,21 @@ struct MappingSkeleton {
 // their parents. `parent` is one per joint, -1 for a root.
 void rigifyDeformParents(std::vector<int>& parent, const std::vector<std::string>& names);
 
-// The names the importer gives the first skin's joints: each node's name, or "jointN" (N the joint's
-// index in the skin) for a joint without a name or with the name of an earlier joint, so every joint
-// has a name of its own a mapping file can use.
-std::vector<std::string> gltfJointNames(const tinygltf::Model& model);
+// The names the importer gives skin `skin`'s joints (the first, unless told): each node's name, or
+// "jointN" (N the joint's index in the skin) for a joint without a name or with the name of an earlier
+// joint, so every joint has a name of its own a mapping file can use.
+std::vector<std::string> gltfJointNames(const tinygltf::Model& model, int skin = 0);
 
-// Reads the first skin of a model the importer would read (checked as it checks it: a one-line
+// Reads skin `skin` of a model the importer would read (checked as it checks it: a one-line
 // InputError naming `file` for a bad index, accessor or hierarchy).
-MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& file);
+MappingSkeleton mappingSkeletonFromGltf(const tinygltf::Model& model, const std::string& file, int skin = 0);
 
-// The file's first skin, checked: it exists, has joints, and every joint is a node of the file. Throws
-// InputError naming `file` and what is wrong ("expected a skinned `what`").
-const tinygltf::Skin& checkedFirstSkin(const tinygltf::Model& model, const std::string& file, const std::string& what);
+// The file's skin `skin` (the first, unless told), checked: it exists, has joints, and every joint is a
+// node of the file. Throws InputError naming `file` and what is wrong ("expected a skinned `what`").
+const tinygltf::Skin& checkedSkin(const tinygltf::Model& model, const std::string& file, const std::string& what, int skin = 0);
+
+// Skin `skin`'s inverse bind matrices, one per joint (identity where the skin has none). InputError
+// naming `file` and the accessor when it holds another count.
+std::vector<glm::mat4> gltfInverseBinds(const tinygltf::Model& model, const std::string& file, int skin);
 
 }  // namespace stirrup::rig

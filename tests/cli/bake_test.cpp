@@ -37,6 +37,7 @@
 #include "rig/io/gltf_character.h"
 #include "rig/rig_profile.h"
 #include "tests/cli/baked_file.h"
+#include "tests/cli/blender_script.h"
 #include "tests/cli/run_command.h"
 
 namespace stirrup::test {
@@ -872,16 +873,10 @@ TEST(BakeGltf, ACrowdBakesEveryPairWithItsCameras) {
 // metres, Z up) projected through asked cameras at asked frames, Blender's way (world_to_camera_view
 // at the camera's extras width x height), as pixels.
 constexpr const char* kBlenderReadBake = R"(
-import json, sys
-import numpy as np
-np.bool = bool  # Blender 3.4's glTF importer still uses np.bool, removed in numpy 1.24
-import bpy
 from bpy_extras.object_utils import world_to_camera_view
 from mathutils import Vector
-glb, ask, answer = sys.argv[sys.argv.index("--") + 1:]
-for o in list(bpy.data.objects):
-    bpy.data.objects.remove(o)
-bpy.ops.import_scene.gltf(filepath=glb)
+glb, ask, answer = args
+import_glb(glb)
 scene = bpy.context.scene
 ask = json.load(open(ask))
 out = {"armatures": {}, "bones": {}, "pixels": []}
@@ -913,8 +908,7 @@ json.dump(out, open(answer, "w"))
 // file's own keys put it); and through each imported camera, the followed pair (pair 17, and for the
 // crowd's view pairs 0 and 29 too) lands within half a pixel of where stirrup's render camera puts it.
 TEST(BakeGltf, BlenderOpensACrowdBakeAsItsArmatures) {
-  if (runCommand("command -v blender >/dev/null").exit_code != 0)
-    GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
   const CavalryBake bake = bakeCavalry("cavalry_blender");
   const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
   const tinygltf::Model model = loadGlb(bake.glb);
@@ -950,9 +944,9 @@ TEST(BakeGltf, BlenderOpensACrowdBakeAsItsArmatures) {
   }
   const fs::path ask_file = bake.dir / "ask.json", answer_file = bake.dir / "answer.json", script = bake.dir / "read_bake.py";
   std::ofstream(ask_file) << ask.dump();
-  std::ofstream(script) << kBlenderReadBake;
-  const CommandResult r = runCommand("blender -b --python " + quote(script.string()) + " -- " + quote(bake.glb.string()) + " " +
-                                     quote(ask_file.string()) + " " + quote(answer_file.string()) + " >/dev/null 2>&1");
+  const CommandResult r = runBlenderScript(script, kBlenderReadBake,
+                                           quote(bake.glb.string()) + " " + quote(ask_file.string()) + " " + quote(answer_file.string()) +
+                                               " >/dev/null 2>&1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(fs::exists(answer_file)) << "Blender wrote no answer";
   const nlohmann::json answer = nlohmann::json::parse(readText(answer_file));

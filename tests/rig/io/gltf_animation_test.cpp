@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include "tests/expect_near.h"
 #include "tests/input_error.h"
 
 namespace stirrup::rig {
@@ -76,11 +77,7 @@ tinygltf::Model slideAndTurn() {
   return m;
 }
 
-void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tol = 1e-6) {
-  EXPECT_NEAR(a.x, b.x, tol);
-  EXPECT_NEAR(a.y, b.y, tol);
-  EXPECT_NEAR(a.z, b.z, tol);
-}
+using test::expectNear;
 
 TEST(GltfAnimation, NodesMoveAsTheirKeysSay) {
   const GltfAnimation a(slideAndTurn(), "x.glb", "");
@@ -139,6 +136,42 @@ TEST(GltfAnimation, AnAnimationByName) {
   tinygltf::Model none = slideAndTurn();
   none.animations.clear();
   EXPECT_EQ(errorOf([&] { GltfAnimation(none, "x.glb", ""); }), "x.glb: the file has no animation");
+}
+
+// A shot Blender split into one animation an armature plays together: "Slide" keys the parent, "Turn"
+// (from 1/24 s to 3 s) the child; "Retake" keys the parent again and is left out as another take.
+TEST(GltfAnimation, AnimationsKeyingTheirOwnNodesPlayTogether) {
+  tinygltf::Model m;
+  tinygltf::Node parent, child;
+  parent.translation = {1, 0, 0};
+  parent.children = {1};
+  child.translation = {1, 0, 0};
+  m.nodes = {parent, child};
+  tinygltf::Animation slide, turn, retake;
+  slide.name = "Slide";
+  addChannel(m, slide, 0, "translation", {0, 2}, {1, 0, 0, 3, 0, 0});
+  turn.name = "Turn";
+  const float h = float(std::sqrt(0.5));
+  addChannel(m, turn, 1, "rotation", {1.0f / 24, 3}, {0, 0, 0, 1, 0, h, 0, h});
+  retake.name = "Retake";
+  addChannel(m, retake, 0, "translation", {0, 1}, {0, 0, 0, 0, 9, 0});
+  m.animations = {slide, turn, retake};
+  const GltfAnimation a = GltfAnimation::together(m, "x.glb");
+  EXPECT_EQ(a.name(), "Slide + Turn");
+  EXPECT_EQ(a.played(), (std::vector<std::string>{"Slide", "Turn"}));
+  EXPECT_EQ(a.leftOut(), (std::vector<std::string>{"Retake"}));
+  EXPECT_DOUBLE_EQ(a.start(), 0.0);
+  EXPECT_DOUBLE_EQ(a.duration(), 3.0);
+  // At 3 s: the parent held at its last key, x = 3 (not Retake's y = 9); the child turned 90 degrees
+  // about +Y, its +X now -Z.
+  expectNear(glm::dvec3(a.world(0, 3.0)[3]), {3, 0, 0});
+  expectNear(glm::dvec3(a.world(1, 3.0) * glm::dvec4(1, 0, 0, 0)), {0, 0, -1});
+  // A file without animations rests.
+  m.animations.clear();
+  const GltfAnimation still = GltfAnimation::together(m, "x.glb");
+  EXPECT_EQ(still.name(), "");
+  EXPECT_DOUBLE_EQ(still.duration(), 0.0);
+  expectNear(glm::dvec3(still.world(1, 1.0)[3]), {2, 0, 0});
 }
 
 TEST(GltfAnimation, BadChannelsAndSamplersAreOneLineErrors) {

@@ -3,6 +3,8 @@
 // error naming the role, the joint and the file (the mapping file's own errors: character_mapping_test.cpp).
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <optional>
 
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
@@ -13,6 +15,7 @@
 #include "rig/io/character_mapping.h"
 #include "rig/error.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/gltf_accessors.h"
 #include "rig/characters/horse_character.h"
 #include "rig/pose.h"
 #include "rig/characters/rider_character.h"
@@ -115,6 +118,47 @@ TEST(GltfCharacter, UserCharactersThroughMappingFilesPoseLikeTheDefaults) {
   skinMesh(defaultRider().mesh, defaultRider().skeleton, b.rider, pb, nb);
   for (std::size_t v = 0; v < pa.size(); ++v) worst = std::max(worst, glm::length(pa[v] - pb[v]));
   EXPECT_LT(worst, 1e-3f);  // cm
+}
+
+// The role table names each role's joint as well as its index: a tool keeping extras but listing the
+// joints in another order (Blender's exporter lists them depth first) leaves the indices pointing at
+// other joints, the names still right. Here every index is made to point at joint 0: the names win.
+// The second skin of a file loads as well as the first.
+TEST(GltfCharacter, TheRoleTableReadsByJointNamesAndAnySkin) {
+  const fs::path dir = tempDir("role_names");
+  tinygltf::Model m;
+  std::vector<unsigned char> bin;
+  const GltfCharacterNodes rider = appendCharacterGltf(m, bin, defaultRider(), "rider:");
+  const GltfCharacterNodes horse = appendCharacterGltf(m, bin, defaultHorse(), "horse:");
+  tinygltf::Value::Object extras = m.nodes[std::size_t(horse.mesh_node)].extras.Get<tinygltf::Value::Object>();
+  tinygltf::Value::Object stale = extras["stirrup_roles"].Get<tinygltf::Value::Object>();
+  for (auto& [role, index] : stale) index = tinygltf::Value(0);
+  extras["stirrup_roles"] = tinygltf::Value(stale);
+  m.nodes[std::size_t(horse.mesh_node)].extras = tinygltf::Value(extras);
+  m.asset.version = "2.0";
+  tinygltf::Scene scene;
+  for (const GltfCharacterNodes& n : {rider, horse}) scene.nodes.insert(scene.nodes.end(), {n.joint_nodes[0], n.mesh_node});
+  m.scenes = {scene};
+  writeFileAtomically(dir / "two.glb", glbBytes(m, bin));
+
+  GltfImageBytes images;
+  const tinygltf::Model read = readGltfFile(dir / "two.glb", "two.glb", &images);
+  const Character h = loadCharacterGltf(GltfSkinSource{&read, &images, "two.glb", 1}, CharacterKind::Horse);
+  EXPECT_EQ(h.roles, defaultHorse().roles);
+  EXPECT_EQ(h.mesh.vertexCount(), defaultHorse().mesh.vertexCount());
+  // Without the names the stale indices are all there is: every role on joint 0.
+  const std::optional<std::map<std::string, int>> by_index = [&] {
+    tinygltf::Model old = read;
+    tinygltf::Value::Object e = old.nodes[std::size_t(horse.mesh_node)].extras.Get<tinygltf::Value::Object>();
+    e.erase("stirrup_role_joints");
+    old.nodes[std::size_t(horse.mesh_node)].extras = tinygltf::Value(e);
+    bool named = true;
+    auto table = gltfRoleTable(old, "two.glb", 1, CharacterKind::Horse, &named);
+    EXPECT_FALSE(named);
+    return table;
+  }();
+  ASSERT_TRUE(by_index);
+  EXPECT_EQ(by_index->at("lfHoof"), 0);
 }
 
 TEST(GltfCharacter, UnknownJointNamesTheRoleTheJointAndTheFile) {

@@ -20,6 +20,7 @@
 #include "rig/motion/procedural_gait.h"
 #include "rig/rider_rig.h"
 #include "rig/rig_profile.h"
+#include "tests/test_files.h"
 
 namespace stirrup::rig {
 namespace {
@@ -34,8 +35,6 @@ fs::path tempFile(const std::string& name) {
 
 const fs::path kFox = fs::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb";
 const fs::path kFoxMapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox-mapping.json";
-
-tinygltf::Model loadModel(const fs::path& file);
 
 void expectSameFrames(const Clip& a, const Clip& b, double fps, double duration) {
   for (int i = 0; i <= static_cast<int>(duration * fps); ++i) {
@@ -88,7 +87,7 @@ TEST(GltfClip, APathClipsRootCarriesItsTurns) {
     turned = std::max(turned, std::abs(y.heading_deg));
   }
   EXPECT_GT(turned, 45.0);
-  const tinygltf::Model turning = loadModel(file);
+  const tinygltf::Model turning = stirrup::test::readGlbModel(file);
   const auto rootRotations = [](const tinygltf::Model& m) {
     int n = 0;
     for (const auto& ch : m.animations[0].channels) n += ch.target_node == 0 && ch.target_path == "rotation";
@@ -97,21 +96,7 @@ TEST(GltfClip, APathClipsRootCarriesItsTurns) {
   EXPECT_EQ(rootRotations(turning), 1);
   const fs::path straight_file = tempFile("trot_straight.glb");
   writeClipGltf(MovementClip(makeBuck(BuckParams{})), straight_file, {30.0});
-  EXPECT_EQ(rootRotations(loadModel(straight_file)), 0);
-}
-
-// Helpers to rewrite an exported clip the way other tools write theirs.
-tinygltf::Model loadModel(const fs::path& file) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, file.string())) << err;
-  return model;
-}
-
-void saveModel(tinygltf::Model& model, const fs::path& file) {
-  tinygltf::TinyGLTF writer;
-  ASSERT_TRUE(writer.WriteGltfSceneToFile(&model, file.string(), true, true, true, true));
+  EXPECT_EQ(rootRotations(stirrup::test::readGlbModel(straight_file)), 0);
 }
 
 // Appends floats to buffer 0 as a new bufferView and accessor; returns the accessor.
@@ -152,7 +137,7 @@ TEST(GltfClip, ReadsCubicSplineSamplers) {
                  bent = tempFile("trot_bent.glb");
   writeClipGltf(ProceduralGait(trotParams(), 1.0), linear, {24.0});
   for (int variant = 0; variant < 2; ++variant) {
-    tinygltf::Model model = loadModel(linear);
+    tinygltf::Model model = stirrup::test::readGlbModel(linear);
     tinygltf::Animation& anim = model.animations[0];
     for (const tinygltf::AnimationChannel& ch : anim.channels) {
       if (ch.target_path != "translation") continue;
@@ -172,7 +157,7 @@ TEST(GltfClip, ReadsCubicSplineSamplers) {
       s.output = appendFloats(model, out, TINYGLTF_TYPE_VEC3);
       s.interpolation = "CUBICSPLINE";
     }
-    saveModel(model, variant == 0 ? cubic : bent);
+    stirrup::test::writeGlbModel(model, variant == 0 ? cubic : bent);
   }
   const GltfClip a(linear, contractMapping()), b(cubic, contractMapping()), c(bent, contractMapping());
   for (double t = 0.0; t <= a.duration(); t += 1.0 / 96.0) {
@@ -191,7 +176,7 @@ TEST(GltfClip, ReadsCubicSplineSamplers) {
 TEST(GltfClip, ReadsSparseAccessors) {
   const fs::path dense = tempFile("walk_dense.glb"), sparse = tempFile("walk_sparse.glb");
   writeClipGltf(ProceduralGait(walkParams(), 1.0), dense, {24.0});
-  tinygltf::Model model = loadModel(dense);
+  tinygltf::Model model = stirrup::test::readGlbModel(dense);
   int output = -1;
   for (const tinygltf::AnimationChannel& ch : model.animations[0].channels)
     if (ch.target_path == "translation" && model.nodes[ch.target_node].name == "lfHoof")
@@ -217,7 +202,7 @@ TEST(GltfClip, ReadsSparseAccessors) {
   a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
   a.sparse.values.bufferView = model.accessors[values].bufferView;
   a.sparse.values.byteOffset = 0;
-  saveModel(model, sparse);
+  stirrup::test::writeGlbModel(model, sparse);
   const GltfClip d(dense, contractMapping()), s(sparse, contractMapping());
   const HorseFrame x = d.sample(5.0 / 24.0), y = s.sample(5.0 / 24.0);
   EXPECT_NEAR(y.controls[HorseChannel::lfHoofTx] - x.controls[HorseChannel::lfHoofTx], 7.0, 1e-3);
@@ -228,9 +213,9 @@ TEST(GltfClip, ReadsSparseAccessors) {
 TEST(GltfClip, RejectsUnknownInterpolation) {
   const fs::path good = tempFile("trot_interp.glb"), bad = tempFile("trot_badinterp.glb");
   writeClipGltf(ProceduralGait(trotParams(), 0.5), good, {24.0});
-  tinygltf::Model model = loadModel(good);
+  tinygltf::Model model = stirrup::test::readGlbModel(good);
   model.animations[0].samplers[0].interpolation = "BEZIER";
-  saveModel(model, bad);
+  stirrup::test::writeGlbModel(model, bad);
   try {
     GltfClip clip(bad, contractMapping());
     FAIL() << "expected an error";
@@ -264,7 +249,7 @@ TEST(GltfClip, RenamedThroughAMappingDrivesTheRiderTheSameWay) {
   // and rest rotation, and its animation is moved by the same (keys translated by the offset, rotation
   // keys turned by the rest rotation), so the file plays the same motion from a different rest pose.
   // The mapping undoes the names; the rest pose must be taken from the file.
-  tinygltf::Model model = loadModel(file);
+  tinygltf::Model model = stirrup::test::readGlbModel(file);
   nlohmann::json nodes;
   std::map<int, glm::dvec3> offset;
   std::map<int, glm::dquat> turn;
@@ -279,7 +264,7 @@ TEST(GltfClip, RenamedThroughAMappingDrivesTheRiderTheSameWay) {
     n.rotation = {turn[int(i)].x, turn[int(i)].y, turn[int(i)].z, turn[int(i)].w};
   }
   const fs::path rest_only = tempFile("rest_only.glb");
-  saveModel(model, rest_only);
+  stirrup::test::writeGlbModel(model, rest_only);
   int lf_node = -1;
   for (std::size_t i = 0; i < model.nodes.size(); ++i)
     if (model.nodes[i].name == "Bone_lfHoof") lf_node = int(i);
@@ -307,7 +292,7 @@ TEST(GltfClip, RenamedThroughAMappingDrivesTheRiderTheSameWay) {
   }
   ASSERT_GE(moved, 6);   // the travel root, four hooves and the rear pivot
   ASSERT_GE(turned, 5);  // rear pivot, back, neck, head, tail
-  saveModel(model, renamed);
+  stirrup::test::writeGlbModel(model, renamed);
   std::ofstream(mapping) << nlohmann::json({{"mode", "controls"}, {"nodes", nodes}}).dump();
   const GltfClip a(file, contractMapping()), b(renamed, loadClipMapping(mapping));
   // Control: the rest pose moved but the animation not (rest_only) reads as the motion less the offset,

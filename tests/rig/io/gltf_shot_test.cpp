@@ -1,0 +1,187 @@
+// A baked shot read back (rig/io/gltf_shot.cpp) from shots baked here, by the same writer `stirrup bake`
+// uses (rig/io/gltf_bake.h): the default pair at the generated trot, posed by rig::poseMounted, is the
+// oracle. Read back, every joint of both characters stands where the rig posed it, the hooves the clip
+// plants are down and those it lifts are not, and rig::PairCheck measures the same frame the same way.
+// A crowd's pairs come back by their names; a file that is no shot is left to the clip reader. The
+// command (`stirrup check SHOT.glb`, Blender's re-export) is tests/cli/check_test.cpp.
+#include "rig/io/gltf_shot.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "rig/bake.h"
+#include "rig/frame_check.h"
+#include "rig/io/clip_factory.h"
+#include "rig/io/gltf_bake.h"
+#include "rig/io/gltf_character.h"
+#include "rig/io/gltf_clip.h"
+#include "rig/rig_profile.h"
+#include "tests/rig/default_characters.h"
+#include "tests/test_files.h"
+
+namespace stirrup::rig {
+namespace {
+
+namespace fs = std::filesystem;
+using test::defaultHorse;
+using test::defaultRider;
+
+fs::path tempDir(const std::string& name) { return stirrup::test::freshTestDir("test_gltf_shot", name); }
+
+constexpr int kFrames = 24;
+constexpr double kFps = 24.0;
+
+// The default pair at the generated trot, frames 1..kFrames, as the shot's evaluator poses it; in a
+// crowd pair k rides 300 cm to the right of the one before (a place the file must keep).
+struct Trot {
+  std::unique_ptr<Clip> clip = makeClip(ClipSpec{});
+  RigProfile profile = RigProfile::thesis();
+  std::vector<BakedFrame> frames;
+  std::vector<MountedPose> poses;
+  Trot() {
+    for (int f = 1; f <= kFrames; ++f) {
+      frames.push_back(bakeFrame(*clip, profile, f, (f - 1) / kFps));
+      poses.push_back(poseMounted(defaultHorse(), defaultRider(), frames.back().horse, frames.back().rider, profile));
+    }
+  }
+};
+
+const Trot& trot() {
+  static const Trot t;
+  return t;
+}
+
+MountedPose shifted(MountedPose p, double z_cm) {
+  const glm::mat4 by = glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, float(z_cm)});
+  for (glm::mat4& m : p.horse) m = by * m;
+  for (glm::mat4& m : p.rider) m = by * m;
+  return p;
+}
+
+fs::path writeShot(const fs::path& file, const std::vector<std::string>& pair_names) {
+  BakedShot shot;
+  shot.name = "trot";
+  shot.fps = kFps;
+  for (int f = 0; f < kFrames; ++f) shot.seconds.push_back(float(f / kFps));
+  for (std::size_t k = 0; k < pair_names.size(); ++k) {
+    BakedPair pair;
+    pair.name = pair_names[k];
+    pair.horse = &defaultHorse();
+    pair.rider = &defaultRider();
+    for (const MountedPose& p : trot().poses) pair.poses.push_back(shifted(p, 300.0 * double(k)));
+    shot.pairs.push_back(pair);
+  }
+  writeFileAtomically(file, bakedShotGlb(shot));
+  return file;
+}
+
+double worstDistance(const std::vector<glm::mat4>& a, const std::vector<glm::mat4>& b) {
+  double worst = 0;
+  for (std::size_t j = 0; j < a.size(); ++j) worst = std::max(worst, double(glm::length(glm::vec3(a[j][3]) - glm::vec3(b[j][3]))));
+  return worst;
+}
+
+const auto kFlat = [](double, double) { return 0.0; };
+constexpr std::array<const char*, 4> kHooves = {"lfHoof", "rfHoof", "lbHoof", "rbHoof"};
+constexpr std::array<HorseChannel, 4> kLift = {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy, HorseChannel::lbHoofTy,
+                                               HorseChannel::rbHoofTy};
+
+TEST(GltfShot, ABakeReadBackStandsEveryJointWhereTheRigPosedIt) {
+  const fs::path file = writeShot(tempDir("trot") / "trot.glb", {""});
+  const std::unique_ptr<GltfShot> shot = GltfShot::read(file);
+  ASSERT_TRUE(shot);
+  ASSERT_EQ(shot->pairs().size(), 1u);
+  EXPECT_EQ(shot->pairs()[0].name, "");
+  EXPECT_EQ(shot->pairs()[0].horse_armature, "horse");
+  EXPECT_EQ(shot->pairs()[0].rider_armature, "rider");
+  EXPECT_EQ(shot->frameCount(), kFrames);
+  EXPECT_EQ(shot->fps(), kFps);
+  EXPECT_EQ(shot->animationName(), "trot");
+  const GltfShot::Pair& read = shot->pairs()[0];
+  ASSERT_EQ(read.horse.skeleton.size(), defaultHorse().skeleton.size());
+  ASSERT_EQ(read.rider.skeleton.size(), defaultRider().skeleton.size());
+  ASSERT_EQ(read.horse.mesh.vertexCount(), defaultHorse().mesh.vertexCount());
+
+  const PairCheck oracle(defaultHorse(), defaultRider(), trot().profile.balance);
+  const PairCheck checker(read.horse, read.rider, trot().profile.balance);
+  EXPECT_EQ(checker.unmeasured(), oracle.unmeasured());
+  double worst_joint = 0, worst_depth = 0, deepest = 0;
+  int planted = 0, rolling = 0;
+  for (int f = 1; f <= kFrames; ++f) {
+    const MountedPose& want = trot().poses[std::size_t(f - 1)];
+    const MountedPose got = shot->pose(0, f, kFlat);
+    worst_joint = std::max({worst_joint, worstDistance(got.horse, want.horse), worstDistance(got.rider, want.rider)});
+    // Down as the keyed controls have it: the hoof joint, as the rig posed it, within the contact band
+    // of its rest height. A hoof the clip lifts a centimetre or more is never down; one it plants is,
+    // unless it rolls over its toe at the end of the stance, which raises the joint.
+    for (std::size_t leg = 0; leg < 4; ++leg) {
+      const double ty = trot().frames[std::size_t(f - 1)].horse.controls[kLift[leg]];
+      const int hoof = defaultHorse().role(kHooves[leg]);
+      const double raised = want.horse[std::size_t(hoof)][3].y - defaultHorse().skeleton.restPosition(hoof).y;
+      EXPECT_EQ(got.reach.planted[leg], raised <= kKeyedContactCm) << "frame " << f << " leg " << leg << " raised " << raised;
+      if (ty >= 1.0) EXPECT_FALSE(got.reach.planted[leg]) << "frame " << f << " leg " << leg << " lifted " << ty;
+      if (ty == 0.0) ++planted, rolling += !got.reach.planted[leg];
+    }
+    const FrameMeasures a = oracle.measure(f, 0, trot().frames[std::size_t(f - 1)].horse, want, kFlat);
+    const FrameMeasures b = checker.measure(f, 0, HorseFrame{}, got, kFlat);
+    worst_depth = std::max(worst_depth, double(std::abs(a.rider_depth_cm - b.rider_depth_cm)));
+    deepest = std::max(deepest, double(b.rider_depth_cm));
+    for (std::size_t side = 0; side < 2; ++side) {
+      EXPECT_NEAR(a.hand_off_cm[side], b.hand_off_cm[side], 0.01) << "frame " << f;
+      EXPECT_NEAR(a.foot_off_cm[side], b.foot_off_cm[side], 0.01) << "frame " << f;
+    }
+    EXPECT_NEAR(a.trunk_lean_deg, b.trunk_lean_deg, 0.01) << "frame " << f;
+    for (std::size_t leg = 0; leg < 4; ++leg) EXPECT_NEAR(a.below_ground_cm[leg], b.below_ground_cm[leg], 0.01) << "frame " << f;
+  }
+  EXPECT_LT(worst_joint, 0.01);  // cm: float keys in metres
+  EXPECT_LT(worst_depth, 0.01);
+  EXPECT_LT(rolling * 10, planted);  // a roll over the toe is the end of a stance, not most of it
+  std::printf("a bake read back: joints within %.5f cm, rider depth within %.5f cm (deepest %.2f cm); of %d planted hoof-frames %d "
+              "roll over the toe\n", worst_joint, worst_depth, deepest, planted, rolling);
+}
+
+// A crowd's pairs by their names, each where its ride is (pair01 300 cm to the right of pair00's).
+TEST(GltfShot, ACrowdsPairsComeBackByTheirNames) {
+  const fs::path file = writeShot(tempDir("crowd") / "crowd.glb", {"pair00", "pair01"});
+  const std::unique_ptr<GltfShot> shot = GltfShot::read(file);
+  ASSERT_TRUE(shot);
+  ASSERT_EQ(shot->pairs().size(), 2u);
+  EXPECT_EQ(shot->pairs()[1].name, "pair01");
+  EXPECT_EQ(shot->pairs()[1].index, 1);
+  EXPECT_EQ(shot->pairs()[1].horse_armature, "pair01_horse");
+  const MountedPose want = shifted(trot().poses[5], 300.0);
+  const MountedPose got = shot->pose(1, 6, kFlat);
+  EXPECT_LT(worstDistance(got.horse, want.horse), 0.01);
+  EXPECT_LT(worstDistance(got.rider, want.rider), 0.01);
+}
+
+// Over a ground 10 cm lower than the one the shot was keyed on every hoof is 10 cm above its rest height
+// over it, none within the contact band: none is down; on the flat ground the planted ones are.
+TEST(GltfShot, AHoofIsDownOverTheGroundItIsGiven) {
+  const fs::path file = writeShot(tempDir("ground") / "trot.glb", {""});
+  const std::unique_ptr<GltfShot> shot = GltfShot::read(file);
+  ASSERT_TRUE(shot);
+  const MountedPose lowered = shot->pose(0, 1, [](double, double) { return -10.0; });
+  const MountedPose flat = shot->pose(0, 1, kFlat);
+  EXPECT_EQ(std::count(lowered.reach.planted.begin(), lowered.reach.planted.end(), true), 0);
+  EXPECT_GT(std::count(flat.reach.planted.begin(), flat.reach.planted.end(), true), 0);
+}
+
+// A horse clip (one animated skeleton, no skin) is not a shot: the clip reader takes it.
+TEST(GltfShot, AClipIsNoShot) {
+  const fs::path file = tempDir("clip") / "clip.glb";
+  writeClipGltf(*makeClip(ClipSpec{}), file);
+  EXPECT_EQ(GltfShot::read(file), nullptr);
+}
+
+}  // namespace
+}  // namespace stirrup::rig
