@@ -1,7 +1,8 @@
 // stirrup check SCENE.json | CLIP.glb [--json] [--junit REPORT.xml] [--html DIR]: a shot checked frame
 // by frame and pair by pair without rendering it (docs/check.md):
-//  - the limits a horse has (rig/motion/horse_limits.h): along every path of a scene, or from a glTF
-//    clip's own travel (speed, speeding up, braking, turning);
+//  - the limits a horse has (rig/motion/horse_limits.h): along every path of a scene, a generated
+//    clip's gait speeds (the clip's, not a frame's), or from a glTF clip's own travel (speed, speeding
+//    up, braking, turning);
 //  - every pair posed as every consumer poses it (rig::poseMounted) and measured in world space
 //    (rig/frame_check.h): hooves sliding while down, over-reaching, in the ground; the rider in the
 //    horse; hands off the reins; feet out of the stirrups; the trunk outside the balance band;
@@ -445,6 +446,10 @@ void check(const CheckOptions& o) {
       }
     }
   }
+  // A generated gait faster than horses go at it: the clip's, not one frame's.
+  for (const rig::GaitSpeedBreach& b : scene.gait_breaches)
+    limit_findings.push_back({0, 0, 0, rig::CheckSeverity::Failure, "limit", "gait speed", b.speed.speed_cm_s, b.bound_cm_s,
+                              "gait speed (clip." + b.speed.field + "): " + b.text()});
   // A clip with no path (a glTF clip): its own travel.
   for (CheckedPair& p : pairs) {
     if (!in.gltf_clip) break;
@@ -554,8 +559,9 @@ void addCheckCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("check", "Check a shot frame by frame: a horse's limits, hooves, the rider's seat, hands and feet");
   cmd->footer(
       "Input: a scene (every pair of a crowd, or --pairs), or a glTF horse clip ridden by the default pair.\n"
-      "Rules: limit (a horse's speed, acceleration, braking, turn, slopes), over-reach, hoof-slide, hoof-in-ground,\n"
-      "rider-in-horse, hand-off-rein, foot-off-stirrup, trunk-balance, gait (a glTF clip with --reference).\n"
+      "Rules: limit (a horse's speed, acceleration, braking, turn, slopes, a gait's speed), over-reach, hoof-slide,\n"
+      "hoof-in-ground, rider-in-horse, hand-off-rein, foot-off-stirrup, trunk-balance, gait (a glTF clip with\n"
+      "--reference).\n"
       "Each warns at one measure and fails at a larger one (docs/check.md lists them and their sources).\n"
       "Exit status: 0 clean, 1 warnings, 2 failures (notes do not count), 3 an input that cannot be checked.\n"
       "Examples: stirrup check scenes/trail.json --junit check.xml\n"

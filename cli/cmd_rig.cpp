@@ -36,6 +36,7 @@ struct RigOptions {
   std::string rider_csv;
   std::string profile = "thesis";
   std::vector<std::string> sets;
+  bool allow_impossible = false;  // rig balance: a scene beyond a horse's limits loads, warning each frame
 };
 
 rig::RigProfile resolveProfile(const RigOptions& o) { return render::resolveProfile(o.profile, parseSets(o.sets)); }
@@ -72,7 +73,7 @@ void runParams(const RigOptions& o) {
 // by the shot's evaluator (render/scene/shot_evaluator.h) with its own profile, the scene's overrides and
 // then --set applied.
 void runBalance(const RigOptions& o) {
-  render::SceneSpec scene = render::loadScene(o.scene);
+  render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
   // A crowd's pairs resolve their own profiles from the scene: --set joins its overrides, after them.
   const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));
   render::ShotEvaluator characters(scene, profile, 0);
@@ -88,6 +89,7 @@ void runBalance(const RigOptions& o) {
     request.frame = f;
     request.until = render::EvalStage::Pose;
     characters.evaluate(request, frame);
+    render::warnImpossibleFrame(scene, f);
     for (int i = 0; i < characters.pairCount(); ++i) {
       const rig::Character& horse = characters.horse(i);
       const rig::Character& rider = characters.rider(i);
@@ -167,6 +169,8 @@ void addRigCommand(CLI::App& app) {
   balance->add_option("scene", opts->scene, "Scene file")->required();
   balance->add_option("--out,-o", opts->rider_csv, "CSV file (default: standard output)");
   balance->add_option("--set,-s", opts->sets, "Override one profile parameter, KEY=NUMBER (repeatable)");
+  balance->add_flag("--allow-impossible", opts->allow_impossible,
+                    "Read a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
   balance->callback([opts] { runBalance(*opts); });
 
   CLI::App* params = rig_cmd->add_subcommand("params", "List a rig profile's parameters, values and citations");
