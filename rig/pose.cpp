@@ -47,6 +47,7 @@ void carryUnsolved(const Skeleton& s, std::span<const glm::mat4> local, const st
 glm::mat4 rot(double degrees, glm::vec3 axis) {
   return glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(degrees)), axis);
 }
+
 glm::mat4 translate(glm::vec3 t) { return glm::translate(glm::mat4(1.0f), t); }
 glm::vec3 position(const glm::mat4& m) { return glm::vec3(m[3]); }
 glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
@@ -449,20 +450,13 @@ void placeReins(const Character& horse, std::span<glm::mat4> horseWorld, const C
   }
 }
 
-std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse, std::span<const glm::mat4> horseWorld,
-                                 const RiderChannels& r, double rider_unit_cm, const RiderPoseParams& params,
-                                 const BalanceStage* balance, BalanceResult* balance_result) {
-  checkSize(horse, horseWorld);
+namespace {
+
+// Braid and coat tail: "up" swings them back and up, "side" toward the right, spread along the chain.
+// Both are optional roles: a rider without a braid or a coat's skirt has nothing to swing.
+void swingHairAndCloth(const Character& rider, const RiderChannels& r, const RiderPoseParams& params, std::span<glm::mat4> local) {
   using C = RiderChannel;
   const Skeleton& s = rider.skeleton;
-  const float u = static_cast<float>(rider_unit_cm);
-  // The rider is built in saddle space: the posed saddle is the rider's frame.
-  const glm::mat4 saddle = horseWorld[horse.role("saddle")];
-
-  std::vector<glm::mat4> local = restLocals(s);
-  poseRiderSpine(rider, r, rider_unit_cm, params, local);
-  // Braid and coat tail: "up" swings them back and up, "side" toward the right, spread along the chain.
-  // Both are optional roles: a rider without a braid or a coat's skirt has nothing to swing.
   const float hair_up = float(r[C::hairUp]) * params.hair_deg_per_unit / 3.0f;
   const float hair_side = float(r[C::hairSide]) * params.hair_deg_per_unit / 3.0f;
   for (const char* n : {"braid1", "braid2", "braid3"})
@@ -471,139 +465,182 @@ std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
   if (const auto it = rider.roles.find("coatTail"); it != rider.roles.end())
     local[it->second] = s.joints[it->second].rest_local * rot(-r[C::clothSide] * params.cloth_deg_per_unit, kX) *
                         rot(-r[C::clothUp] * params.cloth_deg_per_unit, kZ);
+}
+
+// Folding forward, she stops where her head or chest would come within the guard's room of the horse's
+// neck and head (a rider on a horse she was not built for; Character::FoldGuard): `decided` limited to
+// the largest turn (by `turnBy`) that keeps the room.
+template <typename TurnBy>
+void guardFold(const Character::FoldGuard& g, std::span<const glm::mat4> horseWorld, std::span<const glm::mat4> world,
+               TurnBy&& turnBy, BalanceResult& decided) {
+  std::vector<glm::vec3> neck(g.horse_joint.size()), upper(g.rider_joint.size());
+  for (std::size_t k = 0; k < neck.size(); ++k) neck[k] = glm::vec3(horseWorld[g.horse_joint[k]] * glm::vec4(g.horse_local[k], 1.0f));
+  for (std::size_t k = 0; k < upper.size(); ++k) upper[k] = glm::vec3(world[g.rider_joint[k]] * glm::vec4(g.rider_local[k], 1.0f));
+  const float room2 = g.room_cm * g.room_cm;
+  // The neck's box grown by the room: a point outside it is clear of every neck point (most of her,
+  // most frames), so only the few inside are measured one by one.
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const glm::vec3& h : neck) lo = glm::min(lo, h), hi = glm::max(hi, h);
+  lo -= glm::vec3(g.room_cm);
+  hi += glm::vec3(g.room_cm);
+  const auto clear = [&](double deg) {
+    const glm::mat4 t = turnBy(deg);
+    for (const glm::vec3& p : upper) {
+      const glm::vec3 q(t * glm::vec4(p, 1.0f));
+      if (glm::any(glm::lessThan(q, lo)) || glm::any(glm::greaterThan(q, hi))) continue;
+      for (const glm::vec3& h : neck)
+        if (glm::dot(q - h, q - h) < room2) return false;
+    }
+    return true;
+  };
+  if (clear(decided.turn_deg)) return;
+  // The largest turn that keeps the room, to a tenth of a degree (bisection: nearer the neck the
+  // further she folds).
+  double low = 0.0, high = decided.turn_deg;
+  while (high - low > kFoldGuardToleranceDeg) {
+    const double mid = 0.5 * (low + high);
+    (clear(mid) ? low : high) = mid;
+  }
+  decided.turn_deg = low;
+  decided.lean_deg = decided.pose_lean_deg + low;
+  decided.limited = true;
+}
+
+// The balance stage (rig/balance.h): measure the trunk as the channels pose it, turn it about the hips
+// to the lean the stage decides, and turn the neck back so she keeps looking ahead. `top` is the top of
+// her pelvis's tree; `local` and `world` are updated together.
+BalanceResult balanceRider(const Character& rider, const Character& horse, std::span<const glm::mat4> horseWorld,
+                           const RiderChannels& r, double rider_unit_cm, const BalanceStage& balance, int top,
+                           std::span<glm::mat4> local, std::vector<glm::mat4>& world) {
+  const Skeleton& s = rider.skeleton;
+  const glm::mat4 saddle = horseWorld[horse.role("saddle")];
   const int pelvis = rider.role("pelvis");
+  BalanceInput in;
+  in.saddle = saddle;
+  // Her trunk folds at her hips: the pelvis joint of the generated rider (at her hip joints' height),
+  // or where the seating marked a user's hip joints ("hipCentre": a pelvis joint sits where its rig
+  // put it, often well above the hips).
+  const auto hip_centre = rider.roles.find("hipCentre");
+  const int pivot = hip_centre == rider.roles.end() ? pelvis : hip_centre->second;
+  in.seat = position(world[pivot]);
+  in.stirrups = 0.5f * (stirrupTarget(horse, horseWorld, r, rider_unit_cm, 0) + stirrupTarget(horse, horseWorld, r, rider_unit_cm, 1));
+  in.trunk = position(world[rider.role("neck")]) - position(world[pelvis]);
+  in.com_height_cm = rider.balance_com_height_cm > 0.0f ? rider.balance_com_height_cm : trunkComHeight(rider);
+  in.fold_scale = balance.fold_scale;
+  in.seat_rise_cm = (glm::inverse(saddle) * glm::vec4(in.seat, 1.0f)).y - s.restPosition(pivot).y;
+  in.accel_cm_s2 = balance.accel_cm_s2;
+  in.ground_pitch_deg = balance.ground_pitch_deg;
+  BalanceResult decided = balanceTrunk(in, balance.params);
+  // Forward is a turn taking the vertical toward the heading: about up x heading. The seat rises
+  // along the saddle's up.
+  const glm::vec3 axis = glm::normalize(glm::cross(kY, saddleHeading(saddle)));
+  const glm::vec3 lift = glm::normalize(glm::vec3(saddle[1])) * float(decided.seat_lift_cm);
+  const auto turnBy = [&](double deg) {
+    return translate(in.seat + lift) * glm::rotate(glm::mat4(1.0f), glm::radians(float(deg)), axis) * translate(-in.seat);
+  };
+  if (decided.turn_deg > 0.0 && !rider.fold_guard.empty()) guardFold(rider.fold_guard, horseWorld, world, turnBy, decided);
+  if (decided.turn_deg != 0.0 || decided.seat_lift_cm != 0.0) {
+    const glm::mat4 turn = turnBy(decided.turn_deg);
+    local[top] = turn * local[top];
+    const float counter = std::clamp(float(decided.turn_deg * balance.params.head_counter), -kNeckCounterRangeDeg,
+                                     kNeckCounterRangeDeg);
+    const int neck = rider.role("neck");
+    local[neck] = local[neck] * rot(counter, kZ);
+    localToWorld(s, local, world);
+  }
+  return decided;
+}
+
+// Arm: the wrist reaches for the rein, moved by wrist tx (forward) and ty (up) in saddle space.
+void reachForRein(const Character& rider, const glm::mat4& saddle, const RiderChannels& r, float u, int side,
+                  const RiderPoseParams& params, std::vector<glm::mat4>& world) {
+  using C = RiderChannel;
+  const Skeleton& s = rider.skeleton;
+  const std::string n = side == 0 ? "l" : "r";
+  const int shoulder = rider.role(n + "Shoulder"), elbow = rider.role(n + "Elbow"), wrist = rider.role(n + "Wrist");
+  const glm::vec3 rs = s.restPosition(shoulder), re = s.restPosition(elbow), rw = s.restPosition(wrist);
+  const glm::vec3 offset(float(r[side == 0 ? C::lWristTx : C::rWristTx]) * u,
+                         float(r[side == 0 ? C::lWristTy : C::rWristTy]) * u, 0.0f);
+  const glm::vec3 target = transformPoint(saddle, rw + offset);
+  const glm::vec3 rest_pole = restPole(rs, re, rw, 40.0f);
+  const glm::vec3 pole = transformPoint(motion(s, world, s.joints[shoulder].parent), rest_pole);
+  const LimbPose limb = solveLimb(rs, re, rw, rest_pole, position(world[shoulder]), target, pole, params.limb_soften);
+  world[shoulder] = limb.upper;
+  world[elbow] = limb.middle;
+  world[wrist] = translate(limb.end) * glm::mat4(glm::mat3(saddle));  // the hand keeps its grip angle
+  const int hand = rider.role(n + "Hand");
+  world[hand] = world[wrist] * s.joints[hand].rest_local;
+}
+
+// Leg: the ball of the foot in the stirrup; the foot turns about the ball; the knee's pole moves with
+// the knee channels (away from the belly, up).
+void footInStirrup(const Character& rider, const Character& horse, std::span<const glm::mat4> horseWorld,
+                   const RiderChannels& r, double rider_unit_cm, int side, const RiderPoseParams& params,
+                   std::vector<glm::mat4>& world) {
+  using C = RiderChannel;
+  const Skeleton& s = rider.skeleton;
+  const glm::mat4 saddle = horseWorld[horse.role("saddle")];
+  const float u = static_cast<float>(rider_unit_cm);
+  const std::string n = side == 0 ? "l" : "r";
+  const float away = side == 0 ? -1.0f : 1.0f;  // +Z is the horse's right
+  const int hip = rider.role(n + "Hip"), knee = rider.role(n + "Knee");
+  const int ankle = rider.role(n + "Ankle"), ball = rider.role(n + "Ball");
+  const glm::vec3 rh = s.restPosition(hip), rk = s.restPosition(knee), ra = s.restPosition(ankle),
+                  rb = s.restPosition(ball);
+  const glm::mat4 foot_rot = rot(-r[side == 0 ? C::lFootRy : C::rFootRy], kY) *
+                             rot(r[side == 0 ? C::lFootRx : C::rFootRx], kX) *
+                             rot(r[side == 0 ? C::lFootRz : C::rFootRz], kZ);
+  const glm::mat4 foot_world_rot = glm::mat4(glm::mat3(saddle)) * foot_rot;
+  const glm::vec3 ball_target = stirrupTarget(horse, horseWorld, r, rider_unit_cm, side);
+  const glm::vec3 ankle_target = ball_target + glm::vec3(foot_world_rot * glm::vec4(ra - rb, 0.0f));
+  const glm::vec3 rest_pole = restPole(rh, rk, ra, 50.0f);
+  const glm::vec3 knee_offset(0.0f, float(r[side == 0 ? C::lKneeTy : C::rKneeTy]) * u,
+                              float(r[side == 0 ? C::lKneeTz : C::rKneeTz]) * u * away);
+  const glm::vec3 pole = transformPoint(saddle, rest_pole + knee_offset * params.knee_pole_gain);
+  LimbPose limb = solveLimb(rh, rk, ra, rest_pole, position(world[hip]), ankle_target, pole, params.limb_soften);
+  if (!rider.leg_guard.empty())
+    limb = guardLeg(rider.leg_guard, saddle, away, limb, [&](glm::vec3 pole_point, float foot_out) {
+      const glm::vec3 out = glm::vec3(saddle * glm::vec4(0.0f, kGuardFootUpPerOut * foot_out, away * foot_out, 0.0f));
+      return solveLimb(rh, rk, ra, rest_pole, position(world[hip]), ankle_target + out, pole_point, params.limb_soften);
+    });
+  world[hip] = limb.upper;
+  world[knee] = limb.middle;
+  world[ankle] = translate(limb.end) * foot_world_rot;
+  world[ball] = translate(limb.end + glm::vec3(foot_world_rot * glm::vec4(rb - ra, 0.0f))) * foot_world_rot;
+}
+
+}  // namespace
+
+std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse, std::span<const glm::mat4> horseWorld,
+                                 const RiderChannels& r, double rider_unit_cm, const RiderPoseParams& params,
+                                 const BalanceStage* balance, BalanceResult* balance_result) {
+  checkSize(horse, horseWorld);
+  const Skeleton& s = rider.skeleton;
+  // The rider is built in saddle space: the posed saddle is the rider's frame.
+  const glm::mat4 saddle = horseWorld[horse.role("saddle")];
+
+  std::vector<glm::mat4> local = restLocals(s);
+  poseRiderSpine(rider, r, rider_unit_cm, params, local);
+  swingHairAndCloth(rider, r, params, local);
   // The saddle carries her from the top of her pelvis's tree (a user's rig may hang the pelvis from a
   // root on the ground, which rides along).
-  int top = pelvis;
+  int top = rider.role("pelvis");
   while (s.joints[top].parent >= 0) top = s.joints[top].parent;
   local[top] = saddle * local[top];
   std::vector<glm::mat4> world(s.size());
   localToWorld(s, local, world);
 
   if (balance) {
-    // The balance stage (rig/balance.h): measure the trunk as the channels pose it, turn it about the
-    // hips to the lean the stage decides, and turn the neck back so she keeps looking ahead.
-    BalanceInput in;
-    in.saddle = saddle;
-    // Her trunk folds at her hips: the pelvis joint of the generated rider (at her hip joints' height),
-    // or where the seating marked a user's hip joints ("hipCentre": a pelvis joint sits where its rig
-    // put it, often well above the hips).
-    const auto hip_centre = rider.roles.find("hipCentre");
-    const int pivot = hip_centre == rider.roles.end() ? pelvis : hip_centre->second;
-    in.seat = position(world[pivot]);
-    in.stirrups = 0.5f * (stirrupTarget(horse, horseWorld, r, rider_unit_cm, 0) + stirrupTarget(horse, horseWorld, r, rider_unit_cm, 1));
-    in.trunk = position(world[rider.role("neck")]) - position(world[pelvis]);
-    in.com_height_cm = rider.balance_com_height_cm > 0.0f ? rider.balance_com_height_cm : trunkComHeight(rider);
-    in.fold_scale = balance->fold_scale;
-    in.seat_rise_cm = (glm::inverse(saddle) * glm::vec4(in.seat, 1.0f)).y - s.restPosition(pivot).y;
-    in.accel_cm_s2 = balance->accel_cm_s2;
-    in.ground_pitch_deg = balance->ground_pitch_deg;
-    BalanceResult decided = balanceTrunk(in, balance->params);
-    // Forward is a turn taking the vertical toward the heading: about up x heading. The seat rises
-    // along the saddle's up.
-    const glm::vec3 axis = glm::normalize(glm::cross(kY, saddleHeading(saddle)));
-    const glm::vec3 lift = glm::normalize(glm::vec3(saddle[1])) * float(decided.seat_lift_cm);
-    const auto turnBy = [&](double deg) {
-      return translate(in.seat + lift) * glm::rotate(glm::mat4(1.0f), glm::radians(float(deg)), axis) * translate(-in.seat);
-    };
-    if (decided.turn_deg > 0.0 && !rider.fold_guard.empty()) {
-      // Folding forward, she stops where her head or chest would come within the guard's room of the
-      // horse's neck and head (a rider on a horse she was not built for; Character::FoldGuard).
-      const Character::FoldGuard& g = rider.fold_guard;
-      std::vector<glm::vec3> neck(g.horse_joint.size()), upper(g.rider_joint.size());
-      for (std::size_t k = 0; k < neck.size(); ++k) neck[k] = glm::vec3(horseWorld[g.horse_joint[k]] * glm::vec4(g.horse_local[k], 1.0f));
-      for (std::size_t k = 0; k < upper.size(); ++k) upper[k] = glm::vec3(world[g.rider_joint[k]] * glm::vec4(g.rider_local[k], 1.0f));
-      const float room2 = g.room_cm * g.room_cm;
-      // The neck's box grown by the room: a point outside it is clear of every neck point (most of her,
-      // most frames), so only the few inside are measured one by one.
-      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-      for (const glm::vec3& h : neck) lo = glm::min(lo, h), hi = glm::max(hi, h);
-      lo -= glm::vec3(g.room_cm);
-      hi += glm::vec3(g.room_cm);
-      const auto clear = [&](double deg) {
-        const glm::mat4 t = turnBy(deg);
-        for (const glm::vec3& p : upper) {
-          const glm::vec3 q(t * glm::vec4(p, 1.0f));
-          if (glm::any(glm::lessThan(q, lo)) || glm::any(glm::greaterThan(q, hi))) continue;
-          for (const glm::vec3& h : neck)
-            if (glm::dot(q - h, q - h) < room2) return false;
-        }
-        return true;
-      };
-      if (!clear(decided.turn_deg)) {
-        // The largest turn that keeps the room, to a tenth of a degree (bisection: nearer the neck the
-        // further she folds).
-        double lo = 0.0, hi = decided.turn_deg;
-        while (hi - lo > kFoldGuardToleranceDeg) {
-          const double mid = 0.5 * (lo + hi);
-          (clear(mid) ? lo : hi) = mid;
-        }
-        decided.turn_deg = lo;
-        decided.lean_deg = decided.pose_lean_deg + lo;
-        decided.limited = true;
-      }
-    }
+    const BalanceResult decided = balanceRider(rider, horse, horseWorld, r, rider_unit_cm, *balance, top, local, world);
     if (balance_result) *balance_result = decided;
-    if (decided.turn_deg != 0.0 || decided.seat_lift_cm != 0.0) {
-      const glm::mat4 turn = turnBy(decided.turn_deg);
-      local[top] = turn * local[top];
-      const float counter = std::clamp(float(decided.turn_deg * balance->params.head_counter), -kNeckCounterRangeDeg,
-                                       kNeckCounterRangeDeg);
-      const int neck = rider.role("neck");
-      local[neck] = local[neck] * rot(counter, kZ);
-      localToWorld(s, local, world);
-    }
   }
 
   std::vector<char> solved(s.size(), 0);  // joints the limbs below place in world terms
   for (int side = 0; side < 2; ++side) {
     const std::string n = side == 0 ? "l" : "r";
-    const float away = side == 0 ? -1.0f : 1.0f;  // +Z is the horse's right
     for (const char* part : {"Shoulder", "Elbow", "Wrist", "Hand", "Hip", "Knee", "Ankle", "Ball"}) solved[rider.role(n + part)] = 1;
-    // Arm: the wrist reaches for the rein, moved by wrist tx (forward) and ty (up) in saddle space.
-    {
-      const int shoulder = rider.role(n + "Shoulder"), elbow = rider.role(n + "Elbow"), wrist = rider.role(n + "Wrist");
-      const glm::vec3 rs = s.restPosition(shoulder), re = s.restPosition(elbow), rw = s.restPosition(wrist);
-      const glm::vec3 offset(float(r[side == 0 ? C::lWristTx : C::rWristTx]) * u,
-                             float(r[side == 0 ? C::lWristTy : C::rWristTy]) * u, 0.0f);
-      const glm::vec3 target = transformPoint(saddle, rw + offset);
-      const glm::vec3 rest_pole = restPole(rs, re, rw, 40.0f);
-      const glm::vec3 pole = transformPoint(motion(s, world, s.joints[shoulder].parent), rest_pole);
-      const LimbPose limb = solveLimb(rs, re, rw, rest_pole, position(world[shoulder]), target, pole, params.limb_soften);
-      world[shoulder] = limb.upper;
-      world[elbow] = limb.middle;
-      world[wrist] = translate(limb.end) * glm::mat4(glm::mat3(saddle));  // the hand keeps its grip angle
-      const int hand = rider.role(n + "Hand");
-      world[hand] = world[wrist] * s.joints[hand].rest_local;
-    }
-    // Leg: the ball of the foot in the stirrup; the foot turns about the ball; the knee's pole moves
-    // with the knee channels (away from the belly, up).
-    {
-      const int hip = rider.role(n + "Hip"), knee = rider.role(n + "Knee");
-      const int ankle = rider.role(n + "Ankle"), ball = rider.role(n + "Ball");
-      const glm::vec3 rh = s.restPosition(hip), rk = s.restPosition(knee), ra = s.restPosition(ankle),
-                      rb = s.restPosition(ball);
-      const glm::mat4 foot_rot = rot(-r[side == 0 ? C::lFootRy : C::rFootRy], kY) *
-                                 rot(r[side == 0 ? C::lFootRx : C::rFootRx], kX) *
-                                 rot(r[side == 0 ? C::lFootRz : C::rFootRz], kZ);
-      const glm::mat4 foot_world_rot = glm::mat4(glm::mat3(saddle)) * foot_rot;
-      const glm::vec3 ball_target = stirrupTarget(horse, horseWorld, r, rider_unit_cm, side);
-      const glm::vec3 ankle_target = ball_target + glm::vec3(foot_world_rot * glm::vec4(ra - rb, 0.0f));
-      const glm::vec3 rest_pole = restPole(rh, rk, ra, 50.0f);
-      const glm::vec3 knee_offset(0.0f, float(r[side == 0 ? C::lKneeTy : C::rKneeTy]) * u,
-                                  float(r[side == 0 ? C::lKneeTz : C::rKneeTz]) * u * away);
-      const glm::vec3 pole = transformPoint(saddle, rest_pole + knee_offset * params.knee_pole_gain);
-      LimbPose limb = solveLimb(rh, rk, ra, rest_pole, position(world[hip]), ankle_target, pole, params.limb_soften);
-      if (!rider.leg_guard.empty())
-        limb = guardLeg(rider.leg_guard, saddle, away, limb, [&](glm::vec3 pole_point, float foot_out) {
-          const glm::vec3 out = glm::vec3(saddle * glm::vec4(0.0f, kGuardFootUpPerOut * foot_out, away * foot_out, 0.0f));
-          return solveLimb(rh, rk, ra, rest_pole, position(world[hip]), ankle_target + out, pole_point, params.limb_soften);
-        });
-      world[hip] = limb.upper;
-      world[knee] = limb.middle;
-      world[ankle] = translate(limb.end) * foot_world_rot;
-      world[ball] = translate(limb.end + glm::vec3(foot_world_rot * glm::vec4(rb - ra, 0.0f))) * foot_world_rot;
-    }
+    reachForRein(rider, saddle, r, static_cast<float>(rider_unit_cm), side, params, world);
+    footInStirrup(rider, horse, horseWorld, r, rider_unit_cm, side, params, world);
   }
   // Joints hanging from the limbs that no role names (fingers, toes, twist and split-segment joints
   // of a user's rig) are carried by their parents as they hang at rest.

@@ -157,78 +157,50 @@ std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
   return rig::makeClip(scene.clip, rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping));
 }
 
-SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const SceneLoadOptions& options) {
-  JsonObjectReader r(file, "", json);
-  SceneSpec s;
-  s.file = file;
-  s.allow_impossible = r.boolean("allow_impossible", false) || options.allow_impossible;
-  s.name = r.string("name", std::filesystem::path(file).stem().string());
-  if (r.has("clip")) s.clip = parseClip(r.object("clip"), std::filesystem::path(file).parent_path(), s.gait);
-  if (r.has("terrain")) {
-    JsonObjectReader t = r.object("terrain");
-    s.terrain = rig::parseTerrain(t, std::filesystem::path(file).parent_path());
-  }
-  s.clip.terrain = s.terrain;
-  if (r.has("characters")) {
-    JsonObjectReader c = r.object("characters");
-    // "default" (the built-in generator), a glTF file (relative to the scene file) carrying its role
-    // table, or {"file": ..., "mapping": ...} for a user's character (docs/characters.md).
-    const std::filesystem::path dir = std::filesystem::path(file).parent_path();
-    const auto character = [&](const char* key, std::string& path, std::string& mapping) {
-      const nlohmann::json* v = c.value(key);
-      if (!v) return;
-      const auto resolve = [&](const std::string& field, const std::string& name) {
-        const std::filesystem::path f = dir / name;
-        if (!std::filesystem::exists(f)) c.fail(field, "no such file: " + f.string());
-        return f.string();
-      };
-      if (v->is_string() && v->get<std::string>() == "default") {
-        path = "default";
-      } else if (v->is_string()) {
-        path = resolve(key, v->get<std::string>());
-      } else if (v->is_object()) {
-        JsonObjectReader o = c.object(key);
-        const std::string f = o.string("file", "");
-        if (f.empty()) o.fail("file", "expected a glTF file (.glb or .gltf)");
-        path = f == "default" ? f : std::filesystem::exists(dir / f) ? (dir / f).string() : "";
-        if (path.empty()) o.fail("file", "no such file: " + (dir / f).string());
-        const std::string m = o.string("mapping", "");
-        if (!m.empty()) {
-          if (!std::filesystem::exists(dir / m)) o.fail("mapping", "no such file: " + (dir / m).string());
-          mapping = (dir / m).string();
-        }
-        o.finish();
-      } else {
-        c.fail(key, "expected \"default\", a glTF file or {\"file\": ..., \"mapping\": ...}, got " + describeJson(*v));
-      }
+namespace {
+
+// The scene's "characters": "default", a glTF file (relative to the scene file) carrying its role table,
+// or {"file": ..., "mapping": ...} for a user's character (docs/characters.md).
+void parseCharacters(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
+  if (!r.has("characters")) return;
+  JsonObjectReader c = r.object("characters");
+  const std::filesystem::path dir = std::filesystem::path(file).parent_path();
+  const auto character = [&](const char* key, std::string& path, std::string& mapping) {
+    const nlohmann::json* v = c.value(key);
+    if (!v) return;
+    const auto resolve = [&](const std::string& field, const std::string& name) {
+      const std::filesystem::path f = dir / name;
+      if (!std::filesystem::exists(f)) c.fail(field, "no such file: " + f.string());
+      return f.string();
     };
-    character("horse", s.horse, s.horse_mapping);
-    character("rider", s.rider, s.rider_mapping);
-    c.finish();
-  }
-  s.profile = r.string("profile", s.profile);
-  if (const nlohmann::json* o = r.value("profile_overrides")) {
-    if (!o->is_object()) r.fail("profile_overrides", "expected an object, got " + describeJson(*o));
-    s.profile_overrides = *o;
-  }
-  s.fps = r.number("fps", s.fps);
-  if (!(s.fps > 0.0 && s.fps <= 240.0)) r.fail("fps", "expected frames per second between 0 and 240");
-  // A horse's own animation (or another horse's, read through its roles) plays whole unless the scene
-  // says which frames.
-  if (!s.clip.file.empty() && !r.has("frames") && !rig::readsControlNodes(s.clip))
-    s.frames = "1-" + std::to_string(std::max(1, int(std::lround(rig::fileClipDuration(s.clip) * s.fps)) + 1));
-  s.frames = r.string("frames", s.frames);
-  rig::parseFrameList(s.frames, file + ": frames");
-  if (const nlohmann::json* res = r.value("resolution")) {
-    if (!res->is_array() || res->size() != 2 || !(*res)[0].is_number_integer() ||
-        !(*res)[1].is_number_integer())
-      r.fail("resolution", "expected [width, height] in whole pixels, got " + describeJson(*res));
-    s.width = (*res)[0].get<int>();
-    s.height = (*res)[1].get<int>();
-    if (s.width < 8 || s.height < 8 || s.width > 8192 || s.height > 8192)
-      r.fail("resolution", "expected a width and height between 8 and 8192");
-  }
-  // "quality": "review", or {"preset": "draft", "samples": 8} where explicit fields override the preset.
+    if (v->is_string() && v->get<std::string>() == "default") {
+      path = "default";
+    } else if (v->is_string()) {
+      path = resolve(key, v->get<std::string>());
+    } else if (v->is_object()) {
+      JsonObjectReader o = c.object(key);
+      const std::string f = o.string("file", "");
+      if (f.empty()) o.fail("file", "expected a glTF file (.glb or .gltf)");
+      path = f == "default" ? f : std::filesystem::exists(dir / f) ? (dir / f).string() : "";
+      if (path.empty()) o.fail("file", "no such file: " + (dir / f).string());
+      const std::string m = o.string("mapping", "");
+      if (!m.empty()) {
+        if (!std::filesystem::exists(dir / m)) o.fail("mapping", "no such file: " + (dir / m).string());
+        mapping = (dir / m).string();
+      }
+      o.finish();
+    } else {
+      c.fail(key, "expected \"default\", a glTF file or {\"file\": ..., \"mapping\": ...}, got " + describeJson(*v));
+    }
+  };
+  character("horse", s.horse, s.horse_mapping);
+  character("rider", s.rider, s.rider_mapping);
+  c.finish();
+}
+
+// The look: "quality" (a preset's name, or {"preset": "draft", "samples": 8} where explicit fields override
+// the preset), "sun" and "haze".
+void parseLook(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   if (const nlohmann::json* qv = r.value("quality"); qv && qv->is_string()) {
     applyPreset(s, findQualityPreset(qv->get<std::string>(), file + ": quality"));
   } else if (r.has("quality")) {
@@ -263,18 +235,10 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
       haze.fail("ortho_depth_cm", "expected centimetres from 100 to 100000");
     haze.finish();
   }
-  if (const nlohmann::json* cams = r.value("cameras")) {
-    if (!cams->is_array() || cams->empty())
-      r.fail("cameras", "expected a non-empty array of cameras, got " + describeJson(*cams));
-    s.cameras.clear();
-    for (std::size_t i = 0; i < cams->size(); ++i) {
-      const std::string path = "cameras[" + std::to_string(i) + "]";
-      s.cameras.push_back(parseCamera(JsonObjectReader(file, path, (*cams)[i]), static_cast<int>(i)));
-    }
-  }
-  s.output = r.string("output", "out/" + s.name);
-  if (r.has("reference")) s.reference = parseReferenceSpec(r.object("reference"), std::filesystem::path(file).parent_path());
-  // A crowd: each pair rides its own path, so the scene's one clip has no place beside it.
+}
+
+// A crowd or a list of riders: each pair rides its own path, so the scene's one clip has no place beside it.
+void parsePairs(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   if (r.has("crowd") || r.has("riders")) {
     const char* key = r.has("crowd") ? "crowd" : "riders";
     if (r.has("crowd") && r.has("riders")) r.fail("riders", "expected either \"crowd\" or \"riders\", not both");
@@ -293,8 +257,10 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
     }
     s.pair_clips = rig::validatePairs(s.pairs, s.terrain, s.fps, 0, file, "riders");
   }
-  s.pair_clips_terrain = s.terrain;
-  if (s.crowd && !r.has("frames")) s.frames = "1-" + std::to_string(rig::crowdFrames(*s.crowd, s.terrain, s.fps, file));
+}
+
+// Cameras that follow a pair name one the scene has.
+void checkCameraPairs(const std::string& file, const SceneSpec& s) {
   for (std::size_t i = 0; i < s.cameras.size(); ++i) {
     const CameraSpec& c = s.cameras[i];
     const std::string at = file + ": cameras[" + std::to_string(i) + "].";
@@ -306,6 +272,61 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
     // On a treadmill every pair would ride in place, through the others.
     if (c.treadmill && !s.pairs.empty()) throw InputError(at + "treadmill: expected false in a crowd scene");
   }
+}
+
+}  // namespace
+
+SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const SceneLoadOptions& options) {
+  JsonObjectReader r(file, "", json);
+  SceneSpec s;
+  s.file = file;
+  s.allow_impossible = r.boolean("allow_impossible", false) || options.allow_impossible;
+  s.name = r.string("name", std::filesystem::path(file).stem().string());
+  if (r.has("clip")) s.clip = parseClip(r.object("clip"), std::filesystem::path(file).parent_path(), s.gait);
+  if (r.has("terrain")) {
+    JsonObjectReader t = r.object("terrain");
+    s.terrain = rig::parseTerrain(t, std::filesystem::path(file).parent_path());
+  }
+  s.clip.terrain = s.terrain;
+  parseCharacters(r, file, s);
+  s.profile = r.string("profile", s.profile);
+  if (const nlohmann::json* o = r.value("profile_overrides")) {
+    if (!o->is_object()) r.fail("profile_overrides", "expected an object, got " + describeJson(*o));
+    s.profile_overrides = *o;
+  }
+  s.fps = r.number("fps", s.fps);
+  if (!(s.fps > 0.0 && s.fps <= 240.0)) r.fail("fps", "expected frames per second between 0 and 240");
+  // A horse's own animation (or another horse's, read through its roles) plays whole unless the scene
+  // says which frames.
+  if (!s.clip.file.empty() && !r.has("frames") && !rig::readsControlNodes(s.clip))
+    s.frames = "1-" + std::to_string(std::max(1, int(std::lround(rig::fileClipDuration(s.clip) * s.fps)) + 1));
+  s.frames = r.string("frames", s.frames);
+  rig::parseFrameList(s.frames, file + ": frames");
+  if (const nlohmann::json* res = r.value("resolution")) {
+    if (!res->is_array() || res->size() != 2 || !(*res)[0].is_number_integer() ||
+        !(*res)[1].is_number_integer())
+      r.fail("resolution", "expected [width, height] in whole pixels, got " + describeJson(*res));
+    s.width = (*res)[0].get<int>();
+    s.height = (*res)[1].get<int>();
+    if (s.width < 8 || s.height < 8 || s.width > 8192 || s.height > 8192)
+      r.fail("resolution", "expected a width and height between 8 and 8192");
+  }
+  parseLook(r, file, s);
+  if (const nlohmann::json* cams = r.value("cameras")) {
+    if (!cams->is_array() || cams->empty())
+      r.fail("cameras", "expected a non-empty array of cameras, got " + describeJson(*cams));
+    s.cameras.clear();
+    for (std::size_t i = 0; i < cams->size(); ++i) {
+      const std::string path = "cameras[" + std::to_string(i) + "]";
+      s.cameras.push_back(parseCamera(JsonObjectReader(file, path, (*cams)[i]), static_cast<int>(i)));
+    }
+  }
+  s.output = r.string("output", "out/" + s.name);
+  if (r.has("reference")) s.reference = parseReferenceSpec(r.object("reference"), std::filesystem::path(file).parent_path());
+  parsePairs(r, file, s);
+  s.pair_clips_terrain = s.terrain;
+  if (s.crowd && !r.has("frames")) s.frames = "1-" + std::to_string(rig::crowdFrames(*s.crowd, s.terrain, s.fps, file));
+  checkCameraPairs(file, s);
   r.finish();
   checkLimits(s);
   return s;

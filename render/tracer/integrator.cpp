@@ -282,6 +282,23 @@ LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
   return k;
 }
 
+namespace {
+
+// Queues camera sample c (lane k) for the characters' stream when its ray may meet their box: most
+// camera rays of a review view pass beside it, with no call into Embree.
+void queueCharacterRay(TileScratch::CameraSample& c, std::size_t k, const CameraLanes& lanes, TileScratch& scratch) {
+  c.ray = -1;
+  if (lanes.may_hit[k]) {
+    c.ray = int32_t(scratch.camera_rays.size());
+    RTCRayHit& rh = scratch.camera_rays.emplace_back();
+    rh.ray = makeRay(c.origin, c.dir, c.t_ground);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
+}  // namespace
+
 void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_width, int y0,
                              int first, int count, int frame, TileScratch& scratch, RayTally& tally,
                              PixelResult* out) const {
@@ -297,10 +314,23 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   lanes.resize(n);
   scratch.samples.resize(n);  // not cleared: every field a pass reads is set by an earlier pass
 
-  // Pass 1: every camera ray of the batch. Each pixel's sequence is set up here; its points, the rays,
-  // the flat ground (a square in the plane y = 0, intersected without a call into Embree: its distance
-  // then bounds the search through the characters) and the test against the characters' box run in
-  // SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+  cameraPass(constants, x0, tile_width, y0, first, count, frame, scratch, tally);
+  if (terrain_ && n > 0) groundPass(constants, scratch);
+  if (!scratch.camera_rays.empty()) characterPass(scratch);
+  surfacePass(constants, scratch, tally);
+  occluderPass(constants, scratch);
+  occlusionPass(scratch);
+  resolvePass(count, scratch, out);
+}
+
+// Pass 1: every camera ray of the batch. Each pixel's sequence is set up here; its points, the rays,
+// the flat ground (a square in the plane y = 0, intersected without a call into Embree: its distance
+// then bounds the search through the characters) and the test against the characters' box run in
+// SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_width, int y0, int first, int count,
+                            int frame, TileScratch& scratch, RayTally& tally) const {
+  CameraLanes& lanes = scratch.lanes;
+  const std::size_t n = std::size_t(count) * spp_;
   StratifiedLanes& points = scratch.pixel_points;
   points.resize(lanes.padded);
   std::size_t j = 0;
@@ -317,17 +347,6 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   }
   stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
   cameraRayLanes(constants, lanes, !terrain_);
-  auto queueCharacterRay = [&](TileScratch::CameraSample& c, std::size_t k) {
-    c.ray = -1;
-    // Most camera rays of a review view pass beside the characters' box: no call into Embree.
-    if (lanes.may_hit[k]) {
-      c.ray = int32_t(scratch.camera_rays.size());
-      RTCRayHit& rh = scratch.camera_rays.emplace_back();
-      rh.ray = makeRay(c.origin, c.dir, c.t_ground);
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    }
-  };
   for (std::size_t k = 0; k < n; ++k) {
     TileScratch::CameraSample& c = scratch.samples[k];
     c.origin = {lanes.ox[k], lanes.oy[k], lanes.oz[k]};
@@ -336,62 +355,68 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     ++tally.rays;
     if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
     if (terrain_) continue;  // the heightfield first (pass 1b)
-    queueCharacterRay(c, k);
+    queueCharacterRay(c, k, lanes, scratch);
   }
+}
 
-  // Pass 1b (uneven ground): the camera rays against the heightfield as one structure-of-arrays stream
-  // that Embree reads from the lanes in place (no per-ray structures to fill, no copies), coherent,
-  // each ray from where it enters the heightfield's slab to where it leaves it (cameraRayLanes); a ray
-  // wholly above the hills (the sky of most views) has t_enter > t_leave, which Embree skips. The
-  // ground's distance then bounds the search through the characters as the plane's does.
-  if (terrain_ && n > 0) {
-    TileScratch::GroundStream& g = scratch.ground;
-    g.resize(lanes.padded);
-    std::fill_n(g.geom.begin(), lanes.padded, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
-    RTCRayHitNp stream;
-    stream.ray = {lanes.ox.data(), lanes.oy.data(), lanes.oz.data(), lanes.t_enter.data(),
-                  lanes.dx.data(), lanes.dy.data(), lanes.dz.data(), g.time.data(),
-                  lanes.t_leave.data(), g.mask.data(), g.id.data(), g.flags.data()};
-    stream.hit.Ng_x = g.ng_x.data(), stream.hit.Ng_y = g.ng_y.data(), stream.hit.Ng_z = g.ng_z.data();
-    stream.hit.u = g.u.data(), stream.hit.v = g.v.data();
-    stream.hit.primID = g.prim.data(), stream.hit.geomID = g.geom.data();
-    for (unsigned*& inst : stream.hit.instID) inst = g.inst.data();
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersectNp(ground_, &context, &stream, unsigned(n));
-    // Each hit's distance (its tfar) and the ground's normal there, while the hits are at hand (a
-    // character nearer makes the normal unused: few samples).
-    if (ground_mesh_) {
-      groundHitLanes({g.geom.data(), g.prim.data(), g.u.data(), g.v.data(), ground_mesh_->indices.data(),
-                      ground_mesh_->normals.data()},
-                     lanes);
-    } else {
-      for (std::size_t k = 0; k < n; ++k) {
-        const bool hit = g.geom[k] != RTC_INVALID_GEOMETRY_ID;
-        lanes.t_ground[k] = hit ? lanes.t_leave[k] : kInfinity;
-        if (hit) terrainNormal(lanes, k);
-      }
-    }
-    boxTestLanes(constants, lanes);
+// Pass 1b (uneven ground): the camera rays against the heightfield as one structure-of-arrays stream
+// that Embree reads from the lanes in place (no per-ray structures to fill, no copies), coherent,
+// each ray from where it enters the heightfield's slab to where it leaves it (cameraRayLanes); a ray
+// wholly above the hills (the sky of most views) has t_enter > t_leave, which Embree skips. The
+// ground's distance then bounds the search through the characters as the plane's does.
+void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch) const {
+  CameraLanes& lanes = scratch.lanes;
+  const std::size_t n = scratch.samples.size();
+  TileScratch::GroundStream& g = scratch.ground;
+  g.resize(lanes.padded);
+  std::fill_n(g.geom.begin(), lanes.padded, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
+  RTCRayHitNp stream;
+  stream.ray = {lanes.ox.data(), lanes.oy.data(), lanes.oz.data(), lanes.t_enter.data(),
+                lanes.dx.data(), lanes.dy.data(), lanes.dz.data(), g.time.data(),
+                lanes.t_leave.data(), g.mask.data(), g.id.data(), g.flags.data()};
+  stream.hit.Ng_x = g.ng_x.data(), stream.hit.Ng_y = g.ng_y.data(), stream.hit.Ng_z = g.ng_z.data();
+  stream.hit.u = g.u.data(), stream.hit.v = g.v.data();
+  stream.hit.primID = g.prim.data(), stream.hit.geomID = g.geom.data();
+  for (unsigned*& inst : stream.hit.instID) inst = g.inst.data();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersectNp(ground_, &context, &stream, unsigned(n));
+  // Each hit's distance (its tfar) and the ground's normal there, while the hits are at hand (a
+  // character nearer makes the normal unused: few samples).
+  if (ground_mesh_) {
+    groundHitLanes({g.geom.data(), g.prim.data(), g.u.data(), g.v.data(), ground_mesh_->indices.data(),
+                    ground_mesh_->normals.data()},
+                   lanes);
+  } else {
     for (std::size_t k = 0; k < n; ++k) {
-      scratch.samples[k].t_ground = lanes.t_ground[k];
-      queueCharacterRay(scratch.samples[k], k);
+      const bool hit = g.geom[k] != RTC_INVALID_GEOMETRY_ID;
+      lanes.t_ground[k] = hit ? lanes.t_leave[k] : kInfinity;
+      if (hit) terrainNormal(lanes, k);
     }
   }
-
-  // Pass 2: the camera rays that may meet the characters, as one coherent stream.
-  if (!scratch.camera_rays.empty()) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect1M(characters_, &context, scratch.camera_rays.data(), unsigned(scratch.camera_rays.size()),
-                   sizeof(RTCRayHit));
+  boxTestLanes(constants, lanes);
+  for (std::size_t k = 0; k < n; ++k) {
+    scratch.samples[k].t_ground = lanes.t_ground[k];
+    queueCharacterRay(scratch.samples[k], k, lanes, scratch);
   }
+}
 
-  // Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
-  // In lanes first: the flat ground's surface (and the whole light of open ground, most of a review
-  // frame) where no character is nearer, and the sky behind every sample.
+// Pass 2: the camera rays that may meet the characters, as one coherent stream.
+void Integrator::characterPass(TileScratch& scratch) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect1M(characters_, &context, scratch.camera_rays.data(), unsigned(scratch.camera_rays.size()),
+                 sizeof(RTCRayHit));
+}
+
+// Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
+// In lanes first: the flat ground's surface (and the whole light of open ground, most of a review
+// frame) where no character is nearer, and the sky behind every sample.
+void Integrator::surfacePass(const LaneConstants& constants, TileScratch& scratch, RayTally& tally) const {
+  CameraLanes& lanes = scratch.lanes;
+  const std::size_t n = scratch.samples.size();
   for (std::size_t k = 0; k < n; ++k) {
     const TileScratch::CameraSample& c = scratch.samples[k];
     const bool character_hit = c.ray >= 0 && scratch.camera_rays[std::size_t(c.ray)].hit.geomID != RTC_INVALID_GEOMETRY_ID;
@@ -412,7 +437,7 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   sky_points.resize(surfaces.stride * ao_spp_);
   std::size_t m = 0;
   TileScratch::CameraSample* c = scratch.samples.data();
-  j = 0;
+  std::size_t j = 0;
   for (TileScratch::PixelState& pixel : scratch.pixels) {
     for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
       c->resolved = false;
@@ -501,9 +526,12 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
       }
     }
   }
+}
 
-  // Pass 3b: the occlusion rays against the characters' box in lanes; those that may meet them go to
-  // their stream, in the order they were made.
+// Pass 3b: the occlusion rays against the characters' box in lanes; those that may meet them go to
+// their stream, in the order they were made.
+void Integrator::occluderPass(const LaneConstants& constants, TileScratch& scratch) const {
+  RayLanes& occluders = scratch.occluders;
   const std::size_t occluder_count = occluders.size;
   occluders.pad();
   boxTestLanes(constants, occluders);
@@ -517,8 +545,10 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     stream.push_back(makeRay({occluders.ox[k], occluders.oy[k], occluders.oz[k]},
                              {occluders.dx[k], occluders.dy[k], occluders.dz[k]}, occluders.t_far[k]));
   }
+}
 
-  // Pass 4: the shadow rays (nearly parallel: one coherent stream) and the sky rays.
+// Pass 4: the shadow rays (nearly parallel: one coherent stream) and the sky rays.
+void Integrator::occlusionPass(TileScratch& scratch) const {
   if (!scratch.sun_rays.empty()) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -536,8 +566,10 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcOccluded1M(ground_, &context, scratch.hill_rays.data(), unsigned(scratch.hill_rays.size()), sizeof(RTCRay));
   }
+}
 
-  // Pass 5: each sample's light from its open rays, and each pixel's samples into its result.
+// Pass 5: each sample's light from its open rays, and each pixel's samples into its result.
+void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) const {
   const TileScratch::PendingRay* pending = scratch.pending.data();
   auto open = [&](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
     if (r.hill >= 0 && blocked(scratch.hill_rays[std::size_t(r.hill)])) return false;
@@ -545,7 +577,7 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
     const int32_t traced = scratch.occluder_ray[std::size_t(r.ray)];
     return traced < 0 || !blocked(stream[std::size_t(traced)]);
   };
-  c = scratch.samples.data();
+  const TileScratch::CameraSample* c = scratch.samples.data();
   for (int p = 0; p < count; ++p) {
     glm::vec3 sum(0.0f), normal_sum(0.0f);
     uint32_t hits = 0, character_hits = 0;

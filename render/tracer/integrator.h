@@ -136,6 +136,16 @@ class Integrator {
   // Traces the camera rays of pixels [first, first + count) of the tile and shades them into `out`.
   void renderBatch(const LaneConstants& constants, int x0, int tile_width, int y0, int first,
                    int count, int frame, TileScratch& scratch, RayTally& tally, PixelResult* out) const;
+  // renderBatch's passes, in order (integrator.cpp says what each does); each reads what the ones before
+  // left in the scratch.
+  void cameraPass(const LaneConstants& constants, int x0, int tile_width, int y0, int first, int count, int frame,
+                  TileScratch& scratch, RayTally& tally) const;
+  void groundPass(const LaneConstants& constants, TileScratch& scratch) const;
+  void characterPass(TileScratch& scratch) const;
+  void surfacePass(const LaneConstants& constants, TileScratch& scratch, RayTally& tally) const;
+  void occluderPass(const LaneConstants& constants, TileScratch& scratch) const;
+  void occlusionPass(TileScratch& scratch) const;
+  void resolvePass(int count, TileScratch& scratch, PixelResult* out) const;
   // A sample's surface into the surface lanes at m: a character's hit (rh) and its triangle's
   // vertices, or the ground's surface (the plane's from the lanes at sample j, or the terrain's).
   void gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh,

@@ -150,14 +150,17 @@ constexpr double kHeightEpsilonCm = 0.01;
 constexpr double kLaneSlackMarginCm = 0.05;
 constexpr double kLaneHeightMarginCm = 1e-3;
 
-}  // namespace
+// `v` stored in a float rounded up: the map's bounds may only grow.
+float roundedUp(double v) {
+  float stored = float(v);
+  if (double(stored) < v) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
+  return stored;
+}
 
-SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, double angular_radius_rad,
-                       const GroundRegion& region, const SunHorizonParams& params)
-    : mesh_(&mesh) {
-  if (mesh.xs.size() < 2 || mesh.zs.size() < 2) return;
+// The steepest slope of any cell of the mesh.
+double steepestCellSlope(const TerrainMesh& mesh) {
   const std::size_t cells_x = mesh.xs.size() - 1, cells_z = mesh.zs.size() - 1;
-  steepest_ = tbb::parallel_reduce(
+  return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, cells_z), 0.0,
       [&](const tbb::blocked_range<std::size_t>& rows, double most) {
         for (std::size_t j = rows.begin(); j < rows.end(); ++j)
@@ -165,6 +168,158 @@ SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, do
         return most;
       },
       [](double a, double b) { return std::max(a, b); });  // exact in any order
+}
+
+// The sun's azimuth on the ground (ax, az) and how far a disc ray's ground track can turn from it, as a
+// chord of the unit circle.
+struct SunTrack {
+  double ax = 1.0, az = 0.0, chord = 2.0;
+};
+
+SunTrack sunTrack(const glm::dvec3& toward_sun, double length, double elevation, double angular_radius_rad) {
+  SunTrack t;
+  const double horizontal = std::hypot(toward_sun.x, toward_sun.z);
+  if (horizontal > 0.0) t.ax = toward_sun.x / horizontal, t.az = toward_sun.z / horizontal;
+  const double cos_e = horizontal / length;
+  if (angular_radius_rad < std::numbers::pi / 2.0 - elevation && cos_e > 0.0) {
+    const double sin_phi = std::min(1.0, std::sin(angular_radius_rad) / cos_e);
+    t.chord = std::sqrt(std::max(0.0, 2.0 - 2.0 * std::sqrt(1.0 - sin_phi * sin_phi)));
+  }
+  return t;
+}
+
+// The map's texels: nx by nz squares of `texel` cm from (x0, z0).
+struct TexelGrid {
+  double x0 = 0.0, z0 = 0.0, texel = 1.0;
+  std::size_t nx = 0, nz = 0;
+  double centreX(std::size_t ti) const { return x0 + (double(ti) + 0.5) * texel; }
+  double centreZ(std::size_t tj) const { return z0 + (double(tj) + 0.5) * texel; }
+};
+
+// The mesh's cells [first, last) that `lines` (cell boundaries) put within [lo, hi].
+std::pair<std::size_t, std::size_t> cellRange(const std::vector<double>& lines, double lo, double hi) {
+  const std::size_t first = std::size_t(std::max<std::ptrdiff_t>(
+      0, std::upper_bound(lines.begin(), lines.end(), lo) - lines.begin() - 1));
+  const std::size_t last = std::min<std::size_t>(std::lower_bound(lines.begin(), lines.end(), hi) - lines.begin(),
+                                                 lines.size() - 1);
+  return {first, last};
+}
+
+// Near field: the fastest any triangle within near + rho of a texel's centre rises along a disc ray's ground
+// track (its gradient along the sun's azimuth, plus its steepness times the track's turn), the maximum
+// over a box of cells taken row by row (each cell row's maximum over each texel column's cells), then
+// over the rows of each texel row's box.
+class NearFieldRise {
+ public:
+  NearFieldRise(const TerrainMesh& mesh, const SunTrack& track, const TexelGrid& grid, double near, double rho) : nx_(grid.nx) {
+    std::vector<std::pair<std::size_t, std::size_t>> columns(grid.nx);
+    rows_.resize(grid.nz);
+    for (std::size_t ti = 0; ti < grid.nx; ++ti)
+      columns[ti] = cellRange(mesh.xs, grid.centreX(ti) - near - rho, grid.centreX(ti) + near + rho);
+    for (std::size_t tj = 0; tj < grid.nz; ++tj)
+      rows_[tj] = cellRange(mesh.zs, grid.centreZ(tj) - near - rho, grid.centreZ(tj) + near + rho);
+    row_first_ = rows_.front().first;  // boxes are monotone
+    const std::size_t row_last = rows_.back().second;
+    const std::size_t col_first = columns.front().first, col_last = columns.back().second;
+    row_rise_.resize((row_last - row_first_) * nx_);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(row_first_, row_last), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<double> rise(col_last - col_first);
+      for (std::size_t j = r.begin(); j < r.end(); ++j) {
+        for (std::size_t i = col_first; i < col_last; ++i) rise[i - col_first] = cellRise(mesh, track, i, j);
+        for (std::size_t ti = 0; ti < nx_; ++ti) {
+          double most = 0.0;
+          for (std::size_t i = columns[ti].first; i < columns[ti].second; ++i) most = std::max(most, rise[i - col_first]);
+          row_rise_[(j - row_first_) * nx_ + ti] = roundedUp(most);
+        }
+      }
+    });
+  }
+
+  // The fastest rise near texel (ti, tj), or the first row's maximum at or past `enough`.
+  double at(std::size_t ti, std::size_t tj, double enough) const {
+    double local = 0.0;
+    for (std::size_t j = rows_[tj].first; j < rows_[tj].second && local < enough; ++j)
+      local = std::max(local, double(row_rise_[(j - row_first_) * nx_ + ti]));
+    return local;
+  }
+
+ private:
+  // The faster of cell (i, j)'s two triangles along the track.
+  static double cellRise(const TerrainMesh& mesh, const SunTrack& track, std::size_t i, std::size_t j) {
+    const std::size_t n = mesh.xs.size(), a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+    const double dx = mesh.xs[i + 1] - mesh.xs[i], dz = mesh.zs[j + 1] - mesh.zs[j];
+    const double ha = mesh.positions[a].y, hb = mesh.positions[b].y, hc = mesh.positions[c].y, hd = mesh.positions[d].y;
+    auto rise = [&](double gx, double gz) { return gx * track.ax + gz * track.az + std::hypot(gx, gz) * track.chord; };
+    return std::max(rise((hd - hc) / dx, (hc - ha) / dz), rise((hb - ha) / dx, (hd - hb) / dz));  // (a c d), (a d b)
+  }
+
+  std::size_t nx_, row_first_ = 0;
+  std::vector<std::pair<std::size_t, std::size_t>> rows_;  // per texel row: its box's cell rows
+  std::vector<float> row_rise_;                            // [cell row - row_first][texel column]
+};
+
+// Far field: the highest the mesh comes above a line rising tan_far along the sun's track, from s0 on.
+// With a the sun's azimuth and G(q) = max over s >= 0 of [mesh(q + s a) - s tan_far], a texel's far field
+// is G(p + s0 a) - s0 tan_far. G is swept once along lines parallel to a, `step` apart (G(q) =
+// max(mesh(q), G(q + step a) - step tan_far) at the samples), instead of marching from every texel.
+// Between the samples along a line G rises at most a known amount; off them, G changes no faster than
+// the mesh's steepest slope (each shifted copy of the mesh does not), so a texel takes the nearest sample
+// plus steepest times the distance to it.
+class FarFieldSweep {
+ public:
+  // G over the points s0 along the track from every texel, sampled `step` apart and `run` past them.
+  FarFieldSweep(const TerrainMesh& mesh, const SunTrack& track, const TexelGrid& grid, double s0, double step,
+                double run, double tan_far)
+      : ax_(track.ax), az_(track.az), wx_(-track.az), wz_(track.ax), step_(step) {
+    double u_hi = -std::numeric_limits<double>::infinity(), v_hi = u_hi;
+    u_lo_ = v_lo_ = std::numeric_limits<double>::infinity();
+    for (const double cx : {grid.x0, grid.x0 + double(grid.nx) * grid.texel})
+      for (const double cz : {grid.z0, grid.z0 + double(grid.nz) * grid.texel}) {
+        const double qx = cx + s0 * ax_, qz = cz + s0 * az_;
+        u_lo_ = std::min(u_lo_, qx * ax_ + qz * az_), u_hi = std::max(u_hi, qx * ax_ + qz * az_);
+        v_lo_ = std::min(v_lo_, qx * wx_ + qz * wz_), v_hi = std::max(v_hi, qx * wx_ + qz * wz_);
+      }
+    lines_ = std::size_t(std::ceil((v_hi - v_lo_) / step)) + 1;
+    samples_ = std::size_t(std::ceil((u_hi - u_lo_ + run + step) / step)) + 1;
+    swept_.resize(lines_ * samples_);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines_), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t l = r.begin(); l < r.end(); ++l) {
+        const double v = v_lo_ + double(l) * step;
+        double g = -std::numeric_limits<double>::infinity();
+        for (std::size_t k = samples_; k-- > 0;) {
+          const double u = u_lo_ + double(k) * step;
+          g = std::max(mesh.heightAt(u * ax_ + v * wx_, u * az_ + v * wz_), g - step * tan_far);
+          swept_[l * samples_ + k] = roundedUp(g);
+        }
+      }
+    });
+  }
+
+  // G at the sample nearest (qx, qz), and the ground distance to that sample.
+  struct Sample {
+    double g, off;
+  };
+  Sample nearest(double qx, double qz) const {
+    const double u = qx * ax_ + qz * az_, v = qx * wx_ + qz * wz_;
+    const std::size_t k = std::min(samples_ - 1, std::size_t(std::max(0.0, std::round((u - u_lo_) / step_))));
+    const std::size_t l = std::min(lines_ - 1, std::size_t(std::max(0.0, std::round((v - v_lo_) / step_))));
+    return {double(swept_[l * samples_ + k]), std::hypot(u - (u_lo_ + double(k) * step_), v - (v_lo_ + double(l) * step_))};
+  }
+
+ private:
+  double ax_, az_, wx_, wz_, step_;  // along the track (a) and across it (w)
+  double u_lo_, v_lo_;
+  std::size_t lines_ = 0, samples_ = 0;
+  std::vector<float> swept_;  // [line][sample]
+};
+
+}  // namespace
+
+SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, double angular_radius_rad,
+                       const GroundRegion& region, const SunHorizonParams& params)
+    : mesh_(&mesh) {
+  if (mesh.xs.size() < 2 || mesh.zs.size() < 2) return;
+  steepest_ = steepestCellSlope(mesh);
   const double length = std::sqrt(toward_sun.x * toward_sun.x + toward_sun.y * toward_sun.y + toward_sun.z * toward_sun.z);
   if (!(length > 0.0)) return;
   const double elevation = std::asin(std::clamp(toward_sun.y / length, -1.0, 1.0));
@@ -175,16 +330,8 @@ SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, do
     everywhere_open_ = true;
     return;
   }
-  // The sun's azimuth, and how far a disc ray's ground track can turn from it (as a chord of the unit circle).
-  const double horizontal = std::hypot(toward_sun.x, toward_sun.z);
-  const double ax = horizontal > 0.0 ? toward_sun.x / horizontal : 1.0, az = horizontal > 0.0 ? toward_sun.z / horizontal : 0.0;
-  const double cos_e = horizontal / length;
-  double chord = 2.0;
-  if (angular_radius_rad < std::numbers::pi / 2.0 - elevation && cos_e > 0.0) {
-    const double sin_phi = std::min(1.0, std::sin(angular_radius_rad) / cos_e);
-    chord = std::sqrt(std::max(0.0, 2.0 - 2.0 * std::sqrt(1.0 - sin_phi * sin_phi)));
-  }
-  const double tan_far = tan_low_ - steepest_ * chord;  // the far field's slowest rise, against the axis's track
+  const SunTrack track = sunTrack(toward_sun, length, elevation, angular_radius_rad);
+  const double tan_far = tan_low_ - steepest_ * track.chord;  // the far field's slowest rise, against the axis's track
   if (!(tan_far > 0.0)) return;
 
   const double x0 = region.x0 - params.margin_cm, z0 = region.z0 - params.margin_cm;
@@ -195,110 +342,26 @@ SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, do
     texel_ = std::sqrt(width * depth / params.max_texels) * 1.01;
   x0_ = x0, z0_ = z0;
   nx_ = std::size_t(std::ceil(width / texel_)), nz_ = std::size_t(std::ceil(depth / texel_));
+  const TexelGrid grid{x0_, z0_, texel_, nx_, nz_};
   // A point asked about is within the texel (half-diagonal) and the slack of its centre.
   rho_ = texel_ * std::sqrt(0.5) + kMaxSlackCm * std::sqrt(2.0);
   const double near = std::max(params.near_cm, texel_);  // s0
   const double step = 0.5 * texel_;                      // the far field's samples along the sun's track
   const double run = (double(mesh.max_height) - double(mesh.min_height)) / tan_far + step;  // past it nothing rises above the lowest point
   const double between = (steepest_ + tan_far) * step * 0.5;  // the most the maximised function rises between samples
+  const NearFieldRise near_field(mesh, track, grid, near, rho_);
+  const FarFieldSweep far_field(mesh, track, grid, near, step, run, tan_far);
+
   clear_.assign(nx_ * nz_, std::numeric_limits<float>::infinity());
-  auto cellRange = [](const std::vector<double>& lines, double lo, double hi) {
-    const std::size_t first = std::size_t(std::max<std::ptrdiff_t>(
-        0, std::upper_bound(lines.begin(), lines.end(), lo) - lines.begin() - 1));
-    const std::size_t last = std::min<std::size_t>(std::lower_bound(lines.begin(), lines.end(), hi) - lines.begin(),
-                                                   lines.size() - 1);
-    return std::pair<std::size_t, std::size_t>(first, last);  // cells [first, last)
-  };
-  const std::vector<double>&xs = mesh.xs, &zs = mesh.zs;
-
-  // Near field: the fastest any triangle within reach of a texel rises along a disc ray's ground track
-  // (its gradient along the sun's azimuth, plus its steepness times the track's turn), the maximum
-  // over a box of cells taken row by row (each cell row's maximum over each texel column's cells),
-  // then over the rows of each texel row's box.
-  std::vector<std::pair<std::size_t, std::size_t>> columns(nx_), rows(nz_);
-  for (std::size_t ti = 0; ti < nx_; ++ti) {
-    const double px = x0_ + (double(ti) + 0.5) * texel_;
-    columns[ti] = cellRange(xs, px - near - rho_, px + near + rho_);
-  }
-  for (std::size_t tj = 0; tj < nz_; ++tj) {
-    const double pz = z0_ + (double(tj) + 0.5) * texel_;
-    rows[tj] = cellRange(zs, pz - near - rho_, pz + near + rho_);
-  }
-  const std::size_t row_first = rows.front().first, row_last = rows.back().second;  // boxes are monotone
-  const std::size_t col_first = columns.front().first, col_last = columns.back().second;
-  auto cellRise = [&](std::size_t i, std::size_t j) {
-    const std::size_t n = mesh.xs.size(), a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-    const double dx = mesh.xs[i + 1] - mesh.xs[i], dz = mesh.zs[j + 1] - mesh.zs[j];
-    const double ha = mesh.positions[a].y, hb = mesh.positions[b].y, hc = mesh.positions[c].y, hd = mesh.positions[d].y;
-    auto rise = [&](double gx, double gz) { return gx * ax + gz * az + std::hypot(gx, gz) * chord; };
-    return std::max(rise((hd - hc) / dx, (hc - ha) / dz), rise((hb - ha) / dx, (hd - hb) / dz));  // (a c d), (a d b)
-  };
-  std::vector<float> row_rise((row_last - row_first) * nx_);  // [cell row - row_first][texel column]
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(row_first, row_last), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::vector<double> rise(col_last - col_first);
-    for (std::size_t j = r.begin(); j < r.end(); ++j) {
-      for (std::size_t i = col_first; i < col_last; ++i) rise[i - col_first] = cellRise(i, j);
-      for (std::size_t ti = 0; ti < nx_; ++ti) {
-        double most = 0.0;
-        for (std::size_t i = columns[ti].first; i < columns[ti].second; ++i) most = std::max(most, rise[i - col_first]);
-        float stored = float(most);  // rounded up: the bound may only grow
-        if (double(stored) < most) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
-        row_rise[(j - row_first) * nx_ + ti] = stored;
-      }
-    }
-  });
-
-  // Far field: the highest the mesh comes above a line rising tan_far along the sun's track, from
-  // s0 on. With a the sun's azimuth and G(q) = max over s >= 0 of [mesh(q + s a) - s tan_far], a
-  // texel's far field is G(p + s0 a) - s0 tan_far. G is swept once along lines parallel to a, `step`
-  // apart (G(q) = max(mesh(q), G(q + step a) - step tan_far) at the samples), instead of marching from
-  // every texel. Between the samples along a line G rises at most `between`; off them, G changes no
-  // faster than the mesh's steepest slope (each shifted copy of the mesh does not), so a texel takes
-  // the nearest sample plus steepest times the distance to it.
-  const double wx = -az, wz = ax;  // across the track
-  double u_lo = std::numeric_limits<double>::infinity(), u_hi = -u_lo, v_lo = u_lo, v_hi = -u_lo;
-  for (const double cx : {x0_, x0_ + double(nx_) * texel_})
-    for (const double cz : {z0_, z0_ + double(nz_) * texel_}) {
-      const double qx = cx + near * ax, qz = cz + near * az;
-      u_lo = std::min(u_lo, qx * ax + qz * az), u_hi = std::max(u_hi, qx * ax + qz * az);
-      v_lo = std::min(v_lo, qx * wx + qz * wz), v_hi = std::max(v_hi, qx * wx + qz * wz);
-    }
-  const std::size_t lines = std::size_t(std::ceil((v_hi - v_lo) / step)) + 1;
-  const std::size_t samples = std::size_t(std::ceil((u_hi - u_lo + run + step) / step)) + 1;
-  std::vector<float> swept(lines * samples);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t l = r.begin(); l < r.end(); ++l) {
-      const double v = v_lo + double(l) * step;
-      double g = -std::numeric_limits<double>::infinity();
-      for (std::size_t k = samples; k-- > 0;) {
-        const double u = u_lo + double(k) * step;
-        g = std::max(mesh.heightAt(u * ax + v * wx, u * az + v * wz), g - step * tan_far);
-        float stored = float(g);
-        if (double(stored) < g) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
-        swept[l * samples + k] = stored;
-      }
-    }
-  });
-
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nz_), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t tj = r.begin(); tj < r.end(); ++tj) {
-      const double pz = z0_ + (double(tj) + 0.5) * texel_;
+      const double pz = grid.centreZ(tj);
       for (std::size_t ti = 0; ti < nx_; ++ti) {
-        double local = 0.0;
-        for (std::size_t j = rows[tj].first; j < rows[tj].second && local < tan_low_; ++j)
-          local = std::max(local, double(row_rise[(j - row_first) * nx_ + ti]));
-        if (!(local < tan_low_)) continue;  // too steep near by to tell: traced
-        const double px = x0_ + (double(ti) + 0.5) * texel_;
-        const double qx = px + near * ax, qz = pz + near * az;
-        const double u = qx * ax + qz * az, v = qx * wx + qz * wz;
-        const std::size_t k = std::min(samples - 1, std::size_t(std::max(0.0, std::round((u - u_lo) / step))));
-        const std::size_t l = std::min(lines - 1, std::size_t(std::max(0.0, std::round((v - v_lo) / step))));
-        const double off = std::hypot(u - (u_lo + double(k) * step), v - (v_lo + double(l) * step));
-        const double highest = double(swept[l * samples + k]) + between + steepest_ * off - near * tan_far;
-        const double clear = highest + steepest_ * rho_ + kHeightEpsilonCm;
-        float stored = float(clear);
-        if (double(stored) < clear) stored = std::nextafter(stored, std::numeric_limits<float>::infinity());
-        clear_[tj * nx_ + ti] = stored;
+        if (!(near_field.at(ti, tj, tan_low_) < tan_low_)) continue;  // too steep near by to tell: traced
+        const double px = grid.centreX(ti);
+        const FarFieldSweep::Sample far = far_field.nearest(px + near * track.ax, pz + near * track.az);
+        const double highest = far.g + between + steepest_ * far.off - near * tan_far;
+        clear_[tj * nx_ + ti] = roundedUp(highest + steepest_ * rho_ + kHeightEpsilonCm);
       }
     }
   });

@@ -168,26 +168,38 @@ float PreparedBody::distance(glm::vec3 p, const Indices& subset) const {
   return d;
 }
 
-SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params) {
-  SkinnedMesh mesh;
-  if (body.primitives.empty()) return mesh;
-  const float h = params.cell;
-  glm::vec3 lo, hi;
-  body.bounds(lo, hi);
-  lo -= glm::vec3(2.0f * h);
-  hi += glm::vec3(2.0f * h);
-  const glm::ivec3 n = glm::ivec3(glm::ceil((hi - lo) / h)) + 1;
-  const std::size_t sx = 1, sy = static_cast<std::size_t>(n.x), sz = sy * static_cast<std::size_t>(n.y);
-  auto node = [&](int i, int j, int k) { return i * sx + j * sy + k * sz; };
-  auto nodePos = [&](int i, int j, int k) { return lo + glm::vec3(i, j, k) * h; };
+namespace {
 
-  // 1. The field on the grid. Blocks of B^3 nodes far from the surface (|d| beyond the block's
-  // reach, with margin for the ellipsoid estimate) take the centre value: only the sign matters
-  // there, and no sign change can sit inside such a block.
-  std::vector<float> field(static_cast<std::size_t>(n.x) * n.y * n.z);
-  const PreparedBody prepared(body);
+// The grid the field is sampled on: n nodes a side from `lo`, `h` apart; cells between them.
+struct FieldGrid {
+  glm::vec3 lo;
+  float h;
+  glm::ivec3 n;
+  std::size_t node(int i, int j, int k) const {
+    return std::size_t(i) + std::size_t(j) * std::size_t(n.x) + std::size_t(k) * std::size_t(n.x) * std::size_t(n.y);
+  }
+  glm::vec3 nodePos(int i, int j, int k) const { return lo + glm::vec3(i, j, k) * h; }
+  glm::ivec3 cells() const { return n - 1; }
+  std::size_t cell(int i, int j, int k) const {
+    const glm::ivec3 nc = cells();
+    return static_cast<std::size_t>(i) + static_cast<std::size_t>(j) * nc.x + static_cast<std::size_t>(k) * nc.x * nc.y;
+  }
+};
+
+std::vector<int> everyPrimitive(const ImplicitBody& body) {
   std::vector<int> all(body.primitives.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  return all;
+}
+
+// 1. The field on the grid. Blocks of B^3 nodes far from the surface (|d| beyond the block's reach, with
+// margin for the ellipsoid estimate) take the centre value: only the sign matters there, and no sign
+// change can sit inside such a block.
+std::vector<float> sampleField(const ImplicitBody& body, const PreparedBody& prepared, const FieldGrid& grid) {
+  const glm::ivec3 n = grid.n;
+  const float h = grid.h;
+  std::vector<float> field(static_cast<std::size_t>(n.x) * n.y * n.z);
+  const std::vector<int> all = everyPrimitive(body);
   constexpr int B = 4;
   const glm::ivec3 nb = (n + (B - 1)) / B;
   const float block_reach = 1.5f * (0.5f * std::sqrt(3.0f) * h * B) + h;
@@ -197,7 +209,7 @@ SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params)
       const int bi = b % nb.x, bj = (b / nb.x) % nb.y, bk = b / (nb.x * nb.y);
       const glm::ivec3 n0(bi * B, bj * B, bk * B);
       const glm::ivec3 n1 = glm::min(n0 + B, n);
-      const glm::vec3 centre = lo + (glm::vec3(n0 + n1 - 1) * 0.5f) * h;
+      const glm::vec3 centre = grid.lo + (glm::vec3(n0 + n1 - 1) * 0.5f) * h;
       const float dc = prepared.distance(centre, all);
       const bool far = std::abs(dc) > block_reach;
       // Primitives that can matter anywhere in the block (generous: the field is only roughly
@@ -211,16 +223,16 @@ SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params)
       for (int k = n0.z; k < n1.z; ++k)
         for (int j = n0.y; j < n1.y; ++j)
           for (int i = n0.x; i < n1.x; ++i)
-            field[node(i, j, k)] = far ? dc : prepared.distance(nodePos(i, j, k), near);
+            field[grid.node(i, j, k)] = far ? dc : prepared.distance(grid.nodePos(i, j, k), near);
     }
   });
+  return field;
+}
 
-  // 2. One vertex per cell whose corners disagree in sign: the mean of the edge crossings.
-  const glm::ivec3 nc = n - 1;
-  auto cell = [&](int i, int j, int k) {
-    return static_cast<std::size_t>(i) + static_cast<std::size_t>(j) * nc.x +
-           static_cast<std::size_t>(k) * nc.x * nc.y;
-  };
+// 2. One vertex per cell whose corners disagree in sign: the mean of the edge crossings. Returns each
+// cell's vertex in mesh.positions, or -1.
+std::vector<std::int32_t> placeCellVertices(const std::vector<float>& field, const FieldGrid& grid, SkinnedMesh& mesh) {
+  const glm::ivec3 nc = grid.cells();
   std::vector<std::int32_t> cell_vertex(static_cast<std::size_t>(nc.x) * nc.y * nc.z, -1);
   static constexpr std::array<std::array<int, 2>, 12> kEdges = {{{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
                                                                  {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}}};
@@ -230,7 +242,7 @@ SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params)
         std::array<float, 8> v;
         int inside = 0;
         for (int c = 0; c < 8; ++c) {
-          v[c] = field[node(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))];
+          v[c] = field[grid.node(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))];
           inside += v[c] < 0.0f;
         }
         if (inside == 0 || inside == 8) continue;
@@ -245,12 +257,16 @@ SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params)
           sum += pa + (pb - pa) * t;
           ++count;
         }
-        cell_vertex[cell(i, j, k)] = static_cast<std::int32_t>(mesh.positions.size());
-        mesh.positions.push_back(lo + (glm::vec3(i, j, k) + sum / float(count)) * h);
+        cell_vertex[grid.cell(i, j, k)] = static_cast<std::int32_t>(mesh.positions.size());
+        mesh.positions.push_back(grid.lo + (glm::vec3(i, j, k) + sum / float(count)) * grid.h);
       }
+  return cell_vertex;
+}
 
-  // 3. One quad per sign-changing grid edge, joining the four cells around it, wound so its normal
-  // points from inside (negative) to outside.
+// 3. One quad per sign-changing grid edge, joining the four cells around it, wound so its normal points
+// from inside (negative) to outside.
+void joinCells(const std::vector<float>& field, const FieldGrid& grid, const std::vector<std::int32_t>& cell_vertex,
+               SkinnedMesh& mesh) {
   auto emitQuad = [&](std::size_t c0, std::size_t c1, std::size_t c2, std::size_t c3, bool flip) {
     std::array<std::uint32_t, 4> q = {std::uint32_t(cell_vertex[c0]), std::uint32_t(cell_vertex[c1]),
                                       std::uint32_t(cell_vertex[c2]), std::uint32_t(cell_vertex[c3])};
@@ -263,22 +279,28 @@ SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params)
     else
       mesh.indices.insert(mesh.indices.end(), {q[0], q[1], q[3], q[1], q[2], q[3]});
   };
+  const glm::ivec3 nc = grid.cells();
   for (int k = 1; k < nc.z; ++k)
     for (int j = 1; j < nc.y; ++j)
       for (int i = 1; i < nc.x; ++i) {
-        const float f = field[node(i, j, k)];
+        const float f = field[grid.node(i, j, k)];
         const bool in = f < 0.0f;
         // Each edge leaving node (i,j,k) in +x, +y, +z; the cells around it share that edge.
-        if (in != (field[node(i + 1, j, k)] < 0.0f) && i < nc.x)
-          emitQuad(cell(i, j - 1, k - 1), cell(i, j, k - 1), cell(i, j, k), cell(i, j - 1, k), !in);
-        if (in != (field[node(i, j + 1, k)] < 0.0f) && j < nc.y)
-          emitQuad(cell(i - 1, j, k - 1), cell(i - 1, j, k), cell(i, j, k), cell(i, j, k - 1), !in);
-        if (in != (field[node(i, j, k + 1)] < 0.0f) && k < nc.z)
-          emitQuad(cell(i - 1, j - 1, k), cell(i, j - 1, k), cell(i, j, k), cell(i - 1, j, k), !in);
+        if (in != (field[grid.node(i + 1, j, k)] < 0.0f) && i < nc.x)
+          emitQuad(grid.cell(i, j - 1, k - 1), grid.cell(i, j, k - 1), grid.cell(i, j, k), grid.cell(i, j - 1, k), !in);
+        if (in != (field[grid.node(i, j + 1, k)] < 0.0f) && j < nc.y)
+          emitQuad(grid.cell(i - 1, j, k - 1), grid.cell(i - 1, j, k), grid.cell(i, j, k), grid.cell(i, j, k - 1), !in);
+        if (in != (field[grid.node(i, j, k + 1)] < 0.0f) && k < nc.z)
+          emitQuad(grid.cell(i - 1, j - 1, k), grid.cell(i, j - 1, k), grid.cell(i, j, k), grid.cell(i - 1, j, k), !in);
       }
+}
 
-  // 4. Per vertex: settle onto the zero set, normal from the gradient, colour of the nearest
-  // primitive, weights falling off with distance past the nearest joint's primitives.
+// 4. Per vertex: settle onto the zero set, normal from the gradient, colour of the nearest primitive,
+// weights falling off with distance past the nearest joint's primitives.
+void settleVertices(const ImplicitBody& body, const PreparedBody& prepared, const PolygonizeParams& params,
+                    SkinnedMesh& mesh) {
+  const float h = params.cell;
+  const std::vector<int> all = everyPrimitive(body);
   const std::size_t nv = mesh.positions.size();
   mesh.normals.resize(nv);
   mesh.colors.resize(nv);
@@ -340,6 +362,24 @@ SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params)
       mesh.weights[v] = weights / total;
     }
   });
+}
+
+}  // namespace
+
+SkinnedMesh polygonize(const ImplicitBody& body, const PolygonizeParams& params) {
+  SkinnedMesh mesh;
+  if (body.primitives.empty()) return mesh;
+  const float h = params.cell;
+  glm::vec3 lo, hi;
+  body.bounds(lo, hi);
+  lo -= glm::vec3(2.0f * h);
+  hi += glm::vec3(2.0f * h);
+  const FieldGrid grid{lo, h, glm::ivec3(glm::ceil((hi - lo) / h)) + 1};
+  const PreparedBody prepared(body);
+  const std::vector<float> field = sampleField(body, prepared, grid);
+  const std::vector<std::int32_t> cell_vertex = placeCellVertices(field, grid, mesh);
+  joinCells(field, grid, cell_vertex, mesh);
+  settleVertices(body, prepared, params, mesh);
   return mesh;
 }
 

@@ -52,6 +52,7 @@ std::string threeDigits(int n) {
   std::snprintf(buf, sizeof buf, "%03d", n);
   return buf;
 }
+
 std::string twoDigits(int n) {
   char buf[16];
   std::snprintf(buf, sizeof buf, "%02d", n);
@@ -241,6 +242,7 @@ ImplicitPrimitive orientedEllipsoid(glm::vec3 center, glm::vec3 radii, const glm
 glm::u8vec3 shade(glm::u8vec3 c, float f) {
   return glm::u8vec3(glm::clamp(glm::vec3(c) * f + 0.5f, glm::vec3(0.0f), glm::vec3(255.0f)));
 }
+
 glm::u8vec3 mixColor(glm::u8vec3 a, glm::u8vec3 b, float t) {
   return glm::u8vec3(glm::vec3(a) * (1.0f - t) + glm::vec3(b) * t + 0.5f);
 }
@@ -399,16 +401,19 @@ StandingHumanoidParams humanoidConventionDefaults(HumanoidNames names) {
   return p;
 }
 
-StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
-  StandingHumanoidParams p = params;
+namespace {
+
+void checkHumanoidParams(const StandingHumanoidParams& p) {
   const auto fail = [](const std::string& what) { throw InputError("standing humanoid: " + what); };
   if (p.spine_joints < 1 || p.spine_joints > 8) fail("spine joints: expected 1..8, got " + std::to_string(p.spine_joints));
   if (p.neck_joints < 1 || p.neck_joints > 2) fail("neck joints: expected 1 or 2, got " + std::to_string(p.neck_joints));
   if (!(p.height >= 100.0f && p.height <= 250.0f)) fail("height: expected 100..250 cm");
   if (!(p.cell >= 0.5f && p.cell <= 5.0f)) fail("cell: expected 0.5..5 cm");
   if (!(p.girth >= 0.5f && p.girth <= 2.0f)) fail("girth: expected 0.5..2");
+}
 
-  // Seeded variation.
+// Seeded variation: the proportions within a few percent, and the colours.
+Palette varyHumanoid(StandingHumanoidParams& p) {
   Palette pal{kJackets[0], kBreeches[0], kBoots[0], kSkins[0], kHairs[0]};
   if (p.seed != 0) {
     SplitMix64 rng{p.seed};
@@ -419,26 +424,68 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
     pal = {kJackets[rng.next() % kJackets.size()], kBreeches[rng.next() % kBreeches.size()],
            kBoots[rng.next() % kBoots.size()], kSkins[rng.next() % kSkins.size()], kHairs[rng.next() % kHairs.size()]};
   }
+  return pal;
+}
 
-  StandingHumanoid out;
-  out.params = p;
-  Character& c = out.character;
-  c.name = "humanoid";
-  Skeleton& s = c.skeleton;
+// Where the generator puts the figure at rest, in cm, for the parameters as varied: the trunk, and the
+// left limbs (+X; the right mirror them).
+struct HumanoidLayout {
+  float H, k, g;  // height; scale from the 170 cm our absolute estimates are for; that times the girth
+  int N, K;       // spine and neck joints
+  float spine_curve, spine_inflection;
+  float ankle_y;
+  float knee_y;
+  float hip_y;
+  glm::vec3 pelvis_pos;
+  glm::vec3 neck_pos;
+  glm::vec3 head_pos;
+  glm::vec3 crown;
+  std::vector<glm::vec3> spine_pos;
+  std::vector<glm::vec3> neck_chain;
+  float shoulder_y;
+  glm::vec3 clavicle_pos;
+  glm::vec3 shoulder_pos;
+  glm::vec3 upper_dir;
+  glm::vec3 fore_dir;
+  glm::vec3 hand_dir;
+  glm::vec3 palm_normal;
+  glm::vec3 thumb_side;
+  float UA;
+  float FA;
+  float HL;
+  glm::vec3 elbow_pos;
+  glm::vec3 wrist_pos;
+  glm::vec3 palm_pos;
+  glm::vec3 knuckle_pos;
+  glm::vec3 finger_tip;
+  std::array<glm::vec3, 4> index_pos;
+  glm::vec3 thumb_dir;
+  glm::vec3 thumb_base;
+  float TL;
+  std::array<glm::vec3, 4> thumb_pos;
+  float hip_x;
+  glm::vec3 hip_pos;
+  glm::vec3 knee_pos;
+  glm::vec3 ankle_pos;
+  float FL;
+  float heel_z;
+  glm::vec3 ball_pos;
+  glm::vec3 toe_tip;
+  float eye_y;
+  glm::vec3 skull;
+  float face_z;
+  // The spine's curve at u from the pelvis (0) to the neck (1).
+  glm::vec3 spineAt(float u) const {
+    return glm::mix(pelvis_pos, neck_pos, u) +
+           glm::vec3(0.0f, 0.0f, spine_curve * H * u * (1.0f - u) * (spine_inflection - u));
+  }
+};
+
+HumanoidLayout layoutHumanoid(const StandingHumanoidParams& p) {
   const float H = p.height;
   const float k = H / 170.0f;  // our absolute estimates below are for 170 cm
   const float g = k * p.girth; // soft tissue
   const int N = p.spine_joints, K = p.neck_joints;
-
-  const auto add = [&](HumanoidJointLabel label, int parent, glm::vec3 pos, glm::vec3 tail) {
-    const int index = static_cast<int>(s.size());
-    addJointAt(s, humanoidJointName(p.names, label, N, K, index), parent, pos);
-    out.labels.push_back(label);
-    out.tails.push_back(tail);
-    return index;
-  };
-
-  // ---- Trunk.
   const float ankle_y = p.ankle_height * H;
   const float knee_y = ankle_y + p.shin * H;
   const float hip_y = knee_y + p.thigh * H;
@@ -454,21 +501,6 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
   for (int i = 0; i < N; ++i) spine_pos[i] = spine_at(static_cast<float>(i + 1) / static_cast<float>(N + 1));
   neck_chain[0] = neck_pos;
   if (K == 2) neck_chain[1] = glm::mix(neck_pos, head_pos, 0.5f) + glm::vec3(0.0f, 0.0f, 0.004f * H);  // cervical lordosis
-
-  int root = -1;
-  if (p.ground_root) root = add({HumanoidBone::Root, 0, 0}, -1, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 0.1f * H));
-  const int pelvis = add({HumanoidBone::Pelvis, 0, 0}, root, pelvis_pos, spine_pos[0]);
-  std::vector<int> spine(N), neck(K);
-  for (int i = 0; i < N; ++i)
-    spine[i] = add({HumanoidBone::Spine, 0, i}, i == 0 ? pelvis : spine[i - 1], spine_pos[i],
-                   i + 1 < N ? spine_pos[i + 1] : neck_pos);
-  for (int i = 0; i < K; ++i)
-    neck[i] = add({HumanoidBone::Neck, 0, i}, i == 0 ? spine[N - 1] : neck[i - 1], neck_chain[i],
-                  i + 1 < K ? neck_chain[i + 1] : head_pos);
-  const int head = add({HumanoidBone::Head, 0, 0}, neck[K - 1], head_pos, crown);
-  if (p.end_joints) add({HumanoidBone::HeadEnd, 0, 0}, head, crown, crown + glm::vec3(0.0f, 0.05f * H, 0.0f));
-
-  // ---- Limb geometry, left side (+X); the right is its mirror.
   const float shoulder_y = (p.shoulder_height - p.shoulder_drop) * H;
   const glm::vec3 clavicle_pos(0.015f * H, shoulder_y, 0.006f * H);
   const glm::vec3 shoulder_pos(0.5f * p.shoulder_spacing * H, shoulder_y, -0.006f * H);
@@ -509,12 +541,51 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
   const glm::vec3 ball_pos(hip_x, 0.016f * H, heel_z + 0.73f * FL);
   const glm::vec3 toe_tip(hip_x, 0.012f * H, heel_z + FL);
 
-  struct Side {
-    int clavicle = -1, hand = -1, palm = -1, foot = -1, toe = -1;
-    std::array<int, 2> upper{-1, -1}, fore{-1, -1}, thigh{-1, -1}, shin{-1, -1};
-    std::array<int, 3> thumb{-1, -1, -1}, index{-1, -1, -1};
+  const float eye_y = 0.936f * H;  // Winter 2009, Fig. 4.1: eye height
+  const glm::vec3 skull(0.0f, H - 11.8f * k, head_pos.z + 1.0f * k);
+  const float face_z = skull.z + 9.4f * k;
+  return HumanoidLayout{H, k, g, N, K, p.spine_curve, p.spine_inflection, ankle_y, knee_y, hip_y, pelvis_pos, neck_pos, head_pos, crown, spine_pos, neck_chain, shoulder_y, clavicle_pos, shoulder_pos, upper_dir, fore_dir, hand_dir, palm_normal, thumb_side, UA, FA, HL, elbow_pos, wrist_pos, palm_pos, knuckle_pos, finger_tip, index_pos, thumb_dir, thumb_base, TL, thumb_pos, hip_x, hip_pos, knee_pos, ankle_pos, FL, heel_z, ball_pos, toe_tip, eye_y, skull, face_z};
+}
+
+// One side's limb joints (-1 where the convention has none; a limb's two halves the same joint unsplit).
+struct HumanoidSide {
+  int clavicle = -1, hand = -1, palm = -1, foot = -1, toe = -1;
+  std::array<int, 2> upper{-1, -1}, fore{-1, -1}, thigh{-1, -1}, shin{-1, -1};
+  std::array<int, 3> thumb{-1, -1, -1}, index{-1, -1, -1};
+};
+
+struct HumanoidJoints {
+  int root = -1, pelvis = -1, head = -1;
+  std::vector<int> spine, neck;
+  std::array<HumanoidSide, 2> sides;  // [0] left, [1] right
+};
+
+// The joints, trunk first, then the arms and the legs, as the naming convention has them.
+HumanoidJoints addHumanoidJoints(const StandingHumanoidParams& p, const HumanoidLayout& L, StandingHumanoid& out) {
+  Skeleton& s = out.character.skeleton;
+  const float H = L.H;
+  const int N = L.N, K = L.K;
+  HumanoidJoints J;
+  const auto add = [&](HumanoidJointLabel label, int parent, glm::vec3 pos, glm::vec3 tail) {
+    const int index = static_cast<int>(s.size());
+    addJointAt(s, humanoidJointName(p.names, label, N, K, index), parent, pos);
+    out.labels.push_back(label);
+    out.tails.push_back(tail);
+    return index;
   };
-  std::array<Side, 2> sides;  // [0] left, [1] right
+  if (p.ground_root) J.root = add({HumanoidBone::Root, 0, 0}, -1, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 0.1f * H));
+  J.pelvis = add({HumanoidBone::Pelvis, 0, 0}, J.root, L.pelvis_pos, L.spine_pos[0]);
+  J.spine.resize(N);
+  J.neck.resize(K);
+  for (int i = 0; i < N; ++i)
+    J.spine[i] = add({HumanoidBone::Spine, 0, i}, i == 0 ? J.pelvis : J.spine[i - 1], L.spine_pos[i],
+                   i + 1 < N ? L.spine_pos[i + 1] : L.neck_pos);
+  for (int i = 0; i < K; ++i)
+    J.neck[i] = add({HumanoidBone::Neck, 0, i}, i == 0 ? J.spine[N - 1] : J.neck[i - 1], L.neck_chain[i],
+                  i + 1 < K ? L.neck_chain[i + 1] : L.head_pos);
+  J.head = add({HumanoidBone::Head, 0, 0}, J.neck[K - 1], L.head_pos, L.crown);
+  if (p.end_joints) add({HumanoidBone::HeadEnd, 0, 0}, J.head, L.crown, L.crown + glm::vec3(0.0f, 0.05f * H, 0.0f));
+
   const auto limb = [&](HumanoidBone bone, int side, int parent, glm::vec3 a, glm::vec3 b, glm::vec3 end,
                         std::array<int, 2>& joints) {
     if (p.split_limbs) {
@@ -529,101 +600,98 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
   for (int si = 0; si < 2; ++si) {
     const int side = si == 0 ? 1 : -1;
     const auto m = [&](glm::vec3 v) { return glm::vec3(v.x * static_cast<float>(side), v.y, v.z); };
-    Side& S = sides[si];
-    int parent = p.detached_limbs ? root : spine[N - 1];
-    if (p.clavicles) S.clavicle = add({HumanoidBone::Clavicle, side, 0}, parent, m(clavicle_pos), m(shoulder_pos));
+    HumanoidSide& S = J.sides[si];
+    int parent = p.detached_limbs ? J.root : J.spine[N - 1];
+    if (p.clavicles) S.clavicle = add({HumanoidBone::Clavicle, side, 0}, parent, m(L.clavicle_pos), m(L.shoulder_pos));
     if (p.clavicles && !p.detached_limbs) parent = S.clavicle;
-    parent = limb(HumanoidBone::UpperArm, side, parent, m(shoulder_pos), m(elbow_pos), m(elbow_pos), S.upper);
-    parent = limb(HumanoidBone::Forearm, side, parent, m(elbow_pos), m(wrist_pos), m(wrist_pos), S.fore);
-    S.hand = add({HumanoidBone::Hand, side, 0}, parent, m(wrist_pos), p.separate_hand ? m(palm_pos) : m(knuckle_pos));
-    if (p.separate_hand) S.palm = add({HumanoidBone::Palm, side, 0}, S.hand, m(palm_pos), m(knuckle_pos));
+    parent = limb(HumanoidBone::UpperArm, side, parent, m(L.shoulder_pos), m(L.elbow_pos), m(L.elbow_pos), S.upper);
+    parent = limb(HumanoidBone::Forearm, side, parent, m(L.elbow_pos), m(L.wrist_pos), m(L.wrist_pos), S.fore);
+    S.hand = add({HumanoidBone::Hand, side, 0}, parent, m(L.wrist_pos), p.separate_hand ? m(L.palm_pos) : m(L.knuckle_pos));
+    if (p.separate_hand) S.palm = add({HumanoidBone::Palm, side, 0}, S.hand, m(L.palm_pos), m(L.knuckle_pos));
     if (p.fingers) {
       for (int i = 0; i < 3; ++i)
-        S.thumb[i] = add({HumanoidBone::Thumb, side, i}, i == 0 ? S.hand : S.thumb[i - 1], m(thumb_pos[i]), m(thumb_pos[i + 1]));
-      if (p.end_joints) add({HumanoidBone::Thumb, side, 3}, S.thumb[2], m(thumb_pos[3]), m(thumb_pos[3] + thumb_dir * (0.1f * TL)));
+        S.thumb[i] = add({HumanoidBone::Thumb, side, i}, i == 0 ? S.hand : S.thumb[i - 1], m(L.thumb_pos[i]), m(L.thumb_pos[i + 1]));
+      if (p.end_joints) add({HumanoidBone::Thumb, side, 3}, S.thumb[2], m(L.thumb_pos[3]), m(L.thumb_pos[3] + L.thumb_dir * (0.1f * L.TL)));
       const int finger_root = S.palm >= 0 ? S.palm : S.hand;
       for (int i = 0; i < 3; ++i)
-        S.index[i] = add({HumanoidBone::Index, side, i}, i == 0 ? finger_root : S.index[i - 1], m(index_pos[i]), m(index_pos[i + 1]));
-      if (p.end_joints) add({HumanoidBone::Index, side, 3}, S.index[2], m(index_pos[3]), m(index_pos[3] + hand_dir * (0.05f * HL)));
+        S.index[i] = add({HumanoidBone::Index, side, i}, i == 0 ? finger_root : S.index[i - 1], m(L.index_pos[i]), m(L.index_pos[i + 1]));
+      if (p.end_joints) add({HumanoidBone::Index, side, 3}, S.index[2], m(L.index_pos[3]), m(L.index_pos[3] + L.hand_dir * (0.05f * L.HL)));
     }
   }
   for (int si = 0; si < 2; ++si) {
     const int side = si == 0 ? 1 : -1;
     const auto m = [&](glm::vec3 v) { return glm::vec3(v.x * static_cast<float>(side), v.y, v.z); };
-    Side& S = sides[si];
-    int parent = limb(HumanoidBone::UpperLeg, side, p.detached_limbs ? root : pelvis, m(hip_pos), m(knee_pos), m(knee_pos), S.thigh);
-    parent = limb(HumanoidBone::LowerLeg, side, parent, m(knee_pos), m(ankle_pos), m(ankle_pos), S.shin);
-    S.foot = add({HumanoidBone::Foot, side, 0}, parent, m(ankle_pos), p.toes ? m(ball_pos) : m(toe_tip));
-    const int last = p.toes ? (S.toe = add({HumanoidBone::Toe, side, 0}, S.foot, m(ball_pos), m(toe_tip))) : S.foot;
-    if (p.end_joints) add({HumanoidBone::ToeEnd, side, 0}, last, m(toe_tip), m(toe_tip + glm::vec3(0.0f, 0.0f, 0.02f * H)));
+    HumanoidSide& S = J.sides[si];
+    int parent = limb(HumanoidBone::UpperLeg, side, p.detached_limbs ? J.root : J.pelvis, m(L.hip_pos), m(L.knee_pos), m(L.knee_pos), S.thigh);
+    parent = limb(HumanoidBone::LowerLeg, side, parent, m(L.knee_pos), m(L.ankle_pos), m(L.ankle_pos), S.shin);
+    S.foot = add({HumanoidBone::Foot, side, 0}, parent, m(L.ankle_pos), p.toes ? m(L.ball_pos) : m(L.toe_tip));
+    const int last = p.toes ? (S.toe = add({HumanoidBone::Toe, side, 0}, S.foot, m(L.ball_pos), m(L.toe_tip))) : S.foot;
+    if (p.end_joints) add({HumanoidBone::ToeEnd, side, 0}, last, m(L.toe_tip), m(L.toe_tip + glm::vec3(0.0f, 0.0f, 0.02f * H)));
   }
+  return J;
+}
 
-  // Rest frames: every joint's bone frame, used for the texture charts; the file's own are these or
-  // identity.
-  std::vector<glm::mat3> bone_frames(s.size());
-  for (std::size_t j = 0; j < s.size(); ++j) bone_frames[j] = boneAxes(s.restPosition(static_cast<int>(j)), out.tails[j]);
-  out.rest_axes = p.joint_axes == HumanoidJointAxes::Bone ? bone_frames : std::vector<glm::mat3>(s.size(), glm::mat3(1.0f));
-
-  // ---- Body. Each primitive's colour carries its texture region (x) and chart frame (y: 0 the world,
-  // j + 1 joint j's bone frame); the real colours are set after polygonising.
+// The body as implicit primitives, each on its joint. Each primitive's colour carries its texture region (x)
+// and chart frame (y: 0 the world, j + 1 joint j's bone frame); the real colours are set after polygonising.
+ImplicitBody humanoidBody(const StandingHumanoidParams& p, const HumanoidLayout& L, const HumanoidJoints& J,
+                          const Skeleton& s) {
+  const float H = L.H, k = L.k, g = L.g;
+  const int N = L.N, K = L.K;
   ImplicitBody body;
   const auto tag = [](HumanoidRegion r, int frame_joint) {
     return glm::vec3(static_cast<float>(r), static_cast<float>(frame_joint + 1), 0.0f);
   };
   using R = HumanoidRegion;
   const auto chain_at = [&](float y) {  // the spine joint nearest a height
-    int best = spine[0];
+    int best = J.spine[0];
     for (int i = 0; i < N; ++i)
-      if (std::abs(spine_pos[i].y - y) < std::abs(s.restPosition(best).y - y)) best = spine[i];
+      if (std::abs(L.spine_pos[i].y - y) < std::abs(s.restPosition(best).y - y)) best = J.spine[i];
     return best;
   };
-  const int top_spine = spine[N - 1];
+  const int top_spine = J.spine[N - 1];
   // Hips in breeches, then the jacket over the abdomen, chest and shoulder girdle.
-  body.add(ellipsoid(pelvis_pos + glm::vec3(0.0f, -0.02f * H, 0.5f * k), {0.5f * p.hip_width * H * p.girth, 11.0f * g, 11.5f * g},
-                     pelvis, tag(R::Breeches, -1), 4.0f));
-  const glm::vec3 waist_c = spine_at(0.3f) + glm::vec3(0.0f, 0.0f, 0.5f * k);
-  const glm::vec3 chest_c = spine_at(0.7f) + glm::vec3(0.0f, 0.0f, 2.5f * k);
-  const glm::vec3 girdle_c(0.0f, shoulder_y - 1.0f * k, -0.5f * k);
+  body.add(ellipsoid(L.pelvis_pos + glm::vec3(0.0f, -0.02f * H, 0.5f * k), {0.5f * p.hip_width * H * p.girth, 11.0f * g, 11.5f * g},
+                     J.pelvis, tag(R::Breeches, -1), 4.0f));
+  const glm::vec3 waist_c = L.spineAt(0.3f) + glm::vec3(0.0f, 0.0f, 0.5f * k);
+  const glm::vec3 chest_c = L.spineAt(0.7f) + glm::vec3(0.0f, 0.0f, 2.5f * k);
+  const glm::vec3 girdle_c(0.0f, L.shoulder_y - 1.0f * k, -0.5f * k);
   body.add(ellipsoid(waist_c, {13.5f * g, 11.0f * g, 9.5f * g}, chain_at(waist_c.y), tag(R::Jacket, -1), 6.0f * k));
   body.add(ellipsoid(chest_c, {16.0f * g, 15.0f * g, 11.5f * g}, chain_at(chest_c.y), tag(R::Jacket, -1), 6.0f * k));
   body.add(ellipsoid(girdle_c, {0.5f * p.shoulder_width * H - 4.0f * k, 7.0f * g, 9.5f * g}, top_spine, tag(R::Jacket, -1), 5.0f * k));
   // Neck and head.
   {
-    const glm::vec3 a = neck_pos + glm::vec3(0.0f, -2.0f * k, 0.0f), b = head_pos + glm::vec3(0.0f, 2.0f * k, 0.5f * k);
+    const glm::vec3 a = L.neck_pos + glm::vec3(0.0f, -2.0f * k, 0.0f), b = L.head_pos + glm::vec3(0.0f, 2.0f * k, 0.5f * k);
     if (K == 1) {
-      body.add(taperedCapsule(a, b, 5.5f * g, 5.0f * g, neck[0], tag(R::Skin, -1), 3.0f * k));
+      body.add(taperedCapsule(a, b, 5.5f * g, 5.0f * g, J.neck[0], tag(R::Skin, -1), 3.0f * k));
     } else {
-      body.add(taperedCapsule(a, neck_chain[1], 5.5f * g, 5.2f * g, neck[0], tag(R::Skin, -1), 3.0f * k));
-      body.add(taperedCapsule(neck_chain[1], b, 5.2f * g, 5.0f * g, neck[1], tag(R::Skin, -1), 3.0f * k));
+      body.add(taperedCapsule(a, L.neck_chain[1], 5.5f * g, 5.2f * g, J.neck[0], tag(R::Skin, -1), 3.0f * k));
+      body.add(taperedCapsule(L.neck_chain[1], b, 5.2f * g, 5.0f * g, J.neck[1], tag(R::Skin, -1), 3.0f * k));
     }
   }
-  const float eye_y = 0.936f * H;  // Winter 2009, Fig. 4.1: eye height
-  const glm::vec3 skull(0.0f, H - 11.8f * k, head_pos.z + 1.0f * k);
-  body.add(ellipsoid(skull, {7.6f * k, 11.0f * k, 9.6f * k}, head, tag(R::Skin, head), 3.0f * k));
-  body.add(ellipsoid({0.0f, p.chin_height * H + 6.2f * k, head_pos.z + 3.5f * k}, {6.0f * k, 6.8f * k, 6.5f * k}, head,
-                     tag(R::Skin, head), 3.0f * k));
-  const float face_z = skull.z + 9.4f * k;
-  body.add(taperedCapsule({0.0f, eye_y - 1.0f * k, face_z - 0.8f * k}, {0.0f, eye_y - 4.3f * k, face_z + 1.2f * k}, 0.9f * k,
-                          1.4f * k, head, tag(R::Skin, head), 1.2f * k));  // nose
+  body.add(ellipsoid(L.skull, {7.6f * k, 11.0f * k, 9.6f * k}, J.head, tag(R::Skin, J.head), 3.0f * k));
+  body.add(ellipsoid({0.0f, p.chin_height * H + 6.2f * k, L.head_pos.z + 3.5f * k}, {6.0f * k, 6.8f * k, 6.5f * k}, J.head,
+                     tag(R::Skin, J.head), 3.0f * k));
+  body.add(taperedCapsule({0.0f, L.eye_y - 1.0f * k, L.face_z - 0.8f * k}, {0.0f, L.eye_y - 4.3f * k, L.face_z + 1.2f * k}, 0.9f * k,
+                          1.4f * k, J.head, tag(R::Skin, J.head), 1.2f * k));  // nose
   for (float sx : {-1.0f, 1.0f})
-    body.add(ellipsoid({sx * 7.5f * k, eye_y - 2.0f * k, skull.z - 0.8f * k}, {1.0f * k, 3.0f * k, 2.0f * k}, head,
-                       tag(R::Skin, head), 1.0f * k));  // ears
+    body.add(ellipsoid({sx * 7.5f * k, L.eye_y - 2.0f * k, L.skull.z - 0.8f * k}, {1.0f * k, 3.0f * k, 2.0f * k}, J.head,
+                       tag(R::Skin, J.head), 1.0f * k));  // ears
   // Hair: a cap above the brows, the back of the head down to the nape, a ponytail.
-  ImplicitPrimitive cap = ellipsoid(skull + glm::vec3(0.0f, 0.3f * k, -0.5f * k), {8.3f * k, 11.5f * k, 10.3f * k}, head,
-                                    tag(R::Hair, head), 0.6f * k);
-  cap.clip_min.y = eye_y + 2.8f * k;
+  ImplicitPrimitive cap = ellipsoid(L.skull + glm::vec3(0.0f, 0.3f * k, -0.5f * k), {8.3f * k, 11.5f * k, 10.3f * k}, J.head,
+                                    tag(R::Hair, J.head), 0.6f * k);
+  cap.clip_min.y = L.eye_y + 2.8f * k;
   body.add(cap);
-  ImplicitPrimitive back_hair = ellipsoid(skull + glm::vec3(0.0f, -1.5f * k, -2.0f * k), {8.2f * k, 10.5f * k, 8.6f * k}, head,
-                                          tag(R::Hair, head), 0.6f * k);
-  back_hair.clip_max.z = skull.z - 2.0f * k;
+  ImplicitPrimitive back_hair = ellipsoid(L.skull + glm::vec3(0.0f, -1.5f * k, -2.0f * k), {8.2f * k, 10.5f * k, 8.6f * k}, J.head,
+                                          tag(R::Hair, J.head), 0.6f * k);
+  back_hair.clip_max.z = L.skull.z - 2.0f * k;
   body.add(back_hair);
-  body.add(taperedCapsule(skull + glm::vec3(0.0f, 1.0f * k, -9.5f * k), skull + glm::vec3(0.0f, -12.5f * k, -11.5f * k),
-                          2.6f * k, 1.6f * k, head, tag(R::Hair, head), 1.0f * k));
+  body.add(taperedCapsule(L.skull + glm::vec3(0.0f, 1.0f * k, -9.5f * k), L.skull + glm::vec3(0.0f, -12.5f * k, -11.5f * k),
+                          2.6f * k, 1.6f * k, J.head, tag(R::Hair, J.head), 1.0f * k));
   // Arms and legs, both sides.
   for (int si = 0; si < 2; ++si) {
     const float sx = si == 0 ? 1.0f : -1.0f;
     const auto m = [&](glm::vec3 v) { return glm::vec3(v.x * sx, v.y, v.z); };
-    const Side& S = sides[si];
+    const HumanoidSide& S = J.sides[si];
     const auto two_halves = [&](glm::vec3 a, glm::vec3 b, float ra, float rb, const std::array<int, 2>& j, R region,
                                 float blend) {
       if (j[0] == j[1]) {
@@ -636,85 +704,110 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
       body.add(taperedCapsule(mid, b, rm, rb, j[1], tag(region, j[1]), blend));
     };
     const int shoulder_joint = S.clavicle >= 0 ? S.clavicle : top_spine;
-    body.add(taperedCapsule(neck_pos + glm::vec3(sx * 3.0f * k, 1.0f * k, 0.0f), m(shoulder_pos) + glm::vec3(-sx * 2.0f * k, 3.0f * k, 0.0f),
+    body.add(taperedCapsule(L.neck_pos + glm::vec3(sx * 3.0f * k, 1.0f * k, 0.0f), m(L.shoulder_pos) + glm::vec3(-sx * 2.0f * k, 3.0f * k, 0.0f),
                             5.0f * g, 5.5f * g, shoulder_joint, tag(R::Jacket, -1), 3.0f * k));  // trapezius
-    body.add(ellipsoid(m(shoulder_pos + upper_dir * (1.5f * k)) + glm::vec3(0.0f, 1.0f * k, 0.0f), {6.5f * g, 6.0f * g, 6.5f * g},
-                       S.upper[0], tag(R::Jacket, S.upper[0]), 4.0f * k, m(upper_dir)));  // deltoid
-    two_halves(m(shoulder_pos), m(elbow_pos), 5.2f * g, 4.2f * g, S.upper, R::Jacket, 3.0f * k);
-    two_halves(m(elbow_pos), m(wrist_pos - fore_dir * (1.0f * k)), 4.2f * g, 3.3f * g, S.fore, R::Jacket, 2.0f * k);
+    body.add(ellipsoid(m(L.shoulder_pos + L.upper_dir * (1.5f * k)) + glm::vec3(0.0f, 1.0f * k, 0.0f), {6.5f * g, 6.0f * g, 6.5f * g},
+                       S.upper[0], tag(R::Jacket, S.upper[0]), 4.0f * k, m(L.upper_dir)));  // deltoid
+    two_halves(m(L.shoulder_pos), m(L.elbow_pos), 5.2f * g, 4.2f * g, S.upper, R::Jacket, 3.0f * k);
+    two_halves(m(L.elbow_pos), m(L.wrist_pos - L.fore_dir * (1.0f * k)), 4.2f * g, 3.3f * g, S.fore, R::Jacket, 2.0f * k);
     // Hand: wrist, palm, a mitten of four fingers on the finger chain, the thumb.
-    const glm::vec3 hd = m(hand_dir), pn = m(palm_normal), ts = m(thumb_side);
+    const glm::vec3 hd = m(L.hand_dir), pn = m(L.palm_normal), ts = m(L.thumb_side);
     const glm::mat3 hand_axes(hd, pn, ts);
     const int palm_joint = S.palm >= 0 ? S.palm : S.hand;
-    body.add(taperedCapsule(m(wrist_pos - fore_dir * (1.0f * k)), m(wrist_pos + hand_dir * (0.1f * HL)), 2.9f * g, 2.7f * g, S.hand,
+    body.add(taperedCapsule(m(L.wrist_pos - L.fore_dir * (1.0f * k)), m(L.wrist_pos + L.hand_dir * (0.1f * L.HL)), 2.9f * g, 2.7f * g, S.hand,
                             tag(R::Skin, S.hand), 1.5f * k));
-    body.add(orientedEllipsoid(m(wrist_pos + hand_dir * (0.27f * HL)), {0.28f * HL, 1.6f * k, 4.2f * k}, hand_axes, palm_joint,
+    body.add(orientedEllipsoid(m(L.wrist_pos + L.hand_dir * (0.27f * L.HL)), {0.28f * L.HL, 1.6f * k, 4.2f * k}, hand_axes, palm_joint,
                                tag(R::Skin, palm_joint), 1.5f * k));
     if (p.fingers) {
       for (int i = 0; i < 3; ++i) {
-        const glm::vec3 a = index_pos[i], b = index_pos[i + 1];
+        const glm::vec3 a = L.index_pos[i], b = L.index_pos[i + 1];
         const float half = 0.5f * glm::length(b - a) + 0.6f * k;
         body.add(orientedEllipsoid(m(0.5f * (a + b)), {half, 1.1f * k, 3.8f * k * (1.0f - 0.08f * i)}, hand_axes, S.index[i],
                                    tag(R::Skin, S.index[i]), 0.8f * k));
       }
       const std::array<float, 4> tr = {1.5f * k, 1.2f * k, 1.05f * k, 0.9f * k};
       for (int i = 0; i < 3; ++i)
-        body.add(taperedCapsule(m(thumb_pos[i]), m(thumb_pos[i + 1] - (i == 2 ? thumb_dir * tr[3] : glm::vec3(0.0f))), tr[i], tr[i + 1],
+        body.add(taperedCapsule(m(L.thumb_pos[i]), m(L.thumb_pos[i + 1] - (i == 2 ? L.thumb_dir * tr[3] : glm::vec3(0.0f))), tr[i], tr[i + 1],
                                 S.thumb[i], tag(R::Skin, S.thumb[i]), 0.8f * k));
     } else {
-      const float half = 0.5f * glm::length(finger_tip - knuckle_pos);
-      body.add(orientedEllipsoid(m(0.5f * (knuckle_pos + finger_tip)), {half, 1.1f * k, 3.8f * k}, hand_axes, palm_joint,
+      const float half = 0.5f * glm::length(L.finger_tip - L.knuckle_pos);
+      body.add(orientedEllipsoid(m(0.5f * (L.knuckle_pos + L.finger_tip)), {half, 1.1f * k, 3.8f * k}, hand_axes, palm_joint,
                                  tag(R::Skin, palm_joint), 0.8f * k));
-      body.add(taperedCapsule(m(thumb_pos[0]), m(thumb_pos[3] - thumb_dir * (0.9f * k)), 1.5f * k, 0.9f * k, S.hand,
+      body.add(taperedCapsule(m(L.thumb_pos[0]), m(L.thumb_pos[3] - L.thumb_dir * (0.9f * k)), 1.5f * k, 0.9f * k, S.hand,
                               tag(R::Skin, S.hand), 0.8f * k));
     }
     // Leg: breeches to below the knee, then the boot; a flat sole on the ground.
-    two_halves(m(hip_pos) + glm::vec3(sx * 1.0f * k, 0.0f, 0.0f), m(knee_pos), 8.3f * g, 5.6f * g, S.thigh, R::Breeches, 4.0f * k);
-    const glm::vec3 boot_top = glm::mix(knee_pos, ankle_pos, 0.25f);
-    body.add(taperedCapsule(m(knee_pos), m(boot_top), 5.6f * g, 5.2f * g, S.shin[0], tag(R::Breeches, S.shin[0]), 2.0f * k));
-    two_halves(m(boot_top), m(ankle_pos), 5.8f * g, 4.3f * g, S.shin, R::Boots, 1.0f * k);
-    const glm::vec3 heel(hip_x, 4.2f * k, heel_z + 4.2f * k);
-    ImplicitPrimitive foot = taperedCapsule(m(heel), m(glm::vec3(hip_x, 3.0f * k, ball_pos.z)), 4.2f * k, 3.8f * k, S.foot,
+    two_halves(m(L.hip_pos) + glm::vec3(sx * 1.0f * k, 0.0f, 0.0f), m(L.knee_pos), 8.3f * g, 5.6f * g, S.thigh, R::Breeches, 4.0f * k);
+    const glm::vec3 boot_top = glm::mix(L.knee_pos, L.ankle_pos, 0.25f);
+    body.add(taperedCapsule(m(L.knee_pos), m(boot_top), 5.6f * g, 5.2f * g, S.shin[0], tag(R::Breeches, S.shin[0]), 2.0f * k));
+    two_halves(m(boot_top), m(L.ankle_pos), 5.8f * g, 4.3f * g, S.shin, R::Boots, 1.0f * k);
+    const glm::vec3 heel(L.hip_x, 4.2f * k, L.heel_z + 4.2f * k);
+    ImplicitPrimitive foot = taperedCapsule(m(heel), m(glm::vec3(L.hip_x, 3.0f * k, L.ball_pos.z)), 4.2f * k, 3.8f * k, S.foot,
                                             tag(R::Boots, -1), 1.5f * k);
     foot.clip_min.y = 0.0f;
     foot.clip_round = 0.4f * k;
     body.add(foot);
-    ImplicitPrimitive toe = taperedCapsule(m(glm::vec3(hip_x, 3.0f * k, ball_pos.z)), m(toe_tip - glm::vec3(0.0f, 0.0f, 2.6f * k)), 3.8f * k,
+    ImplicitPrimitive toe = taperedCapsule(m(glm::vec3(L.hip_x, 3.0f * k, L.ball_pos.z)), m(L.toe_tip - glm::vec3(0.0f, 0.0f, 2.6f * k)), 3.8f * k,
                                            2.6f * k, S.toe >= 0 ? S.toe : S.foot, tag(R::Boots, -1), 0.6f * k);
     toe.clip_min.y = 0.0f;
     toe.clip_round = 0.4f * k;
     body.add(toe);
   }
 
+  return body;
+}
+
+// The polygonised body, its trunk's weights spread along the spine.
+SkinnedMesh skinHumanoid(const ImplicitBody& body, const StandingHumanoidParams& p, const HumanoidLayout& L,
+                         const HumanoidJoints& J, const Skeleton& s) {
+  const float k = L.k;
+  const int N = L.N;
   PolygonizeParams poly;
   poly.cell = p.cell;
   poly.skin_falloff = 2.0f * k;
   SkinnedMesh mesh = polygonize(body, poly);
   {
-    std::vector<int> chain = {pelvis};
-    chain.insert(chain.end(), spine.begin(), spine.end());
+    std::vector<int> chain = {J.pelvis};
+    chain.insert(chain.end(), J.spine.begin(), J.spine.end());
     std::vector<float> middles;
     for (int i = 0; i <= N; ++i) {
       const float y0 = s.restPosition(chain[i]).y;
-      const float y1 = i + 1 <= N ? s.restPosition(chain[i + 1]).y : neck_pos.y;
+      const float y1 = i + 1 <= N ? s.restPosition(chain[i + 1]).y : L.neck_pos.y;
       middles.push_back(0.5f * (y0 + y1));
     }
     spreadAlongSpine(mesh, chain, middles);
   }
 
-  // ---- Texture charts.
-  const auto frame_of = [&](int frame) { return frame == 0 ? glm::mat3(1.0f) : bone_frames[frame - 1]; };
-  const auto origin_of = [&](int frame) { return frame == 0 ? glm::vec3(0.0f) : s.restPosition(frame - 1); };
-  const std::size_t nt = mesh.triangleCount();
-  std::vector<ChartKey> tri_chart(nt);
+  return mesh;
+}
+
+// A triangle's texture chart: its region, the frame it is projected in (0 the world, j + 1 joint j's bone
+// frame) and the direction it faces there. Each chart is fitted into its region's tile.
+struct HumanoidCharts {
+  const std::vector<glm::mat3>& bone_frames;
+  const Skeleton& s;
+  std::vector<ChartKey> tri_chart;
   std::map<ChartKey, ChartFit> fits;
-  const auto local = [&](glm::vec3 pos, int frame) { return glm::transpose(frame_of(frame)) * (pos - origin_of(frame)); };
+
+  glm::mat3 frameOf(int frame) const { return frame == 0 ? glm::mat3(1.0f) : bone_frames[frame - 1]; }
+  glm::vec3 originOf(int frame) const { return frame == 0 ? glm::vec3(0.0f) : s.restPosition(frame - 1); }
+  glm::vec3 local(glm::vec3 pos, int frame) const { return glm::transpose(frameOf(frame)) * (pos - originOf(frame)); }
+};
+
+// Each triangle's chart (the head's front chart is the face's), and each chart's fit in its tile.
+HumanoidCharts chartTriangles(const SkinnedMesh& mesh, const Skeleton& s, const std::vector<glm::mat3>& bone_frames, int head) {
+  using R = HumanoidRegion;
+  HumanoidCharts charts{bone_frames, s, {}, {}};
+  const std::size_t nt = mesh.triangleCount();
+  std::vector<ChartKey>& tri_chart = charts.tri_chart;
+  std::map<ChartKey, ChartFit>& fits = charts.fits;
+  tri_chart.resize(nt);
   for (std::size_t t = 0; t < nt; ++t) {
     const std::uint32_t* tri = &mesh.indices[t * 3];
     const glm::vec3 tagv = mesh.colors[tri[0]];
     const int region = static_cast<int>(std::lround(tagv.x));
     const int frame = static_cast<int>(std::lround(tagv.y));
-    const glm::vec3 n = glm::transpose(frame_of(frame)) *
+    const glm::vec3 n = glm::transpose(charts.frameOf(frame)) *
                         glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]], mesh.positions[tri[2]] - mesh.positions[tri[0]]);
     const glm::vec3 a = glm::abs(n);
     const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
@@ -724,7 +817,7 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
     tri_chart[t] = key;
     ChartFit& fit = fits[key];
     for (int v = 0; v < 3; ++v) {
-      const glm::vec2 cc = chartCoords(local(mesh.positions[tri[v]], frame), dir);
+      const glm::vec2 cc = chartCoords(charts.local(mesh.positions[tri[v]], frame), dir);
       fit.lo = glm::min(fit.lo, cc);
       fit.hi = glm::max(fit.hi, cc);
     }
@@ -738,8 +831,17 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
                  0.5f * (glm::vec2(room) - used);
   }
 
-  // Split vertices per chart; body triangles first, then the hair.
-  SkinnedMesh& split = c.mesh;
+  return charts;
+}
+
+// The mesh with its vertices split per chart, body triangles first, then the hair (from
+// out.hair_first_index), coloured by region, with their texture coordinates in out.uvs.
+void splitByChart(const SkinnedMesh& mesh, const HumanoidCharts& charts, const Palette& pal, StandingHumanoid& out) {
+  using R = HumanoidRegion;
+  const std::size_t nt = mesh.triangleCount();
+  const std::vector<ChartKey>& tri_chart = charts.tri_chart;
+  const std::map<ChartKey, ChartFit>& fits = charts.fits;
+  SkinnedMesh& split = out.character.mesh;
   std::map<std::pair<std::uint32_t, ChartKey>, std::uint32_t> vertex_of;
   const glm::vec2 texture_size(static_cast<float>(kHumanoidTextureWidth), static_cast<float>(kHumanoidTextureHeight));
   const auto region_color = [&](int region) {
@@ -760,7 +862,7 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
           split.colors.push_back(region_color(key.region));
           split.joints.push_back(mesh.joints[old]);
           split.weights.push_back(mesh.weights[old]);
-          const glm::vec2 px = fits.at(key).pixel(chartCoords(local(mesh.positions[old], key.frame), key.dir));
+          const glm::vec2 px = fits.at(key).pixel(chartCoords(charts.local(mesh.positions[old], key.frame), key.dir));
           out.uvs.push_back(px / texture_size);
         }
         split.indices.push_back(it->second);
@@ -768,21 +870,52 @@ StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
     }
   }
 
-  // ---- The texture, with a face drawn where the head's front chart put it.
-  paintTiles(out.texture, pal);
+}
+
+// The texture, with a face drawn where the head's front chart put it.
+void paintHumanoidTexture(const HumanoidCharts& charts, const Palette& pal, const StandingHumanoidParams& p,
+                          const HumanoidLayout& L, int head, RgbImage& texture) {
+  using R = HumanoidRegion;
+  const float H = L.H, k = L.k;
+  paintTiles(texture, pal);
   const ChartKey face_key{static_cast<int>(R::Face), head + 1, 4};
-  if (const auto it = fits.find(face_key); it != fits.end()) {
+  if (const auto it = charts.fits.find(face_key); it != charts.fits.end()) {
     const ChartFit& fit = it->second;
-    const auto px = [&](glm::vec3 world) { return fit.pixel(chartCoords(local(world, head + 1), 4)); };
+    const auto px = [&](glm::vec3 world) { return fit.pixel(chartCoords(charts.local(world, head + 1), 4)); };
     const float r = 1.0f * k * fit.scale;
     for (float sx : {-1.0f, 1.0f}) {
-      const glm::vec3 eye(sx * 3.1f * k, eye_y, face_z);
-      fillEllipse(out.texture, px(eye), {1.5f * r, 0.9f * r}, {245, 245, 240});
-      fillEllipse(out.texture, px(eye), {0.7f * r, 0.7f * r}, {40, 60, 90});
-      fillEllipse(out.texture, px(eye + glm::vec3(0.0f, 1.9f * k, 0.0f)), {1.9f * r, 0.35f * r}, shade(pal.hair, 0.8f));
+      const glm::vec3 eye(sx * 3.1f * k, L.eye_y, L.face_z);
+      fillEllipse(texture, px(eye), {1.5f * r, 0.9f * r}, {245, 245, 240});
+      fillEllipse(texture, px(eye), {0.7f * r, 0.7f * r}, {40, 60, 90});
+      fillEllipse(texture, px(eye + glm::vec3(0.0f, 1.9f * k, 0.0f)), {1.9f * r, 0.35f * r}, shade(pal.hair, 0.8f));
     }
-    fillEllipse(out.texture, px({0.0f, p.chin_height * H + 3.4f * k, face_z}), {2.3f * r, 0.5f * r}, {170, 60, 60});
+    fillEllipse(texture, px({0.0f, p.chin_height * H + 3.4f * k, L.face_z}), {2.3f * r, 0.5f * r}, {170, 60, 60});
   }
+}
+
+}  // namespace
+
+StandingHumanoid buildStandingHumanoid(const StandingHumanoidParams& params) {
+  StandingHumanoidParams p = params;
+  checkHumanoidParams(p);
+  const Palette pal = varyHumanoid(p);
+  StandingHumanoid out;
+  out.params = p;
+  Character& c = out.character;
+  c.name = "humanoid";
+  const Skeleton& s = c.skeleton;
+  const HumanoidLayout L = layoutHumanoid(p);
+  const HumanoidJoints J = addHumanoidJoints(p, L, out);
+  // Rest frames: every joint's bone frame, used for the texture charts; the file's own are these or
+  // identity.
+  std::vector<glm::mat3> bone_frames(s.size());
+  for (std::size_t j = 0; j < s.size(); ++j) bone_frames[j] = boneAxes(s.restPosition(static_cast<int>(j)), out.tails[j]);
+  out.rest_axes = p.joint_axes == HumanoidJointAxes::Bone ? bone_frames : std::vector<glm::mat3>(s.size(), glm::mat3(1.0f));
+
+  const SkinnedMesh mesh = skinHumanoid(humanoidBody(p, L, J, s), p, L, J, s);
+  const HumanoidCharts charts = chartTriangles(mesh, s, bone_frames, J.head);
+  splitByChart(mesh, charts, pal, out);
+  paintHumanoidTexture(charts, pal, p, L, J.head, out.texture);
   return out;
 }
 

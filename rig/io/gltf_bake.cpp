@@ -84,6 +84,123 @@ tinygltf::Value seatExtras(const SeatReport& seat) {
   return tinygltf::Value(o);
 }
 
+namespace {
+
+// A pair's two characters: a root per character, in metres, as its skin's skeleton (one armature per
+// character in a DCC). A crowd pair's name goes before its roots', meshes' and skins' names.
+struct PairNodes {
+  GltfCharacterNodes horse, rider;
+  int horse_root = -1, rider_root = -1;
+};
+
+PairNodes appendPair(tinygltf::Model& model, std::vector<unsigned char>& bin, const BakedPair& pair) {
+  PairNodes p;
+  const std::string named = pair.name.empty() ? "" : pair.name + "_";
+  for (int which = 0; which < 2; ++which) {
+    const Character& c = which == 0 ? *pair.horse : *pair.rider;
+    const std::string role = which == 0 ? "horse:" : "rider:";
+    GltfCharacterNodes n = appendCharacterGltf(model, bin, c, role);
+    if (!named.empty()) {
+      // Each armature is its own and named after its pair; its joints keep their skeleton's own names,
+      // so one script drives every pair's bones.
+      model.nodes[std::size_t(n.mesh_node)].name.insert(0, named);
+      model.skins[std::size_t(n.skin)].name.insert(0, named);
+      tinygltf::Mesh& mesh = model.meshes[std::size_t(model.nodes[std::size_t(n.mesh_node)].mesh)];
+      mesh.name.insert(0, named);
+      for (const tinygltf::Primitive& prim : mesh.primitives)
+        if (prim.material >= 0) model.materials[std::size_t(prim.material)].name.insert(0, named);
+    }
+    (which == 0 ? p.horse : p.rider) = n;
+  }
+  for (int which = 0; which < 2; ++which) {
+    const Character& c = which == 0 ? *pair.horse : *pair.rider;
+    const GltfCharacterNodes& n = which == 0 ? p.horse : p.rider;
+    const int root = addCentimetreRoot(model, named + (which == 0 ? "horse" : "rider"));
+    for (std::size_t j = 0; j < c.skeleton.size(); ++j)
+      if (c.skeleton.joints[j].parent < 0) model.nodes[std::size_t(root)].children.push_back(n.joint_nodes[j]);
+    model.skins[std::size_t(n.skin)].skeleton = root;
+    (which == 0 ? p.horse_root : p.rider_root) = root;
+  }
+  if (!pair.name.empty())
+    if (const tinygltf::Value seat = seatExtras(pair.seat); seat.IsObject()) {
+      tinygltf::Value::Object extras;
+      extras["stirrup_seat"] = seat;
+      model.nodes[std::size_t(p.rider_root)].extras = tinygltf::Value(extras);
+    }
+  return p;
+}
+
+// The shot's ground mesh under a root of its own (in metres); returns the root's node.
+int appendGround(tinygltf::Model& model, std::vector<unsigned char>& bin, const BakedShot& shot) {
+  // Smooth normals: each vertex the area-weighted sum of its triangles' (facing up).
+  std::vector<glm::vec3> normals(shot.ground_vertices.size(), glm::vec3(0.0f));
+  for (std::size_t t = 0; t + 2 < shot.ground_indices.size(); t += 3) {
+    const std::uint32_t a = shot.ground_indices[t], b = shot.ground_indices[t + 1], c = shot.ground_indices[t + 2];
+    glm::vec3 n = glm::cross(shot.ground_vertices[b] - shot.ground_vertices[a], shot.ground_vertices[c] - shot.ground_vertices[a]);
+    if (n.y < 0.0f) n = -n;
+    normals[a] += n, normals[b] += n, normals[c] += n;
+  }
+  std::vector<float> pos, nor;
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    const glm::vec3 n = glm::length(normals[i]) > 0.0f ? glm::normalize(normals[i]) : glm::vec3(0, 1, 0);
+    pos.insert(pos.end(), {shot.ground_vertices[i].x, shot.ground_vertices[i].y, shot.ground_vertices[i].z});
+    nor.insert(nor.end(), {n.x, n.y, n.z});
+  }
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] = appendFloatAccessor(model, bin, pos, 3, true, TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.indices = appendIndexAccessor(model, bin, shot.ground_indices);
+  tinygltf::Mesh mesh;
+  mesh.name = "ground";
+  mesh.primitives.push_back(prim);
+  model.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = "ground_mesh";
+  node.mesh = static_cast<int>(model.meshes.size()) - 1;
+  model.nodes.push_back(node);
+  const int ground_root = addCentimetreRoot(model, "ground");
+  model.nodes[std::size_t(ground_root)].children.push_back(static_cast<int>(model.nodes.size()) - 2);
+  return ground_root;
+}
+
+// A baked camera as a glTF camera on a node of its own (its motion keyed by the caller); returns the node.
+int appendCamera(tinygltf::Model& model, const BakedCamera& bc) {
+  const double aspect = double(bc.width) / double(bc.height);
+  tinygltf::Camera cam;
+  cam.name = bc.name;
+  // stirrup's film: half height ortho_height / 2 (or tan(fov / 2)), half width that times the aspect,
+  // which is glTF's ymag / xmag (in metres) and yfov / aspectRatio.
+  if (bc.orthographic) {
+    cam.type = "orthographic";
+    cam.orthographic.ymag = bc.ortho_height_cm * 0.5 * 0.01;
+    cam.orthographic.xmag = cam.orthographic.ymag * aspect;
+    cam.orthographic.znear = 0.01;
+    cam.orthographic.zfar = 1000.0;
+  } else {
+    cam.type = "perspective";
+    cam.perspective.yfov = bc.fov_deg * 3.14159265358979323846 / 180.0;
+    cam.perspective.aspectRatio = aspect;
+    cam.perspective.znear = 0.01;
+    cam.perspective.zfar = 1000.0;
+  }
+  tinygltf::Value::Object extras;
+  extras["width"] = tinygltf::Value(bc.width);
+  extras["height"] = tinygltf::Value(bc.height);
+  if (!bc.view.empty()) extras["stirrup_view"] = tinygltf::Value(bc.view);
+  if (bc.hold_frame > 0) extras["hold_frame"] = tinygltf::Value(bc.hold_frame);
+  cam.extras = tinygltf::Value(extras);
+  model.cameras.push_back(cam);
+  tinygltf::Node node;
+  node.name = "camera:" + bc.name;
+  node.camera = static_cast<int>(model.cameras.size()) - 1;
+  node.extras = tinygltf::Value(extras);  // also on the node: importers keep node extras more often
+  model.nodes.push_back(node);
+  return static_cast<int>(model.nodes.size()) - 1;
+}
+
+}  // namespace
+
 std::vector<unsigned char> bakedShotGlb(const BakedShot& shot) {
   const std::size_t frames = shot.seconds.size();
   if (shot.pairs.empty()) throw std::invalid_argument("bakedShotGlb: expected a pair at least");
@@ -97,82 +214,9 @@ std::vector<unsigned char> bakedShotGlb(const BakedShot& shot) {
   model.asset.version = "2.0";
   model.asset.generator = "stirrup bake";
   std::vector<unsigned char> bin;
-  // Each pair's two characters: a root per character, in metres, as its skin's skeleton (one armature
-  // per character in a DCC). A crowd pair's name goes before its roots', meshes' and skins' names.
-  struct PairNodes {
-    GltfCharacterNodes horse, rider;
-    int horse_root = -1, rider_root = -1;
-  };
   std::vector<PairNodes> pair_nodes;
-  for (const BakedPair& pair : shot.pairs) {
-    PairNodes p;
-    const std::string named = pair.name.empty() ? "" : pair.name + "_";
-    for (int which = 0; which < 2; ++which) {
-      const Character& c = which == 0 ? *pair.horse : *pair.rider;
-      const std::string role = which == 0 ? "horse:" : "rider:";
-      GltfCharacterNodes n = appendCharacterGltf(model, bin, c, role);
-      if (!named.empty()) {
-        // Each armature is its own and named after its pair; its joints keep their skeleton's own names,
-        // so one script drives every pair's bones.
-        model.nodes[std::size_t(n.mesh_node)].name.insert(0, named);
-        model.skins[std::size_t(n.skin)].name.insert(0, named);
-        tinygltf::Mesh& mesh = model.meshes[std::size_t(model.nodes[std::size_t(n.mesh_node)].mesh)];
-        mesh.name.insert(0, named);
-        for (const tinygltf::Primitive& prim : mesh.primitives)
-          if (prim.material >= 0) model.materials[std::size_t(prim.material)].name.insert(0, named);
-      }
-      (which == 0 ? p.horse : p.rider) = n;
-    }
-    for (int which = 0; which < 2; ++which) {
-      const Character& c = which == 0 ? *pair.horse : *pair.rider;
-      const GltfCharacterNodes& n = which == 0 ? p.horse : p.rider;
-      const int root = addCentimetreRoot(model, named + (which == 0 ? "horse" : "rider"));
-      for (std::size_t j = 0; j < c.skeleton.size(); ++j)
-        if (c.skeleton.joints[j].parent < 0) model.nodes[std::size_t(root)].children.push_back(n.joint_nodes[j]);
-      model.skins[std::size_t(n.skin)].skeleton = root;
-      (which == 0 ? p.horse_root : p.rider_root) = root;
-    }
-    if (!pair.name.empty())
-      if (const tinygltf::Value seat = seatExtras(pair.seat); seat.IsObject()) {
-        tinygltf::Value::Object extras;
-        extras["stirrup_seat"] = seat;
-        model.nodes[std::size_t(p.rider_root)].extras = tinygltf::Value(extras);
-      }
-    pair_nodes.push_back(p);
-  }
-  int ground_root = -1;
-
-  if (!shot.ground_indices.empty()) {
-    // Smooth normals: each vertex the area-weighted sum of its triangles' (facing up).
-    std::vector<glm::vec3> normals(shot.ground_vertices.size(), glm::vec3(0.0f));
-    for (std::size_t t = 0; t + 2 < shot.ground_indices.size(); t += 3) {
-      const std::uint32_t a = shot.ground_indices[t], b = shot.ground_indices[t + 1], c = shot.ground_indices[t + 2];
-      glm::vec3 n = glm::cross(shot.ground_vertices[b] - shot.ground_vertices[a], shot.ground_vertices[c] - shot.ground_vertices[a]);
-      if (n.y < 0.0f) n = -n;
-      normals[a] += n, normals[b] += n, normals[c] += n;
-    }
-    std::vector<float> pos, nor;
-    for (std::size_t i = 0; i < normals.size(); ++i) {
-      const glm::vec3 n = glm::length(normals[i]) > 0.0f ? glm::normalize(normals[i]) : glm::vec3(0, 1, 0);
-      pos.insert(pos.end(), {shot.ground_vertices[i].x, shot.ground_vertices[i].y, shot.ground_vertices[i].z});
-      nor.insert(nor.end(), {n.x, n.y, n.z});
-    }
-    tinygltf::Primitive prim;
-    prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.attributes["POSITION"] = appendFloatAccessor(model, bin, pos, 3, true, TINYGLTF_TARGET_ARRAY_BUFFER);
-    prim.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
-    prim.indices = appendIndexAccessor(model, bin, shot.ground_indices);
-    tinygltf::Mesh mesh;
-    mesh.name = "ground";
-    mesh.primitives.push_back(prim);
-    model.meshes.push_back(mesh);
-    tinygltf::Node node;
-    node.name = "ground_mesh";
-    node.mesh = static_cast<int>(model.meshes.size()) - 1;
-    model.nodes.push_back(node);
-    ground_root = addCentimetreRoot(model, "ground");
-    model.nodes[std::size_t(ground_root)].children.push_back(static_cast<int>(model.nodes.size()) - 2);
-  }
+  for (const BakedPair& pair : shot.pairs) pair_nodes.push_back(appendPair(model, bin, pair));
+  const int ground_root = shot.ground_indices.empty() ? -1 : appendGround(model, bin, shot);
 
   tinygltf::Animation anim;
   anim.name = shot.name;
@@ -211,37 +255,7 @@ std::vector<unsigned char> bakedShotGlb(const BakedShot& shot) {
   for (const BakedCamera& bc : shot.cameras) {
     if (bc.world.size() != frames) throw std::invalid_argument("bakedShotGlb: expected one camera transform per frame");
     if (bc.width <= 0 || bc.height <= 0) throw std::invalid_argument("bakedShotGlb: expected a positive image size");
-    const double aspect = double(bc.width) / double(bc.height);
-    tinygltf::Camera cam;
-    cam.name = bc.name;
-    // stirrup's film: half height ortho_height / 2 (or tan(fov / 2)), half width that times the aspect,
-    // which is glTF's ymag / xmag (in metres) and yfov / aspectRatio.
-    if (bc.orthographic) {
-      cam.type = "orthographic";
-      cam.orthographic.ymag = bc.ortho_height_cm * 0.5 * 0.01;
-      cam.orthographic.xmag = cam.orthographic.ymag * aspect;
-      cam.orthographic.znear = 0.01;
-      cam.orthographic.zfar = 1000.0;
-    } else {
-      cam.type = "perspective";
-      cam.perspective.yfov = bc.fov_deg * 3.14159265358979323846 / 180.0;
-      cam.perspective.aspectRatio = aspect;
-      cam.perspective.znear = 0.01;
-      cam.perspective.zfar = 1000.0;
-    }
-    tinygltf::Value::Object extras;
-    extras["width"] = tinygltf::Value(bc.width);
-    extras["height"] = tinygltf::Value(bc.height);
-    if (!bc.view.empty()) extras["stirrup_view"] = tinygltf::Value(bc.view);
-    if (bc.hold_frame > 0) extras["hold_frame"] = tinygltf::Value(bc.hold_frame);
-    cam.extras = tinygltf::Value(extras);
-    model.cameras.push_back(cam);
-    tinygltf::Node node;
-    node.name = "camera:" + bc.name;
-    node.camera = static_cast<int>(model.cameras.size()) - 1;
-    node.extras = tinygltf::Value(extras);  // also on the node: importers keep node extras more often
-    model.nodes.push_back(node);
-    const int ni = static_cast<int>(model.nodes.size()) - 1;
+    const int ni = appendCamera(model, bc);
     camera_nodes.push_back(ni);
     Tracks tr;
     for (const glm::dmat4& w : bc.world) tr.push(w, 0.01);

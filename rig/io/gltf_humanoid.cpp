@@ -109,22 +109,14 @@ std::string vrmHumanBoneName(const HumanoidJointLabel& l, int spine_joints) {
   }
 }
 
-std::vector<unsigned char> humanoidGlb(const StandingHumanoid& h) {
+namespace {
+
+// Joints: local TRS from the rest frames; the world frames are then recomposed from exactly the numbers
+// written (floats), and the inverse bind matrices are their inverses, so a reader that multiplies the
+// file's own transforms out gets identity at rest. Returns the frames as written.
+std::vector<RestFrame> appendJoints(tinygltf::Model& model, const StandingHumanoid& h) {
   const Skeleton& s = h.character.skeleton;
-  const SkinnedMesh& m = h.character.mesh;
-  const StandingHumanoidParams& p = h.params;
   const std::size_t nj = s.size();
-  if (h.labels.size() != nj || h.rest_axes.size() != nj || h.uvs.size() != m.vertexCount())
-    throw std::invalid_argument("humanoidGlb: labels, rest axes or texture coordinates do not match the character");
-
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "stirrup character make humanoid (" + std::string(humanoidNamesName(p.names)) + " names)";
-  std::vector<unsigned char> bin;
-
-  // Joints: local TRS from the rest frames; the world frames are then recomposed from exactly the
-  // numbers written (floats), and the inverse bind matrices are their inverses, so a reader that
-  // multiplies the file's own transforms out gets identity at rest.
   const int first_joint = static_cast<int>(model.nodes.size());
   std::vector<RestFrame> written(nj);
   for (std::size_t j = 0; j < nj; ++j) {
@@ -151,99 +143,99 @@ std::vector<unsigned char> humanoidGlb(const StandingHumanoid& h) {
   }
   for (std::size_t j = 0; j < nj; ++j)
     if (s.joints[j].parent >= 0) model.nodes[first_joint + s.joints[j].parent].children.push_back(first_joint + static_cast<int>(j));
-  std::vector<int> roots;
-  for (std::size_t j = 0; j < nj; ++j)
-    if (s.joints[j].parent < 0) roots.push_back(first_joint + static_cast<int>(j));
+  return written;
+}
 
-  // Mesh: a body and a hair primitive, each with its own vertices (as exporters split per material).
-  const bool byte_joints = nj <= 256;
-  tinygltf::Mesh mesh;
-  mesh.name = "Body";
-  for (int part = 0; part < 2; ++part) {
-    const std::size_t begin = part == 0 ? 0 : h.hair_first_index, end = part == 0 ? h.hair_first_index : m.indices.size();
-    if (begin == end) continue;
-    std::map<std::uint32_t, std::uint32_t> remap;
-    std::vector<std::uint32_t> order, indices;
-    for (std::size_t i = begin; i < end; ++i) {
-      const auto [it, fresh] = remap.emplace(m.indices[i], static_cast<std::uint32_t>(order.size()));
-      if (fresh) order.push_back(m.indices[i]);
-      indices.push_back(it->second);
-    }
-    std::vector<float> pos, nor, uv, wts;
-    std::vector<std::uint8_t> j8;
-    std::vector<std::uint16_t> j16;
-    for (std::uint32_t v : order) {
-      for (int c = 0; c < 3; ++c) {
-        pos.push_back(static_cast<float>(m.positions[v][c] * kMetresPerCm));
-        nor.push_back(m.normals[v][c]);
-      }
-      uv.push_back(h.uvs[v].x);
-      uv.push_back(h.uvs[v].y);
-      for (int c = 0; c < 4; ++c) {
-        const float w = m.weights[v][c];
-        const std::uint16_t joint = w > 0.0f ? m.joints[v][c] : 0;
-        wts.push_back(w);
-        if (byte_joints) j8.push_back(static_cast<std::uint8_t>(joint));
-        else j16.push_back(joint);
-      }
-    }
-    tinygltf::Primitive prim;
-    prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.attributes["POSITION"] = appendFloatAccessor(model, bin, pos, 3, true, TINYGLTF_TARGET_ARRAY_BUFFER);
-    prim.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
-    {
-      tinygltf::Accessor a;
-      a.bufferView = appendBytes(model, bin, uv.data(), uv.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
-      a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-      a.count = order.size();
-      a.type = TINYGLTF_TYPE_VEC2;
-      model.accessors.push_back(a);
-      prim.attributes["TEXCOORD_0"] = static_cast<int>(model.accessors.size()) - 1;
-    }
-    prim.attributes["JOINTS_0"] =
-        byte_joints ? appendIntegerAccessor(model, bin, j8, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER)
-                    : appendIntegerAccessor(model, bin, j16, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
-    prim.attributes["WEIGHTS_0"] = appendFloatAccessor(model, bin, wts, 4, false, TINYGLTF_TARGET_ARRAY_BUFFER);
-    if (order.size() < 65536) {
-      std::vector<std::uint16_t> i16(indices.begin(), indices.end());
-      prim.indices = appendIntegerAccessor(model, bin, i16, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 1,
-                                           TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    } else {
-      prim.indices = appendIndexAccessor(model, bin, indices);
-    }
-    tinygltf::Material mat;
-    mat.name = part == 0 ? "Body" : "Hair";
-    mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
-    mat.pbrMetallicRoughness.baseColorTexture.index = 0;
-    mat.pbrMetallicRoughness.metallicFactor = 0.0;
-    mat.pbrMetallicRoughness.roughnessFactor = part == 0 ? 0.8 : 0.6;
-    model.materials.push_back(mat);
-    prim.material = static_cast<int>(model.materials.size()) - 1;
-    mesh.primitives.push_back(prim);
+// One primitive of the mesh (part 0 the body, 1 the hair) with its own vertices, as exporters split per
+// material, and its material.
+tinygltf::Primitive appendPart(tinygltf::Model& model, std::vector<unsigned char>& bin, const StandingHumanoid& h, int part) {
+  const SkinnedMesh& m = h.character.mesh;
+  const bool byte_joints = h.character.skeleton.size() <= 256;
+  const std::size_t begin = part == 0 ? 0 : h.hair_first_index, end = part == 0 ? h.hair_first_index : m.indices.size();
+  std::map<std::uint32_t, std::uint32_t> remap;
+  std::vector<std::uint32_t> order, indices;
+  for (std::size_t i = begin; i < end; ++i) {
+    const auto [it, fresh] = remap.emplace(m.indices[i], static_cast<std::uint32_t>(order.size()));
+    if (fresh) order.push_back(m.indices[i]);
+    indices.push_back(it->second);
   }
-  model.meshes.push_back(mesh);
-
-  // The texture: PNG in a buffer view.
+  std::vector<float> pos, nor, uv, wts;
+  std::vector<std::uint8_t> j8;
+  std::vector<std::uint16_t> j16;
+  for (std::uint32_t v : order) {
+    for (int c = 0; c < 3; ++c) {
+      pos.push_back(static_cast<float>(m.positions[v][c] * kMetresPerCm));
+      nor.push_back(m.normals[v][c]);
+    }
+    uv.push_back(h.uvs[v].x);
+    uv.push_back(h.uvs[v].y);
+    for (int c = 0; c < 4; ++c) {
+      const float w = m.weights[v][c];
+      const std::uint16_t joint = w > 0.0f ? m.joints[v][c] : 0;
+      wts.push_back(w);
+      if (byte_joints) j8.push_back(static_cast<std::uint8_t>(joint));
+      else j16.push_back(joint);
+    }
+  }
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] = appendFloatAccessor(model, bin, pos, 3, true, TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
   {
-    const std::vector<unsigned char> png = pngBytes(h.texture);
-    tinygltf::Image image;
-    image.name = "Body_BaseColor";
-    image.mimeType = "image/png";
-    image.bufferView = appendBytes(model, bin, png.data(), png.size(), 0);
-    model.images.push_back(image);
-    tinygltf::Sampler sampler;
-    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-    model.samplers.push_back(sampler);
-    tinygltf::Texture texture;
-    texture.sampler = 0;
-    texture.source = 0;
-    model.textures.push_back(texture);
+    tinygltf::Accessor a;
+    a.bufferView = appendBytes(model, bin, uv.data(), uv.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.count = order.size();
+    a.type = TINYGLTF_TYPE_VEC2;
+    model.accessors.push_back(a);
+    prim.attributes["TEXCOORD_0"] = static_cast<int>(model.accessors.size()) - 1;
   }
+  prim.attributes["JOINTS_0"] =
+      byte_joints ? appendIntegerAccessor(model, bin, j8, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER)
+                  : appendIntegerAccessor(model, bin, j16, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["WEIGHTS_0"] = appendFloatAccessor(model, bin, wts, 4, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+  if (order.size() < 65536) {
+    std::vector<std::uint16_t> i16(indices.begin(), indices.end());
+    prim.indices = appendIntegerAccessor(model, bin, i16, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 1,
+                                         TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  } else {
+    prim.indices = appendIndexAccessor(model, bin, indices);
+  }
+  tinygltf::Material mat;
+  mat.name = part == 0 ? "Body" : "Hair";
+  mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+  mat.pbrMetallicRoughness.baseColorTexture.index = 0;
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = part == 0 ? 0.8 : 0.6;
+  model.materials.push_back(mat);
+  prim.material = static_cast<int>(model.materials.size()) - 1;
+  return prim;
+}
 
-  // Skin.
+// The texture: PNG in a buffer view.
+void appendTexture(tinygltf::Model& model, std::vector<unsigned char>& bin, const StandingHumanoid& h) {
+  const std::vector<unsigned char> png = pngBytes(h.texture);
+  tinygltf::Image image;
+  image.name = "Body_BaseColor";
+  image.mimeType = "image/png";
+  image.bufferView = appendBytes(model, bin, png.data(), png.size(), 0);
+  model.images.push_back(image);
+  tinygltf::Sampler sampler;
+  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  model.samplers.push_back(sampler);
+  tinygltf::Texture texture;
+  texture.sampler = 0;
+  texture.source = 0;
+  model.textures.push_back(texture);
+}
+
+// The skin over the joints from `first_joint`, its inverse bind matrices those of the frames written.
+void appendSkin(tinygltf::Model& model, std::vector<unsigned char>& bin, const StandingHumanoid& h, int first_joint,
+                const std::vector<RestFrame>& written) {
+  const std::size_t nj = written.size();
   tinygltf::Skin skin;
-  skin.name = p.names == HumanoidNames::Rigify ? "rig" : "Armature";
+  skin.name = h.params.names == HumanoidNames::Rigify ? "rig" : "Armature";
   for (std::size_t j = 0; j < nj; ++j) skin.joints.push_back(first_joint + static_cast<int>(j));
   std::vector<float> ibm;
   for (std::size_t j = 0; j < nj; ++j) {
@@ -257,6 +249,67 @@ std::vector<unsigned char> humanoidGlb(const StandingHumanoid& h) {
   skin.inverseBindMatrices = appendFloatAccessor(model, bin, ibm, 16, false);
   model.skins.push_back(skin);
 
+}
+
+// VRM 1.0's humanoid table (VRMC_vrm) naming the joints from `first_joint`.
+void addVrmExtension(tinygltf::Model& model, const StandingHumanoid& h, int first_joint) {
+  const std::size_t nj = h.labels.size();
+  tinygltf::Value::Object bones;
+  for (std::size_t j = 0; j < nj; ++j) {
+    const std::string bone = vrmHumanBoneName(h.labels[j], h.params.spine_joints);
+    if (bone.empty()) continue;
+    tinygltf::Value::Object node;
+    node["node"] = tinygltf::Value(first_joint + static_cast<int>(j));
+    bones[bone] = tinygltf::Value(node);
+  }
+  tinygltf::Value::Object humanoid;
+  humanoid["humanBones"] = tinygltf::Value(bones);
+  tinygltf::Value::Object meta;
+  meta["name"] = tinygltf::Value(std::string("stirrup test humanoid"));
+  meta["version"] = tinygltf::Value(std::string("1"));
+  meta["authors"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(std::string("stirrup"))});
+  meta["licenseUrl"] = tinygltf::Value(std::string("https://vrm.dev/licenses/1.0/"));
+  tinygltf::Value::Object vrm;
+  vrm["specVersion"] = tinygltf::Value(std::string("1.0"));
+  vrm["meta"] = tinygltf::Value(meta);
+  vrm["humanoid"] = tinygltf::Value(humanoid);
+  model.extensions["VRMC_vrm"] = tinygltf::Value(vrm);
+  model.extensionsUsed.push_back("VRMC_vrm");
+}
+
+}  // namespace
+
+std::vector<unsigned char> humanoidGlb(const StandingHumanoid& h) {
+  const Skeleton& s = h.character.skeleton;
+  const SkinnedMesh& m = h.character.mesh;
+  const StandingHumanoidParams& p = h.params;
+  const std::size_t nj = s.size();
+  if (h.labels.size() != nj || h.rest_axes.size() != nj || h.uvs.size() != m.vertexCount())
+    throw std::invalid_argument("humanoidGlb: labels, rest axes or texture coordinates do not match the character");
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "stirrup character make humanoid (" + std::string(humanoidNamesName(p.names)) + " names)";
+  std::vector<unsigned char> bin;
+
+  const int first_joint = static_cast<int>(model.nodes.size());
+  const std::vector<RestFrame> written = appendJoints(model, h);
+  std::vector<int> roots;
+  for (std::size_t j = 0; j < nj; ++j)
+    if (s.joints[j].parent < 0) roots.push_back(first_joint + static_cast<int>(j));
+
+  // Mesh: a body and a hair primitive, each with its own vertices (as exporters split per material).
+  tinygltf::Mesh mesh;
+  mesh.name = "Body";
+  for (int part = 0; part < 2; ++part) {
+    const std::size_t begin = part == 0 ? 0 : h.hair_first_index, end = part == 0 ? h.hair_first_index : m.indices.size();
+    if (begin == end) continue;
+    mesh.primitives.push_back(appendPart(model, bin, h, part));
+  }
+  model.meshes.push_back(mesh);
+
+  appendTexture(model, bin, h);
+  appendSkin(model, bin, h, first_joint, written);
   tinygltf::Node body;
   body.name = "Body";
   body.mesh = 0;
@@ -282,29 +335,7 @@ std::vector<unsigned char> humanoidGlb(const StandingHumanoid& h) {
   model.scenes.push_back(scene);
   model.defaultScene = 0;
 
-  if (p.names == HumanoidNames::Vrm) {
-    tinygltf::Value::Object bones;
-    for (std::size_t j = 0; j < nj; ++j) {
-      const std::string bone = vrmHumanBoneName(h.labels[j], p.spine_joints);
-      if (bone.empty()) continue;
-      tinygltf::Value::Object node;
-      node["node"] = tinygltf::Value(first_joint + static_cast<int>(j));
-      bones[bone] = tinygltf::Value(node);
-    }
-    tinygltf::Value::Object humanoid;
-    humanoid["humanBones"] = tinygltf::Value(bones);
-    tinygltf::Value::Object meta;
-    meta["name"] = tinygltf::Value(std::string("stirrup test humanoid"));
-    meta["version"] = tinygltf::Value(std::string("1"));
-    meta["authors"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(std::string("stirrup"))});
-    meta["licenseUrl"] = tinygltf::Value(std::string("https://vrm.dev/licenses/1.0/"));
-    tinygltf::Value::Object vrm;
-    vrm["specVersion"] = tinygltf::Value(std::string("1.0"));
-    vrm["meta"] = tinygltf::Value(meta);
-    vrm["humanoid"] = tinygltf::Value(humanoid);
-    model.extensions["VRMC_vrm"] = tinygltf::Value(vrm);
-    model.extensionsUsed.push_back("VRMC_vrm");
-  }
+  if (p.names == HumanoidNames::Vrm) addVrmExtension(model, h, first_joint);
   return glbBytes(model, std::move(bin));
 }
 

@@ -62,17 +62,7 @@ struct Event {
 PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain, const std::string& source)
     : params_(std::move(params)), terrain_(std::move(terrain)), path_(params_.points, source) {
   const double length = path_.length();
-  // A mesh terrain must be under every hoof the whole way: check the path and its hooves' reach.
-  if (terrain_ && terrain_->triangles()) {
-    for (double d = -kHoofReachCm; d <= length + kHoofReachCm; d += kCoverageStepCm)
-      for (const double side : {-kHoofReachSideCm, 0.0, kHoofReachSideCm}) {
-        const GroundPath::Sample at = extended(d);
-        const glm::dvec2 q = at.position + glm::dvec2{-at.tangent.y, at.tangent.x} * side;
-        if (!terrain_->covers(q.x, q.y))
-          throw InputError(source + ": points: expected the path over the terrain mesh, but it leaves it near (" +
-                           numberText(std::round(q.x)) + ", " + numberText(std::round(q.y)) + ") cm");
-      }
-  }
+  if (terrain_ && terrain_->triangles()) checkTerrainCovers(source);
   // How long the speed profile needs to be tabled: the path at the slowest key's speed, and a margin.
   double slowest = 0.0;
   for (const auto& k : params_.speed) slowest = slowest == 0.0 ? k.speed : std::min(slowest, k.speed);
@@ -93,23 +83,48 @@ PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain
   if (m.travelCm(double(steps) * kRampStepS) < length)
     throw InputError(source + ": speed: expected speeds that ride the whole path (" + numberText(length) +
                      " cm) within " + numberText(params_.max_duration_s) + " s");
-  const auto timeAtDistance = [&m](double s) {
-    double a = 0.0, b = 1.0;
-    while (m.travelCm(b) < s) b *= 2.0;
-    for (int i = 0; i < 60; ++i) {
-      const double mid = 0.5 * (a + b);
-      (m.travelCm(mid) < s ? a : b) = mid;
-    }
-    return 0.5 * (a + b);
-  };
   const double end_s = std::min(timeAtDistance(length), params_.max_duration_s);
   m.duration_s = end_s;
 
-  // Turns along the path, for the lead: runs of one curvature sign above the threshold.
-  struct Turn {
-    double from_cm, to_cm;
-    Lead lead;
-  };
+  makeSections(speed, turnsToLead(), end_s);
+  weighOscillations(speed, steps);
+  m.variation = params_.variation;
+  m.seed = params_.seed;
+  m.paced_blends = true;  // issue 15: no channel faster through a transition than in the steady gaits
+
+  GaitTimeline timeline;
+  timeline.variation = params_.variation;
+  timeline.seed = params_.seed;
+  for (int hoof = 0; hoof < 4; ++hoof)
+    m.hooves[std::size_t(hoof)] = scanFootfalls(m, timeline, hoof, -2.0, end_s + 2.0, 1e9);
+}
+
+// A mesh terrain must be under every hoof the whole way: the path and its hooves' reach.
+void PathClip::checkTerrainCovers(const std::string& source) const {
+  const double length = path_.length();
+  for (double d = -kHoofReachCm; d <= length + kHoofReachCm; d += kCoverageStepCm)
+    for (const double side : {-kHoofReachSideCm, 0.0, kHoofReachSideCm}) {
+      const GroundPath::Sample at = extended(d);
+      const glm::dvec2 q = at.position + glm::dvec2{-at.tangent.y, at.tangent.x} * side;
+      if (!terrain_->covers(q.x, q.y))
+        throw InputError(source + ": points: expected the path over the terrain mesh, but it leaves it near (" +
+                         numberText(std::round(q.x)) + ", " + numberText(std::round(q.y)) + ") cm");
+    }
+}
+
+double PathClip::timeAtDistance(double s) const {
+  double a = 0.0, b = 1.0;
+  while (movement_.travelCm(b) < s) b *= 2.0;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (a + b);
+    (movement_.travelCm(mid) < s ? a : b) = mid;
+  }
+  return 0.5 * (a + b);
+}
+
+// Turns along the path, for the lead: runs of one curvature sign above the threshold.
+std::vector<PathClip::Turn> PathClip::turnsToLead() const {
+  const double length = path_.length();
   std::vector<Turn> turns;
   for (double s = 0.0; s <= length; s += kTurnStepCm) {
     const double k = meanCurvature(s, kTurnSmoothingCm);
@@ -128,15 +143,17 @@ PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain
   for (std::size_t i = 1; i < turns.size();)
     if (turns[i].lead == turns[i - 1].lead) turns[i - 1].to_cm = turns[i].to_cm, turns.erase(turns.begin() + long(i));
     else ++i;
+  return turns;
+}
 
+// The sections: a new one wherever the gait changes, or the lead changes at the canter or gallop.
+void PathClip::makeSections(const SpeedProfile& speed, const std::vector<Turn>& turns, double end_s) {
   // Events in time: gait changes from the schedule, lead changes on the straights between turns that
   // go opposite ways (centred half a stride after the first ends, or mid-straight if it is shorter).
   const GaitSchedule schedule(speed, params_.thresholds);
   std::vector<Event> events;
   for (const auto& c : schedule.changes())
     if (c.time < end_s) events.push_back({c.time, true, c.to, Lead::Right});
-  Lead lead = turns.empty() ? params_.first_lead : turns.front().lead;
-  const Lead first_lead = lead;
   for (std::size_t i = 1; i < turns.size(); ++i) {
     if (turns[i].lead == turns[i - 1].lead) continue;
     const double exit_s = timeAtDistance(turns[i - 1].to_cm), entry_s = timeAtDistance(turns[i].from_cm);
@@ -147,9 +164,8 @@ PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain
   }
   std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.time < b.time; });
 
-  // Sections: a new one wherever the gait changes, or the lead changes at the canter or gallop.
   PathGait gait = schedule.gaitAt(0.0);
-  lead = first_lead;
+  Lead lead = turns.empty() ? params_.first_lead : turns.front().lead;
   sections_.push_back({0.0, end_s, gait, lead, 0.0, 0.0});
   for (const Event& e : events) {
     const PathGait new_gait = e.is_gait ? e.gait : gait;
@@ -176,8 +192,12 @@ PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain
     const double blend = std::min(sections_[i].blend_in_s, room);
     sections_[i].blend_in_s = sections_[i - 1].blend_out_s = blend;
   }
+}
 
-  // One oscillation entry per section, weighted in and out across its blends.
+// One oscillation entry per section, weighted in and out across its blends, and the stride frequency
+// blended with the same weights over the ramps' `steps`.
+void PathClip::weighOscillations(const SpeedProfile& speed, std::size_t steps) {
+  Movement& m = movement_;
   m.oscillation.clear();
   for (std::size_t i = 0; i < sections_.size(); ++i) {
     const Section& sec = sections_[i];
@@ -189,7 +209,6 @@ PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain
       w.add(sec.end_s - 0.5 * sec.blend_out_s, 1.0).add(sec.end_s + 0.5 * sec.blend_out_s, 0.0);
     m.oscillation.push_back({gaitParams(sec.gait, sec.lead, mid_speed), w});
   }
-  // Stride frequency: the sections' frequencies blended with the same weights.
   m.stride_hz = Ramp();
   for (std::size_t i = 0; i <= steps; ++i) {
     const double t = double(i) * kRampStepS;
@@ -201,15 +220,6 @@ PathClip::PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain
     }
     m.stride_hz.add(t, total > 0.0 ? sum / total : m.oscillation.front().first.stride_hz);
   }
-  m.variation = params_.variation;
-  m.seed = params_.seed;
-  m.paced_blends = true;  // issue 15: no channel faster through a transition than in the steady gaits
-
-  GaitTimeline timeline;
-  timeline.variation = params_.variation;
-  timeline.seed = params_.seed;
-  for (int hoof = 0; hoof < 4; ++hoof)
-    m.hooves[std::size_t(hoof)] = scanFootfalls(m, timeline, hoof, -2.0, end_s + 2.0, 1e9);
 }
 
 const Terrain& PathClip::terrain() const {

@@ -96,6 +96,17 @@ class PathClip final : public Clip {
   // the ground's pitch in radians.
   GroundPath::Sample placeTravelFrame(double s, HorseFrame& f, double& pitch) const;
 
+  // The constructor's steps.
+  struct Turn {  // a run of the path bending one way, for the lead
+    double from_cm, to_cm;
+    Lead lead;
+  };
+  void checkTerrainCovers(const std::string& source) const;
+  double timeAtDistance(double s) const;  // by the movement's travel
+  std::vector<Turn> turnsToLead() const;
+  void makeSections(const SpeedProfile& speed, const std::vector<Turn>& turns, double end_s);
+  void weighOscillations(const SpeedProfile& speed, std::size_t ramp_steps);
+
   PathClipParams params_;
   std::shared_ptr<const Terrain> terrain_;
   GroundPath path_;
