@@ -203,6 +203,8 @@ void GltfShot::Impl::readPairs(const tinygltf::Model& model, const GltfImageByte
     p.index = c.index;
     p.horse_armature = c.armature[0];
     p.rider_armature = c.armature[1];
+    p.horse_skin = c.skin[0];
+    p.rider_skin = c.skin[1];
     p.horse = pc[0].character;
     p.rider = pc[1].character;
     pairs.push_back(std::move(p));

@@ -48,6 +48,7 @@ class GltfShot {
     std::string name;  // "" for a single pair ("horse", "rider"); "pair03" in a crowd
     int index = 0;     // a crowd pair's index (3 for "pair03"); 0 for a single pair
     std::string horse_armature, rider_armature;  // the armatures' node names
+    int horse_skin = -1, rider_skin = -1;        // their skins in the file
     Character horse, rider;
   };
   using GroundHeight = std::function<double(double x, double z)>;
