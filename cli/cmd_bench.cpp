@@ -46,6 +46,7 @@ struct BenchOptions {
   int detail = -1;        // levels of detail: -1 automatic, 0-2 every pair at that level
   int png_compression = -1;  // the frames' zlib level; -1: as `stirrup render` picks it for the preset
   bool no_overlap = false;   // evaluate each frame before its trace instead of during the one before
+  bool allow_impossible = false;  // --scene beyond a horse's limits is benched anyway
 };
 
 // The frame rendered after frames[i], for Shot::renderFrame to evaluate during frames[i]'s trace.
@@ -192,7 +193,7 @@ double frameTotalMs(const render::FrameTimings& t) { return t.pose_ms + t.skin_m
 
 SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOptions& o,
                              const std::filesystem::path& scratch) {
-  render::SceneSpec scene = render::loadScene(o.scene);
+  render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
   render::applyPreset(scene, preset);
   SceneResult r;
   r.preset = std::string(preset.name);
@@ -407,6 +408,8 @@ void addBenchCommand(CLI::App& app) {
                 "Evaluate each frame before its trace, as before frames were overlapped (for comparison)");
   cmd->add_option("--detail", opts->detail, "With --scene: -1 picks each pair's level of detail by its size on "
                   "screen (default), 0-2 draws every pair at that level")->check(CLI::Range(-1, 2));
+  cmd->add_flag("--allow-impossible", opts->allow_impossible,
+                "With --scene: bench a scene beyond a horse's limits (docs/horse-limits.md) anyway");
   cmd->callback([opts] { runBench(*opts); });
 }
 

@@ -1,7 +1,8 @@
 // stirrup check SCENE.json | SHOT.glb | CLIP.glb [--json] [--junit REPORT.xml] [--html DIR]: a shot checked
 // frame by frame and pair by pair without rendering it (docs/check.md):
-//  - the limits a horse has (rig/motion/horse_limits.h): along every path of a scene, or from a glTF
-//    clip's own travel (speed, speeding up, braking, turning);
+//  - the limits a horse has (rig/motion/horse_limits.h): along every path of a scene, a generated
+//    clip's gait speeds (the clip's, not a frame's), or from a glTF clip's own travel (speed, speeding
+//    up, braking, turning);
 //  - a baked shot (rig/io/gltf_shot.h: `stirrup bake -o`, or Blender's re-export of one) measured on its
 //    own joints and meshes as the file keys them, nothing re-posed;
 //  - every pair of a scene or clip posed as every consumer poses it (rig::poseMounted) and measured in world space
@@ -550,6 +551,11 @@ void addLimitFindings(const CheckInput& in, const std::vector<int>& frames, std:
       }
     }
   }
+  // A generated gait faster than horses go at it: the clip's, not one frame's.
+  for (const rig::GaitSpeedBreach& b : scene.gait_breaches)
+    limit_findings.push_back({0, 0, 0, rig::CheckSeverity::Failure, "limit", "gait speed", b.speed.speed_cm_s, b.bound_cm_s,
+                              "gait speed (clip." + b.speed.field + "): " + b.text()});
+  // A clip with no path (a glTF clip): its own travel.
   for (CheckedPair& p : pairs) {
     if (in.kind != CheckInput::Kind::Clip) break;
     for (int frame : frames) {
@@ -705,8 +711,9 @@ void addCheckCommand(CLI::App& app) {
       "Input: a scene (every pair of a crowd, or --pairs); a baked shot (stirrup bake -o, or a DCC's re-export of one:\n"
       "armatures horse and rider, or pairNN_horse and pairNN_rider), its own joints measured as keyed; or a glTF horse\n"
       "clip ridden by the default pair.\n"
-      "Rules: limit (a horse's speed, acceleration, braking, turn, slopes), over-reach, hoof-slide, hoof-in-ground,\n"
-      "rider-in-horse, hand-off-rein, foot-off-stirrup, trunk-balance, gait (a glTF clip with --reference).\n"
+      "Rules: limit (a horse's speed, acceleration, braking, turn, slopes, a gait's speed), over-reach, hoof-slide,\n"
+      "hoof-in-ground, rider-in-horse, hand-off-rein, foot-off-stirrup, trunk-balance, gait (a glTF clip with\n"
+      "--reference).\n"
       "Each warns at one measure and fails at a larger one (docs/check.md lists them and their sources).\n"
       "Exit status: 0 clean, 1 warnings, 2 failures (notes do not count), 3 an input that cannot be checked.\n"
       "Examples: stirrup check scenes/trail.json --junit check.xml\n"

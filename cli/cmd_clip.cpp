@@ -37,6 +37,7 @@ struct ClipOptions {
   int loops = 0;  // 0: 1 for a contract clip, 4 for a skeleton clip (a cycle)
   double ground_cm = -1.0;
   int pair = -1;  // a crowd scene's pair to measure (-1: every pair)
+  bool allow_impossible = false;  // a scene beyond a horse's limits is measured anyway
   std::vector<std::string> params;  // the --name value pairs after the gait
 };
 
@@ -172,7 +173,7 @@ void runInfo(const ClipOptions& o) {
   if (std::filesystem::path(o.clip).extension() == ".json") {
     // A scene: its clip, over its terrain. A path clip is measured section by section.
     if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a scene: " + o.params[0]);
-    const render::SceneSpec scene = render::loadScene(o.clip);
+    const render::SceneSpec scene = render::loadScene(o.clip, {o.allow_impossible});
     if (!scene.pairs.empty()) return runCrowdInfo(scene, o);
     if (o.pair >= 0) throw InputError("clip info: --pair: expected a crowd scene (\"crowd\" or \"riders\"), got one horse and rider in " + o.clip);
     clip = render::makeSceneClip(scene);
@@ -253,6 +254,8 @@ void addClipCommand(CLI::App& app) {
   in->add_option("--loops", info->loops, "Loops of a file's animation to measure (default 1; 4 for a cycle from another tool)");
   in->add_option("--pair", info->pair, "A crowd scene's pair to measure, by index from 0 (default: every pair in turn)");
   in->add_option("--ground-cm", info->ground_cm, "A hoof this low or lower is down (default 0.001; 0.5 for another tool's animation)");
+  in->add_flag("--allow-impossible", info->allow_impossible,
+               "Measure a scene beyond a horse's limits (docs/horse-limits.md) anyway");
   in->allow_extras();
   in->callback([info, in] {
     info->params = in->remaining();

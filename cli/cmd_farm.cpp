@@ -122,11 +122,12 @@ void runSubmit(const SubmitOptions& o, const CLI::App& cmd) {
       args.insert(args.end(), {"--resolution", o.set.resolution});
     }
     for (const std::string& s : o.sets) args.insert(args.end(), {"--set", s});
+    if (o.set.allow_impossible) args.push_back("--allow-impossible");
     // The scene as the tasks must find it: absolute, after the data-folder lookup of a relative path.
     const fs::path scene_file = fs::absolute(render::findSceneFile(o.scene));
     // A view camera framed once, here, as the tasks see the scene (preset, size, profile settings):
     // every chunk reads it from the plan instead of framing the view again.
-    render::SceneSpec scene = render::loadScene(scene_file);
+    render::SceneSpec scene = render::loadScene(scene_file, {o.set.allow_impossible});
     if (cmd.count("--preset")) render::applyPreset(scene, render::findPreset(o.set.preset));
     if (!o.set.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.set.resolution);
     const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));

@@ -43,6 +43,7 @@ struct LayerOptions {
   int onion_frames = 2, onion_step = 1;
   std::string label_a = "A", label_b = "B";
   bool no_labels = false;
+  bool allow_impossible = false;  // --scene beyond a horse's limits: its reference block is read anyway
 };
 
 bool isPattern(const std::string& s) { return render::FrameSequence::isPattern(s); }
@@ -98,7 +99,7 @@ render::FootageEdge parseEdge(const std::string& s) {
 
 // B and the style from a scene's "reference" block; false (after saying so) when its file is absent.
 bool referenceFromScene(const LayerOptions& o, render::FootageSequence& b, render::LayerStyle& style) {
-  const render::SceneSpec scene = render::loadScene(o.scene);
+  const render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
   if (!scene.reference)
     throw InputError(o.scene + ": reference: expected a \"reference\" block naming the footage (see docs/layered.md)");
   const render::ReferenceSpec& ref = *scene.reference;
@@ -246,6 +247,8 @@ void addLayerCommand(CLI::App& app) {
   cmd->add_option("--label-a", o->label_a, "Side-by-side: A's label (default A)");
   cmd->add_option("--label-b", o->label_b, "Side-by-side: B's label (default B)");
   cmd->add_flag("--no-labels", o->no_labels, "Side-by-side: no labels");
+  cmd->add_flag("--allow-impossible", o->allow_impossible,
+                "Read --scene's reference even when the scene is beyond a horse's limits (docs/horse-limits.md)");
   cmd->callback([o, cmd] {
     o->mode_given = cmd->count("--mode") > 0;
     o->opacity_given = cmd->count("--opacity") > 0;

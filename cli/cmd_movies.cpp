@@ -104,7 +104,7 @@ void runMovies(const MoviesOptions& o) {
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const render::MovieJob& j = jobs[i];
     const auto movie_start = std::chrono::steady_clock::now();
-    if (!plots.count(j.scene)) plots[j.scene] = render::writeMovementPlot(j.scene, out);
+    if (!plots.count(j.scene)) plots[j.scene] = render::writeMovementPlot(j.scene, out, mo.allow_impossible);
     render::MovieResult r = render::finishMovie(j, mo);
     r.plot = plots[j.scene];
     finish_s[i] = secondsSince(movie_start);

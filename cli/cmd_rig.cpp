@@ -36,6 +36,7 @@ struct RigOptions {
   std::string rider_csv;
   std::string profile = "thesis";
   std::vector<std::string> sets;
+  bool allow_impossible = false;  // rig balance: a scene beyond a horse's limits loads, warning each frame
 };
 
 rig::RigProfile resolveProfile(const RigOptions& o) { return render::resolveProfile(o.profile, parseSets(o.sets)); }
@@ -67,10 +68,12 @@ void runParams(const RigOptions& o) {
 
 // One row a frame (a crowd: a frame and a pair, the pair's index first): the horse's back above level,
 // the trunk's world lean as the channels pose it and as the stage leaves it (measured from the posed
-// pelvis and neck joints), and the stage's terms. Every pair is posed by the shot's evaluator
-// (render/scene/shot_evaluator.h) with its own profile, the scene's overrides and then --set applied.
+// pelvis and neck joints), and the stage's terms; then sideways, the turn's tilt the stage answers, the
+// horse's roll and her lean from the world's vertical, measured on the posed joints. Every pair is posed
+// by the shot's evaluator (render/scene/shot_evaluator.h) with its own profile, the scene's overrides and
+// then --set applied.
 void runBalance(const RigOptions& o) {
-  render::SceneSpec scene = render::loadScene(o.scene);
+  render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
   // A crowd's pairs resolve their own profiles from the scene: --set joins its overrides, after them.
   const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));
   render::ShotEvaluator characters(scene, profile, 0);
@@ -78,7 +81,7 @@ void runBalance(const RigOptions& o) {
   std::ostringstream out;
   out << (crowd ? "pair," : "")
       << "frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,"
-         "turn_deg,seat_lift_cm,limited\n";
+         "turn_deg,seat_lift_cm,limited,turn_tilt_deg,roll_deg,side_lean_deg\n";
   char row[320];
   render::ShotFrame frame;
   for (int f : rig::parseFrameList(scene.frames, "frames")) {
@@ -86,6 +89,7 @@ void runBalance(const RigOptions& o) {
     request.frame = f;
     request.until = render::EvalStage::Pose;
     characters.evaluate(request, frame);
+    render::warnImpossibleFrame(scene, f);
     for (int i = 0; i < characters.pairCount(); ++i) {
       const rig::Character& horse = characters.horse(i);
       const rig::Character& rider = characters.rider(i);
@@ -94,12 +98,14 @@ void runBalance(const RigOptions& o) {
       const glm::vec3 heading = rig::saddleHeading(saddle);
       const glm::vec3 x(saddle[0]);
       const double back = std::atan2(double(x.y), double(glm::dot(x, heading))) * 180.0 / 3.14159265358979323846;
-      const double lean = rig::leanDegrees(glm::vec3(pose.rider[rider.role("neck")][3]) - glm::vec3(pose.rider[rider.role("pelvis")][3]), heading);
+      const glm::vec3 trunk = glm::vec3(pose.rider[rider.role("neck")][3]) - glm::vec3(pose.rider[rider.role("pelvis")][3]);
+      const double lean = rig::leanDegrees(trunk, heading);
       const rig::BalanceResult& r = pose.balance;
       if (crowd) out << i << ',';
-      std::snprintf(row, sizeof row, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d\n", f, back, r.pose_lean_deg,
+      std::snprintf(row, sizeof row, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%.3f,%.3f,%.3f\n", f, back, r.pose_lean_deg,
                     r.channel_lean_deg, r.support_lean_deg, r.inertia_lean_deg, lean, r.turn_deg, r.seat_lift_cm,
-                    int(r.limited));
+                    int(r.limited), r.turn_tilt_deg, rig::horseRollDegrees(horse, pose.horse),
+                    rig::leanDegrees(trunk, rig::sideways(heading)));
       out << row;
     }
   }
@@ -153,13 +159,18 @@ void addRigCommand(CLI::App& app) {
       "  thesis_lean_deg (her trunk's world lean, pelvis to neck, as the channels pose it: balance 0),\n"
       "  the stage's terms channel_lean_deg, support_lean_deg, inertia_lean_deg, then lean_deg (measured on\n"
       "  the posed joints), turn_deg, seat_lift_cm and limited (1: a body limit held her). Leans are + toward\n"
-      "  the horse's head. The scene's profile applies, then --set.\n"
+      "  the horse's head. Sideways: turn_tilt_deg (in a turn, the tilt of the apparent vertical her roll\n"
+      "  channels answer, balance.turn_share of atan(a/g)), roll_deg (the horse's hip line) and side_lean_deg\n"
+      "  (her trunk from the world's vertical, pelvis to neck), + toward the horse's right. The scene's profile\n"
+      "  applies, then --set.\n"
       "A crowd scene (docs/crowds.md): a first column `pair` (its index from 0), one row a frame and pair,\n"
       "  each pair with its own profile (then --set).\n"
       "Example: stirrup rig balance scenes/rear.json --set balance.max_fold_deg=60 -o rear_balance.csv");
   balance->add_option("scene", opts->scene, "Scene file")->required();
   balance->add_option("--out,-o", opts->rider_csv, "CSV file (default: standard output)");
   balance->add_option("--set,-s", opts->sets, "Override one profile parameter, KEY=NUMBER (repeatable)");
+  balance->add_flag("--allow-impossible", opts->allow_impossible,
+                    "Read a scene beyond a horse's limits (docs/horse-limits.md) anyway, warning on stderr for each frame");
   balance->callback([opts] { runBalance(*opts); });
 
   CLI::App* params = rig_cmd->add_subcommand("params", "List a rig profile's parameters, values and citations");

@@ -21,17 +21,19 @@ glm::dvec2 travelAccelerationOnGround(const Clip& clip, double seconds) {
 
 namespace {
 
-// Along the heading at `seconds` (a path clip's turn adds a sideways part, which this leaves out).
-double accelerationAlong(const Clip& clip, double seconds, double heading_deg) {
+// Along the heading at `seconds` (x) and square to it, + toward the horse's right (y): in a path
+// clip's turn the sideways part is the centripetal acceleration.
+glm::dvec2 accelerationInTravelFrame(const Clip& clip, double seconds, double heading_deg) {
   const glm::dvec2 a = travelAccelerationOnGround(clip, seconds);
   const double heading = heading_deg * 3.14159265358979323846 / 180.0;
-  return a.x * std::cos(heading) + a.y * std::sin(heading);
+  // The heading turns from +X toward +Z (rig/clip.h), so the horse's right is (-sin, cos) on the ground.
+  return {a.x * std::cos(heading) + a.y * std::sin(heading), -a.x * std::sin(heading) + a.y * std::cos(heading)};
 }
 
 }  // namespace
 
 double travelAcceleration(const Clip& clip, double seconds) {
-  return accelerationAlong(clip, seconds, clip.sampleTravel(seconds).heading_deg);
+  return accelerationInTravelFrame(clip, seconds, clip.sampleTravel(seconds).heading_deg).x;
 }
 
 BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, double seconds) {
@@ -39,7 +41,9 @@ BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, dou
   b.frame = frame;
   b.seconds = seconds;
   b.horse = clip.sample(seconds);
-  b.horse.travel_accel_cm_s2 = accelerationAlong(clip, seconds, b.horse.heading_deg);
+  const glm::dvec2 a = accelerationInTravelFrame(clip, seconds, b.horse.heading_deg);
+  b.horse.travel_accel_cm_s2 = a.x;
+  b.horse.travel_side_accel_cm_s2 = a.y;
   b.rider = evaluateRider(b.horse.controls, profile);
   return b;
 }

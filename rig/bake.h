@@ -24,7 +24,9 @@ BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, dou
 // kAccelerationWindowS each side: smoothed, so a lean that follows it never jumps between frames.
 // travelAccelerationOnGround is the whole of it in the ground plane, (world x, world z): in a turn it
 // holds the centripetal part, toward the turn's centre. travelAcceleration is its part along the
-// heading, which the balance stage leans against (HorseFrame::travel_accel_cm_s2).
+// heading, which the balance stage leans against (HorseFrame::travel_accel_cm_s2); bakeFrame also
+// keeps the sideways part (HorseFrame::travel_side_accel_cm_s2), whose tilt of the apparent vertical
+// the stage answers in a turn.
 inline constexpr double kAccelerationWindowS = 0.2;
 glm::dvec2 travelAccelerationOnGround(const Clip& clip, double seconds);
 double travelAcceleration(const Clip& clip, double seconds);

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "rig/rider_rig.h"
 
 namespace stirrup::rig {
 namespace {
@@ -28,6 +31,17 @@ glm::vec3 saddleHeading(const glm::mat4& saddle) {
   x.y = 0.0f;
   const float n = glm::length(x);
   return n > 1e-6f ? x / n : glm::vec3(1.0f, 0.0f, 0.0f);
+}
+
+glm::vec3 sideways(glm::vec3 heading) { return glm::cross(heading, glm::vec3(0.0f, 1.0f, 0.0f)); }
+
+double horseRollDegrees(const Character& horse, std::span<const glm::mat4> world) {
+  const auto hip = [&](const char* leg) {
+    const std::string pivot = std::string(leg) + "Pivot";
+    return glm::vec3(world[std::size_t(horse.roles.count(pivot) ? horse.role(pivot) : horse.role(std::string(leg) + "Upper"))][3]);
+  };
+  const glm::vec3 across = hip("rb") - hip("lb");
+  return std::atan2(-double(across.y), std::hypot(double(across.x), double(across.z))) * kDeg;
 }
 
 double trunkComHeight(const Character& rider) {
@@ -77,6 +91,23 @@ BalanceResult balanceTrunk(const BalanceInput& in, const RigProfile::Balance& p)
   out.turn_deg = out.lean_deg - out.pose_lean_deg;
   const double folded = p.max_fold_deg > 0.0 ? std::clamp(fold / p.max_fold_deg, 0.0, 1.0) : 0.0;
   out.seat_lift_cm = p.amount * std::max(0.0, p.seat_rise_cm * folded * folded - in.seat_rise_cm);
+  return out;
+}
+
+double turnTiltDegrees(double side_accel_cm_s2, const RigProfile::Balance& p) {
+  return p.amount * p.turn_share * std::atan2(side_accel_cm_s2, kGravityCmS2) * kDeg;
+}
+
+RiderChannels answerTiltedVertical(const RiderChannels& r, const HorseChannels& horse, const RigProfile& profile,
+                                   double tilt_deg) {
+  if (tilt_deg == 0.0) return r;
+  // The difference the tilt makes, not the channels evaluated again: r may carry what evaluateRider did
+  // not give (a caller's own channels), and only the roll's answer is the stage's to change.
+  HorseChannels tilted = horse;
+  tilted[HorseChannel::rearPivotRx] -= tilt_deg;
+  const RiderChannels from_tilted = evaluateRider(tilted, profile), from_world = evaluateRider(horse, profile);
+  RiderChannels out = r;
+  for (std::size_t c = 0; c < kRiderChannelCount; ++c) out.value[c] += from_tilted.value[c] - from_world.value[c];
   return out;
 }
 

@@ -35,12 +35,31 @@
 // lift (Eq 7) counts toward it, so she is lifted only where it falls short (a higher seat would
 // straighten her legs and press her knees into the horse).
 // The result is a turn of the trunk about her hips (the pelvis), which poseRider applies; the neck
-// turns back head_counter of it so she keeps looking ahead. A rider on a hill or in a turn (roll) meets
-// the same stage: it measures the saddle in the world, whatever tilts it.
+// turns back head_counter of it so she keeps looking ahead. A rider on a hill meets the same stage: it
+// measures the saddle in the world, whatever tilts it.
+//
+// Sideways, in a turn (poseMounted, before the steps above): the thesis's roll channels (Eq 2's
+// counter-roll of the lower back, Eq 3, 6, 11, 17 and the hair's and cloth's swing) answer the horse's
+// roll from the world's vertical (rearPivot.rx). That is right for the gait's sway, a roll about a
+// vertical that stays put, which she rides out by keeping her trunk near the vertical. A turn is not
+// sway: gravity and the centripetal acceleration a together make an apparent vertical tilted
+// atan(a/g) into the turn, and the horse leans into it to balance (about 1° short of it: Brocklehurst,
+// Weller and Pfau, Vet. J.). From the apparent vertical the horse in a steady turn is nearly upright,
+// and so, sat in line with it, is she; the world's vertical has no claim on her, and counter-rolling
+// against the horse's lean would put her outside the apparent vertical, off balance (0.65 of the
+// horse's roll on the figure eight). So her roll channels answer the horse's roll from the apparent
+// vertical: rearPivot.rx less the tilt turn_share · atan(a/g) (amount blends it like the rest). The
+// channels' own response to the roll stays Appendix B's, the sway is answered as before, and a straight
+// line (a = 0) is untouched. Why the channels and not a lean added about her hips: the pelvis follows
+// them too (Eq 6), so in a steady turn she sits square in the saddle, in line with the horse, where a
+// turn about the hips would tip her seat across the saddle while her lower back still counter-rolled.
 #pragma once
+
+#include <span>
 
 #include <glm/glm.hpp>
 
+#include "rig/channels.h"
 #include "rig/character.h"
 #include "rig/rig_profile.h"
 
@@ -65,6 +84,7 @@ struct BalanceResult {
   double support_lean_deg = 0;   // 2.
   double inertia_lean_deg = 0;   // 2b.
   double slope_lean_deg = 0;     // 2c.
+  double turn_tilt_deg = 0;      // sideways, in a turn: the tilt of the vertical her roll channels answer (turnTiltDegrees)
   double lean_deg = 0;           // the trunk's world lean after the stage
   double turn_deg = 0;           // lean_deg - pose_lean_deg: the turn about the hips, + forward
   double seat_lift_cm = 0;       // how far the stage raises her seat beyond the channels' (along the saddle's up)
@@ -76,6 +96,13 @@ double leanDegrees(glm::vec3 v, glm::vec3 forward);
 
 // The saddle's heading: its +X axis laid flat (the horse's forward on the ground).
 glm::vec3 saddleHeading(const glm::mat4& saddle);
+// The horse's right on the ground, square to `heading` (saddleHeading): a sideways lean is
+// leanDegrees(v, sideways(heading)), + toward the horse's right.
+glm::vec3 sideways(glm::vec3 heading);
+
+// The horse's roll, degrees, + toward its right (its right hip lower than its left): the line between
+// its hip joints (the hind legs' pivots, else their upper joints) from level, in posed world matrices.
+double horseRollDegrees(const Character& horse, std::span<const glm::mat4> world);
 
 // The height of the rider's head, arms and trunk's centre of mass above her hips at rest (hipCentre
 // where the seating marked it, else the pelvis joint), from
@@ -84,5 +111,16 @@ glm::vec3 saddleHeading(const glm::mat4& saddle);
 double trunkComHeight(const Character& rider);
 
 BalanceResult balanceTrunk(const BalanceInput& in, const RigProfile::Balance& params);
+
+// The tilt (degrees, + toward the horse's right) of the vertical her roll channels answer: amount ·
+// turn_share of the apparent vertical's, atan(side acceleration / g); 0 on a straight line.
+double turnTiltDegrees(double side_accel_cm_s2, const RigProfile::Balance& params);
+
+// The rider channels `r` as they answer the horse's roll from a vertical tilted `tilt_deg` toward its
+// right: r plus what the thesis's expressions change when they read rearPivot.rx tilt_deg less. Only
+// the channels that read the roll change (Eq 2, 3, 6, 11, 17 and 18, hair.side, cloth.side); r itself
+// when tilt_deg is 0.
+RiderChannels answerTiltedVertical(const RiderChannels& r, const HorseChannels& horse, const RigProfile& profile,
+                                   double tilt_deg);
 
 }  // namespace stirrup::rig

@@ -42,6 +42,10 @@ struct HorseFrame {
   // The travel frame's acceleration along its heading (cm/s²), for the balance stage (rig/balance.h:
   // the rider leans against it). Clips leave it 0; bakeFrame measures it from the travel.
   double travel_accel_cm_s2 = 0.0;
+  // Its sideways part (cm/s², + toward the horse's right): in a turn the centripetal acceleration,
+  // toward the turn's centre, which tilts the apparent vertical the rider balances against (a right
+  // turn: +). Measured with travel_accel_cm_s2, the same way; 0 on a straight line.
+  double travel_side_accel_cm_s2 = 0.0;
   // Uneven ground (issue 15): the travel frame's origin stands at height ground_y_cm and pitches by
   // ground_pitch_deg (+ nose up, the sense of rearPivot.rz) with the ground under the hooves, and
   // hoof_ground_cm holds the ground under each hoof (indexed lf, rf, lb, rb) as a height above that

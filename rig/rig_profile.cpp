@@ -100,6 +100,8 @@ const std::array kParameters = {
                       "Balance: share of her weight over the stirrups; the jumping seat (Caprilli) keeps her centred over her feet, Kuhnel 5.4 raises her seat in the rear"),
     STIRRUP_RIG_PARAM("balance.inertia_share", balance.inertia_share, RangeKind::Fraction, 0, 1,
                       "Balance: share of the horse's travel acceleration she leans against; Kuhnel 5.5, in the stop she leans back to compensate for the backward shift in centre of gravity"),
+    STIRRUP_RIG_PARAM("balance.turn_share", balance.turn_share, RangeKind::Fraction, 0, 1,
+                      "Balance: in a turn her roll channels (Eq 2, 3, 6, 11, 17) answer the horse's roll from the apparent vertical (gravity and the centripetal acceleration) tilted by this share of atan(a/g); 1 keeps her in line with her horse, as horses lean about 1 degree less than atan(a/g) (Brocklehurst, Weller and Pfau) and riding texts keep the rider in line with the horse; 0 the world's vertical, as the thesis"),
     STIRRUP_RIG_PARAM("balance.slope_response", balance.slope_response, RangeKind::Fraction, 0, 1,
                       "Balance: uphill she leans forward of her flat-ground lean by this share of the slope (riding texts: lean forward going up, off the horse's loins); the centre-of-mass term already keeps her upright in the world"),
     STIRRUP_RIG_PARAM("balance.downhill_response", balance.downhill_response, RangeKind::Fraction, 0, 1,

@@ -130,6 +130,7 @@ struct RigProfile {
     double amount = 1;                // "balance": 0 the thesis pose .. 1 balanced
     double stirrup_share = 0.25;      // of her weight over the stirrups (the rest over the seat)
     double inertia_share = 0.3;       // of the horse's travel acceleration she leans against
+    double turn_share = 1;            // of a turn's tilt of the apparent vertical her roll channels answer
     double slope_response = 1;        // uphill: of the slope she leans forward of her flat-ground lean
     double downhill_response = 0;     // downhill: of the slope she leans back of it (0: upright, as on the flat)
     double band_forward_deg = 35;     // soft band around the vertical the channels move her through

@@ -58,4 +58,14 @@ inline BlenderMade madeByBlender(const std::filesystem::path& dir, const std::fi
   return made;
 }
 
+// Blender's own Rigify human (scripts/blender-rigify-rider), made once for every test that rides her:
+// the file's path, or empty with `made.ok` false and the script's output in `made.log`.
+inline std::filesystem::path blenderRigifyRider(BlenderMade* made = nullptr) {
+  const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_blender_riders" / "rigify";
+  const std::filesystem::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider";
+  const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' '" + (dir / "rigify-rider.glb").string() + "'");
+  if (made) *made = m;
+  return m.ok ? dir / "rigify-rider.glb" : std::filesystem::path();
+}
+
 }  // namespace stirrup::test

@@ -3,6 +3,7 @@
 #include <sys/vfs.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -40,7 +41,9 @@ FarmPlan emptyPlan(const FarmRequest& r, const std::string& kind) {
 FarmPlan planRender(const FarmRequest& r, const fs::path& scene_file, const std::string& camera_name,
                     const std::string& frames_spec, const std::vector<std::string>& render_args,
                     const std::optional<PlannedCamera>& framed) {
-  const SceneSpec scene = loadScene(scene_file);
+  // The tasks render it with --allow-impossible when asked to: it loads here as it will there.
+  const bool allow = std::find(render_args.begin(), render_args.end(), "--allow-impossible") != render_args.end();
+  const SceneSpec scene = loadScene(scene_file, {allow});
   const CameraSpec& camera = findCamera(scene, camera_name);
   const std::vector<int> frames = rig::parseFrameList(frames_spec.empty() ? scene.frames : frames_spec, "--frames");
   FarmPlan plan = emptyPlan(r, "render");

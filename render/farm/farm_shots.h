@@ -25,7 +25,8 @@ struct FarmRequest {
 };
 
 // One shot: `scene` through `camera`; `frames` empty means the scene's. `render_args` are further
-// `stirrup render` options both the tasks and the finishing encode get (--preset, --resolution, --set).
+// `stirrup render` options both the tasks and the finishing encode get (--preset, --resolution, --set,
+// --allow-impossible: then the scene loads here too when it is beyond a horse's limits).
 // Frames are OUT/SCENE_CAMERA.####.png; the finishing job encodes OUT/SCENE_CAMERA.mp4.
 // With `framed` (planCamera's, for the scene as the tasks will see it), the plan keeps the framed
 // camera and every task reads it (--camera-plan OUT/farm.json) instead of framing the view again.

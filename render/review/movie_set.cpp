@@ -121,8 +121,8 @@ std::vector<int> movieFrameList(const MovieJob& job, const MovieOptions& o) {
 
 int movieFrameCount(const MovieJob& job, const MovieOptions& o) { return static_cast<int>(movieFrameList(job, o).size()); }
 
-fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out) {
-  const SceneSpec scene = loadScene(scene_file);
+fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out, bool allow_impossible) {
+  const SceneSpec scene = loadScene(scene_file, {allow_impossible});
   // A crowd's plot is one pair's: the one a camera follows (the first such), else the first pair, as
   // the shot's evaluator bakes it (its own clip at its start phase, its own profile).
   ShotEvaluator characters(scene, resolveProfile(scene), 0);

@@ -97,7 +97,9 @@ MovieResult finishMovie(const MovieJob& job, const MovieOptions& options);
 MovieResult renderMovie(const MovieJob& job, const MovieOptions& options,
                         const std::function<void()>& frame_done = {});
 
-// The movement's channel plot: OUT/SCENE_plot.png (the scene's frames). Returns the file.
-std::filesystem::path writeMovementPlot(const std::filesystem::path& scene_file, const std::filesystem::path& out);
+// The movement's channel plot: OUT/SCENE_plot.png (the scene's frames). Returns the file. With
+// allow_impossible a scene beyond a horse's limits is plotted too, as its movie was rendered.
+std::filesystem::path writeMovementPlot(const std::filesystem::path& scene_file, const std::filesystem::path& out,
+                                        bool allow_impossible = false);
 
 }  // namespace stirrup::render

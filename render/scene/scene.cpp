@@ -88,8 +88,12 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
   return c;
 }
 
-// Every path of the scene against the limits a horse has: the first breach is an error naming the
-// path's source, field, segment and time, unless the scene allows the impossible.
+// The suffix of every error refusing a scene beyond a horse's limits.
+constexpr const char* kRendersAnyway = "allow_impossible or --allow-impossible renders it anyway";
+
+// Every path of the scene against the limits a horse has, and the generated clip's gaits against their
+// top speeds: the first breach is an error naming the path's source, field, segment and time, or the
+// clip's field, the speed and its gait's limit, unless the scene allows the impossible.
 void checkLimits(SceneSpec& s) {
   const std::string file = s.file.string();
   if (const auto params = rig::pathClipParams(s.clip))
@@ -102,10 +106,17 @@ void checkLimits(SceneSpec& s) {
                 s.pairs[i].clip_offset_s};
   });
   s.limits.insert(s.limits.end(), pairs.begin(), pairs.end());
+  // A crowd's pairs ride paths; the default trot in s.clip is no one's.
+  if (s.pairs.empty())
+    for (const rig::GaitSpeed& g : rig::generatedGaitSpeeds(s.clip))
+      if (const auto b = rig::gaitSpeedBreach(g)) s.gait_breaches.push_back(*b);
   if (s.allow_impossible) return;
   for (const SceneSpec::PathLimits& l : s.limits)
-    if (const std::string e = l.check->error(); !e.empty())
-      throw InputError(e + " (allow_impossible or --allow-impossible renders it anyway)");
+    if (const std::string e = l.check->error(); !e.empty()) throw InputError(e + " (" + kRendersAnyway + ")");
+  if (!s.gait_breaches.empty()) {
+    const rig::GaitSpeedBreach& b = s.gait_breaches.front();
+    throw InputError(s.clip.source + "." + b.speed.field + ": " + b.text(std::string("; ") + kRendersAnyway));
+  }
 }
 
 }  // namespace
@@ -122,6 +133,9 @@ std::string impossibleFrameWarning(const SceneSpec& scene, int frame) {
               b.text.substr(b.text.find(": ") + 2);
     }
   }
+  // A gait too fast is the clip's whole (or its approach): every frame is warned of it.
+  for (const rig::GaitSpeedBreach& b : scene.gait_breaches)
+    what += std::string(what.empty() ? "" : "; ") + "gait speed: clip." + b.speed.field + ": " + b.text();
   if (what.empty()) return "";
   char when[64];
   std::snprintf(when, sizeof when, "frame %d (%.3f s)", frame, t);

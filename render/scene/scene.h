@@ -108,6 +108,9 @@ struct SceneSpec {
     double clip_offset_s = 0;  // the path's clip is sampled at the shot's time plus this (a crowd's pair)
   };
   std::vector<PathLimits> limits;
+  // The generated clip's gaits faster than horses go at them (rig::generatedGaitSpeeds, HorseLimits):
+  // refused like a path, unless `allow_impossible`; then kept here, for the warnings and `stirrup check`.
+  std::vector<rig::GaitSpeedBreach> gait_breaches;
 };
 
 struct SceneLoadOptions {

@@ -434,12 +434,34 @@ ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_di
   return spec;
 }
 
+namespace {
+
+// A parsed spec's parameters read again: errors name the spec's source and the field.
+ParamReader specReader(const ClipSpec& spec) {
+  return {spec.params, [&spec](const std::string& key, const std::string& what) { throw InputError(spec.source + "." + key + ": " + what); }};
+}
+
+}  // namespace
+
+std::vector<GaitSpeed> generatedGaitSpeeds(const ClipSpec& spec) {
+  const std::string& g = spec.generator;
+  const ParamReader pr = specReader(spec);
+  if (g == "walk" || g == "trot" || g == "canter" || g == "gallop") return {{"speed_cm_s", g, steadyFrom(g, pr).speed_cm_s}};
+  // The stop enters at a gallop (makeStop), the jump approaches at a canter (makeJump).
+  if (g == "stop") return {{"entry_speed_cm_s", "gallop", readFields<StopParams>({}, kStopFields, pr).entry_speed_cm_s}};
+  if (g == "jump") return {{"approach_speed_cm_s", "canter", readFields<JumpParams>({}, kJumpFields, pr).approach_speed_cm_s}};
+  std::vector<GaitSpeed> out;
+  if (g == "sequence") {
+    const std::vector<GaitParams> gaits = gaitList(pr, Lead::Right);
+    for (std::size_t i = 0; i < gaits.size(); ++i) out.push_back({"gaits[" + std::to_string(i) + "]", gaits[i].name, gaits[i].speed_cm_s});
+  }
+  return out;
+}
+
 std::optional<GaitParams> steadyGaitParams(const ClipSpec& spec) {
   const std::string& g = spec.generator;
   if (g != "walk" && g != "trot" && g != "canter" && g != "gallop") return std::nullopt;
-  ParamReader pr{spec.params, [&spec](const std::string& key, const std::string& what) {
-                   throw InputError(spec.source + "." + key + ": " + what);
-                 }};
+  const ParamReader pr = specReader(spec);
   return steadyFrom(g, pr);
 }
 
@@ -450,17 +472,13 @@ std::unique_ptr<Clip> makeClip(const ClipSpec& spec) {
     if (!spec.animation.empty()) m.animation = spec.animation;
     return std::make_unique<GltfClip>(spec.file, m);
   }
-  ParamReader pr{spec.params, [&spec](const std::string& key, const std::string& what) {
-                   throw InputError(spec.source + "." + key + ": " + what);
-                 }};
+  const ParamReader pr = specReader(spec);
   return buildGenerator(spec.generator, pr, spec);
 }
 
 std::optional<PathClipParams> pathClipParams(const ClipSpec& spec) {
   if (spec.generator != "path") return std::nullopt;
-  ParamReader pr{spec.params, [&spec](const std::string& key, const std::string& what) {
-                   throw InputError(spec.source + "." + key + ": " + what);
-                 }};
+  const ParamReader pr = specReader(spec);
   return pathParams(pr, spec);
 }
 

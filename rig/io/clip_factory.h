@@ -17,6 +17,7 @@
 #include "rig/character.h"
 #include "rig/clip.h"
 #include "rig/io/json_fields.h"
+#include "rig/motion/horse_limits.h"
 #include "rig/motion/path_clip.h"
 #include "rig/motion/procedural_gait.h"
 #include "rig/motion/terrain.h"
@@ -55,6 +56,11 @@ ClipSpec parseClipSpec(JsonObjectReader& r, const std::filesystem::path& base_di
 
 // The gait a steady-gait spec plays (walk, trot, canter, gallop), else nullopt.
 std::optional<GaitParams> steadyGaitParams(const ClipSpec& spec);
+// The speed of every gait a generator rides and the field that sets it (rig/motion/horse_limits.h): a
+// steady gait's speed_cm_s, the stop's gallop in (entry_speed_cm_s), the jump's canter up to the fence
+// (approach_speed_cm_s), each of a sequence's gaits (gaits[i], at its reference speed). Empty for the
+// other generators (a path picks its gait from its speed: only its top speed applies) and for files.
+std::vector<GaitSpeed> generatedGaitSpeeds(const ClipSpec& spec);
 
 // Without the horse, a horse's own animation (a file clip whose file is the scene's horse) is read as
 // any other horse's: its controls only, for the default horse. makeClip(spec, horse) keys the horse itself.

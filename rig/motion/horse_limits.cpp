@@ -272,6 +272,40 @@ std::vector<LimitBreach> PathLimitCheck::during(double t0, double t1) const {
   return out;
 }
 
+namespace {
+
+// Each gait's top speed (HorseLimits, where the sources are given in full), the verb for "faster than a
+// horse ...", and the source in a few words for the one-line error.
+struct GaitTop {
+  const char* gait;
+  const char* verb;
+  double HorseLimits::*top;
+  const char* source;
+};
+constexpr GaitTop kGaitTops[] = {
+    {"walk", "walks", &HorseLimits::max_walk_cm_s,
+     "horses change to the trot at 160-230 cm/s, Froude 0.35, Griffin et al. 2004; a walk held past that, an estimate"},
+    {"trot", "trots", &HorseLimits::max_trot_cm_s, "the fastest trotted mile, 1:48.4, Homicide Hunter 2018"},
+    {"canter", "canters", &HorseLimits::max_canter_cm_s,
+     "estimated from horses changing to the gallop at 700-800 cm/s and ridden canters of 800-1000"},
+    {"gallop", "gallops", &HorseLimits::top_speed_cm_s, "the fastest recorded horse, 70.76 km/h, Winning Brew 2008"},
+};
+
+}  // namespace
+
+std::optional<GaitSpeedBreach> gaitSpeedBreach(const GaitSpeed& speed, const HorseLimits& limits) {
+  for (const GaitTop& g : kGaitTops) {
+    if (speed.gait != g.gait || !(speed.speed_cm_s > limits.*g.top)) continue;
+    return GaitSpeedBreach{speed, limits.*g.top, g.verb, g.source};
+  }
+  return std::nullopt;
+}
+
+std::string GaitSpeedBreach::text(const std::string& then) const {
+  return fixed(speed.speed_cm_s, 0) + " cm/s is faster than a horse " + verb + " (at most " + fixed(bound_cm_s, 0) + " cm/s: " +
+         source + then + ")";
+}
+
 TravelLimits travelLimitsAt(const Clip& clip, double time_s, const HorseLimits& limits) {
   TravelLimits r;
   r.time_s = time_s;

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,6 +70,19 @@ struct HorseLimits {
   double max_footing_deg = 45.0;
   // The default horse's hoof: 2 × its hoof_radius of 6 cm (rig/characters/horse_character.h).
   double hoof_footprint_cm = 12.0;
+  // Each gait's top speed (issue 49), for the generated gaits (walk, trot, canter, gallop and the
+  // movements' approach speeds; a path picks its gait from its speed, so only its top speed applies).
+  // Walk [E]: horses change to the trot at 1.6-2.3 m/s, at a Froude number of 0.35 (Griffin, Kram,
+  // Wickler and Hoyt 2004, "Biomechanical and energetic determinants of the walk-trot transition in
+  // horses", J. Exp. Biol. 207:4215); a walk held past the fastest of them tops out near 2.5 m/s.
+  double max_walk_cm_s = 250.0;
+  // Trot [C]: the fastest trotted mile, 1:48.4 (Homicide Hunter, 2018, a harness trotter; Standardbred
+  // Canada), 1609.344 m / 108.4 s = 14.85 m/s.
+  double max_trot_cm_s = 1485.0;
+  // Canter [E]: horses change from the canter to the gallop at 7-8 m/s (docs/paths-and-terrain.md,
+  // "Gait"), and a ridden canter is estimated to reach 8-10 m/s; faster is a gallop.
+  double max_canter_cm_s = 1000.0;
+  // Gallop: top_speed_cm_s, the record.
 };
 
 // Which limit a breach breaks.
@@ -87,6 +101,27 @@ struct LimitBreach {
   double speed_cm_s = 0;  // the speed there
   std::string text;       // "segment 3 from 2.41 s: ...", one line
 };
+
+// A generated gait's speed (a steady gait's speed_cm_s, the stop's entry_speed_cm_s, the jump's
+// approach_speed_cm_s, a sequence's gaits): the clip's field that sets it, the gait it is ridden at
+// (walk, trot, canter or gallop) and the speed.
+struct GaitSpeed {
+  std::string field;
+  std::string gait;
+  double speed_cm_s = 0;
+};
+// A gait's speed beyond what horses do at that gait: the speed, the gait's top speed and where it comes
+// from (HorseLimits::max_walk_cm_s ... top_speed_cm_s).
+struct GaitSpeedBreach {
+  GaitSpeed speed;
+  double bound_cm_s = 0;
+  std::string verb;    // "walks"
+  std::string source;  // a few words
+  // "900 cm/s is faster than a horse walks (at most 250 cm/s: SOURCE" + `then` + ")": one line.
+  std::string text(const std::string& then = "") const;
+};
+// The breach, or nullopt when the speed is within its gait's limit (or the gait is not one of the four).
+std::optional<GaitSpeedBreach> gaitSpeedBreach(const GaitSpeed& speed, const HorseLimits& limits = {});
 
 // The limits read along one path. Built once (a few milliseconds for a minute of path); then lookups.
 class PathLimitCheck {

@@ -244,9 +244,9 @@ TEST(BlenderApplyRider, BadInputIsAOneLineError) {
 TEST(BlenderApplyRider, BlendersOwnRigifyRiderLandsWhereStirrupPutsHer) {
   if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
   const fs::path dir = freshDir("blender_rigify");
-  const rig::test::UserRiderFiles files{dir / "rigify-rider.glb", dir / "rigify-rider-mapping.json"};
-  const CommandResult made = runCommand(quote(STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider") + " " + quote(files.glb.string()));
-  ASSERT_EQ(made.exit_code, 0) << made.out << made.err;
+  BlenderMade made;
+  const rig::test::UserRiderFiles files{blenderRigifyRider(&made), dir / "rigify-rider-mapping.json"};
+  ASSERT_TRUE(made.ok) << made.log;
   // Rigify's human meta-rig in Blender 3.x: DEF-spine the pelvis, spine.004 the neck, spine.006 the
   // head; the first half of upper_arm, forearm, thigh and shin the joint; palm.02 the middle
   // metacarpal; toe the ball of the foot. Exported in metres, +Y up, facing +Z.
@@ -275,15 +275,16 @@ TEST(BlenderApplyRider, BlendersOwnRigifyRiderLandsWhereStirrupPutsHer) {
 TEST(BlenderApplyRider, BlendersRigifyRiderOnBlendersRigifyHorseGoesBackToHerSkeleton) {
   if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
   const fs::path made = fs::path(STIRRUP_BINARY_DIR) / "test_blender_horses";
-  const fs::path horse_script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse", rider_script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider";
+  const fs::path horse_script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
   const BlenderMade horse = madeByBlender(made / "walk", horse_script,
                                           quote(horse_script.string()) + " " + quote((made / "walk" / "horse.glb").string()) +
                                               " --form generated --bones deform --saddle --walk");
   ASSERT_TRUE(horse.ok) << horse.log;
-  const BlenderMade rider = madeByBlender(made / "rider", rider_script, quote(rider_script.string()) + " " + quote((made / "rider" / "rider.glb").string()));
+  BlenderMade rider;
+  const fs::path rider_glb = blenderRigifyRider(&rider);
   ASSERT_TRUE(rider.ok) << rider.log;
   const fs::path dir = freshDir("rigify_on_rigify");
-  const rig::test::UserRiderFiles files{made / "rider" / "rider.glb", dir / "rider-map.json"};
+  const rig::test::UserRiderFiles files{rider_glb, dir / "rider-map.json"};
   const fs::path horse_map = dir / "horse-map.json", horse_glb = made / "walk" / "horse.glb";
   for (const auto& [file, as, map] : {std::tuple{files.glb, "rider", files.mapping}, std::tuple{horse_glb, "horse", horse_map}}) {
     const CommandResult r = runStirrup("character map " + quote(file.string()) + " --as " + as + " -o " + quote(map.string()));

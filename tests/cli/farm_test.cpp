@@ -115,6 +115,29 @@ TEST(Farm, ASingleSceneRendersThroughItsCameraAndEncodes) {
   fs::remove_all(farm);
 }
 
+// A scene beyond a horse's limits (a walk at 900 cm/s) is refused by farm submit before anything is
+// submitted; with --allow-impossible it renders on the farm, every task given the flag.
+TEST(Farm, AnImpossibleSceneIsSubmittedOnlyWithAllowImpossible) {
+  if (!clusterAnswers()) GTEST_SKIP() << "no Slurm cluster answers (scripts/slurm-local up needs root)";
+  const fs::path farm = scratch("impossible"), scenes = scratch("impossible_scene");
+  fs::create_directories(scenes);
+  const fs::path scene = scenes / "walk900.json";
+  std::ofstream(scene) << R"({"frames": "1-2", "clip": {"generator": "walk", "speed_cm_s": 900}})";
+  const std::string shot = quote(scene.string()) + " --camera side --preset draft --resolution 96x54 --chunk 2 --out " + quote(farm.string());
+  const CommandResult refused = runStirrup("farm submit " + shot);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.err.find(": clip.speed_cm_s: 900 cm/s is faster than a horse walks (at most 250 cm/s: "), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(farm / "farm.json"));
+  const CommandResult s = runStirrup("farm submit " + shot + " --allow-impossible");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_NE(bytes(farm / "farm.json").find("--allow-impossible"), std::string::npos);
+  const CommandResult st = runStirrup("farm status --wait " + quote(farm.string()));
+  EXPECT_NE(st.out.find("\ncomplete\n"), std::string::npos) << st.out << st.err;
+  EXPECT_TRUE(fs::exists(farm / "walk900_side.0002.png"));
+  fs::remove_all(farm);
+  fs::remove_all(scenes);
+}
+
 // The state squeue gives a job or array task ("12_2"), or "" once it has left the queue.
 std::string taskState(const std::string& id) {
   const CommandResult r = runCommand("squeue -h -r -t all -o '%i %T'");

@@ -174,7 +174,7 @@ TEST_F(RigEval, BalanceWritesTheStageOnEveryFrame) {
   std::vector<std::vector<double>> rows = readRows(out, &header);
   EXPECT_EQ(header,
             "frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,turn_deg,"
-            "seat_lift_cm,limited");
+            "seat_lift_cm,limited,turn_tilt_deg,roll_deg,side_lean_deg");
   ASSERT_EQ(rows.size(), 127u);
   const std::vector<double>& top = rows[57];  // frame 58: the back 55° up
   EXPECT_EQ(top[0], 58);
@@ -189,6 +189,36 @@ TEST_F(RigEval, BalanceWritesTheStageOnEveryFrame) {
   fs::remove(out);
   expectFails(runStirrup("rig balance " + scene + " --set balance=2 -o " + quote(out.string())),
               "--set: balance: expected a number from 0 to 1 (docs/rider-rig.md, valid ranges), got 2", out);
+}
+
+// rig balance sideways on the figure eight: in its turns (the horse rolled more than 8°) the tilt she
+// answers leans into the turn with the horse, and her lean is the horse's roll within 15% on average;
+// with turn_share 0 the tilt is 0 on every frame and she leans about two thirds as far (0.66).
+TEST_F(RigEval, BalanceWritesTheTurnsTiltAndHerLeanAgainstTheHorsesRoll) {
+  const fs::path out = dir_ / "figure_eight.csv";
+  const std::string scene = quote(std::string(STIRRUP_SOURCE_DIR) + "/scenes/figure_eight.json");
+  const auto banked = [&](const std::string& sets, double& ratio) {
+    const CommandResult r = runStirrup("rig balance " + scene + sets + " -o " + quote(out.string()));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::string header;
+    const std::vector<std::vector<double>> rows = readRows(out, &header);
+    EXPECT_EQ(header.substr(header.rfind(",limited,")), ",limited,turn_tilt_deg,roll_deg,side_lean_deg");
+    double sum = 0;
+    int n = 0;
+    for (const auto& row : rows) {
+      if (std::abs(row[11]) <= 8) continue;
+      sum += row[12] / row[11], ++n;
+      if (sets.empty()) EXPECT_GT(row[10] * row[11], 0) << "frame " << row[0] << ": the tilt leans with the horse";
+      else EXPECT_EQ(row[10], 0) << "frame " << row[0];
+    }
+    ratio = n ? sum / n : 0;
+    return n;
+  };
+  double in_line = 0, world = 0;
+  EXPECT_GT(banked("", in_line), 300);
+  EXPECT_GT(banked(" --set balance.turn_share=0", world), 300);
+  EXPECT_NEAR(in_line, 1.0, 0.15);
+  EXPECT_LT(world, 0.75);
 }
 
 // A crowd of four pairs, each on its own path with its own profile, over 12 frames.
@@ -211,7 +241,7 @@ TEST_F(RigEval, BalanceOnACrowdWritesEveryPair) {
   std::vector<std::vector<double>> rows = readRows(out, &header);
   EXPECT_EQ(header,
             "pair,frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,turn_deg,"
-            "seat_lift_cm,limited");
+            "seat_lift_cm,limited,turn_tilt_deg,roll_deg,side_lean_deg");
   ASSERT_EQ(rows.size(), 48u);
   for (std::size_t k = 0; k < rows.size(); ++k) {
     EXPECT_EQ(rows[k][0], double(k % 4)) << "row " << k;

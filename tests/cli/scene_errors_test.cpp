@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -189,6 +191,47 @@ TEST_F(SceneErrors, AllowImpossibleRendersWithAWarningEachFrame) {
   const CommandResult b = runStirrup("bake " + quote(f.string()) + " --allow-impossible --channels " + quote((dir / "out/c.csv").string()));
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_EQ(lineCount(b.err), 2u) << b.err;
+}
+
+// A gait no horse could ride at its speed (issue 49): a walk at 900 cm/s is refused with the limit
+// named by every command that loads a scene; with --allow-impossible each of them reads it (render
+// and rig balance warning once a frame), and `check` loads it on purpose and reports it as a failure.
+TEST_F(SceneErrors, AGaitNoHorseRidesIsRefusedByEveryCommandThatLoadsItUnlessAllowed) {
+  const fs::path f = write("walk900.json", R"({"output": "out", "frames": "1-2", "resolution": [32, 18], "quality": "draft",
+      "clip": {"generator": "walk", "speed_cm_s": 900}})");
+  const std::string scene = quote(f.string());
+  const std::string limit = "900 cm/s is faster than a horse walks (at most 250 cm/s: horses change to the trot at 160-230 cm/s, "
+                            "Froude 0.35, Griffin et al. 2004; a walk held past that, an estimate";
+  const std::string message = f.string() + ": clip.speed_cm_s: " + limit + "; allow_impossible or --allow-impossible renders it anyway)";
+  // A to composite over the scene's reference, rendered from a scene inside the limits.
+  const fs::path a = write("a.json", R"({"frames": "1", "resolution": [32, 18], "quality": "draft", "clip": {"generator": "walk"}})");
+  ASSERT_EQ(runStirrup("render " + quote(a.string()) + " --out " + quote((dir / "a").string())).exit_code, 0);
+  const std::string layer = "layer " + quote((dir / "a/a_side.0001.png").string()) + " --scene " + scene + " -o " +
+                            quote((dir / "l.png").string());
+  const std::string csv = quote((dir / "out/c.csv").string());
+  const std::vector<std::string> commands = {"render " + scene, "bake " + scene + " --channels " + csv, "clip info " + scene,
+                                             "rig balance " + scene, layer, "bench --scene " + scene + " --frames 1 --preset draft"};
+  for (const std::string& c : commands) expectError(c, message);
+
+  const std::string warning = ": beyond a horse's limits (allowed): gait speed: clip.speed_cm_s: " + limit + ")\n";
+  const CommandResult r = runStirrup("render " + scene + " --allow-impossible --out " + quote((dir / "out").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "warning: " + f.string() + ": frame 1 (0.000 s)" + warning + "warning: " + f.string() + ": frame 2 (0.042 s)" + warning);
+  EXPECT_TRUE(fs::exists(dir / "out/walk900_side.0002.png"));
+  const CommandResult balance = runStirrup("rig balance " + scene + " --allow-impossible");
+  ASSERT_EQ(balance.exit_code, 0) << balance.err;
+  EXPECT_EQ(lineCount(balance.out), 3u) << balance.out;  // the header and two frames
+  EXPECT_EQ(lineCount(balance.err), 2u) << balance.err;
+  for (const std::string& c : {"bake " + scene + " --channels " + csv, "clip info " + scene})
+    EXPECT_EQ(runStirrup(c + " --allow-impossible").exit_code, 0) << c;
+  // layer reads the scene, then finds it has no reference block to composite.
+  const CommandResult l = runStirrup(layer + " --allow-impossible");
+  EXPECT_EQ(l.err, "stirrup: " + f.string() +
+                       ": reference: expected a \"reference\" block naming the footage (see docs/layered.md)\n");
+  const CommandResult check = runStirrup("check " + scene);
+  EXPECT_EQ(check.exit_code, 2) << check.out << check.err;
+  EXPECT_NE(check.out.find(f.string() + ": the clip: failure: limit: gait speed (clip.speed_cm_s): " + limit + ")\n"), std::string::npos)
+      << check.out;
 }
 
 }  // namespace

@@ -24,6 +24,9 @@
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_clip.h"
+#include "rig/io/gltf_shot.h"
+#include "rig/io/keyed_horse_clip.h"
+#include "rig/pose.h"
 #include "rig/io/rig_profile_json.h"
 #include "rig/io/spine_json.h"
 #include "rig/io/clip_factory.h"
@@ -181,6 +184,25 @@ int gltfCharacter(const std::uint8_t* data, std::size_t size) {
   const fs::path file = writeInput(data, size, gltfName(data, size, "character"));
   for (const rig::CharacterKind kind : {rig::CharacterKind::Horse, rig::CharacterKind::Rider})
     expectOnlyInputErrors([&] { (void)rig::loadCharacterGltf(file, kind); });
+  return 0;
+}
+
+int gltfShot(const std::uint8_t* data, std::size_t size) {
+  const fs::path file = writeInput(data, size, gltfName(data, size, "shot"));
+  // A baked shot, every pair posed at its first and last frames.
+  expectOnlyInputErrors([&] {
+    const std::unique_ptr<rig::GltfShot> shot = rig::GltfShot::read(file);
+    if (!shot) return;
+    for (std::size_t p = 0; p < shot->pairs().size(); ++p)
+      for (const int frame : {1, shot->frameCount()}) (void)shot->pose(p, frame, [](double, double) { return 0.0; });
+  });
+  // The file as a horse playing its own animation: keyed exactly, and sampled.
+  expectOnlyInputErrors([&] {
+    const rig::Character horse = rig::loadCharacterGltf(file, rig::CharacterKind::Horse);
+    const rig::KeyedHorseClip clip(file, "", rig::keyedHorseMapping(horse), &horse);
+    sampleClip(clip);
+    (void)rig::poseHorse(horse, clip.sample(clip.duration() * 0.5));
+  });
   return 0;
 }
 

@@ -22,6 +22,7 @@ int horseCsv(const std::uint8_t* data, std::size_t size);        // rig/io/chann
 int spineJson(const std::uint8_t* data, std::size_t size);       // rig/io/spine_json.* (+ laying the spine)
 int gltfClip(const std::uint8_t* data, std::size_t size);        // rig/io/gltf_clip.* (.glb or .gltf)
 int gltfCharacter(const std::uint8_t* data, std::size_t size);   // rig/io/gltf_character.* (.glb or .gltf)
+int gltfShot(const std::uint8_t* data, std::size_t size);        // rig/io/gltf_shot.*, rig/io/keyed_horse_clip.*
 int mappingJson(const std::uint8_t* data, std::size_t size);     // rig/io/character_mapping.*, clip mappings
 int frameSpec(const std::uint8_t* data, std::size_t size);       // rig/io/frame_range.*
 int farmManifest(const std::uint8_t* data, std::size_t size);    // render/farm/farm_plan.* (OUT/farm.json)
@@ -39,7 +40,8 @@ struct NamedTarget {
 inline constexpr NamedTarget kTargets[] = {
     {"scene_json", sceneJson},     {"rig_profile_json", rigProfileJson}, {"profile_sets", profileSets},
     {"horse_csv", horseCsv},       {"spine_json", spineJson},            {"gltf_clip", gltfClip},
-    {"gltf_character", gltfCharacter}, {"mapping_json", mappingJson},    {"frame_spec", frameSpec},
+    {"gltf_character", gltfCharacter}, {"gltf_shot", gltfShot},          {"mapping_json", mappingJson},
+    {"frame_spec", frameSpec},
     {"farm_manifest", farmManifest},
 };
 

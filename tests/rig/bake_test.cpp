@@ -83,6 +83,24 @@ TEST(TravelAcceleration, AConstantSpeedTurnIsCentripetalAndNothingAlongTheHeadin
   }
 }
 
+// The bake hands the balance stage the turn's acceleration in the horse's own terms: its sideways part
+// v^2 / r, + toward the horse's right in a right turn and - in a left one, and nothing along the heading.
+TEST(TravelAcceleration, TheBakeHandsOnTheSidewaysPartSignedTowardTheTurn) {
+  constexpr double v = 400.0, r = 1000.0;
+  for (const double sense : {1.0, -1.0}) {  // right (toward +Z), then left
+    const CircleClip clip(v, sense * r);
+    for (double t : {0.5, 7.7, 41.3}) {
+      const BakedFrame b = bakeFrame(clip, RigProfile::thesis(), 1, t);
+      EXPECT_NEAR(b.horse.travel_side_accel_cm_s2, sense * v * v / r, 0.001 * v * v / r) << sense << " at " << t << " s";
+      EXPECT_NEAR(b.horse.travel_accel_cm_s2, 0.0, 1e-6) << sense << " at " << t << " s";
+    }
+  }
+  // A straight line has none.
+  ClipSpec spec;
+  spec.generator = "canter";
+  EXPECT_EQ(bakeFrame(*makeClip(spec), RigProfile::thesis(), 12, 0.5).horse.travel_side_accel_cm_s2, 0.0);
+}
+
 // The same turn as a path clip draws it (rig/motion/path_clip.h), through 36 points on the 10 m circle
 // at a constant 400 cm/s: the curve through the points is nearly the circle, so v^2 / r within 1%
 // (measured 0.6%), toward the centre, and nothing along the heading (measured 0.07 cm/s^2).

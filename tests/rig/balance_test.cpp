@@ -14,14 +14,17 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "default_characters.h"
 #include "render/scene/profile_resolver.h"
 #include "render/scene/scene.h"
+#include "render/scene/shot_evaluator.h"
 #include "rig/bake.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/clip_factory.h"
 #include "rig/pose.h"
+#include "rig/rider_rig.h"
 #include "rig/skin.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/ridden_pair.h"
@@ -121,6 +124,44 @@ TEST(BalanceTrunk, TheBandSaturatesSoftlyAndTheBodyLimitsHold) {
   EXPECT_TRUE(back.limited);
   EXPECT_NEAR(back.lean_deg - back.saddle_pitch_deg, -p.max_extension_deg, 1e-4);
   EXPECT_EQ(back.seat_lift_cm, 0.0);
+}
+
+// In a turn her roll channels answer the horse's roll from the apparent vertical (rig/balance.h). With
+// the horse rolled exactly as far as that vertical tilts, the channels that read the roll are those of a
+// level horse: she sits as on the straight, in line with it; the channels that do not read the roll
+// keep their values, and with no tilt every channel is the same number.
+TEST(BalanceTrunk, HerRollChannelsAnswerTheHorsesRollFromTheApparentVertical) {
+  const RigProfile p = RigProfile::thesis();
+  HorseChannels rolled, level;
+  for (HorseChannels* h : {&rolled, &level}) {
+    (*h)[HorseChannel::lbHoofTy] = 6;  // a hind hoof up: Eq 6's other term, which the tilt leaves alone
+    (*h)[HorseChannel::rearPivotRz] = 3;
+    (*h)[HorseChannel::lfHoofTx] = 20;
+  }
+  rolled[HorseChannel::rearPivotRx] = 17;
+  const RiderChannels thesis = evaluateRider(rolled, p), upright = evaluateRider(level, p);
+  const RiderChannels answered = answerTiltedVertical(thesis, rolled, p, 17.0);
+  using R = RiderChannel;
+  for (R c : {R::lowerBackRy, R::lowerBackRx, R::hipRy, R::headRy, R::lFootTz, R::rFootTz, R::lKneeTz, R::hairSide, R::clothSide}) {
+    EXPECT_NE(thesis[c], upright[c]) << name(c) << " reads the roll";
+    EXPECT_NEAR(answered[c], upright[c], 1e-9) << name(c);
+  }
+  for (std::size_t c = 0; c < kRiderChannelCount; ++c) {
+    if (thesis.value[c] == upright.value[c]) {
+      EXPECT_EQ(answered.value[c], thesis.value[c]) << name(R(c));
+    }
+  }
+  const RiderChannels none = answerTiltedVertical(thesis, rolled, p, 0.0);
+  for (std::size_t c = 0; c < kRiderChannelCount; ++c) EXPECT_EQ(none.value[c], thesis.value[c]) << name(R(c));
+  // The tilt: turn_share of atan(a / g), blended by amount; 0 on a straight line.
+  RigProfile::Balance b;
+  EXPECT_NEAR(turnTiltDegrees(392, b), 21.79, 0.01);  // 560 cm/s on an 8 m circle: v² / r = 392 cm/s²
+  EXPECT_NEAR(turnTiltDegrees(-392, b), -21.79, 0.01);
+  EXPECT_EQ(turnTiltDegrees(0, b), 0.0);
+  b.turn_share = 0.5;
+  EXPECT_NEAR(turnTiltDegrees(392, b), 0.5 * 21.79, 0.01);
+  b.amount = 0;
+  EXPECT_EQ(turnTiltDegrees(392, b), 0.0);
 }
 
 // Plagenhoef et al.'s segment masses on the default rider's skeleton: the centre of mass of her head,
@@ -509,6 +550,128 @@ TEST(RiderLeans, OnASlopeSheLeansForwardUphillAndStaysUprightDownhill) {
   std::printf("10%% grade: flat %.2f°; no response uphill %+.2f°, downhill %+.2f°; thesis uphill %+.2f°, downhill %+.2f°; "
               "downhill_response 0.5: %+.2f°\n", flat, up - flat, down - flat, lean(grade_deg, thesis) - flat,
               lean(-grade_deg, thesis) - flat, lean(-grade_deg, back) - flat);
+}
+
+// ---- Sideways: the rider in line with her horse through a turn ----
+
+// Her trunk's lean from the world's vertical sideways (pelvis to neck) and the horse's roll (its hip
+// line), both + toward the horse's right, on a posed frame.
+struct Sideways {
+  int pair = 0, frame = 0;
+  double roll = 0, lean = 0;
+};
+Sideways measureSideways(const Character& horse, const Character& rider, const MountedPose& pose) {
+  const glm::vec3 trunk = glm::vec3(pose.rider[rider.role("neck")][3]) - glm::vec3(pose.rider[rider.role("pelvis")][3]);
+  Sideways s;
+  s.roll = horseRollDegrees(horse, pose.horse);
+  s.lean = leanDegrees(trunk, sideways(saddleHeading(pose.horse[horse.role("saddle")])));
+  return s;
+}
+
+// A steady banked turn, nothing else moving: the horse rolled 1° short of the apparent vertical, as
+// horses lean (Brocklehurst, Weller and Pfau, Vet. J.), at 2, 4 and 6 m/s² each way. Her lean is the
+// horse's roll within 15% (measured 1.01-1.03); answering the world's vertical, as the thesis's channels
+// do, she leaned 0.65-0.66 of it (turn_share 0).
+TEST(RiderLeans, InASteadyBankedTurnSheLeansWithHerHorse) {
+  const Character& horse = test::defaultHorse();
+  const Character& rider = test::defaultRider();
+  RigProfile world = RigProfile::thesis();
+  world.balance.turn_share = 0;
+  for (double a : {200.0, 400.0, 600.0, -200.0, -400.0, -600.0}) {
+    HorseFrame frame;
+    frame.travel_side_accel_cm_s2 = a;
+    const double apparent = std::atan2(a, 980.665) * 180 / kPi;
+    frame.controls[HorseChannel::rearPivotRx] = apparent - std::copysign(1.0, a);
+    const auto ridden = [&](const RigProfile& profile) {
+      return measureSideways(horse, rider, poseMounted(horse, rider, frame, evaluateRider(frame.controls, profile), profile));
+    };
+    const Sideways in_line = ridden(RigProfile::thesis()), thesis = ridden(world);
+    std::printf("a %+.0f cm/s²: apparent vertical %+.1f°, horse %+.1f°, rider %+.1f° (%.2f); from the world's vertical %+.1f° (%.2f)\n",
+                a, apparent, in_line.roll, in_line.lean, in_line.lean / in_line.roll, thesis.lean, thesis.lean / thesis.roll);
+    EXPECT_NEAR(in_line.lean / in_line.roll, 1.0, 0.15) << a << " cm/s²";
+    EXPECT_LT(thesis.lean / thesis.roll, 0.85) << a << " cm/s²: the world's vertical";
+  }
+}
+
+// Every frame of a scene as the shot poses it (a crowd: every pair), sideways; `sets` joins the scene's
+// profile overrides (render::resolveProfileForEveryPair).
+std::vector<Sideways> rideSideways(const std::string& scene_name, const nlohmann::json& sets = nlohmann::json::object()) {
+  render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
+  const RigProfile profile = render::resolveProfileForEveryPair(scene, sets);
+  render::ShotEvaluator shot(scene, profile, 0);
+  std::vector<Sideways> out;
+  render::ShotFrame frame;
+  for (int f : parseFrameList(scene.frames, "frames")) {
+    render::FrameRequest request;
+    request.frame = f;
+    request.until = render::EvalStage::Pose;
+    shot.evaluate(request, frame);
+    for (int i = 0; i < shot.pairCount(); ++i) {
+      Sideways s = measureSideways(shot.horse(i), shot.rider(i), frame.pairs[std::size_t(i)].pose);
+      s.pair = i;
+      s.frame = f;
+      out.push_back(s);
+    }
+  }
+  // Pair by pair, frame after frame.
+  std::stable_sort(out.begin(), out.end(), [](const Sideways& a, const Sideways& b) { return a.pair < b.pair; });
+  return out;
+}
+
+// Banked: the horse rolled more than 8° (the issue's measure).
+constexpr double kBankedDeg = 8.0;
+
+// The issue's measure on the shipped turning paths: over the frames where the horse rolls more than 8°,
+// her sideways lean from the world's vertical (pelvis to neck) is the horse's roll (its hip line)
+// within 15% on average, into the turn on every one of them. The figure eight is the issue's; the
+// cross-country ride and the cavalry's thirty pairs were made for other issues. Measured (mean, least
+// and most of her lean over the roll): figure eight 1.12 (0.55-1.45, 368 frames), cross-country 1.09
+// (0.70-1.46, 64), cavalry 0.98 (0.75-1.30, 152); answering the world's vertical (before), 0.66, 0.73
+// and 0.61. A frame's ratio swings with the canter's stride (Eq 6 rolls her hips with the hind hooves'
+// heights), on the straight too; the horse's roll is held under 20° (roll_limit_deg) where the
+// figure eight's apparent vertical tilts 20-26°, so there she leans a little past it.
+TEST(RiderLeans, InLineWithHerHorseThroughTurns) {
+  for (const auto& [scene, least_banked] : {std::pair{"figure_eight", 300}, {"cross_country", 40}, {"cavalry", 100}}) {
+    double sum = 0, lo = 1e9, hi = -1e9;
+    int banked = 0;
+    for (const Sideways& s : rideSideways(scene)) {
+      if (std::abs(s.roll) <= kBankedDeg) continue;
+      ++banked;
+      const double ratio = s.lean / s.roll;
+      sum += ratio, lo = std::min(lo, ratio), hi = std::max(hi, ratio);
+      EXPECT_GT(ratio, 0.0) << scene << " pair " << s.pair << " frame " << s.frame << ": she leans out of the turn";
+    }
+    ASSERT_GE(banked, least_banked) << scene;
+    std::printf("%s: %d banked frames, her lean over the horse's roll %.3f on average (%.2f-%.2f)\n", scene, banked,
+                sum / banked, lo, hi);
+    EXPECT_NEAR(sum / banked, 1.0, 0.15) << scene;
+  }
+}
+
+// Into and out of every turn without a jump: on every frame of the turning paths her sideways lean
+// changes by no more than the horse's roll does, plus 2.5°; the canter's stride already moves her
+// hips through up to 2.0-2.4° a frame more than the roll (Eq 6: the hind hooves' heights; 2.0° before
+// the turn was answered). The turn's own part of her lean (her lean less her lean answering the world's
+// vertical) changes by no more than the roll plus 1.25° (measured at most 1.12°, where the figure
+// eight's last turn tightens and straightens within half a second and the horse's roll, averaged over a
+// stride of path, lags the travel's acceleration, averaged over 0.2 s each side).
+TEST(RiderLeans, IntoAndOutOfTurnsWithoutAJump) {
+  for (const char* scene : {"figure_eight", "cross_country", "cavalry", "trail", "ride_out"}) {
+    const std::vector<Sideways> answered = rideSideways(scene), world = rideSideways(scene, {{"balance.turn_share", 0}});
+    ASSERT_EQ(answered.size(), world.size());
+    double worst_lean = 0, worst_turn = 0;
+    for (std::size_t k = 1; k < answered.size(); ++k) {
+      if (answered[k].pair != answered[k - 1].pair) continue;
+      const double roll = std::abs(answered[k].roll - answered[k - 1].roll);
+      const double lean = std::abs(answered[k].lean - answered[k - 1].lean);
+      const double turn = std::abs((answered[k].lean - world[k].lean) - (answered[k - 1].lean - world[k - 1].lean));
+      EXPECT_LE(lean, roll + 2.5) << scene << " pair " << answered[k].pair << " frame " << answered[k].frame;
+      EXPECT_LE(turn, roll + 1.25) << scene << " pair " << answered[k].pair << " frame " << answered[k].frame;
+      worst_lean = std::max(worst_lean, lean - roll), worst_turn = std::max(worst_turn, turn - roll);
+    }
+    std::printf("%s: her lean changes at most %.2f° a frame more than the horse's roll; the turn's part, %.2f°\n", scene,
+                worst_lean, worst_turn);
+  }
 }
 
 }  // namespace

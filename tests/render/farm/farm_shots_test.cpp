@@ -1,6 +1,8 @@
 #include "render/farm/farm_shots.h"
 
+#include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <optional>
 #include <string>
 
@@ -44,6 +46,27 @@ TEST(FarmShots, ARenderShotIsCutIntoChunksOfItsFrames) {
             (std::vector<std::string>{"/opt/stirrup/bin/stirrup", "render", scene.string(), "--camera", "side", "--out",
                                       "/shared/trot", "--preset", "draft", "--frames", "1-10", "--encode-only", "--movie",
                                       "/shared/trot/trot_side.mp4"}));
+}
+
+// A scene beyond a horse's limits (a walk at 900 cm/s) is refused when the shot is planned, as it would
+// be by every task; with --allow-impossible among the render options it is planned, and every task and
+// the finishing encode render it with it.
+TEST(FarmShots, AnImpossibleSceneIsPlannedOnlyWithAllowImpossible) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / ("test_farm_shots_impossible_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path scene = dir / "walk900.json";
+  std::ofstream(scene) << R"({"clip": {"generator": "walk", "speed_cm_s": 900}, "frames": "1-4"})";
+  EXPECT_EQ(errorOf([&] { planRender(request("/shared/walk", 2), scene, "side", "", {}); }),
+            scene.string() + ": clip.speed_cm_s: 900 cm/s is faster than a horse walks (at most 250 cm/s: horses change to "
+            "the trot at 160-230 cm/s, Froude 0.35, Griffin et al. 2004; a walk held past that, an estimate; allow_impossible or "
+            "--allow-impossible renders it anyway)");
+  const FarmPlan plan = planRender(request("/shared/walk", 2), scene, "side", "", {"--allow-impossible"});
+  ASSERT_EQ(plan.shots.size(), 1u);
+  EXPECT_EQ(plan.shots[0].chunks.size(), 2u);
+  const auto has = [](const std::vector<std::string>& c) { return std::find(c.begin(), c.end(), "--allow-impossible") != c.end(); };
+  EXPECT_TRUE(has(plan.shots[0].command));
+  EXPECT_TRUE(has(plan.finish_command));
+  fs::remove_all(dir);
 }
 
 // A view camera framed once into the plan: a chunk rendered with it (stirrup render --camera-plan)

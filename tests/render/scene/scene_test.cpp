@@ -312,6 +312,7 @@ TEST(SceneLimits, EveryDefaultSceneIsInsideAHorsesLimits) {
       ++paths;
       EXPECT_TRUE(l.check->breaches().empty()) << name << ": " << l.check->error();
     }
+    EXPECT_TRUE(s.gait_breaches.empty()) << name << ": " << s.gait_breaches.front().text();
     EXPECT_NO_THROW((void)loadScene(e.path())) << name;
   }
   EXPECT_GE(scenes, 14);
@@ -338,6 +339,39 @@ TEST(SceneLimits, AnImpossiblePathIsRefusedWhenTheSceneLoads) {
       {"points": [[0, 0], [1000, 0]], "speed": [[0, 300]]},
       {"points": [[0, 400], [5000, 400]], "speed": [[0, 2500]]}]})");
   EXPECT_EQ(rider.rfind("scenes/x.json: riders[1].speed: segment 0 from 0.00 s: a speed of 2500 cm/s", 0), 0u) << rider;
+}
+
+// A generated gait faster than horses go at it (issue 49): a walk at 900 cm/s, a gallop past the record,
+// a trot past the trotting record, a canter a gallop's pace; each at its top speed loads.
+TEST(SceneLimits, AGaitFasterThanHorsesGoAtItIsRefusedWhenTheSceneLoads) {
+  EXPECT_EQ(loadError(R"({"clip": {"generator": "walk", "speed_cm_s": 900}})"),
+            "scenes/x.json: clip.speed_cm_s: 900 cm/s is faster than a horse walks (at most 250 cm/s: horses change to the "
+            "trot at 160-230 cm/s, Froude 0.35, Griffin et al. 2004; a walk held past that, an estimate; allow_impossible or "
+            "--allow-impossible renders it anyway)");
+  EXPECT_EQ(loadError(R"({"clip": {"generator": "gallop", "speed_cm_s": 2000}})"),
+            "scenes/x.json: clip.speed_cm_s: 2000 cm/s is faster than a horse gallops (at most 1966 cm/s: the fastest recorded "
+            "horse, 70.76 km/h, Winning Brew 2008; allow_impossible or --allow-impossible renders it anyway)");
+  EXPECT_EQ(loadError(R"({"clip": {"generator": "trot", "speed_cm_s": 1600}})").rfind(
+                "scenes/x.json: clip.speed_cm_s: 1600 cm/s is faster than a horse trots (at most 1485 cm/s: ", 0),
+            0u);
+  EXPECT_EQ(loadError(R"({"clip": {"generator": "canter", "speed_cm_s": 1200}})").rfind(
+                "scenes/x.json: clip.speed_cm_s: 1200 cm/s is faster than a horse canters (at most 1000 cm/s: ", 0),
+            0u);
+  for (const char* inside : {R"({"clip": {"generator": "walk", "speed_cm_s": 250}})", R"({"clip": {"generator": "trot", "speed_cm_s": 1485}})",
+                             R"({"clip": {"generator": "canter", "speed_cm_s": 1000}})", R"({"clip": {"generator": "gallop", "speed_cm_s": 1966}})",
+                             R"({"clip": {"generator": "stop", "entry_speed_cm_s": 1700}})", R"({"clip": {"generator": "jump", "approach_speed_cm_s": 900}})",
+                             R"({"clip": {"generator": "sequence", "gaits": "walk,trot,canter,gallop"}})"})
+    EXPECT_EQ(loadError(inside), "") << inside;
+  // Allowed, by the scene or the load option: it loads, and every frame says so.
+  const std::string walk = R"({"clip": {"generator": "walk", "speed_cm_s": 900})";
+  for (const SceneSpec& s : {parseScene(nlohmann::json::parse(walk + "}"), "scenes/x.json", {true}),
+                             parseScene(nlohmann::json::parse(walk + R"(, "allow_impossible": true})"), "scenes/x.json")}) {
+    ASSERT_EQ(s.gait_breaches.size(), 1u);
+    EXPECT_EQ(impossibleFrameWarning(s, 3),
+              "scenes/x.json: frame 3 (0.083 s): beyond a horse's limits (allowed): gait speed: clip.speed_cm_s: 900 cm/s is "
+              "faster than a horse walks (at most 250 cm/s: horses change to the trot at 160-230 cm/s, Froude 0.35, Griffin et "
+              "al. 2004; a walk held past that, an estimate)");
+  }
 }
 
 TEST(SceneLimits, AllowImpossibleLoadsAndWarnsEachFrameThatBreaksALimit) {

@@ -21,6 +21,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/blender_fixture.h"
+
 #include "tests/rig/default_characters.h"
 #include "render/scene/scene.h"
 #include "rig/bake.h"
@@ -220,12 +222,11 @@ TEST_P(SeatedUserRider, RidesTrotCanterAndJumpSeatedWithFeetInTheStirrupsAndHand
 // a skinned body, Blender's glTF exporter: 160 DEF- bones, limbs and face roots of their own), with no
 // mapping: stirrup maps it by itself, seats it and rides it as the generated test characters.
 TEST(SeatedBlenderRigifyRider, MappedByItselfRidesTrotCanterAndJumpSeated) {
-  if (std::system("command -v blender >/dev/null 2>&1") != 0)
+  if (!stirrup::test::blenderInstalled())
     GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy): Blender's Rigify rider is not made";
-  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_seating" / "blender_rigify";
-  fs::create_directories(dir);
-  const fs::path glb = dir / "rigify-rider.glb";
-  ASSERT_EQ(std::system(("'" STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider' '" + glb.string() + "' >/dev/null 2>&1").c_str()), 0);
+  stirrup::test::BlenderMade made;
+  const fs::path glb = stirrup::test::blenderRigifyRider(&made);
+  ASSERT_TRUE(made.ok) << made.log;
   ridesSeated("blender_rigify", glb, "");
 }
 

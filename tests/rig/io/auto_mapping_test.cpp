@@ -196,10 +196,11 @@ TEST(AutoMapping, ATinyFileIsScaledToANominalHeightAndSaysSo) {
 // ---- Files other tools made.
 
 TEST(AutoMapping, BlendersOwnRigifyExportMapsByItsNames) {
-  if (std::system("command -v blender >/dev/null 2>&1") != 0)
+  if (!stirrup::test::blenderInstalled())
     GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy): Blender's Rigify rider is not made";
-  const fs::path file = testDir("blender_rigify") / "rigify-rider.glb";
-  ASSERT_EQ(std::system(("'" STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider' '" + file.string() + "' >/dev/null 2>&1").c_str()), 0);
+  stirrup::test::BlenderMade made;
+  const fs::path file = stirrup::test::blenderRigifyRider(&made);
+  ASSERT_TRUE(made.ok) << made.log;
   const AutoMapping a = autoMapCharacterFile(file, CharacterKind::Rider);
   // Rigify's human meta-rig (Blender 3.x): DEF-spine the pelvis, spine.004-.005 the neck, spine.006 the
   // head; upper_arm and forearm, thigh and shin in two halves (the first half is the joint); palm.02

@@ -95,6 +95,25 @@ TEST(ClipSpec, SteadyGaitsAreTheirParametersOverTheGaitsOwn) {
   EXPECT_NE(dynamic_cast<const MovementClip*>(makeClip(parse({{"generator", "rear"}})).get()), nullptr);
 }
 
+// The speed of every gait a generator rides, with the field that sets it, for the gaits' top speeds
+// (rig/motion/horse_limits.h): given or the generator's own; none for the rear, the buck and a path.
+TEST(ClipSpec, EveryGaitAGeneratorRidesIsListedWithItsSpeedAndField) {
+  const auto speeds = [](const nlohmann::json& j) {
+    std::vector<std::string> out;
+    for (const GaitSpeed& g : generatedGaitSpeeds(parse(j))) out.push_back(g.field + " " + g.gait + " " + std::to_string(int(g.speed_cm_s)));
+    return out;
+  };
+  using V = std::vector<std::string>;
+  EXPECT_EQ(speeds({{"generator", "walk"}, {"speed_cm_s", 240}}), V{"speed_cm_s walk 240"});
+  EXPECT_EQ(speeds({{"generator", "trot"}}), V{"speed_cm_s trot 360"});
+  EXPECT_EQ(speeds({{"generator", "gallop"}, {"speed_cm_s", 1500}}), V{"speed_cm_s gallop 1500"});
+  EXPECT_EQ(speeds({{"generator", "stop"}, {"entry_speed_cm_s", 1200}}), V{"entry_speed_cm_s gallop 1200"});
+  EXPECT_EQ(speeds({{"generator", "jump"}}), V{"approach_speed_cm_s canter 600"});
+  EXPECT_EQ(speeds({{"generator", "sequence"}, {"gaits", "walk,canter"}}), (V{"gaits[0] walk 180", "gaits[1] canter 600"}));
+  EXPECT_EQ(speeds({{"generator", "rear"}}), V{});
+  EXPECT_EQ(speeds({{"generator", "path"}, {"points", {{0, 0}, {1000, 0}}}, {"speed", {{0, 300}}}}), V{});
+}
+
 // "segment_gaits": each segment at its gait's speed over the middle half of the segment: on a straight
 // 1000 cm path, keys at 250 and 750 cm.
 TEST(ClipSpec, SegmentGaitsKeyTheMiddleHalfOfEachSegment) {

@@ -128,7 +128,9 @@ TEST(GltfShot, ABakeReadBackStandsEveryJointWhereTheRigPosedIt) {
       const int hoof = defaultHorse().role(kHooves[leg]);
       const double raised = want.horse[std::size_t(hoof)][3].y - defaultHorse().skeleton.restPosition(hoof).y;
       EXPECT_EQ(got.reach.planted[leg], raised <= kKeyedContactCm) << "frame " << f << " leg " << leg << " raised " << raised;
-      if (ty >= 1.0) EXPECT_FALSE(got.reach.planted[leg]) << "frame " << f << " leg " << leg << " lifted " << ty;
+      if (ty >= 1.0) {
+        EXPECT_FALSE(got.reach.planted[leg]) << "frame " << f << " leg " << leg << " lifted " << ty;
+      }
       if (ty == 0.0) ++planted, rolling += !got.reach.planted[leg];
     }
     const FrameMeasures a = oracle.measure(f, 0, trot().frames[std::size_t(f - 1)].horse, want, kFlat);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
@@ -147,6 +148,32 @@ TEST(HorseLimits, GroundTooSteepForAHoofIsRefused) {
             "shot.json: terrain: under clip.points, segment 0 from 0.00 s: ground sloping 50.0° under a hoof (across its "
             "12 cm footprint), beyond the 45.0° a hoof stands on");
   EXPECT_EQ(errorOf(straight(3000, {{0, 180}}), plane(0, 40)), "");
+}
+
+// Each gait's top speed (issue 49): at its limit a gait passes, a centimetre a second beyond it is
+// refused with the limit and where it comes from; a pace or an amble is no gait of the four.
+TEST(HorseLimits, EachGaitHasATopSpeed) {
+  for (const auto& [gait, top] : {std::pair{"walk", 250.0}, {"trot", 1485.0}, {"canter", 1000.0}, {"gallop", 1966.0}}) {
+    EXPECT_FALSE(gaitSpeedBreach({"speed_cm_s", gait, top})) << gait;
+    const std::optional<GaitSpeedBreach> b = gaitSpeedBreach({"speed_cm_s", gait, top + 1.0});
+    ASSERT_TRUE(b) << gait;
+    EXPECT_EQ(b->bound_cm_s, top) << gait;
+  }
+  EXPECT_FALSE(gaitSpeedBreach({"speed_cm_s", "pace", 5000}));
+  EXPECT_EQ(gaitSpeedBreach({"speed_cm_s", "walk", 900})->text(),
+            "900 cm/s is faster than a horse walks (at most 250 cm/s: horses change to the trot at 160-230 cm/s, Froude 0.35, "
+            "Griffin et al. 2004; a walk held past that, an estimate)");
+  EXPECT_EQ(gaitSpeedBreach({"speed_cm_s", "trot", 1600})->text(),
+            "1600 cm/s is faster than a horse trots (at most 1485 cm/s: the fastest trotted mile, 1:48.4, Homicide Hunter 2018)");
+  EXPECT_EQ(gaitSpeedBreach({"approach_speed_cm_s", "canter", 1200})->text("; then this"),
+            "1200 cm/s is faster than a horse canters (at most 1000 cm/s: estimated from horses changing to the gallop at "
+            "700-800 cm/s and ridden canters of 800-1000; then this)");
+  EXPECT_EQ(gaitSpeedBreach({"entry_speed_cm_s", "gallop", 2000})->text(),
+            "2000 cm/s is faster than a horse gallops (at most 1966 cm/s: the fastest recorded horse, 70.76 km/h, Winning Brew 2008)");
+  // The gallop's is the record a path's speed is held to: one figure.
+  HorseLimits slower;
+  slower.top_speed_cm_s = 1500;
+  EXPECT_TRUE(gaitSpeedBreach({"speed_cm_s", "gallop", 1600}, slower));
 }
 
 TEST(HorseLimits, TheIssuesImpossibleShotsAreRefused) {
