@@ -13,7 +13,8 @@ MARKER = "stirrup: "
 
 def export_shot(context, name):
     """The horse and rider exported as one shot stirrup reads (export.shot), their mappings as kept (or made
-    now); returns (path, Blender's frame of the shot's frame 1, mappings made now)."""
+    now); returns (path, Blender's frame of the shot's frame 1, the shot's frames in the scene's frame range
+    as stirrup's --frames, mappings made now)."""
     horse, rider = ride.chosen(context)
     program.find_program(context)
     work = export.work_dir(context)
@@ -22,14 +23,21 @@ def export_shot(context, name):
     glb = export.shot(context, horse, rider, maps["horse"], maps["rider"], path)
     start = glb.start_time()
     fps = ride.fps_of(context.scene)
-    first = int(round(start * fps)) if start is not None else context.scene.frame_current
-    return path, first, new
+    scene = context.scene
+    if start is None:  # nothing keyed: the scene as it stands at the current frame, one frame
+        return path, scene.frame_current, "1", new
+    first = int(round(start * fps))
+    a, b = max(1, scene.frame_start - first + 1), min(glb.key_count(), scene.frame_end - first + 1)
+    if b < a:
+        raise program.StirrupError("the scene's frame range %d-%d holds none of the shot's keyed frames %d-%d" %
+                                   (scene.frame_start, scene.frame_end, first, first + glb.key_count() - 1))
+    return path, first, "%d-%d" % (a, b), new
 
 
 def check(context):
-    path, first, new = export_shot(context, "check-shot.glb")
+    path, first, frames, new = export_shot(context, "check-shot.glb")
     s = context.scene.stirrup
-    _, out = program.run(["check", path, "--json", "--profile", s.profile], context, ok_codes=(0, 1, 2))
+    _, out = program.run(["check", path, "--json", "--profile", s.profile, "--frames", frames], context, ok_codes=(0, 1, 2))
     report = json.loads(out)
     mapping.keep_new(context, new)
     markers = context.scene.timeline_markers
@@ -48,6 +56,7 @@ def check(context):
                         if c["failures"] + c["warnings"])
     s.check_summary = "%d frames: %d failures, %d warnings, %d notes%s" % (
         report.get("frames", 0), report["failures"], report["warnings"], report["notes"], (" (" + by_rule + ")") if by_rule else "")
+    s.check_unmeasured = ", ".join(dict.fromkeys(u["rule"] for u in report.get("unmeasured", [])))
     return "stirrup check: " + s.check_summary
 
 

@@ -90,8 +90,8 @@ def export(context, armatures, path, animations):
 def shot(context, horse, rider, horse_map, rider_map, path):
     """The scene's horse and rider as one shot, as they stand in Blender, rewritten for stirrup (docs/check.md,
     "A baked shot"): the armatures named "horse" and "rider", each mesh node carrying its character's role
-    table by bone name (stirrup_role_joints), the whole under a node that takes the file's world to stirrup's
-    through the horse's mapping (metres: cm over 100), and the scene's fps in the scene's extras."""
+    table by bone name (stirrup_role_joints), and in the scene's extras the horse's mapping as the file's
+    world in stirrup's ("stirrup_world", rig/io/gltf_shot.h) and the scene's fps."""
     export(context, [horse, rider], path, True)
     glb = gltf_files.Glb(path)
     nodes = glb.json["nodes"]
@@ -112,12 +112,11 @@ def shot(context, horse, rider, horse_map, rider_map, path):
     for node in nodes:
         if "skin" in node and node["skin"] in cast:
             node.setdefault("extras", {})["stirrup_role_joints"] = dict(cast[node["skin"]][1]["roles"])
-    world = np.diag([0.01, 0.01, 0.01, 1.0]) @ mapping.to_rig(horse_map)
     scene = glb.json["scenes"][glb.json.get("scene", 0)]
-    nodes.append({"name": "stirrup_world", "matrix": world.T.reshape(-1).tolist(), "children": scene["nodes"]})
-    scene["nodes"] = [len(nodes) - 1]
+    extras = scene.setdefault("extras", {})
+    extras["stirrup_world"] = {k: horse_map[k] for k in ("scale_cm", "forward", "up", "offset_cm")}
     fps = context.scene.render.fps / context.scene.render.fps_base
-    scene.setdefault("extras", {})["fps"] = fps
+    extras["fps"] = fps
     glb.write(path)
     return glb
 

@@ -47,6 +47,10 @@ class Glb:
         times = [t for t in times if t is not None]
         return min(times) if times else None
 
+    def key_count(self):
+        """The most keys any animation track has (a Blender export samples every track at every frame)."""
+        return max([self.json["accessors"][s["input"]]["count"] for a in self.json.get("animations", []) for s in a["samplers"]] or [0])
+
     def scene_extras(self):
         scenes = self.json.get("scenes", [{}])
         return scenes[self.json.get("scene", 0)].get("extras", {}) if scenes else {}
@@ -131,3 +135,31 @@ def inverse_binds(glb, skin=0):
         return {nodes[j]["name"]: np.eye(4) for j in s["joints"]}
     ibm = glb.accessor(s["inverseBindMatrices"]).reshape(-1, 4, 4).transpose(0, 2, 1)  # column-major
     return {nodes[j]["name"]: ibm[k] for k, j in enumerate(s["joints"])}
+
+
+def static_world(glb, node):
+    """A node's world matrix as the file stands it without its animation (its own and its parents' rest)."""
+    nodes = glb.json["nodes"]
+    parent = glb.parents()
+    m = node_rest(nodes[node])
+    i = parent[node]
+    while i >= 0:
+        m = node_rest(nodes[i]) @ m
+        i = parent[i]
+    return m
+
+
+def armature_world(glb, name):
+    """The static world (glTF) of the armature node named `name` as Blender's exporter wrote it: the node its
+    skin's top joint hangs from. Its skin's inverse binds are the joints' rest under it, so this, not the
+    object's matrix at the current frame (an object keyed to travel has moved), is where the armature stood
+    for the file's bind."""
+    nodes = glb.json["nodes"]
+    parent = glb.parents()
+    for skin in glb.json.get("skins", []):
+        joints = set(skin["joints"])
+        for j in skin["joints"]:
+            a = parent[j]
+            if j in joints and a not in joints and a >= 0 and nodes[a].get("name") == name:
+                return static_world(glb, a)
+    raise ValueError("%s: no armature node named %s above a skin" % (glb.path, name))

@@ -79,6 +79,8 @@ class VIEW3D_PT_stirrup(bpy.types.Panel):
         col.operator("stirrup.check", icon="CHECKMARK")
         if s.check_summary:
             col.label(text=s.check_summary)
+            if s.check_unmeasured:
+                col.label(text="not measured: " + s.check_unmeasured, icon="INFO")
             col.template_list("STIRRUP_UL_findings", "", s, "findings", s, "findings_index", rows=3)
         col.separator()
         row = col.row(align=True)

@@ -13,18 +13,16 @@ class StirrupError(Exception):
     """A one-line error for a Blender report: stirrup's own, or the add-on's naming what is wrong."""
 
 
-def _addon_dir():
-    return os.path.dirname(os.path.abspath(__file__))
-
-
 def candidates():
-    """Where the program is looked for, in order, after the preferences' path: PATH, then beside the add-on
-    (P/bin/stirrup for P/share/stirrup/blender/stirrup_blender, an install; build/bin/stirrup for
-    build/blender/addons/stirrup_blender, the build tree's link)."""
-    here = _addon_dir()
+    """Where the program is looked for, in order, after the preferences' path: PATH, then beside the add-on:
+    P/bin/stirrup for P/share/stirrup/blender/stirrup_blender (an install), build/bin/stirrup for
+    build/blender/addons/stirrup_blender (the build tree's link); the add-on's folder as Blender found it
+    and, when that is a link (into Blender's own add-ons folder), where it leads."""
     found = [shutil.which("stirrup")]
-    found.append(os.path.normpath(os.path.join(here, "..", "..", "..", "..", "bin", "stirrup")))
-    found.append(os.path.normpath(os.path.join(here, "..", "..", "..", "bin", "stirrup")))
+    here = os.path.dirname(os.path.abspath(__file__))
+    for folder in dict.fromkeys([here, os.path.dirname(os.path.realpath(__file__))]):
+        found.append(os.path.normpath(os.path.join(folder, "..", "..", "..", "..", "bin", "stirrup")))
+        found.append(os.path.normpath(os.path.join(folder, "..", "..", "..", "bin", "stirrup")))
     return [f for f in found if f]
 
 

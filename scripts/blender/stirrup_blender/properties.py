@@ -74,6 +74,7 @@ class StirrupSettings(bpy.types.PropertyGroup):
     work_dir: bpy.props.StringProperty(name="Working folder", subtype="DIR_PATH", default="",
                                        description="Where the exports, scene and mappings go (empty: a folder in Blender's temporary folder)")
     check_summary: bpy.props.StringProperty()
+    check_unmeasured: bpy.props.StringProperty(description="The rules the last check could not measure on this shot")
     findings: bpy.props.CollectionProperty(type=StirrupFinding)
     findings_index: bpy.props.IntProperty()
     last_ride: bpy.props.StringProperty()

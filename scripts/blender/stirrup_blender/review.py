@@ -18,11 +18,11 @@ class Render:
     """A running `stirrup render`, its progress read from the bar it draws on stderr."""
 
     def __init__(self, context, camera, movie):
-        path, _, new = check.export_shot(context, "review-shot.glb")
+        path, _, frames, new = check.export_shot(context, "review-shot.glb")
         mapping.keep_new(context, new)
         out = os.path.join(export.work_dir(context), "review-frames")
         args = [program.find_program(context), "render", path, "--camera", camera, "--preset", "review", "--movie", movie,
-                "--out", out, "--progress"]
+                "--out", out, "--frames", frames, "--progress"]
         self.proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         self.done, self.total, self.err = 0, 0, ""
         self.reader = threading.Thread(target=self._read, daemon=True)

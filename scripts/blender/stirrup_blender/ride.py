@@ -34,6 +34,16 @@ def fps_of(scene):
     return scene.render.fps / scene.render.fps_base
 
 
+def object_at_export(path, obj):
+    """The armature object's world matrix (Blender's, 4x4) as the exported file binds its skin: the file's
+    armature node taken back from glTF's axes (gltf_files.armature_world)."""
+    try:
+        world = gltf_files.armature_world(gltf_files.Glb(path), obj.name)
+    except (ValueError, OSError) as e:
+        raise program.StirrupError(str(e))
+    return transforms.G_INV @ world @ transforms.G
+
+
 class Prepared:
     """What stirrup needs to ride the scene: the characters exported, their mappings (kept ones moved with
     the objects, or made now), the scene file, and how Blender's frames are stirrup's."""
@@ -47,8 +57,9 @@ class Prepared:
         self.horse_keyed = with_horse_animation and export.has_action(self.horse)
         self.horse_glb = export.export(context, [self.horse], os.path.join(work, "horse.glb"), self.horse_keyed)
         self.rider_glb = export.export(context, [self.rider], os.path.join(work, "rider.glb"), False)
-        self.rider_at_export = self.rider.matrix_world.copy()
-        self.horse_at_export = self.horse.matrix_world.copy()
+        # Where each armature object stood for its file's bind (Blender world): the file's own armature node.
+        self.horse_at_export = object_at_export(self.horse_glb, self.horse)
+        self.rider_at_export = object_at_export(self.rider_glb, self.rider)
         self.maps, self.new_maps = mapping.for_both(context, work, {"horse": self.horse_glb, "rider": self.rider_glb})
         self.map_files = {k: mapping.write(k, d, work) for k, d in self.maps.items()}
         # Blender's frame F is stirrup's F - first + 1: the exported animation's first key is stirrup's
