@@ -82,7 +82,7 @@ LiveRider::LiveRider(const LiveRiderSetup& setup) : impl_(std::make_unique<Impl>
   if (!setup.horse || !setup.rider) throw std::invalid_argument("LiveRider: expected a horse and a rider");
   const int frames = setup.last_frame - setup.first_frame + 1;
   if (frames < 1 || frames > kMaxLiveFrames)
-    throw InputError("live: frames " + std::to_string(setup.first_frame) + "-" + std::to_string(setup.last_frame) +
+    throw InputError("live: frames " + std::to_string(setup.first_frame) + " to " + std::to_string(setup.last_frame) +
                      ": expected 1 to " + std::to_string(kMaxLiveFrames) + " frames");
   m.model = readGltfFile(setup.horse_file, file);
   m.mapping = keyedHorseMapping(*setup.horse);

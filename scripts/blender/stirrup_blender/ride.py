@@ -25,6 +25,9 @@ def chosen(context):
             raise program.StirrupError("no %s chosen: pick the %s's armature in the Stirrup panel (scene.stirrup.%s)" % (kind, kind, kind))
         if obj.type != "ARMATURE":
             raise program.StirrupError("the %s, %s, is not an armature" % (kind, obj.name))
+        if not export.meshes_of(obj):
+            raise program.StirrupError("the %s, %s, deforms no mesh (expected the armature of a skinned character: its body "
+                                       "parented to it with an Armature modifier)" % (kind, obj.name))
     if s.horse == s.rider:
         raise program.StirrupError("the horse and the rider are the same armature, %s" % s.horse.name)
     return s.horse, s.rider
