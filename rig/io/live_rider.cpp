@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <tiny_gltf.h>
 
 #include "rig/bake.h"
 #include "rig/error.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
+#include "rig/io/gltf_skin_joints.h"
 #include "rig/io/mapping_skeleton.h"
 #include "rig/pose.h"
 
@@ -95,7 +98,12 @@ LiveRider::LiveRider(const LiveRiderSetup& setup) : impl_(std::make_unique<Impl>
   // The horse's own animation (every animation of the file together; none: its rest) until frames come in.
   const GltfAnimation own = GltfAnimation::together(m.model, file);
   for (int f = setup.first_frame; f <= setup.last_frame; ++f) m.table.push_back(own.worlds(f / setup.fps));
-  m.from_horse_rig = glm::inverse(m.mapping.to_rig);
+  // Her joints go out in the horse's file's world: stirrup's world taken back through the horse's mapping
+  // and the units of the file's world against its mesh's (gltfSkinUnits: 1 for Blender's metres, 0.01
+  // for a bake's joints bound in centimetres under its metre world), as KeyedHorseClip reads it in.
+  const auto root = std::find(m.horse_joints.begin(), m.horse_joints.end(), m.mapping.roles.count("root") ? m.mapping.roles.at("root") : "");
+  const double units = root == m.horse_joints.end() ? 1.0 : gltfSkinUnits(m.model, file, 0, int(root - m.horse_joints.begin()), own);
+  m.from_horse_rig = glm::scale(glm::dmat4(1.0), glm::dvec3(units)) * glm::inverse(m.mapping.to_rig);
   m.rider_to_rig = setup.rider->source.to_rig;
 }
 

@@ -7,6 +7,7 @@
 // rider within 0.2 s of an edit.
 // Run: build/tests/bench/stirrup_bench --benchmark_filter=LiveRider
 #include <benchmark/benchmark.h>
+#include <tiny_gltf.h>
 
 #include <memory>
 #include <vector>

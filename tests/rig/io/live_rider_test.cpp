@@ -12,10 +12,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include "rig/bake.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
+#include "rig/io/gltf_skin_joints.h"
 #include "rig/io/keyed_horse_clip.h"
 #include "rig/io/mapping_skeleton.h"
 #include "rig/io/ridden_pair.h"
@@ -85,7 +87,14 @@ TEST(LiveRider, BeforeAnyEditSheIsWhereTheBakeOfTheHorsesOwnAnimationPutsHer) {
   const Character& horse = *t.setup.horse;
   const Character& rider = *t.setup.rider;
   const KeyedHorseClip clip(bakedTrot().file.string(), "", keyedHorseMapping(horse), &horse);
-  const glm::dmat4 from_horse_rig = glm::inverse(keyedHorseMapping(horse).to_rig);
+  // Out in the horse's file's world: the bake's is in metres, its joints bound in centimetres.
+  const std::string file = bakedTrot().file.string();
+  const tinygltf::Model model = readGltfFile(bakedTrot().file, file);
+  const std::vector<std::string> names = gltfJointNames(model, 0);
+  const int root = int(std::find(names.begin(), names.end(), keyedHorseMapping(horse).roles.at("root")) - names.begin());
+  const double units = gltfSkinUnits(model, file, 0, root, GltfAnimation::together(model, file));
+  EXPECT_DOUBLE_EQ(units, 0.01);
+  const glm::dmat4 from_horse_rig = glm::inverse(GltfSkinJoints(model, file, 0, keyedHorseMapping(horse).to_rig, units).worldToRig());
   for (const int frame : {0, 11, 30, kLast}) {
     const BakedFrame baked = bakeFrame(clip, t.setup.profile, frame, frame / kFps);
     const MountedPose pose = poseMounted(horse, rider, baked.horse, baked.rider, t.setup.profile);
@@ -134,11 +143,11 @@ TEST(LiveRider, BadFramesAreOneLineErrors) {
   const Trot& t = trot();
   LiveRiderSetup none = t.setup;
   none.last_frame = none.first_frame - 1;
-  EXPECT_EQ(test::errorOf([&] { LiveRider bad(none); }), "live: frames 0 to -1: expected 1 to 14400 frames");
+  EXPECT_EQ(stirrup::test::errorOf([&] { LiveRider bad(none); }), "live: frames 0 to -1: expected 1 to 14400 frames");
   LiveRider live(t.setup);
   const std::vector<glm::dmat4> horse = fileDeformations(3);
-  EXPECT_EQ(test::errorOf([&] { live.setHorse(kLast + 1, horse); }), "live: frame 48: expected a frame from 0 to 47");
-  EXPECT_EQ(test::errorOf([&] { live.setHorse(3, {horse.begin(), horse.end() - 1}); }),
+  EXPECT_EQ(stirrup::test::errorOf([&] { live.setHorse(kLast + 1, horse); }), "live: frame 48: expected a frame from 0 to 47");
+  EXPECT_EQ(stirrup::test::errorOf([&] { live.setHorse(3, {horse.begin(), horse.end() - 1}); }),
             "live: frame 3: expected " + std::to_string(horse.size()) + " horse joints, got " + std::to_string(horse.size() - 1));
   EXPECT_EQ(live.horseJoints().size(), horse.size());
 }
