@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <ostream>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -211,6 +213,8 @@ struct RideCase {
   std::string name;
   std::string setup;  // Python: the characters placed before the first ride
 };
+
+void PrintTo(const RideCase& c, std::ostream* os) { *os << c.name; }
 
 class BlenderAddonRide : public ::testing::TestWithParam<RideCase> {};
 

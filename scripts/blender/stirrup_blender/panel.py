@@ -1,6 +1,7 @@
 # The sidebar panel (3D view, "Stirrup" tab): the armatures, the profile and seat, Ride, Live, Check and
 # Review movie, and the mapping choices kept in the .blend.
 import os
+import textwrap
 
 import bpy
 
@@ -46,7 +47,14 @@ class STIRRUP_UL_roles(bpy.types.UIList):
 class STIRRUP_UL_findings(bpy.types.UIList):
     def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
         icon = {"failure": "ERROR", "warning": "INFO"}.get(item.severity, "DOT")
-        layout.label(text="%d  %s" % (item.frame, item.text), icon=icon)
+        layout.label(text="%d  %s" % (item.frame, item.rule), icon=icon)
+
+
+def _lines(layout, context, text, icon="NONE"):
+    """`text` as labels wrapped to the sidebar's width (a label is cut off, not wrapped)."""
+    chars = max(16, int(context.region.width / (6.5 * context.preferences.system.ui_scale)) - (6 if icon != "NONE" else 2))
+    for k, line in enumerate(textwrap.wrap(text, chars) or [""]):
+        layout.label(text=line, icon=icon if k == 0 else "BLANK1" if icon != "NONE" else "NONE")
 
 
 class VIEW3D_PT_stirrup(bpy.types.Panel):
@@ -69,23 +77,26 @@ class VIEW3D_PT_stirrup(bpy.types.Panel):
         row.operator("stirrup.ride", icon="ARMATURE_DATA")
         row.prop(s, "live", toggle=True, icon="REC" if s.live else "PLAY")
         if s.last_ride:
-            col.label(text=s.last_ride)
+            _lines(col, context, s.last_ride)
         session = live.session()
         if session is not None:
             col.label(text="live: %d updates, %.1f ms in stirrup" % (session.updates, session.last_ms))
         if live.last_error():
-            col.label(text=live.last_error(), icon="ERROR")
+            _lines(col, context, live.last_error(), icon="ERROR")
         col.separator()
         col.operator("stirrup.check", icon="CHECKMARK")
         if s.check_summary:
-            col.label(text=s.check_summary)
+            _lines(col, context, s.check_summary)
             if s.check_unmeasured:
-                col.label(text="not measured: " + s.check_unmeasured, icon="INFO")
-            col.template_list("STIRRUP_UL_findings", "", s, "findings", s, "findings_index", rows=3)
+                _lines(col, context, "not measured: " + s.check_unmeasured, icon="INFO")
+            if s.findings:
+                col.template_list("STIRRUP_UL_findings", "", s, "findings", s, "findings_index", rows=3)
+                if 0 <= s.findings_index < len(s.findings):
+                    f = s.findings[s.findings_index]
+                    _lines(col, context, "frame %d, %s: %s" % (f.frame, f.severity, f.text))
         col.separator()
-        row = col.row(align=True)
-        row.prop(s, "camera", text="")
-        row.operator("stirrup.review_movie", icon="RENDER_ANIMATION")
+        col.prop(s, "camera")
+        col.operator("stirrup.review_movie", icon="RENDER_ANIMATION")
 
 
 class _MappingPanel:
@@ -105,7 +116,7 @@ class _MappingPanel:
             col.label(text="Not mapped yet: Ride or Map runs stirrup character map")
             return
         if mp.report:
-            col.label(text=mp.report)
+            _lines(col, context, mp.report)
         col.template_list("STIRRUP_UL_roles", "roles_" + self.kind, mp, "roles", mp, "roles_index", rows=4)
         col.prop(mp, "scale_cm")
         col.prop(mp, "forward")

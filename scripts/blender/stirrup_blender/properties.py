@@ -47,6 +47,11 @@ def _live_update(self, context):
         live.report_error(str(e))
 
 
+def _go_to_finding(self, context):
+    if 0 <= self.findings_index < len(self.findings):
+        context.scene.frame_set(self.findings[self.findings_index].frame)
+
+
 class StirrupSettings(bpy.types.PropertyGroup):
     horse: bpy.props.PointerProperty(name="Horse", type=bpy.types.Object, poll=_is_armature,
                                      description="The horse's armature: its action is the ride")
@@ -76,7 +81,7 @@ class StirrupSettings(bpy.types.PropertyGroup):
     check_summary: bpy.props.StringProperty()
     check_unmeasured: bpy.props.StringProperty(description="The rules the last check could not measure on this shot")
     findings: bpy.props.CollectionProperty(type=StirrupFinding)
-    findings_index: bpy.props.IntProperty()
+    findings_index: bpy.props.IntProperty(update=_go_to_finding, description="The finding shown: its frame made current")
     last_ride: bpy.props.StringProperty()
 
 
