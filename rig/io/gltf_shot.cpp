@@ -138,11 +138,15 @@ CharacterMapping worldMapping(const tinygltf::Model& model, const std::string& f
   const auto vec = [&](const char* key, std::array<double, 3>& out, bool unit) {
     const tinygltf::Value& v = w.Get(key);
     bool ok = v.IsArray() && v.ArrayLen() == 3;
-    for (int i = 0; ok && i < 3; ++i) ok = v.Get(i).IsNumber(), out[std::size_t(i)] = ok ? v.Get(i).GetNumberAsDouble() : 0.0;
+    for (int i = 0; ok && i < 3; ++i) {
+      ok = v.Get(i).IsNumber() && std::isfinite(v.Get(i).GetNumberAsDouble());
+      out[std::size_t(i)] = ok ? v.Get(i).GetNumberAsDouble() : 0.0;
+    }
     if (!ok || (unit && std::hypot(out[0], out[1], out[2]) < 1e-9))
       throw InputError(at + "." + key + ": expected three numbers" + (unit ? ", not all zero" : ""));
   };
-  if (!w.IsObject() || !w.Has("scale_cm") || !w.Get("scale_cm").IsNumber() || !(w.Get("scale_cm").GetNumberAsDouble() > 0.0))
+  if (!w.IsObject() || !w.Has("scale_cm") || !w.Get("scale_cm").IsNumber() || !(w.Get("scale_cm").GetNumberAsDouble() > 0.0) ||
+      !std::isfinite(w.Get("scale_cm").GetNumberAsDouble()))
     throw InputError(at + ".scale_cm: expected centimetres a unit > 0");
   world.scale_cm = w.Get("scale_cm").GetNumberAsDouble();
   vec("forward", world.forward, true);
