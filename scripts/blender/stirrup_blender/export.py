@@ -34,8 +34,13 @@ def meshes_of(arm):
 
 
 def has_action(arm):
+    """Whether Blender plays an action on the armature: its active action, or an NLA strip's that is not muted."""
     ad = arm.animation_data
-    return bool(ad and (ad.action or any(t.strips for t in ad.nla_tracks)))
+    if ad is None:
+        return False
+    if ad.action is not None:
+        return True
+    return any(not t.mute and any(st.action is not None and not st.mute for st in t.strips) for t in ad.nla_tracks)
 
 
 @contextlib.contextmanager
