@@ -59,7 +59,7 @@ from mathutils import Matrix, Vector
 out, horse_glb, rider_glb = args[0], args[1], args[2]
 mod = addon_utils.enable("stirrup_blender", default_set=True)
 assert mod is not None and hasattr(bpy.types.Scene, "stirrup"), "the add-on did not enable"
-from stirrup_blender import live, program
+from stirrup_blender import live, program, review
 result = {"addon": mod.__file__, "program": program.find_program()}
 
 def load(path):
@@ -97,6 +97,10 @@ def attempt(op, **kw):
 
 def done():
     json.dump(result, open(os.path.join(out, "result.json"), "w"), indent=1)
+
+def finish():  # a windowed run's end (its script returns to Blender's event loop, which timers then drive)
+    done()
+    bpy.ops.wm.quit_blender()
 )";
 
 struct AddonRun {
@@ -104,8 +108,9 @@ struct AddonRun {
   nlohmann::json result;
 };
 
-// Runs kBlenderScriptStart + kAddonStart + body in Blender (under xvfb-run with a window when `windowed`)
-// with the add-on found from the build tree and the program beside it, and reads its result.json.
+// Runs kBlenderScriptStart + kAddonStart + body in Blender with the add-on found from the build tree and
+// the program beside it, and reads its result.json. With `windowed`, Blender runs in a window under
+// xvfb-run and the body ends the run itself (finish()), within 5 minutes.
 AddonRun runAddonScript(const fs::path& dir, const std::string& body, bool windowed = false) {
   BlenderMade horse = madeHorse();
   BlenderMade rider_made;
@@ -116,9 +121,9 @@ AddonRun runAddonScript(const fs::path& dir, const std::string& body, bool windo
     return run;
   }
   const fs::path script = dir / "script.py";
-  std::ofstream(script) << kBlenderScriptStart << kAddonStart << body << "\ndone()\n" << (windowed ? "bpy.ops.wm.quit_blender()\n" : "");
+  std::ofstream(script) << kBlenderScriptStart << kAddonStart << body << (windowed ? "" : "\ndone()\n");
   const std::string env = "env BLENDER_USER_SCRIPTS=" + quote(STIRRUP_BINARY_DIR "/blender") + " PATH=/usr/bin:/bin ";
-  const std::string blender = windowed ? "xvfb-run -a -s '-screen 0 1280x800x24' blender" : "blender -b";
+  const std::string blender = windowed ? "timeout 300 xvfb-run -a -s '-screen 0 1280x800x24' blender" : "blender -b";
   run.command = runCommand(env + blender + " --factory-startup --python-exit-code 3 --python " + quote(script.string()) + " -- " +
                            quote(dir.string()) + " " + quote(horseFile().string()) + " " + quote(rider.string()) + " 2>&1");
   if (fs::exists(dir / "result.json")) run.result = nlohmann::json::parse(readText(dir / "result.json"));
@@ -506,6 +511,53 @@ result["movie"] = os.path.exists(os.path.join(out, "x.mp4"))
   EXPECT_FALSE(run.result["movie"].get<bool>());
 }
 
+// Review movie in Blender's window: the render runs beside the interface (the operator modal, its progress
+// in the status bar) and the movie is written.
+TEST(BlenderAddon, ReviewMovieInTheWindowRendersBesideTheInterface) {
+  SKIP_WITHOUT_BLENDER();
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb): the test needs a window";
+  const fs::path dir = testDir("review-window");
+  const AddonRun run = runAddonScript(dir, R"(
+result["ride"] = attempt(bpy.ops.stirrup.ride)
+scene.frame_start, scene.frame_end = 1, 4
+movie = os.path.join(out, "walk.mp4")
+ticks = []
+
+def start():
+    window = bpy.context.window_manager.windows[0]
+    with bpy.context.temp_override(window=window, area=window.screen.areas[0]):
+        result["invoke"] = sorted(bpy.ops.stirrup.review_movie("INVOKE_DEFAULT", filepath=movie, camera="close"))
+    result["returned_s"] = time.perf_counter() - t0
+
+def watch():
+    ticks.append(time.perf_counter())
+    if len(ticks) == 1:
+        result["rendering_beside"] = review.rendering()
+    if (len(ticks) > 1 and not review.rendering()) or len(ticks) > 400:
+        result["ticks"] = len(ticks)
+        result["movie"] = os.path.exists(movie)
+        finish()
+        return None
+    return 0.25
+
+t0 = time.perf_counter()
+bpy.app.timers.register(start, first_interval=0.5)
+bpy.app.timers.register(watch, first_interval=1.0)
+)",
+                                      true);
+  ASSERT_RAN(run);
+  ASSERT_TRUE(run.result["ride"].contains("ok")) << run.result["ride"];
+  EXPECT_EQ(run.result["invoke"], nlohmann::json::parse(R"(["RUNNING_MODAL"])"));
+  EXPECT_LT(run.result["returned_s"].get<double>(), 5.0) << "the interface is back before the render ends";
+  EXPECT_TRUE(run.result["rendering_beside"].get<bool>());
+  EXPECT_LT(run.result["ticks"].get<int>(), 400);
+  EXPECT_TRUE(run.result["movie"].get<bool>());
+  const CommandResult probe = runCommand("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
+                                         quote((dir / "walk.mp4").string()));
+  EXPECT_EQ(probe.out, "4\n") << probe.err;
+  EXPECT_NE(run.command.out.find("stirrup wrote " + (dir / "walk.mp4").string()), std::string::npos) << run.command.out;
+}
+
 // Undo after a ride gives her old action back (Blender keeps undo steps only with a window: Xvfb's).
 TEST(BlenderAddon, UndoGivesBackHerOldAction) {
   SKIP_WITHOUT_BLENDER();
@@ -522,6 +574,7 @@ result["ride"] = attempt(bpy.ops.stirrup.ride)
 result["ridden"] = bpy.data.objects[name].animation_data.action.name
 result["undo"] = attempt(bpy.ops.ed.undo)
 result["after_undo"] = bpy.data.objects[name].animation_data.action.name
+finish()
 )",
                                  true);
   ASSERT_RAN(run);

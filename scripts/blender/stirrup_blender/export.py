@@ -11,7 +11,7 @@ import numpy as np
 from . import gltf_files, mapping, program
 
 # Debian 12's numpy 1.24 removed the alias np.bool, which Blender 3.4's glTF exporter still uses.
-if not hasattr(np, "bool"):
+if "bool" not in vars(np):  # (hasattr would ask numpy's module __getattr__, which warns)
     np.bool = bool
 
 

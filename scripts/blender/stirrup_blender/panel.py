@@ -5,7 +5,7 @@ import textwrap
 
 import bpy
 
-from . import export, live, mapping, program
+from . import export, live, mapping, program, review
 
 
 class STIRRUP_OT_map(bpy.types.Operator):
@@ -97,6 +97,8 @@ class VIEW3D_PT_stirrup(bpy.types.Panel):
         col.separator()
         col.prop(s, "camera")
         col.operator("stirrup.review_movie", icon="RENDER_ANIMATION")
+        if review.rendering():
+            col.label(text="rendering: the status bar shows how far (Esc stops)")
 
 
 class _MappingPanel:

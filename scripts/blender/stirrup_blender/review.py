@@ -12,6 +12,12 @@ import bpy
 from . import check, export, mapping, program
 
 _PROGRESS = re.compile(r"(\d+)/(\d+)")
+_running = []  # the renders running beside Blender's window (one at a time)
+
+
+def rendering():
+    """Whether a review movie is being rendered beside Blender's window."""
+    return bool(_running)
 
 
 class Render:
@@ -54,6 +60,10 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
     filter_glob: bpy.props.StringProperty(default="*.mp4", options={"HIDDEN"})
     camera: bpy.props.EnumProperty(name="View", items=[("", "Panel's", "")] + [(k, k, "") for k in ("side", "persp", "close")],
                                    default="", options={"SKIP_SAVE"})
+
+    @classmethod
+    def poll(cls, context):
+        return not _running
 
     def _start(self, context):
         if not self.filepath:
@@ -101,6 +111,7 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
         self.timer = wm.event_timer_add(0.2, window=context.window)
         wm.progress_begin(0, 100)
         wm.modal_handler_add(self)
+        _running.append(self.render)
         return {"RUNNING_MODAL"}
 
     def modal(self, context, event):
@@ -121,6 +132,8 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
         return self._end(context, "stirrup wrote " + self.movie, {"INFO"}, {"FINISHED"})
 
     def _end(self, context, line, level, result):
+        if self.render in _running:
+            _running.remove(self.render)
         wm = context.window_manager
         wm.event_timer_remove(self.timer)
         wm.progress_end()
