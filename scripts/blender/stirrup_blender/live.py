@@ -38,7 +38,6 @@ class Session:
     def __init__(self, context):
         work = export.work_dir(context)
         p = ride.Prepared(context, work)
-        p.keep_new_maps()
         scene = context.scene
         self.first, self.last = min(scene.frame_start, p.first), max(scene.frame_end, p.first)
         scene_file = p.write_scene()
@@ -50,6 +49,7 @@ class Session:
             self.proc.wait()
             raise program.StirrupError(program.last_line(err) or "stirrup live stopped before it was ready")
         ready = json.loads(ready)
+        p.keep_new_maps()  # the program is ready: the mappings it was given are the scene's now
         self.horse_joints, self.rider_joints = ready["horse_joints"], ready["rider_joints"]
         self.horse_name, self.rider_name = p.horse.name, p.rider.name
         self.horse_at_export = transforms.np_matrix(p.horse_at_export)

@@ -24,8 +24,7 @@ class Render:
     """A running `stirrup render`, its progress read from the bar it draws on stderr."""
 
     def __init__(self, context, camera, movie):
-        path, _, frames, new = check.export_shot(context, "review-shot.glb")
-        mapping.keep_new(context, new)
+        path, _, frames, self.new_maps = check.export_shot(context, "review-shot.glb")  # kept once the movie is made
         out = os.path.join(export.work_dir(context), "review-frames")
         args = [program.find_program(context), "render", path, "--camera", camera, "--preset", "review", "--movie", movie,
                 "--out", out, "--frames", frames, "--progress"]
@@ -91,6 +90,7 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
             return {"CANCELLED"}
         finally:
             wm.progress_end()
+        mapping.keep_new(context, render.new_maps)
         self.report({"INFO"}, "stirrup wrote " + self.movie)
         return {"FINISHED"}
 
@@ -129,6 +129,7 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
                 return {"RUNNING_MODAL"}
         except program.StirrupError as e:
             return self._end(context, str(e), {"ERROR"}, {"CANCELLED"})
+        mapping.keep_new(context, self.render.new_maps)
         return self._end(context, "stirrup wrote " + self.movie, {"INFO"}, {"FINISHED"})
 
     def _end(self, context, line, level, result):
