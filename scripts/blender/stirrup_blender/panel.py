@@ -80,7 +80,9 @@ class VIEW3D_PT_stirrup(bpy.types.Panel):
             _lines(col, context, s.last_ride)
         session = live.session()
         if session is not None:
-            col.label(text="live: %d updates, %.1f ms in stirrup" % (session.updates, session.last_ms))
+            row = col.row()
+            row.label(text="live: %.1f ms in stirrup" % session.last_ms)
+            row.operator("stirrup.live_refresh", text="", icon="FILE_REFRESH")
         if live.last_error():
             _lines(col, context, live.last_error(), icon="ERROR")
         col.separator()
