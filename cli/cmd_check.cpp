@@ -82,6 +82,7 @@ struct CheckedPair {
   int index = 0;
   const rig::Character* horse = nullptr;
   const rig::Character* rider = nullptr;
+  std::shared_ptr<const rig::Character> own_horse;  // a baked shot's horse with the tack it does not hold left out (horse points at it)
   rig::RigProfile profile;
   const rig::Clip* clip = nullptr;  // sampled at the shot's time (a crowd's pair: its clip at its start phase); null for a baked shot
   std::size_t slot = 0;             // a baked shot's: the pair's place in the file's pairs
@@ -205,6 +206,20 @@ std::vector<CheckedPair> checkedPairs(const CheckInput& in, const CheckOptions& 
   return out;
 }
 
+// The horse without its rein and stirrup roles where they are points the rig placed, not joints of the
+// file (null when the file holds them, or the horse has none).
+std::shared_ptr<rig::Character> withoutPlacedTack(const rig::Character& horse) {
+  std::vector<std::string> placed;
+  for (const char* role : {"lRein", "rRein", "lStirrup", "rStirrup"}) {
+    const auto it = horse.roles.find(role);
+    if (it != horse.roles.end() && it->second >= 0 && horse.skeleton.joints[std::size_t(it->second)].rig_point) placed.push_back(role);
+  }
+  if (placed.empty()) return nullptr;
+  auto out = std::make_shared<rig::Character>(horse);
+  for (const std::string& role : placed) out->roles.erase(role);
+  return out;
+}
+
 // A baked shot's pairs to check: every pair the file holds, or those --pairs lists (by their indices,
 // pair03's 3), each with the profile --profile names, else its pair's in --scene (a crowd's pairs ride
 // their own), else the scene's, else the thesis's: only its balance band is used.
@@ -236,6 +251,13 @@ std::vector<CheckedPair> shotPairs(const CheckInput& in, const CheckOptions& o) 
     p.name = sp.name;
     p.horse = &sp.horse;
     p.rider = &sp.rider;
+    // Reins and stirrups the file does not hold (a user's horse exported from Blender: the rig's tack is
+    // only points it placed on the horse at rest) say nothing of where her hands and feet belong; those
+    // rules are then not measured, and said so (rig::PairCheck), rather than measured against the rest.
+    if (std::shared_ptr<rig::Character> own = withoutPlacedTack(sp.horse)) {
+      p.own_horse = own;
+      p.horse = own.get();
+    }
     if (!o.profile.empty()) p.profile = profileNamed(o.profile, false);
     else if (o.scene.empty()) p.profile = profileNamed("thesis", false);
     else if (std::size_t(sp.index) < in.scene.pairs.size() && !sp.name.empty()) p.profile = profileNamed(in.scene.pairs[std::size_t(sp.index)].profile, true);

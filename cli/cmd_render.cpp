@@ -11,6 +11,7 @@
 #include "cli/options.h"
 #include "cli/progress.h"
 #include "render/farm/farm_shots.h"
+#include "render/scene/file_shot.h"
 #include "render/scene/frame_sequence.h"
 #include "render/tracer/frame_writer.h"
 #include "render/tracer/image.h"
@@ -44,7 +45,35 @@ struct RenderOptions {
   std::string camera_plan;  // a farm plan (farm.json) whose framed camera this shot uses
   bool encode_only = false;
   bool allow_impossible = false;
+  double fps = 24.0;      // a glTF shot whose file says none
+  std::string look;      // a glTF shot: the scene whose cameras, size, quality, sun and ground it renders with
 };
+
+// What renders: a scene's pairs evaluated, or a glTF shot's as the file keys them
+// (render/scene/file_shot.h), both through one evaluator and one tracer.
+struct RenderInput {
+  render::SceneSpec scene;
+  std::optional<render::FileShot> file;
+  rig::RigProfile profile;
+};
+
+RenderInput loadInput(const RenderOptions& o) {
+  RenderInput in;
+  if (render::isGltfFile(o.scene)) {
+    if (!o.camera_plan.empty()) throw InputError("--camera-plan: a farm's plan applies to a scene, not to the glTF shot " + o.scene);
+    in.file = render::loadFileShot(o.scene, o.fps, o.look);
+    in.scene = in.file->scene;
+    if (!o.preset.empty() || o.look.empty()) render::applyPreset(in.scene, render::findPreset(o.preset.empty() ? "review" : o.preset));
+  } else {
+    if (!o.look.empty()) throw InputError("--scene: applies to a glTF shot, and " + o.scene + " is a scene");
+    in.scene = render::loadScene(o.scene, {o.allow_impossible});
+    if (!o.preset.empty()) render::applyPreset(in.scene, render::findPreset(o.preset));
+  }
+  if (!o.resolution.empty()) std::tie(in.scene.width, in.scene.height) = parseResolution(o.resolution);
+  in.profile = render::resolveProfileForEveryPair(in.scene, parseSets(o.sets));
+  if (in.file) in.file->scene = in.scene;
+  return in;
+}
 
 void runRender(const RenderOptions& o) {
   namespace fs = std::filesystem;
@@ -54,12 +83,11 @@ void runRender(const RenderOptions& o) {
   const bool png = format != "exr", exr = format != "png";
   if (!o.movie.empty() && !png) throw InputError("--movie: needs PNG frames; use --format png or both");
   if (o.encode_only && o.movie.empty()) throw InputError("--encode-only: expected --movie FILE.mp4 to encode");
-  render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
-  if (!o.preset.empty()) render::applyPreset(scene, render::findPreset(o.preset));
-  if (!o.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.resolution);
+  const RenderInput in = loadInput(o);
+  const render::SceneSpec& scene = in.scene;
+  const rig::RigProfile& profile = in.profile;
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
-  const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
   const OutputFolder folder(dir);  // taken back if the render fails before writing a frame
   const std::string shot_name = scene.name + "_" + camera.name;
@@ -87,7 +115,8 @@ void runRender(const RenderOptions& o) {
     shown = render::farm::plannedCameraSpec(scene, profile, camera, planned, where);
   }
   const int png_level = o.png_compression >= 0 ? o.png_compression : render::defaultPngCompression(scene);
-  render::Shot shot(scene, profile, shown, o.threads);
+  render::Shot shot = in.file ? render::Shot(std::make_shared<render::ShotEvaluator>(*in.file, profile, o.threads), shown, o.threads)
+                              : render::Shot(scene, profile, shown, o.threads);
   ProgressBar bar("render " + scene.name + "_" + camera.name, static_cast<int>(frames.size()), o.progress);
   // The frames to render (with --resume, those not yet written), so each can be evaluated while the
   // one before it traces (render::Shot::renderFrame's next frame).
@@ -135,8 +164,19 @@ void addRenderCommand(CLI::App& app) {
   cmd->footer(
       "Frames are written as OUT/SCENE_CAMERA.####.png (or .exr), each to a temporary name renamed when complete.\n"
       "Frame lists: 1-120, 1-120x2 (every 2nd), 1-10,20-30, 7.\n"
-      "Example: stirrup render scenes/trot.json --frames 1-48 --movie out/trot_side.mp4");
-  cmd->add_option("scene", opts->scene, "Scene file (JSON), e.g. scenes/trot.json")->required();
+      "A glTF shot (.glb/.gltf) renders as it is, at review quality unless --preset says otherwise, through its\n"
+      "views side, persp, close, turntable and top, to out/NAME (NAME the file's stem).\n"
+      "Example: stirrup render scenes/trot.json --frames 1-48 --movie out/trot_side.mp4\n"
+      "         stirrup render shot.glb --camera close --movie out/shot_close.mp4");
+  cmd->add_option("scene", opts->scene,
+                  "Scene file (JSON), e.g. scenes/trot.json; or a glTF shot (a stirrup bake, or Blender's export of one), "
+                  "rendered as the file keys it")
+      ->required();
+  cmd->add_option("--fps", opts->fps, "glTF shot: its frame rate where the file does not say (default 24)")
+      ->check(CLI::Range(0.001, 240.0));
+  cmd->add_option("--scene", opts->look,
+                  "glTF shot: the scene it was baked from, whose cameras, resolution, quality, sun, haze, ground and "
+                  "output it renders with (its clip and characters are the file's)");
   cmd->add_option("--frames,-f", opts->frames, "Frames to render (default: the scene's frames)");
   cmd->add_option("--camera,-c", opts->camera, "Camera name (default: the scene's first camera)");
   cmd->add_option("--out,-o", opts->out, "Output folder (default: the scene's output)");

@@ -17,6 +17,7 @@ void addBenchCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
 void addFarmCommand(CLI::App& app);
 void addLayerCommand(CLI::App& app);
+void addLiveCommand(CLI::App& app);
 void addMoviesCommand(CLI::App& app);
 void addCharacterCommand(CLI::App& app);
 void addCheckCommand(CLI::App& app);

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   stirrup::cli::addDiffCommand(app);
   stirrup::cli::addFarmCommand(app);
   stirrup::cli::addLayerCommand(app);
+  stirrup::cli::addLiveCommand(app);
   stirrup::cli::addMoviesCommand(app);
   stirrup::cli::addRenderCommand(app);
   stirrup::cli::addRigCommand(app);

@@ -190,6 +190,21 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
   }
 }
 
+ShotEvaluator::ShotEvaluator(const FileShot& shot, const rig::RigProfile& profile, int threads)
+    : scene_(shot.scene), pairs_(std::make_unique<Pairs>(threads)), file_(shot.shot) {
+  Pairs& ps = *pairs_;
+  for (std::size_t i = 0; i < file_->pairs().size(); ++i) {
+    const rig::GltfShot::Pair& sp = file_->pairs()[i];
+    Pairs::Pair p;
+    p.clip = fileShotTravel(shot, i);
+    p.profile = p.rigid_profile = profile;
+    p.builds = {ps.builds.size()};
+    ps.builds.push_back({rig::HorseParams{}, rig::RiderParams{}, std::make_shared<const rig::Character>(sp.horse),
+                         std::make_shared<const rig::Character>(sp.rider)});
+    ps.pairs.push_back(std::move(p));
+  }
+}
+
 ShotEvaluator::~ShotEvaluator() = default;
 
 int ShotEvaluator::pairCount() const { return int(pairs_->pairs.size()); }
@@ -281,6 +296,17 @@ void ShotEvaluator::bakeStage(const FrameRequest& request, const std::vector<std
   const bool rigid = request.shown.rigid_rider;
   // Every pair's clip and profile at the frame shown (the held pose's), its time the shot's.
   const int shown = request.shown.hold_frame > 0 ? request.shown.hold_frame : request.frame;
+  if (file_) {
+    // A glTF shot has nothing to bake: its poses are the file's. The travel is kept for the treadmill.
+    for (std::size_t i : which) {
+      rig::BakedFrame& b = out.pairs[i].baked;
+      b = {};
+      b.frame = request.frame;
+      b.seconds = frameTime(scene_, shown);
+      b.horse = ps.pairs[i].clip->sampleTravel(b.seconds);
+    }
+    return;
+  }
   std::vector<rig::CrowdPair> list;
   for (std::size_t i : which)
     list.push_back({ps.pairs[i].clip.get(), rigid ? &ps.pairs[i].rigid_profile : &ps.pairs[i].profile, ps.pairs[i].clip_offset_s});
@@ -299,7 +325,11 @@ void ShotEvaluator::poseStage(const FrameRequest& request, std::size_t i, PairFr
   const Pairs::Pair& p = ps.pairs[i];
   const rig::Character& horse = ps.poseHorse(i);
   const bool rigid = request.shown.rigid_rider;
-  f.pose = rig::poseMounted(horse, ps.poseRider(i), f.baked.horse, f.baked.rider, rigid ? p.rigid_profile : p.profile);
+  if (file_) {
+    f.pose = filePose(request, i, f.baked);
+  } else {
+    f.pose = rig::poseMounted(horse, ps.poseRider(i), f.baked.horse, f.baked.rider, rigid ? p.rigid_profile : p.profile);
+  }
   const LevelChoice& choice = request.level;
   if (choice.fixed >= 0 || ps.levels == 1) {
     f.level = std::clamp(choice.fixed, 0, ps.levels - 1);
@@ -308,6 +338,19 @@ void ShotEvaluator::poseStage(const FrameRequest& request, std::size_t i, PairFr
     f.level = std::min(pairDetailLevel(*choice.camera, choice.width, choice.height, root, ps.build(i, 0).horse.cell),
                        ps.levels - 1);
   }
+}
+
+// A glTF shot's pair as its file keys it at the frame shown, on the flat ground it was keyed over; on a
+// treadmill its travel taken out (the file's joints moved back by the travel frame's origin).
+rig::MountedPose ShotEvaluator::filePose(const FrameRequest& request, std::size_t i, const rig::BakedFrame& baked) const {
+  const int shown = request.shown.hold_frame > 0 ? request.shown.hold_frame : request.frame;
+  rig::MountedPose pose = file_->pose(i, shown, [](double, double) { return 0.0; });
+  if (request.shown.treadmill) {
+    const glm::vec3 back(-float(baked.horse.travel_cm), 0.0f, -float(baked.horse.travel_z_cm));
+    for (std::vector<glm::mat4>* joints : {&pose.horse, &pose.rider})
+      for (glm::mat4& m : *joints) m[3] += glm::vec4(back, 0.0f);
+  }
+  return pose;
 }
 
 void ShotEvaluator::skinStage(const FrameRequest& request, std::size_t i, PairFrame& f) const {

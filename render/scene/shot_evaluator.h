@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/scene/camera.h"
+#include "render/scene/file_shot.h"
 #include "render/scene/scene.h"
 #include "rig/bake.h"
 #include "rig/character.h"
@@ -87,6 +88,11 @@ class ShotEvaluator {
   // file and overrides); a crowd's pairs resolve each profile name they ride with the same way.
   // threads: 0 = all cores.
   ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& profile, int threads);
+  // A glTF shot's pairs (render/scene/file_shot.h) as the file keys them: posed from the file, never
+  // re-posed or baked (a frame's `baked` holds its time and its horse's travel alone), each pair's
+  // clip its horse's keyed travel (fileShotTravel), which cameras follow. `profile` is what a camera
+  // following the rider's seat reads it with. The scene is `shot.scene` as the caller set it.
+  ShotEvaluator(const FileShot& shot, const rig::RigProfile& profile, int threads);
   ~ShotEvaluator();
   ShotEvaluator(const ShotEvaluator&) = delete;
   ShotEvaluator& operator=(const ShotEvaluator&) = delete;
@@ -138,8 +144,10 @@ class ShotEvaluator {
   void bakeStage(const FrameRequest& request, const std::vector<std::size_t>& which, ShotFrame& out) const;
   void poseStage(const FrameRequest& request, std::size_t i, PairFrame& f) const;
   void skinStage(const FrameRequest& request, std::size_t i, PairFrame& f) const;
+  rig::MountedPose filePose(const FrameRequest& request, std::size_t i, const rig::BakedFrame& baked) const;
   SceneSpec scene_;
   std::unique_ptr<Pairs> pairs_;
+  std::shared_ptr<const rig::GltfShot> file_;  // a glTF shot's pairs, posed as keyed (null for a scene)
   EvalTimings timings_;
 };
 

@@ -123,8 +123,43 @@ struct ShotCharacter {
   std::vector<GltfFileJoint> joints;  // one per skeleton joint; node -1: a point the rig added
 };
 
+// The file's world in stirrup's: its scene's extras "stirrup_world" ({"scale_cm", "forward", "up",
+// "offset_cm"}, a mapping's, rig/io/character_mapping.h), which a tool writes when its world is not
+// stirrup's (the Blender add-on: the horse's mapping); else metres with stirrup's axes, a bake's world.
+CharacterMapping worldMapping(const tinygltf::Model& model, const std::string& f) {
+  CharacterMapping world;
+  world.scale_cm = 100.0;
+  const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+  if (scene >= int(model.scenes.size())) return world;
+  const tinygltf::Value& extras = model.scenes[std::size_t(scene)].extras;
+  if (!extras.IsObject() || !extras.Has("stirrup_world")) return world;
+  const tinygltf::Value& w = extras.Get("stirrup_world");
+  const std::string at = f + ": scenes[" + std::to_string(scene) + "].extras.stirrup_world";
+  const auto vec = [&](const char* key, std::array<double, 3>& out, bool unit) {
+    const tinygltf::Value& v = w.Get(key);
+    bool ok = v.IsArray() && v.ArrayLen() == 3;
+    for (int i = 0; ok && i < 3; ++i) {
+      ok = v.Get(i).IsNumber() && std::isfinite(v.Get(i).GetNumberAsDouble());
+      out[std::size_t(i)] = ok ? v.Get(i).GetNumberAsDouble() : 0.0;
+    }
+    if (!ok || (unit && std::hypot(out[0], out[1], out[2]) < 1e-9))
+      throw InputError(at + "." + key + ": expected three numbers" + (unit ? ", not all zero" : ""));
+  };
+  if (!w.IsObject() || !w.Has("scale_cm") || !w.Get("scale_cm").IsNumber() || !(w.Get("scale_cm").GetNumberAsDouble() > 0.0) ||
+      !std::isfinite(w.Get("scale_cm").GetNumberAsDouble()))
+    throw InputError(at + ".scale_cm: expected centimetres a unit > 0");
+  world.scale_cm = w.Get("scale_cm").GetNumberAsDouble();
+  vec("forward", world.forward, true);
+  vec("up", world.up, true);
+  vec("offset_cm", world.offset_cm, false);
+  const glm::dvec3 fw(world.forward[0], world.forward[1], world.forward[2]), up(world.up[0], world.up[1], world.up[2]);
+  if (glm::length(glm::cross(glm::normalize(fw), glm::normalize(up))) < 1e-3) throw InputError(at + ".up: expected a direction across forward");
+  return world;
+}
+
 ShotCharacter readCharacter(const tinygltf::Model& model, const GltfImageBytes& images, const std::string& f, int k, CharacterKind kind,
-                            const std::string& armature, const GltfAnimation& animation, const std::vector<int>& parent) {
+                            const std::string& armature, const GltfAnimation& animation, const std::vector<int>& parent,
+                            const CharacterMapping& world) {
   const std::string kind_name(characterKindName(kind));
   const std::string where = f + ": the " + kind_name + " \"" + armature + "\" (skins[" + std::to_string(k) + "])";
   const tinygltf::Skin& skin = checkedSkin(model, where, kind_name, k);
@@ -143,9 +178,10 @@ ShotCharacter readCharacter(const tinygltf::Model& model, const GltfImageBytes& 
     }
     mapping.roles = automatic.mapping.roles;
   }
-  // One world for every character, the file's, in centimetres (glTF's metres), with its axes and no
-  // offset: the mesh in its own units against that world (100 cm a unit for Blender's, 1 for a bake's).
-  mapping.scale_cm = 100.0 * units;
+  // One world for every character, the file's taken to stirrup's (worldMapping), the mesh in its own
+  // units against that world (100 cm a unit for Blender's metres, 1 for a bake's centimetres).
+  mapping.scale_cm = world.scale_cm * units;
+  mapping.forward = world.forward, mapping.up = world.up, mapping.offset_cm = world.offset_cm;
   ShotCharacter out;
   out.character = loadCharacterGltf(GltfSkinSource{&model, &images, where, k}, kind, &mapping);
   out.skin = std::make_unique<GltfSkinJoints>(model, where, k, mappingToRig(mapping), units);
@@ -193,8 +229,9 @@ void GltfShot::Impl::readPairs(const tinygltf::Model& model, const GltfImageByte
                          " (expected a skinned armature \"" + prefix + (which == 0 ? "horse" : "rider") + "\" beside it)");
       }
     std::array<ShotCharacter, 2> pc;
-    pc[0] = readCharacter(model, images, file, c.skin[0], CharacterKind::Horse, c.armature[0], *animation, parent);
-    pc[1] = readCharacter(model, images, file, c.skin[1], CharacterKind::Rider, c.armature[1], *animation, parent);
+    const CharacterMapping world = worldMapping(model, file);
+    pc[0] = readCharacter(model, images, file, c.skin[0], CharacterKind::Horse, c.armature[0], *animation, parent, world);
+    pc[1] = readCharacter(model, images, file, c.skin[1], CharacterKind::Rider, c.armature[1], *animation, parent, world);
     if (!model.animations.empty() && !keys(*animation, parent, pc[0]) && !keys(*animation, parent, pc[1]))
       throw InputError(file + ": the animation \"" + animation->name() + "\" keys no joint of the horse \"" + c.armature[0] + "\" or the rider \"" +
                        c.armature[1] + "\" (expected the shot's motion keyed on their joints)");
@@ -203,6 +240,8 @@ void GltfShot::Impl::readPairs(const tinygltf::Model& model, const GltfImageByte
     p.index = c.index;
     p.horse_armature = c.armature[0];
     p.rider_armature = c.armature[1];
+    p.horse_skin = c.skin[0];
+    p.rider_skin = c.skin[1];
     p.horse = pc[0].character;
     p.rider = pc[1].character;
     pairs.push_back(std::move(p));

@@ -17,9 +17,11 @@
 //
 // Roles: the file's role table (rig/io/gltf_character.h gltfRoleTable), else the automatic mapping (whose
 // "stirrup" convention reads a bake's joints, named by their roles; rig/io/auto_mapping.h). Space: the
-// file's world is glTF's, in metres, with stirrup's axes (a bake's world; Blender exports it back so):
-// every character is read into that one world in centimetres, its mesh in its own units (gltfSkinUnits),
-// with no offset, so the two characters of a pair, and the pairs, stand where the file has them.
+// file's world is glTF's, in metres, with stirrup's axes (a bake's world; Blender exports it back so),
+// unless the scene's extras say otherwise with "stirrup_world" (a mapping's scale_cm, forward, up and
+// offset_cm: the Blender add-on writes its horse's, whose file faces where the user's horse does).
+// Every character is read into stirrup's world through it, its mesh in its own units (gltfSkinUnits), so
+// the two characters of a pair, and the pairs, stand where the file has them and face +X at rest.
 //
 // A hoof is down where the horse's keyed controls say so (as rig/io/keyed_horse_clip.h measures them for
 // the horse's own animation): its lift (ty), the hoof joint's height above the ground under it less its
@@ -48,6 +50,7 @@ class GltfShot {
     std::string name;  // "" for a single pair ("horse", "rider"); "pair03" in a crowd
     int index = 0;     // a crowd pair's index (3 for "pair03"); 0 for a single pair
     std::string horse_armature, rider_armature;  // the armatures' node names
+    int horse_skin = -1, rider_skin = -1;        // their skins in the file
     Character horse, rider;
   };
   using GroundHeight = std::function<double(double x, double z)>;

@@ -50,6 +50,20 @@ double lineFitAt(const std::vector<double>& times, const std::vector<double>& ys
   return stt > 0.0 ? my + sty / stt * (t - mt) : my;
 }
 
+// A file's own animation (or every animation of it together) as the clip's node motion.
+class FileMotion final : public NodeMotion {
+ public:
+  explicit FileMotion(GltfAnimation animation) : a_(std::move(animation)) {}
+  std::string name() const override { return a_.name(); }
+  double start() const override { return a_.start(); }
+  double end() const override { return a_.duration(); }
+  glm::dmat4 world(int node, double t) const override { return a_.world(node, t); }
+  std::vector<glm::dmat4> worlds(double t) const override { return a_.worlds(t); }
+
+ private:
+  GltfAnimation a_;
+};
+
 }  // namespace
 
 KeyedHorseMapping keyedHorseMapping(const Character& horse) {
@@ -71,7 +85,7 @@ KeyedHorseMapping keyedHorseMapping(const CharacterMapping& mapping, const std::
 
 struct KeyedHorseClip::Impl {
   std::string file;
-  std::unique_ptr<GltfAnimation> animation;
+  std::shared_ptr<const NodeMotion> animation;
   // The file's joints in stirrup's world (rig/io/gltf_skin_joints.h).
   std::unique_ptr<GltfSkinJoints> skin;
   std::map<std::string, GltfFileJoint> role;  // the roles the controls read
@@ -88,7 +102,7 @@ struct KeyedHorseClip::Impl {
   // The clip's time t is the animation's start() + t: its first key is the shot's first frame (Blender
   // keys its frame F at F / fps, so frames 1-48 play as the shot's 1-48).
   double start() const { return animation->start(); }
-  double duration() const { return animation->duration() - animation->start(); }
+  double duration() const { return animation->end() - animation->start(); }
   glm::dmat4 posed(const GltfFileJoint& j, const std::vector<glm::dmat4>& worlds) const { return skin->posed(j, worlds[std::size_t(j.node)]); }
   // A joint's place at the animation's time t.
   glm::dvec3 placeAt(const GltfFileJoint& j, double t) const { return glm::dvec3(skin->posed(j, animation->world(j.node, t))[3]); }
@@ -240,23 +254,34 @@ HorseFrame KeyedHorseClip::Impl::frameAt(double seconds, bool controls) const {
 }
 
 KeyedHorseClip::KeyedHorseClip(const std::filesystem::path& file, const std::string& animation, const KeyedHorseMapping& mapping,
-                               const Character* ridden) try
+                               const Character* ridden, const KeyedHorseOptions& options) try
+    : KeyedHorseClip(std::filesystem::exists(file)
+                         ? readGltfFile(file, file.string())
+                         : throw InputError(file.string() + ": no such file (expected a glTF horse with an animation)"),
+                     file.string(), animation, mapping, ridden, options) {
+} catch (const std::out_of_range&) {
+  throw InputError(file.string() + ": not a valid glTF file (an index points past the end of its array)");
+}
+
+KeyedHorseClip::KeyedHorseClip(const tinygltf::Model& model, const std::string& file, const std::string& animation,
+                               const KeyedHorseMapping& mapping, const Character* ridden, const KeyedHorseOptions& options) try
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  m.file = file.string();
-  if (!std::filesystem::exists(file)) throw InputError(m.file + ": no such file (expected a glTF horse with an animation)");
-  const tinygltf::Model model = readGltfFile(file, m.file);
-  checkedSkin(model, m.file, "horse");
-  m.animation = std::make_unique<GltfAnimation>(model, m.file, animation);
+  m.file = file;
+  checkedSkin(model, m.file, "horse", options.skin);
+  // The file's own animation is read even when another motion stands in for it: its rest gives the units.
+  const GltfAnimation own = options.every_animation || options.motion ? GltfAnimation::together(model, m.file)
+                                                                      : GltfAnimation(model, m.file, animation);
   for (const char* needed : {"root", "neck1", "lfHoof", "rfHoof", "lbHoof", "rbHoof"})
     if (!mapping.roles.count(needed))
       throw InputError(mapping.where + ": roles." + needed + ": missing (expected the horse's " + needed + " joint to read its animation)");
-  const std::vector<std::string> names = gltfJointNames(model);
+  const std::vector<std::string> names = gltfJointNames(model, options.skin);
   // The file's units from the root joint's bind (gltfSkinUnits).
   const auto root = std::find(names.begin(), names.end(), mapping.roles.at("root"));
   if (root == names.end()) throw InputError(mapping.where + ": roles.root: no joint named \"" + mapping.roles.at("root") + "\" in " + m.file);
-  const double units = gltfSkinUnits(model, m.file, 0, int(root - names.begin()), *m.animation);
-  m.skin = std::make_unique<GltfSkinJoints>(model, m.file, 0, mapping.to_rig, units);
+  const double units = gltfSkinUnits(model, m.file, options.skin, int(root - names.begin()), own);
+  m.animation = options.motion ? options.motion : std::make_shared<FileMotion>(own);
+  m.skin = std::make_unique<GltfSkinJoints>(model, m.file, options.skin, mapping.to_rig, units);
   for (const auto& [r, joint] : mapping.roles) {
     const std::optional<GltfFileJoint> j = m.skin->joint(joint);
     if (!j) throw InputError(mapping.where + ": roles." + r + ": no joint named \"" + joint + "\" in " + m.file);
@@ -265,6 +290,7 @@ KeyedHorseClip::KeyedHorseClip(const std::filesystem::path& file, const std::str
   m.rest_trunk = glm::dvec2(0.5 * (m.role["root"].rest.x + m.role["neck1"].rest.x), 0.5 * (m.role["root"].rest.z + m.role["neck1"].rest.z));
   m.rest_heading = std::atan2(m.role["neck1"].rest.z - m.role["root"].rest.z, m.role["neck1"].rest.x - m.role["root"].rest.x);
   m.fitTravel();
+  if (options.keyed_travel_only) m.in_place = false;
   if (m.in_place) m.findAddedSpeed();
   if (ridden && !m.in_place) {
     const Skeleton& s = ridden->skeleton;
@@ -279,7 +305,7 @@ KeyedHorseClip::KeyedHorseClip(const std::filesystem::path& file, const std::str
     }
   }
 } catch (const std::out_of_range&) {
-  throw InputError(file.string() + ": not a valid glTF file (an index points past the end of its array)");
+  throw InputError(file + ": not a valid glTF file (an index points past the end of its array)");
 }
 
 KeyedHorseClip::~KeyedHorseClip() = default;

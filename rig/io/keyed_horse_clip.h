@@ -25,6 +25,10 @@
 #include <string>
 #include <vector>
 
+namespace tinygltf {
+class Model;
+}
+
 #include <glm/mat4x4.hpp>
 
 #include "rig/character.h"
@@ -51,13 +55,43 @@ struct KeyedHorseMapping {
 KeyedHorseMapping keyedHorseMapping(const Character& horse);
 KeyedHorseMapping keyedHorseMapping(const CharacterMapping& mapping, const std::string& file);
 
+// The world transforms of a file's nodes over time, in the file's space: what a keyed horse clip reads
+// its joints from. The file's own animation, or motion handed in from elsewhere (`stirrup live`:
+// Blender's evaluation of the horse frame by frame, rig/io/live_rider.h).
+class NodeMotion {
+ public:
+  virtual ~NodeMotion() = default;
+  virtual std::string name() const = 0;
+  // The first and last key times (seconds, the file's own time: Blender keys its frame F at F / fps).
+  virtual double start() const = 0;
+  virtual double end() const = 0;
+  // A node's world transform at time t, and every node's (entries of nodes nothing moves may be left
+  // identity: only the skin's joints are read).
+  virtual glm::dmat4 world(int node, double t) const = 0;
+  virtual std::vector<glm::dmat4> worlds(double t) const = 0;
+};
+
+struct KeyedHorseOptions {
+  int skin = 0;  // the horse's skin in the file (a shot holds the rider's too)
+  // Every animation of the file played together (GltfAnimation::together: Blender may write a shot as
+  // one animation an armature) instead of the one named.
+  bool every_animation = false;
+  // The travel as keyed, never added: a shot's horse stands where the file keys it, even in place.
+  bool keyed_travel_only = false;
+  // The nodes' motion in place of the file's animation (the file is still read for the skin).
+  std::shared_ptr<const NodeMotion> motion;
+};
+
 class KeyedHorseClip final : public Clip {
  public:
   // `ridden`: the scene's horse when it was loaded from `file` (its joints are then keyed exactly); null
   // for another horse's animation played on the scene's horse. Errors are one-line InputErrors naming the
   // file (a role's joint missing, no animation of that name, a bad accessor).
   KeyedHorseClip(const std::filesystem::path& file, const std::string& animation, const KeyedHorseMapping& mapping,
-                 const Character* ridden);
+                 const Character* ridden, const KeyedHorseOptions& options = {});
+  // The same from a file already read (`file` names it in messages).
+  KeyedHorseClip(const tinygltf::Model& model, const std::string& file, const std::string& animation,
+                 const KeyedHorseMapping& mapping, const Character* ridden, const KeyedHorseOptions& options = {});
   ~KeyedHorseClip() override;
   KeyedHorseClip(const KeyedHorseClip&) = delete;
   KeyedHorseClip& operator=(const KeyedHorseClip&) = delete;

@@ -60,6 +60,27 @@ TEST_F(Installed, LaysOutTheProgramAndItsData) {
   // Not a link back into the source tree: real files.
   EXPECT_FALSE(fs::is_symlink(prefix_ / "share/stirrup"));
   EXPECT_FALSE(fs::is_symlink(prefix_ / "share/stirrup/scenes"));
+  // The Blender add-on (docs/blender.md), its own files.
+  for (const char* f : {"__init__.py", "ride.py", "live.py", "check.py", "review.py", "panel.py", "program.py"})
+    EXPECT_TRUE(fs::is_regular_file(prefix_ / "share/stirrup/blender/stirrup_blender" / f)) << f;
+  EXPECT_FALSE(fs::is_symlink(prefix_ / "share/stirrup/blender/stirrup_blender"));
+  EXPECT_FALSE(fs::exists(prefix_ / "share/stirrup/blender/stirrup_blender/__pycache__"));
+}
+
+// The installed add-on, linked into Blender's add-ons folder as docs/blender.md says, enables and finds
+// the program beside its install (P/bin/stirrup) with none on PATH.
+TEST_F(Installed, TheBlenderAddOnFindsTheProgramBesideItsInstall) {
+  if (runCommand("command -v blender >/dev/null").exit_code != 0) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  const fs::path addons = work_ / "blender-scripts" / "addons";
+  fs::create_directories(addons);
+  fs::create_directory_symlink(prefix_ / "share/stirrup/blender/stirrup_blender", addons / "stirrup_blender");
+  const CommandResult r = runCommand(
+      "cd " + quote(work_.string()) + " && " + kCleanEnv + "BLENDER_USER_SCRIPTS=" + quote((work_ / "blender-scripts").string()) +
+      " PATH=/usr/bin:/bin blender -b --factory-startup --python-exit-code 3 --python-expr "
+      "'import addon_utils; m = addon_utils.enable(\"stirrup_blender\", default_set=True); "
+      "from stirrup_blender import program; print(\"stirrup program:\", program.find_program())' 2>&1");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("stirrup program: " + fs::weakly_canonical(prefix_ / "bin/stirrup").string() + "\n"), std::string::npos) << r.out;
 }
 
 TEST_F(Installed, HasNoSourceOrBuildPathCompiledIn) {
@@ -133,7 +154,8 @@ TEST(DebianPackage, DependsOnWhatTheProgramLinksAndRuns) {
     EXPECT_NE(depends.out.find(d), std::string::npos) << d << " missing from Depends: " << depends.out;
   const CommandResult contents = runCommand("dpkg-deb -c " + quote(deb.string()));
   for (const char* f : {"./usr/bin/stirrup", "./usr/share/stirrup/scenes/trot.json", "./usr/share/stirrup/scenes/profiles/thesis.json",
-                        "./usr/share/stirrup/scenes/characters/rider.glb", "./usr/share/doc/stirrup/install.md"})
+                        "./usr/share/stirrup/scenes/characters/rider.glb", "./usr/share/doc/stirrup/install.md",
+                        "./usr/share/stirrup/blender/stirrup_blender/__init__.py"})
     EXPECT_NE(contents.out.find(std::string(f) + "\n"), std::string::npos) << f;
   fs::remove_all(dir);
 }

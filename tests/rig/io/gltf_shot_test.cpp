@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 #include "rig/io/gltf_clip.h"
 #include "rig/rig_profile.h"
 #include "tests/rig/default_characters.h"
+#include "tests/input_error.h"
 #include "tests/test_files.h"
 
 namespace stirrup::rig {
@@ -176,6 +178,51 @@ TEST(GltfShot, AHoofIsDownOverTheGroundItIsGiven) {
   const MountedPose flat = shot->pose(0, 1, kFlat);
   EXPECT_EQ(std::count(lowered.reach.planted.begin(), lowered.reach.planted.end(), true), 0);
   EXPECT_GT(std::count(flat.reach.planted.begin(), flat.reach.planted.end(), true), 0);
+}
+
+// A tool's world that is not stirrup's (the Blender add-on's: the user's horse facing where it does) is
+// named by the scene's extras "stirrup_world", a mapping from it to stirrup's: the bake moved into a world
+// turned a quarter about +Y and 2 m, 3 m off, with the mapping back, stands every joint where the rig
+// posed it. A mapping that is no frame (up along forward, a scale of 0) is a one-line error naming it.
+TEST(GltfShot, AWorldNamedInTheScenesExtrasIsTakenToStirrups) {
+  const fs::path dir = tempDir("world");
+  tinygltf::Model model = stirrup::test::readGlbModel(writeShot(dir / "trot.glb", {""}));
+  tinygltf::Node world;
+  world.name = "tool_world";
+  world.rotation = {0.0, std::sin(std::numbers::pi / 4.0), 0.0, std::cos(std::numbers::pi / 4.0)};  // +X to -Z
+  world.translation = {2.0, 0.0, 3.0};
+  tinygltf::Scene& scene = model.scenes[std::size_t(std::max(0, model.defaultScene))];
+  world.children = scene.nodes;
+  model.nodes.push_back(world);
+  scene.nodes = {int(model.nodes.size()) - 1};
+  const auto vec = [](double x, double y, double z) { return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(x), tinygltf::Value(y), tinygltf::Value(z)}); };
+  const auto withWorld = [&](tinygltf::Value::Object mapping, const std::string& name) {
+    tinygltf::Value::Object extras = scene.extras.IsObject() ? scene.extras.Get<tinygltf::Value::Object>() : tinygltf::Value::Object{};
+    extras["stirrup_world"] = tinygltf::Value(mapping);
+    scene.extras = tinygltf::Value(extras);
+    stirrup::test::writeGlbModel(model, dir / name);
+    return dir / name;
+  };
+  // Stirrup's cm = 100 R^T (p - t): forward, up and their cross product are R's columns.
+  const fs::path turned = withWorld({{"scale_cm", tinygltf::Value(100.0)}, {"forward", vec(0, 0, -1)}, {"up", vec(0, 1, 0)},
+                                     {"offset_cm", vec(300, 0, -200)}},
+                                    "turned.glb");
+  const std::unique_ptr<GltfShot> shot = GltfShot::read(turned);
+  ASSERT_TRUE(shot);
+  for (const int f : {1, 12}) {
+    const MountedPose got = shot->pose(0, f, kFlat);
+    const MountedPose& want = trot().poses[std::size_t(f - 1)];
+    EXPECT_LT(worstDistance(got.horse, want.horse), 0.01) << "frame " << f;
+    EXPECT_LT(worstDistance(got.rider, want.rider), 0.01) << "frame " << f;
+  }
+  const fs::path flat = withWorld({{"scale_cm", tinygltf::Value(100.0)}, {"forward", vec(0, 1, 0)}, {"up", vec(0, 1, 0)},
+                                   {"offset_cm", vec(0, 0, 0)}},
+                                  "flat.glb");
+  EXPECT_EQ(stirrup::test::errorOf([&] { GltfShot::read(flat); }),
+            flat.string() + ": scenes[0].extras.stirrup_world.up: expected a direction across forward");
+  const fs::path unscaled = withWorld({{"scale_cm", tinygltf::Value(0.0)}}, "unscaled.glb");
+  EXPECT_EQ(stirrup::test::errorOf([&] { GltfShot::read(unscaled); }),
+            unscaled.string() + ": scenes[0].extras.stirrup_world.scale_cm: expected centimetres a unit > 0");
 }
 
 // A horse clip (one animated skeleton, no skin) is not a shot: the clip reader takes it.
