@@ -15,6 +15,7 @@
 #include "render/scene/shot_bake.h"
 #include "render/scene/shot_evaluator.h"
 #include "rig/bake.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/channel_csv.h"
 #include "rig/error.h"
 #include "rig/io/frame_range.h"

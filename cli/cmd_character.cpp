@@ -29,6 +29,7 @@
 #include "render/shot.h"
 #include "rig/error.h"
 #include "rig/characters/horse_tack.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/auto_mapping.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_humanoid.h"

@@ -27,6 +27,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "render/review/index_page.h"
 #include "render/tracer/image.h"
 #include "render/scene/preset.h"
 #include "render/scene/profile_resolver.h"
@@ -36,6 +37,7 @@
 #include "rig/bake.h"
 #include "rig/error.h"
 #include "rig/frame_check.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/io/gltf_shot.h"
@@ -49,12 +51,6 @@ namespace stirrup::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 struct CheckOptions {
   std::string input;
@@ -123,7 +119,7 @@ CheckInput clipScene(const CheckOptions& o) {
   const std::unique_ptr<rig::Clip> c = render::makeSceneClip(in.scene);
   const int last = std::max(1, 1 + int(std::floor(c->duration() * o.fps + 1e-9)));
   in.frames = in.scene.frames = "1-" + std::to_string(last);
-  in.described = "a horse clip ridden by the default pair, " + plural(std::size_t(last), "frame", "frames") + " at " + fmt("%g", o.fps) + " fps";
+  in.described = "a horse clip ridden by the default pair, " + plural(std::size_t(last), "frame", "frames") + " at " + printfNumber("%g", o.fps) + " fps";
   return in;
 }
 
@@ -144,7 +140,7 @@ CheckInput shotInput(const CheckOptions& o, std::unique_ptr<rig::GltfShot> shot)
   for (const rig::GltfShot::Pair& p : shot->pairs())
     names += (names.empty() ? "" : ", ") + (p.name.empty() ? p.horse_armature + " and " + p.rider_armature : p.name);
   in.described = "a baked shot: " + plural(shot->pairs().size(), "pair", "pairs") + " (" + names + "), " +
-                 plural(std::size_t(shot->frameCount()), "frame", "frames") + " at " + fmt("%g", shot->fps()) + " fps" +
+                 plural(std::size_t(shot->frameCount()), "frame", "frames") + " at " + printfNumber("%g", shot->fps()) + " fps" +
                  (shot->animationName().empty() ? ", no animation" : ", animation \"" + shot->animationName() + "\"");
   for (const std::string& other : shot->leftOut()) in.described += " (\"" + other + "\" left out: it keys the same joints; --animation picks it)";
   in.shot = std::move(shot);
@@ -297,22 +293,6 @@ void measurePairs(std::vector<CheckedPair>& pairs, const std::vector<int>& frame
   }
 }
 
-// XML text: the five characters XML reserves.
-std::string xmlEscape(const std::string& s) {
-  std::string out;
-  for (const char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 struct Counts {
   int failures = 0, warnings = 0, notes = 0;
   void add(rig::CheckSeverity s) { (s == rig::CheckSeverity::Failure ? failures : s == rig::CheckSeverity::Warning ? warnings : notes)++; }
@@ -320,16 +300,7 @@ struct Counts {
 };
 
 // Writes `text` to `file` whole or not at all (a temporary name, then a rename).
-void writeWhole(const fs::path& file, const std::string& text) {
-  const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw InputError(file.string() + ": cannot write");
-    out << text;
-    if (!out) throw InputError(file.string() + ": cannot write");
-  }
-  fs::rename(tmp, file);
-}
+void writeWhole(const fs::path& file, const std::string& text) { rig::writeFileAtomically(file, text); }
 
 // JUnit XML: one test suite a pair, one test case a rule. A rule with failures fails its case; one with
 // only warnings passes and lists them in system-out (exit status 1 is the gate for warnings); a rule the
@@ -356,21 +327,21 @@ std::string junitXml(const CheckInput& in, const std::vector<CheckedPair>& pairs
           warned += "warning: " + line;
         }
       }
-      cases += "    <testcase classname=\"" + xmlEscape(suite) + "\" name=\"" + rule + "\">\n";
+      cases += "    <testcase classname=\"" + render::htmlEscape(suite) + "\" name=\"" + rule + "\">\n";
       if (n_fail) {
         ++failures;
-        cases += "      <failure type=\"" + std::string(rule) + "\" message=\"" + xmlEscape(std::to_string(n_fail) + " failing: " + first_failure) +
-                 "\">" + xmlEscape(failed) + "</failure>\n";
+        cases += "      <failure type=\"" + std::string(rule) + "\" message=\"" + render::htmlEscape(std::to_string(n_fail) + " failing: " + first_failure) +
+                 "\">" + render::htmlEscape(failed) + "</failure>\n";
       } else if (!skip.empty()) {
         ++skipped;
-        cases += "      <skipped message=\"" + xmlEscape(skip) + "\"/>\n";
+        cases += "      <skipped message=\"" + render::htmlEscape(skip) + "\"/>\n";
       }
-      if (!warned.empty()) cases += "      <system-out>" + xmlEscape(warned) + "</system-out>\n";
+      if (!warned.empty()) cases += "      <system-out>" + render::htmlEscape(warned) + "</system-out>\n";
       cases += "    </testcase>\n";
     }
-    x += "  <testsuite name=\"" + xmlEscape(suite) + "\" tests=\"" + std::to_string(kRules.size()) + "\" failures=\"" +
+    x += "  <testsuite name=\"" + render::htmlEscape(suite) + "\" tests=\"" + std::to_string(kRules.size()) + "\" failures=\"" +
          std::to_string(failures) + "\" errors=\"0\" skipped=\"" + std::to_string(skipped) + "\">\n";
-    x += "    <properties><property name=\"file\" value=\"" + xmlEscape(in.source) + "\"/><property name=\"frames\" value=\"" +
+    x += "    <properties><property name=\"file\" value=\"" + render::htmlEscape(in.source) + "\"/><property name=\"frames\" value=\"" +
          std::to_string(frames.size()) + "\"/></properties>\n";
     x += cases + "  </testsuite>\n";
   }
@@ -412,25 +383,25 @@ std::string svgPlot(const std::vector<Series>& series, const std::vector<std::pa
   const auto X = [&](double f) { return L + (f - f0) / double(f1 - f0) * (W - L - R); };
   const auto Y = [&](double v) { return T + (hi - v) / (hi - lo) * (H - T - B); };
   std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"360\" height=\"150\" font-size=\"10\">";
-  s += "<rect x=\"" + fmt("%.0f", L) + "\" y=\"" + fmt("%.0f", T) + "\" width=\"" + fmt("%.0f", W - L - R) + "\" height=\"" +
-       fmt("%.0f", H - T - B) + "\" fill=\"#fafafa\" stroke=\"#ccc\"/>";
+  s += "<rect x=\"" + printfNumber("%.0f", L) + "\" y=\"" + printfNumber("%.0f", T) + "\" width=\"" + printfNumber("%.0f", W - L - R) + "\" height=\"" +
+       printfNumber("%.0f", H - T - B) + "\" fill=\"#fafafa\" stroke=\"#ccc\"/>";
   for (const auto& [name, v] : guides)
-    s += "<line x1=\"" + fmt("%.1f", L) + "\" x2=\"" + fmt("%.1f", W - R) + "\" y1=\"" + fmt("%.1f", Y(v)) + "\" y2=\"" + fmt("%.1f", Y(v)) +
-         "\" stroke=\"#c00\" stroke-dasharray=\"3,3\"/><text x=\"" + fmt("%.1f", W - R - 2) + "\" y=\"" + fmt("%.1f", Y(v) - 2) +
-         "\" text-anchor=\"end\" fill=\"#c00\">" + xmlEscape(name) + "</text>";
-  s += "<line x1=\"" + fmt("%.1f", X(mark_frame)) + "\" x2=\"" + fmt("%.1f", X(mark_frame)) + "\" y1=\"" + fmt("%.0f", T) + "\" y2=\"" +
-       fmt("%.0f", H - B) + "\" stroke=\"#888\"/>";
+    s += "<line x1=\"" + printfNumber("%.1f", L) + "\" x2=\"" + printfNumber("%.1f", W - R) + "\" y1=\"" + printfNumber("%.1f", Y(v)) + "\" y2=\"" + printfNumber("%.1f", Y(v)) +
+         "\" stroke=\"#c00\" stroke-dasharray=\"3,3\"/><text x=\"" + printfNumber("%.1f", W - R - 2) + "\" y=\"" + printfNumber("%.1f", Y(v) - 2) +
+         "\" text-anchor=\"end\" fill=\"#c00\">" + render::htmlEscape(name) + "</text>";
+  s += "<line x1=\"" + printfNumber("%.1f", X(mark_frame)) + "\" x2=\"" + printfNumber("%.1f", X(mark_frame)) + "\" y1=\"" + printfNumber("%.0f", T) + "\" y2=\"" +
+       printfNumber("%.0f", H - B) + "\" stroke=\"#888\"/>";
   int row = 0;
   for (const Series& se : series) {
     std::string pts;
-    for (const auto& [f, v] : se.points) pts += fmt("%.1f", X(f)) + "," + fmt("%.1f", Y(v)) + " ";
+    for (const auto& [f, v] : se.points) pts += printfNumber("%.1f", X(f)) + "," + printfNumber("%.1f", Y(v)) + " ";
     s += "<polyline fill=\"none\" stroke=\"" + se.colour + "\" stroke-width=\"1.5\" points=\"" + pts + "\"/>";
-    s += "<text x=\"" + fmt("%.0f", L + 4) + "\" y=\"" + fmt("%.0f", T + 11 + 11 * row++) + "\" fill=\"" + se.colour + "\">" + xmlEscape(se.name) + "</text>";
+    s += "<text x=\"" + printfNumber("%.0f", L + 4) + "\" y=\"" + printfNumber("%.0f", T + 11 + 11 * row++) + "\" fill=\"" + se.colour + "\">" + render::htmlEscape(se.name) + "</text>";
   }
-  s += "<text x=\"" + fmt("%.0f", L) + "\" y=\"" + fmt("%.0f", H - 6) + "\">" + std::to_string(f0) + "</text>";
-  s += "<text x=\"" + fmt("%.0f", W - R) + "\" y=\"" + fmt("%.0f", H - 6) + "\" text-anchor=\"end\">" + std::to_string(f1) + "</text>";
-  s += "<text x=\"4\" y=\"" + fmt("%.1f", Y(hi) + 8) + "\">" + fmt("%.3g", hi) + "</text><text x=\"4\" y=\"" + fmt("%.1f", Y(lo)) + "\">" +
-       fmt("%.3g", lo) + "</text>";
+  s += "<text x=\"" + printfNumber("%.0f", L) + "\" y=\"" + printfNumber("%.0f", H - 6) + "\">" + std::to_string(f0) + "</text>";
+  s += "<text x=\"" + printfNumber("%.0f", W - R) + "\" y=\"" + printfNumber("%.0f", H - 6) + "\" text-anchor=\"end\">" + std::to_string(f1) + "</text>";
+  s += "<text x=\"4\" y=\"" + printfNumber("%.1f", Y(hi) + 8) + "\">" + printfNumber("%.3g", hi) + "</text><text x=\"4\" y=\"" + printfNumber("%.1f", Y(lo)) + "\">" +
+       printfNumber("%.3g", lo) + "</text>";
   return s + "</svg>";
 }
 
@@ -495,9 +466,9 @@ void writeHtml(const CheckInput& in, std::vector<CheckedPair>& pairs, const std:
     const rig::CheckFinding& f = *r.worst;
     CheckedPair& p = *r.pair;
     body += "<section class=\"" + std::string(rig::checkSeverityName(f.severity)) + "\"><h2>" +
-            xmlEscape((p.name.empty() ? "" : p.name + ": ") + f.rule + (f.where.empty() ? "" : " (" + f.where + ")")) + ", frame" +
+            render::htmlEscape((p.name.empty() ? "" : p.name + ": ") + f.rule + (f.where.empty() ? "" : " (" + f.where + ")")) + ", frame" +
             (r.first == r.last ? " " + std::to_string(r.first) : "s " + std::to_string(r.first) + "-" + std::to_string(r.last)) + "</h2>";
-    body += "<p>" + xmlEscape(std::string(rig::checkSeverityName(f.severity)) + " at frame " + std::to_string(f.frame) + ": " + f.text) + "</p>";
+    body += "<p>" + render::htmlEscape(std::string(rig::checkSeverityName(f.severity)) + " at frame " + std::to_string(f.frame) + ": " + f.text) + "</p>";
     // A baked shot has no scene to render a thumbnail from, nor a clip whose channels drive the measure.
     if (f.frame > 0 && rendered < kMaxRuns && p.clip) {
       const bool rider_rule = f.rule == "rider-in-horse" || f.rule == "hand-off-rein" || f.rule == "foot-off-stirrup" || f.rule == "trunk-balance";
@@ -536,12 +507,12 @@ void writeHtml(const CheckInput& in, std::vector<CheckedPair>& pairs, const std:
   }
   std::string unmeasured;
   for (const CheckedPair& p : pairs)
-    for (const std::string& u : p.unmeasured) unmeasured += "<li>" + xmlEscape((p.name.empty() ? "" : p.name + ": ") + u) + "</li>";
+    for (const std::string& u : p.unmeasured) unmeasured += "<li>" + render::htmlEscape((p.name.empty() ? "" : p.name + ": ") + u) + "</li>";
   const std::string title = "stirrup check: " + in.source;
-  std::string html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + xmlEscape(title) +
+  std::string html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + render::htmlEscape(title) +
                      "</title><style>body{font-family:sans-serif;margin:2em}section{border-top:1px solid #ccc;padding:.5em 0}"
                      "section.failure h2{color:#b00}section.warning h2{color:#a60}h2{font-size:1.1em}img,svg{vertical-align:top;margin-right:1em}"
-                     "</style></head><body>\n<h1>" + xmlEscape(title) + "</h1>\n<p>" + xmlEscape(in.described) + ".</p>\n" +
+                     "</style></head><body>\n<h1>" + render::htmlEscape(title) + "</h1>\n<p>" + render::htmlEscape(in.described) + ".</p>\n" +
                      (in.shot ? "<p>No thumbnails or channel plots: they need the scene the shot was baked from.</p>\n" : "") +
                      "<p>" + std::to_string(frames.size()) + " frames, " +
                      std::to_string(pairs.size()) + (pairs.size() == 1 ? " pair" : " pairs") + ": " + std::to_string(counts.failures) +
@@ -603,8 +574,8 @@ nlohmann::json addGaitFindings(const CheckOptions& o, const CheckInput& in, std:
   for (const rig::Verdict& v : rig::clipVerdicts(info, *ref)) {
     if (v.ok) continue;
     pairs[0].findings.push_back({0, 0, 0, rig::CheckSeverity::Warning, "gait", v.key, v.value, v.range.hi,
-                                 v.key + " " + fmt("%.4g", v.value) + " outside the " + o.reference + " reference's " + fmt("%.4g", v.range.lo) +
-                                     "-" + fmt("%.4g", v.range.hi) + (v.note.empty() ? "" : " (" + v.note + ")")});
+                                 v.key + " " + printfNumber("%.4g", v.value) + " outside the " + o.reference + " reference's " + printfNumber("%.4g", v.range.lo) +
+                                     "-" + printfNumber("%.4g", v.range.hi) + (v.note.empty() ? "" : " (" + v.note + ")")});
   }
   return rig::clipInfoJson(info, &*ref);
 }
@@ -654,7 +625,7 @@ void printText(const CheckInput& in, const std::vector<CheckedPair>& pairs, cons
     for (const std::string& u : p.unmeasured)
       std::printf("%s: %snot measured: %s\n", in.source.c_str(), p.name.empty() ? "" : (p.name + ": ").c_str(), u.c_str());
     for (const rig::CheckFinding& f : p.findings) {
-      const std::string where = f.frame > 0 ? "frame " + std::to_string(f.frame) + " (" + fmt("%.3f", f.time_s) + " s)" : "the clip";
+      const std::string where = f.frame > 0 ? "frame " + std::to_string(f.frame) + " (" + printfNumber("%.3f", f.time_s) + " s)" : "the clip";
       std::printf("%s: %s%s: %s: %s: %s\n", in.source.c_str(), where.c_str(), p.name.empty() ? "" : (", " + p.name).c_str(),
                   rig::checkSeverityName(f.severity), f.rule.c_str(), f.text.c_str());
     }

@@ -19,6 +19,7 @@
 #include "render/review/movie_set.h"
 #include "render/scene/preset.h"
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/frame_range.h"
 
 namespace stirrup::cli {
@@ -42,8 +43,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 // its movie, sheet and plot took, in the set's order. Written to a temporary name, then renamed.
 void writeTimings(const std::filesystem::path& file, const std::vector<render::MovieResult>& results,
                   const std::vector<double>& render_s, const std::vector<double>& finish_s) {
-  const std::filesystem::path partial = file.string() + ".partial";
-  {
+  rig::replaceFileAtomically(file, [&](const std::filesystem::path& partial) {
     std::ofstream o(partial);
     if (!o) throw InputError("--timings: " + file.string() + ": cannot write (does its folder exist?)");
     o << "movie\tframes\trender_s\tfinish_s\trender_s_per_frame\n";
@@ -55,8 +55,7 @@ void writeTimings(const std::filesystem::path& file, const std::vector<render::M
       o << line;
     }
     if (!o.flush()) throw InputError("--timings: " + file.string() + ": write failed");
-  }
-  std::filesystem::rename(partial, file);
+  });
 }
 
 void runMovies(const MoviesOptions& o) {

@@ -16,6 +16,7 @@
 #include "render/scene/profile_resolver.h"
 #include "render/scene/scene.h"
 #include "render/scene/shot_evaluator.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/ridden_pair.h"
 #include "rig/bake.h"
 #include "rig/io/frame_range.h"

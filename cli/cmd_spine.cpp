@@ -14,6 +14,7 @@
 #include "render/review/spine_plot.h"
 #include "rig/curve_spine.h"
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/spine_json.h"
 
 namespace stirrup::cli {
@@ -42,15 +43,7 @@ void runSpine(const SpineOptions& o) {
   if (o.output.empty()) {
     std::cout << out.dump(2) << '\n';
   } else {
-    const fs::path file = o.output, tmp = o.output + ".tmp";
-    if (!file.parent_path().empty()) fs::create_directories(file.parent_path());
-    {
-      std::ofstream f(tmp);
-      if (!f) throw InputError(file.string() + ": cannot write the file");
-      f << out.dump(2) << '\n';
-      if (!f.flush()) throw InputError(file.string() + ": write failed");
-    }
-    fs::rename(tmp, file);
+    rig::writeFileAtomically(o.output, out.dump(2) + "\n");
   }
   if (!o.plot.empty()) render::writeSpinePlot(results, o.plot);
 }

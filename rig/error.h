@@ -41,6 +41,13 @@ inline std::string numberText(double v) {
   return buf;
 }
 
+// A number in a report's own printf format ("%.1f"): one number a call, up to 63 characters.
+inline std::string printfNumber(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
 struct InputError : std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(oneLineMessage(message)) {}
 };

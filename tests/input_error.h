@@ -7,15 +7,16 @@
 
 namespace stirrup::test {
 
-// The InputError message that f throws, or "(no error)" when it throws none.
+// The InputError message that f throws, or `none` when it throws none. Each test file's own errorOf(INPUT)
+// is this over the reader it tests.
 template <typename F>
-std::string errorOf(F&& f) {
+std::string errorOf(F&& f, const char* none = "(no error)") {
   try {
     f();
   } catch (const InputError& e) {
     return e.what();
   }
-  return "(no error)";
+  return none;
 }
 
 }  // namespace stirrup::test

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/frame_range.h"
 #include "rig/io/json_fields.h"
 
@@ -19,17 +20,7 @@ namespace {
 
 // Written to a temporary name and renamed, like every frame: a reader never sees half a manifest.
 void writeTextAtomically(const fs::path& file, const std::string& text, fs::perms perms = fs::perms::none) {
-  fs::path tmp = file;
-  tmp += ".tmp";
-  {
-    std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
-    o << text;
-    if (!o.flush()) throw InputError(file.string() + ": cannot write");
-  }
-  if (perms != fs::perms::none) fs::permissions(tmp, perms, fs::perm_options::add);
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec) throw InputError(file.string() + ": cannot write (" + ec.message() + ")");
+  rig::writeFileAtomically(file, text, perms);
 }
 
 std::string commandLine(const std::vector<std::string>& argv) {

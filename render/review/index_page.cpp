@@ -1,4 +1,5 @@
 #include "render/review/index_page.h"
+#include "rig/io/atomic_file.h"
 
 #include <cctype>
 #include <fstream>
@@ -50,8 +51,7 @@ std::filesystem::path writeIndexPage(const std::filesystem::path& dir, const std
   namespace fs = std::filesystem;
   fs::create_directories(dir);
   const fs::path file = dir / "index.html";
-  const fs::path tmp = dir / "index.html.tmp";
-  {
+  rig::replaceFileAtomically(file, [&](const fs::path& tmp) {
     std::ofstream o(tmp);
     o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << htmlEscape(title)
       << "</title>\n<style>\n"
@@ -104,9 +104,8 @@ std::filesystem::path writeIndexPage(const std::filesystem::path& dir, const std
          "});\n"
          "</script>\n";
     o << "</body>\n</html>\n";
-    if (!o) throw std::runtime_error(file.string() + ": cannot write");
-  }
-  fs::rename(tmp, file);
+    if (!o.flush()) throw std::runtime_error(file.string() + ": cannot write");
+  });
   return file;
 }
 

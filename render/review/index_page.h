@@ -14,7 +14,8 @@ namespace stirrup::render {
 std::filesystem::path writeIndexPage(const std::filesystem::path& dir, const std::vector<MovieResult>& movies,
                                      const std::string& title = "stirrup review movies");
 
-// Escapes &, <, >, " and ' for HTML text and attributes.
+// Escapes &, <, >, " and ' for HTML and XML text and attributes (' as &#39;, which both read): the review
+// page, and check's JUnit, HTML and SVG reports.
 std::string htmlEscape(const std::string& s);
 
 }  // namespace stirrup::render

@@ -1,4 +1,5 @@
 #include "render/review/movie.h"
+#include "rig/io/atomic_file.h"
 
 #include <array>
 #include <cstdio>
@@ -27,7 +28,7 @@ void encodeMovie(const MovieRequest& r) {
   if (r.codec == MovieCodec::ProRes && ext != ".mov")
     throw std::runtime_error("movie " + r.output.string() + ": ProRes needs a .mov file");
   if (!r.output.parent_path().empty()) fs::create_directories(r.output.parent_path());
-  const fs::path tmp = r.output.string() + ".tmp" + r.output.extension().string();
+  const fs::path tmp = rig::temporaryFor(r.output, rig::TempName::KeepExtension);
   std::ostringstream fps;
   fps.precision(10);
   fps << r.fps;
@@ -54,26 +55,29 @@ void encodeMovie(const MovieRequest& r) {
       << " -color_range tv -colorspace bt709 -color_primaries bt709 -color_trc iec61966-2-1"
       << " -r " << fps.str() << " -movflags +faststart -f " << (ext == ".mov" ? "mov" : "mp4") << " "
       << shellQuote(tmp.string()) << " 2>&1";
-  FILE* pipe = popen(cmd.str().c_str(), "r");
-  if (!pipe) throw std::runtime_error("movie " + r.output.string() + ": cannot start ffmpeg");
-  std::string last, line;
-  std::array<char, 512> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe)) {
-    line = buf.data();
-    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-    if (!line.empty()) last = line;
-  }
-  const int status = pclose(pipe);
-  std::error_code ignored;
-  fs::remove(list, ignored);
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
-      throw std::runtime_error("movie " + r.output.string() + ": ffmpeg not found (run scripts/setup)");
-    throw std::runtime_error("movie " + r.output.string() + ": ffmpeg failed: " + last);
-  }
-  fs::rename(tmp, r.output);
+  // ffmpeg writes the temporary; it replaces the movie only when ffmpeg succeeded.
+  rig::replaceFileAtomically(
+      r.output,
+      [&](const fs::path&) {
+        FILE* pipe = popen(cmd.str().c_str(), "r");
+        if (!pipe) throw std::runtime_error("movie " + r.output.string() + ": cannot start ffmpeg");
+        std::string last, line;
+        std::array<char, 512> buf{};
+        while (fgets(buf.data(), static_cast<int>(buf.size()), pipe)) {
+          line = buf.data();
+          while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+          if (!line.empty()) last = line;
+        }
+        const int status = pclose(pipe);
+        std::error_code ignored;
+        fs::remove(list, ignored);
+        if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+          if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+            throw std::runtime_error("movie " + r.output.string() + ": ffmpeg not found (run scripts/setup)");
+          throw std::runtime_error("movie " + r.output.string() + ": ffmpeg failed: " + last);
+        }
+      },
+      rig::TempName::KeepExtension);
 }
 
 }  // namespace stirrup::render

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
 
 namespace stirrup::render {
 
@@ -58,15 +59,16 @@ void Canvas::paste(int x, int y, int w, int h, const std::vector<float>& rgb) {
 }
 
 void Canvas::write(const std::filesystem::path& file) const {
-  const std::filesystem::path tmp = file.string() + ".tmp" + file.extension().string();
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tmp.string());
-  const OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::UINT8);
-  if (!out || !out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb_.data()) ||
-      !out->close())
-    throw InputError(file.string() + ": cannot write the image");
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) throw InputError(file.string() + ": cannot write the image: " + ec.message());
+  rig::replaceFileAtomically(
+      file,
+      [&](const std::filesystem::path& tmp) {
+        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tmp.string());
+        const OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::UINT8);
+        if (!out || !out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb_.data()) ||
+            !out->close())
+          throw InputError(file.string() + ": cannot write the image");
+      },
+      rig::TempName::KeepExtension);
 }
 
 void Canvas::blend(int x, int y, double coverage, const Color& c) {

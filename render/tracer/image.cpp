@@ -14,6 +14,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
 
 namespace stirrup::render {
 namespace {
@@ -21,29 +22,23 @@ namespace {
 namespace fs = std::filesystem;
 
 // Writes `pixels` (interleaved float channels, or per-channel formats given in the spec) through
-// OIIO to FILE.tmp in `format`, then renames it to FILE. On any failure the temporary is removed.
+// OIIO to FILE.tmp in `format`, then renames it to FILE (rig/io/atomic_file.h). On any failure the
+// temporary is removed.
 void writeAtomically(const fs::path& file, const char* format, const OIIO::ImageSpec& spec,
                      OIIO::TypeDesc data_type, const void* pixels) {
-  fs::path tmp = file;
-  tmp += ".tmp";
   // The format is named explicitly: OIIO would otherwise guess it from the ".tmp" extension.
   auto out = OIIO::ImageOutput::create(format);
   if (!out) throw std::runtime_error("cannot write " + file.string() + ": no OpenImageIO " + format + " writer");
-  auto fail = [&](const std::string& what) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + file.string() + ": " + what);
-  };
-  if (!out->open(tmp.string(), spec)) fail(out->geterror());
-  if (!out->write_image(data_type, pixels)) {
-    const std::string err = out->geterror();
-    out->close();
-    fail(err);
-  }
-  if (!out->close()) fail(out->geterror());
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec) fail("rename: " + ec.message());
+  auto fail = [&](const std::string& what) { throw std::runtime_error("cannot write " + file.string() + ": " + what); };
+  rig::replaceFileAtomically(file, [&](const fs::path& tmp) {
+    if (!out->open(tmp.string(), spec)) fail(out->geterror());
+    if (!out->write_image(data_type, pixels)) {
+      const std::string err = out->geterror();
+      out->close();
+      fail(err);
+    }
+    if (!out->close()) fail(out->geterror());
+  });
 }
 
 }  // namespace

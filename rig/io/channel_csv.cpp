@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
 
 namespace stirrup::rig {
 namespace {
@@ -141,10 +142,9 @@ void writeChannelCsv(const std::filesystem::path& file, std::span<const std::str
   namespace fs = std::filesystem;
   if (frames.size() != rows.size())
     throw std::invalid_argument("writeChannelCsv: frames and rows differ in length");
-  const fs::path tmp = file.string() + ".tmp";
   std::error_code ec;
   if (!file.parent_path().empty()) fs::create_directories(file.parent_path(), ec);
-  try {
+  replaceFileAtomically(file, [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw InputError(file.string() + ": cannot write the file (expected a writable path)");
     out << "frame";
@@ -162,13 +162,7 @@ void writeChannelCsv(const std::filesystem::path& file, std::span<const std::str
     }
     out.flush();
     if (!out) throw InputError(file.string() + ": write failed (disk full?)");
-    out.close();
-    fs::rename(tmp, file, ec);
-    if (ec) throw InputError(file.string() + ": cannot write the file (" + ec.message() + ")");
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
-  }
+  });
 }
 
 void writeHorseCsv(const std::filesystem::path& file, std::span<const double> frames,

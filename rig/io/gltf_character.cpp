@@ -20,6 +20,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/horse_tack.h"
@@ -259,23 +260,6 @@ std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned
   if (!gltf.WriteGltfSceneToStream(&model, os, false, true)) throw std::runtime_error("glTF: cannot serialise the model");
   const std::string s = os.str();
   return std::vector<unsigned char>(s.begin(), s.end());
-}
-
-void writeFileAtomically(const std::filesystem::path& file, const std::vector<unsigned char>& bytes) {
-  namespace fs = std::filesystem;
-  if (!file.parent_path().empty()) fs::create_directories(file.parent_path());
-  fs::path tmp = file;
-  tmp += ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(file.string() + ": cannot write");
-    }
-  }
-  fs::rename(tmp, file);
 }
 
 int addCentimetreRoot(tinygltf::Model& model, const std::string& name) {

@@ -49,15 +49,13 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
 // Appends float data as a tightly packed buffer view and accessor; returns the accessor.
 int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<float>& values,
                         int components, bool minmax, int target = 0);
-// Adds a node `name` (scale 0.01): stirrup works in centimetres, glTF in metres, so joints hang
-// under it. Returns the node.
 // Appends 32-bit indices as a SCALAR element-array accessor; returns its index.
 int appendIndexAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<std::uint32_t>& indices);
+// Adds a node `name` (scale 0.01): stirrup works in centimetres, glTF in metres, so joints hang
+// under it. Returns the node.
 int addCentimetreRoot(tinygltf::Model& model, const std::string& name = "stirrup_cm");
 // Serialises a model whose binary data is `bin` as .glb bytes.
 std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned char> bin);
-// Writes bytes to a temporary name beside `file` and renames it when complete.
-void writeFileAtomically(const std::filesystem::path& file, const std::vector<unsigned char>& bytes);
 
 // The .glb bytes of one character.
 std::vector<unsigned char> characterGlb(const Character& character);

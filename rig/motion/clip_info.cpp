@@ -35,12 +35,6 @@ glm::dvec3 hoofWorld(const HorseFrame& f, int h, const std::array<glm::dvec2, 4>
   return {f.travel_cm + px * std::cos(a) - z * std::sin(a), f.ground_y_cm + py, f.travel_z_cm + px * std::sin(a) + z * std::cos(a)};
 }
 
-std::string fmt(const char* f, double a) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, a);
-  return buf;
-}
-
 }  // namespace
 
 HorseFrame mirrorLeftRight(const HorseFrame& f) {
@@ -322,10 +316,10 @@ void listProblems(const ClipInfoOptions& o, ClipInfo& info) {
   for (int h = 0; h < 4; ++h) {
     const HoofInfo& hi2 = info.hooves[h];
     if (hi2.max_slide_mm > o.slide_limit_mm)
-      info.problems.push_back(std::string(kHoofNames[h]) + " slides " + fmt("%.1f", hi2.max_slide_mm) +
-                              " mm in one frame while down (at " + fmt("%.2f", hi2.max_slide_at_s) + " s)");
+      info.problems.push_back(std::string(kHoofNames[h]) + " slides " + printfNumber("%.1f", hi2.max_slide_mm) +
+                              " mm in one frame while down (at " + printfNumber("%.2f", hi2.max_slide_at_s) + " s)");
     if (hi2.lowest_cm < -0.01)
-      info.problems.push_back(std::string(kHoofNames[h]) + " sinks " + fmt("%.1f", -hi2.lowest_cm) +
+      info.problems.push_back(std::string(kHoofNames[h]) + " sinks " + printfNumber("%.1f", -hi2.lowest_cm) +
                               " cm below the ground");
   }
 }
@@ -479,7 +473,7 @@ std::vector<Verdict> clipVerdicts(const ClipInfo& c, const GaitReference& ref) {
           const double away = phaseDistance(c.hooves[h].touchdown_phase, table);
           r = Range{derived, derived};
           note = "one-suspension phase (right hind .10 + Witte's hind stance at this stride; docs/horse-clips.md "
-                 "\"Gallop phases\"); the table's " + fmt("%.2f", table) + " is " + fmt("%.2f", away) + " away: " +
+                 "\"Gallop phases\"); the table's " + printfNumber("%.2f", table) + " is " + printfNumber("%.2f", away) + " away: " +
                  (away <= kTouchdownTolerance ? "ok" : "OUTSIDE");
         }
         const bool ok = phaseDistance(c.hooves[h].touchdown_phase, r) <= kTouchdownTolerance + 1e-9;
@@ -549,9 +543,9 @@ const Verdict* findVerdict(const std::vector<Verdict>& v, const std::string& key
 }
 
 std::string rangeText(const Range& r, const char* f) {
-  if (std::isinf(r.hi)) return "≥ " + fmt(f, r.lo);
-  if (r.lo == r.hi) return fmt(f, r.lo);
-  return fmt(f, r.lo) + (r.lo < 0.0 || r.hi < 0.0 ? ".." : "–") + fmt(f, r.hi);
+  if (std::isinf(r.hi)) return "≥ " + printfNumber(f, r.lo);
+  if (r.lo == r.hi) return printfNumber(f, r.lo);
+  return printfNumber(f, r.lo) + (r.lo < 0.0 || r.hi < 0.0 ? ".." : "–") + printfNumber(f, r.hi);
 }
 
 std::string verdictText(const Verdict* v, const char* f) {
@@ -583,7 +577,7 @@ std::string formatClipInfo(const ClipInfo& c, const GaitReference* ref) {
   s += line;
   const bool gait = ref && ref->periodic;
   s += "hoof     touchdown  duty   peak cm  lowest cm  slide mm/frame  stance slide cm   reference touchdown (±" +
-       fmt("%.2f", kTouchdownTolerance) + " stride), duty\n";
+       printfNumber("%.2f", kTouchdownTolerance) + " stride), duty\n";
   bool starred = false;
   for (int h = 0; h < 4; ++h) {
     const HoofInfo& hi = c.hooves[h];
@@ -603,13 +597,13 @@ std::string formatClipInfo(const ClipInfo& c, const GaitReference* ref) {
   if (starred) {
     const Verdict* lf = find("lfHoof.touchdown_phase");
     const Verdict* rf = find("rfHoof.touchdown_phase");
-    s += "  * gallop fore pair compared with the one-suspension phases " + fmt("%.3f", lf->range.lo) + "/" +
-         fmt("%.3f", rf->range.lo) + fmt(" at %.2f Hz", c.stride_hz) +
+    s += "  * gallop fore pair compared with the one-suspension phases " + printfNumber("%.3f", lf->range.lo) + "/" +
+         printfNumber("%.3f", rf->range.lo) + printfNumber(" at %.2f Hz", c.stride_hz) +
          " (right hind .10 + Witte's hind stance):\n"
          "    the table's .50/.60 with Witte's stance times give two suspensions where gait-reference counts one\n"
          "    (docs/horse-clips.md \"Gallop phases\"). Against the table's phases they are " +
-         fmt("%.2f", phaseDistance(c.hooves[0].touchdown_phase, ref->touchdown_phase[0])) + "/" +
-         fmt("%.2f", phaseDistance(c.hooves[1].touchdown_phase, ref->touchdown_phase[1])) + " away: " +
+         printfNumber("%.2f", phaseDistance(c.hooves[0].touchdown_phase, ref->touchdown_phase[0])) + "/" +
+         printfNumber("%.2f", phaseDistance(c.hooves[1].touchdown_phase, ref->touchdown_phase[1])) + " away: " +
          (phaseDistance(c.hooves[0].touchdown_phase, ref->touchdown_phase[0]) <= kTouchdownTolerance &&
                   phaseDistance(c.hooves[1].touchdown_phase, ref->touchdown_phase[1]) <= kTouchdownTolerance
               ? "ok"
@@ -621,7 +615,7 @@ std::string formatClipInfo(const ClipInfo& c, const GaitReference* ref) {
   s += "footfall order: " + (order.empty() ? std::string("(no full stride)") : order) + "\n";
   const auto row = [&](const char* label, const char* vf, double v, const char* key, const char* rf) {
     std::snprintf(line, sizeof line, "%-28s ", label);
-    s += line + fmt(vf, v) + "   reference " + (gait ? verdictText(find(key), rf) : std::string("-")) + "\n";
+    s += line + printfNumber(vf, v) + "   reference " + (gait ? verdictText(find(key), rf) : std::string("-")) + "\n";
   };
   row("stride frequency (Hz)", "%.3f", c.stride_hz, "stride_hz", "%.2f");
   row("stride length (cm)", "%.1f", c.stride_length_cm, "stride_length_cm", "%.0f");
@@ -660,7 +654,7 @@ std::string formatClipInfo(const ClipInfo& c, const GaitReference* ref) {
       const Verdict* v = find(key);
       if (!v) return;
       std::snprintf(line, sizeof line, "%-28s ", label);
-      s += line + fmt(vf, v->value) + "   reference " + verdictText(v, rf) + "  (" + why +
+      s += line + printfNumber(vf, v->value) + "   reference " + verdictText(v, rf) + "  (" + why +
            (v->note.empty() ? std::string() : "; " + v->note) + ")\n";
     };
     scripted("rear: peak pitch (deg)", "%.2f", "rear.peak_pitch_deg", "%.0f", "Kuhnel 5.4");

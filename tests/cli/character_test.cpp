@@ -24,6 +24,7 @@
 #include "rig/io/character_mapping.h"
 #include "rig/io/gltf_character.h"
 #include "tests/cli/run_command.h"
+#include "tests/test_files.h"
 
 namespace stirrup::test {
 namespace {
@@ -35,12 +36,7 @@ std::vector<char> readBytes(const fs::path& f) {
   return std::vector<char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-fs::path tempDir(const std::string& name) {
-  const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_character" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path tempDir(const std::string& name) { return stirrup::test::freshTestDir("test_character", name); }
 
 void expectGeneratorMatchesShipped(const std::string& kind) {
   const fs::path out = tempDir(kind) / (kind + ".glb");

@@ -18,5 +18,12 @@ TEST(InputError, ControlCharactersInTheMessageAreEscapedSoItStaysOneLine) {
   EXPECT_STREQ(InputError(once.what()).what(), once.what());
 }
 
+TEST(InputError, NumbersAreQuotedShortOrInAReportsOwnFormat) {
+  EXPECT_EQ(numberText(0.5), "0.5");
+  EXPECT_EQ(numberText(1e300), "1e+300");
+  EXPECT_EQ(printfNumber("%.1f", 1.26), "1.3");
+  EXPECT_EQ(printfNumber("%.0f cm", 41.6), "42 cm");
+}
+
 }  // namespace
 }  // namespace stirrup

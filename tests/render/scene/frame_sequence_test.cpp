@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::render {
 namespace {
@@ -19,12 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string errorOf(const fs::path& pattern) {
-  try {
-    FrameSequence::parse(pattern);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { FrameSequence::parse(pattern); }, "");
 }
 
 // printf's %0*d: zero-padded to the padding, never cut, the sign taking one place.

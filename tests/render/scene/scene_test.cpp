@@ -13,17 +13,13 @@
 #include "rig/motion/path_clip.h"
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::render {
 namespace {
 
 std::string errorOf(const std::string& json_text) {
-  try {
-    parseScene(nlohmann::json::parse(json_text), "scenes/x.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return stirrup::test::errorOf([&] { parseScene(nlohmann::json::parse(json_text), "scenes/x.json"); });
 }
 
 TEST(Scene, EmptySceneTakesEveryDefault) {

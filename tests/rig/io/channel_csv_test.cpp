@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
@@ -32,12 +33,7 @@ class ChannelCsv : public ::testing::Test {
   }
   std::string errorOf(const std::string& text) {
     const fs::path f = write(text);
-    try {
-      readHorseCsv(f);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "(no error)";
+    return stirrup::test::errorOf([&] { readHorseCsv(f); });
   }
   std::string file() const { return (dir_ / "horse.csv").string(); }
 };

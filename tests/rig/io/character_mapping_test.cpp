@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/input_error.h"
+#include "tests/test_files.h"
 
 namespace stirrup::rig {
 namespace {
@@ -23,12 +24,7 @@ using test::errorOf;
 
 const fs::path kCharacters = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "characters";
 
-fs::path tempDir(const std::string& name) {
-  const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_character_mapping" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path tempDir(const std::string& name) { return stirrup::test::freshTestDir("test_character_mapping", name); }
 
 fs::path writeJson(const fs::path& file, const nlohmann::json& j) {
   std::ofstream(file) << j.dump(2);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
@@ -41,12 +42,7 @@ TEST(FrameRange, ErrorsNameTheContextAndThePart) {
 }
 
 std::string errorOf(const std::string& spec) {
-  try {
-    parseFrameList(spec, "--frames");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(accepted)";
+  return stirrup::test::errorOf([&] { parseFrameList(spec, "--frames"); }, "(accepted)");
 }
 
 // The example: a typo of a hundred million frames is a one-line error, not std::bad_alloc.

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include "rig/io/atomic_file.h"
 #include "tests/rig/default_characters.h"
 #include <nlohmann/json.hpp>
 
@@ -20,6 +21,8 @@
 #include "rig/pose.h"
 #include "rig/characters/rider_character.h"
 #include "rig/skin.h"
+#include "tests/input_error.h"
+#include "tests/test_files.h"
 
 namespace stirrup::rig {
 namespace {
@@ -31,12 +34,7 @@ const fs::path kCharacters = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "characte
 using test::defaultHorse;
 using test::defaultRider;
 
-fs::path tempDir(const std::string& name) {
-  const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_gltf_character" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path tempDir(const std::string& name) { return stirrup::test::freshTestDir("test_gltf_character", name); }
 
 fs::path writeJson(const fs::path& file, const nlohmann::json& j) {
   std::ofstream(file) << j.dump(2);
@@ -44,12 +42,7 @@ fs::path writeJson(const fs::path& file, const nlohmann::json& j) {
 }
 
 std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { f(); }, "");
 }
 
 void expectSameCharacter(const Character& a, const Character& b) {

@@ -7,6 +7,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
@@ -22,12 +23,7 @@ tinygltf::Model withChildren(const std::vector<std::vector<int>>& children) {
 }
 
 std::string errorOf(const std::vector<std::vector<int>>& children) {
-  try {
-    gltfNodeParents(withChildren(children), "x.gltf");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return stirrup::test::errorOf([&] { gltfNodeParents(withChildren(children), "x.gltf"); });
 }
 
 TEST(GltfNodes, ParentsOfAForest) {

@@ -4,6 +4,7 @@
 // plants are down and those it lifts are not, and rig::PairCheck measures the same frame the same way.
 // A crowd's pairs come back by their names; a file that is no shot is left to the clip reader. The
 // command (`stirrup check SHOT.glb`, Blender's re-export) is tests/cli/check_test.cpp.
+#include "rig/io/atomic_file.h"
 #include "rig/io/gltf_shot.h"
 
 #include <algorithm>

@@ -10,6 +10,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
@@ -75,12 +76,7 @@ fs::path writeGltf(const std::string& name, const std::vector<float>& positions,
 }
 
 std::string errorOf(const fs::path& f) {
-  try {
-    (void)loadTerrainGltf(f, "scene.json: terrain.file");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { (void)loadTerrainGltf(f, "scene.json: terrain.file"); }, "");
 }
 
 // Metres to centimetres, through the nodes' transforms: a 20 m square ramp rising 2 m, scaled by 2

@@ -22,6 +22,8 @@
 #include "rig/io/character_mapping.h"
 #include "rig/characters/horse_tack.h"
 #include "rig/io/gltf_character.h"
+#include "tests/input_error.h"
+#include "tests/test_files.h"
 
 namespace stirrup::rig {
 namespace {
@@ -29,12 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-fs::path tempDir(const std::string& name) {
-  const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_gltf_texture" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path tempDir(const std::string& name) { return stirrup::test::freshTestDir("test_gltf_texture", name); }
 
 std::vector<unsigned char> readBytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -42,12 +39,7 @@ std::vector<unsigned char> readBytes(const fs::path& file) {
 }
 
 std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { f(); }, "");
 }
 
 // The sRGB transfer undone, as IEC 61966-2-1 writes it, for an 8-bit code.

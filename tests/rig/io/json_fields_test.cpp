@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup {
 namespace {
@@ -28,12 +29,7 @@ class JsonFile : public ::testing::Test {
     return f;
   }
   std::string errorOf(const std::string& text) {
-    try {
-      readJsonFile(write(text));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "(no error)";
+    return stirrup::test::errorOf([&] { readJsonFile(write(text)); });
   }
 };
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
@@ -16,12 +17,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 std::string errorOf(std::vector<glm::dvec2> points) {
-  try {
-    GroundPath path(std::move(points), "scene.json: clip.path");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { GroundPath path(std::move(points), "scene.json: clip.path"); }, "");
 }
 
 TEST(GroundPath, AStraightLineIsItself) {

@@ -17,6 +17,7 @@
 #include "rig/pose.h"
 #include "rig/rider_rig.h"
 #include "rig/rig_profile.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
@@ -75,12 +76,7 @@ std::shared_ptr<const Terrain> meshOfHills(double x0, double x1, double z0, doub
 }
 
 std::string errorOf(PathClipParams p, std::shared_ptr<const Terrain> terrain = nullptr) {
-  try {
-    (void)PathClip(std::move(p), std::move(terrain), "scene.json: clip");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { (void)PathClip(std::move(p), std::move(terrain), "scene.json: clip"); }, "");
 }
 
 glm::dvec3 hoofWorld(const std::vector<glm::mat4>& w, int h) {

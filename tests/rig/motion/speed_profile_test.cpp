@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
@@ -15,12 +16,7 @@ using Key = SpeedProfile::Key;
 using Over = SpeedProfile::Over;
 
 std::string errorOf(std::vector<Key> keys, Over over = Over::Time) {
-  try {
-    SpeedProfile p(std::move(keys), over, 10.0, "scene.json: clip");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { SpeedProfile p(std::move(keys), over, 10.0, "scene.json: clip"); }, "");
 }
 
 TEST(SpeedProfile, ASteadySpeedCoversSpeedTimesTime) {

@@ -8,17 +8,13 @@
 
 #include "rig/error.h"
 #include "rig/motion/terrain.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
 
 std::string errorOf(std::vector<glm::dvec3> v, std::vector<std::uint32_t> i) {
-  try {
-    (void)TerrainMesh(std::move(v), std::move(i), "ground.glb");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { (void)TerrainMesh(std::move(v), std::move(i), "ground.glb"); }, "");
 }
 
 // A 10 m square ramp rising 1 cm per 10 cm along +X, as two triangles: every height on it is known.

@@ -8,17 +8,13 @@
 #include <gtest/gtest.h>
 
 #include "rig/error.h"
+#include "tests/input_error.h"
 
 namespace stirrup::rig {
 namespace {
 
 std::string errorOf(HillsParams p) {
-  try {
-    (void)Terrain::hills(p, "scene.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return stirrup::test::errorOf([&] { (void)Terrain::hills(p, "scene.json"); }, "");
 }
 
 TEST(Terrain, FlatIsZeroEverywhere) {
