@@ -28,7 +28,6 @@ void encodeMovie(const MovieRequest& r) {
   if (r.codec == MovieCodec::ProRes && ext != ".mov")
     throw std::runtime_error("movie " + r.output.string() + ": ProRes needs a .mov file");
   if (!r.output.parent_path().empty()) fs::create_directories(r.output.parent_path());
-  const fs::path tmp = rig::temporaryFor(r.output, rig::TempName::KeepExtension);
   std::ostringstream fps;
   fps.precision(10);
   fps << r.fps;
@@ -53,12 +52,12 @@ void encodeMovie(const MovieRequest& r) {
               ? std::string(" -c:v prores_ks -profile:v 3 -vendor apl0 -pix_fmt yuv422p10le")
               : " -c:v libx264 -preset medium -crf " + std::to_string(r.crf) + " -pix_fmt yuv420p")
       << " -color_range tv -colorspace bt709 -color_primaries bt709 -color_trc iec61966-2-1"
-      << " -r " << fps.str() << " -movflags +faststart -f " << (ext == ".mov" ? "mov" : "mp4") << " "
-      << shellQuote(tmp.string()) << " 2>&1";
+      << " -r " << fps.str() << " -movflags +faststart -f " << (ext == ".mov" ? "mov" : "mp4") << " ";
   // ffmpeg writes the temporary; it replaces the movie only when ffmpeg succeeded.
   rig::replaceFileAtomically(
       r.output,
-      [&](const fs::path&) {
+      [&](const fs::path& tmp) {
+        cmd << shellQuote(tmp.string()) << " 2>&1";
         FILE* pipe = popen(cmd.str().c_str(), "r");
         if (!pipe) throw std::runtime_error("movie " + r.output.string() + ": cannot start ffmpeg");
         std::string last, line;
