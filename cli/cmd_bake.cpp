@@ -1,5 +1,5 @@
 // stirrup bake SCENE: evaluates the clip and the rider rig for every frame of the scene, for every pair
-// of it (render/scene/shot_evaluator.h: one horse and rider, or a crowd's); --channels writes them as CSV,
+// of it (scene/shot_evaluator.h: one horse and rider, or a crowd's); --channels writes them as CSV,
 // -o writes the posed characters, their animation and the cameras as glTF 2.0 (docs/round-trip.md), or
 // with --rider-only the rider's motion alone, for the user's rider rig. A crowd bakes into one glTF
 // with two armatures a pair (docs/crowds.md); its CSV and rider-only files are one a pair.
@@ -8,21 +8,21 @@
 #include <filesystem>
 #include <vector>
 
-#include "render/scene/camera.h"
 #include "cli/commands.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "render/scene/shot_bake.h"
-#include "render/scene/shot_evaluator.h"
 #include "rig/bake.h"
+#include "rig/error.h"
 #include "rig/io/atomic_file.h"
 #include "rig/io/channel_csv.h"
-#include "rig/error.h"
-#include "rig/io/frame_range.h"
 #include "rig/io/gltf_bake.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_rider_motion.h"
 #include "rig/rig_profile.h"
+#include "scene/camera.h"
+#include "scene/frame_range.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
+#include "scene/shot_bake.h"
+#include "scene/shot_evaluator.h"
 
 namespace stirrup::cli {
 namespace {
@@ -37,7 +37,7 @@ struct BakeOptions {
   int detail = 0;
 };
 
-// The whole shot as one glTF (render/scene/shot_bake.h).
+// The whole shot as one glTF (scene/shot_bake.h).
 void writeBakedGlb(render::ShotEvaluator& characters, const std::vector<int>& frames, int level, const std::string& output) {
   rig::writeFileAtomically(output, rig::bakedShotGlb(render::bakeShot(characters, frames, level)));
 }

@@ -23,15 +23,15 @@
 #include <tbb/info.h>
 
 #include "cli/commands.h"
+#include "render/shot.h"
 #include "render/tracer/frame_writer.h"
 #include "render/tracer/image.h"
-#include "render/scene/preset.h"
 #include "render/tracer/sample_lanes.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "render/shot.h"
-#include "rig/io/frame_range.h"
 #include "rig/rig_profile.h"
+#include "scene/frame_range.h"
+#include "scene/preset.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 
 namespace stirrup::cli {
 namespace {
@@ -326,7 +326,7 @@ void runSceneBench(const BenchOptions& o) {
               "trace) over the built-in trot's at the same preset, measured frame for frame in turn with it;\n"
               "x flat: over the same frame of the shot on flat ground (a scene with a terrain), likewise;\n"
               "skin kv/f, refit kt/f: thousands of vertices skinned and triangles refitted a frame (kt/pair: per\n"
-              "pair); levels: pairs at full, half and quarter detail a frame (render/scene/detail_level.h);\n"
+              "pair); levels: pairs at full, half and quarter detail a frame (scene/detail_level.h);\n"
               "overlapped: each frame's bake, pose and skin run while the frame before it traces; wait: after a\n"
               "trace, waiting for the next frame's evaluation; png: the zlib level the frames were written at;\n"
               "peak MB: the process's peak resident memory; set-up: making the shot, of which reading, seating\n"

@@ -4,7 +4,7 @@
 // stirrup character make humanoid [--pose t|a|relaxed] [--names ...] ... -o FILE.glb: a standing test
 // character written the way other tools write theirs (docs/characters.md, "Test characters").
 // stirrup character map FILE.glb --as rider|horse [-o MAP.json] [--preview P.png]: maps a user's
-// character by itself (rig/io/auto_mapping.h), prints what it chose, writes the mapping file, and
+// character by itself (rig/mapping/auto_mapping.h), prints what it chose, writes the mapping file, and
 // renders the character on the default horse (or the horse under the default rider) through the
 // normal pipeline (docs/characters.md, "Mapping by itself").
 #include <charconv>
@@ -22,19 +22,20 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "render/tracer/image.h"
-#include "render/scene/preset.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
 #include "render/shot.h"
-#include "rig/error.h"
+#include "render/tracer/image.h"
+#include "rig/characters/character_params.h"
 #include "rig/characters/horse_tack.h"
+#include "rig/characters/standing_humanoid.h"
+#include "rig/error.h"
 #include "rig/io/atomic_file.h"
-#include "rig/io/auto_mapping.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_humanoid.h"
-#include "rig/characters/character_params.h"
-#include "rig/characters/standing_humanoid.h"
+#include "rig/io/gltf_mapping.h"
+#include "rig/mapping/auto_mapping.h"
+#include "scene/preset.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 
 namespace stirrup::cli {
 namespace {

@@ -28,17 +28,12 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "render/review/index_page.h"
-#include "render/tracer/image.h"
-#include "render/scene/preset.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
 #include "render/shot.h"
-#include "render/scene/shot_evaluator.h"
+#include "render/tracer/image.h"
 #include "rig/bake.h"
 #include "rig/error.h"
 #include "rig/frame_check.h"
 #include "rig/io/atomic_file.h"
-#include "rig/io/frame_range.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/io/gltf_shot.h"
 #include "rig/motion/clip_info.h"
@@ -46,6 +41,11 @@
 #include "rig/motion/path_clip.h"
 #include "rig/pose.h"
 #include "rig/rig_profile.h"
+#include "scene/frame_range.h"
+#include "scene/preset.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
+#include "scene/shot_evaluator.h"
 
 namespace stirrup::cli {
 namespace {
@@ -71,7 +71,7 @@ constexpr std::array<const char*, 9> kRules = {"limit",          "over-reach",  
                                                "hand-off-rein", "foot-off-stirrup", "trunk-balance", "gait"};
 
 // One horse and rider of the shot, as it is checked: the characters, clip and profile the shot's
-// evaluator gives it (render/scene/shot_evaluator.h; a crowd pair's at full detail), or a baked shot's
+// evaluator gives it (scene/shot_evaluator.h; a crowd pair's at full detail), or a baked shot's
 // file holds.
 struct CheckedPair {
   std::string name;  // "" for a single pair; "pair 3" in a crowd; a baked shot's own ("pair03")

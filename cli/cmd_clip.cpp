@@ -12,16 +12,16 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "rig/io/clip_factory.h"
-#include "rig/motion/clip_info.h"
-#include "rig/motion/crowd.h"
-#include "rig/motion/path_clip.h"
-#include "render/scene/scene.h"
-#include "render/scene/shot_evaluator.h"
 #include "rig/error.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/io/json_fields.h"
 #include "rig/io/keyed_horse_clip.h"
+#include "rig/motion/clip_info.h"
+#include "rig/motion/crowd.h"
+#include "rig/motion/path_clip.h"
+#include "scene/clip_factory.h"
+#include "scene/scene.h"
+#include "scene/shot_evaluator.h"
 
 namespace stirrup::cli {
 namespace {

@@ -6,9 +6,9 @@
 #include <map>
 
 #include "cli/commands.h"
-#include "render/scene/frame_sequence.h"
 #include "render/review/image_diff.h"
 #include "rig/error.h"
+#include "scene/frame_sequence.h"
 
 namespace stirrup::cli {
 namespace {

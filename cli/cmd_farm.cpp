@@ -12,15 +12,15 @@
 #include "cli/commands.h"
 #include "cli/movie_set_options.h"
 #include "cli/options.h"
-#include "render/scene/data_dir.h"
-#include "render/scene/preset.h"
-#include "render/scene/profile_resolver.h"
 #include "render/farm/farm_jobs.h"
 #include "render/farm/farm_shots.h"
 #include "render/farm/slurm.h"
 #include "render/review/burn_in.h"
-#include "render/scene/scene.h"
 #include "rig/error.h"
+#include "scene/data_dir.h"
+#include "scene/preset.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 
 namespace stirrup::cli {
 namespace {

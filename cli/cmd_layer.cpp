@@ -11,12 +11,12 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "render/scene/frame_sequence.h"
-#include "render/tracer/image.h"
 #include "render/review/layer.h"
-#include "render/scene/scene.h"
+#include "render/tracer/image.h"
 #include "rig/error.h"
-#include "rig/io/frame_range.h"
+#include "scene/frame_range.h"
+#include "scene/frame_sequence.h"
+#include "scene/scene.h"
 
 namespace stirrup::cli {
 namespace {

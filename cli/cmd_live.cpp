@@ -1,4 +1,4 @@
-// stirrup live SCENE: the rider kept on a horse another tool keys live (rig/io/live_rider.h), over a
+// stirrup live SCENE: the rider kept on a horse another tool keys live (scene/live_rider.h), over a
 // line protocol on stdin and stdout: the Blender add-on's Live toggle (docs/blender.md, "Live").
 //
 //   out, once:   {"ready": true, "horse_joints": [...], "rider_joints": [...], "first": F0, "last": F1, "fps": FPS}
@@ -19,12 +19,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
 #include "rig/error.h"
-#include "rig/io/frame_range.h"
-#include "rig/io/live_rider.h"
-#include "rig/io/ridden_pair.h"
+#include "scene/frame_range.h"
+#include "scene/live_rider.h"
+#include "scene/profile_resolver.h"
+#include "scene/ridden_pair.h"
+#include "scene/scene.h"
 
 namespace stirrup::cli {
 namespace {

@@ -11,16 +11,16 @@
 #include <tuple>
 
 #include "cli/commands.h"
-#include "cli/progress.h"
 #include "cli/movie_set_options.h"
 #include "cli/options.h"
-#include "render/scene/data_dir.h"
+#include "cli/progress.h"
 #include "render/review/index_page.h"
 #include "render/review/movie_set.h"
-#include "render/scene/preset.h"
 #include "rig/error.h"
 #include "rig/io/atomic_file.h"
-#include "rig/io/frame_range.h"
+#include "scene/data_dir.h"
+#include "scene/frame_range.h"
+#include "scene/preset.h"
 
 namespace stirrup::cli {
 namespace {

@@ -7,21 +7,21 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "cli/output_folder.h"
 #include "cli/options.h"
+#include "cli/output_folder.h"
 #include "cli/progress.h"
 #include "render/farm/farm_shots.h"
-#include "render/scene/file_shot.h"
-#include "render/scene/frame_sequence.h"
+#include "render/review/movie.h"
+#include "render/shot.h"
 #include "render/tracer/frame_writer.h"
 #include "render/tracer/image.h"
-#include "render/review/movie.h"
-#include "render/scene/preset.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "render/shot.h"
 #include "rig/error.h"
-#include "rig/io/frame_range.h"
+#include "scene/file_shot.h"
+#include "scene/frame_range.h"
+#include "scene/frame_sequence.h"
+#include "scene/preset.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 
 namespace stirrup::cli {
 namespace {
@@ -50,7 +50,7 @@ struct RenderOptions {
 };
 
 // What renders: a scene's pairs evaluated, or a glTF shot's as the file keys them
-// (render/scene/file_shot.h), both through one evaluator and one tracer.
+// (scene/file_shot.h), both through one evaluator and one tracer.
 struct RenderInput {
   render::SceneSpec scene;
   std::optional<render::FileShot> file;

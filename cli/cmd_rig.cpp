@@ -13,20 +13,20 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "render/scene/shot_evaluator.h"
-#include "rig/io/atomic_file.h"
-#include "rig/io/ridden_pair.h"
 #include "rig/bake.h"
-#include "rig/io/frame_range.h"
-#include "rig/io/gltf_character.h"
-#include "rig/io/clip_factory.h"
-#include "rig/pose.h"
-#include "rig/io/channel_csv.h"
-#include "rig/io/rig_profile_json.h"
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
+#include "rig/io/channel_csv.h"
+#include "rig/io/gltf_character.h"
+#include "rig/pose.h"
 #include "rig/rider_rig.h"
+#include "scene/clip_factory.h"
+#include "scene/frame_range.h"
+#include "scene/profile_resolver.h"
+#include "scene/ridden_pair.h"
+#include "scene/rig_profile_json.h"
+#include "scene/scene.h"
+#include "scene/shot_evaluator.h"
 
 namespace stirrup::cli {
 namespace {
@@ -71,7 +71,7 @@ void runParams(const RigOptions& o) {
 // the trunk's world lean as the channels pose it and as the stage leaves it (measured from the posed
 // pelvis and neck joints), and the stage's terms; then sideways, the turn's tilt the stage answers, the
 // horse's roll and her lean from the world's vertical, measured on the posed joints. Every pair is posed
-// by the shot's evaluator (render/scene/shot_evaluator.h) with its own profile, the scene's overrides and
+// by the shot's evaluator (scene/shot_evaluator.h) with its own profile, the scene's overrides and
 // then --set applied.
 void runBalance(const RigOptions& o) {
   render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});

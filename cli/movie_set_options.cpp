@@ -7,9 +7,9 @@
 #include <tuple>
 
 #include "cli/options.h"
-#include "render/scene/data_dir.h"
-#include "render/scene/preset.h"
 #include "rig/error.h"
+#include "scene/data_dir.h"
+#include "scene/preset.h"
 
 namespace stirrup::cli {
 namespace fs = std::filesystem;

@@ -6,17 +6,13 @@
 #include <future>
 #include <stdexcept>
 
-#include "render/scene/detail_level.h"
-#include "render/scene/fence.h"
-#include "rig/io/frame_range.h"
+#include "render/tracer/stopwatch.h"
+#include "scene/detail_level.h"
+#include "scene/fence.h"
+#include "scene/frame_range.h"
 
 namespace stirrup::render {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 glm::dvec3 toVec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 

@@ -1,8 +1,8 @@
 // A shot: one scene seen through one of its cameras. Renders any frame on its own, running the whole
-// pipeline for that frame: the characters evaluated (render/scene/shot_evaluator.h: sample clip -> evaluate
+// pipeline for that frame: the characters evaluated (scene/shot_evaluator.h: sample clip -> evaluate
 // rider controls -> pose -> skin, for every pair of the scene, a single pair being a crowd of one), then
 // traced. Each pair's two meshes are their own geometries in the one Embree scene; a crowd's pairs each
-// at the level of detail its size on screen asks for. The camera (render/scene/shot_camera.h) follows the
+// at the level of detail its size on screen asks for. The camera (scene/shot_camera.h) follows the
 // pair CameraSpec::follow_pair names exactly as a single pair's camera follows its horse, or with none,
 // the crowd's middle (rig/motion/crowd_middle_clip.h), and a view then frames every pair.
 #pragma once
@@ -12,14 +12,14 @@
 #include <optional>
 #include <vector>
 
-#include "render/scene/camera.h"
 #include "render/tracer/renderer.h"
-#include "render/scene/scene.h"
-#include "render/scene/shot_camera.h"
-#include "render/scene/shot_evaluator.h"
 #include "rig/bake.h"
 #include "rig/character.h"
 #include "rig/motion/procedural_gait.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "scene/shot_camera.h"
+#include "scene/shot_evaluator.h"
 
 namespace stirrup::render {
 
@@ -56,7 +56,7 @@ struct FrameTimings {
   uint64_t rays = 0;   // camera, shadow and sky rays of the frame
   size_t triangles = 0;             // shown (refitted), every pair at its level
   uint64_t skinned_vertices = 0;    // of the horses and riders shown
-  std::array<int, 3> pairs_at_level{};  // a crowd's pairs at each level of detail (render/scene/detail_level.h)
+  std::array<int, 3> pairs_at_level{};  // a crowd's pairs at each level of detail (scene/detail_level.h)
 };
 
 // Where a shot's set-up went (ms, wall clock): reading, seating and building the characters and their
@@ -102,10 +102,10 @@ class Shot {
   const FrameTimings& lastTimings() const { return timings_; }
   const SetupTimings& setupTimings() const { return setup_; }
 
-  // The render camera at a frame (follow cameras travel with the horse; render/scene/camera_motion.h).
+  // The render camera at a frame (follow cameras travel with the horse; scene/camera_motion.h).
   Camera cameraAt(const rig::BakedFrame& baked) const;
   Camera cameraAtFrame(int frame) const;
-  // The camera as resolved: a view camera (render/scene/view.h) framed from the characters' bounds over
+  // The camera as resolved: a view camera (scene/view.h) framed from the characters' bounds over
   // the clip when the Shot was made.
   const CameraSpec& camera() const { return camera_->spec(); }
   // World positions of every `stride`-th skinned vertex of the horse and the rider at a frame, as it
@@ -121,7 +121,7 @@ class Shot {
     rigid_rider_ = rigid;
     ahead_frame_.reset();
   }
-  // A crowd's levels of detail (render/scene/detail_level.h): -1 (the default) picks each pair's level from
+  // A crowd's levels of detail (scene/detail_level.h): -1 (the default) picks each pair's level from
   // its size on screen; 0 to 2 draws every pair at that level (benchmarks, the switch's test).
   void setDetailLevel(int level);
 

@@ -5,12 +5,11 @@
 #include <string>
 
 #include "rig/rider_rig.h"
+#include "rig/units.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
-constexpr double kGravityCmS2 = 980.665;  // standard gravity
 
 // Segment masses, percent of body mass, women (Plagenhoef, Evans and Abdelnour 1983, "Anatomical data
 // for analyzing human motion", Res. Q. Exerc. Sport 54(2)): trunk, head and neck, and one arm (upper
@@ -23,7 +22,7 @@ double soft(double x, double band) { return band > 0.0 ? band * std::tanh(x / ba
 }  // namespace
 
 double leanDegrees(glm::vec3 v, glm::vec3 forward) {
-  return std::atan2(double(glm::dot(v, forward)), double(v.y)) * kDeg;
+  return std::atan2(double(glm::dot(v, forward)), double(v.y)) * kDegreesPerRadian;
 }
 
 glm::vec3 saddleHeading(const glm::mat4& saddle) {
@@ -41,7 +40,7 @@ double horseRollDegrees(const Character& horse, std::span<const glm::mat4> world
     return glm::vec3(world[std::size_t(horse.roles.count(pivot) ? horse.role(pivot) : horse.role(std::string(leg) + "Upper"))][3]);
   };
   const glm::vec3 across = hip("rb") - hip("lb");
-  return std::atan2(-double(across.y), std::hypot(double(across.x), double(across.z))) * kDeg;
+  return std::atan2(-double(across.y), std::hypot(double(across.x), double(across.z))) * kDegreesPerRadian;
 }
 
 double trunkComHeight(const Character& rider) {
@@ -72,9 +71,9 @@ BalanceResult balanceTrunk(const BalanceInput& in, const RigProfile::Balance& p)
   const glm::vec3 base = (in.stirrups - in.seat) * float(p.stirrup_share);
   const glm::vec3 saddle_x = glm::normalize(glm::vec3(in.saddle[0]));
   const double h = std::max(in.com_height_cm, 1.0);
-  out.support_lean_deg = (std::atan2(double(glm::dot(base, forward)), h) - std::atan2(double(glm::dot(base, saddle_x)), h)) * kDeg;
+  out.support_lean_deg = (std::atan2(double(glm::dot(base, forward)), h) - std::atan2(double(glm::dot(base, saddle_x)), h)) * kDegreesPerRadian;
   // 2b. Balanced against gravity and the travel's acceleration.
-  out.inertia_lean_deg = std::atan2(p.inertia_share * in.accel_cm_s2, kGravityCmS2) * kDeg;
+  out.inertia_lean_deg = std::atan2(p.inertia_share * in.accel_cm_s2, kStandardGravityCmS2) * kDegreesPerRadian;
   // 3. The band.
   // 2c. Against the ground's slope.
   //     The support term (2.) already holds her trunk's centre of mass over her feet as the slope pitches
@@ -95,7 +94,7 @@ BalanceResult balanceTrunk(const BalanceInput& in, const RigProfile::Balance& p)
 }
 
 double turnTiltDegrees(double side_accel_cm_s2, const RigProfile::Balance& p) {
-  return p.amount * p.turn_share * std::atan2(side_accel_cm_s2, kGravityCmS2) * kDeg;
+  return p.amount * p.turn_share * std::atan2(side_accel_cm_s2, kStandardGravityCmS2) * kDegreesPerRadian;
 }
 
 RiderChannels answerTiltedVertical(const RiderChannels& r, const HorseChannels& horse, const RigProfile& profile,

@@ -1,6 +1,7 @@
 // A character: a skeleton, the mesh it moves, and the joints that posing jobs look up by role.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -14,6 +15,9 @@
 #include "rig/skeleton.h"
 
 namespace stirrup::rig {
+
+// A horse's four hoof roles, in the channels' leg order (left fore, right fore, left hind, right hind).
+inline constexpr std::array<const char*, 4> kHoofRoles = {"lfHoof", "rfHoof", "lbHoof", "rbHoof"};
 
 // Where a character read from a file came from, so what stirrup makes of it can be written back in
 // the file's own terms (rig/io/gltf_rider_motion.h).
@@ -46,7 +50,7 @@ struct Character {
     // The widest the horse is within one cell of (x, y) (-inf outside the table).
     float widthNear(float x, float y) const;
   } leg_guard;
-  // A rider the rig seated on a horse (rig/io/ridden_pair.h) keeps her head and trunk out of the
+  // A rider the rig seated on a horse (scene/ridden_pair.h) keeps her head and trunk out of the
   // horse's neck and head as she folds forward (a tall rider in a rear meets the poll): sample points
   // of her upper body and of the horse's neck and head, each rigid on its joint, and the room posing
   // keeps between them (rig/pose.h). Empty: no guard (a rider modelled seated, the generated one among them).

@@ -48,6 +48,13 @@ inline std::string printfNumber(const char* format, double v) {
   return buf;
 }
 
+// `v` with `digits` decimals (printf's %.*f).
+inline std::string fixedNumber(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
 struct InputError : std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(oneLineMessage(message)) {}
 };

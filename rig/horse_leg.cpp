@@ -6,12 +6,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "rig/ik.h"
+#include "rig/units.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-constexpr float kDeg = kPi / 180.0f;
 // Bisection steps for the stretch fraction: 2^-24 of the stretch, far below a micron of reach.
 constexpr int kStretchSteps = 24;
 
@@ -69,17 +68,17 @@ VirtualChain virtualChain(const RestLeg& r, bool two_part_upper, bool fore, cons
     c.l_ps = glm::length(r.shoulder - r.pivot);
     c.l_su = glm::length(r.upper - r.shoulder);
     c.sigma0 = angleAt(r.shoulder, r.pivot, r.upper);
-    c.sigma1 = std::max(c.sigma0, p.shoulder_open_deg * kDeg);
+    c.sigma1 = std::max(c.sigma0, p.shoulder_open_deg * kRadiansPerDegreeF);
   } else {
     c.a_rigid = glm::length(r.upper - r.pivot);
   }
   c.l_um = glm::length(r.middle - r.upper);
   c.l_mf = glm::length(r.fetlock - r.middle);
   c.kappa0 = angleAt(r.middle, r.upper, r.fetlock);
-  c.kappa1 = std::max(c.kappa0, (fore ? p.knee_open_deg : p.hock_open_deg) * kDeg);
+  c.kappa1 = std::max(c.kappa0, (fore ? p.knee_open_deg : p.hock_open_deg) * kRadiansPerDegreeF);
   c.b_max = c.l_um + c.l_mf - 2.0f * p.soften_cm;
   c.gamma0 = angleAt(r.upper, r.pivot, r.fetlock);
-  c.gamma1 = std::max(c.gamma0, p.line_open_deg * kDeg);
+  c.gamma1 = std::max(c.gamma0, p.line_open_deg * kRadiansPerDegreeF);
   return c;
 }
 
@@ -102,7 +101,7 @@ glm::mat4 hoofRoll(const HorseLegTarget& t, glm::vec3 n, glm::vec3 forward, glm:
   const float psi = std::acos(std::clamp(cos_psi, -1.0f, 1.0f));
   const float psi0 = std::atan2(glm::dot(n, glm::cross(q_p, f_p)), glm::dot(q_p, f_p));
   if (std::abs(psi0) <= psi) return glm::mat4(1.0f);
-  const float roll = std::clamp((psi0 > 0 ? psi : -psi) - psi0, -p.roll_max_deg * kDeg, p.roll_max_deg * kDeg);
+  const float roll = std::clamp((psi0 > 0 ? psi : -psi) - psi0, -p.roll_max_deg * kRadiansPerDegreeF, p.roll_max_deg * kRadiansPerDegreeF);
   return glm::translate(glm::mat4(1.0f), contact) * glm::rotate(glm::mat4(1.0f), roll, n) *
          glm::translate(glm::mat4(1.0f), -contact);
 }
@@ -126,7 +125,7 @@ int horseLegShoulder(const Skeleton& s, int pivot, int upper) {
     const glm::vec3 before = s.restPosition(s.joints[path[i]].parent), at = s.restPosition(path[i]);
     const glm::vec3 after = s.restPosition(path[i + 1]);
     if (glm::length(at - before) <= 0.0f || glm::length(after - at) <= 0.0f) continue;
-    if (kPi - angleAt(at, before, after) > kInLineDeg * kDeg) return path[i];
+    if (kPiF - angleAt(at, before, after) > kInLineDeg * kRadiansPerDegreeF) return path[i];
   }
   return -1;
 }

@@ -22,7 +22,7 @@ void skinMesh(const SkinnedMesh& mesh, const Skeleton& skel, std::span<const glm
               std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals);
 
 // The positions alone of every `stride`-th vertex (0, stride, 2 stride, ...), to the bit as skinMesh
-// places them: what framing a view from the characters' vertices needs (render/scene/view.h), without
+// places them: what framing a view from the characters' vertices needs (scene/view.h), without
 // the normals' per-vertex inverse. `positions` is resized to ceil(vertices / stride). Throws
 // std::invalid_argument when jointWorld is not one per joint or stride < 1.
 void skinPositions(const SkinnedMesh& mesh, const Skeleton& skel, std::span<const glm::mat4> jointWorld, int stride,

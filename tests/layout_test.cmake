@@ -3,8 +3,10 @@
 #   rig              the runtime: channels, clips, the rider rig, curve spine, IK, skeleton, pose, skinning
 #   rig/characters   the character generators and the seating of a user's rider
 #   rig/motion       horse motion: gaits, movements, paths, terrain, crowds, limits, clip analysis
-#   rig/io           files: glTF, JSON and CSV readers and writers, the clip factory
-#   render/scene     the scene document and its evaluation without pixels (evaluator, cameras, bakes)
+#   rig/mapping      a user's skeleton mapped to the rig's roles: conventions, topology, auto mapping
+#   rig/io           files: glTF, JSON and CSV readers and writers
+#   scene            the scene document, read in this one place, and its evaluation without pixels
+#                    (clip factory, profiles, ridden pairs, evaluator, cameras, bakes)
 #   render/tracer    the ray tracer (Embree, the integrator and its lanes, images)
 #   render           the shot: evaluated frames traced
 #   render/review    review material: movies, layers, sheets, plots, diffs
@@ -12,27 +14,30 @@
 #   cli              the program, every subcommand
 # A file may include its own folder and any folder below it, never one above, so the include graph of
 # the folders has no cycle. A folder with sources that is not in the list is a violation too (a new
-# folder must be given its place).
+# folder must be given its place). The commands that draw no pixel (STIRRUP_NO_PIXELS: bake, rig,
+# clip) include nothing of render/ either.
 # Run as `cmake -DSOURCE_DIR=... -P layout_test.cmake`; each violation prints one line naming the file,
 # the line, the include and the two layers, and the script fails. With -DSELF_TEST=ON it checks a
 # scratch tree instead holding a planted cycle (rig/ and rig/io/ including each other), a tracer file
-# including the review, a library file including the program and a folder outside the order, and fails
-# unless exactly those four are caught (so the check cannot pass idly).
+# including the review, a library file including the program, a scene file including the tracer, a
+# pixel-free command including render/ and a folder outside the order, and fails unless exactly those
+# six are caught (so the check cannot pass idly).
 #
 # With -DCHECK=mirrored_tests it checks instead that tests mirror the source tree file for file: every
-# library source, rig/**.cpp and render/**.cpp (not the program, cli/), has its test file
+# library source, rig/**.cpp, scene/*.cpp and render/**.cpp (not the program, cli/), has its test file
 # tests/<the same path>_test.cpp. With -DSELF_TEST=ON as well, a scratch tree with one source lacking
 # its test file (and a program file without one, which is allowed) must give exactly that one.
 cmake_minimum_required(VERSION 3.25)
 
-set(STIRRUP_LAYERS rig rig/characters rig/motion rig/io render/scene render/tracer render render/review render/farm cli)
+set(STIRRUP_LAYERS rig rig/characters rig/motion rig/mapping rig/io scene render/tracer render render/review render/farm cli)
+set(STIRRUP_NO_PIXELS cli/cmd_bake.cpp cli/cmd_rig.cpp cli/cmd_clip.cpp)
 
 # Appends one line to out_var for every include, in every source and header under `root`'s layers, of a
 # project file in a layer above the including file's, and for every folder of sources outside the order.
 function(check_tree root out_var)
   set(violations)
-  file(GLOB_RECURSE all RELATIVE "${root}" "${root}/rig/*.h" "${root}/rig/*.cpp" "${root}/render/*.h"
-       "${root}/render/*.cpp" "${root}/cli/*.h" "${root}/cli/*.cpp")
+  file(GLOB_RECURSE all RELATIVE "${root}" "${root}/rig/*.h" "${root}/rig/*.cpp" "${root}/scene/*.h"
+       "${root}/scene/*.cpp" "${root}/render/*.h" "${root}/render/*.cpp" "${root}/cli/*.h" "${root}/cli/*.cpp")
   set(unplaced)
   foreach(rel IN LISTS all)
     get_filename_component(folder "${rel}" DIRECTORY)
@@ -48,19 +53,21 @@ function(check_tree root out_var)
     set(n 0)
     foreach(line IN LISTS lines)
       math(EXPR n "${n} + 1")
-      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*\"((rig|render|cli)/[^\"]*)\"")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*\"((rig|scene|render|cli)/[^\"]*)\"")
         set(included "${CMAKE_MATCH_1}")
         get_filename_component(to "${included}" DIRECTORY)
         list(FIND STIRRUP_LAYERS "${to}" other)
         if(other GREATER own)
           list(APPEND violations "${rel}:${n}: #include \"${included}\": ${folder} includes ${to}, a layer above it")
+        elseif(rel IN_LIST STIRRUP_NO_PIXELS AND included MATCHES "^render/")
+          list(APPEND violations "${rel}:${n}: #include \"${included}\": a command that draws no pixel includes render/")
         endif()
       endif()
     endforeach()
   endforeach()
   list(LENGTH all n_all)
   if(n_all EQUAL 0)
-    list(APPEND violations "${root}: no sources found under rig/, render/ or cli/ (wrong SOURCE_DIR?)")
+    list(APPEND violations "${root}: no sources found under rig/, scene/, render/ or cli/ (wrong SOURCE_DIR?)")
   endif()
   set(${out_var} ${violations} PARENT_SCOPE)
 endfunction()
@@ -69,7 +76,7 @@ endfunction()
 # `root` without its mirrored test file.
 function(check_mirrored_tests root out_var)
   set(missing)
-  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/rig/*.cpp" "${root}/render/*.cpp")
+  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/rig/*.cpp" "${root}/scene/*.cpp" "${root}/render/*.cpp")
     foreach(src IN LISTS sources)
     string(REGEX REPLACE "\\.cpp$" "_test.cpp" test "${src}")
     if(NOT EXISTS "${root}/tests/${test}")
@@ -113,7 +120,7 @@ if(CHECK STREQUAL "mirrored_tests")
     list(LENGTH missing n)
     message(FATAL_ERROR "layout check: ${n} library source(s) without their test file")
   endif()
-  message(STATUS "layout check: every library source under rig/ and render/ has its tests/..._test.cpp")
+  message(STATUS "layout check: every library source under rig/, scene/ and render/ has its tests/..._test.cpp")
   return()
 endif()
 
@@ -122,28 +129,34 @@ if(SELF_TEST)
   set(root "${CMAKE_CURRENT_BINARY_DIR}/layout_self_test_${tag}")
   # A cycle: the runtime's pose.h includes a glTF reader that includes pose.h back; only the upward
   # edge is a violation. Then a tracer file including the review (an include indented, spaced), a
-  # review file including the program, and a folder nobody placed. Includes that keep to the order
-  # (the reader including the runtime, the shot including the tracer and scene) must pass.
-  file(MAKE_DIRECTORY "${root}/rig/io" "${root}/render/tracer" "${root}/render/review" "${root}/render/extra")
+  # review file including the program, the scene including the tracer, the bake command including the
+  # renderer, and a folder nobody placed. Includes that keep to the order (the reader including the
+  # runtime, the shot including the tracer and scene, the bake command the scene) must pass.
+  file(MAKE_DIRECTORY "${root}/rig/io" "${root}/scene" "${root}/render/tracer" "${root}/render/review" "${root}/render/extra"
+       "${root}/cli")
   file(WRITE "${root}/rig/pose.h" "#pragma once\n#include \"rig/skeleton.h\"\n#include \"rig/io/gltf_clip.h\"\n")
   file(WRITE "${root}/rig/io/gltf_clip.h" "#pragma once\n#include \"rig/pose.h\"\n")
   file(WRITE "${root}/render/tracer/image.cpp" "#include \"render/tracer/image.h\"\n  #  include \"render/review/text.h\"\n")
-  file(WRITE "${root}/render/shot.cpp" "#include \"render/tracer/renderer.h\"\n#include \"render/scene/scene.h\"\n")
+  file(WRITE "${root}/render/shot.cpp" "#include \"render/tracer/renderer.h\"\n#include \"scene/scene.h\"\n")
+  file(WRITE "${root}/scene/view.cpp" "#include \"rig/pose.h\"\n#include \"render/tracer/image.h\"\n")
+  file(WRITE "${root}/cli/cmd_bake.cpp" "#include \"scene/scene.h\"\n#include \"render/shot.h\"\n")
   file(WRITE "${root}/render/review/movie.cpp" "#include \"render/shot.h\"\n#include \"cli/options.h\"\n")
   file(WRITE "${root}/render/extra/thing.cpp" "#include \"rig/pose.h\"\n")
   check_tree("${root}" violations)
   file(REMOVE_RECURSE "${root}")
   set(expected
+    "cli/cmd_bake.cpp:2: #include \"render/shot.h\": a command that draws no pixel includes render/"
     "render/extra/: a folder of sources with no place in the layer order (tests/layout_test.cmake STIRRUP_LAYERS)"
     "render/review/movie.cpp:2: #include \"cli/options.h\": render/review includes cli, a layer above it"
     "render/tracer/image.cpp:2: #include \"render/review/text.h\": render/tracer includes render/review, a layer above it"
-    "rig/pose.h:3: #include \"rig/io/gltf_clip.h\": rig includes rig/io, a layer above it")
+    "rig/pose.h:3: #include \"rig/io/gltf_clip.h\": rig includes rig/io, a layer above it"
+    "scene/view.cpp:2: #include \"render/tracer/image.h\": scene includes render/tracer, a layer above it")
   list(SORT violations)
   if(NOT violations STREQUAL expected)
     string(REPLACE ";" "\n  " got "${violations}")
-    message(FATAL_ERROR "layout check self-test: expected exactly the 4 planted violations, got:\n  ${got}")
+    message(FATAL_ERROR "layout check self-test: expected exactly the 6 planted violations, got:\n  ${got}")
   endif()
-  message(STATUS "layout check self-test: the planted cycle and the 3 other planted violations caught, nothing else")
+  message(STATUS "layout check self-test: the planted cycle and the 5 other planted violations caught, nothing else")
   return()
 endif()
 

@@ -8,7 +8,7 @@
 
 #include "render/farm/slurm.h"
 #include "rig/error.h"
-#include "rig/io/frame_range.h"
+#include "scene/frame_range.h"
 
 namespace stirrup::render::farm {
 namespace fs = std::filesystem;

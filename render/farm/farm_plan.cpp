@@ -9,8 +9,8 @@
 
 #include "rig/error.h"
 #include "rig/io/atomic_file.h"
-#include "rig/io/frame_range.h"
 #include "rig/io/json_fields.h"
+#include "scene/frame_range.h"
 
 namespace stirrup::render::farm {
 namespace fs = std::filesystem;

@@ -27,7 +27,7 @@ struct FarmChunk {
   std::vector<std::string> files;  // what it writes, relative to the output folder
 };
 
-// A `render` shot's view camera as framed once when the plan was made (render/scene/view.h): every
+// A `render` shot's view camera as framed once when the plan was made (scene/view.h): every
 // chunk's task reads it (stirrup render --camera-plan) instead of framing the view again, about a
 // second a chunk. `key` names what the framing read (render/farm/farm_shots.h framingKey): a task
 // whose scene, size or profile differs refuses the camera.

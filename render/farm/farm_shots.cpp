@@ -11,14 +11,14 @@
 #include <map>
 #include <system_error>
 
-#include "render/scene/frame_sequence.h"
-#include "render/scene/scene.h"
-#include "render/scene/shot_camera.h"
-#include "render/scene/shot_evaluator.h"
-#include "render/scene/view.h"
 #include "rig/error.h"
-#include "rig/io/frame_range.h"
-#include "rig/io/rig_profile_json.h"
+#include "scene/frame_range.h"
+#include "scene/frame_sequence.h"
+#include "scene/rig_profile_json.h"
+#include "scene/scene.h"
+#include "scene/shot_camera.h"
+#include "scene/shot_evaluator.h"
+#include "scene/view.h"
 
 namespace stirrup::render::farm {
 namespace fs = std::filesystem;

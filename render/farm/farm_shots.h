@@ -10,8 +10,8 @@
 
 #include "render/farm/farm_plan.h"
 #include "render/review/movie_set.h"
-#include "render/scene/scene.h"
 #include "rig/rig_profile.h"
+#include "scene/scene.h"
 
 namespace stirrup::render::farm {
 
@@ -38,7 +38,7 @@ FarmPlan planRender(const FarmRequest& request, const std::filesystem::path& sce
 // image's size and the resolved rig profile. A camera planned for one key is refused for another.
 std::string framingKey(const SceneSpec& scene, const rig::RigProfile& profile);
 // `camera` (a view camera of `scene`) framed now, as the characters and the clip place it
-// (render/scene/shot_camera.h), for a plan; none for a camera without a view (nothing to frame).
+// (scene/shot_camera.h), for a plan; none for a camera without a view (nothing to frame).
 std::optional<PlannedCamera> planCamera(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
                                         int threads = 0);
 // The camera a shot renders with instead of framing `camera` again: its view's preset with the

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <ctime>
 
-#include "render/scene/frame_sequence.h"
 #include "render/review/text.h"
+#include "scene/frame_sequence.h"
 
 namespace stirrup::render {
 namespace {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "render/scene/frame_sequence.h"
 #include "render/review/plot_canvas.h"
+#include "scene/frame_sequence.h"
 
 namespace stirrup::render {
 

@@ -9,8 +9,8 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "render/scene/frame_sequence.h"
 #include "rig/error.h"
+#include "scene/frame_sequence.h"
 
 namespace stirrup::render {
 

@@ -20,8 +20,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
-#include "render/scene/reference_spec.h"
 #include "render/tracer/image.h"
+#include "scene/reference_spec.h"
 
 namespace stirrup::render {
 
@@ -149,7 +149,7 @@ std::vector<Image> cutPlate(const Image& plate, const PlateGrid& grid, const std
 std::vector<Image> cutPlate(const std::filesystem::path& plate_file, const PlateGrid& grid);
 
 // ---------------------------------------------------------------------------------------------------
-// ReferenceSpec, a scene's "reference" block, is in render/scene/reference_spec.h.
+// ReferenceSpec, a scene's "reference" block, is in scene/reference_spec.h.
 
 // True when the reference's file (or the first frame of its pattern) exists; a layered movie against
 // a missing reference is skipped with a message, not an error.

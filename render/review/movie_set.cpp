@@ -11,28 +11,28 @@
 #include "render/review/burn_in.h"
 #include "render/review/channel_plot.h"
 #include "render/review/contact_sheet.h"
-#include "render/scene/frame_sequence.h"
+#include "render/review/layer.h"
+#include "render/shot.h"
 #include "render/tracer/frame_writer.h"
 #include "render/tracer/image.h"
-#include "render/review/layer.h"
-#include "render/scene/preset.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "render/shot.h"
-#include "render/scene/shot_evaluator.h"
-#include "rig/io/clip_factory.h"
+#include "rig/error.h"
 #include "rig/motion/crowd.h"
 #include "rig/motion/shifted_clip.h"
-#include "rig/error.h"
-#include "rig/io/frame_range.h"
 #include "rig/rig_profile.h"
+#include "scene/clip_factory.h"
+#include "scene/frame_range.h"
+#include "scene/frame_sequence.h"
+#include "scene/preset.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
+#include "scene/shot_evaluator.h"
 
 namespace stirrup::render {
 namespace {
 
 namespace fs = std::filesystem;
 
-// The scene's own reference block, when the scene format has one (render/scene/reference_spec.h ReferenceSpec).
+// The scene's own reference block, when the scene format has one (scene/reference_spec.h ReferenceSpec).
 template <typename S>
 std::optional<ReferenceSpec> sceneReference(const S& scene) {
   if constexpr (requires { scene.reference; }) {

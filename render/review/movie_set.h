@@ -24,7 +24,7 @@ struct MovieJob {
 };
 
 // ../shared beside the repository: $STIRRUP_SHARED_DIR when set, else DATA_DIR/../shared (in a build
-// tree the data folder is the source tree, render/scene/data_dir.h; an installed stirrup needs the variable).
+// tree the data folder is the source tree, scene/data_dir.h; an installed stirrup needs the variable).
 std::filesystem::path sharedDir(const std::filesystem::path& source_dir);
 
 // The default set for the scenes in `scenes_dir`; gallop_layered only when `reference_dir` (the shared
@@ -34,7 +34,7 @@ std::vector<MovieJob> defaultMovieSet(const std::filesystem::path& scenes_dir,
 
 struct MovieOptions {
   std::filesystem::path out = "out/movies";
-  std::string preset = "review";  // render/scene/preset.h
+  std::string preset = "review";  // scene/preset.h
   int width = 0, height = 0;      // 0: the scene's resolution
   int frames_limit = 0;           // > 0: only the first N frames of each movie (quick looks, tests)
   bool mp4 = true;                // NAME.mp4, H.264 yuv420p CRF 18

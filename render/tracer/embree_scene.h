@@ -79,7 +79,7 @@ class EmbreeScene {
   // Overwrites the mesh's vertices in Embree's own buffer and marks the scene for commit.
   void setVertices(unsigned geom_id, std::span<const glm::vec3> positions);
   // Takes a mesh out of the scene (rays pass it) or puts it back, from the next commit; a crowd's pair
-  // shows one of its levels of detail (render/scene/detail_level.h). Refit: a mesh put back is built over its
+  // shows one of its levels of detail (scene/detail_level.h). Refit: a mesh put back is built over its
   // rest pose again before it is refitted to its vertices, so its tree is the same whatever frames were
   // rendered before.
   void setEnabled(unsigned geom_id, bool enabled);

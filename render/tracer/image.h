@@ -18,8 +18,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "render/scene/camera.h"
-#include "render/scene/png_compression.h"  // the zlib levels writePng takes
+#include "scene/camera.h"
+#include "scene/png_compression.h"  // the zlib levels writePng takes
 
 namespace stirrup::render {
 

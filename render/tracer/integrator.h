@@ -14,7 +14,6 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "render/scene/camera.h"
 #include "render/tracer/embree_scene.h"
 #include "render/tracer/lights.h"
 #include "render/tracer/renderer.h"
@@ -24,6 +23,7 @@
 #include "render/tracer/terrain_mesh.h"
 #include "rig/motion/terrain.h"
 #include "rig/texture.h"
+#include "scene/camera.h"
 
 namespace stirrup::render {
 

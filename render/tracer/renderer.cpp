@@ -22,12 +22,10 @@
 #endif
 
 #include "render/tracer/integrator.h"
+#include "render/tracer/stopwatch.h"
 
 namespace stirrup::render {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 constexpr int kTileSize = 16;
 

@@ -21,13 +21,13 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "render/scene/camera.h"
 #include "render/tracer/embree_scene.h"
 #include "render/tracer/image.h"
 #include "render/tracer/lights.h"
 #include "render/tracer/terrain_mesh.h"
 #include "rig/motion/terrain.h"
 #include "rig/texture.h"
+#include "scene/camera.h"
 
 namespace stirrup::render {
 

@@ -9,16 +9,16 @@
 #include <span>
 #include <vector>
 
-#include "rig/error.h"
-#include "rig/horse_body.h"
 #include "rig/characters/implicit_body.h"
 #include "rig/characters/joint_placement.h"
 #include "rig/characters/tube.h"
+#include "rig/error.h"
+#include "rig/horse_body.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kInfF = std::numeric_limits<float>::infinity();
 
 // The joint that moves a triangle (or a vertex: a = b = c) most: the largest summed weight.
 int dominantJoint(const SkinnedMesh& m, std::initializer_list<std::uint32_t> vertices) {
@@ -103,7 +103,7 @@ struct SeatPlace {
 
 // The highest surface a vertical line through (x, z) meets on the mesh, and the joint moving it (-inf: none).
 std::pair<float, int> topSurface(const SkinnedMesh& m, float x, float z) {
-  float top = -kInf;
+  float top = -kInfF;
   int top_joint = -1;
   for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
     const std::uint32_t ia = m.indices[t], ib = m.indices[t + 1], ic = m.indices[t + 2];
@@ -126,12 +126,12 @@ std::pair<float, int> topSurface(const SkinnedMesh& m, float x, float z) {
 // between them, or (a simple model) rises gently: either way its centre is between them.
 constexpr float kOwnSeatMidlineCm = 4.0f;
 std::optional<glm::vec3> ownSeat(const SkinnedMesh& m, const std::vector<char>& own, float mid_z) {
-  float lo = kInf, hi = -kInf;
+  float lo = kInfF, hi = -kInfF;
   for (std::size_t v = 0; v < own.size(); ++v)
     if (own[v]) lo = std::min(lo, m.positions[v].x), hi = std::max(hi, m.positions[v].x);
   if (!(hi - lo > 4.0f)) return std::nullopt;
   const int bins = static_cast<int>(std::ceil((hi - lo) / 2.0f));
-  std::vector<float> top(std::size_t(bins), -kInf);
+  std::vector<float> top(std::size_t(bins), -kInfF);
   for (std::size_t v = 0; v < own.size(); ++v) {
     const glm::vec3& q = m.positions[v];
     if (!own[v] || std::abs(q.z - mid_z) > kOwnSeatMidlineCm) continue;
@@ -141,15 +141,15 @@ std::optional<glm::vec3> ownSeat(const SkinnedMesh& m, const std::vector<char>& 
   const auto highest = [&](int from, int to) {
     int best = -1;
     for (int b = from; b < to; ++b)
-      if (top[std::size_t(b)] > -kInf && (best < 0 || top[std::size_t(b)] > top[std::size_t(best)])) best = b;
+      if (top[std::size_t(b)] > -kInfF && (best < 0 || top[std::size_t(b)] > top[std::size_t(best)])) best = b;
     return best;
   };
   const int cantle = highest(0, bins / 2), pommel = highest(bins / 2, bins);
   if (cantle < 0 || pommel < 0) return std::nullopt;
   int centre = (cantle + pommel) / 2;
-  for (int d = 0; top[std::size_t(centre)] == -kInf && d < bins; ++d)  // the nearest slice with a surface
+  for (int d = 0; top[std::size_t(centre)] == -kInfF && d < bins; ++d)  // the nearest slice with a surface
     for (int b : {centre - d, centre + d})
-      if (b >= 0 && b < bins && top[std::size_t(b)] > -kInf) {
+      if (b >= 0 && b < bins && top[std::size_t(b)] > -kInfF) {
         centre = b;
         break;
       }
@@ -184,20 +184,20 @@ SeatPlace placeSeat(const Character& horse, const std::string& file, const Horse
   const std::string where = " at x = " + std::to_string(static_cast<int>(std::lround(seat_x))) +
                             " cm, a saddle's place behind the withers (check roles " + named("root") + ", " + named("neck1") +
                             ", " + named("lfUpper") + " and " + named("rfUpper") + ", or map the tack roles to joints of the horse's own)";
-  if (top == -kInf) throw InputError(file + ": no back to put a saddle on: the mesh has no surface over the midline" + where);
+  if (top == -kInfF) throw InputError(file + ": no back to put a saddle on: the mesh has no surface over the midline" + where);
   int back_joint = top_joint;
   while (back_joint >= 0 && !place.onBack(back_joint)) back_joint = s.joints[back_joint].parent;
   if (back_joint < 0) back_joint = body.back_turn >= 0 ? body.back_turn : root;
   place.back_joint = back_joint;
   place.top = top;
   // The barrel there: the section of the body's skin (its chain's joints: the legs and neck left out).
-  float bottom = kInf, half_width = 0.0f;
+  float bottom = kInfF, half_width = 0.0f;
   for (const glm::vec3& q : sectionAt(m, seat_x, [&](int j) { return place.onBack(j); })) {
     if (q.y > top + 1.0f) continue;
     bottom = std::min(bottom, q.y);
     half_width = std::max(half_width, std::abs(q.z - place.mid_z));
   }
-  if (bottom == kInf || !(top - bottom > 1.0f) || !(half_width > 1.0f))
+  if (bottom == kInfF || !(top - bottom > 1.0f) || !(half_width > 1.0f))
     throw InputError(file + ": no barrel under the saddle: no surface of the body's joints" + where);
   place.bottom = bottom;
   place.half_width = half_width;
@@ -275,7 +275,7 @@ HeadFrame headFrame(const Character& horse, const std::string& file) {
     h.axis = {a.x, a.y, 0.0f};
     h.jaw = {a.y, -a.x, 0.0f};  // the axis turned a quarter clockwise (+X forward, +Y up): level -> down
   }
-  float lo = kInf, hi = -kInf;
+  float lo = kInfF, hi = -kInfF;
   for (const glm::vec3& q : skin) lo = std::min(lo, glm::dot(q - h.poll, h.axis)), hi = std::max(hi, glm::dot(q - h.poll, h.axis));
   h.front = hi;
   h.length = hi - lo;
@@ -316,7 +316,7 @@ glm::vec3 addBridle(SkinnedMesh& tack, const Character& horse, const HeadFrame& 
   const int head = horse.role("head");
   const float bit_along = h.front * (1.0f - kBitBehindMuzzle);
   const std::vector<glm::vec3> at_bit = headSection(m, h, bit_along);
-  float up = kInf, down = -kInf;  // across the head: toward the crest (-jaw) and the jaw
+  float up = kInfF, down = -kInfF;  // across the head: toward the crest (-jaw) and the jaw
   for (const glm::vec3& q : at_bit) up = std::min(up, glm::dot(q - h.poll, h.jaw)), down = std::max(down, glm::dot(q - h.poll, h.jaw));
   if (at_bit.empty()) up = down = 0.0f;
   const float bit_depth = down - 0.3f * (down - up);
@@ -348,7 +348,7 @@ glm::vec3 addBridle(SkinnedMesh& tack, const Character& horse, const HeadFrame& 
 // The horse's half-width at (x, y) from the midline: its skin's section there, within `slab` cm up or
 // down (-inf: no skin there).
 float bodyHalfWidth(const SkinnedMesh& m, float x, float y, float mid_z, float slab) {
-  float w = -kInf;
+  float w = -kInfF;
   for (const glm::vec3& q : sectionAt(m, x, [](int j) { return j >= 0; }))
     if (std::abs(q.y - y) <= slab) w = std::max(w, std::abs(q.z - mid_z));
   return w;
@@ -364,10 +364,10 @@ void carryReinOut(const SkinnedMesh& m, glm::vec3 from, glm::vec3 to, float mid_
     glm::vec3 q = from + (to - from) * (float(k) / kSamples);
     const float w = bodyHalfWidth(m, q.x, q.y, mid_z, 3.0f);
     const float need = w + radius + kReinClearanceCm;
-    if (w == -kInf || std::abs(q.z - mid_z) >= need) continue;
+    if (w == -kInfF || std::abs(q.z - mid_z) >= need) continue;
     q.z = mid_z + need * side;
     int j = -1;
-    float best = kInf;
+    float best = kInfF;
     for (std::uint32_t v = 0; v < m.positions.size(); ++v)
       if (const float d = glm::length(m.positions[v] - q); d < best) best = d, j = dominantJoint(m, {v});
     pts.push_back({q, j});
@@ -392,7 +392,7 @@ void addReins(SkinnedMesh& tack, const Character& horse, const HeadFrame& h, con
   const std::vector<glm::vec3> neck_section = sectionAt(m, rein_x, [&](int j) {
     return j >= 0 && (at.onBack(j) || std::find(body.neck.begin(), body.neck.end(), j) != body.neck.end());
   });
-  float neck_lo = kInf, neck_hi = -kInf;
+  float neck_lo = kInfF, neck_hi = -kInfF;
   for (const glm::vec3& q : neck_section) neck_lo = std::min(neck_lo, q.y), neck_hi = std::max(neck_hi, q.y);
   const float rein_y = neck_section.empty() ? nj.y : neck_hi - 0.4f * (neck_hi - neck_lo);
   float neck_half = 0.0f;

@@ -12,19 +12,19 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "rig/characters/rider_character.h"
 #include "rig/error.h"
 #include "rig/ik.h"
-#include "rig/skin.h"
 #include "rig/loose_tack.h"
 #include "rig/pose.h"
-#include "rig/characters/rider_character.h"
+#include "rig/skin.h"
+#include "rig/units.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
-float radians(float degrees) { return degrees * kPi / 180.0f; }
-float degrees(float radians) { return radians * 180.0f / kPi; }
+float toRadians(float degrees) { return degrees * kPiF / 180.0f; }
+float toDegrees(float radians) { return radians * 180.0f / kPiF; }
 
 // Segment lengths as fractions of stature (Drillis and Contini 1966, "Body segment parameters",
 // Report 1166-03, New York University; the figure in Winter, Biomechanics and Motor Control of Human
@@ -70,7 +70,7 @@ glm::mat4 translate(glm::vec3 t) { return glm::translate(glm::mat4(1.0f), t); }
 glm::vec3 apply(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
 glm::vec3 mirror(glm::vec3 v, float side) { return {v.x, v.y, v.z * side}; }  // side -1 left, +1 right
 
-std::optional<int> optionalRole(const Character& c, const std::string& role) {
+std::optional<int> roleIfMapped(const Character& c, const std::string& role) {
   const auto it = c.roles.find(role);
   if (it == c.roles.end()) return std::nullopt;
   return it->second;
@@ -141,7 +141,7 @@ void addMissingPoints(Character& c, const std::vector<glm::vec3>& mesh, float st
     const std::string n = side;
     const int wrist = c.role(n + "Wrist"), ankle = c.role(n + "Ankle");
     // Grip.
-    const auto hand = optionalRole(c, n + "Hand");
+    const auto hand = roleIfMapped(c, n + "Hand");
     if (!hand || *hand == wrist) {
       if (hand) c.roles.erase(n + "Hand");
       const std::vector<char> below = subtree(s, wrist);
@@ -164,7 +164,7 @@ void addMissingPoints(Character& c, const std::vector<glm::vec3>& mesh, float st
     }
     // Sole: under the ball of the foot, on the sole's surface (the tread carries the sole, not a joint
     // inside the foot).
-    const auto ball = optionalRole(c, n + "Ball");
+    const auto ball = roleIfMapped(c, n + "Ball");
     const bool named_ball = ball && *ball != ankle;
     if (named_ball && !sole_under_ball) continue;
     if (ball && !named_ball) c.roles.erase(n + "Ball");
@@ -257,7 +257,7 @@ double trunkBendLean(const Character& rider) {
   localToWorld(rider.skeleton, local, world);
   const glm::vec3 d = glm::vec3(world[rider.role("neck")][3] - world[rider.role("pelvis")][3]);
   const glm::vec3 rest = rider.skeleton.restPosition(rider.role("neck")) - rider.skeleton.restPosition(rider.role("pelvis"));
-  return degrees(std::atan2(d.x, d.y)) - degrees(std::atan2(rest.x, rest.y));
+  return toDegrees(std::atan2(d.x, d.y)) - toDegrees(std::atan2(rest.x, rest.y));
 }
 
 // The gain on her spine's bend that makes her trunk lean for it as the generated rider's trunk does.
@@ -311,7 +311,7 @@ bool restIsStanding(const Character& rider) {
   for (const char* side : {"l", "r"}) {
     const glm::vec3 thigh = s.restPosition(rider.role(std::string(side) + "Knee")) - s.restPosition(rider.role(std::string(side) + "Hip"));
     if (glm::length(thigh) < 1e-3f) return false;
-    if (glm::normalize(thigh).y > -std::cos(radians(kStandingThighDeg))) return false;
+    if (glm::normalize(thigh).y > -std::cos(toRadians(kStandingThighDeg))) return false;
   }
   return true;
 }
@@ -393,7 +393,7 @@ void seatTrunk(Seating& w, const SeatParams& params) {
   const glm::vec3 n = apply(w.trunk, w.at(neck));
   const glm::vec3 up_now = trunk_turn * (w.at(head) - w.at(neck));
   glm::mat3 fix = arc(up_now, built.head - built.neck);
-  const float angle = degrees(std::acos(std::clamp((fix[0][0] + fix[1][1] + fix[2][2] - 1.0f) * 0.5f, -1.0f, 1.0f)));
+  const float angle = toDegrees(std::acos(std::clamp((fix[0][0] + fix[1][1] + fix[2][2] - 1.0f) * 0.5f, -1.0f, 1.0f)));
   if (angle > kMaxHeadTurnDeg) fix = glm::mat3(1.0f);  // a head modelled looking far off: keep it
   w.set[std::size_t(neck)] = translate(n) * glm::mat4(fix) * translate(-n) * w.trunk;
 }
@@ -426,7 +426,7 @@ LegFit fitLeg(const Seating& w, const SeatParams& params, int side, float tread_
   const Character& c = w.c;
   const std::string n = side == 0 ? "l" : "r";
   const float out_sign = side == 0 ? -1.0f : 1.0f;
-  const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), radians(params.heel_down_deg), glm::vec3(0, 0, 1)));
+  const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), toRadians(params.heel_down_deg), glm::vec3(0, 0, 1)));
   const int hip = c.role(n + "Hip"), knee = c.role(n + "Knee"), ankle = c.role(n + "Ankle"), ball = c.role(n + "Ball");
   const glm::vec3 hs = w.at(hip), ks = w.at(knee), as = w.at(ankle), bs = w.at(ball);
   const float thigh = glm::length(ks - hs), shin = glm::length(as - ks);
@@ -477,7 +477,7 @@ LegFit fitLeg(const Seating& w, const SeatParams& params, int side, float tread_
     // half the foot's).
     const RiderPoseParams limits;
     const glm::vec2 heel(as.x - bs.x, as.z - bs.z);
-    const float twist_in = glm::length(heel) * std::sin(radians(limits.max_foot_twist_deg));
+    const float twist_in = glm::length(heel) * std::sin(toRadians(limits.max_foot_twist_deg));
     const glm::vec3 foot_in = fit.ankle - glm::vec3(0.0f, 0.0f, out_sign * (limits.max_foot_in_cm + twist_in));
     const glm::vec3 swung_back(-0.5f * limits.max_foot_swing_cm, 0.0f, 0.0f);
     for (float t : {0.25f, 0.5f, 0.75f}) {
@@ -489,7 +489,7 @@ LegFit fitLeg(const Seating& w, const SeatParams& params, int side, float tread_
   };
   fit.clearance = -1e30f;
   for (float phi = 0.0f; phi <= kMaxKneeTurnDeg + 1e-3f; phi += kKneeTurnStepDeg) {
-    const glm::vec3 k = centre + across * (std::cos(radians(phi)) * u0 + std::sin(radians(phi)) * v0);
+    const glm::vec3 k = centre + across * (std::cos(toRadians(phi)) * u0 + std::sin(toRadians(phi)) * v0);
     const float cl = clearance(k);
     if (cl > fit.clearance) fit.clearance = cl, fit.turn_deg = phi, fit.knee = k;
     if (cl >= 0.0f) break;
@@ -509,7 +509,7 @@ void fitLegs(Seating& w, const SeatParams& params) {
     w.tread_out = std::min(w.tread_out + short_by, kMaxTreadOutCm);
   }
   w.report.tread_out_cm = w.tread_out;
-  const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), radians(params.heel_down_deg), glm::vec3(0, 0, 1)));
+  const glm::mat3 heel_down = glm::mat3(glm::rotate(glm::mat4(1.0f), toRadians(params.heel_down_deg), glm::vec3(0, 0, 1)));
   for (int side = 0; side < 2; ++side) {
     const std::string n = side == 0 ? "l" : "r";
     const LegFit& fit = w.legs[std::size_t(side)];
@@ -661,7 +661,7 @@ std::string seatedMisfit(const Character& rider, const Character& horse) {
   std::string why;
   for (int side = 0; side < 2; ++side) {
     const std::string n = side == 0 ? "l" : "r";
-    const auto ball = optionalRole(rider, n + "Ball"), hand = optionalRole(rider, n + "Hand");
+    const auto ball = roleIfMapped(rider, n + "Ball"), hand = roleIfMapped(rider, n + "Hand");
     const glm::vec3 tread = horse.skeleton.restPosition(horse.role(n + "Stirrup")) - seat;
     const glm::vec3 grip = horse.skeleton.restPosition(horse.role(n + "Rein")) - seat;
     if (ball && glm::length(rider.skeleton.restPosition(*ball) - tread) > kSeatedFitCm)
@@ -680,7 +680,7 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
   bool complete = true;
   for (const char* side : {"l", "r"}) {
     const std::string n = side;
-    const auto hand = optionalRole(c, n + "Hand"), ball = optionalRole(c, n + "Ball");
+    const auto hand = roleIfMapped(c, n + "Hand"), ball = roleIfMapped(c, n + "Ball");
     complete = complete && hand && *hand != c.role(n + "Wrist") && ball && *ball != c.role(n + "Ankle");
   }
   // A rider modelled seated keeps her rest where it fits this horse (her feet on its treads, her hands

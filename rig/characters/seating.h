@@ -116,7 +116,7 @@ std::string seatedMisfit(const Character& rider, const Character& horse);
 // arms fitted as below, the leathers set to her leg (SeatReport::fitted_to_horse).
 // Seats `rider` on `horse` (both at rest; the rider in stirrup's axes, +X the way she faces, +Y up,
 // cm, anywhere in space). The horse needs its saddle, stirrup and rein roles; the rider her roles
-// (rig/io/character_mapping.h). Throws InputError naming the role and joint when the rider's geometry
+// (rig/mapping/character_mapping.h). Throws InputError naming the role and joint when the rider's geometry
 // cannot be seated (a limb of no length, feet above the hips).
 SeatedRider seatRider(const Character& rider, const Character& horse, const SeatParams& params = {});
 

@@ -19,16 +19,18 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
-#include "rig/error.h"
-#include "rig/io/atomic_file.h"
-#include "rig/io/gltf_nodes.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/horse_tack.h"
 #include "rig/characters/rider_character.h"
+#include "rig/error.h"
+#include "rig/io/atomic_file.h"
+#include "rig/io/character_mapping_json.h"
 #include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_mapping.h"
+#include "rig/io/gltf_nodes.h"
 #include "rig/io/gltf_texture.h"
-#include "rig/io/auto_mapping.h"
-#include "rig/io/mapping_skeleton.h"
+#include "rig/mapping/auto_mapping.h"
+#include "rig/mapping/mapping_skeleton.h"
 
 namespace stirrup::rig {
 
@@ -348,7 +350,7 @@ struct SkinRoles {
 };
 
 // The roles from the mapping given, else the file's role table, else the mapping the file gets by
-// itself (rig/io/auto_mapping.h). Each a one-line InputError naming the file and the role.
+// itself (rig/mapping/auto_mapping.h). Each a one-line InputError naming the file and the role.
 SkinRoles findSkinRoles(const tinygltf::Model& model, const std::string& f, int skin, CharacterKind kind,
                         const CharacterMapping* mapping, const std::vector<std::string>& joint_names) {
   const std::string kind_name(characterKindName(kind));

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "rig/character.h"
-#include "rig/io/character_mapping.h"
+#include "rig/mapping/character_mapping.h"
 
 namespace tinygltf {
 class Model;
@@ -75,9 +75,9 @@ struct GltfSkinSource {
 
 // Loads a skinned glTF (.glb or .gltf) as a character of `kind`. With `mapping` null, the role table
 // the file carries (written by writeCharacterGlb) is used, or, in a file without one, the mapping the
-// file gets by itself (rig/io/auto_mapping.h), kept in `auto_mapped` when given. Errors are one-line
+// file gets by itself (rig/mapping/auto_mapping.h), kept in `auto_mapped` when given. Errors are one-line
 // InputErrors naming the file (and, for a role, the role and the joint, and what to change): a role
-// missing, a joint not in the file, a mapped role off its chain (rig/io/character_mapping.h
+// missing, a joint not in the file, a mapped role off its chain (rig/mapping/character_mapping.h
 // roleChainProblem). A horse that names no tack gets the rig's (rig/characters/horse_tack.h); one that
 // names it in part, or whose mesh has no back or head for it, is an error too.
 // `tack`, when given, receives what the rig did about a horse's tack (rig/characters/horse_tack.h).

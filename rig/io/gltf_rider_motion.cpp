@@ -10,11 +10,11 @@
 #include <tiny_gltf.h>
 
 #include "rig/error.h"
-#include "rig/io/character_mapping.h"
-#include "rig/io/gltf_character.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_bake.h"
+#include "rig/io/gltf_character.h"
 #include "rig/io/gltf_nodes.h"
+#include "rig/mapping/character_mapping.h"
 
 namespace stirrup::rig {
 namespace {

@@ -9,19 +9,20 @@
 
 #include <tiny_gltf.h>
 
+#include "rig/character.h"
 #include "rig/error.h"
-#include "rig/io/auto_mapping.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/gltf_mapping.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/io/gltf_skin_joints.h"
-#include "rig/io/mapping_skeleton.h"
+#include "rig/mapping/auto_mapping.h"
+#include "rig/mapping/mapping_skeleton.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr std::array<const char*, 4> kHoofRoles = {"lfHoof", "rfHoof", "lbHoof", "rbHoof"};
 constexpr std::array<HorseChannel, 4> kHoofLift = {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy, HorseChannel::lbHoofTy,
                                                    HorseChannel::rbHoofTy};
 
@@ -124,7 +125,7 @@ struct ShotCharacter {
 };
 
 // The file's world in stirrup's: its scene's extras "stirrup_world" ({"scale_cm", "forward", "up",
-// "offset_cm"}, a mapping's, rig/io/character_mapping.h), which a tool writes when its world is not
+// "offset_cm"}, a mapping's, rig/mapping/character_mapping.h), which a tool writes when its world is not
 // stirrup's (the Blender add-on: the horse's mapping); else metres with stirrup's axes, a bake's world.
 CharacterMapping worldMapping(const tinygltf::Model& model, const std::string& f) {
   CharacterMapping world;

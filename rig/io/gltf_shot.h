@@ -16,7 +16,7 @@
 // other. Anything else is not a shot (read(): null), and stays what it was: a horse clip.
 //
 // Roles: the file's role table (rig/io/gltf_character.h gltfRoleTable), else the automatic mapping (whose
-// "stirrup" convention reads a bake's joints, named by their roles; rig/io/auto_mapping.h). Space: the
+// "stirrup" convention reads a bake's joints, named by their roles; rig/mapping/auto_mapping.h). Space: the
 // file's world is glTF's, in metres, with stirrup's axes (a bake's world; Blender exports it back so),
 // unless the scene's extras say otherwise with "stirrup_world" (a mapping's scale_cm, forward, up and
 // offset_cm: the Blender add-on writes its horse's, whose file faces where the user's horse does).

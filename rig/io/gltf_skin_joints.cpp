@@ -8,7 +8,8 @@
 
 #include "rig/error.h"
 #include "rig/io/gltf_animation.h"
-#include "rig/io/mapping_skeleton.h"
+#include "rig/io/gltf_mapping.h"
+#include "rig/mapping/mapping_skeleton.h"
 
 namespace stirrup::rig {
 

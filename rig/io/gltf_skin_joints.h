@@ -44,11 +44,11 @@ double gltfSkinUnits(const tinygltf::Model& model, const std::string& file, int 
 
 class GltfSkinJoints {
  public:
-  // Skin `skin` of `model` (checked: rig/io/mapping_skeleton.h checkedSkin); `to_rig` the file's space
+  // Skin `skin` of `model` (checked: rig/mapping/mapping_skeleton.h checkedSkin); `to_rig` the file's space
   // to stirrup's (mappingToRig), `units` gltfSkinUnits's.
   GltfSkinJoints(const tinygltf::Model& model, const std::string& file, int skin, const glm::dmat4& to_rig, double units);
 
-  // The joints' names as the importer gives them (rig/io/mapping_skeleton.h gltfJointNames).
+  // The joints' names as the importer gives them (rig/mapping/mapping_skeleton.h gltfJointNames).
   const std::vector<std::string>& names() const { return names_; }
   const glm::dmat4& worldToRig() const { return world_to_rig_; }
   // The joint named `name` (nullopt: the skin has none), posed about `rest_world` (its rest in rig

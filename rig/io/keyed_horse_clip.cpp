@@ -11,18 +11,19 @@
 #include <tiny_gltf.h>
 
 #include "rig/channel_rotation.h"
+#include "rig/character.h"
 #include "rig/error.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
+#include "rig/io/gltf_mapping.h"
 #include "rig/io/gltf_skin_joints.h"
-#include "rig/io/mapping_skeleton.h"
+#include "rig/mapping/mapping_skeleton.h"
 
 namespace stirrup::rig {
 namespace {
 
 // The travel table's rate: the trunk is sampled this often, and the fitted travel read between samples.
 constexpr double kTravelTableHz = 240.0;
-constexpr std::array<const char*, 4> kHoofRoles = {"lfHoof", "rfHoof", "lbHoof", "rbHoof"};
 constexpr std::array<std::array<HorseChannel, 3>, 4> kHoofChannels = {{
     {HorseChannel::lfHoofTx, HorseChannel::lfHoofTy, HorseChannel::lfHoofTz},
     {HorseChannel::rfHoofTx, HorseChannel::rfHoofTy, HorseChannel::rfHoofTz},

@@ -33,7 +33,7 @@ class Model;
 
 #include "rig/character.h"
 #include "rig/clip.h"
-#include "rig/io/character_mapping.h"
+#include "rig/mapping/character_mapping.h"
 
 namespace stirrup::rig {
 
@@ -45,7 +45,7 @@ inline constexpr double kTravelWindowS = 1.0;
 inline constexpr double kInPlaceSpeedCmS = 20.0;
 
 // How a file's joints play the horse roles: role -> joint name (as the importer names them,
-// rig/io/mapping_skeleton.h gltfJointNames), and the file's space to stirrup's (mappingToRig).
+// rig/mapping/mapping_skeleton.h gltfJointNames), and the file's space to stirrup's (mappingToRig).
 struct KeyedHorseMapping {
   std::map<std::string, std::string> roles;
   glm::dmat4 to_rig{1.0};
@@ -57,7 +57,7 @@ KeyedHorseMapping keyedHorseMapping(const CharacterMapping& mapping, const std::
 
 // The world transforms of a file's nodes over time, in the file's space: what a keyed horse clip reads
 // its joints from. The file's own animation, or motion handed in from elsewhere (`stirrup live`:
-// Blender's evaluation of the horse frame by frame, rig/io/live_rider.h).
+// Blender's evaluation of the horse frame by frame, scene/live_rider.h).
 class NodeMotion {
  public:
   virtual ~NodeMotion() = default;

@@ -11,12 +11,11 @@
 #include "rig/error.h"
 #include "rig/motion/ground_path.h"
 #include "rig/parallel_first_error.h"
+#include "rig/units.h"
 
 namespace stirrup::rig {
 namespace {
 
-// Standard gravity (CGPM 1901, 9.80665 m/s²), for the roll into a turn as PathClip leans (atan v²κ/g).
-constexpr double kGravityCmS2 = 980.665;
 
 // Decorrelates the crowd's seed and a pair's index into the seed of the pair's own generator
 // (splitmix64: Steele, Lea and Flood 2014, "Fast splittable pseudorandom number generators", OOPSLA).
@@ -35,7 +34,7 @@ struct Draws {
   double symmetric() { return 2.0 * unit() - 1.0; }  // [-1, 1)
 };
 
-std::string rangeText(const ProportionRange& r) { return numberText(r.lo) + " to " + numberText(r.hi); }
+std::string allowedRangeText(const ProportionRange& r) { return numberText(r.lo) + " to " + numberText(r.hi); }
 
 // The lead path as the pairs see it: continued straight along its end tangents beyond either end.
 struct LeadPath {
@@ -114,7 +113,7 @@ void checkSpec(const CrowdSpec& s, const std::string& source) {
         std::tuple{"rider_height_cm", s.rider_height_cm, kRiderHeightRangeCm, " cm"},
         std::tuple{"rider_build", s.rider_build, kRiderBuildRange, ""}})
     if (!(r.lo <= r.hi && allowed.contains(r.lo) && allowed.contains(r.hi)))
-      throw InputError(at + key + ": expected a range [low, high] within " + rangeText(allowed) + unit + ", got [" +
+      throw InputError(at + key + ": expected a range [low, high] within " + allowedRangeText(allowed) + unit + ", got [" +
                        numberText(r.lo) + ", " + numberText(r.hi) + "]");
 }
 
@@ -188,7 +187,7 @@ Spacing minimumSpacing(const CrowdSpec& spec, const std::string& source) {
   const double k_in = m.max_curvature / std::max(1e-9, 1.0 - m.max_curvature * halfWidth(spec.formation));
   double v_max = 0;
   for (const auto& k : fast.speed) v_max = std::max(v_max, k.speed);
-  const double roll_in = std::min(PathClipParams{}.roll_limit_deg, std::atan(v_max * v_max * k_in / kGravityCmS2) * 180.0 / std::numbers::pi);
+  const double roll_in = std::min(PathClipParams{}.roll_limit_deg, std::atan(v_max * v_max * k_in / kStandardGravityCmS2) * 180.0 / std::numbers::pi);
   const double more_roll = e.top_cm * std::max(0.0, std::sin(roll_in * std::numbers::pi / 180.0) -
                                                         std::sin(roll_deg * std::numbers::pi / 180.0));
   const double reach = std::max(ahead, behind);
@@ -308,7 +307,7 @@ PairClips validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<cons
           std::tuple{"rider_height_cm", p.rider_height_cm, kRiderHeightRangeCm, " cm"},
           std::tuple{"rider_build", p.rider_build, kRiderBuildRange, ""}})
       if (!allowed.contains(v))
-        throw InputError(at + key + ": expected " + rangeText(allowed) + unit + ", got " + numberText(v));
+        throw InputError(at + key + ": expected " + allowedRangeText(allowed) + unit + ", got " + numberText(v));
     if (!findHorseCoat(p.coat))
       throw InputError(at + "coat: expected one of " + paletteNames(horseCoats()) + ", got \"" + p.coat + "\"");
     for (const auto& [key, name, list] : {std::tuple{"jacket", &p.jacket, &riderJackets()},

@@ -1,4 +1,4 @@
-// The middle of a crowd as a clip, for cameras that frame the whole crowd (render/scene/view.h): at each
+// The middle of a crowd as a clip, for cameras that frame the whole crowd (scene/view.h): at each
 // time its travel frame stands at the mean of the pairs' travel frames (x, z and ground height), heads
 // the way of the mean of their headings' unit vectors, and holds every control at rest. Nothing rides
 // it; it is only followed, so the views keep their meaning (a side view stays square to the crowd's

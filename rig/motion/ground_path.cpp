@@ -6,11 +6,11 @@
 #include <glm/geometric.hpp>
 
 #include "rig/error.h"
+#include "rig/units.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
 
 std::string index(const std::string& source, std::size_t i) {
   return source + ": points[" + std::to_string(i) + "]";
@@ -107,7 +107,7 @@ GroundPath::Sample GroundPath::at(double s) const {
     out.tangent = d1 / speed;
     out.curvature = (d1.x * d2.y - d1.y * d2.x) / (speed * speed * speed);
   }
-  out.heading_deg = std::atan2(out.tangent.y, out.tangent.x) * kDeg;
+  out.heading_deg = std::atan2(out.tangent.y, out.tangent.x) * kDegreesPerRadian;
   return out;
 }
 

@@ -10,11 +10,11 @@
 #include "rig/error.h"
 #include "rig/motion/ground_path.h"
 #include "rig/motion/speed_profile.h"
+#include "rig/units.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr double kDeg = 180.0 / std::numbers::pi;
 constexpr std::size_t kLimits = 8;
 // Acceleration is the speed profile's derivative, by central differences over this (s): the profile's
 // own table step, far shorter than any change of speed a horse makes.
@@ -22,12 +22,6 @@ constexpr double kAccelStepS = SpeedProfile::kStepS;
 // A sample is a run's worst when it is over its limit by this factor more than the worst before it, so
 // a steady breach (rounding apart) reports its first sample, the same on every machine.
 constexpr double kWorseBy = 1.0 + 1e-9;
-
-std::string fixed(double v, int decimals) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
 
 // The path at arc length s, continued straight along its end tangents beyond either end (as the path
 // clip places hooves beyond them).
@@ -123,7 +117,7 @@ PathLimitCheck::PathLimitCheck(const PathClipParams& params, const Terrain* terr
     // The turn: curvature averaged over the horse's length is the heading's change across it.
     const double turn_deg =
         std::remainder(extended(path, x.s + 0.5 * body_cm).heading_deg - extended(path, x.s - 0.5 * body_cm).heading_deg, 360.0);
-    const double curvature = std::abs(turn_deg) / kDeg / body_cm;
+    const double curvature = std::abs(turn_deg) / kDegreesPerRadian / body_cm;
     x.radius_cm = curvature > 0.0 ? 1.0 / curvature : 0.0;
     x.value[std::size_t(HorseLimit::Turn)] = x.v * x.v * curvature;
     x.bound[std::size_t(HorseLimit::Turn)] = limits_.hoof_friction * g;
@@ -131,7 +125,7 @@ PathLimitCheck::PathLimitCheck(const PathClipParams& params, const Terrain* terr
     if (terrain && !terrain->flat()) {
       // Grade: the ground between the fore and hind hooves, along the path (+ climbing).
       const GroundPath::Sample fore = extended(path, x.s + fore_x), hind = extended(path, x.s + hind_x);
-      const double grade = std::atan2(heightAt(fore.position) - heightAt(hind.position), fore_x - hind_x) * kDeg;
+      const double grade = std::atan2(heightAt(fore.position) - heightAt(hind.position), fore_x - hind_x) * kDegreesPerRadian;
       x.value[std::size_t(HorseLimit::Climb)] = std::max(grade, 0.0);
       x.bound[std::size_t(HorseLimit::Climb)] = limits_.max_climb_deg;
       x.value[std::size_t(HorseLimit::Descent)] = std::max(-grade, 0.0);
@@ -149,7 +143,7 @@ PathLimitCheck::PathLimitCheck(const PathClipParams& params, const Terrain* terr
         const glm::dvec2 q = here.position + right * side;
         const double dx = (heightAt(q + glm::dvec2{half_foot, 0}) - heightAt(q - glm::dvec2{half_foot, 0})) / (2 * half_foot);
         const double dz = (heightAt(q + glm::dvec2{0, half_foot}) - heightAt(q - glm::dvec2{0, half_foot})) / (2 * half_foot);
-        steepest = std::max(steepest, std::atan(std::hypot(dx, dz)) * kDeg);
+        steepest = std::max(steepest, std::atan(std::hypot(dx, dz)) * kDegreesPerRadian);
       }
       x.value[std::size_t(HorseLimit::Footing)] = steepest;
       x.bound[std::size_t(HorseLimit::Footing)] = limits_.max_footing_deg;
@@ -188,8 +182,8 @@ LimitBreach PathLimitCheck::breachAt(HorseLimit limit, const Sample& start, cons
   b.value = worst.value[k];
   b.bound = worst.bound[k];
   b.speed_cm_s = worst.v;
-  const std::string v = fixed(b.value, 0), l = fixed(b.bound, 0), vd = fixed(b.value, 1), ld = fixed(b.bound, 1);
-  const std::string speed = fixed(worst.v, 0) + " cm/s";
+  const std::string v = fixedNumber(b.value, 0), l = fixedNumber(b.bound, 0), vd = fixedNumber(b.value, 1), ld = fixedNumber(b.bound, 1);
+  const std::string speed = fixedNumber(worst.v, 0) + " cm/s";
   std::string what;
   switch (limit) {
     case HorseLimit::Speed:
@@ -207,8 +201,8 @@ LimitBreach PathLimitCheck::breachAt(HorseLimit limit, const Sample& start, cons
       break;
     case HorseLimit::Turn:
       b.field = "points";
-      what = "a turn of " + fixed(worst.radius_cm, 0) + " cm radius at " + speed + " asks " + v +
-             " cm/s² (v²/r) of the hooves' grip, beyond " + l + " cm/s² (friction " + fixed(limits_.hoof_friction, 1) +
+      what = "a turn of " + fixedNumber(worst.radius_cm, 0) + " cm radius at " + speed + " asks " + v +
+             " cm/s² (v²/r) of the hooves' grip, beyond " + l + " cm/s² (friction " + fixedNumber(limits_.hoof_friction, 1) +
              " × g; Tan and Wilson 2011)";
       break;
     case HorseLimit::Climb:
@@ -225,11 +219,11 @@ LimitBreach PathLimitCheck::breachAt(HorseLimit limit, const Sample& start, cons
       break;
     case HorseLimit::Footing:
       b.field = "terrain";
-      what = "ground sloping " + vd + "° under a hoof (across its " + fixed(limits_.hoof_footprint_cm, 0) +
+      what = "ground sloping " + vd + "° under a hoof (across its " + fixedNumber(limits_.hoof_footprint_cm, 0) +
              " cm footprint), beyond the " + ld + "° a hoof stands on";
       break;
   }
-  b.text = "segment " + std::to_string(start.segment) + " from " + fixed(start.t, 2) + " s: " + what;
+  b.text = "segment " + std::to_string(start.segment) + " from " + fixedNumber(start.t, 2) + " s: " + what;
   return b;
 }
 
@@ -302,7 +296,7 @@ std::optional<GaitSpeedBreach> gaitSpeedBreach(const GaitSpeed& speed, const Hor
 }
 
 std::string GaitSpeedBreach::text(const std::string& then) const {
-  return fixed(speed.speed_cm_s, 0) + " cm/s is faster than a horse " + verb + " (at most " + fixed(bound_cm_s, 0) + " cm/s: " +
+  return fixedNumber(speed.speed_cm_s, 0) + " cm/s is faster than a horse " + verb + " (at most " + fixedNumber(bound_cm_s, 0) + " cm/s: " +
          source + then + ")";
 }
 

@@ -24,7 +24,7 @@ double swingBump(double s, double plateau) {
   return 1.0;
 }
 
-constexpr std::array<std::array<HorseChannel, 2>, 4> kHoofChannels = {{
+constexpr std::array<std::array<HorseChannel, 2>, 4> kHoofPlaneChannels = {{
     {HorseChannel::lfHoofTx, HorseChannel::lfHoofTy},
     {HorseChannel::rfHoofTx, HorseChannel::rfHoofTy},
     {HorseChannel::lbHoofTx, HorseChannel::lbHoofTy},
@@ -160,8 +160,8 @@ HorseFrame sampleMovement(const Movement& m, double t) {
   f.travel_cm = m.travelCm(t);
   for (std::size_t h = 0; h < 4; ++h) {
     const HoofPlace p = hoofAt(m, m.hooves[h], t);
-    f.controls[kHoofChannels[h][0]] = p.tx;
-    f.controls[kHoofChannels[h][1]] = std::max(0.0, p.ty);
+    f.controls[kHoofPlaneChannels[h][0]] = p.tx;
+    f.controls[kHoofPlaneChannels[h][1]] = std::max(0.0, p.ty);
     f.hoof_sliding[h] = p.sliding;
   }
   // Trunk oscillation of the gaits playing, blended at one stride phase so blends cannot pop.

@@ -1,5 +1,6 @@
 #include "rig/motion/pair_footprint.h"
 
+#include "rig/units.h"
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -11,22 +12,21 @@
 namespace stirrup::rig {
 namespace {
 
-constexpr double kRad = std::numbers::pi / 180.0;
 // The tail's thickest capsule radius (9 cm) and its blend (5 cm), as buildHorse makes the tail
 // (rig/characters/horse_character.cpp; not HorseParams, so not scaled).
 constexpr double kTailHairCm = 14.0;
 
 // The rotation of rig/pose.cpp's rot(degrees, axis) for a point, about the X, Y or Z axis, in double.
 glm::dvec3 rotX(glm::dvec3 p, double deg) {
-  const double c = std::cos(deg * kRad), s = std::sin(deg * kRad);
+  const double c = std::cos(deg * kRadiansPerDegree), s = std::sin(deg * kRadiansPerDegree);
   return {p.x, c * p.y - s * p.z, s * p.y + c * p.z};
 }
 glm::dvec3 rotY(glm::dvec3 p, double deg) {
-  const double c = std::cos(deg * kRad), s = std::sin(deg * kRad);
+  const double c = std::cos(deg * kRadiansPerDegree), s = std::sin(deg * kRadiansPerDegree);
   return {c * p.x + s * p.z, p.y, -s * p.x + c * p.z};
 }
 glm::dvec3 rotZ(glm::dvec3 p, double deg) {
-  const double c = std::cos(deg * kRad), s = std::sin(deg * kRad);
+  const double c = std::cos(deg * kRadiansPerDegree), s = std::sin(deg * kRadiansPerDegree);
   return {c * p.x - s * p.y, s * p.x + c * p.y, p.z};
 }
 
@@ -87,7 +87,7 @@ GroundRect pairFootprint(const PairExtent& e, const HorseFrame& f) {
     for (const double y : {0.0, e.top_cm})
       for (const double z : {-e.half_width_cm, e.half_width_cm}) add(body({x, y, z}));
   // The tail swung sideways by its angle about its root.
-  const double swing = e.tail_reach_cm * std::abs(std::sin(f.tail_ry * kRad));
+  const double swing = e.tail_reach_cm * std::abs(std::sin(f.tail_ry * kRadiansPerDegree));
   for (const double z : {-swing, swing}) add(body(e.tail_root + glm::dvec3{0.0, 0.0, z}));
   // The hooves, where their channels put them in the travel frame.
   static constexpr std::array<std::array<C, 3>, 4> kHoof = {{{C::lfHoofTx, C::lfHoofTy, C::lfHoofTz},
@@ -101,7 +101,7 @@ GroundRect pairFootprint(const PairExtent& e, const HorseFrame& f) {
     add(p - glm::dvec3{e.hoof_radius_cm, 0.0, e.hoof_radius_cm});
   }
   GroundRect g;
-  const double h = f.heading_deg * kRad;
+  const double h = f.heading_deg * kRadiansPerDegree;
   g.axis = {std::cos(h), std::sin(h)};
   const glm::dvec2 right{-g.axis.y, g.axis.x};
   const double cx = 0.5 * (x0 + x1), cz = 0.5 * (z0 + z1);

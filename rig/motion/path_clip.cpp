@@ -8,12 +8,12 @@
 
 #include "rig/error.h"
 #include "rig/motion/gaits.h"
+#include "rig/units.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr double kGravityCmS2 = 981.0;
-constexpr double kDeg = 180.0 / std::numbers::pi;
+constexpr double kBankingGravityCmS2 = 981.0;
 // The movement's speed and stride frequency are sampled this often into its piecewise-linear ramps:
 // fine enough that the ramps follow the smooth speed profile to well under a millimetre of travel.
 constexpr double kRampStepS = 1.0 / 60.0;
@@ -241,13 +241,13 @@ double PathClip::meanCurvature(double s, double half_window_cm) const {
   // Curvature is the heading's rate along the path, so its mean over the window is exactly the
   // heading's change across it: continuous in s, though the spline's curvature steps at its points.
   const double turn_deg = std::remainder(extended(s + half_window_cm).heading_deg - extended(s - half_window_cm).heading_deg, 360.0);
-  return turn_deg / kDeg / (2.0 * half_window_cm);
+  return turn_deg / kDegreesPerRadian / (2.0 * half_window_cm);
 }
 
 double PathClip::turnRollDeg(double t) const {
   const double v = movement_.speed_cm_s.at(t), f = movement_.stride_hz.at(t);
   const double k = meanCurvature(movement_.travelCm(t), 0.5 * v / f);
-  const double roll = std::atan(v * v * k / kGravityCmS2) * kDeg;
+  const double roll = std::atan(v * v * k / kBankingGravityCmS2) * kDegreesPerRadian;
   const double limit = params_.roll_limit_deg;
   return limit > 0.0 ? limit * std::tanh(roll / limit) : 0.0;
 }
@@ -270,7 +270,7 @@ GroundPath::Sample PathClip::placeTravelFrame(double s, HorseFrame& f, double& p
   f.travel_cm = here.position.x;
   f.travel_z_cm = here.position.y;
   f.heading_deg = here.heading_deg;
-  f.ground_pitch_deg = pitch * kDeg;
+  f.ground_pitch_deg = pitch * kDegreesPerRadian;
   f.ground_y_cm = hind_h + (fore_h - hind_h) * (0.0 - hind_x) / (fore_x - hind_x);
   return here;
 }
@@ -312,7 +312,7 @@ HorseFrame PathClip::sample(double t) const {
 
   // Lean into the turn about the ground under the pivot.
   const double roll = turnRollDeg(t);
-  const double roll_rad = roll / kDeg;
+  const double roll_rad = roll / kDegreesPerRadian;
   f.controls[C::rearPivotRx] += roll;
   f.controls[C::rearPivotTz] += kPivotHeightCm * std::sin(roll_rad);
   f.controls[C::rearPivotTy] -= kPivotHeightCm * (1.0 - std::cos(roll_rad));

@@ -5,11 +5,11 @@
 #include <numbers>
 
 #include "rig/error.h"
+#include "rig/units.h"
 
 namespace stirrup::rig {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 double wrap01(double x) { return x - std::floor(x); }
 

@@ -1,6 +1,6 @@
 // A clip sampled a fixed time later: a crowd pair's clip at its start phase (rig/motion/crowd.h,
 // PairSpec::clip_offset_s), so that whatever samples a clip at the shot's time (a follow camera,
-// render/scene/camera_motion.h) sees the pair where bakeCrowdFrame (rig/crowd_bake.h) poses it.
+// scene/camera_motion.h) sees the pair where bakeCrowdFrame (rig/crowd_bake.h) poses it.
 #pragma once
 
 #include <string>

@@ -1,15 +1,15 @@
 // The crowd's bake (stirrup bake scenes/cavalry.json -o): 30 pairs over the scene's 240 frames, as the
-// command does it (render/scene/shot_bake.h, then rig::bakedShotGlb), with the file's size; and one frame of
+// command does it (scene/shot_bake.h, then rig::bakedShotGlb), with the file's size; and one frame of
 // the evaluator posing every pair (what each baked frame costs once the characters are built).
 // Run: build/tests/bench/stirrup_bench --benchmark_filter=Cavalry
 #include <benchmark/benchmark.h>
 
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "render/scene/shot_bake.h"
-#include "render/scene/shot_evaluator.h"
-#include "rig/io/frame_range.h"
 #include "rig/io/gltf_bake.h"
+#include "scene/frame_range.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
+#include "scene/shot_bake.h"
+#include "scene/shot_evaluator.h"
 
 namespace stirrup {
 namespace {

@@ -7,15 +7,15 @@
 #include <string>
 #include <vector>
 
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
 #include "rig/bake.h"
 #include "rig/balance.h"
-#include "rig/io/frame_range.h"
-#include "rig/io/clip_factory.h"
-#include "rig/pose.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
+#include "rig/pose.h"
+#include "scene/clip_factory.h"
+#include "scene/frame_range.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 
 namespace {
 

@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "rig/io/clip_factory.h"
-#include "rig/pose.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
+#include "rig/pose.h"
+#include "scene/clip_factory.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The Blender add-on's Live toggle (rig/io/live_rider.h through `stirrup live`, docs/blender.md "Live"):
+// The Blender add-on's Live toggle (scene/live_rider.h through `stirrup live`, docs/blender.md "Live"):
 // what stirrup spends on a frame. Scrubbing or playing asks for the rider at one frame after another with
 // the horse unchanged (the clip kept); an edited key hands in a frame of the horse, and the clip is made
 // again from the table before the rider is posed. The horse is the default horse trotting in a file stirrup
@@ -14,9 +14,10 @@
 
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
-#include "rig/io/live_rider.h"
-#include "rig/io/mapping_skeleton.h"
-#include "rig/io/ridden_pair.h"
+#include "rig/io/gltf_mapping.h"
+#include "rig/mapping/mapping_skeleton.h"
+#include "scene/live_rider.h"
+#include "scene/ridden_pair.h"
 #include "tests/rig/io/baked_trot.h"
 
 namespace {

@@ -7,16 +7,16 @@
 #include <string>
 #include <vector>
 
-#include "render/scene/preset.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
 #include "render/shot.h"
 #include "render/tracer/image.h"
-#include "rig/pose.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
+#include "rig/pose.h"
 #include "rig/rig_profile.h"
 #include "rig/skin.h"
+#include "scene/preset.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 
 namespace {
 

@@ -20,7 +20,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "rig/io/character_mapping.h"
+#include "rig/io/character_mapping_json.h"
+#include "rig/mapping/character_mapping.h"
 #include "tests/blender_fixture.h"
 #include "tests/cli/baked_file.h"
 #include "tests/cli/blender_script.h"

@@ -17,11 +17,11 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
 #include "rig/bake.h"
-#include "rig/io/ridden_pair.h"
 #include "rig/pose.h"
+#include "scene/profile_resolver.h"
+#include "scene/ridden_pair.h"
+#include "scene/scene.h"
 #include "tests/blender_fixture.h"
 #include "tests/cli/run_command.h"
 #include "tests/rig/user_riders.h"

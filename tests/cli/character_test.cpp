@@ -21,8 +21,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "rig/io/character_mapping.h"
+#include "rig/io/character_mapping_json.h"
 #include "rig/io/gltf_character.h"
+#include "rig/mapping/character_mapping.h"
 #include "tests/cli/run_command.h"
 #include "tests/test_files.h"
 

@@ -21,7 +21,7 @@
 
 #include "rig/clip.h"
 #include "rig/io/gltf_clip.h"
-#include "rig/io/clip_factory.h"
+#include "scene/clip_factory.h"
 #include "tests/cli/blender_script.h"
 #include "tests/cli/run_command.h"
 #include "tests/test_files.h"

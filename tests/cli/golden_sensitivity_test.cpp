@@ -19,7 +19,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 #include "tests/cli/golden_support.h"
 #include "tests/cli/run_command.h"
 

@@ -2,7 +2,7 @@
 // (docs/blender.md, "Live"), end to end through the program. The horse is the default horse trotting in
 // a file `stirrup bake` wrote, named as the scene's horse and its clip: its own animation is the horse's
 // motion until frames are handed in. The rider's numbers themselves are tested in
-// tests/rig/io/live_rider_test.cpp; here, what goes over the pipe.
+// tests/scene/live_rider_test.cpp; here, what goes over the pipe.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>

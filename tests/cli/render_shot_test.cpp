@@ -1,4 +1,4 @@
-// stirrup render SHOT.glb: a glTF shot rendered as the file keys it (render/scene/file_shot.h). The oracle
+// stirrup render SHOT.glb: a glTF shot rendered as the file keys it (scene/file_shot.h). The oracle
 // for "as it is" is the scene the shot was baked from, rendered by `stirrup render SCENE`; and a rider
 // moved in the file is drawn where the file puts her, measured on the EXR's object-id pass.
 #include <cmath>

@@ -79,7 +79,7 @@ TEST_F(SceneErrors, BadFrameRangeOnTheCommandLine) {
 }
 
 // The example: this failed with std::bad_alloc. Frame numbers have a documented maximum
-// (rig/io/frame_range.h, docs/install.md "Input limits").
+// (scene/frame_range.h, docs/install.md "Input limits").
 TEST_F(SceneErrors, AFrameRangePastTheMaximumIsOneLineNotBadAlloc) {
   const std::string trot = quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes/trot.json").string());
   expectError("bake " + trot + " --frames 1-100000000 -o " + quote((dir / "out/t.glb").string()),

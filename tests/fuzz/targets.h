@@ -15,16 +15,16 @@ namespace stirrup::fuzz {
 
 using Target = int (*)(const std::uint8_t* data, std::size_t size);
 
-int sceneJson(const std::uint8_t* data, std::size_t size);       // render/scene/scene.* (+ its profile and clip)
-int rigProfileJson(const std::uint8_t* data, std::size_t size);  // rig/io/rig_profile_json.*
+int sceneJson(const std::uint8_t* data, std::size_t size);       // scene/scene.* (+ its profile and clip)
+int rigProfileJson(const std::uint8_t* data, std::size_t size);  // scene/rig_profile_json.*
 int profileSets(const std::uint8_t* data, std::size_t size);     // --set lines: cli/options.h parseSets
 int horseCsv(const std::uint8_t* data, std::size_t size);        // rig/io/channel_csv.*
 int spineJson(const std::uint8_t* data, std::size_t size);       // rig/io/spine_json.* (+ laying the spine)
 int gltfClip(const std::uint8_t* data, std::size_t size);        // rig/io/gltf_clip.* (.glb or .gltf)
 int gltfCharacter(const std::uint8_t* data, std::size_t size);   // rig/io/gltf_character.* (.glb or .gltf)
 int gltfShot(const std::uint8_t* data, std::size_t size);        // rig/io/gltf_shot.*, rig/io/keyed_horse_clip.*
-int mappingJson(const std::uint8_t* data, std::size_t size);     // rig/io/character_mapping.*, clip mappings
-int frameSpec(const std::uint8_t* data, std::size_t size);       // rig/io/frame_range.*
+int mappingJson(const std::uint8_t* data, std::size_t size);     // rig/mapping/character_mapping.*, clip mappings
+int frameSpec(const std::uint8_t* data, std::size_t size);       // scene/frame_range.*
 int farmManifest(const std::uint8_t* data, std::size_t size);    // render/farm/farm_plan.* (OUT/farm.json)
 
 // How far sceneJson took a scene: refused by the reader, read, its profile resolved, its clip made, or

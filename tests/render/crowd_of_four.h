@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "render/scene/scene.h"
+#include "scene/scene.h"
 
 namespace stirrup::render::test {
 

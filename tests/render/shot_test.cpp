@@ -17,19 +17,19 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "render/scene/detail_level.h"
 #include "render/tracer/image.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "rig/error.h"
-#include "rig/io/clip_factory.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
 #include "rig/crowd_bake.h"
-#include "rig/io/frame_range.h"
+#include "rig/error.h"
 #include "rig/motion/crowd.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
+#include "scene/clip_factory.h"
+#include "scene/detail_level.h"
+#include "scene/frame_range.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 
 namespace stirrup::render {
 namespace {
@@ -174,7 +174,7 @@ SceneSpec crowdScene(const std::string& second_profile = "english") {
 }
 
 // The pixel a world point falls in, by the pinhole or orthographic projection written out here from
-// the camera's definition (render/scene/camera.h: v from top to bottom; vertical fov; aspect width / height),
+// the camera's definition (scene/camera.h: v from top to bottom; vertical fov; aspect width / height),
 // not through the renderer's CameraFrame. False when it is behind the camera.
 bool projectToPixel(const Camera& c, int w, int h, const glm::dvec3& p, double& px, double& py) {
   const glm::dvec3 forward = glm::normalize(c.target - c.position);
@@ -465,7 +465,7 @@ TEST(Shot, FollowsAPairOfACrowdAsASinglePair) {
   }
 }
 
-// A crowd's level of detail switches where render/scene/detail_level.h says (the coarser level's horse cell
+// A crowd's level of detail switches where scene/detail_level.h says (the coarser level's horse cell
 // spans kDetailSwitchCellPixels at the pair's nearest point) and the switch is no pop: at the switching distance the
 // two levels' frames differ in under 0.5% of the frame's pixels (8-bit sRGB, as the PNG holds them).
 // One default pair trotting straight, seen by a fixed 30-degree camera at 640 x 360 (review quality)

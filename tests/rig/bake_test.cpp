@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "rig/io/clip_factory.h"
 #include "rig/rig_profile.h"
+#include "scene/clip_factory.h"
 
 namespace stirrup::rig {
 namespace {

@@ -17,18 +17,18 @@
 #include <nlohmann/json.hpp>
 
 #include "default_characters.h"
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "render/scene/shot_evaluator.h"
 #include "rig/bake.h"
-#include "rig/io/frame_range.h"
-#include "rig/io/clip_factory.h"
+#include "rig/io/gltf_character.h"
 #include "rig/pose.h"
 #include "rig/rider_rig.h"
-#include "rig/skin.h"
-#include "rig/io/gltf_character.h"
-#include "rig/io/ridden_pair.h"
 #include "rig/rider_spine.h"
+#include "rig/skin.h"
+#include "scene/clip_factory.h"
+#include "scene/frame_range.h"
+#include "scene/profile_resolver.h"
+#include "scene/ridden_pair.h"
+#include "scene/scene.h"
+#include "scene/shot_evaluator.h"
 #include "tests/rig/user_riders.h"
 
 namespace stirrup::rig {

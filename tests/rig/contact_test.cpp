@@ -18,19 +18,19 @@
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
 #include "rig/bake.h"
-#include "rig/io/clip_factory.h"
-#include "rig/io/frame_range.h"
 #include "rig/characters/horse_character.h"
-#include "rig/pose.h"
 #include "rig/characters/rider_character.h"
-#include "rig/rig_profile.h"
-#include "rig/skin.h"
 #include "rig/characters/seating.h"
 #include "rig/contact_depth.h"
 #include "rig/loose_tack.h"
+#include "rig/pose.h"
+#include "rig/rig_profile.h"
+#include "rig/skin.h"
+#include "scene/clip_factory.h"
+#include "scene/frame_range.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 #include "tests/rig/default_characters.h"
 
 namespace stirrup::rig {

@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "rig/io/rig_profile_json.h"
 #include "rig/motion/crowd.h"
+#include "scene/rig_profile_json.h"
 
 namespace stirrup::rig {
 namespace {

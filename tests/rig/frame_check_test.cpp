@@ -11,9 +11,9 @@
 
 #include "rig/bake.h"
 #include "rig/frame_check.h"
-#include "rig/io/clip_factory.h"
 #include "rig/pose.h"
 #include "rig/rig_profile.h"
+#include "scene/clip_factory.h"
 #include "tests/rig/default_characters.h"
 
 namespace stirrup::rig {

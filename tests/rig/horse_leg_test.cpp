@@ -11,8 +11,8 @@
 
 #include "tests/rig/default_characters.h"
 
-#include "rig/io/clip_factory.h"
 #include "rig/pose.h"
+#include "scene/clip_factory.h"
 
 namespace stirrup::rig {
 namespace {

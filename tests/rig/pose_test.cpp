@@ -13,9 +13,9 @@
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
 #include "rig/skin.h"
-#include "render/scene/scene.h"
-#include "rig/io/frame_range.h"
-#include "rig/io/clip_factory.h"
+#include "scene/clip_factory.h"
+#include "scene/frame_range.h"
+#include "scene/scene.h"
 
 namespace stirrup::rig {
 namespace {

@@ -9,10 +9,10 @@
 #include "tests/rig/default_characters.h"
 
 #include "rig/bake.h"
-#include "rig/pose.h"
 #include "rig/motion/procedural_gait.h"
+#include "rig/pose.h"
 #include "rig/rider_rig.h"
-#include "rig/io/rig_profile_json.h"
+#include "scene/rig_profile_json.h"
 
 namespace stirrup::rig {
 namespace {

@@ -1,5 +1,5 @@
 # Live: while on, the rider follows the horse as its keys are edited or the frame changes (docs/blender.md,
-# "Live"). A long-running `stirrup live` (cli/cmd_live.cpp, rig/io/live_rider.h) holds the characters,
+# "Live"). A long-running `stirrup live` (cli/cmd_live.cpp, scene/live_rider.h) holds the characters,
 # read and seated once, and the horse's motion frame by frame; the add-on hands it the horse as Blender
 # evaluates it and poses the rider's bones from what comes back, one JSON line each way.
 #

@@ -15,7 +15,7 @@ class StirrupRole(bpy.types.PropertyGroup):
 
 
 class StirrupMapping(bpy.types.PropertyGroup):
-    """One character's mapping (rig/io/character_mapping.h): which bone plays which role, and how its glTF
+    """One character's mapping (rig/mapping/character_mapping.h): which bone plays which role, and how its glTF
     world becomes stirrup's, as of when the armature object stood at `object_matrix`."""
     armature: bpy.props.StringProperty(name="Made for", description="The armature object this mapping was made for")
     roles: bpy.props.CollectionProperty(type=StirrupRole)

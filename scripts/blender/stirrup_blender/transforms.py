@@ -1,7 +1,7 @@
 # The spaces the add-on moves between, and bones posed from stirrup's deformations.
 #
 # Blender's world is Z up; glTF's (every file the add-on exports or reads) is Y up: Blender's exporter
-# writes (x, y, z) as (x, z, -y). A mapping (`stirrup character map`, rig/io/character_mapping.h) takes a
+# writes (x, y, z) as (x, z, -y). A mapping (`stirrup character map`, rig/mapping/character_mapping.h) takes a
 # file's glTF world to stirrup's (cm, +X the horse's travel, +Y up): its rows are forward, up and
 # forward x up, times scale_cm, then offset_cm.
 #

@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "render/scene/profile_resolver.h"
 #include "render/shot.h"
+#include "scene/profile_resolver.h"
 #include "tests/input_error.h"
 
 namespace stirrup::render::farm {

@@ -6,10 +6,10 @@
 #include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
-#include "render/scene/profile_resolver.h"
-#include "render/scene/scene.h"
-#include "rig/io/clip_factory.h"
 #include "rig/rig_profile.h"
+#include "scene/clip_factory.h"
+#include "scene/profile_resolver.h"
+#include "scene/scene.h"
 
 namespace stirrup::render {
 namespace {

@@ -12,10 +12,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "render/tracer/image.h"
 #include "render/review/layer.h"
-#include "render/scene/scene.h"
+#include "render/tracer/image.h"
 #include "rig/error.h"
+#include "scene/scene.h"
 #include "tests/input_error.h"
 
 namespace stirrup::render {

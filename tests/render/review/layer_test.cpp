@@ -10,8 +10,8 @@
 
 #include "tests/input_error.h"
 
-#include "render/scene/scene.h"
 #include "rig/error.h"
+#include "scene/scene.h"
 
 namespace stirrup::render {
 namespace {

@@ -14,9 +14,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "render/scene/camera.h"
 #include "render/tracer/integrator.h"
 #include "render/tracer/lights.h"
+#include "scene/camera.h"
 #include "tests/render/tracer/steep_hills.h"
 
 namespace stirrup::render {

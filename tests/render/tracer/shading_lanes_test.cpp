@@ -12,9 +12,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "render/scene/camera.h"
 #include "render/tracer/integrator.h"
 #include "render/tracer/lights.h"
+#include "scene/camera.h"
 #include "tests/render/test_meshes.h"
 
 namespace stirrup::render {

@@ -19,19 +19,19 @@
 
 #include <gtest/gtest.h>
 
-#include "render/scene/scene.h"
 #include "rig/bake.h"
 #include "rig/characters/seating.h"
-#include "rig/io/character_mapping.h"
-#include "rig/io/frame_range.h"
+#include "rig/contact_depth.h"
 #include "rig/io/gltf_character.h"
-#include "rig/io/ridden_pair.h"
-#include "rig/io/clip_factory.h"
+#include "rig/loose_tack.h"
+#include "rig/mapping/character_mapping.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
+#include "scene/clip_factory.h"
+#include "scene/frame_range.h"
+#include "scene/ridden_pair.h"
+#include "scene/scene.h"
 #include "tests/input_error.h"
-#include "rig/contact_depth.h"
-#include "rig/loose_tack.h"
 #include "tests/rig/default_characters.h"
 #include "tests/rig/user_riders.h"
 

@@ -23,18 +23,18 @@
 
 #include "tests/blender_fixture.h"
 
-#include "tests/rig/default_characters.h"
-#include "render/scene/scene.h"
 #include "rig/bake.h"
 #include "rig/balance.h"
-#include "rig/io/frame_range.h"
+#include "rig/contact_depth.h"
 #include "rig/io/gltf_character.h"
-#include "rig/io/ridden_pair.h"
-#include "rig/io/clip_factory.h"
+#include "rig/loose_tack.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
-#include "rig/contact_depth.h"
-#include "rig/loose_tack.h"
+#include "scene/clip_factory.h"
+#include "scene/frame_range.h"
+#include "scene/ridden_pair.h"
+#include "scene/scene.h"
+#include "tests/rig/default_characters.h"
 #include "tests/rig/user_riders.h"
 
 namespace stirrup::rig {

@@ -10,16 +10,17 @@
 #include <tiny_gltf.h>
 
 #include "rig/io/atomic_file.h"
+#include "rig/io/character_mapping_json.h"
 #include "tests/rig/default_characters.h"
 #include <nlohmann/json.hpp>
 
-#include "rig/io/character_mapping.h"
-#include "rig/error.h"
-#include "rig/io/gltf_character.h"
-#include "rig/io/gltf_accessors.h"
 #include "rig/characters/horse_character.h"
-#include "rig/pose.h"
 #include "rig/characters/rider_character.h"
+#include "rig/error.h"
+#include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_character.h"
+#include "rig/mapping/character_mapping.h"
+#include "rig/pose.h"
 #include "rig/skin.h"
 #include "tests/input_error.h"
 #include "tests/test_files.h"
@@ -164,7 +165,7 @@ TEST(GltfCharacter, UnknownJointNamesTheRoleTheJointAndTheFile) {
   EXPECT_NE(e.find("rider.glb"), std::string::npos) << e;
 }
 
-// A file without a role table is mapped by itself (rig/io/auto_mapping.h); one it cannot map (the
+// A file without a role table is mapped by itself (rig/mapping/auto_mapping.h); one it cannot map (the
 // Khronos SimpleSkin: two unnamed joints in a strip) asks for a mapping file, saying what it found.
 TEST(GltfCharacter, FileWithoutRoleTableItCannotMapAsksForAMapping) {
   const fs::path simple = fs::path(STIRRUP_SHARED_DIR) / "assets" / "SimpleSkin.gltf";

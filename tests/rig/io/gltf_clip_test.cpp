@@ -12,14 +12,14 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "rig/io/clip_factory.h"
-#include "rig/motion/clip_info.h"
 #include "rig/error.h"
+#include "rig/motion/clip_info.h"
 #include "rig/motion/movement_clips.h"
 #include "rig/motion/path_clip.h"
 #include "rig/motion/procedural_gait.h"
 #include "rig/rider_rig.h"
 #include "rig/rig_profile.h"
+#include "scene/clip_factory.h"
 #include "tests/test_files.h"
 
 namespace stirrup::rig {

@@ -2,6 +2,7 @@
 // metres, +Y up, facing +Z with the left at +X; joints carry rest rotations along their bones with
 // inverse bind matrices to match; the rest pose is the one asked for; the texture is embedded and
 // referenced; VRM files carry VRMC_vrm's humanBones; nothing of stirrup's is in it.
+#include "rig/io/character_mapping_json.h"
 #include "rig/io/gltf_humanoid.h"
 
 #include <cmath>
@@ -17,9 +18,9 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
-#include "rig/io/character_mapping.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_character.h"
+#include "rig/mapping/character_mapping.h"
 
 namespace stirrup::rig {
 namespace {
@@ -239,7 +240,7 @@ TEST(GltfHumanoid, SameHumanoidSameBytes) {
 }
 
 // The existing importer (rig::loadCharacterGltf) reads a written humanoid as a rider through a
-// hand-written mapping of the rider roles of this version (rig/io/character_mapping.h) onto Mixamo
+// hand-written mapping of the rider roles of this version (rig/mapping/character_mapping.h) onto Mixamo
 // names, with the file's units and axes (metres, +Z forward, +Y up). Kept to this one test: the rider
 // role set and the mapping format are changing, and the mapping below changes with them.
 TEST(GltfHumanoid, LoadsAsARiderThroughAHandWrittenMapping) {

@@ -16,9 +16,9 @@
 #include "rig/bake.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_rider_motion.h"
-#include "rig/io/rig_profile_json.h"
 #include "rig/motion/procedural_gait.h"
 #include "rig/pose.h"
+#include "scene/rig_profile_json.h"
 #include "tests/rig/default_characters.h"
 
 namespace stirrup::rig {

@@ -22,13 +22,13 @@
 
 #include "rig/bake.h"
 #include "rig/frame_check.h"
-#include "rig/io/clip_factory.h"
 #include "rig/io/gltf_bake.h"
 #include "rig/io/gltf_character.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/rig_profile.h"
-#include "tests/rig/default_characters.h"
+#include "scene/clip_factory.h"
 #include "tests/input_error.h"
+#include "tests/rig/default_characters.h"
 #include "tests/test_files.h"
 
 namespace stirrup::rig {

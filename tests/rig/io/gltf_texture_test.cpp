@@ -3,6 +3,7 @@
 // materials sharing vertices) reads as worked out by hand; the Khronos Fox reads its one texture; a
 // textured character written by characterGlb reads back the same, its images byte for byte; bad
 // texture data is a one-line error naming the file and the material.
+#include "rig/io/character_mapping_json.h"
 #include "rig/io/gltf_texture.h"
 
 #include <cmath>
@@ -18,10 +19,10 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "rig/error.h"
-#include "rig/io/character_mapping.h"
 #include "rig/characters/horse_tack.h"
+#include "rig/error.h"
 #include "rig/io/gltf_character.h"
+#include "rig/mapping/character_mapping.h"
 #include "tests/input_error.h"
 #include "tests/test_files.h"
 

@@ -13,7 +13,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "rig/io/mapping_skeleton.h"
+#include "rig/mapping/mapping_skeleton.h"
 
 namespace stirrup::rig::test {
 

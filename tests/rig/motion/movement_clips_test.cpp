@@ -11,13 +11,13 @@
 
 #include <gtest/gtest.h>
 
-#include "render/scene/scene.h"
-#include "rig/io/clip_factory.h"
-#include "rig/motion/clip_info.h"
-#include "rig/error.h"
 #include "rig/characters/horse_character.h"
+#include "rig/error.h"
+#include "rig/motion/clip_info.h"
 #include "rig/rider_rig.h"
 #include "rig/rig_profile.h"
+#include "scene/clip_factory.h"
+#include "scene/scene.h"
 
 namespace stirrup::rig {
 namespace {

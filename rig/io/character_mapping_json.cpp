@@ -1,0 +1,52 @@
+#include "rig/io/character_mapping_json.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rig/error.h"
+#include "rig/io/json_fields.h"
+
+namespace stirrup::rig {
+
+CharacterMapping loadCharacterMapping(const std::filesystem::path& file, CharacterKind kind) {
+  const nlohmann::json json = readJsonFile(file);
+  JsonObjectReader r(file.string(), "", json);
+  CharacterMapping m;
+  m.file = file;
+  r.string("comment", "");
+  const std::string expected(characterKindName(kind));
+  const std::string character = r.string("character", expected);
+  if (character != expected)
+    r.fail("character", "expected \"" + expected + "\" (this file is used for the " + expected + "), got \"" +
+                            character + "\"");
+  m.scale_cm = r.number("scale_cm", m.scale_cm);
+  if (!(m.scale_cm > 0.0)) r.fail("scale_cm", "expected centimetres per file unit > 0");
+  m.forward = r.numbers<3>("forward", m.forward);
+  m.up = r.numbers<3>("up", m.up);
+  m.offset_cm = r.numbers<3>("offset_cm", m.offset_cm);
+  const auto len = [](const std::array<double, 3>& a) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; };
+  const double dot = m.forward[0] * m.up[0] + m.forward[1] * m.up[1] + m.forward[2] * m.up[2];
+  if (!(len(m.forward) > 1e-12)) r.fail("forward", "expected a non-zero direction");
+  if (!(len(m.up) > 1e-12)) r.fail("up", "expected a non-zero direction");
+  if (std::abs(dot) > 1e-6 * std::sqrt(len(m.forward) * len(m.up))) r.fail("up", "expected a direction at right angles to forward");
+  const nlohmann::json* roles = r.value("roles");
+  if (!roles || !roles->is_object())
+    r.fail("roles", "expected an object from role names to joint names, got " + (roles ? describeJson(*roles) : "nothing"));
+  const std::vector<std::string>& needed = requiredRoles(kind);
+  const std::vector<std::string>& optional = optionalRoles(kind);
+  for (const auto& [role, joint] : roles->items()) {
+    if (std::find(needed.begin(), needed.end(), role) == needed.end() &&
+        std::find(optional.begin(), optional.end(), role) == optional.end())
+      r.fail("roles." + role, "unknown " + expected + " role (docs/characters.md lists them)");
+    if (!joint.is_string()) r.fail("roles." + role, "expected a joint name, got " + describeJson(joint));
+    m.roles[role] = joint.get<std::string>();
+  }
+  for (const std::string& role : needed)
+    if (!m.roles.count(role)) r.fail("roles." + role, "missing: expected the name of the " + expected + "'s " + role + " joint");
+  r.finish();
+  return m;
+}
+
+}  // namespace stirrup::rig

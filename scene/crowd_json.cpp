@@ -1,0 +1,110 @@
+#include "scene/crowd_json.h"
+
+#include <cmath>
+
+namespace stirrup::rig {
+namespace {
+
+std::vector<glm::dvec2> points(JsonObjectReader& r, const std::string& key) {
+  const nlohmann::json* v = r.value(key);
+  if (!v) r.fail(key, "expected the path's points [[x, z], ...] (cm)");
+  if (!v->is_array()) r.fail(key, "expected an array of points [x, z] (cm), got " + describeJson(*v));
+  std::vector<glm::dvec2> out;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const nlohmann::json& q = (*v)[i];
+    if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+      r.fail(key + "[" + std::to_string(i) + "]", "expected a point [x, z] (cm), got " + describeJson(q));
+    out.push_back({q[0].get<double>(), q[1].get<double>()});
+  }
+  return out;
+}
+
+std::vector<SpeedProfile::Key> speedKeys(JsonObjectReader& r, const std::string& key, const char* at) {
+  const nlohmann::json* v = r.value(key);
+  if (!v) r.fail(key, std::string("expected speed keys [[") + at + ", cm/s], ...]");
+  if (!v->is_array()) r.fail(key, std::string("expected speed keys [[") + at + ", cm/s], ...], got " + describeJson(*v));
+  std::vector<SpeedProfile::Key> out;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const nlohmann::json& q = (*v)[i];
+    if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+      r.fail(key + "[" + std::to_string(i) + "]", std::string("expected a key [") + at + ", cm/s], got " + describeJson(q));
+    out.push_back({q[0].get<double>(), q[1].get<double>()});
+  }
+  return out;
+}
+
+// [low, high]: two numbers.
+ProportionRange range(JsonObjectReader& r, const std::string& key, ProportionRange fallback) {
+  const auto a = r.numbers<2>(key, {fallback.lo, fallback.hi});
+  return {a[0], a[1]};
+}
+
+unsigned seedOf(JsonObjectReader& r, const std::string& key, unsigned fallback) {
+  const nlohmann::json* v = r.value(key);
+  if (!v) return fallback;
+  if (!v->is_number_integer() || v->get<std::int64_t>() < 0 || v->get<std::int64_t>() > 2147483647)
+    r.fail(key, "expected a whole number from 0 to 2147483647, got " + describeJson(*v));
+  return static_cast<unsigned>(v->get<std::int64_t>());
+}
+
+}  // namespace
+
+CrowdSpec parseCrowdSpec(JsonObjectReader& r) {
+  CrowdSpec s;
+  s.pairs = r.integer("pairs", s.pairs);
+  s.seed = seedOf(r, "seed", 1);
+  JsonObjectReader lead = r.object("lead");
+  s.lead_points = points(lead, "points");
+  s.lead_speed = speedKeys(lead, "speed", "seconds");
+  lead.finish();
+  if (r.has("formation")) {
+    JsonObjectReader f = r.object("formation");
+    s.formation.files = f.integer("files", s.formation.files);
+    s.formation.file_spacing_cm = f.number("file_spacing_cm", s.formation.file_spacing_cm);
+    s.formation.rank_spacing_cm = f.number("rank_spacing_cm", s.formation.rank_spacing_cm);
+    s.formation.jitter_cm = f.number("jitter_cm", s.formation.jitter_cm);
+    f.finish();
+  }
+  s.speed_variation = r.number("speed_variation", s.speed_variation);
+  s.start_offset_max_s = r.number("start_offset_max_s", s.start_offset_max_s);
+  s.gait_variation = r.number("gait_variation", s.gait_variation);
+  if (const nlohmann::json* p = r.value("profiles")) {
+    if (!p->is_object() || p->empty())
+      r.fail("profiles", "expected {\"thesis\": weight, ...}, got " + describeJson(*p));
+    s.profile_mix.clear();
+    for (const auto& [name, w] : p->items()) {
+      if (!w.is_number()) r.fail("profiles." + name, "expected a weight (a number >= 0), got " + describeJson(w));
+      s.profile_mix.emplace_back(name, w.get<double>());
+    }
+  }
+  s.withers_height_cm = range(r, "withers_height_cm", s.withers_height_cm);
+  s.rider_height_cm = range(r, "rider_height_cm", s.rider_height_cm);
+  s.rider_build = range(r, "rider_build", s.rider_build);
+  r.finish();
+  return s;
+}
+
+PairSpec parsePairSpec(JsonObjectReader& r) {
+  PairSpec p;
+  p.path.points = points(r, "points");
+  const std::string over = r.string("speed_over", "time");
+  if (over != "time" && over != "distance") r.fail("speed_over", "expected \"time\" or \"distance\", got \"" + over + "\"");
+  p.path.over = over == "time" ? SpeedProfile::Over::Time : SpeedProfile::Over::Distance;
+  p.path.speed = speedKeys(r, "speed", over == "time" ? "seconds" : "cm");
+  p.path.variation = r.number("variation", p.path.variation);
+  if (!(p.path.variation >= 0.0 && p.path.variation <= 1.0)) r.fail("variation", "expected a fraction from 0 to 1");
+  p.path.seed = seedOf(r, "seed", p.path.seed);
+  p.clip_offset_s = r.number("start_offset_s", p.clip_offset_s);
+  p.profile = r.string("profile", p.profile);
+  p.withers_height_cm = r.number("withers_height_cm", p.withers_height_cm);
+  p.rider_height_cm = r.number("rider_height_cm", p.rider_height_cm);
+  p.rider_build = r.number("rider_build", p.rider_build);
+  p.coat = r.string("coat", p.coat);
+  p.jacket = r.string("jacket", p.jacket);
+  p.hair = r.string("hair", p.hair);
+  p.skin = r.string("skin", p.skin);
+  r.finish();
+  return p;
+}
+
+}  // namespace stirrup::rig

@@ -1,0 +1,157 @@
+// The rider kept on a horse keyed live in another tool (scene/live_rider.h). The horse is the default
+// horse trotting in a file stirrup baked (tests/rig/io/baked_trot.h), read back as a user's keyed horse;
+// the oracles are the path `stirrup bake` takes for a horse playing its own animation (KeyedHorseClip,
+// bakeFrame, poseMounted) and what a rigid move of the whole horse must do to her (move her with it).
+// The add-on's use of it through `stirrup live` is tested in tests/cli/blender_addon_test.cpp.
+#include "rig/io/gltf_mapping.h"
+#include "scene/live_rider.h"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "rig/bake.h"
+#include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_animation.h"
+#include "rig/io/gltf_skin_joints.h"
+#include "rig/io/keyed_horse_clip.h"
+#include "rig/mapping/mapping_skeleton.h"
+#include "rig/pose.h"
+#include "scene/ridden_pair.h"
+#include "tests/input_error.h"
+#include "tests/rig/io/baked_trot.h"
+
+namespace stirrup::rig {
+namespace {
+
+using test::bakedTrot;
+using test::kFps;
+using test::kFrames;
+
+// The tool's frames 0..47 are the file's keys at F / fps (the bake keys its frame 1 at 0 s).
+constexpr int kFirst = 0, kLast = kFrames - 1;
+
+struct Trot {
+  RiddenPair pair;
+  LiveRiderSetup setup;
+};
+const Trot& trot() {
+  static const Trot t = [] {
+    Trot out;
+    const RigProfile profile;
+    out.pair = resolveRiddenPair(bakedTrot().file.string(), "", "default", "", profile);
+    out.setup.horse_file = bakedTrot().file;
+    out.setup.horse = std::make_shared<const Character>(out.pair.horse);
+    out.setup.rider = std::make_shared<const Character>(out.pair.rider);
+    out.setup.profile = profile;
+    out.setup.fps = kFps;
+    out.setup.first_frame = kFirst;
+    out.setup.last_frame = kLast;
+    return out;
+  }();
+  return t;
+}
+
+double worstEntry(const std::vector<glm::dmat4>& a, const std::vector<glm::dmat4>& b) {
+  double worst = 0.0;
+  for (std::size_t j = 0; j < a.size(); ++j)
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) worst = std::max(worst, std::abs(a[j][c][r] - b[j][c][r]));
+  return worst;
+}
+
+// The horse's joints at the tool's frame as the file keys them: each joint's world times its inverse bind.
+std::vector<glm::dmat4> fileDeformations(int frame) {
+  const std::string file = bakedTrot().file.string();
+  static const tinygltf::Model model = readGltfFile(bakedTrot().file, file);
+  static const GltfAnimation animation = GltfAnimation::together(model, file);
+  const std::vector<glm::dmat4> worlds = animation.worlds(frame / kFps);
+  const std::vector<glm::mat4> ibm = gltfInverseBinds(model, file, 0);
+  std::vector<glm::dmat4> out;
+  for (std::size_t k = 0; k < model.skins[0].joints.size(); ++k)
+    out.push_back(worlds[std::size_t(model.skins[0].joints[k])] * glm::dmat4(ibm[k]));
+  return out;
+}
+
+// Before any frame comes in, the rider at a frame is the bake's: the horse's own animation through the
+// keyed clip, the frame baked and posed, her skin matrices taken to the horse's file.
+TEST(LiveRider, BeforeAnyEditSheIsWhereTheBakeOfTheHorsesOwnAnimationPutsHer) {
+  const Trot& t = trot();
+  LiveRider live(t.setup);
+  EXPECT_EQ(live.firstFrame(), kFirst);
+  EXPECT_EQ(live.lastFrame(), kLast);
+  const Character& horse = *t.setup.horse;
+  const Character& rider = *t.setup.rider;
+  const KeyedHorseClip clip(bakedTrot().file.string(), "", keyedHorseMapping(horse), &horse);
+  // Out in the horse's file's world: the bake's is in metres, its joints bound in centimetres.
+  const std::string file = bakedTrot().file.string();
+  const tinygltf::Model model = readGltfFile(bakedTrot().file, file);
+  const std::vector<std::string> names = gltfJointNames(model, 0);
+  const int root = int(std::find(names.begin(), names.end(), keyedHorseMapping(horse).roles.at("root")) - names.begin());
+  const double units = gltfSkinUnits(model, file, 0, root, GltfAnimation::together(model, file));
+  EXPECT_DOUBLE_EQ(units, 0.01);
+  const glm::dmat4 from_horse_rig = glm::inverse(GltfSkinJoints(model, file, 0, keyedHorseMapping(horse).to_rig, units).worldToRig());
+  for (const int frame : {0, 11, 30, kLast}) {
+    const BakedFrame baked = bakeFrame(clip, t.setup.profile, frame, frame / kFps);
+    const MountedPose pose = poseMounted(horse, rider, baked.horse, baked.rider, t.setup.profile);
+    std::vector<glm::dmat4> expected;
+    for (std::size_t j = 0; j < rider.skeleton.size(); ++j)
+      if (!rider.skeleton.joints[j].rig_point)
+        expected.push_back(from_horse_rig * glm::dmat4(pose.rider[j]) * glm::dmat4(rider.skeleton.skinBind(int(j))) * rider.source.to_rig);
+    const std::vector<glm::dmat4> got = live.rider(frame);
+    ASSERT_EQ(got.size(), live.riderJoints().size());
+    ASSERT_EQ(got.size(), expected.size());
+    EXPECT_LT(worstEntry(got, expected), 1e-4) << "frame " << frame;
+  }
+}
+
+// Every frame of the horse handed in as the file keys it changes nothing; the whole horse handed in moved
+// 30 cm to one side and 20 cm ahead at every frame moves her by exactly that; one frame edited changes her
+// at that frame and leaves a frame two seconds away alone.
+TEST(LiveRider, SheMovesWithTheHorseHandedIn) {
+  const Trot& t = trot();
+  LiveRider live(t.setup);
+  const std::vector<glm::dmat4> at20 = live.rider(20);
+  for (int f = kFirst; f <= kLast; ++f) live.setHorse(f, fileDeformations(f));
+  EXPECT_LT(worstEntry(live.rider(20), at20), 1e-5) << "the file's own pose handed in";
+
+  // The bake's file is in metres: 0.3 and 0.2 are 30 and 20 cm, whatever its axes.
+  const glm::dmat4 shift = glm::translate(glm::dmat4(1.0), glm::dvec3(0.3, 0.0, 0.2));
+  for (int f = kFirst; f <= kLast; ++f) {
+    std::vector<glm::dmat4> moved = fileDeformations(f);
+    for (glm::dmat4& d : moved) d = shift * d;
+    live.setHorse(f, moved);
+  }
+  std::vector<glm::dmat4> expected = at20;
+  for (glm::dmat4& d : expected) d = shift * d;
+  EXPECT_LT(worstEntry(live.rider(20), expected), 1e-4);
+
+  LiveRider edited(t.setup);
+  const std::vector<glm::dmat4> at5 = edited.rider(5), at47 = edited.rider(kLast);
+  std::vector<glm::dmat4> raised = fileDeformations(5);
+  for (glm::dmat4& d : raised) d = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.1, 0.0)) * d;
+  edited.setHorse(5, raised);
+  EXPECT_GT(worstEntry(edited.rider(5), at5), 0.02) << "the horse 10 cm higher at frame 5 moves her there";
+  EXPECT_LT(worstEntry(edited.rider(kLast), at47), 1e-6) << "frame 47 reads the horse a second around it, not frame 5";
+}
+
+TEST(LiveRider, BadFramesAreOneLineErrors) {
+  const Trot& t = trot();
+  LiveRiderSetup none = t.setup;
+  none.last_frame = none.first_frame - 1;
+  EXPECT_EQ(stirrup::test::errorOf([&] { LiveRider bad(none); }), "live: frames 0 to -1: expected 1 to 14400 frames");
+  LiveRider live(t.setup);
+  const std::vector<glm::dmat4> horse = fileDeformations(3);
+  EXPECT_EQ(stirrup::test::errorOf([&] { live.setHorse(kLast + 1, horse); }), "live: frame 48: expected a frame from 0 to 47");
+  EXPECT_EQ(stirrup::test::errorOf([&] { live.setHorse(3, {horse.begin(), horse.end() - 1}); }),
+            "live: frame 3: expected " + std::to_string(horse.size()) + " horse joints, got " + std::to_string(horse.size() - 1));
+  EXPECT_EQ(live.horseJoints().size(), horse.size());
+}
+
+}  // namespace
+}  // namespace stirrup::rig
