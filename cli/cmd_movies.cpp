@@ -19,6 +19,7 @@
 #include "rig/error.h"
 #include "rig/io/atomic_file.h"
 #include "scene/data_dir.h"
+#include "scene/file_shot.h"
 #include "scene/frame_range.h"
 #include "scene/preset.h"
 
@@ -103,9 +104,11 @@ void runMovies(const MoviesOptions& o) {
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const render::MovieJob& j = jobs[i];
     const auto movie_start = std::chrono::steady_clock::now();
-    if (!plots.count(j.scene)) plots[j.scene] = render::writeMovementPlot(j.scene, out, mo.allow_impossible);
+    // A glTF shot's rider is posed as the file keys her: no channels of the rig's to plot.
+    const bool shot = render::isGltfFile(j.scene);
+    if (!shot && !plots.count(j.scene)) plots[j.scene] = render::writeMovementPlot(j.scene, out, mo.allow_impossible);
     render::MovieResult r = render::finishMovie(j, mo);
-    r.plot = plots[j.scene];
+    if (!shot) r.plot = plots[j.scene];
     finish_s[i] = secondsSince(movie_start);
     r.seconds = render_s[i] + finish_s[i];
     results.push_back(std::move(r));
@@ -128,7 +131,13 @@ void addMoviesCommand(CLI::App& app) {
       "Writes OUT/NAME.mp4 (H.264 yuv420p CRF 18; --mov adds NAME.mov), OUT/NAME_sheet.png, OUT/SCENE_plot.png\n"
       "and OUT/index.html. Every movie starts with a one-second slate; every frame has burn-ins.\n"
       "gallop_layered is included when ../shared/reference (or $STIRRUP_SHARED_DIR/reference) holds the\n"
-      "Muybridge plate. Example: stirrup movies --out out/movies --only trot_side,trot_persp");
+      "Muybridge plate. Example: stirrup movies --out out/movies --only trot_side,trot_persp\n"
+      "A glTF shot (a stirrup bake, or Blender's export of one) makes its own set instead, as stirrup render\n"
+      "renders it: STEM_side, STEM_persp, STEM_close, STEM_turntable and STEM_top over the shot's frames, no plot\n"
+      "(--only takes the names or the views; layered, follow and turntable_pose are refused, naming the view).\n"
+      "Example: stirrup movies out/trot.glb --out out/trot-movies --only side,close");
+  cmd->add_option("shot", opts->set.shot,
+                  "A glTF shot (.glb/.gltf) to make the movies of, as the file keys it, instead of the scene set");
   cmd->add_option("--out,-o", opts->set.out, "Output folder")->capture_default_str();
   addMovieSetOptions(cmd, opts->set);
   cmd->add_option("--threads,-t", opts->set.threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);

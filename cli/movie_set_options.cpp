@@ -9,6 +9,7 @@
 #include "cli/options.h"
 #include "rig/error.h"
 #include "scene/data_dir.h"
+#include "scene/file_shot.h"
 #include "scene/preset.h"
 
 namespace stirrup::cli {
@@ -55,7 +56,37 @@ render::MovieOptions movieOptions(const MovieSetArgs& a) {
   return mo;
 }
 
+namespace {
+
+// A glTF shot's set, cut to --only: a name is the movie's (STEM_side) or its view's (side); a view of the
+// scene set that a shot cannot make is refused by name, never skipped.
+std::vector<render::MovieJob> selectShotMovies(const MovieSetArgs& a) {
+  if (!render::isGltfFile(a.shot)) throw InputError(a.shot + ": expected a glTF shot (.glb or .gltf); the scene set is made without one");
+  if (!a.scenes.empty()) throw InputError("--scenes: chooses the scene set's scenes, not a glTF shot's (" + a.shot + ")");
+  std::vector<render::MovieJob> jobs = render::shotMovieSet(a.shot);
+  if (a.only.empty()) return jobs;
+  const std::string prefix = fs::path(a.shot).stem().string() + "_";
+  std::vector<std::string> wanted;
+  for (const std::string& n : a.only) {
+    const std::string name = n.rfind(prefix, 0) == 0 ? n : prefix + n;
+    const std::string view = name.substr(prefix.size());
+    if (const std::string why = render::shotViewRefusal(view); !why.empty()) throw InputError("--only: " + n + ": " + why + " (" + a.shot + ")");
+    if (std::none_of(jobs.begin(), jobs.end(), [&](const render::MovieJob& j) { return j.name == name; })) {
+      std::string names;
+      for (const auto& j : jobs) names += (names.empty() ? "" : ", ") + j.name;
+      throw InputError("--only: no movie named \"" + n + "\" for the glTF shot " + a.shot + " (expected one of " + names +
+                       ", or a view: side, persp, close, turntable, top)");
+    }
+    wanted.push_back(name);
+  }
+  std::erase_if(jobs, [&](const render::MovieJob& j) { return std::find(wanted.begin(), wanted.end(), j.name) == wanted.end(); });
+  return jobs;
+}
+
+}  // namespace
+
 std::vector<render::MovieJob> selectMovies(const MovieSetArgs& a, const render::MovieOptions& mo) {
+  if (!a.shot.empty()) return selectShotMovies(a);
   const fs::path scenes = a.scenes.empty() ? render::dataDir() / "scenes" : fs::path(a.scenes);
   if (!fs::is_directory(scenes)) throw InputError("--scenes: " + scenes.string() + ": no such folder");
   std::vector<render::MovieJob> jobs = render::defaultMovieSet(scenes, mo.reference_dir);
@@ -73,7 +104,9 @@ std::vector<render::MovieJob> selectMovies(const MovieSetArgs& a, const render::
 }
 
 std::vector<std::string> movieSetArguments(const MovieSetArgs& a) {
-  std::vector<std::string> args = {"--preset", a.preset};
+  std::vector<std::string> args;
+  if (!a.shot.empty()) args.push_back(fs::absolute(a.shot).string());
+  args.insert(args.end(), {"--preset", a.preset});
   if (a.frames_limit > 0) args.insert(args.end(), {"--frames-limit", std::to_string(a.frames_limit)});
   if (!a.resolution.empty()) args.insert(args.end(), {"--resolution", a.resolution});
   if (!a.scenes.empty()) args.insert(args.end(), {"--scenes", fs::absolute(a.scenes).string()});

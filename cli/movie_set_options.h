@@ -18,6 +18,7 @@ struct MovieSetArgs {
   int frames_limit = 0;
   std::string resolution;
   std::string scenes;
+  std::string shot;  // a glTF shot: its views' movies instead of the scene set (render::shotMovieSet)
   std::string mov;  // "", "prores" or "h264"
   bool no_mp4 = false;
   bool keep_frames = false;
@@ -32,9 +33,11 @@ void addMovieSetOptions(CLI::App* cmd, MovieSetArgs& args);
 
 // The library's options, checked (InputError naming the option).
 render::MovieOptions movieOptions(const MovieSetArgs& args);
-// The set for these options, cut to --only (InputError for an unknown name).
+// The set for these options (the scene set, or the glTF shot's views), cut to --only (InputError for an
+// unknown name, and for a view a glTF shot cannot make, naming it).
 std::vector<render::MovieJob> selectMovies(const MovieSetArgs& args, const render::MovieOptions& options);
-// The same choices as `stirrup movies` arguments (without --out, --only and --threads), for a farm task.
+// The same choices as `stirrup movies` arguments (without --out, --only and --threads; the shot first), for a
+// farm task.
 std::vector<std::string> movieSetArguments(const MovieSetArgs& args);
 
 }  // namespace stirrup::cli

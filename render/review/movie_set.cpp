@@ -20,6 +20,7 @@
 #include "rig/motion/shifted_clip.h"
 #include "rig/rig_profile.h"
 #include "scene/clip_factory.h"
+#include "scene/file_shot.h"
 #include "scene/frame_range.h"
 #include "scene/frame_sequence.h"
 #include "scene/preset.h"
@@ -59,6 +60,11 @@ ReferenceSpec muybridgePlate(const fs::path& reference_dir) {
   return r;
 }
 
+// The scene a job renders: its scene file, or its glTF shot's (whose own frames and named views).
+SceneSpec jobScene(const MovieJob& job, const MovieOptions& o) {
+  return isGltfFile(job.scene) ? loadFileShot(job.scene).scene : loadScene(job.scene, {o.allow_impossible});
+}
+
 std::vector<int> movieFrames(const MovieJob& job, const SceneSpec& scene, const MovieOptions& o) {
   std::vector<int> frames = rig::parseFrameList(job.frames.empty() ? scene.frames : job.frames,
                                                 job.scene.string() + ": frames");
@@ -66,13 +72,30 @@ std::vector<int> movieFrames(const MovieJob& job, const SceneSpec& scene, const 
   return frames;
 }
 
-SceneSpec loadForMovie(const MovieJob& job, const MovieOptions& o) {
-  SceneSpec scene = loadScene(job.scene, {o.allow_impossible});
-  applyPreset(scene, findPreset(o.preset));
-  if (o.width > 0) scene.width = o.width;
-  if (o.height > 0) scene.height = o.height;
-  return scene;
+// What a movie renders: a scene, or a glTF shot's pairs as the file keys them and the scene the shot
+// gives (scene/file_shot.h), at the movie's preset and size.
+struct MovieInput {
+  SceneSpec scene;
+  std::optional<FileShot> file;
+};
+
+MovieInput loadForMovie(const MovieJob& job, const MovieOptions& o) {
+  MovieInput in;
+  if (isGltfFile(job.scene)) {
+    in.file = loadFileShot(job.scene);
+    in.scene = in.file->scene;
+  } else {
+    in.scene = loadScene(job.scene, {o.allow_impossible});
+  }
+  applyPreset(in.scene, findPreset(o.preset));
+  if (o.width > 0) in.scene.width = o.width;
+  if (o.height > 0) in.scene.height = o.height;
+  if (in.file) in.file->scene = in.scene;
+  return in;
 }
+
+// The views a glTF shot gives (scene/file_shot.cpp names them), in the set's order.
+constexpr const char* kShotViews[] = {"side", "persp", "close", "turntable", "top"};
 
 }  // namespace
 
@@ -115,8 +138,29 @@ std::vector<MovieJob> defaultMovieSet(const fs::path& scenes_dir, const fs::path
   return set;
 }
 
+std::vector<MovieJob> shotMovieSet(const fs::path& shot_file) {
+  loadFileShot(shot_file);  // a file that is not a shot is an error before any work
+  const std::string stem = shot_file.stem().string();
+  std::vector<MovieJob> set;
+  for (const char* view : kShotViews) set.push_back({stem + "_" + view, shot_file, view, "", ""});
+  return set;
+}
+
+std::string shotViewRefusal(const std::string& view) {
+  if (view == "layered")
+    return "the layered view cannot be made from a glTF shot: it lays the rider beside one fixed rigidly to the saddle, "
+           "posed by the rider rig, and a shot's rider is posed as the file keys her";
+  if (view == "follow")
+    return "the follow view cannot be made from a glTF shot: it is a crowd scene's camera following one pair "
+           "(the shot's views frame every pair)";
+  if (view == "turntable_pose")
+    return "the turntable_pose view cannot be made from a glTF shot: it is a scene's camera holding one pose "
+           "(the shot's turntable turns over its frames)";
+  return "";
+}
+
 std::vector<int> movieFrameList(const MovieJob& job, const MovieOptions& o) {
-  return movieFrames(job, loadScene(job.scene, {o.allow_impossible}), o);
+  return movieFrames(job, jobScene(job, o), o);
 }
 
 int movieFrameCount(const MovieJob& job, const MovieOptions& o) { return static_cast<int>(movieFrameList(job, o).size()); }
@@ -171,12 +215,19 @@ std::string movieView(const MovieJob& job) { return job.layered.empty() ? job.ca
 
 // What the slate and the burn-ins say: a function of the job, the options and the movie's frames only,
 // so every farm task burns in the same facts.
-BurnInFacts movieFacts(const MovieJob& job, const MovieOptions& o, const SceneSpec& scene, const std::vector<int>& frames) {
+BurnInFacts movieFacts(const MovieJob& job, const MovieOptions& o, const MovieInput& in, const std::vector<int>& frames) {
+  const SceneSpec& scene = in.scene;
   BurnInFacts facts;
   facts.scene = scene.name;
-  facts.movement = rig::makeClip(scene.clip)->name();  // the name only: no need to read the horse for its hooves
   facts.view = movieView(job);
-  facts.profile = scene.profile;
+  if (in.file) {  // the motion is the file's: no clip or profile of stirrup's made it
+    const std::string animation = in.file->shot->animationName();
+    facts.movement = "as keyed" + (animation.empty() ? std::string() : " (" + animation + ")");
+    facts.profile = "as keyed";
+  } else {
+    facts.movement = rig::makeClip(scene.clip)->name();  // the name only: no need to read the horse for its hooves
+    facts.profile = scene.profile;
+  }
   facts.fps = scene.fps;
   facts.frames = std::to_string(frames.front()) + "-" + std::to_string(frames.back());
   facts.frame_count = static_cast<int>(frames.size());
@@ -219,7 +270,10 @@ std::vector<fs::path> movieFrameFiles(const MovieJob& job, const MovieOptions& o
 
 int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vector<int>& wanted, bool resume,
                       const std::function<void()>& frame_done) {
-  const SceneSpec scene = loadForMovie(job, o);
+  const MovieInput in = loadForMovie(job, o);
+  const SceneSpec& scene = in.scene;
+  if (in.file && !job.layered.empty())
+    throw InputError(job.name + ": " + shotViewRefusal("layered") + " (" + job.scene.string() + ")");
   const CameraSpec& camera = findCamera(scene, job.camera);
   const rig::RigProfile profile = resolveProfile(scene);
   const std::vector<int> all = movieFrames(job, scene, o);
@@ -237,7 +291,9 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
   }
   if (frames.empty()) return 0;
 
-  Shot shot(scene, profile, camera, o.threads);
+  // A glTF shot's pairs through the same evaluator and tracer as `stirrup render SHOT.glb`.
+  Shot shot = in.file ? Shot(std::make_shared<ShotEvaluator>(*in.file, profile, o.threads), camera, o.threads)
+                      : Shot(scene, profile, camera, o.threads);
   std::unique_ptr<Shot> rigid;
   std::optional<FootageSequence> footage;
   LayerStyle style;
@@ -263,7 +319,7 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
     throw InputError(job.name + ": layered: expected \"rigid\" or \"reference\", got \"" + job.layered + "\"");
   }
 
-  const BurnInFacts facts = movieFacts(job, o, scene, all);
+  const BurnInFacts facts = movieFacts(job, o, in, all);
   fs::create_directories(frameDir(job, o));
   // Burn-ins and the writes of frame f happen on the writer's thread while f + 1 renders.
   FrameWriter writer;
@@ -298,7 +354,8 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
 }
 
 MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
-  const SceneSpec scene = loadForMovie(job, o);
+  const MovieInput in = loadForMovie(job, o);
+  const SceneSpec& scene = in.scene;
   const std::vector<int> frames = movieFrames(job, scene, o);
   if (frames.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
   const std::vector<int> sheet_frames = contactFrames(frames, o.contact_count);
@@ -312,13 +369,13 @@ MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
   std::vector<ContactFrame> sheet;
   for (int f : sheet_frames) sheet.push_back({f, readRgbaExr(sheetExr(job, o, f))});
 
-  const BurnInFacts facts = movieFacts(job, o, scene, frames);
+  const BurnInFacts facts = movieFacts(job, o, in, frames);
   MovieResult result;
   result.name = job.name;
   result.scene = scene.name;
   result.view = facts.view;
   result.movement = facts.movement;
-  result.profile = scene.profile;
+  result.profile = facts.profile;
   result.fps = scene.fps;
   result.frames = static_cast<int>(frames.size());
 
@@ -341,7 +398,7 @@ MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
     result.movies.push_back(movie);
   }
   result.contact_sheet = o.out / (job.name + "_sheet.png");
-  writeContactSheet(job.name + "  (" + scene.name + ", " + result.view + ", profile " + scene.profile + ")", sheet,
+  writeContactSheet(job.name + "  (" + scene.name + ", " + result.view + ", profile " + result.profile + ")", sheet,
                     result.contact_sheet);
   if (!o.keep_frames) {
     std::error_code ec;

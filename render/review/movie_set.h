@@ -1,4 +1,4 @@
-// Review movies of scenes: each movie renders a scene through one of its cameras (a view), burns in
+// Review movies of scenes (or of a glTF shot, scene/file_shot.h): each movie renders a scene through one of its cameras (a view), burns in
 // the facts on every frame, puts a one-second slate first, encodes .mp4 (H.264) and/or .mov (ProRes
 // 422 HQ or H.264), and writes a contact sheet; each movement also gets a channel plot. The default
 // set (`stirrup movies`) is the thesis's Appendix A movies plus buck, canter, gallop and turntables.
@@ -15,7 +15,7 @@ namespace stirrup::render {
 
 struct MovieJob {
   std::string name;             // e.g. "trot_side": files NAME.mp4, NAME_sheet.png
-  std::filesystem::path scene;  // scene file
+  std::filesystem::path scene;  // scene file, or a glTF shot (.glb/.gltf) rendered as the file keys it
   std::string camera;           // the scene's camera (a view)
   std::string frames;           // empty: the scene's frames
   // Layered: "" (a plain movie), "rigid" (the rigged rider beside the rider rigidly fixed to the
@@ -31,6 +31,15 @@ std::filesystem::path sharedDir(const std::filesystem::path& source_dir);
 // reference folder) holds Muybridge's plate.
 std::vector<MovieJob> defaultMovieSet(const std::filesystem::path& scenes_dir,
                                       const std::filesystem::path& reference_dir);
+
+// The set for a glTF shot (a `stirrup bake`, or Blender's export of one): STEM_side, STEM_persp,
+// STEM_close, STEM_turntable and STEM_top (STEM the file's stem), each over the shot's frames, rendered
+// as `stirrup render SHOT.glb` renders them (scene/file_shot.h). Reads the file: one that is not a
+// shot is a one-line InputError naming it.
+std::vector<MovieJob> shotMovieSet(const std::filesystem::path& shot_file);
+// Why the scene set's view `view` (e.g. "layered") cannot be made from a glTF shot; empty for the views
+// shotMovieSet makes, and for names that are no view of the set at all.
+std::string shotViewRefusal(const std::string& view);
 
 struct MovieOptions {
   std::filesystem::path out = "out/movies";
@@ -97,7 +106,8 @@ MovieResult finishMovie(const MovieJob& job, const MovieOptions& options);
 MovieResult renderMovie(const MovieJob& job, const MovieOptions& options,
                         const std::function<void()>& frame_done = {});
 
-// The movement's channel plot: OUT/SCENE_plot.png (the scene's frames). Returns the file. With
+// The movement's channel plot: OUT/SCENE_plot.png (the scene's frames). A glTF shot has none (its rider's
+// channels are not evaluated: it is posed as the file keys it); movies of one are made without a plot. Returns the file. With
 // allow_impossible a scene beyond a horse's limits is plotted too, as its movie was rendered.
 std::filesystem::path writeMovementPlot(const std::filesystem::path& scene_file, const std::filesystem::path& out,
                                         bool allow_impossible = false);

@@ -434,7 +434,7 @@ result["lowered"] = checked()
 }
 
 // Review movie: `stirrup render` on the shot as it stands, over the scene's frame range (1-6 here), to the
-// path given: an H.264 movie of six frames.
+// path given: an H.264 movie of six frames; and `stirrup movies` on the shot it exported.
 TEST(BlenderAddon, ReviewMovieWritesAPlayableMovie) {
   SKIP_WITHOUT_BLENDER();
   const fs::path dir = testDir("review");
@@ -452,6 +452,66 @@ result["review"] = attempt(bpy.ops.stirrup.review_movie, filepath=os.path.join(o
                                          quote(movie.string()));
   ASSERT_EQ(probe.exit_code, 0) << probe.err;
   EXPECT_EQ(probe.out, "h264,6\n");
+  // The shot it exported, Blender's export, makes the movie set's views too (stirrup movies SHOT.glb): a
+  // one-second slate and the first six frames each.
+  const fs::path set = dir / "set";
+  const CommandResult movies = runStirrup("movies " + quote((dir / "work" / "review-shot.glb").string()) +
+                                          " --only side,close --preset draft --resolution 160x90 --frames-limit 6 --out " + quote(set.string()));
+  ASSERT_EQ(movies.exit_code, 0) << movies.err;
+  for (const char* name : {"review-shot_side.mp4", "review-shot_close.mp4"}) {
+    const CommandResult p = runCommand("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=width,height,nb_read_frames -of csv=p=0 " +
+                                       quote((set / name).string()));
+    EXPECT_EQ(p.out, "160,90,30\n") << name << p.err;
+  }
+}
+
+// What the review operator reports as progress, recorded on its way to Blender's window manager (whose
+// RNA functions cannot be wrapped themselves: Blender refuses the assignment): the add-on's Progress is
+// handed a recorder that forwards every call to the real window manager. Used by the review tests.
+constexpr const char* kRecordProgress = R"(
+progress_calls = []
+
+class Recorder:
+    """Blender's window manager, every progress_* call recorded and passed on."""
+    def __init__(self, wm):
+        self.wm = wm
+    def __getattr__(self, name):
+        real = getattr(self.wm, name)
+        if not name.startswith("progress_"):
+            return real
+        def call(*a):
+            progress_calls.append([name] + list(a))
+            return real(*a)
+        return call
+
+real_progress_init = review.Progress.__init__
+review.Progress.__init__ = lambda self, wm: real_progress_init(self, Recorder(wm))
+)";
+
+// The progress a review of `frames` frames must report: begun over 0-100, then one update a frame rendered,
+// 100 * k / frames for k = 1 .. frames (rising, the last 100), then ended.
+nlohmann::json expectedProgress(int frames) {
+  nlohmann::json calls = nlohmann::json::array({nlohmann::json::array({"progress_begin", 0, 100})});
+  for (int k = 1; k <= frames; ++k) calls.push_back(nlohmann::json::array({"progress_update", 100 * k / frames}));
+  calls.push_back(nlohmann::json::array({"progress_end"}));
+  return calls;
+}
+
+// Review movie's progress in the status bar (headless: the call waits and reports as it goes): it begins,
+// rises frame by frame as `stirrup render` reports each frame, reaches 100 and ends; nothing else.
+TEST(BlenderAddon, ReviewMovieProgressRisesFrameByFrame) {
+  SKIP_WITHOUT_BLENDER();
+  const fs::path dir = testDir("review-progress");
+  const AddonRun run = runAddonScript(dir, std::string(kRecordProgress) + R"(
+result["ride"] = attempt(bpy.ops.stirrup.ride)
+scene.frame_start, scene.frame_end = 1, 6
+result["review"] = attempt(bpy.ops.stirrup.review_movie, filepath=os.path.join(out, "walk.mp4"), camera="side")
+result["progress"] = progress_calls
+)");
+  ASSERT_RAN(run);
+  ASSERT_TRUE(run.result["ride"].contains("ok")) << run.result["ride"];
+  ASSERT_TRUE(run.result["review"].contains("ok")) << run.result["review"];
+  EXPECT_EQ(run.result["progress"], expectedProgress(6)) << run.result["progress"];
 }
 
 // Bad input: no horse or rider, one armature as both, an armature with no body, a human as the horse, a
@@ -514,12 +574,12 @@ result["movie"] = os.path.exists(os.path.join(out, "x.mp4"))
 }
 
 // Review movie in Blender's window: the render runs beside the interface (the operator modal, its progress
-// in the status bar) and the movie is written.
+// in the status bar, frame by frame as headless) and the movie is written.
 TEST(BlenderAddon, ReviewMovieInTheWindowRendersBesideTheInterface) {
   SKIP_WITHOUT_BLENDER();
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb): the test needs a window";
   const fs::path dir = testDir("review-window");
-  const AddonRun run = runAddonScript(dir, R"(
+  const AddonRun run = runAddonScript(dir, std::string(kRecordProgress) + R"(
 result["ride"] = attempt(bpy.ops.stirrup.ride)
 scene.frame_start, scene.frame_end = 1, 4
 movie = os.path.join(out, "walk.mp4")
@@ -538,6 +598,7 @@ def watch():
     if (len(ticks) > 1 and not review.rendering()) or len(ticks) > 400:
         result["ticks"] = len(ticks)
         result["movie"] = os.path.exists(movie)
+        result["progress"] = progress_calls
         finish()
         return None
     return 0.25
@@ -553,6 +614,8 @@ bpy.app.timers.register(watch, first_interval=1.0)
   EXPECT_TRUE(run.result["rendering_beside"].get<bool>());
   EXPECT_LT(run.result["ticks"].get<int>(), 400);
   EXPECT_TRUE(run.result["movie"].get<bool>());
+  // The status bar's progress, a timer tick's frames at a time: every frame's step, in order, then the end.
+  EXPECT_EQ(run.result["progress"], expectedProgress(4)) << run.result["progress"];
   const CommandResult probe = runCommand("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
                                          quote((dir / "walk.mp4").string()));
   EXPECT_EQ(probe.out, "4\n") << probe.err;

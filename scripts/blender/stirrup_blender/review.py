@@ -11,7 +11,9 @@ import bpy
 
 from . import check, export, mapping, program
 
-_PROGRESS = re.compile(r"(\d+)/(\d+)")
+# A whole record of the bar `stirrup render --progress` draws on stderr, a record a frame
+# (cli/progress.h): "render NAME [###...] DONE/TOTAL  FPS fps  Ns left".
+_PROGRESS = re.compile(r"(\d+)/(\d+)  [\d.]+ fps")
 _running = []  # the renders running beside Blender's window (one at a time)
 
 
@@ -20,8 +22,25 @@ def rendering():
     return bool(_running)
 
 
+class Progress:
+    """The render's progress in Blender's status bar (window_manager.progress_begin/update/end): the
+    percentage of the frames rendered, updated frame by frame as stirrup reports them."""
+
+    def __init__(self, wm):
+        self.wm = wm
+
+    def begin(self):
+        self.wm.progress_begin(0, 100)
+
+    def update(self, done, total):
+        self.wm.progress_update(100 * done // total)
+
+    def end(self):
+        self.wm.progress_end()
+
+
 class Render:
-    """A running `stirrup render`, its progress read from the bar it draws on stderr."""
+    """A running `stirrup render`, its progress read from the bar it draws on stderr, a record a frame."""
 
     def __init__(self, context, camera, movie):
         path, _, frames, self.new_maps = check.export_shot(context, "review-shot.glb")  # kept once the movie is made
@@ -30,15 +49,30 @@ class Render:
                 "--out", out, "--frames", frames, "--progress"]
         self.proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         self.done, self.total, self.err = 0, 0, ""
+        self.frames = []  # (done, total) of every frame reported and not yet taken, in order
+        self.lock = threading.Lock()
         self.reader = threading.Thread(target=self._read, daemon=True)
         self.reader.start()
 
     def _read(self):
+        pending = ""  # the bar's record being written: read only once it ends (a record may span two reads)
         for chunk in iter(lambda: self.proc.stderr.read(64), ""):
             self.err += chunk
-            found = _PROGRESS.findall(self.err[-200:])
-            if found:
-                self.done, self.total = (int(x) for x in found[-1])
+            *records, pending = re.split(r"[\r\n]", pending + chunk)
+            for record in records:
+                found = _PROGRESS.search(record)
+                if found:
+                    with self.lock:
+                        self.done, self.total = int(found[1]), int(found[2])
+                        self.frames.append((self.done, self.total))
+
+    def report(self, progress):
+        """Hands `progress` every frame reported since the last call, in order."""
+        with self.lock:
+            frames, self.frames = self.frames, []
+        for done, total in frames:
+            if total:
+                progress.update(done, total)
 
     def finished(self):
         if self.proc.poll() is None:
@@ -77,19 +111,19 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
         # progress in the status bar; a script's or a headless Blender's call waits for it.
         if not bpy.app.background and context.window is not None:
             return self._modal_start(context)
-        wm = context.window_manager
-        wm.progress_begin(0, 100)
+        progress = Progress(context.window_manager)
+        progress.begin()
         try:
             render = self._start(context)
             while not render.finished():
                 time.sleep(0.1)
-                if render.total:
-                    wm.progress_update(100 * render.done // render.total)
+                render.report(progress)
+            render.report(progress)  # the frames read after the last look
         except program.StirrupError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         finally:
-            wm.progress_end()
+            progress.end()
         mapping.keep_new(context, render.new_maps)
         self.report({"INFO"}, "stirrup wrote " + self.movie)
         return {"FINISHED"}
@@ -109,7 +143,8 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
             return {"CANCELLED"}
         wm = context.window_manager
         self.timer = wm.event_timer_add(0.2, window=context.window)
-        wm.progress_begin(0, 100)
+        self.progress = Progress(wm)
+        self.progress.begin()
         wm.modal_handler_add(self)
         _running.append(self.render)
         return {"RUNNING_MODAL"}
@@ -122,13 +157,14 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
             return {"PASS_THROUGH"}
         try:
             if not self.render.finished():
+                self.render.report(self.progress)
                 if self.render.total:
-                    context.window_manager.progress_update(100 * self.render.done // self.render.total)
                     context.workspace.status_text_set("stirrup: rendering %s, frame %d of %d (Esc stops)" %
                                                       (os.path.basename(self.movie), self.render.done, self.render.total))
                 return {"RUNNING_MODAL"}
         except program.StirrupError as e:
             return self._end(context, str(e), {"ERROR"}, {"CANCELLED"})
+        self.render.report(self.progress)  # the frames read after the last tick
         mapping.keep_new(context, self.render.new_maps)
         return self._end(context, "stirrup wrote " + self.movie, {"INFO"}, {"FINISHED"})
 
@@ -137,7 +173,7 @@ class STIRRUP_OT_review_movie(bpy.types.Operator):
             _running.remove(self.render)
         wm = context.window_manager
         wm.event_timer_remove(self.timer)
-        wm.progress_end()
+        self.progress.end()
         context.workspace.status_text_set(None)
         self.report(level, line)
         return result

@@ -107,6 +107,21 @@ TEST_F(MovieSetFiles, StageOneWritesEachFrameOnceAndStageTwoNeedsThemAll) {
             "trot_side: frame 2 is missing (" + (movieFrameDir(job, o_) / "trot_side.0002.png").string() + ")");
 }
 
+// A glTF shot's set (shotMovieSet) reads the file first: one that is not a shot is the file shot reader's
+// one-line error naming it. The views a shot cannot make are refused with their names; its own are not.
+TEST_F(MovieSetFiles, AShotsSetRefusesAFileThatIsNoShotAndNamesTheViewsItCannotMake) {
+  const fs::path junk = dir_ / "notgltf.glb";
+  std::ofstream(junk) << "nothing";
+  const std::string error = errorOf([&] { shotMovieSet(junk); });
+  EXPECT_EQ(error.rfind(junk.string() + ": ", 0), 0u) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  for (const char* view : {"layered", "follow", "turntable_pose"}) {
+    const std::string why = shotViewRefusal(view);
+    EXPECT_EQ(why.rfind(std::string("the ") + view + " view cannot be made from a glTF shot: ", 0), 0u) << why;
+  }
+  for (const char* view : {"side", "persp", "close", "turntable", "top"}) EXPECT_EQ(shotViewRefusal(view), "") << view;
+}
+
 TEST(MovieSet, TheSharedFolderIsTheVariableElseBesideTheSource) {
   std::optional<std::string> saved;
   if (const char* v = std::getenv("STIRRUP_SHARED_DIR")) saved = v;
