@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/review/index_page.h"
+#include "render/review/plot_canvas.h"
 #include "render/scene/preset.h"
 #include "render/shot.h"
 #include "render/tracer/image.h"
@@ -42,13 +43,15 @@ double measureOf(const rig::FrameMeasures& m, const rig::FrameMeasures* prev, co
   return -1;
 }
 
-// A small SVG line plot: series over frames, with horizontal guide lines.
+// A small line plot, drawn as SVG on the plot canvas (render/review/plot_canvas.h): series over frames,
+// with horizontal guide lines.
 struct Series {
   std::string name, colour;
   std::vector<std::pair<int, double>> points;
 };
 std::string svgPlot(const std::vector<Series>& series, const std::vector<std::pair<std::string, double>>& guides, int mark_frame) {
   constexpr double W = 360, H = 150, L = 40, R = 8, T = 8, B = 22;
+  constexpr int kFontSize = 10;
   int f0 = mark_frame, f1 = mark_frame;
   double lo = 0, hi = 0;
   for (const Series& s : series)
@@ -58,27 +61,26 @@ std::string svgPlot(const std::vector<Series>& series, const std::vector<std::pa
   if (f1 == f0) f1 = f0 + 1;
   const auto X = [&](double f) { return L + (f - f0) / double(f1 - f0) * (W - L - R); };
   const auto Y = [&](double v) { return T + (hi - v) / (hi - lo) * (H - T - B); };
-  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"360\" height=\"150\" font-size=\"10\">";
-  s += "<rect x=\"" + printfNumber("%.0f", L) + "\" y=\"" + printfNumber("%.0f", T) + "\" width=\"" + printfNumber("%.0f", W - L - R) + "\" height=\"" +
-       printfNumber("%.0f", H - T - B) + "\" fill=\"#fafafa\" stroke=\"#ccc\"/>";
-  for (const auto& [name, v] : guides)
-    s += "<line x1=\"" + printfNumber("%.1f", L) + "\" x2=\"" + printfNumber("%.1f", W - R) + "\" y1=\"" + printfNumber("%.1f", Y(v)) + "\" y2=\"" + printfNumber("%.1f", Y(v)) +
-         "\" stroke=\"#c00\" stroke-dasharray=\"3,3\"/><text x=\"" + printfNumber("%.1f", W - R - 2) + "\" y=\"" + printfNumber("%.1f", Y(v) - 2) +
-         "\" text-anchor=\"end\" fill=\"#c00\">" + render::htmlEscape(name) + "</text>";
-  s += "<line x1=\"" + printfNumber("%.1f", X(mark_frame)) + "\" x2=\"" + printfNumber("%.1f", X(mark_frame)) + "\" y1=\"" + printfNumber("%.0f", T) + "\" y2=\"" +
-       printfNumber("%.0f", H - B) + "\" stroke=\"#888\"/>";
+  const render::Color ink = render::hexColor("#000"), limit = render::hexColor("#c00");
+  render::SvgCanvas s(int(W), int(H), kFontSize);
+  s.rect({L, T}, {W - R, H - B}, render::hexColor("#fafafa"), render::hexColor("#ccc"));
+  for (const auto& [name, v] : guides) {
+    s.dashedLine({L, Y(v)}, {W - R, Y(v)}, 1.0, limit, 3);
+    s.text({W - R - 2, Y(v) - 2}, name, kFontSize, limit, render::TextAlign::Right);
+  }
+  s.line({X(mark_frame), T}, {X(mark_frame), H - B}, 1.0, render::hexColor("#888"));
   int row = 0;
   for (const Series& se : series) {
-    std::string pts;
-    for (const auto& [f, v] : se.points) pts += printfNumber("%.1f", X(f)) + "," + printfNumber("%.1f", Y(v)) + " ";
-    s += "<polyline fill=\"none\" stroke=\"" + se.colour + "\" stroke-width=\"1.5\" points=\"" + pts + "\"/>";
-    s += "<text x=\"" + printfNumber("%.0f", L + 4) + "\" y=\"" + printfNumber("%.0f", T + 11 + 11 * row++) + "\" fill=\"" + se.colour + "\">" + render::htmlEscape(se.name) + "</text>";
+    std::vector<glm::dvec2> pts;
+    for (const auto& [f, v] : se.points) pts.emplace_back(X(f), Y(v));
+    s.polyline(pts, 1.5, render::hexColor(se.colour));
+    s.text({L + 4, T + 11 + 11 * row++}, se.name, kFontSize, render::hexColor(se.colour));
   }
-  s += "<text x=\"" + printfNumber("%.0f", L) + "\" y=\"" + printfNumber("%.0f", H - 6) + "\">" + std::to_string(f0) + "</text>";
-  s += "<text x=\"" + printfNumber("%.0f", W - R) + "\" y=\"" + printfNumber("%.0f", H - 6) + "\" text-anchor=\"end\">" + std::to_string(f1) + "</text>";
-  s += "<text x=\"4\" y=\"" + printfNumber("%.1f", Y(hi) + 8) + "\">" + printfNumber("%.3g", hi) + "</text><text x=\"4\" y=\"" + printfNumber("%.1f", Y(lo)) + "\">" +
-       printfNumber("%.3g", lo) + "</text>";
-  return s + "</svg>";
+  s.text({L, H - 6}, std::to_string(f0), kFontSize, ink);
+  s.text({W - R, H - 6}, std::to_string(f1), kFontSize, ink, render::TextAlign::Right);
+  s.text({4, Y(hi) + 8}, printfNumber("%.3g", hi), kFontSize, ink);
+  s.text({4, Y(lo)}, printfNumber("%.3g", lo), kFontSize, ink);
+  return s.markup();
 }
 
 // The channels plotted beside a rule's measure.

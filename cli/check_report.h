@@ -1,6 +1,7 @@
 // What `stirrup check` found and the reports it writes of it (cli/cmd_check.cpp runs the check and
 // picks the report): the findings as text or JSON on stdout, a JUnit XML file, and an HTML page with
-// thumbnails of the flagged frames and SVG plots of the measures and channels around them.
+// thumbnails of the flagged frames and SVG plots of the measures and channels around them (drawn on
+// the review's plot canvas, render/review/plot_canvas.h).
 #pragma once
 
 #include <array>
