@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +55,9 @@ std::optional<int> nextOf(const BenchOptions& o, const std::vector<int>& frames,
   if (o.no_overlap || i + 1 >= frames.size()) return std::nullopt;
   return frames[i + 1];
 }
+
+// The render threads: the option's, or every core.
+int threadCount(const BenchOptions& o) { return o.threads > 0 ? o.threads : tbb::info::default_concurrency(); }
 
 // The zlib level a benched frame is written at: the option's, or what `stirrup render` would use.
 int pngLevel(const BenchOptions& o, const render::SceneSpec& scene) {
@@ -107,6 +111,48 @@ void writeInBackground(render::FrameWriter& writer, render::Image&& image, const
   });
 }
 
+// The timed frames, as `stirrup render` makes them: each frame rendered (evaluating the next during its
+// trace unless --no-overlap) and its PNG written on the background thread while the next frame renders
+// (render/tracer/frame_writer.h), two scratch files in turn. `add` is given each frame's timings.
+struct TimedRun {
+  double run_s = 0;     // wall clock of the whole run, writes included
+  double write_ms = 0;  // the writes' own time on their thread, summed
+};
+TimedRun timeFrames(render::Shot& shot, const std::vector<int>& frames, const BenchOptions& o, int png_level,
+                    const std::filesystem::path& scratch, const std::function<void(const render::FrameTimings&)>& add) {
+  TimedRun run;
+  double write_ms = 0;  // touched only by the writer thread, read after its last wait()
+  render::FrameWriter writer;
+  const auto run0 = Clock::now();
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    render::Image image = shot.renderFrame(frames[i], nextOf(o, frames, i));
+    const render::FrameTimings& t = shot.lastTimings();
+    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"), png_level,
+                      write_ms);
+    add(t);
+  }
+  writer.wait();
+  run.run_s = secondsSince(run0);
+  run.write_ms = write_ms;
+  return run;
+}
+
+// Runs `bench` with a scratch folder for its frames, removed afterwards whatever happens.
+template <typename Bench>
+auto withScratch(Bench bench) {
+  namespace fs = std::filesystem;
+  const fs::path scratch = fs::temp_directory_path() / ("stirrup-bench-" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  try {
+    auto results = bench(scratch);
+    fs::remove_all(scratch);
+    return results;
+  } catch (...) {
+    fs::remove_all(scratch);
+    throw;
+  }
+}
+
 PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions& o,
                          const std::filesystem::path& scratch) {
   render::SceneSpec scene = benchScene();
@@ -131,17 +177,10 @@ PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions
   // frame renders (render/tracer/frame_writer.h). fps is frames over the wall-clock time of the whole run,
   // writes included; the write column is a write's own time on its thread.
   double rays = 0;
-  double write_ms = 0;  // touched only by the writer thread, read after its last wait()
   double frame_ms = 0;  // renderFrame's own wall-clock time, summed
   std::vector<int> frames;
   for (int i = 0; i < o.frames; ++i) frames.push_back(1 + i % 72);
-  render::FrameWriter writer;
-  const auto run0 = Clock::now();
-  for (int i = 0; i < o.frames; ++i) {
-    render::Image image = shot.renderFrame(frames[std::size_t(i)], nextOf(o, frames, std::size_t(i)));
-    const render::FrameTimings& t = shot.lastTimings();
-    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"),
-                      r.png_level, write_ms);
+  const TimedRun run = timeFrames(shot, frames, o, r.png_level, scratch, [&](const render::FrameTimings& t) {
     r.pose += t.pose_ms;
     r.skin += t.skin_ms;
     r.bvh += t.bvh_ms;
@@ -149,10 +188,9 @@ PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions
     r.wait += t.wait_ms;
     frame_ms += t.frame_ms;
     rays += double(t.rays);
-  }
-  writer.wait();
-  const double run_s = secondsSince(run0);
-  r.write = write_ms;
+  });
+  const double run_s = run.run_s;
+  r.write = run.write_ms;
   const double n = double(o.frames);
   r.pose /= n, r.skin /= n, r.bvh /= n, r.trace /= n, r.write /= n, r.wait /= n;
   r.rays_per_frame = rays / n;
@@ -208,25 +246,17 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   std::vector<int> frames;
   for (int i = 0; i < o.frames; ++i) frames.push_back(all[std::size_t(i) * all.size() / std::size_t(o.frames)]);
   shot.renderFrame(frames.front());  // warm-up
-  double write_ms = 0;
-  render::FrameWriter writer;
-  const auto run0 = Clock::now();
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    render::Image image = shot.renderFrame(frames[i], nextOf(o, frames, i));
-    const render::FrameTimings& t = shot.lastTimings();
-    writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"),
-                      r.png_level, write_ms);
+  const TimedRun run = timeFrames(shot, frames, o, r.png_level, scratch, [&](const render::FrameTimings& t) {
     r.bake += t.pose_ms, r.skin += t.skin_ms - t.build_ms, r.build += t.build_ms, r.bvh += t.bvh_ms,
         r.trace += t.trace_ms - t.bvh_ms - t.wait_ms;
     r.wait += t.wait_ms;
     r.skinned_vertices += double(t.skinned_vertices);
     r.triangles += double(t.triangles);
     for (int k = 0; k < 3; ++k) r.pairs_at_level[std::size_t(k)] += t.pairs_at_level[std::size_t(k)];
-  }
-  writer.wait();
+  });
   const double n = double(frames.size());
-  r.fps = n / secondsSince(run0);
-  r.write = write_ms / n;
+  r.fps = n / run.run_s;
+  r.write = run.write_ms / n;
   r.wait /= n;
   r.bake /= n, r.skin /= n, r.build /= n, r.bvh /= n, r.trace /= n, r.skinned_vertices /= n, r.triangles /= n;
   for (double& l : r.pairs_at_level) l /= n;
@@ -264,20 +294,14 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
 }
 
 void runSceneBench(const BenchOptions& o) {
-  namespace fs = std::filesystem;
-  const fs::path scratch = fs::temp_directory_path() / ("stirrup-bench-" + std::to_string(::getpid()));
-  fs::create_directories(scratch);
-  std::vector<SceneResult> results;
-  try {
+  const std::vector<SceneResult> results = withScratch([&](const std::filesystem::path& scratch) {
+    std::vector<SceneResult> out;
     // The scene first, so the peak memory is the scene's (the trot's is far smaller).
     for (const render::QualityPreset& p : render::qualityPresets())
-      if (o.preset.empty() || o.preset == p.name) results.push_back(benchScenePreset(p, o, scratch));
-  } catch (...) {
-    fs::remove_all(scratch);
-    throw;
-  }
-  fs::remove_all(scratch);
-  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+      if (o.preset.empty() || o.preset == p.name) out.push_back(benchScenePreset(p, o, scratch));
+    return out;
+  });
+  const int threads = threadCount(o);
   if (o.json) {
     nlohmann::json presets = nlohmann::json::object();
     for (const SceneResult& r : results) {
@@ -336,18 +360,12 @@ void runSceneBench(const BenchOptions& o) {
 
 void runBench(const BenchOptions& o) {
   if (!o.scene.empty()) return runSceneBench(o);
-  namespace fs = std::filesystem;
-  const fs::path scratch = fs::temp_directory_path() / ("stirrup-bench-" + std::to_string(::getpid()));
-  fs::create_directories(scratch);
-  std::vector<PresetResult> results;
-  try {
-    for (const render::QualityPreset& p : render::qualityPresets()) results.push_back(benchPreset(p, o, scratch));
-  } catch (...) {
-    fs::remove_all(scratch);
-    throw;
-  }
-  fs::remove_all(scratch);
-  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+  const std::vector<PresetResult> results = withScratch([&](const std::filesystem::path& scratch) {
+    std::vector<PresetResult> out;
+    for (const render::QualityPreset& p : render::qualityPresets()) out.push_back(benchPreset(p, o, scratch));
+    return out;
+  });
+  const int threads = threadCount(o);
 
   if (o.json) {
     nlohmann::json presets = nlohmann::json::object();

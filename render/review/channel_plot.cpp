@@ -129,9 +129,11 @@ void writeChannelPlot(const ChannelPlot& plot, const std::filesystem::path& file
       c.text(x0 - 8, int(Y(v)) + 5, format(v), 13, kMuted, TextAlign::Right);
     }
     c.text(x0, top - 9, p.title + "  (" + p.unit + ")", 16, kInk, TextAlign::Left, FontStyle::SansBold);
-    for (const ChannelSeries& s : p.series)
-      for (std::size_t k = 0; k + 1 < s.values.size(); ++k)
-        c.line({X(plot.seconds[k]), Y(s.values[k])}, {X(plot.seconds[k + 1]), Y(s.values[k + 1])}, 2.2, s.colour);
+    for (const ChannelSeries& s : p.series) {
+      std::vector<glm::dvec2> points;
+      for (std::size_t k = 0; k < s.values.size(); ++k) points.emplace_back(X(plot.seconds[k]), Y(s.values[k]));
+      c.polyline(points, 2.2, s.colour);
+    }
     // Frame of the panel.
     c.line({double(x0), double(top)}, {double(x1), double(top)}, 1.0, kFrameLine);
     c.line({double(x0), double(bot)}, {double(x1), double(bot)}, 1.0, kFrameLine);

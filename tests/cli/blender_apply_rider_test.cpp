@@ -24,6 +24,7 @@
 #include "scene/scene.h"
 #include "tests/blender_fixture.h"
 #include "tests/cli/run_command.h"
+#include "tests/scene_folder.h"
 #include "tests/rig/user_riders.h"
 
 namespace stirrup::test {
@@ -73,7 +74,7 @@ Baked bakeUserRider(const rig::test::UserRiderFiles& files, const fs::path& dir,
   scene["characters"] = {{"horse", horse.is_null() ? nlohmann::json(STIRRUP_SOURCE_DIR "/scenes/characters/horse.glb") : horse},
                          {"rider", {{"file", files.glb.string()}, {"mapping", files.mapping.string()}}}};
   if (!clip.is_null()) scene["clip"] = clip;
-  scene["profile"] = STIRRUP_SOURCE_DIR "/scenes/profiles/thesis.json";
+  scene["profile"] = thesisProfile().string();
   scene["frames"] = "1-" + std::to_string(kFrames);
   scene["output"] = (dir / "out").string();
   const fs::path scene_file = dir / "scene.json";

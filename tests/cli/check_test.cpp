@@ -24,6 +24,7 @@
 #include "scene/clip_factory.h"
 #include "tests/cli/blender_script.h"
 #include "tests/cli/run_command.h"
+#include "tests/scene_folder.h"
 #include "tests/test_files.h"
 
 namespace stirrup::test {
@@ -37,19 +38,9 @@ std::string lastLine(const std::string& s) {
   return s.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1));
 }
 
-class CheckCli : public ::testing::Test {
+class CheckCli : public SceneFolderTest {
  protected:
-  fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_check" / ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  void SetUp() override {
-    fs::remove_all(dir);
-    fs::create_directories(dir / "profiles");
-    fs::copy_file(fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json", dir / "profiles/thesis.json");
-  }
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path f = dir / name;
-    std::ofstream(f) << text;
-    return f;
-  }
+  CheckCli() : SceneFolderTest("test_check") {}
 };
 
 // A path faster than any horse: a failure on every frame, naming the limit, the field and the segment;

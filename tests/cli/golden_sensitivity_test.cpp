@@ -22,6 +22,7 @@
 #include "scene/scene.h"
 #include "tests/cli/golden_support.h"
 #include "tests/cli/run_command.h"
+#include "tests/scene_folder.h"
 
 namespace stirrup::test {
 namespace {
@@ -63,7 +64,7 @@ std::array<double, 3> tilt(const std::array<double, 3>& v, double deg) {
 // scene file, and this copy lives in the build folder).
 json perturbedScene(const Perturbation& p) {
   const fs::path golden_scene = kGoldenDir / "trot_side.json";
-  const fs::path profile = fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json";
+  const fs::path profile = thesisProfile();
   json scene = readJson(golden_scene);
   scene["profile"] = profile.string();
   switch (p.change) {
@@ -137,7 +138,7 @@ struct ShotRender {
 
 ShotRender renderCloseWithWeight(const Perturbation& p, const WeightShot& shot) {
   const GoldenSet set = loadGoldenSet();
-  const fs::path profile = fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json";
+  const fs::path profile = thesisProfile();
   const double value = readJson(profile).at(p.key).get<double>() * p.amount;
   ShotRender r;
   const std::string name = std::string(shot.scene) + "_close";

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/cli/run_command.h"
+#include "tests/scene_folder.h"
 
 namespace stirrup::test {
 namespace {
@@ -21,7 +22,7 @@ fs::path writeSmallScene(const fs::path& dir) {
   const fs::path file = dir / "small.json";
   std::ofstream(file) << R"({
     "name": "small",
-    "profile": ")" << (fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json").string() << R"(",
+    "profile": ")" << thesisProfile().string() << R"(",
     "resolution": [96, 54],
     "quality": {"preset": "draft", "samples": 2},
     "cameras": [{"name": "cam", "type": "perspective", "fov": 35,

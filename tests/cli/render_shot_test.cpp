@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/cli/run_command.h"
+#include "tests/scene_folder.h"
 #include "tests/test_files.h"
 
 namespace stirrup::test {
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 fs::path writeScene(const fs::path& dir) {
   const fs::path file = dir / "fixed.json";
   std::ofstream(file) << R"({"name": "fixed", "frames": "1-24", "quality": "review", "resolution": [640, 360],
-    "profile": ")" << (fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json").string() << R"(",
+    "profile": ")" << thesisProfile().string() << R"(",
     "cameras": [{"name": "fixed", "type": "orthographic", "motion": "fixed", "ortho_height": 320,
                  "position": [200, 140, 900], "target": [200, 140, 0]},
                 {"name": "side", "view": "side"}]})";

@@ -9,27 +9,16 @@
 #include <gtest/gtest.h>
 
 #include "tests/cli/run_command.h"
+#include "tests/scene_folder.h"
 
 namespace stirrup::test {
 namespace {
 
 namespace fs = std::filesystem;
 
-class SceneErrors : public ::testing::Test {
+class SceneErrors : public SceneFolderTest {
  protected:
-  // One folder per test: CTest runs tests in parallel processes.
-  fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_scene_errors" /
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  void SetUp() override {
-    fs::remove_all(dir);
-    fs::create_directories(dir / "profiles");
-    fs::copy_file(fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json", dir / "profiles/thesis.json");
-  }
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path f = dir / name;
-    std::ofstream(f) << text;
-    return f;
-  }
+  SceneErrors() : SceneFolderTest("test_scene_errors") {}
   void expectError(const std::string& args, const std::string& message) {
     const CommandResult r = runStirrup(args);
     EXPECT_NE(r.exit_code, 0) << args;
@@ -93,7 +82,7 @@ TEST_F(SceneErrors, AFrameRangePastTheMaximumIsOneLineNotBadAlloc) {
 
 // Notepad's "UTF-8 with BOM": the scene (and the profile it names) read as without.
 TEST_F(SceneErrors, AByteOrderMarkIsNotAnError) {
-  std::ifstream in(fs::path(STIRRUP_SOURCE_DIR) / "scenes/profiles/thesis.json", std::ios::binary);
+  std::ifstream in(thesisProfile(), std::ios::binary);
   const std::string profile{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   write("profiles/bom.json", "\xEF\xBB\xBF" + profile);
   const fs::path f = write("x.json", "\xEF\xBB\xBF" R"({"clip": {"generator": "trot"}, "profile": "bom", "frames": "1-3", "output": "out"})");

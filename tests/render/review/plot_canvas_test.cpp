@@ -1,5 +1,6 @@
-// The diagram canvas (render/review/plot_canvas.cpp): fills, blends, antialiased lines and pastes,
-// read back from the PNG it writes, with coverages worked out by hand.
+// The plotter (render/review/plot_canvas.cpp): the raster canvas's fills, blends, antialiased and dashed
+// lines and pastes, read back from the PNG it writes, with coverages worked out by hand; the SVG canvas's
+// markup for the same calls; the hex colours both take.
 #include "render/review/plot_canvas.h"
 
 #include <unistd.h>
@@ -7,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -83,6 +85,63 @@ TEST_F(CanvasTest, PasteCopiesAndClipsAndWriteFailsCleanly) {
   const fs::path nowhere = dir_ / "no" / "such" / "folder" / "c.png";
   EXPECT_EQ(test::errorOf([&] { c.write(nowhere); }), nowhere.string() + ": cannot write the image");
   EXPECT_FALSE(fs::exists(nowhere.string() + ".tmp.png"));
+}
+
+// A 1-pixel line along row 1 dashed 2 on, 2 off from x = 0 to 8: dashes [0, 2] and [4, 6]. Pixels 0, 1, 4
+// and 5 are covered; 2, 3 and 6 are half a pixel from a dash's end (half covered); 7 is 1.5 from one.
+TEST_F(CanvasTest, DashedLinesLeaveGaps) {
+  Canvas c(8, 3, {0, 0, 0});
+  c.dashedLine({0.0, 1.5}, {8.0, 1.5}, 1.0, {1, 1, 1}, 2.0);
+  const std::vector<uint8_t> px = pixels(c);
+  const std::vector<int> expected = {255, 255, 128, 128, 255, 255, 128, 0};
+  for (int x = 0; x < 8; ++x) EXPECT_EQ(red(px, 8, x, 1), expected[std::size_t(x)]) << x;
+}
+
+// A polyline is its segments drawn in turn, and a rectangle its fill with a line around its outer pixels.
+TEST_F(CanvasTest, PolylinesAndRectanglesAreTheirLinesAndFills) {
+  Canvas a(8, 6, {0, 0, 0}), b(8, 6, {0, 0, 0});
+  a.polyline({{1.0, 1.0}, {6.0, 2.0}, {3.0, 5.0}}, 1.5, {1, 0.5f, 0});
+  b.line({1.0, 1.0}, {6.0, 2.0}, 1.5, {1, 0.5f, 0});
+  b.line({6.0, 2.0}, {3.0, 5.0}, 1.5, {1, 0.5f, 0});
+  EXPECT_EQ(pixels(a), pixels(b));
+  Canvas r(8, 6, {0, 0, 0});
+  r.rect({1.0, 1.0}, {7.0, 5.0}, {0, 0, 1}, {1, 0, 0});
+  const std::vector<uint8_t> px = pixels(r);
+  EXPECT_EQ(red(px, 8, 1, 1), 255);  // the edge
+  EXPECT_EQ(red(px, 8, 6, 4), 255);
+  EXPECT_EQ(red(px, 8, 3, 3), 0);  // inside: the fill
+  EXPECT_EQ(px[(3 * 8 + 3) * 3 + 2], 255);
+  EXPECT_EQ(red(px, 8, 0, 0), 0);  // outside
+}
+
+TEST(HexColor, ReadsShortAndLongForms) {
+  EXPECT_EQ(hexColor("#c00"), (Color{0.8f, 0.0f, 0.0f}));
+  EXPECT_EQ(hexColor("#ff8000"), (Color{1.0f, 128 / 255.0f, 0.0f}));
+  EXPECT_THROW(hexColor("c00"), std::invalid_argument);
+  EXPECT_THROW(hexColor("#c000"), std::invalid_argument);
+}
+
+// Each call is one element, in order; numbers to a tenth without a trailing .0; colours written back
+// as given; black text, a stroke width of 1 and the root's font size left out; text escaped.
+TEST(SvgCanvas, WritesEachCallAsAnElement) {
+  SvgCanvas s(360, 150, 10);
+  s.rect({40, 8}, {352, 128}, hexColor("#fafafa"), hexColor("#ccc"));
+  s.dashedLine({40, 20.25}, {352, 20.25}, 1.0, hexColor("#c00"), 3);
+  s.line({100, 8}, {100, 128}, 1.0, hexColor("#888"));
+  s.polyline({{40, 60.04}, {50.5, 70}}, 1.5, hexColor("#1f77b4"));
+  s.text({350, 18.3}, "limit <5>", 10, hexColor("#c00"), TextAlign::Right);
+  s.text({4, 30}, "1", 10, hexColor("#000"));
+  s.text({4, 40}, "big", 12, hexColor("#000"), TextAlign::Center, FontStyle::SansBold);
+  EXPECT_EQ(s.markup(),
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"360\" height=\"150\" font-size=\"10\">"
+            "<rect x=\"40\" y=\"8\" width=\"312\" height=\"120\" fill=\"#fafafa\" stroke=\"#ccc\"/>"
+            "<line x1=\"40\" x2=\"352\" y1=\"20.2\" y2=\"20.2\" stroke=\"#c00\" stroke-dasharray=\"3,3\"/>"
+            "<line x1=\"100\" x2=\"100\" y1=\"8\" y2=\"128\" stroke=\"#888\"/>"
+            "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"40,60 50.5,70\"/>"
+            "<text x=\"350\" y=\"18.3\" text-anchor=\"end\" fill=\"#c00\">limit &lt;5&gt;</text>"
+            "<text x=\"4\" y=\"30\">1</text>"
+            "<text x=\"4\" y=\"40\" text-anchor=\"middle\" font-size=\"12\" font-weight=\"bold\">big</text>"
+            "</svg>");
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The baked-shot glTF writer (rig/io/gltf_bake.cpp) on small hand-made shots, read back with tinygltf:
 // joint locals from world matrices, the seat's extras, the layout (a centimetre root per character,
 // cameras, the ground), and which nodes are animated. `stirrup bake` end to end (round trip of a real
-// shot, the Khronos validator, Blender) is tests/cli/bake_test.cpp.
+// shot, the Khronos validator, Blender) is tests/cli/bake_*_test.cpp.
 #include "rig/io/gltf_bake.h"
 
 #include <algorithm>

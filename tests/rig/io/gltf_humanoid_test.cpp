@@ -2,8 +2,8 @@
 // metres, +Y up, facing +Z with the left at +X; joints carry rest rotations along their bones with
 // inverse bind matrices to match; the rest pose is the one asked for; the texture is embedded and
 // referenced; VRM files carry VRMC_vrm's humanBones; nothing of stirrup's is in it.
-#include "rig/io/character_mapping_json.h"
 #include "rig/io/gltf_humanoid.h"
+#include "rig/io/character_mapping_json.h"
 
 #include <cmath>
 #include <filesystem>

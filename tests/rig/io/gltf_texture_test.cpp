@@ -3,8 +3,8 @@
 // materials sharing vertices) reads as worked out by hand; the Khronos Fox reads its one texture; a
 // textured character written by characterGlb reads back the same, its images byte for byte; bad
 // texture data is a one-line error naming the file and the material.
-#include "rig/io/character_mapping_json.h"
 #include "rig/io/gltf_texture.h"
+#include "rig/io/character_mapping_json.h"
 
 #include <cmath>
 #include <cstring>

@@ -1,0 +1,152 @@
+// stirrup bake with a user's characters: a textured horse keeps its texture, a user's rider her joints'
+// names.
+#include <algorithm>
+#include <map>
+#include <set>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include "tests/cli/baked_file.h"
+#include "tests/cli/run_command.h"
+#include "tests/cli/bake_support.h"
+
+namespace stirrup::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A textured user horse (the Khronos Fox, its joints mapped to the horse roles) baked with the
+// default rider: the file holds the Fox's image (its PNG bytes as the Fox holds them), a horse
+// material whose base colour texture is that image, TEXCOORD_0 on every horse vertex, and an
+// untextured rider as before; the Khronos validator finds no errors or warnings in it.
+TEST(BakeGltf, ATexturedUserHorseKeepsItsTexture) {
+  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / "fox_horse";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const nlohmann::json roles = {
+      {"root", "b_Hip_01"},        {"backMid", "b_Spine01_02"},  {"chest", "b_Spine02_03"},
+      {"withers", "b_Spine02_03"}, {"neck1", "b_Neck_04"},       {"neck2", "b_Neck_04"},
+      {"head", "b_Head_05"},       {"saddle", "b_Spine01_02"},   {"lStirrup", "b_Spine01_02"},
+      {"rStirrup", "b_Spine01_02"}, {"lRein", "b_Head_05"},      {"rRein", "b_Head_05"},
+      {"tail1", "b_Tail01_012"},   {"tail2", "b_Tail02_013"},    {"tail3", "b_Tail03_014"},
+      {"lfUpper", "b_LeftUpperArm_09"}, {"lfMiddle", "b_LeftForeArm_010"}, {"lfFetlock", "b_LeftHand_011"},
+      {"lfHoof", "b_LeftHand_011"},     {"rfUpper", "b_RightUpperArm_06"}, {"rfMiddle", "b_RightForeArm_07"},
+      {"rfFetlock", "b_RightHand_08"},  {"rfHoof", "b_RightHand_08"},      {"lbUpper", "b_LeftLeg01_015"},
+      {"lbMiddle", "b_LeftLeg02_016"},  {"lbFetlock", "b_LeftFoot01_017"}, {"lbHoof", "b_LeftFoot02_018"},
+      {"rbUpper", "b_RightLeg01_019"},  {"rbMiddle", "b_RightLeg02_020"},  {"rbFetlock", "b_RightFoot01_021"},
+      {"rbHoof", "b_RightFoot02_022"}};
+  std::ofstream(dir / "fox-horse.json")
+      << nlohmann::json{{"character", "horse"}, {"scale_cm", 3.5}, {"forward", {0, 0, 1}}, {"up", {0, 1, 0}}, {"roles", roles}}.dump(1);
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(STIRRUP_SOURCE_DIR "/scenes/walk.json"));
+  scene["characters"] = {{"horse", {{"file", fox.string()}, {"mapping", "fox-horse.json"}}}, {"rider", "default"}};
+  std::ofstream(dir / "fox_walk.json") << scene.dump(1);
+  const fs::path glb = dir / "fox_walk.glb";
+  const CommandResult r = runStirrup("bake " + quote((dir / "fox_walk.json").string()) + " --frames 1-12 -o " + quote(glb.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+
+  const tinygltf::Model model = readGlbModel(glb);
+  tinygltf::Model source;
+  {
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&source, &err, &warn, fox.string())) << err;
+  }
+  const auto viewBytes = [](const tinygltf::Model& m, int view) {
+    const tinygltf::BufferView& v = m.bufferViews.at(std::size_t(view));
+    const auto* p = m.buffers.at(std::size_t(v.buffer)).data.data() + v.byteOffset;
+    return std::vector<unsigned char>(p, p + v.byteLength);
+  };
+  ASSERT_EQ(model.images.size(), 1u);
+  EXPECT_EQ(model.images[0].mimeType, "image/png");
+  EXPECT_EQ(viewBytes(model, model.images[0].bufferView), viewBytes(source, source.images.at(0).bufferView));
+  const int horse_node = nodeNamed(model, "horse:horse_mesh"), rider_node = nodeNamed(model, "rider:rider_mesh");
+  ASSERT_GE(horse_node, 0);
+  ASSERT_GE(rider_node, 0);
+  const tinygltf::Mesh& horse = model.meshes.at(std::size_t(model.nodes[horse_node].mesh));
+  ASSERT_EQ(horse.primitives.size(), 1u);  // the Fox: one material
+  const tinygltf::Primitive& prim = horse.primitives[0];
+  const int texture = model.materials.at(std::size_t(prim.material)).pbrMetallicRoughness.baseColorTexture.index;
+  ASSERT_GE(texture, 0);
+  EXPECT_EQ(model.textures.at(std::size_t(texture)).source, 0);
+  ASSERT_TRUE(prim.attributes.count("TEXCOORD_0"));
+  EXPECT_EQ(model.accessors.at(std::size_t(prim.attributes.at("TEXCOORD_0"))).count,
+            model.accessors.at(std::size_t(prim.attributes.at("POSITION"))).count);
+  for (const tinygltf::Primitive& p : model.meshes.at(std::size_t(model.nodes[rider_node].mesh)).primitives) {
+    EXPECT_FALSE(p.attributes.count("TEXCOORD_0"));
+    EXPECT_LT(model.materials.at(std::size_t(p.material)).pbrMetallicRoughness.baseColorTexture.index, 0);
+  }
+
+  bool skipped = false;
+  const std::string problems = validatorProblems(glb, skipped);
+  if (skipped) GTEST_SKIP() << problems << " (the file was checked)";
+  EXPECT_EQ(problems, "");
+}
+
+// A user's rider keeps her joints' names in both bakes: the file's own, not the roles they play, with
+// no prefix, and a joint two roles share (a wrist that is also the hand) named once, as the file
+// names it. The full bake adds only the rig's own points (stirrup_*); --rider-only writes the file's
+// joints alone.
+TEST(BakeGltf, AUsersRiderKeepsHerJointNames) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / "user_names";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path glb = dir / "rider.glb", mapping = dir / "rider-map.json";
+  ASSERT_EQ(runStirrup("character make humanoid --names mixamo --pose a --shared-wrist-hand -o " + quote(glb.string())).exit_code, 0);
+  const CommandResult mapped = runStirrup("character map " + quote(glb.string()) + " --as rider -o " + quote(mapping.string()));
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
+  // The file's wrist is its hand: the mapping names it for both roles, as a user may write it.
+  nlohmann::json map = nlohmann::json::parse(std::ifstream(mapping));
+  nlohmann::json& roles = map["roles"];
+  roles["lHand"] = roles["lWrist"];
+  roles["rHand"] = roles["rWrist"];
+  std::ofstream(mapping) << map.dump(1);
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(STIRRUP_SOURCE_DIR "/scenes/trot.json"));
+  scene["characters"] = {{"horse", "default"}, {"rider", {{"file", glb.string()}, {"mapping", mapping.string()}}}};
+  std::ofstream(dir / "trot.json") << scene.dump(1);
+  std::set<std::string> file_joints;
+  {
+    const tinygltf::Model source = readGlbModel(glb);
+    for (const int n : source.skins.at(0).joints) file_joints.insert(source.nodes.at(std::size_t(n)).name);
+  }
+  ASSERT_TRUE(file_joints.count(roles["lWrist"].get<std::string>()));
+  const auto skinJoints = [](const tinygltf::Model& m, int skin) {
+    std::set<std::string> names;
+    for (const int n : m.skins.at(std::size_t(skin)).joints) names.insert(m.nodes.at(std::size_t(n)).name);
+    return names;
+  };
+
+  CommandResult r = runStirrup("bake " + quote((dir / "trot.json").string()) + " --frames 1-6 -o " + quote((dir / "shot.glb").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tinygltf::Model shot = readGlbModel(dir / "shot.glb");
+  ASSERT_EQ(shot.skins.size(), 2u);
+  const int rider_skin = shot.skins[0].name.rfind("rider:", 0) == 0 ? 0 : 1;
+  std::set<std::string> rig_points;
+  for (const std::string& name : skinJoints(shot, rider_skin))
+    if (!file_joints.count(name)) rig_points.insert(name);
+  for (const std::string& name : rig_points) EXPECT_EQ(name.rfind("stirrup_", 0), 0u) << name << " is neither hers nor a rig point";
+  std::set<std::string> written = skinJoints(shot, rider_skin);
+  for (const std::string& name : file_joints) EXPECT_TRUE(written.count(name)) << name << " lost its name in the bake";
+
+  r = runStirrup("bake " + quote((dir / "trot.json").string()) + " --frames 1-6 --rider-only -o " + quote((dir / "motion.glb").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(skinJoints(readGlbModel(dir / "motion.glb"), 0), file_joints);
+}
+
+}  // namespace
+}  // namespace stirrup::test
