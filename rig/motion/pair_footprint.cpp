@@ -16,7 +16,7 @@ constexpr double kRad = std::numbers::pi / 180.0;
 // (rig/characters/horse_character.cpp; not HorseParams, so not scaled).
 constexpr double kTailHairCm = 14.0;
 
-// The rotation of rig/pose.cpp's rot(degrees, axis) for a point, about the X, Y or Z axis, in double.
+// The rotation of rig/pose_transforms.h's rot(degrees, axis) for a point, about the X, Y or Z axis, in double.
 glm::dvec3 rotX(glm::dvec3 p, double deg) {
   const double c = std::cos(deg * kRad), s = std::sin(deg * kRad);
   return {p.x, c * p.y - s * p.z, s * p.y + c * p.z};
