@@ -13,7 +13,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "rig/io/clip_factory.h"
-#include "rig/motion/clip_info.h"
+#include "rig/motion/clip_report.h"
 #include "rig/motion/crowd.h"
 #include "rig/motion/path_clip.h"
 #include "render/scene/scene.h"

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "rig/io/frame_range.h"
-#include "rig/motion/clip_info.h"
+#include "rig/motion/gait_reference.h"
 #include "rig/motion/path_clip.h"
 
 #include "rig/error.h"
