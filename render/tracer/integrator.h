@@ -21,7 +21,7 @@
 #include "render/tracer/sample_lanes.h"
 #include "render/tracer/sampler.h"
 #include "render/tracer/shading_lanes.h"
-#include "render/tracer/terrain_mesh.h"
+#include "render/tracer/heightfield_mesh.h"
 #include "rig/motion/terrain.h"
 #include "rig/texture.h"
 

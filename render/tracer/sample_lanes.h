@@ -23,7 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/tracer/sampler.h"
-#include "render/tracer/terrain_mesh.h"
+#include "render/tracer/heightfield_mesh.h"
 
 namespace stirrup::render {
 
