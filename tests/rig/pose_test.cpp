@@ -10,8 +10,7 @@
 namespace stirrup::rig {
 namespace {
 
-using test::defaultHorse;
-using test::defaultRider;
+using namespace test;  // defaultHorse, defaultRider
 const Character& horse() { return defaultHorse(); }
 const Character& rider() { return defaultRider(); }
 

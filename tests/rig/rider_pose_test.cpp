@@ -18,11 +18,7 @@
 namespace stirrup::rig {
 namespace {
 
-using test::at;
-using test::defaultHorse;
-using test::defaultRider;
-using test::finite;
-using test::pos;
+using namespace test;  // defaultHorse, defaultRider; pos, at, finite (tests/rig/posed_joints.h)
 const Character& horse() { return defaultHorse(); }
 const Character& rider() { return defaultRider(); }
 
