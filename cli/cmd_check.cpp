@@ -35,7 +35,7 @@
 #include "rig/io/atomic_file.h"
 #include "rig/io/gltf_clip.h"
 #include "rig/io/gltf_shot.h"
-#include "rig/motion/clip_info.h"
+#include "rig/motion/clip_report.h"
 #include "rig/motion/horse_limits.h"
 #include "rig/motion/path_clip.h"
 #include "rig/pose.h"

@@ -16,7 +16,7 @@
 #include "rig/io/gltf_clip.h"
 #include "rig/io/json_fields.h"
 #include "rig/io/keyed_horse_clip.h"
-#include "rig/motion/clip_info.h"
+#include "rig/motion/clip_report.h"
 #include "rig/motion/crowd.h"
 #include "rig/motion/path_clip.h"
 #include "scene/clip_factory.h"

@@ -36,7 +36,7 @@ struct Character {
   std::map<std::string, int, std::less<>> roles;
   // A rider the rig seated (rig/characters/seating.h) carries the horse's side where her legs lie, so the
   // rider channels (knee and foot movements, a leg swinging back) never press her knees and calves into
-  // it: posing turns a knee out about its hip-ankle line as far as that needs (rig/pose.h). Empty: no
+  // it: posing turns a knee out about its hip-ankle line as far as that needs (rig/rider_pose.h). Empty: no
   // guard (the generated rider, built against the generated horse).
   struct LegGuard {
     // The horse's half-width (largest |z|, cm) in saddle space, in cells of cell_cm from (x0, y0): nx
@@ -53,7 +53,7 @@ struct Character {
   // A rider the rig seated on a horse (scene/ridden_pair.h) keeps her head and trunk out of the
   // horse's neck and head as she folds forward (a tall rider in a rear meets the poll): sample points
   // of her upper body and of the horse's neck and head, each rigid on its joint, and the room posing
-  // keeps between them (rig/pose.h). Empty: no guard (a rider modelled seated, the generated one among them).
+  // keeps between them (rig/rider_pose.h). Empty: no guard (a rider modelled seated, the generated one among them).
   struct FoldGuard {
     std::vector<int> rider_joint, horse_joint;
     std::vector<glm::vec3> rider_local, horse_local;  // each point in its joint's frame

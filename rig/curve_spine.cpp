@@ -56,7 +56,7 @@ bool solveLinear(std::vector<double>& a, std::vector<double>& b, int n) {
 // keeps the solution on the branch that moves continuously with the pose (a sphere-marching layout
 // jumps where the curve folds back within one bone). Returns c, or a negative value if Newton fails,
 // in which case `s` keeps the equal-arc-length layout.
-double layEqualChords(const SpineCurve& curve, std::vector<double>& s) {
+double layEqualChords(const CubicSpline& curve, std::vector<double>& s) {
   const int n = static_cast<int>(s.size()) - 1;
   const double length = curve.length();
   for (int j = 0; j <= n; ++j) s[j] = length * j / n;
@@ -135,7 +135,7 @@ glm::dquat restBoneFrame() {
   return glm::quat_cast(glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 0, -1)));
 }
 
-double tenNullLengthEstimate(const SpineCurve& curve) {
+double tenNullLengthEstimate(const CubicSpline& curve) {
   const int gaps = kRaisaniLengthNulls - 1;
   const glm::dvec3 n1 = curve.point(0.0);
   const glm::dvec3 n2 = curve.pointAtArcLength(curve.length() / gaps);
@@ -166,23 +166,23 @@ std::array<glm::dvec3, 4> CurveSpine::fkJoints(const SpineControllers& c, double
   return p;
 }
 
-SpineCurve CurveSpine::curve(const SpineControllers& c, double stretch) const {
+CubicSpline CurveSpine::curve(const SpineControllers& c, double stretch) const {
   const std::array<glm::dquat, 3> frames = controllerFrames(c);
   const std::array<glm::dvec3, 4> p = fkJoints(c, stretch);
   // Raisani 2004, Part III §1: the points sit at the bone centres "to avoid the curve bending on the
   // hinge of two bones".
   const std::array<glm::dvec3, 5> points = {p[0], 0.5 * (p[0] + p[1]), 0.5 * (p[1] + p[2]),
                                             0.5 * (p[2] + p[3]), p[3]};
-  return SpineCurve(points, frames[0] * kBoneAxis, frames[2] * kBoneAxis);
+  return CubicSpline(points, frames[0] * kBoneAxis, frames[2] * kBoneAxis);
 }
 
 std::vector<glm::dquat> CurveSpine::framesAt(const SpineControllers& c, double stretch,
                                              const std::vector<double>& fractions) const {
   if (!(std::isfinite(stretch) && stretch > 0.0))
     throw std::invalid_argument("CurveSpine: stretch " + std::to_string(stretch) + " is not positive");
-  const SpineCurve spline = curve(c, stretch);
+  const CubicSpline spline = curve(c, stretch);
   const double length = spline.length(), end = spline.endParameter();
-  const double step = end / (kFrameStepsPerSegment * SpineCurve::kSegmentCount);
+  const double step = end / (kFrameStepsPerSegment * CubicSpline::kSegmentCount);
   std::vector<glm::dquat> out;
   out.reserve(fractions.size());
   glm::dquat frame = controllerFrames(c)[0];
@@ -210,7 +210,7 @@ SpineResult CurveSpine::solve(const SpineControllers& c, double stretch, SpineDe
     throw std::invalid_argument("CurveSpine: stretch " + std::to_string(stretch) + " is not positive");
   const int n = segments_;
   const std::array<glm::dquat, 3> frames = controllerFrames(c);
-  const SpineCurve spline = curve(c, stretch);
+  const CubicSpline spline = curve(c, stretch);
 
   SpineResult r;
   r.fk = fkJoints(c, stretch);
@@ -260,7 +260,7 @@ SpineResult CurveSpine::solve(const SpineControllers& c, double stretch, SpineDe
   glm::dquat frame = frames[0];
   double at = 0.0;
   glm::dvec3 here = spline.point(at);  // spline.point(at), carried from step to step
-  const double step = end / (kFrameStepsPerSegment * SpineCurve::kSegmentCount);
+  const double step = end / (kFrameStepsPerSegment * CubicSpline::kSegmentCount);
   for (int j = 0; j <= n; ++j) {
     while (at < targets[j]) {
       const double next = std::min(at + step, targets[j]);

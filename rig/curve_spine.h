@@ -1,7 +1,7 @@
 // A curve spine driven by a traditional three-bone FK spine (Raisani 2004, "Curve based spine rig",
 // Part III; project issue 4). The animator rotates three controllers — lower, middle, top — exactly as
 // on a three-bone spine; translations and scales are locked (only rotations enter this API). From the
-// FK chain a C² cubic (SpineCurve) is built through the root of bone 1, the three bone midpoints and
+// FK chain a C² cubic (CubicSpline) is built through the root of bone 1, the three bone midpoints and
 // the tip of bone 3, and a chain of N equal bones is laid on it:
 //
 //  * Chain layout (ChainLayout): every joint lies on the curve, the first at its start and the last at
@@ -37,7 +37,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
-#include "rig/spine_curve.h"
+#include "rig/cubic_spline.h"
 
 namespace stirrup::rig {
 
@@ -61,7 +61,7 @@ enum class ChainLayout {
 };
 
 // What solve() works out: everything (the `stirrup spine` report and tests read the curve's samples and
-// Raisani's length estimate), or the joints alone, which is all a pose reads (rig/pose.cpp): the 129
+// Raisani's length estimate), or the joints alone, which is all a pose reads (rig/rider_pose.cpp): the 129
 // samples are most of a solve's arc-length lookups. The joints are the same to the bit either way.
 enum class SpineDetail {
   Full,    // every field of SpineResult
@@ -96,7 +96,7 @@ glm::dquat restBoneFrame();
 // curve's length taken as the distance between the first two times the number of gaps,
 // Ctr_Dist(N1, N2) · (NN − 1). Kept only to measure how far it is off the exact length.
 inline constexpr int kRaisaniLengthNulls = 10;  // NN, Raisani 2004, Part III §2 and Appendix A
-double tenNullLengthEstimate(const SpineCurve& curve);
+double tenNullLengthEstimate(const CubicSpline& curve);
 
 class CurveSpine {
  public:
@@ -127,7 +127,7 @@ class CurveSpine {
   // Pieces of solve, for tools and tests.
   std::array<glm::dquat, 3> controllerFrames(const SpineControllers& controllers) const;
   std::array<glm::dvec3, 4> fkJoints(const SpineControllers& controllers, double stretch = 1.0) const;
-  SpineCurve curve(const SpineControllers& controllers, double stretch = 1.0) const;
+  CubicSpline curve(const SpineControllers& controllers, double stretch = 1.0) const;
 
   // Length of the straight FK chain, L1 + L2 + L3.
   double restLength() const { return lengths_[0] + lengths_[1] + lengths_[2]; }

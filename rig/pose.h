@@ -1,27 +1,14 @@
-// Posing jobs: explicit inputs, explicit outputs, no hidden state. Each returns world matrices, one
-// per joint of the character's skeleton, for skinMesh.
+// Posing a horse and its rider: the one call every consumer (shot, bake, tests) makes, poseMounted,
+// over the three posing jobs it runs in order: the horse (rig/horse_pose.h), the tack (rig/tack_pose.h)
+// and the rider (rig/rider_pose.h). Explicit inputs, explicit outputs, no hidden state. Each returns
+// world matrices, one per joint of the character's skeleton, for skinMesh.
 //
 // Signs follow docs/channels.md by meaning. In the world (+X travel, +Y up, +Z the horse's
 // right): "front end up" is a rotation about +Z, "roll toward the right" about +X, "yaw to the
-// right" about -Y. A rider's "lean forward" is about -Z, "lean to her right" about +X.
-//
-// Decisions where the contract leaves the sense open (all in saddle space):
-//   head.ry          tilts the head's top toward her right (+X rotation), the sense of rearPivot.rx +
-//   lowerBack.rx     twists the chest toward her right (about -Y)
-//   lFoot/rFoot.rz   toe up: the foot turns about the ball in the stirrup, so the heel drops
-//   lFoot/rFoot.ry   toe turns toward the horse's right (about -Y); .rx sole rolls right (+X)
-//   lKnee/rKnee.tz/ty move the knee's IK pole (away from the belly / up), scaled by knee_pole_gain
-//   lWrist/rWrist    offsets of the hand target in saddle space (not in the rider's chest frame)
-//   hair.*, cloth.*  degrees of swing per unit (hair_deg_per_unit, cloth_deg_per_unit); "up" swings
-//                    the braid / coat skirt backward and up, "side" toward her right
-//   spineC/D/F.ty    the curve spine's stretch: the top of the chain rises by their sum (as the
-//                    three joints' offsets added up on the FK spine), Kuhnel's Eq 9 acting on the
-//                    chain through CurveSpine::stretchForOffset; neck.ty neck; headA.ty head
-//   lowerBack.rx     (with the curve spine) is the top controller's twist, spread along the chain
+// right" about -Y. A rider's "lean forward" is about -Z, "lean to her right" about +X. Where the
+// contract leaves a rider's sense open, rig/rider_pose.h says what was decided.
 #pragma once
 
-#include <array>
-#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -30,143 +17,12 @@
 #include "rig/channels.h"
 #include "rig/character.h"
 #include "rig/clip.h"
-#include "rig/curve_spine.h"
-#include "rig/horse_leg.h"
+#include "rig/horse_pose.h"
+#include "rig/rider_pose.h"
 #include "rig/rig_profile.h"
+#include "rig/tack_pose.h"
 
 namespace stirrup::rig {
-
-struct HorsePoseParams {
-  float hoof_flex_deg = 55.0f;        // pastern fold (hoof sole turning back) when a hoof is lifted
-  float hoof_flex_full_lift = 18.0f;  // lift (cm) at which the fold is complete
-  HorseLegParams leg;                 // the legs' reach (its soften_cm also softens two-bone legs)
-  // How far the body may settle (cm, along the travel frame's up) onto a planted leg that falls short
-  // of its print: over the crest of a hill the ground under a hoof drops below the plane the clip
-  // carries the body on (trail's trot, 2.3 cm). A horse's trunk sinks onto its stance legs as the
-  // fetlocks extend under load, by several centimetres at the trot; 5 cm is an estimate kept below that
-  // sink, so a hoof planted farther than this from its leg's reach stays flagged (HorseReach).
-  float max_stance_settle_cm = 5.0f;
-};
-
-// The travel frame of a horse frame: world from travel-frame coordinates (its origin at (travel_cm, 0,
-// travel_z_cm), turned by heading_deg).
-glm::mat4 travelMatrix(const HorseFrame& frame);
-// The horse's hooves standing square, in its travel frame: (x forward, z right) cm, lf rf lb rb. A
-// path clip turns planted hooves about these (rig::ClipSpec::hoof_rest).
-std::array<glm::dvec2, 4> restHoofPlaces(const Character& horse);
-
-// The horse at one frame: in its travel frame (travelMatrix); the body (root at the hips) moved and
-// turned by rearPivot, the front half turned at backMid (or the back joint rig/horse_body.h finds),
-// neck/head/tail by the frame's follow-through spread over the chains the skeleton has (horseBody),
-// each leg solved by two-bone IK to its hoof target (rest hoof place + hoof tx/ty/tz), knees bending
-// forward in front and hocks backward behind, the pastern folding as the hoof lifts; joints no role or
-// chain names carried by their parents. No bone changes length.
-// Never a rubber leg: a hoof target beyond its leg's reach leaves the leg at its full reach,
-// every bone its own length, and `reach` (when given) records how far short each hoof stays. A planted
-// hoof short of its print by HorseReach::kOverReachCm or more first lets the body settle onto it (at
-// most HorsePoseParams::max_stance_settle_cm); what is still short after that is recorded.
-struct HorseReach {
-  // A hoof this far (cm) or more short of its target is over-reached: beyond the two-bone solve's
-  // softening (HorseLegParams::soften_cm, 0.3 cm) by more than rounding, and enough to see.
-  static constexpr float kOverReachCm = 1.0f;
-  std::array<float, 4> short_cm{};  // lf, rf, lb, rb: the fetlock's distance from where its target wants it
-  // Whether the hoof is down (its lift, the hoof's ty, 0): a planted hoof short of its target hovers
-  // over its print or lands late; a swinging one misses a point in the air.
-  std::array<bool, 4> planted{};
-  bool overReached(int leg) const { return short_cm[std::size_t(leg)] >= kOverReachCm; }
-  bool any() const { return overReached(0) || overReached(1) || overReached(2) || overReached(3); }
-};
-// A horse keyed by its clip (HorseFrame::keyed_pose) is posed as keyed instead; a keyed hoof is down
-// within kKeyedContactCm of its rest height: a hand-keyed stance is not exactly at rest height, as a
-// generated one is [E].
-inline constexpr double kKeyedContactCm = 0.5;
-std::vector<glm::mat4> poseHorse(const Character& horse, const HorseFrame& frame,
-                                 const HorsePoseParams& params = {}, HorseReach* reach = nullptr);
-
-struct RiderPoseParams {
-  float chest_follow = 0.5f;       // fraction of waist.rz the chest adds on top
-  float hair_deg_per_unit = 1.0f;  // braid swing (degrees over the whole braid) per hair.up/side unit
-  float cloth_deg_per_unit = 1.0f; // coat-tail swing per cloth.up/side unit
-  float limb_soften = 0.5f;        // IK reach softening (cm)
-  // The knee channels move the knee's pole point, 50 cm out; this gain makes a knee offset of
-  // one cm move the knee by roughly one cm.
-  float knee_pole_gain = 3.0f;
-  // Posing limits (docs/rider-rig.md, "Posing limits"): the thesis expressions grow with the horse's
-  // pitch without bound, so on a 55° rear they fold the rider 170° forward into the neck and swing
-  // her feet 130 cm back. The forward lean of the torso relative to the saddle (hip.rz + lowerBack.rz
-  // + waist.rz · (1 + chest_follow)) is scaled down to at most max_lean_deg, keeping the proportions
-  // between the joints; the stirrup swing (foot tx) and the foot's toe-up turn (foot rz) are clamped.
-  float max_lean_deg = 45.0f;
-  float max_foot_swing_cm = 15.0f;
-  float max_foot_turn_deg = 30.0f;
-  // Contact (docs/rider-rig.md, "Posing limits"; tests/rig/contact_test.cpp): on jump and rear Eq 17
-  // brings the feet 7.5 cm in against the belly and Eq 16 turns the heels 26° in, which put the
-  // calves 6 cm into the saddle flaps; and Eq 8's seat shift back to 10 cm put the seat and the
-  // coat's skirt 5 cm into the cantle. The stirrup leather hangs against the flap, so the foot
-  // (foot tz, toward the belly) comes in at most max_foot_in_cm and the heel turns in (foot ry)
-  // at most max_foot_twist_deg; the pelvis slides back (cog tx) at most max_seat_back_cm, where the
-  // buttocks meet the cantle.
-  float max_foot_in_cm = 3.0f;
-  float max_foot_twist_deg = 15.0f;
-  float max_seat_back_cm = 6.0f;
-};
-
-// The torso's fold relative to the saddle the channels ask for: hip.rz + lowerBack.rz + waist.rz ·
-// (1 + chest_follow), degrees forward.
-double torsoFold(const RiderChannels& r, const RiderPoseParams& params);
-
-// The rider channels within the posing limits above (poseMounted applies this).
-RiderChannels limitRiderChannels(RiderChannels r, const RiderPoseParams& params, double rider_unit_cm);
-
-// The curve spine's controllers from the rider channels (docs/curve-spine.md, "The rider"): lower =
-// lowerBack (ry side, rz lean), middle = waist (rz), top = the chest's follow of the waist
-// (chest_follow · waist.rz) with the lowerBack twist, which the chain spreads from the lower back up
-// (rx = −lowerBack.rx: the spine's +rx turns the front to her left).
-SpineControllers riderSpineControllers(const RiderChannels& r, const RiderPoseParams& params);
-// Equation 9 on the chain: the stretch that raises the top of the spine by
-// (spineC + spineD + spineF).ty · rider_unit_cm at rest, kept ≥ kMinRiderSpineStretch.
-inline constexpr double kMinRiderSpineStretch = 0.25;
-double riderSpineStretch(const CurveSpine& spine, const RiderChannels& r, double rider_unit_cm);
-
-// The rider's spine and head, local transforms (saddle space at the pelvis). The torso is the curve
-// spine (rig/curve_spine.h): the FK controllers lowerBack/waist/chest are posed from the channels,
-// the chain spine0..spine<N> is laid on the curve they drive, and neck and head ride on the chain's
-// tip. `local` holds one matrix per rider joint; only pelvis, spine, neck and head entries are
-// written.
-void poseRiderSpine(const Character& rider, const RiderChannels& r, double rider_unit_cm,
-                    const RiderPoseParams& params, std::span<glm::mat4> local);
-
-// The balance stage as poseRider runs it (rig/balance.h): its parameters, and how many times larger
-// the channels' fold was than the posing limit let through (limitRiderChannels; 1 when it did not act).
-struct BalanceStage {
-  RigProfile::Balance params;
-  double fold_scale = 1;
-  double accel_cm_s2 = 0;  // the horse's travel acceleration (HorseFrame::travel_accel_cm_s2)
-  double ground_pitch_deg = 0;  // the ground's slope under the horse (HorseFrame::ground_pitch_deg, + uphill)
-};
-
-// The rider seated in the posed horse's saddle, moved by the rider channels (translations in rider
-// units; rider_unit_cm converts them). Hands reach for the reins, feet for the stirrups. With
-// `balance`, the balance stage turns her trunk about her hips after the spine is laid out (and
-// `balance_result`, when given, receives what it decided); without, the channels' pose as it is.
-std::vector<glm::mat4> poseRider(const Character& rider, const Character& horse,
-                                 std::span<const glm::mat4> horseWorld, const RiderChannels& r,
-                                 double rider_unit_cm, const RiderPoseParams& params = {},
-                                 const BalanceStage* balance = nullptr, BalanceResult* balance_result = nullptr);
-
-// Where the ball of each foot goes, in world: the horse's stirrup rest place (hanging from the posed
-// saddle) moved by lFoot/rFoot tx (forward) and tz (away from the belly). index 0 = left, 1 = right.
-glm::vec3 stirrupTarget(const Character& horse, std::span<const glm::mat4> horseWorld, const RiderChannels& r,
-                        double rider_unit_cm, int side);
-
-// Moves the horse's stirrup joints to the rider's feet (call after poseHorse when a rider rides).
-void placeStirrups(const Character& horse, std::span<glm::mat4> horseWorld, const RiderChannels& r,
-                   double rider_unit_cm);
-
-// Moves the hand ends of the horse's reins ("lRein", "rRein") to the rider's hands ("lHand",
-// "rHand"), so the reins run from the bit to where her hands close on them (call after poseRider).
-void placeReins(const Character& horse, std::span<glm::mat4> horseWorld, const Character& rider,
-                std::span<const glm::mat4> riderWorld);
 
 // Both characters at one frame, the way every consumer (shot, bake, tests) poses them: poseHorse,
 // placeStirrups, poseRider with the profile's balance stage, placeReins. World matrices, one per joint

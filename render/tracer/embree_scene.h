@@ -64,7 +64,7 @@ class EmbreeScene {
   // Sets the ground scene to a horizontal square at y = 0 centred on the origin, 2 * half_extent_cm
   // wide, and commits it.
   void setGround(float half_extent_cm);
-  // Sets the ground scene to a heightfield's mesh instead (render/tracer/terrain_mesh.h), built once
+  // Sets the ground scene to a heightfield's mesh instead (render/tracer/heightfield_mesh.h), built once
   // (MEDIUM, static) and committed: its triangles in pairs, each cell's (a c d), (a d b) meeting on the
   // diagonal a-d, traced as Embree quads (half the primitives: the BVH builds in about half the time).
   // A hit's primID is the cell and u, v the quad's; groundTriangleHit gives the triangle. Throws

@@ -15,12 +15,12 @@
 #include <glm/vec4.hpp>
 
 #include "render/tracer/embree_scene.h"
+#include "render/tracer/heightfield_mesh.h"
 #include "render/tracer/lights.h"
 #include "render/tracer/renderer.h"
 #include "render/tracer/sample_lanes.h"
 #include "render/tracer/sampler.h"
 #include "render/tracer/shading_lanes.h"
-#include "render/tracer/terrain_mesh.h"
 #include "rig/motion/terrain.h"
 #include "rig/texture.h"
 #include "scene/camera.h"

@@ -22,9 +22,9 @@
 #include <glm/vec3.hpp>
 
 #include "render/tracer/embree_scene.h"
+#include "render/tracer/heightfield_mesh.h"
 #include "render/tracer/image.h"
 #include "render/tracer/lights.h"
-#include "render/tracer/terrain_mesh.h"
 #include "rig/motion/terrain.h"
 #include "rig/texture.h"
 #include "scene/camera.h"
@@ -123,7 +123,7 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // Uneven ground (issue 15): the ground becomes `terrain`'s heightfield mesh, fine over `region` (the
-  // horse's track; render/tracer/terrain_mesh.h), in place of the flat plane. Build once per shot, before
+  // horse's track; render/tracer/heightfield_mesh.h), in place of the flat plane. Build once per shot, before
   // rendering. Null or flat terrain keeps the analytic plane (and so the frames of before).
   void setTerrain(std::shared_ptr<const rig::Terrain> terrain, const GroundRegion& region,
                   const TerrainMeshParams& params = {});

@@ -22,8 +22,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "render/tracer/heightfield_mesh.h"
 #include "render/tracer/sampler.h"
-#include "render/tracer/terrain_mesh.h"
 
 namespace stirrup::render {
 

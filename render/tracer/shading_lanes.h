@@ -43,7 +43,7 @@ struct SurfaceLanes {
   // the plane): a character's downward sky rays stop just above it.
   std::vector<float> px, py, pz, ngx, ngy, ngz, nx, ny, nz, ar, ag, ab, specular, depth, ground_y;
   std::vector<int32_t> on_ground;
-  // Uneven ground: all bits where the hills may block the sun (render/tracer/terrain_mesh.h, SunHorizon): the
+  // Uneven ground: all bits where the hills may block the sun (render/tracer/heightfield_mesh.h, SunHorizon): the
   // sun is then sampled with shadow rays, which the integrator also traces against the heightfield.
   std::vector<int32_t> hills;
   // The stratified points of each surface's sun rays and sky rays (per-ray arrays).

@@ -11,51 +11,13 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "rig/ik.h"
 #include "rig/characters/implicit_body.h"
 #include "rig/characters/joint_placement.h"
+#include "rig/characters/torso_weights.h"
+#include "rig/ik.h"
 
 namespace stirrup::rig {
 namespace {
-
-// Linear blend weights along the spine chain. Each vertex keeps its weights on other joints (pelvis,
-// shoulders, neck); the share it has on the chain is moved onto the two chain bones whose middles
-// bracket its height, linearly (bone i's middle is at y0 + (i + ½)·bone, the tip joint's half a
-// bone above the chain), so a bent chain bends the torso smoothly instead of at a few joints.
-void spreadTorsoWeights(SkinnedMesh& mesh, std::span<const int> chain, float y0, float bone) {
-  const int n = static_cast<int>(chain.size()) - 1;
-  const auto on_chain = [&](int j) { return std::find(chain.begin(), chain.end(), j) != chain.end(); };
-  std::vector<std::pair<float, int>> w;
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    w.clear();
-    float torso = 0.0f;
-    for (int k = 0; k < kMaxInfluences; ++k) {
-      const float wk = mesh.weights[v][k];
-      if (wk <= 0.0f) continue;
-      const int j = mesh.joints[v][k];
-      if (on_chain(j))
-        torso += wk;
-      else
-        w.emplace_back(wk, j);
-    }
-    if (torso <= 0.0f) continue;
-    const float u = std::clamp((mesh.positions[v].y - y0) / bone - 0.5f, 0.0f, static_cast<float>(n));
-    const int i = std::min(static_cast<int>(u), n - 1);
-    const float f = u - static_cast<float>(i);
-    w.emplace_back(torso * (1.0f - f), chain[i]);
-    w.emplace_back(torso * f, chain[i + 1]);
-    std::sort(w.begin(), w.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    const int count = std::min<int>(kMaxInfluences, static_cast<int>(w.size()));
-    float total = 0.0f;
-    for (int k = 0; k < count; ++k) total += w[k].first;
-    mesh.joints[v] = glm::u16vec4(0);
-    mesh.weights[v] = glm::vec4(0.0f);
-    for (int k = 0; k < count; ++k) {
-      mesh.joints[v][k] = static_cast<std::uint16_t>(w[k].second);
-      mesh.weights[v][k] = w[k].first / total;
-    }
-  }
-}
 
 // The middle joint of a limb at rest: the same IK the posing job runs, so rest is reproduced exactly.
 glm::vec3 restMiddle(glm::vec3 root, glm::vec3 end, float upper, float lower, glm::vec3 pole_dir) {
@@ -213,7 +175,11 @@ Character buildRider(const RiderParams& p, const MountParams& mount) {
   poly.cell = p.cell;
   poly.skin_falloff = 2.0f;
   c.mesh = polygonize(body, poly);
-  spreadTorsoWeights(c.mesh, chain, p.lower_back.y, chain_bone);
+  TorsoChain torso;  // bones evenly spaced up from the lower back
+  torso.joints = chain;
+  torso.y0 = p.lower_back.y;
+  torso.bone = chain_bone;
+  spreadTorsoWeights(c.mesh, torso);
   groupTrianglesByColor(c.mesh);
   return c;
 }

@@ -15,6 +15,7 @@
 
 #include "rig/characters/implicit_body.h"
 #include "rig/characters/joint_placement.h"
+#include "rig/characters/torso_weights.h"
 #include "rig/error.h"
 
 namespace stirrup::rig {
@@ -171,51 +172,6 @@ std::string vrmName(const HumanoidJointLabel& l, int spine_joints) {
     case HumanoidBone::ToeEnd: return "J_Adj_" + s + "ToeTip";
   }
   return "";
-}
-
-// Linear blend weights along the spine, as the seated rider spreads its torso (rider_character.cpp):
-// the share of each vertex's weight that lies on the chain (pelvis and spine joints) is moved onto the
-// two chain bones whose middles bracket its height, so the torso bends smoothly along any number of
-// spine joints. `middles[k]` is the height of bone k's middle (chain[k] to the next joint up).
-void spreadAlongSpine(SkinnedMesh& mesh, std::span<const int> chain, std::span<const float> middles) {
-  const int n = static_cast<int>(chain.size());
-  const auto on_chain = [&](int j) { return std::find(chain.begin(), chain.end(), j) != chain.end(); };
-  std::vector<std::pair<float, int>> w;
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    w.clear();
-    float torso = 0.0f;
-    for (int k = 0; k < kMaxInfluences; ++k) {
-      const float wk = mesh.weights[v][k];
-      if (wk <= 0.0f) continue;
-      const int j = mesh.joints[v][k];
-      if (on_chain(j))
-        torso += wk;
-      else
-        w.emplace_back(wk, j);
-    }
-    if (torso <= 0.0f) continue;
-    const float y = mesh.positions[v].y;
-    int i = 0;
-    float f = 0.0f;
-    if (y >= middles[n - 1]) {
-      i = n - 1;
-    } else if (y > middles[0]) {
-      while (i + 1 < n - 1 && y > middles[i + 1]) ++i;
-      f = (y - middles[i]) / (middles[i + 1] - middles[i]);
-    }
-    w.emplace_back(torso * (1.0f - f), chain[i]);
-    if (f > 0.0f) w.emplace_back(torso * f, chain[i + 1]);
-    std::stable_sort(w.begin(), w.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    const int count = std::min<int>(kMaxInfluences, static_cast<int>(w.size()));
-    float total = 0.0f;
-    for (int k = 0; k < count; ++k) total += w[k].first;
-    mesh.joints[v] = glm::u16vec4(0);
-    mesh.weights[v] = glm::vec4(0.0f);
-    for (int k = 0; k < count; ++k) {
-      mesh.joints[v][k] = static_cast<std::uint16_t>(w[k].second);
-      mesh.weights[v][k] = w[k].first / total;
-    }
-  }
 }
 
 // A bone's rest frame the way Blender builds one: +Y from head to tail, +Z rolled toward the front
@@ -775,7 +731,10 @@ SkinnedMesh skinHumanoid(const ImplicitBody& body, const StandingHumanoidParams&
       const float y1 = i + 1 <= N ? s.restPosition(chain[i + 1]).y : L.neck_pos.y;
       middles.push_back(0.5f * (y0 + y1));
     }
-    spreadAlongSpine(mesh, chain, middles);
+    TorsoChain torso;
+    torso.joints = chain;
+    torso.middles = middles;
+    spreadTorsoWeights(mesh, torso);
   }
 
   return mesh;

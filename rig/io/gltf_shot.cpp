@@ -303,7 +303,7 @@ MountedPose GltfShot::pose(std::size_t pair, int frame, const GroundHeight& grou
   const Pair& p = m.pairs.at(pair);
   const auto& [horse, rider] = m.characters.at(pair);
   const auto posed = [&](const ShotCharacter& c, const GltfFileJoint& j) { return glm::mat4(c.skin->posed(j, worlds[std::size_t(j.node)])); };
-  // The horse as keyed (rig/pose.h poseHorse: points the rig added hang from their parents), its hooves
+  // The horse as keyed (rig/horse_pose.h poseHorse: points the rig added hang from their parents), its hooves
   // down by their keyed lift.
   auto keyed = std::make_shared<KeyedHorsePose>();
   keyed->joint.assign(horse.joints.size(), glm::mat4(1.0f));

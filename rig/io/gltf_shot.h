@@ -25,7 +25,7 @@
 //
 // A hoof is down where the horse's keyed controls say so (as rig/io/keyed_horse_clip.h measures them for
 // the horse's own animation): its lift (ty), the hoof joint's height above the ground under it less its
-// rest height, within rig::kKeyedContactCm (rig/pose.h).
+// rest height, within rig::kKeyedContactCm (rig/horse_pose.h).
 #pragma once
 
 #include <filesystem>

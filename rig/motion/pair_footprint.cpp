@@ -16,7 +16,7 @@ namespace {
 // (rig/characters/horse_character.cpp; not HorseParams, so not scaled).
 constexpr double kTailHairCm = 14.0;
 
-// The rotation of rig/pose.cpp's rot(degrees, axis) for a point, about the X, Y or Z axis, in double.
+// The rotation of rig/pose_transforms.h's rot(degrees, axis) for a point, about the X, Y or Z axis, in double.
 glm::dvec3 rotX(glm::dvec3 p, double deg) {
   const double c = std::cos(deg * kRadiansPerDegree), s = std::sin(deg * kRadiansPerDegree);
   return {p.x, c * p.y - s * p.z, s * p.y + c * p.z};

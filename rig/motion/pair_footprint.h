@@ -6,7 +6,7 @@
 // the rider's crown, as wide as the widest of barrel, quarters and the rider's boots in the stirrups.
 // The head and tail are bounded by spheres about the joints they turn from (the neck's base, the tail's
 // root), so no neck or tail angle takes them out of the box. At a frame the box's corners are moved as
-// poseHorse moves the body (rig/pose.h: rearPivot's translation and its yaw, pitch and roll about the
+// poseHorse moves the body (rig/horse_pose.h: rearPivot's translation and its yaw, pitch and roll about the
 // hips, then the ground's pitch), the hooves are added where their channels put them, and the tail is
 // swung sideways by its own angle; the footprint is the rectangle, square to the travel heading, that
 // holds all of those points seen from above, grown by kPoseMarginCm for what the frame's horse channels

@@ -1,4 +1,4 @@
-// Posing the rider's spine (rig/pose.h poseRiderSpine): the curve spine is built and solved on every
+// Posing the rider's spine (rig/rider_pose.h poseRiderSpine): the curve spine is built and solved on every
 // call, from the rider's channels. It runs once a frame for every rider, so it must stay far inside a
 // frame's budget; this measures it (it was a timed test, issue 37: timing belongs here).
 // Run: build/tests/bench/stirrup_bench --benchmark_filter=PoseRiderSpine
@@ -6,9 +6,9 @@
 
 #include <vector>
 
-#include "rig/pose.h"
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
+#include "rig/pose.h"
 #include "rig/skeleton.h"
 
 namespace {

@@ -36,7 +36,7 @@ double angleBetween(const glm::dquat& a, const glm::dquat& b) {
 }
 
 // Distance from p to the curve, by the nearest of a dense polyline and a local refinement.
-double distanceToCurve(const SpineCurve& c, const glm::dvec3& p) {
+double distanceToCurve(const CubicSpline& c, const glm::dvec3& p) {
   constexpr int kDense = 4000;
   double best = 1e300, bestT = 0.0;
   for (int k = 0; k <= kDense; ++k) {
@@ -52,7 +52,7 @@ double distanceToCurve(const SpineCurve& c, const glm::dvec3& p) {
   return best;
 }
 
-double polylineLength(const SpineCurve& c, int chords) {
+double polylineLength(const CubicSpline& c, int chords) {
   double sum = 0.0;
   glm::dvec3 prev = c.point(0.0);
   for (int k = 1; k <= chords; ++k) {
@@ -120,17 +120,17 @@ TEST(CurveSpine, ConventionsAtRestAndForSimpleBends) {
 TEST(CurveSpine, CurvePassesThroughTheFivePointsAndIsC2) {
   const CurveSpine spine(kBones, kN);
   for (const SpineControllers& c : extremePoses()) {
-    const SpineCurve curve = spine.curve(c);
+    const CubicSpline curve = spine.curve(c);
     const SpineResult r = spine.solve(c);
     EXPECT_NEAR(glm::distance(r.curve_points[1], 0.5 * (r.fk[0] + r.fk[1])), 0.0, 1e-12);
-    for (int i = 0; i < SpineCurve::kPointCount; ++i)
+    for (int i = 0; i < CubicSpline::kPointCount; ++i)
       EXPECT_LT(glm::distance(curve.point(curve.knot(i)), r.curve_points[i]), 1e-9);
     // Ends leave along bone 1 and arrive along bone 3.
     const std::array<glm::dquat, 3> frames = spine.controllerFrames(c);
     EXPECT_LT(glm::distance(curve.tangent(0.0), frames[0] * glm::dvec3(1, 0, 0)), 1e-9);
     EXPECT_LT(glm::distance(curve.tangent(curve.endParameter()), frames[2] * glm::dvec3(1, 0, 0)), 1e-9);
     // C¹ and C² at the interior knots, by one-sided finite differences of the position itself.
-    for (int i = 1; i < SpineCurve::kSegmentCount; ++i) {
+    for (int i = 1; i < CubicSpline::kSegmentCount; ++i) {
       const double t = curve.knot(i);
       const double h = 1e-5 * curve.endParameter();
       const glm::dvec3 left = (curve.point(t) - curve.point(t - h)) / h;
@@ -151,7 +151,7 @@ TEST(CurveSpine, ArcLengthIsExactAndInvertible) {
   const CurveSpine spine(kBones, kN);
   double worst = 0.0;
   for (const SpineControllers& c : extremePoses()) {
-    const SpineCurve curve = spine.curve(c);
+    const CubicSpline curve = spine.curve(c);
     // A 200,000-chord polyline underestimates by ~κ²h²/24 per chord: far below 1e-8 here.
     const double reference = polylineLength(curve, 200000);
     worst = std::max(worst, std::abs(curve.length() - reference) / reference);
@@ -173,7 +173,7 @@ double largestAngle(const SpineControllers& c) {
 }
 
 // The parameter of the curve point nearest p (dense search, then a local refinement).
-double nearestParameter(const SpineCurve& c, const glm::dvec3& p) {
+double nearestParameter(const CubicSpline& c, const glm::dvec3& p) {
   constexpr int kDense = 4000;
   double best = 1e300, bestT = 0.0;
   for (int k = 0; k <= kDense; ++k) {
@@ -193,7 +193,7 @@ double nearestParameter(const SpineCurve& c, const glm::dvec3& p) {
 
 // Arc length of the curve between parameters a < b, summed over a fine polyline: independent of the
 // Gauss–Legendre table the spine uses.
-double arcBetween(const SpineCurve& c, double a, double b) {
+double arcBetween(const CubicSpline& c, double a, double b) {
   constexpr int kChords = 4000;
   double sum = 0.0;
   glm::dvec3 prev = c.point(a);
@@ -214,7 +214,7 @@ TEST(CurveSpine, JointsOnCurveBonesEqualChainAsLongAsCurve) {
     const CurveSpine spine(kBones, n);
     for (const SpineControllers& c : extremePoses()) {
       const SpineResult r = spine.solve(c);
-      const SpineCurve curve = spine.curve(c);
+      const CubicSpline curve = spine.curve(c);
       ASSERT_EQ(static_cast<int>(r.joints.size()), n + 1);
       EXPECT_EQ(r.layout, ChainLayout::EqualArcLength);
       EXPECT_LT(glm::distance(r.joints.front().position, r.curve_points.front()), 1e-9);
@@ -278,7 +278,7 @@ TEST(CurveSpine, EqualChordLayoutHasEqualStraightBones) {
     const CurveSpine spine(kBones, n, ChainLayout::EqualChord);
     for (const SpineControllers& c : extremePoses()) {
       const SpineResult r = spine.solve(c);
-      const SpineCurve curve = spine.curve(c);
+      const CubicSpline curve = spine.curve(c);
       if (n == kN || largestAngle(c) <= 90.0) {
         EXPECT_TRUE(r.layout_converged) << "N " << n;
       }

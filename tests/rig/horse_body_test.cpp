@@ -1,5 +1,5 @@
 // A horse's back, neck and tail read from its skeleton (rig/horse_body.h) and posed by poseHorse
-// (rig/pose.h): stick-figure quadrupeds built here with necks, tails and backs of other lengths than the
+// (rig/horse_pose.h): stick-figure quadrupeds built here with necks, tails and backs of other lengths than the
 // generated horse's. Expectations are worked by hand: n joints each turned by neck_rz / n about the
 // horse's side axis turn the last of them by neck_rz; a bone's length is its rest length.
 #include "rig/horse_body.h"

@@ -1,7 +1,7 @@
 // The rider's spine as posing reads it (rig/rider_spine.cpp), from small hand-made skeletons: the chain
 // from the pelvis toward the neck, its rest points and arc lengths, where the three FK bones split it,
 // and one-line errors for roles that make no spine. The generator's rider (laid on the curve) is
-// covered by the posing tests (pose_test.cpp, balance_test.cpp).
+// covered by the posing tests (rider_pose_test.cpp, balance_test.cpp).
 #include "rig/rider_spine.h"
 
 #include <array>

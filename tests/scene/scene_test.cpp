@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "rig/motion/clip_info.h"
+#include "rig/motion/gait_reference.h"
 #include "rig/motion/path_clip.h"
 #include "scene/frame_range.h"
 

@@ -1,4 +1,4 @@
-// Steep hills under a low sun, for the tests of the hills' horizon map (terrain_mesh_test.cpp) and of
+// Steep hills under a low sun, for the tests of the hills' horizon map (heightfield_mesh_test.cpp) and of
 // the same test in the ground's SIMD lanes (sample_lanes_test.cpp): 5 m hills 15 m apart over a 30 m
 // square, the sun 8 degrees up with a disc 2 degrees across, the map, and the heightfield in Embree to
 // trace the sun's disc against.
@@ -12,7 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/tracer/embree_scene.h"
-#include "render/tracer/terrain_mesh.h"
+#include "render/tracer/heightfield_mesh.h"
 #include "rig/motion/terrain.h"
 
 namespace stirrup::render::test {

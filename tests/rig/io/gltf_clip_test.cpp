@@ -13,7 +13,6 @@
 #include <tiny_gltf.h>
 
 #include "rig/error.h"
-#include "rig/motion/clip_info.h"
 #include "rig/motion/movement_clips.h"
 #include "rig/motion/path_clip.h"
 #include "rig/motion/procedural_gait.h"

@@ -1,5 +1,5 @@
 // The movement generators against docs/gait-reference.md, measured from the clips themselves
-// (rig/motion/clip_info.h), and the rider's response per Kuhnel 2003 sections 5 and 9.
+// (rig/motion/clip_measure.h, gait_reference.h), and the rider's response per Kuhnel 2003 sections 5 and 9.
 #include "rig/motion/movement_clips.h"
 
 #include <algorithm>
@@ -13,7 +13,7 @@
 
 #include "rig/characters/horse_character.h"
 #include "rig/error.h"
-#include "rig/motion/clip_info.h"
+#include "rig/motion/clip_report.h"
 #include "rig/rider_rig.h"
 #include "rig/rig_profile.h"
 #include "scene/clip_factory.h"
@@ -381,7 +381,7 @@ TEST(Buck, AllFourHoovesLeaveTheGroundInEveryBuck) {
 // ---- clip info's verdicts on the shipped scenes and on the scripted movements ----
 
 // What `stirrup clip info GENERATOR` prints for every movement scene: every number inside its reference
-// (the gallop's fore pair against the one-suspension phases, see clip_info_test).
+// (the gallop's fore pair against the one-suspension phases, see gait_reference_test).
 TEST(ClipInfoVerdicts, EveryDefaultSceneClipIsInsideTheReference) {
   for (const char* scene : {"walk", "trot", "canter", "gallop", "stop", "jump", "rear", "buck"}) {
     const render::SceneSpec spec = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene + ".json");

@@ -13,7 +13,7 @@
 #include "tests/rig/default_characters.h"
 
 #include "rig/error.h"
-#include "rig/motion/clip_info.h"
+#include "rig/motion/gait_reference.h"
 #include "rig/pose.h"
 #include "rig/rider_rig.h"
 #include "rig/rig_profile.h"

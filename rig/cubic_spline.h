@@ -1,5 +1,6 @@
-// The curve of a curve spine: a C² cubic spline through five points (root of bone 1, the three bone
-// midpoints, tip of bone 3; Raisani 2004, Part III §1), with an exact arc-length table.
+// A clamped C² cubic spline through five points, with an exact arc-length table: the curve a curve
+// spine (rig/curve_spine.h) lays its chain on, through the root of bone 1, the three bone midpoints and
+// the tip of bone 3 (Raisani 2004, Part III §1).
 //
 // Parameterisation: centripetal knots (knot spacing |P[i+1] − P[i]|^½, Lee 1989; Yuksel, Schaefer &
 // Keyser 2011), which keeps the curve from cusping or looping when controller bends squeeze two points
@@ -18,7 +19,7 @@
 
 namespace stirrup::rig {
 
-class SpineCurve {
+class CubicSpline {
  public:
   static constexpr int kPointCount = 5;
   static constexpr int kSegmentCount = kPointCount - 1;
@@ -30,7 +31,7 @@ class SpineCurve {
   static constexpr int kArcSubintervals = 16;
 
   // `points` are interpolated in order; `startDirection` and `endDirection` (unit) fix the tangents.
-  SpineCurve(const std::array<glm::dvec3, kPointCount>& points, const glm::dvec3& startDirection,
+  CubicSpline(const std::array<glm::dvec3, kPointCount>& points, const glm::dvec3& startDirection,
              const glm::dvec3& endDirection);
 
   // The curve parameter runs over [0, endParameter()]; knot i is at knot(i).

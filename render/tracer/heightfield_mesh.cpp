@@ -1,4 +1,4 @@
-#include "render/tracer/terrain_mesh.h"
+#include "render/tracer/heightfield_mesh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "rig/spine_curve.h"
+#include "rig/cubic_spline.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +19,7 @@ constexpr double kMinKnotSpacing = 1e-9;
 
 }  // namespace
 
-SpineCurve::SpineCurve(const std::array<glm::dvec3, kPointCount>& points, const glm::dvec3& startDirection,
+CubicSpline::CubicSpline(const std::array<glm::dvec3, kPointCount>& points, const glm::dvec3& startDirection,
                        const glm::dvec3& endDirection)
     : points_(points) {
   std::array<double, kSegmentCount> h{};
@@ -72,7 +72,7 @@ SpineCurve::SpineCurve(const std::array<glm::dvec3, kPointCount>& points, const 
   }
 }
 
-SpineCurve::Local SpineCurve::locate(double t) const {
+CubicSpline::Local CubicSpline::locate(double t) const {
   t = std::clamp(t, 0.0, endParameter());
   int i = 0;
   while (i < kSegmentCount - 1 && t >= knots_[i + 1]) ++i;
@@ -80,7 +80,7 @@ SpineCurve::Local SpineCurve::locate(double t) const {
 }
 
 // Cubic Hermite form of segment i: P(u) = h00 P[i] + h10 h m[i] + h01 P[i+1] + h11 h m[i+1].
-glm::dvec3 SpineCurve::point(double t) const {
+glm::dvec3 CubicSpline::point(double t) const {
   const auto [i, u] = locate(t);
   const double h = knots_[i + 1] - knots_[i];
   const double u2 = u * u, u3 = u2 * u;
@@ -88,7 +88,7 @@ glm::dvec3 SpineCurve::point(double t) const {
          (-2 * u3 + 3 * u2) * points_[i + 1] + (u3 - u2) * h * derivatives_[i + 1];
 }
 
-glm::dvec3 SpineCurve::derivative(double t) const {
+glm::dvec3 CubicSpline::derivative(double t) const {
   const auto [i, u] = locate(t);
   const double h = knots_[i + 1] - knots_[i];
   const double u2 = u * u;
@@ -96,14 +96,14 @@ glm::dvec3 SpineCurve::derivative(double t) const {
          (3 * u2 - 2 * u) * derivatives_[i + 1];
 }
 
-glm::dvec3 SpineCurve::secondDerivative(double t) const {
+glm::dvec3 CubicSpline::secondDerivative(double t) const {
   const auto [i, u] = locate(t);
   const double h = knots_[i + 1] - knots_[i];
   return ((12 * u - 6) * (points_[i] - points_[i + 1])) / (h * h) +
          ((6 * u - 4) * derivatives_[i] + (6 * u - 2) * derivatives_[i + 1]) / h;
 }
 
-glm::dvec3 SpineCurve::tangent(double t) const {
+glm::dvec3 CubicSpline::tangent(double t) const {
   const glm::dvec3 d = derivative(t);
   const double len = glm::length(d);
   // A zero-speed point (never met by the spine's curves) falls back to the chord to a nearby point.
@@ -113,16 +113,16 @@ glm::dvec3 SpineCurve::tangent(double t) const {
   return glm::normalize(point(tb) - point(ta));
 }
 
-double SpineCurve::speed(double t) const { return glm::length(derivative(t)); }
+double CubicSpline::speed(double t) const { return glm::length(derivative(t)); }
 
-double SpineCurve::gaussLegendre(double t0, double t1) const {
+double CubicSpline::gaussLegendre(double t0, double t1) const {
   const double half = 0.5 * (t1 - t0), mid = 0.5 * (t0 + t1);
   double sum = 0.0;
   for (int k = 0; k < 5; ++k) sum += kGLWeights[k] * speed(mid + half * kGLNodes[k]);
   return half * sum;
 }
 
-double SpineCurve::arcLengthAt(double t) const {
+double CubicSpline::arcLengthAt(double t) const {
   t = std::clamp(t, 0.0, endParameter());
   const auto [i, u] = locate(t);
   const int piece = std::min(static_cast<int>(u * kArcSubintervals), kArcSubintervals - 1);
@@ -131,7 +131,7 @@ double SpineCurve::arcLengthAt(double t) const {
   return cumulative_[i * kArcSubintervals + piece] + gaussLegendre(t0, t);
 }
 
-double SpineCurve::parameterAtArcLength(double s) const {
+double CubicSpline::parameterAtArcLength(double s) const {
   if (s <= 0.0) return 0.0;
   if (s >= length()) return endParameter();
   // The table piece holding s, then Newton on arcLengthAt(t) − s inside it, bisection as the safeguard.
