@@ -28,6 +28,7 @@
 #include "render/tracer/frame_writer.h"
 #include "render/tracer/image.h"
 #include "render/tracer/sample_lanes.h"
+#include "render/tracer/stopwatch.h"
 #include "rig/rig_profile.h"
 #include "scene/frame_range.h"
 #include "scene/preset.h"
@@ -94,7 +95,6 @@ struct PresetResult {
 };
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Keep at most this many rays for the replay (48 bytes each); above it every Nth pixel's rays are
 // kept, which samples the frame evenly. The bound is a rate, so a sample of the rays measures it.
@@ -107,7 +107,7 @@ void writeInBackground(render::FrameWriter& writer, render::Image&& image, const
   writer.submit([image = std::move(image), file, png_level, &write_ms] {
     const auto w0 = Clock::now();
     render::writePng(image, file, png_level);
-    write_ms += secondsSince(w0) * 1000.0;
+    write_ms += render::secondsSince(w0) * 1000.0;
   });
 }
 
@@ -132,7 +132,7 @@ TimedRun timeFrames(render::Shot& shot, const std::vector<int>& frames, const Be
     add(t);
   }
   writer.wait();
-  run.run_s = secondsSince(run0);
+  run.run_s = render::secondsSince(run0);
   run.write_ms = write_ms;
   return run;
 }
@@ -239,7 +239,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   const auto setup0 = Clock::now();
   render::Shot shot(scene, render::resolveProfile(scene), render::findCamera(scene, o.camera), o.threads);
   shot.setDetailLevel(o.detail);
-  r.setup_s = secondsSince(setup0);
+  r.setup_s = render::secondsSince(setup0);
   r.setup = shot.setupTimings();
   // o.frames of the scene's frames, spread evenly over them.
   const std::vector<int> all = rig::parseFrameList(scene.frames, "frames");

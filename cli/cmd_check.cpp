@@ -40,6 +40,7 @@
 #include "rig/motion/path_clip.h"
 #include "rig/pose.h"
 #include "rig/rig_profile.h"
+#include "scene/file_shot.h"
 #include "scene/frame_range.h"
 #include "scene/preset.h"
 #include "scene/profile_resolver.h"
@@ -65,11 +66,6 @@ struct CheckOptions {
   bool progress = false;
 };
 
-
-bool isGltf(const std::string& f) {
-  const std::string e = fs::path(f).extension().string();
-  return e == ".glb" || e == ".gltf";
-}
 
 std::string plural(std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
 
@@ -115,8 +111,8 @@ CheckInput shotInput(const CheckOptions& o, std::unique_ptr<rig::GltfShot> shot)
   return in;
 }
 
-CheckInput loadInput(const CheckOptions& o) {
-  if (isGltf(o.input)) {
+CheckInput loadCheckInput(const CheckOptions& o) {
+  if (render::isGltfFile(o.input)) {
     if (!fs::exists(o.input)) throw InputError(o.input + ": no such file");
     rig::GltfShotOptions so;
     so.fps = o.fps;
@@ -319,7 +315,7 @@ nlohmann::json addGaitFindings(const CheckOptions& o, const CheckInput& in, std:
 
 
 void check(const CheckOptions& o) {
-  const CheckInput in = loadInput(o);
+  const CheckInput in = loadCheckInput(o);
   const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? in.frames : o.frames, "--frames");
   if (!o.html.empty() && fs::exists(o.html) && !fs::is_directory(o.html))
     throw InputError("--html: expected a folder, " + o.html + " is a file");

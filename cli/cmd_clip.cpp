@@ -20,6 +20,7 @@
 #include "rig/motion/crowd.h"
 #include "rig/motion/path_clip.h"
 #include "scene/clip_factory.h"
+#include "scene/file_shot.h"
 #include "scene/scene.h"
 #include "scene/shot_evaluator.h"
 
@@ -40,11 +41,6 @@ struct ClipOptions {
   bool allow_impossible = false;  // a scene beyond a horse's limits is measured anyway
   std::vector<std::string> params;  // the --name value pairs after the gait
 };
-
-bool isGltf(const std::string& s) {
-  const std::string ext = std::filesystem::path(s).extension().string();
-  return ext == ".glb" || ext == ".gltf";
-}
 
 // "--fence-height-cm 90 --lead left" -> {"fence_height_cm": 90, "lead": "left"}.
 nlohmann::json paramsJson(const std::string& command, const std::vector<std::string>& args) {
@@ -67,7 +63,7 @@ rig::ClipSpec generatorSpec(const std::string& command, const std::string& gait,
 }
 
 void runMake(const ClipOptions& o) {
-  if (isGltf(o.clip)) throw InputError("clip make: expected a generator name, got the file " + o.clip);
+  if (render::isGltfFile(o.clip)) throw InputError("clip make: expected a generator name, got the file " + o.clip);
   const rig::ClipSpec spec = generatorSpec("clip make", o.clip, o.params);
   const std::unique_ptr<rig::Clip> clip = rig::makeClip(spec);
   rig::GltfWriteOptions w;
@@ -179,7 +175,7 @@ void runInfo(const ClipOptions& o) {
     clip = render::makeSceneClip(scene);
     if (const auto* path = dynamic_cast<const rig::PathClip*>(clip.get())) return runPathInfo(o.clip, *path, o);
     if (reference.empty()) reference = scene.clip.generator;  // empty for a glTF clip
-  } else if (isGltf(o.clip)) {
+  } else if (render::isGltfFile(o.clip)) {
     if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a file: " + o.params[0]);
     if (!std::filesystem::exists(o.clip)) throw InputError(o.clip + ": no such file");
     // Read as a scene's clip block reads it: a stirrup clip, a clip mapping, or a horse through its roles.

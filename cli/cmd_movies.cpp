@@ -16,6 +16,7 @@
 #include "cli/progress.h"
 #include "render/review/index_page.h"
 #include "render/review/movie_set.h"
+#include "render/tracer/stopwatch.h"
 #include "rig/error.h"
 #include "rig/io/atomic_file.h"
 #include "scene/data_dir.h"
@@ -35,10 +36,6 @@ struct MoviesOptions {
   bool progress = false;
   std::string timings;  // a TSV of where the time went, movie by movie
 };
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // One row a movie: its rendered frames, the seconds its frames took (set-up included) and the seconds
 // its movie, sheet and plot took, in the set's order. Written to a temporary name, then renamed.
@@ -94,7 +91,7 @@ void runMovies(const MoviesOptions& o) {
   for (std::size_t i = 0; i < jobs.size() && !o.finish; ++i) {
     const auto movie_start = std::chrono::steady_clock::now();
     render::renderMovieFrames(jobs[i], mo, frames[i], o.resume, [&] { bar.step(++done); });
-    render_s[i] = secondsSince(movie_start);
+    render_s[i] = render::secondsSince(movie_start);
   }
   if (!o.frames.empty()) return;  // a farm task: the finishing job makes the movie
 
@@ -109,11 +106,11 @@ void runMovies(const MoviesOptions& o) {
     if (!shot && !plots.count(j.scene)) plots[j.scene] = render::writeMovementPlot(j.scene, out, mo.allow_impossible);
     render::MovieResult r = render::finishMovie(j, mo);
     if (!shot) r.plot = plots[j.scene];
-    finish_s[i] = secondsSince(movie_start);
+    finish_s[i] = render::secondsSince(movie_start);
     r.seconds = render_s[i] + finish_s[i];
     results.push_back(std::move(r));
   }
-  const double seconds = secondsSince(start);
+  const double seconds = render::secondsSince(start);
   if (!o.timings.empty()) writeTimings(o.timings, results, render_s, finish_s);
   const fs::path index = render::writeIndexPage(out, results);
   // The one line a script needs; details live in the index.

@@ -57,7 +57,7 @@ struct RenderInput {
   rig::RigProfile profile;
 };
 
-RenderInput loadInput(const RenderOptions& o) {
+RenderInput loadRenderInput(const RenderOptions& o) {
   RenderInput in;
   if (render::isGltfFile(o.scene)) {
     if (!o.camera_plan.empty()) throw InputError("--camera-plan: a farm's plan applies to a scene, not to the glTF shot " + o.scene);
@@ -83,7 +83,7 @@ void runRender(const RenderOptions& o) {
   const bool png = format != "exr", exr = format != "png";
   if (!o.movie.empty() && !png) throw InputError("--movie: needs PNG frames; use --format png or both");
   if (o.encode_only && o.movie.empty()) throw InputError("--encode-only: expected --movie FILE.mp4 to encode");
-  const RenderInput in = loadInput(o);
+  const RenderInput in = loadRenderInput(o);
   const render::SceneSpec& scene = in.scene;
   const rig::RigProfile& profile = in.profile;
   const render::CameraSpec& camera = render::findCamera(scene, o.camera);

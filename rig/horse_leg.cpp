@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "rig/ik.h"
+#include "rig/pose_transforms.h"
 #include "rig/units.h"
 
 namespace stirrup::rig {
@@ -27,7 +28,7 @@ glm::mat4 placed(glm::vec3 at, const glm::mat3& rotation) {
   m[3] = glm::vec4(at, 1.0f);
   return m;
 }
-glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
+using pose_transforms::transformPoint;
 
 // The virtual chain of a leg at rest and at full stretch: a (pivot to upper), b (upper to fetlock),
 // gamma (the angle at upper), each a function of the stretch fraction t.

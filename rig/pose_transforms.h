@@ -1,5 +1,6 @@
 // The small transforms that posing the horse, the rider and the tack share (rig/horse_pose.cpp,
-// rig/rider_pose.cpp, rig/tack_pose.cpp, rig/pose.cpp): for their files only, not a public interface.
+// rig/rider_pose.cpp, rig/tack_pose.cpp, rig/pose.cpp; the leg IK and the seating take a point's move and
+// a translation from here too): for the rig's own files, not a public interface.
 #pragma once
 
 #include <span>

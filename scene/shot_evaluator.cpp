@@ -270,10 +270,9 @@ std::string ShotEvaluator::pairName(int pair) const {
 }
 
 std::string crowdPairName(int pair, int pair_count) {
-  const int digits = std::max(2, int(std::to_string(std::max(0, pair_count - 1)).size()));
-  char name[32];
-  std::snprintf(name, sizeof name, "pair%0*d", digits, pair);
-  return name;
+  const std::size_t digits = std::max<std::size_t>(2, std::to_string(std::max(0, pair_count - 1)).size());
+  const std::string index = std::to_string(pair);
+  return "pair" + std::string(digits > index.size() ? digits - index.size() : 0, '0') + index;
 }
 
 namespace {

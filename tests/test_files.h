@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
@@ -24,6 +25,15 @@ inline tinygltf::Model readGlbModel(const std::filesystem::path& file) {
   tinygltf::TinyGLTF loader;
   std::string err, warn;
   EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, file.string())) << err;
+  return model;
+}
+
+// A .glb held in memory (a writer's bytes), read as a file of it would be.
+inline tinygltf::Model glbModel(const std::vector<unsigned char>& glb) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  EXPECT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), static_cast<unsigned>(glb.size()))) << err;
   return model;
 }
 

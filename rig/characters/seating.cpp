@@ -17,6 +17,7 @@
 #include "rig/ik.h"
 #include "rig/loose_tack.h"
 #include "rig/pose.h"
+#include "rig/pose_transforms.h"
 #include "rig/skin.h"
 #include "rig/units.h"
 
@@ -66,7 +67,7 @@ constexpr float kArmReach = 0.82f;
 // The head is turned upright by at most this (a neck's comfortable range is far larger).
 constexpr float kMaxHeadTurnDeg = 20.0f;
 
-glm::mat4 translate(glm::vec3 t) { return glm::translate(glm::mat4(1.0f), t); }
+using pose_transforms::translate;
 glm::vec3 apply(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
 glm::vec3 mirror(glm::vec3 v, float side) { return {v.x, v.y, v.z * side}; }  // side -1 left, +1 right
 

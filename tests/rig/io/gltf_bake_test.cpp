@@ -16,6 +16,7 @@
 #include <tiny_gltf.h>
 
 #include "tests/rig/default_characters.h"
+#include "tests/test_files.h"
 
 namespace stirrup::rig {
 namespace {
@@ -91,14 +92,6 @@ BakedShot twoFrameShot() {
   return shot;
 }
 
-tinygltf::Model readBack(const std::vector<unsigned char>& glb) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), static_cast<unsigned>(glb.size()))) << err;
-  return model;
-}
-
 std::vector<float> floats(const tinygltf::Model& m, int accessor) {
   const tinygltf::Accessor& a = m.accessors[std::size_t(accessor)];
   const tinygltf::BufferView& v = m.bufferViews[std::size_t(a.bufferView)];
@@ -114,7 +107,7 @@ int nodeNamed(const tinygltf::Model& m, const std::string& name) {
 }
 
 TEST(GltfBake, AShotIsOneRootPerCharacterCamerasAndTheGround) {
-  const tinygltf::Model m = readBack(bakedShotGlb(twoFrameShot()));
+  const tinygltf::Model m = stirrup::test::glbModel(bakedShotGlb(twoFrameShot()));
   ASSERT_EQ(m.skins.size(), 2u);
   for (const char* root : {"horse", "rider", "ground"}) {
     const int n = nodeNamed(m, root);
@@ -171,7 +164,7 @@ TEST(GltfBake, OneFrameIsStillAndInconsistentShotsAreRefused) {
   one.seconds.resize(1);
   one.pairs[0].poses.resize(1);
   one.cameras[0].world.resize(1);
-  EXPECT_TRUE(readBack(bakedShotGlb(one)).animations.empty());
+  EXPECT_TRUE(stirrup::test::glbModel(bakedShotGlb(one)).animations.empty());
 
   BakedShot bad = twoFrameShot();
   bad.pairs[0].poses.pop_back();

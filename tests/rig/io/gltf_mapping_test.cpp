@@ -18,19 +18,12 @@
 #include "rig/io/gltf_humanoid.h"
 #include "rig/mapping/auto_mapping.h"
 #include "rig/mapping/character_mapping.h"
+#include "tests/test_files.h"
 
 namespace stirrup::rig {
 namespace {
 
 namespace fs = std::filesystem;
-
-tinygltf::Model modelOf(const std::vector<unsigned char>& glb) {
-  tinygltf::Model m;
-  tinygltf::TinyGLTF gltf;
-  std::string err, warn;
-  EXPECT_TRUE(gltf.LoadBinaryFromMemory(&m, &err, &warn, glb.data(), static_cast<unsigned>(glb.size()))) << err;
-  return m;
-}
 
 StandingHumanoid humanoid(HumanoidNames names) {
   StandingHumanoidParams p = humanoidConventionDefaults(names);
@@ -39,7 +32,7 @@ StandingHumanoid humanoid(HumanoidNames names) {
 }
 
 TEST(GltfMapping, UnnamedAndRepeatedJointsAreNamedByTheirIndexAsTheImporterNamesThem) {
-  tinygltf::Model m = modelOf(humanoidGlb(humanoid(HumanoidNames::Mixamo)));
+  tinygltf::Model m = test::glbModel(humanoidGlb(humanoid(HumanoidNames::Mixamo)));
   const std::vector<int>& joints = m.skins.at(0).joints;
   m.nodes.at(joints[4]).name = "";                               // the neck, unnamed
   m.nodes.at(joints[8]).name = m.nodes.at(joints[7]).name;       // the left arm named like the clavicle
@@ -66,7 +59,7 @@ TEST(GltfMapping, UnnamedAndRepeatedJointsAreNamedByTheirIndexAsTheImporterNames
 
 TEST(GltfMapping, ReadsAVrmFilesOwnHumanoidBoneTableInBothVersions) {
   const StandingHumanoid h = humanoid(HumanoidNames::Vrm);
-  tinygltf::Model m = modelOf(humanoidGlb(h));
+  tinygltf::Model m = test::glbModel(humanoidGlb(h));
   {
     const MappingSkeleton s = mappingSkeletonFromGltf(m, "vrm1.glb");
     EXPECT_EQ(s.vrm_table, "VRMC_vrm");

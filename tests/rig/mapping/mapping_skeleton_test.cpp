@@ -16,19 +16,12 @@
 #include "rig/io/gltf_mapping.h"
 #include "rig/mapping/auto_mapping.h"
 #include "rig/mapping/character_mapping.h"
+#include "tests/test_files.h"
 
 namespace stirrup::rig {
 namespace {
 
 namespace fs = std::filesystem;
-
-tinygltf::Model modelOf(const std::vector<unsigned char>& glb) {
-  tinygltf::Model m;
-  tinygltf::TinyGLTF gltf;
-  std::string err, warn;
-  EXPECT_TRUE(gltf.LoadBinaryFromMemory(&m, &err, &warn, glb.data(), static_cast<unsigned>(glb.size()))) << err;
-  return m;
-}
 
 StandingHumanoid humanoid(HumanoidNames names) {
   StandingHumanoidParams p = humanoidConventionDefaults(names);
@@ -39,7 +32,7 @@ StandingHumanoid humanoid(HumanoidNames names) {
 TEST(MappingSkeleton, DetachedLimbsHangFromTheTrunkBothFromOneJoint) {
   // The Rigify layout as Blender exports its deform bones: clavicles, upper arms and thighs are roots.
   const StandingHumanoid h = humanoid(HumanoidNames::Rigify);
-  const MappingSkeleton s = mappingSkeletonFromGltf(modelOf(humanoidGlb(h)), "rigify.glb");
+  const MappingSkeleton s = mappingSkeletonFromGltf(test::glbModel(humanoidGlb(h)), "rigify.glb");
   for (const char* side : {".L", ".R"}) {
     for (const std::string limb : {"DEF-shoulder", "DEF-upper_arm", "DEF-thigh"}) {
       const int j = s.find(limb + side);
