@@ -24,6 +24,14 @@ struct UserRiderSpec {
   StandingHumanoidParams params;
 };
 // GoogleTest prints a parameter by its name.
+// A generated humanoid on a coarse grid (cell 4 cm): what the mapping reads, its skeleton and the mesh's
+// height, without the cost of a fine mesh.
+inline StandingHumanoid coarseHumanoid(HumanoidNames names) {
+  StandingHumanoidParams p = humanoidConventionDefaults(names);
+  p.cell = 4.0f;
+  return buildStandingHumanoid(p);
+}
+
 inline void PrintTo(const UserRiderSpec& spec, std::ostream* os) { *os << spec.name; }
 
 // The list: T- and A-pose, 2, 3 and 6 spine joints, a shared wrist/hand, Mixamo-, Rigify-,

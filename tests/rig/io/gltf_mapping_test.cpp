@@ -18,6 +18,7 @@
 #include "rig/io/gltf_humanoid.h"
 #include "rig/mapping/auto_mapping.h"
 #include "rig/mapping/character_mapping.h"
+#include "tests/rig/user_riders.h"
 #include "tests/test_files.h"
 
 namespace stirrup::rig {
@@ -25,14 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-StandingHumanoid humanoid(HumanoidNames names) {
-  StandingHumanoidParams p = humanoidConventionDefaults(names);
-  p.cell = 4.0f;
-  return buildStandingHumanoid(p);
-}
-
 TEST(GltfMapping, UnnamedAndRepeatedJointsAreNamedByTheirIndexAsTheImporterNamesThem) {
-  tinygltf::Model m = test::glbModel(humanoidGlb(humanoid(HumanoidNames::Mixamo)));
+  tinygltf::Model m = stirrup::test::glbModel(humanoidGlb(test::coarseHumanoid(HumanoidNames::Mixamo)));
   const std::vector<int>& joints = m.skins.at(0).joints;
   m.nodes.at(joints[4]).name = "";                               // the neck, unnamed
   m.nodes.at(joints[8]).name = m.nodes.at(joints[7]).name;       // the left arm named like the clavicle
@@ -58,8 +53,8 @@ TEST(GltfMapping, UnnamedAndRepeatedJointsAreNamedByTheirIndexAsTheImporterNames
 }
 
 TEST(GltfMapping, ReadsAVrmFilesOwnHumanoidBoneTableInBothVersions) {
-  const StandingHumanoid h = humanoid(HumanoidNames::Vrm);
-  tinygltf::Model m = test::glbModel(humanoidGlb(h));
+  const StandingHumanoid h = test::coarseHumanoid(HumanoidNames::Vrm);
+  tinygltf::Model m = stirrup::test::glbModel(humanoidGlb(h));
   {
     const MappingSkeleton s = mappingSkeletonFromGltf(m, "vrm1.glb");
     EXPECT_EQ(s.vrm_table, "VRMC_vrm");

@@ -16,6 +16,7 @@
 #include "rig/io/gltf_mapping.h"
 #include "rig/mapping/auto_mapping.h"
 #include "rig/mapping/character_mapping.h"
+#include "tests/rig/user_riders.h"
 #include "tests/test_files.h"
 
 namespace stirrup::rig {
@@ -23,16 +24,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-StandingHumanoid humanoid(HumanoidNames names) {
-  StandingHumanoidParams p = humanoidConventionDefaults(names);
-  p.cell = 4.0f;
-  return buildStandingHumanoid(p);
-}
-
 TEST(MappingSkeleton, DetachedLimbsHangFromTheTrunkBothFromOneJoint) {
   // The Rigify layout as Blender exports its deform bones: clavicles, upper arms and thighs are roots.
-  const StandingHumanoid h = humanoid(HumanoidNames::Rigify);
-  const MappingSkeleton s = mappingSkeletonFromGltf(test::glbModel(humanoidGlb(h)), "rigify.glb");
+  const StandingHumanoid h = test::coarseHumanoid(HumanoidNames::Rigify);
+  const MappingSkeleton s = mappingSkeletonFromGltf(stirrup::test::glbModel(humanoidGlb(h)), "rigify.glb");
   for (const char* side : {".L", ".R"}) {
     for (const std::string limb : {"DEF-shoulder", "DEF-upper_arm", "DEF-thigh"}) {
       const int j = s.find(limb + side);
