@@ -253,7 +253,7 @@ void writeHtml(const CheckInput& in, std::vector<CheckedPair>& pairs, const std:
 void printJson(const CheckInput& in, const std::vector<CheckedPair>& pairs, const std::vector<int>& frames, const Counts& counts,
                std::map<std::string, Counts>& by_rule, const nlohmann::json& gait_json) {
   static const char* const kKinds[] = {"scene", "clip", "shot"};
-  nlohmann::json j = {{"input", in.source}, {"read_as", kKinds[int(in.kind)]}, {"described", in.described}, {"frames", frames.size()},
+  nlohmann::json j = {{"input", in.source}, {"read_as", kKinds[int(in.kind)]}, {"described", in.described}, {"ground", in.ground}, {"frames", frames.size()},
                       {"pairs", pairs.size()}, {"status", counts.status()}, {"failures", counts.failures}, {"warnings", counts.warnings},
                       {"notes", counts.notes}};
   nlohmann::json rules = nlohmann::json::object();

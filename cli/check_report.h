@@ -50,6 +50,10 @@ struct CheckInput {
   std::string frames;       // the frames checked unless --frames says
   std::unique_ptr<rig::GltfShot> shot;
   const rig::Terrain* terrain = nullptr;  // null: flat ground
+  std::shared_ptr<const rig::Terrain> file_ground;  // a baked shot's own ground mesh (terrain points at it)
+  // Where the ground came from: "scene" (the scene's terrain, or a baked shot's --scene), "file" (the
+  // shot's own ground mesh) or "flat".
+  std::string ground = "flat";
   std::string described;    // what the input was read as, for the report
 };
 

@@ -37,6 +37,7 @@
 #include "rig/io/gltf_shot.h"
 #include "rig/motion/clip_report.h"
 #include "rig/motion/horse_limits.h"
+#include "rig/motion/terrain.h"
 #include "rig/motion/path_clip.h"
 #include "rig/pose.h"
 #include "rig/rig_profile.h"
@@ -95,9 +96,20 @@ CheckInput shotInput(const CheckOptions& o, std::unique_ptr<rig::GltfShot> shot)
   in.kind = CheckInput::Kind::Shot;
   in.source = o.input;
   in.name = fs::path(o.input).stem().string();
+  // The ground: --scene's terrain where it is given, else the file's own ground mesh, else flat.
+  std::string ground;
   if (!o.scene.empty()) {
     in.scene = render::loadScene(o.scene, {true});
     in.terrain = in.scene.terrain.get();
+    in.ground = "scene";
+    ground = "ground: " + o.scene + "'s " + (in.terrain && !in.terrain->flat() ? "terrain" : "flat ground");
+  } else if (const std::shared_ptr<const rig::TerrainMesh> mesh = shot->ground()) {
+    in.file_ground = std::make_shared<const rig::Terrain>(rig::Terrain::mesh(mesh));
+    in.terrain = in.file_ground.get();
+    in.ground = "file";
+    ground = "ground: the file's ground mesh (" + plural(mesh->triangleCount(), "triangle", "triangles") + ")";
+  } else {
+    ground = "ground: flat (the file has no ground mesh: a node named \"ground\")";
   }
   in.frames = "1-" + std::to_string(shot->frameCount());
   std::string names;
@@ -107,6 +119,7 @@ CheckInput shotInput(const CheckOptions& o, std::unique_ptr<rig::GltfShot> shot)
                  plural(std::size_t(shot->frameCount()), "frame", "frames") + " at " + printfNumber("%g", shot->fps()) + " fps" +
                  (shot->animationName().empty() ? ", no animation" : ", animation \"" + shot->animationName() + "\"");
   for (const std::string& other : shot->leftOut()) in.described += " (\"" + other + "\" left out: it keys the same joints; --animation picks it)";
+  in.described += "; " + ground;
   in.shot = std::move(shot);
   return in;
 }
@@ -132,6 +145,7 @@ CheckInput loadCheckInput(const CheckOptions& o) {
   in.name = in.scene.name;
   in.frames = in.scene.frames;
   in.terrain = in.scene.terrain.get();
+  if (in.terrain && !in.terrain->flat()) in.ground = "scene";
   const std::size_t pairs = in.scene.pairs.empty() ? 1 : in.scene.pairs.size();
   in.described = "a scene: " + plural(pairs, "pair", "pairs");
   return in;
@@ -266,7 +280,7 @@ void addLimitFindings(const CheckInput& in, const std::vector<int>& frames, std:
   std::vector<rig::CheckFinding> limit_findings;
   for (std::size_t k = 0; k < scene.limits.size(); ++k) {
     const render::SceneSpec::PathLimits& l = scene.limits[k];
-    const int pair = scene.pairs.empty() ? 0 : int(k);
+    const int pair = l.pair;
     for (int frame : frames) {
       const double t = render::frameTime(scene, frame);
       for (const rig::LimitBreach& b : l.check->during(t + l.clip_offset_s - half, t + l.clip_offset_s + half)) {
@@ -331,7 +345,11 @@ void check(const CheckOptions& o) {
       if (f < 1 || f > last) throw InputError("--frames: " + in.source + " keys frames 1-" + std::to_string(last) + ", got " + std::to_string(f));
     pairs = shotPairs(in, o);
     const double fps = in.shot->fps();
-    poseAt = [&](const CheckedPair& p, int frame) { return PosedFrame{(frame - 1) / fps, {}, in.shot->pose(p.slot, frame, ground)}; };
+    poseAt = [&in, fps](const CheckedPair& p, int frame) {
+      rig::HorseFrame keyed;  // no clip: only the hooves the bake slides on purpose
+      keyed.hoof_sliding = in.shot->hoofSliding(p.slot, frame);
+      return PosedFrame{(frame - 1) / fps, keyed, in.shot->pose(p.slot, frame)};
+    };
   } else {
     evaluator = std::make_unique<render::ShotEvaluator>(in.scene, render::resolveProfile(in.scene), 0);
     pairs = checkedPairs(in, o, *evaluator);

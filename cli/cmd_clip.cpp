@@ -150,10 +150,19 @@ void runCrowdInfo(const render::SceneSpec& scene, const ClipOptions& o) {
   nlohmann::json pairs = nlohmann::json::array();
   std::string text;
   for (int i = o.pair >= 0 ? o.pair : 0; i < (o.pair >= 0 ? o.pair + 1 : count); ++i) {
-    const auto clip = rig::makePairClip(scene.pairs[std::size_t(i)], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
+    const rig::PairSpec& spec = scene.pairs[std::size_t(i)];
     const std::string name = render::crowdPairName(i, count);
+    if (spec.animation) {
+      // A pair playing its horse's own animation rides no path: `clip info` of the horse's file measures it.
+      const std::string what = source + " " + name + ": plays its horse's own animation" +
+                               (spec.animation->empty() ? "" : " \"" + *spec.animation + "\"") + " from " + spec.horse_file + " (no path)\n";
+      pairs.push_back({{"pair", i}, {"name", name}, {"own_animation", *spec.animation}, {"file", spec.horse_file}});
+      text += (text.empty() ? "" : "\n") + what;
+      continue;
+    }
+    const auto clip = rig::makePairClip(spec, scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
     PathInfo info = pathInfo(source + " " + name, *clip, o);
-    nlohmann::json j = {{"pair", i}, {"name", name}, {"start_offset_s", scene.pairs[std::size_t(i)].clip_offset_s}};
+    nlohmann::json j = {{"pair", i}, {"name", name}, {"start_offset_s", spec.clip_offset_s}};
     j.update(info.json);
     pairs.push_back(j);
     text += (text.empty() ? "" : "\n") + info.text;

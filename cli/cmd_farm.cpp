@@ -18,6 +18,7 @@
 #include "render/review/burn_in.h"
 #include "rig/error.h"
 #include "scene/data_dir.h"
+#include "scene/file_shot.h"
 #include "scene/preset.h"
 #include "scene/profile_resolver.h"
 #include "scene/scene.h"
@@ -68,15 +69,17 @@ void printPlan(const render::farm::FarmPlan& plan, bool dry_run) {
 
 void runSubmit(const SubmitOptions& o, const CLI::App& cmd) {
   // Everything is checked before anything is written or submitted.
-  if (o.movies == !o.scene.empty())
-    throw InputError("farm submit: expected a SCENE to render (with --camera) or --movies for the movie set, not " +
-                     std::string(o.movies ? "both" : "neither"));
+  // --movies makes the movie set, or a glTF shot's movies (stirrup movies SHOT.glb) when SHOT.glb is given.
+  const bool shot_movies = o.movies && render::isGltfFile(o.scene);
+  if (!shot_movies && o.movies == !o.scene.empty())
+    throw InputError("farm submit: expected a SCENE to render (with --camera), --movies for the movie set, or a glTF SHOT with --movies "
+                     "for its movies, not " + std::string(o.movies ? "a scene with --movies" : "neither"));
   if (o.chunk <= 0) throw InputError("--chunk: expected a positive number of frames a task, got " + std::to_string(o.chunk));
   if (o.sbatch.cpus_per_task <= 0)
     throw InputError("--cpus-per-task: expected a positive number, got " + std::to_string(o.sbatch.cpus_per_task));
   if (o.out.empty()) throw InputError("--out: expected the shared output folder");
   if (!o.movies)
-    for (const char* movie_only : {"--only", "--frames-limit", "--scenes", "--mov", "--no-mp4", "--keep-frames", "--date"})
+    for (const char* movie_only : {"--only", "--frames-limit", "--scenes", "--scene", "--mov", "--no-mp4", "--keep-frames", "--date"})
       if (cmd.count(movie_only)) throw InputError(std::string(movie_only) + ": only with --movies");
   if (o.movies)
     for (const char* render_only : {"--camera", "--frames", "--set"})
@@ -110,6 +113,7 @@ void runSubmit(const SubmitOptions& o, const CLI::App& cmd) {
   render::farm::FarmPlan plan;
   if (o.movies) {
     MovieSetArgs set = o.set;
+    if (shot_movies) set.shot = o.scene;
     set.out = out.string();
     if (set.date.empty()) set.date = render::todayUtc();  // every task and the slate say the same day
     const render::MovieOptions mo = movieOptions(set);
@@ -178,9 +182,12 @@ void addFarmCommand(CLI::App& app) {
       "Each task renders one chunk of frames with stirrup render/movies --resume into OUT; the finishing job\n"
       "(--dependency=afterok) encodes the movies and makes the contact sheets, plots and index exactly as\n"
       "stirrup movies does. Job ids go to stdout and OUT/farm.json; scripts and logs to OUT/farm/.\n"
+      "A glTF shot's movies (a stirrup bake, or Blender's export of one) as stirrup movies SHOT.glb makes them:\n"
+      "SHOT.glb --movies, its look from --scene LOOK.json if given.\n"
       "Examples: stirrup farm submit --movies --out /shared/review --chunk 24 --partition render\n"
-      "          stirrup farm submit scenes/trot.json --camera side --out /shared/trot --time 30:00");
-  s->add_option("scene", submit->scene, "Scene file to render through --camera (or use --movies)");
+      "          stirrup farm submit scenes/trot.json --camera side --out /shared/trot --time 30:00\n"
+      "          stirrup farm submit out/cavalry.glb --movies --scene scenes/cavalry.json --only persp --out /shared/cavalry");
+  s->add_option("scene", submit->scene, "Scene file to render through --camera, or with --movies a glTF shot whose movies to make");
   s->add_option("--camera,-c", submit->camera, "The scene's camera (default: its first)");
   s->add_flag("--movies", submit->movies, "Render the movie set (stirrup movies --list) instead of one scene");
   addMovieSetOptions(s, submit->set);

@@ -132,7 +132,10 @@ void addMoviesCommand(CLI::App& app) {
       "A glTF shot (a stirrup bake, or Blender's export of one) makes its own set instead, as stirrup render\n"
       "renders it: STEM_side, STEM_persp, STEM_close, STEM_turntable and STEM_top over the shot's frames, no plot\n"
       "(--only takes the names or the views; layered, follow and turntable_pose are refused, naming the view).\n"
-      "Example: stirrup movies out/trot.glb --out out/trot-movies --only side,close");
+      "With --scene LOOK.json a glTF shot's movies are the look's cameras instead (STEM_CAMERA), made with its image size,\n"
+      "quality, sun, haze and ground, as stirrup render SHOT.glb --scene LOOK.json renders them.\n"
+      "Example: stirrup movies out/trot.glb --out out/trot-movies --only side,close\n"
+      "         stirrup movies out/cross_country.glb --scene scenes/cross_country.json --only persp");
   cmd->add_option("shot", opts->set.shot,
                   "A glTF shot (.glb/.gltf) to make the movies of, as the file keys it, instead of the scene set");
   cmd->add_option("--out,-o", opts->set.out, "Output folder")->capture_default_str();

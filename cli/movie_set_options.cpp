@@ -11,6 +11,7 @@
 #include "scene/data_dir.h"
 #include "scene/file_shot.h"
 #include "scene/preset.h"
+#include "scene/scene.h"
 
 namespace stirrup::cli {
 namespace fs = std::filesystem;
@@ -22,6 +23,9 @@ void addMovieSetOptions(CLI::App* cmd, MovieSetArgs& a) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--resolution", a.resolution, "WIDTHxHEIGHT instead of the scenes' (e.g. 640x360)");
   cmd->add_option("--scenes", a.scenes, "Folder of scene files (default: scenes/ in stirrup's data folder, docs/install.md)");
+  cmd->add_option("--scene", a.look,
+                  "A glTF shot's look: the scene whose cameras (a movie each), image size, quality, sun, haze and ground its movies "
+                  "are made with, as stirrup render SHOT.glb --scene renders it");
   cmd->add_option("--mov", a.mov, "Also write QuickTime NAME.mov: prores (ProRes 422 HQ) or h264");
   cmd->add_flag("--no-mp4", a.no_mp4, "Write no .mp4 (with --mov)");
   cmd->add_flag("--keep-frames", a.keep_frames, "Keep the frames as OUT/frames/NAME/NAME.####.png");
@@ -63,19 +67,21 @@ namespace {
 std::vector<render::MovieJob> selectShotMovies(const MovieSetArgs& a) {
   if (!render::isGltfFile(a.shot)) throw InputError(a.shot + ": expected a glTF shot (.glb or .gltf); the scene set is made without one");
   if (!a.scenes.empty()) throw InputError("--scenes: chooses the scene set's scenes, not a glTF shot's (" + a.shot + ")");
-  std::vector<render::MovieJob> jobs = render::shotMovieSet(a.shot);
+  std::vector<render::MovieJob> jobs = render::shotMovieSet(a.shot, a.look);
   if (a.only.empty()) return jobs;
   const std::string prefix = fs::path(a.shot).stem().string() + "_";
   std::vector<std::string> wanted;
   for (const std::string& n : a.only) {
     const std::string name = n.rfind(prefix, 0) == 0 ? n : prefix + n;
     const std::string view = name.substr(prefix.size());
-    if (const std::string why = render::shotViewRefusal(view); !why.empty()) throw InputError("--only: " + n + ": " + why + " (" + a.shot + ")");
+    // The shot's own views refuse the scene set's views they cannot make; a look's cameras are its own.
+    if (const std::string why = render::shotViewRefusal(view); !why.empty() && a.look.empty())
+      throw InputError("--only: " + n + ": " + why + " (" + a.shot + ")");
     if (std::none_of(jobs.begin(), jobs.end(), [&](const render::MovieJob& j) { return j.name == name; })) {
-      std::string names;
-      for (const auto& j : jobs) names += (names.empty() ? "" : ", ") + j.name;
+      std::string names, views;
+      for (const auto& j : jobs) names += (names.empty() ? "" : ", ") + j.name, views += (views.empty() ? "" : ", ") + j.camera;
       throw InputError("--only: no movie named \"" + n + "\" for the glTF shot " + a.shot + " (expected one of " + names +
-                       ", or a view: side, persp, close, turntable, top)");
+                       ", or a " + (a.look.empty() ? "view" : "camera of " + a.look) + ": " + views + ")");
     }
     wanted.push_back(name);
   }
@@ -87,6 +93,7 @@ std::vector<render::MovieJob> selectShotMovies(const MovieSetArgs& a) {
 
 std::vector<render::MovieJob> selectMovies(const MovieSetArgs& a, const render::MovieOptions& mo) {
   if (!a.shot.empty()) return selectShotMovies(a);
+  if (!a.look.empty()) throw InputError("--scene: the look of a glTF shot's movies (stirrup movies SHOT.glb --scene LOOK.json); the scene set has its own");
   const fs::path scenes = a.scenes.empty() ? render::dataDir() / "scenes" : fs::path(a.scenes);
   if (!fs::is_directory(scenes)) throw InputError("--scenes: " + scenes.string() + ": no such folder");
   std::vector<render::MovieJob> jobs = render::defaultMovieSet(scenes, mo.reference_dir);
@@ -106,6 +113,7 @@ std::vector<render::MovieJob> selectMovies(const MovieSetArgs& a, const render::
 std::vector<std::string> movieSetArguments(const MovieSetArgs& a) {
   std::vector<std::string> args;
   if (!a.shot.empty()) args.push_back(fs::absolute(a.shot).string());
+  if (!a.look.empty()) args.insert(args.end(), {"--scene", fs::absolute(render::findSceneFile(a.look)).string()});
   args.insert(args.end(), {"--preset", a.preset});
   if (a.frames_limit > 0) args.insert(args.end(), {"--frames-limit", std::to_string(a.frames_limit)});
   if (!a.resolution.empty()) args.insert(args.end(), {"--resolution", a.resolution});

@@ -19,6 +19,7 @@ struct MovieSetArgs {
   std::string resolution;
   std::string scenes;
   std::string shot;  // a glTF shot: its views' movies instead of the scene set (render::shotMovieSet)
+  std::string look;  // --scene: the glTF shot's look, a scene whose cameras, size, quality, sun and ground it renders with
   std::string mov;  // "", "prores" or "h264"
   bool no_mp4 = false;
   bool keep_frames = false;

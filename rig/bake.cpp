@@ -1,6 +1,9 @@
 #include "rig/bake.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "rig/rider_rig.h"
 
@@ -30,6 +33,28 @@ glm::dvec2 accelerationInTravelFrame(const Clip& clip, double seconds, double he
   return {a.x * std::cos(heading) + a.y * std::sin(heading), -a.x * std::sin(heading) + a.y * std::cos(heading)};
 }
 
+// The rig takes only finite numbers: every number a scene, mapping, profile or crowd holds is checked
+// at load (issue 60), so a NaN or an infinity here is a fault of the program, never of the input. Named,
+// with the clip and time, rather than left to surface later as a bent spine or a blank frame.
+void requireFinite(double v, const Clip& clip, double seconds, const std::string& what) {
+  if (std::isfinite(v)) return;
+  throw std::logic_error("bakeFrame: the clip \"" + clip.name() + "\" at " + std::to_string(seconds) + " s: " + what + " is " +
+                         std::to_string(v) + " (a number that is not finite reached the rig)");
+}
+
+void requireFinite(const BakedFrame& b, const Clip& clip) {
+  const HorseFrame& h = b.horse;
+  for (std::size_t c = 0; c < kHorseChannelCount; ++c) requireFinite(h.controls.value[c], clip, b.seconds, std::string(kHorseChannelNames[c]));
+  for (std::size_t c = 0; c < kRiderChannelCount; ++c) requireFinite(b.rider.value[c], clip, b.seconds, std::string(kRiderChannelNames[c]));
+  const std::pair<const char*, double> travel[] = {
+      {"travel_cm", h.travel_cm}, {"travel_z_cm", h.travel_z_cm}, {"heading_deg", h.heading_deg},
+      {"travel_accel_cm_s2", h.travel_accel_cm_s2}, {"travel_side_accel_cm_s2", h.travel_side_accel_cm_s2},
+      {"ground_y_cm", h.ground_y_cm}, {"ground_pitch_deg", h.ground_pitch_deg}, {"neck_rz", h.neck_rz}, {"head_rz", h.head_rz},
+      {"tail_rz", h.tail_rz}, {"tail_ry", h.tail_ry}};
+  for (const auto& [what, v] : travel) requireFinite(v, clip, b.seconds, what);
+  for (std::size_t leg = 0; leg < 4; ++leg) requireFinite(h.hoof_ground_cm[leg], clip, b.seconds, "hoof_ground_cm[" + std::to_string(leg) + "]");
+}
+
 }  // namespace
 
 double travelAcceleration(const Clip& clip, double seconds) {
@@ -37,6 +62,7 @@ double travelAcceleration(const Clip& clip, double seconds) {
 }
 
 BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, double seconds) {
+  requireFinite(seconds, clip, 0.0, "the time");
   BakedFrame b;
   b.frame = frame;
   b.seconds = seconds;
@@ -45,6 +71,7 @@ BakedFrame bakeFrame(const Clip& clip, const RigProfile& profile, int frame, dou
   b.horse.travel_accel_cm_s2 = a.x;
   b.horse.travel_side_accel_cm_s2 = a.y;
   b.rider = evaluateRider(b.horse.controls, profile);
+  requireFinite(b, clip);
   return b;
 }
 

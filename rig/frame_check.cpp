@@ -7,6 +7,7 @@
 #include "rig/balance.h"
 #include "rig/loose_tack.h"
 #include "rig/contact_depth.h"
+#include "rig/horse_leg.h"
 #include "rig/skin.h"
 
 namespace stirrup::rig {
@@ -75,6 +76,19 @@ double soleSlide(std::span<const std::pair<int, glm::vec3>> before, std::span<co
     }
   }
   return least;
+}
+
+double hoofLiftCm(const glm::mat4& hoof_world, double rest_height_cm, const std::function<double(double x, double z)>& ground_height) {
+  // The sole's centre and edges, where the leg solve keeps them: rest_height_cm below the joint in the
+  // hoof's own frame (rig/horse_leg.cpp hoofRoll).
+  const HorseLegParams edges;
+  const float below = -float(rest_height_cm);
+  double lowest = 1e30;
+  for (const float along : {0.0f, edges.toe_cm, -edges.heel_cm}) {
+    const glm::vec3 p(hoof_world * glm::vec4(along, below, 0.0f, 1.0f));
+    lowest = std::min(lowest, double(p.y) - ground_height(p.x, p.z));
+  }
+  return lowest;
 }
 
 const char* checkSeverityName(CheckSeverity s) {
@@ -146,7 +160,9 @@ FrameMeasures PairCheck::measure(int frame, double time_s, const HorseFrame& hor
     }
     if (hoof_vertices_[leg].empty()) lowest = 0;
     m.below_ground_cm[leg] = float(std::max(0.0, -lowest));
-    m.down[leg] = pose.reach.planted[leg];
+    m.lift_cm[leg] = float(hoofLiftCm(pose.horse[std::size_t(hoof_joint_[leg])], horse_.skeleton.restPosition(hoof_joint_[leg]).y, ground_height));
+    m.down[leg] = hoofDown(m.lift_cm[leg]);
+    m.target_planted[leg] = pose.reach.planted[leg];
     m.sliding[leg] = horse_frame.hoof_sliding[leg];
     m.reach_short_cm[leg] = pose.reach.short_cm[leg];
     if (m.down[leg])
@@ -193,7 +209,7 @@ std::vector<CheckFinding> PairCheck::judge(std::span<const FrameMeasures> frames
             hoof + " hoof down slides " + format("%.2f cm along the ground since the frame before (at most %.1f cm a frame)", slide, L.slide_warn_cm));
       }
       const double short_cm = m.reach_short_cm[leg];
-      if (m.down[leg]) {
+      if (m.target_planted[leg]) {
         add(m, "over-reach", hoof, short_cm, L.reach_warn_cm, L.reach_fail_cm,
             hoof + " hoof planted " + format("%.2f cm short of its print, its leg at full reach (no bone stretched; at most %.1f cm)", short_cm, L.reach_warn_cm));
       } else if (short_cm >= L.reach_warn_cm) {

@@ -84,13 +84,16 @@ VirtualChain virtualChain(const RestLeg& r, bool two_part_upper, bool fore, cons
 }
 
 // Rolls the hoof about its toe (target behind the pivot: breakover) or its heel (ahead: landing)
-// until the fetlock comes within `reach` of the pivot, at most roll_max_deg. Returns the rotation
-// about the contact edge (identity when the leg reaches without it).
+// until the fetlock comes within `reach` of the pivot, at most roll_max_deg. The edges lie on the sole,
+// `sole_cm` below the hoof joint in the hoof's own frame (the joint's rest height above the ground: 0
+// for the default horse, whose hoof joint is its sole's centre; a user's horse may have it above the
+// sole, and rolled about a point that high its sole would slide). Returns the rotation about the
+// contact edge (identity when the leg reaches without it).
 glm::mat4 hoofRoll(const HorseLegTarget& t, glm::vec3 n, glm::vec3 forward, glm::vec3 pivot, glm::vec3 fetlock,
-                   float reach, const HorseLegParams& p) {
+                   float reach, float sole_cm, const HorseLegParams& p) {
   if (glm::length(fetlock - pivot) <= reach) return glm::mat4(1.0f);
   const bool behind = glm::dot(fetlock - pivot, forward) < 0.0f;
-  const glm::vec3 edge = behind ? glm::vec3(p.toe_cm, 0.0f, 0.0f) : glm::vec3(-p.heel_cm, 0.0f, 0.0f);
+  const glm::vec3 edge = behind ? glm::vec3(p.toe_cm, -sole_cm, 0.0f) : glm::vec3(-p.heel_cm, -sole_cm, 0.0f);
   const glm::vec3 contact = t.hoof + glm::vec3(t.fold * glm::vec4(edge, 0.0f));
   const glm::vec3 f = fetlock - contact, q = pivot - contact;
   const glm::vec3 f_p = f - n * glm::dot(n, f), q_p = q - n * glm::dot(n, q);
@@ -150,7 +153,7 @@ float solveHorseLeg(const Skeleton& s, const HorseLegJoints& leg, const HorseLeg
   // Targets, the hoof rolled over an edge if even the stretched leg falls short.
   glm::vec3 fetlock = target.hoof + glm::vec3(target.fold * glm::vec4(r.fetlock - r.hoof, 0.0f));
   const float full = chain.reach(1.0f);
-  const glm::mat4 roll = hoofRoll(target, body_side, body_forward, pivot, fetlock, full, params);
+  const glm::mat4 roll = hoofRoll(target, body_side, body_forward, pivot, fetlock, full, r.hoof.y, params);
   fetlock = transformPoint(roll, fetlock);
   const glm::mat4 fold = glm::mat4(glm::mat3(roll)) * target.fold;
 

@@ -294,12 +294,10 @@ std::unique_ptr<Clip> buildGenerator(const std::string& gen, const ParamReader& 
     const std::vector<GaitParams> gaits = gaitList(r, lead);
     const double segment = r.number("segment_s", 3.0, 0.5, 120.0);
     const double blend = r.number("blend_s", 1.0, 0.1, segment - 0.1);
-    if (r.boolean("end_with_stop", false)) {
-      StopParams p;
-      p.lead = lead;
-      p.slide_s = r.number("slide_s", p.slide_s, 0.3, 5.0);
-      return std::make_unique<MovementClip>(makeGaitSequenceToStop(gaits, segment, blend, p, v));
-    }
+    StopParams p;
+    p.lead = lead;
+    p.slide_s = r.number("slide_s", p.slide_s, 0.3, 5.0);  // checked whenever given, used with end_with_stop
+    if (r.boolean("end_with_stop", false)) return std::make_unique<MovementClip>(makeGaitSequenceToStop(gaits, segment, blend, p, v));
     return std::make_unique<MovementClip>(makeGaitSequence(gaits, segment, blend, v));
   }
   if (gen == "stop") {

@@ -1,6 +1,10 @@
 #include "scene/crowd_json.h"
 
 #include <cmath>
+#include <filesystem>
+
+#include "scene/character_json.h"
+#include "scene/frame_range.h"
 
 namespace stirrup::rig {
 namespace {
@@ -47,6 +51,41 @@ unsigned seedOf(JsonObjectReader& r, const std::string& key, unsigned fallback) 
   return static_cast<unsigned>(v->get<std::int64_t>());
 }
 
+// A pair's own characters and motion (issue 60), as the scene's "characters" name them: "horse" and
+// "rider" entries (scene/character_json.h), and "animation" for the horse's own.
+template <class T>
+void readOwnCharacters(JsonObjectReader& r, T& out) {
+  const std::filesystem::path dir = std::filesystem::path(r.file()).parent_path();
+  const render::CharacterEntry horse = render::parseCharacterEntry(r, "horse", dir);
+  const render::CharacterEntry rider = render::parseCharacterEntry(r, "rider", dir);
+  out.horse_file = horse.file, out.horse_mapping = horse.mapping;
+  out.rider_file = rider.file, out.rider_mapping = rider.mapping;
+  if (r.has("animation")) out.animation = r.string("animation", "");
+  if (out.animation && out.horse_file == "default")
+    r.fail("animation", "expected a horse file beside it (\"horse\": its own animation is the file's)");
+}
+
+// "characters": [{"pairs": "0-3", "horse": ..., "rider": ..., "animation": ...}, ...]
+std::vector<CrowdSpec::Characters> crowdCharacters(JsonObjectReader& r) {
+  const nlohmann::json* v = r.value("characters");
+  if (!v) return {};
+  if (!v->is_array()) r.fail("characters", "expected a list of {\"pairs\", \"horse\", \"rider\", \"animation\"}, got " + describeJson(*v));
+  std::vector<CrowdSpec::Characters> out;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    JsonObjectReader e(r.file(), r.fieldPath("characters[" + std::to_string(i) + "]"), (*v)[i]);
+    CrowdSpec::Characters c;
+    if (e.has("pairs")) {
+      const std::string list = e.string("pairs", "");
+      c.pairs = parseFrameList(list, r.file() + ": " + e.fieldPath("pairs"));
+    }
+    readOwnCharacters(e, c);
+    if (c.horse_file == "default" && c.rider_file == "default") e.fail("horse", "expected a \"horse\" or \"rider\" file for these pairs");
+    e.finish();
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 }  // namespace
 
 CrowdSpec parseCrowdSpec(JsonObjectReader& r) {
@@ -80,6 +119,7 @@ CrowdSpec parseCrowdSpec(JsonObjectReader& r) {
   s.withers_height_cm = range(r, "withers_height_cm", s.withers_height_cm);
   s.rider_height_cm = range(r, "rider_height_cm", s.rider_height_cm);
   s.rider_build = range(r, "rider_build", s.rider_build);
+  s.characters = crowdCharacters(r);
   r.finish();
   return s;
 }
@@ -103,6 +143,13 @@ PairSpec parsePairSpec(JsonObjectReader& r) {
   p.jacket = r.string("jacket", p.jacket);
   p.hair = r.string("hair", p.hair);
   p.skin = r.string("skin", p.skin);
+  readOwnCharacters(r, p);
+  // An own animation starts where the path does, facing along it (the path's first segment).
+  if (p.path.points.size() >= 2) {
+    const glm::dvec2 d = p.path.points[1] - p.path.points[0];
+    p.slot_cm = p.path.points[0];
+    p.slot_heading_deg = std::atan2(d.y, d.x) * 180.0 / 3.14159265358979323846;
+  }
   r.finish();
   return p;
 }

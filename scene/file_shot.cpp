@@ -38,6 +38,9 @@ FileShot loadFileShot(const std::filesystem::path& file, double fps, const std::
   scene.frames = "1-" + std::to_string(shot->frameCount());
   out.shot = std::move(shot);
   if (!scene_file.empty()) return out;
+  // The file's own ground, where it names one (a bake over hills holds it): the horses walk on it.
+  if (const std::shared_ptr<const rig::TerrainMesh> ground = out.shot->ground())
+    scene.terrain = std::make_shared<const rig::Terrain>(rig::Terrain::mesh(ground));
   scene.file = file;
   scene.name = file.stem().string();
   scene.output = std::filesystem::path("out") / scene.name;

@@ -9,8 +9,8 @@
 //           was baked from, for its look
 //   output: the shot's scene: its fps and frames from the file; with a scene its cameras, image size,
 //           quality, sun, haze, ground, name and output; else the named views side, persp, close,
-//           turntable and top, 640x360, review quality, the file's stem as name and out/NAME; and the
-//           shot read
+//           turntable and top, 640x360, review quality, the file's own ground mesh (rig/io/gltf_shot.h;
+//           else flat), the file's stem as name and out/NAME; and the shot read
 //
 // The views follow the horse's travel as a scene's follow its clip: each pair's horse plays its own
 // keyed animation (rig/io/keyed_horse_clip.h) for the travel frame fitted to its trunk, which the

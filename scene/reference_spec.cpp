@@ -47,6 +47,11 @@ PixelRect parsePixelRect(const std::string& text, const std::string& context) {
   return r;
 }
 
+// Pixel sizes, places and shifts of footage: within 65536 (the largest image OpenImageIO's formats hold a
+// side of, and far past any plate); a plate's grid of at most 1000 cells a side.
+constexpr double kMaxPixels = 65536.0;
+constexpr int kMaxGridCells = 1000;
+
 ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) {
   ReferenceSpec ref;
   const std::string file = r.string("file", "");
@@ -54,7 +59,7 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
   ref.file = scene_dir / file;
   const auto rect = [&](JsonObjectReader& o, const std::string& key, PixelRect fallback) {
     if (!o.has(key)) return fallback;
-    const std::array<double, 4> v = o.numbers<4>(key, {});
+    const std::array<double, 4> v = o.numbers<4>(key, {}, 0.0, kMaxPixels);
     for (double d : v)
       if (d != std::floor(d)) o.fail(key, "expected whole pixels [x, y, width, height]");
     const PixelRect p{int(v[0]), int(v[1]), int(v[2]), int(v[3])};
@@ -65,11 +70,9 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
   if (r.has("grid")) {
     JsonObjectReader g = r.object("grid");
     PlateGrid grid;
-    grid.rows = g.integer("rows", grid.rows);
-    if (grid.rows < 1) g.fail("rows", "expected an integer >= 1");
-    grid.columns = g.integer("columns", grid.columns);
-    if (grid.columns < 1) g.fail("columns", "expected an integer >= 1");
-    const std::array<double, 4> m = g.numbers<4>("margins", {0, 0, 0, 0});
+    grid.rows = g.integer("rows", grid.rows, 1, kMaxGridCells, "a count of rows");
+    grid.columns = g.integer("columns", grid.columns, 1, kMaxGridCells, "a count of columns");
+    const std::array<double, 4> m = g.numbers<4>("margins", {0, 0, 0, 0}, 0.0, kMaxPixels);
     for (double d : m)
       if (d < 0 || d != std::floor(d)) g.fail("margins", "expected whole pixels >= 0 [left, top, right, bottom]");
     grid.margin_left = int(m[0]);
@@ -81,25 +84,26 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
     g.finish();
     ref.grid = grid;
   }
-  ref.offset = r.integer("offset", ref.offset);
-  ref.rate = r.number("rate", ref.rate);
-  if (!(std::isfinite(ref.rate) && ref.rate > 0)) r.fail("rate", "expected their frames per our frame > 0");
+  ref.offset = r.integer("offset", ref.offset, -1000000, 1000000, "a frame offset");
+  ref.rate = r.number("rate", ref.rate, 0.001, 1000.0, "their frames per our frame");
   const std::string edge = r.string("edge", "loop");
   if (edge == "hold") ref.edge = FootageEdge::Hold;
   else if (edge == "loop") ref.edge = FootageEdge::Loop;
   else if (edge == "blank") ref.edge = FootageEdge::Blank;
   else r.fail("edge", "expected \"hold\", \"loop\" or \"blank\", got \"" + edge + "\"");
   ref.crop = rect(r, "crop", ref.crop);
-  ref.scale = float(r.number("scale", ref.scale));
-  if (!(std::isfinite(ref.scale) && ref.scale > 0)) r.fail("scale", "expected a number > 0");
-  const std::array<double, 2> pos = r.numbers<2>("position", {ref.position.x, ref.position.y});
+  ref.scale = float(r.number("scale", ref.scale, 0.001, 1000.0));
+  const std::array<double, 2> pos = r.numbers<2>("position", {ref.position.x, ref.position.y}, -kMaxPixels, kMaxPixels);
   ref.position = glm::vec2(float(pos[0]), float(pos[1]));
   ref.flip_x = r.boolean("flip_x", ref.flip_x);
   if (const nlohmann::json* v = r.value("shift_x")) {
     if (!v->is_array()) r.fail("shift_x", "expected an array of pixel shifts, one per footage frame");
     for (size_t i = 0; i < v->size(); ++i) {
-      if (!(*v)[i].is_number()) r.fail("shift_x[" + std::to_string(i) + "]", "expected a number, got " + describeJson((*v)[i]));
-      ref.shift_x.push_back((*v)[i].get<float>());
+      const std::string at = "shift_x[" + std::to_string(i) + "]";
+      if (!(*v)[i].is_number()) r.fail(at, "expected a number, got " + describeJson((*v)[i]));
+      const double d = (*v)[i].get<double>();
+      if (!(d >= -kMaxPixels && d <= kMaxPixels)) r.fail(at, JsonObjectReader::rangeText(-kMaxPixels, kMaxPixels, d, "pixels"));
+      ref.shift_x.push_back(float(d));
     }
   }
   if (r.has("mode")) {
@@ -110,8 +114,7 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
       r.fail("mode", "expected side-by-side, over, difference or onion-skin, got \"" + mode + "\"");
     }
   }
-  ref.opacity = float(r.number("opacity", ref.opacity));
-  if (!(ref.opacity >= 0 && ref.opacity <= 1)) r.fail("opacity", "expected a number in [0, 1]");
+  ref.opacity = float(r.number("opacity", ref.opacity, 0.0, 1.0));
   ref.label = r.string("label", ref.label);
   r.finish();
   return ref;

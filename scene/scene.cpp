@@ -13,12 +13,25 @@
 #include "rig/io/gltf_character.h"
 #include "rig/io/json_fields.h"
 #include "rig/parallel_first_error.h"
+#include "scene/character_json.h"
+#include "scene/crowd_characters.h"
 #include "scene/crowd_json.h"
 #include "scene/frame_range.h"
+#include "scene/rig_profile_json.h"
 #include "scene/terrain_json.h"
 
 namespace stirrup::render {
 namespace {
+
+// The ranges a scene's numbers must lie in (our choices: wide enough for any shot, narrow enough that
+// no product or quotient of them overflows or underflows to NaN downstream). A frame rate from 1 fps (a
+// slide show) to 240 (high-speed review); cameras within 100 km of the origin, the ground's own reach
+// many times over; a field of view from 0.5 degrees (a 2750 mm lens) to 170.
+constexpr double kMinFps = 1.0, kMaxFps = 240.0;
+constexpr double kMaxSceneExtentCm = 1e7;
+constexpr double kMinFovDeg = 0.5, kMaxFovDeg = 170.0;
+// Frame numbers and counts: a million frames is 11.5 hours at 24 fps.
+constexpr int kMaxFrame = 1000000;
 
 // The scene's clip: {"generator": NAME, parameters...} or {"file": CLIP.glb, "mapping": MAP.json,
 // "animation": NAME}; paths are relative to the scene file. Steady gaits also fill `gait`.
@@ -45,12 +58,10 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
   } else {
     r.fail("type", "expected \"orthographic\" or \"perspective\", got \"" + type + "\"");
   }
-  c.fov_deg = r.number("fov", c.fov_deg);
-  if (!(c.fov_deg > 0.0 && c.fov_deg < 180.0)) r.fail("fov", "expected degrees between 0 and 180");
-  c.ortho_height_cm = r.number("ortho_height", c.ortho_height_cm);
-  if (!(c.ortho_height_cm > 0.0)) r.fail("ortho_height", "expected centimetres > 0");
-  c.position = r.numbers<3>("position", c.position);
-  c.target = r.numbers<3>("target", c.target);
+  c.fov_deg = r.number("fov", c.fov_deg, kMinFovDeg, kMaxFovDeg, "degrees");
+  c.ortho_height_cm = r.number("ortho_height", c.ortho_height_cm, 1.0, kMaxSceneExtentCm, "centimetres");
+  c.position = r.numbers<3>("position", c.position, -kMaxSceneExtentCm, kMaxSceneExtentCm);
+  c.target = r.numbers<3>("target", c.target, -kMaxSceneExtentCm, kMaxSceneExtentCm);
   c.follow = r.boolean("follow", c.follow);
   c.motion = c.follow ? "follow" : "fixed";
   c.motion = r.string("motion", c.motion);
@@ -60,30 +71,25 @@ CameraSpec parseCamera(JsonObjectReader r, int index) {
   c.follow_target = r.string("follow_target", c.follow_target);
   if (c.follow_target != "travel" && c.follow_target != "rider")
     r.fail("follow_target", "expected \"travel\" or \"rider\", got \"" + c.follow_target + "\"");
-  c.damping_s = r.number("damping", c.damping_s);
-  if (!(c.damping_s >= 0.0 && c.damping_s <= 10.0)) r.fail("damping", "expected seconds between 0 and 10");
-  c.orbit_deg_per_frame = r.number("orbit_deg_per_frame", c.orbit_deg_per_frame);
-  if (!std::isfinite(c.orbit_deg_per_frame)) r.fail("orbit_deg_per_frame", "expected a finite number");
-  c.orbit_frames = static_cast<int>(r.number("orbit_frames", c.orbit_frames));
-  if (c.orbit_frames < 0) r.fail("orbit_frames", "expected a frame count >= 0");
-  c.focal_length_mm = r.number("focal_length", c.focal_length_mm);
+  c.damping_s = r.number("damping", c.damping_s, 0.0, 10.0, "seconds");
+  c.orbit_deg_per_frame = r.number("orbit_deg_per_frame", c.orbit_deg_per_frame, -360.0, 360.0, "degrees");
+  c.orbit_frames = r.integer("orbit_frames", c.orbit_frames, 0, kMaxFrame, "a frame count");
+  c.focal_length_mm = r.number("focal_length", c.focal_length_mm, 1.0, 10000.0, "millimetres");
   if (r.has("focal_length")) {
-    if (!(c.focal_length_mm > 0.0)) r.fail("focal_length", "expected millimetres > 0");
     c.fov_deg = 2.0 * std::atan(12.0 / c.focal_length_mm) * 180.0 / 3.14159265358979323846;
   }
   c.view = r.string("view", c.view);
   if (!c.view.empty() && c.view != "side" && c.view != "persp" && c.view != "close" && c.view != "turntable" &&
       c.view != "top")
     r.fail("view", "expected \"side\", \"persp\", \"close\", \"turntable\" or \"top\", got \"" + c.view + "\"");
-  c.frame_margin = r.number("frame_margin", c.frame_margin);
-  if (!(c.frame_margin >= 0.0 && c.frame_margin < 0.45)) r.fail("frame_margin", "expected a fraction in [0, 0.45)");
+  c.frame_margin = r.number("frame_margin", c.frame_margin, 0.0, 0.44, "a fraction");
   c.treadmill = r.boolean("treadmill", c.treadmill);
   // Its upper bound is the crowd's size, checked once the pairs are read (parseScene).
-  c.follow_pair = r.integer("follow_pair", c.follow_pair);
-  if (r.has("follow_pair") && c.follow_pair < 0) r.fail("follow_pair", "expected a pair index >= 0");
-  c.hold_frame = static_cast<int>(r.number("hold_frame", c.hold_frame));
-  if (c.hold_frame < 0) r.fail("hold_frame", "expected a frame number >= 1 (0: no hold)");
-  if (c.position == c.target) r.fail("target", "expected a point different from position");
+  c.follow_pair = r.integer("follow_pair", c.follow_pair, 0, rig::kMaxCrowdPairs - 1, "a pair index");
+  c.hold_frame = r.integer("hold_frame", c.hold_frame, 0, kMaxFrame, "a frame number (0: no hold)");
+  // A camera on its target (or 1e-320 cm from it) looks nowhere: at least a centimetre between them.
+  if (std::hypot(c.target[0] - c.position[0], c.target[1] - c.position[1], c.target[2] - c.position[2]) < 1.0)
+    r.fail("target", "expected a point at least 1 cm from position");
   r.finish();
   return c;
 }
@@ -97,15 +103,17 @@ constexpr const char* kRendersAnyway = "allow_impossible or --allow-impossible r
 void checkLimits(SceneSpec& s) {
   const std::string file = s.file.string();
   if (const auto params = rig::pathClipParams(s.clip))
-    s.limits.push_back({std::make_shared<const rig::PathLimitCheck>(*params, s.terrain.get(), file, "clip"), 0.0});
+    s.limits.push_back({std::make_shared<const rig::PathLimitCheck>(*params, s.terrain.get(), file, "clip"), 0.0, 0});
   // Each pair's path read in parallel (each check walks its whole path); kept in pair order.
   std::vector<SceneSpec::PathLimits> pairs(s.pairs.size());
   rig::parallelForFirstError(s.pairs.size(), [&](std::size_t i) {
+    if (s.pairs[i].animation) return;  // it plays its horse's own animation, not its path
     const std::string field = (s.crowd ? "crowd.pairs[" : "riders[") + std::to_string(i) + "]";
     pairs[i] = {std::make_shared<const rig::PathLimitCheck>(s.pairs[i].path, s.terrain.get(), file, field),
-                s.pairs[i].clip_offset_s};
+                s.pairs[i].clip_offset_s, int(i)};
   });
-  s.limits.insert(s.limits.end(), pairs.begin(), pairs.end());
+  for (const SceneSpec::PathLimits& l : pairs)
+    if (l.check) s.limits.push_back(l);
   // A crowd's pairs ride paths; the default trot in s.clip is no one's.
   if (s.pairs.empty())
     for (const rig::GaitSpeed& g : rig::generatedGaitSpeeds(s.clip))
@@ -160,41 +168,15 @@ std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
 namespace {
 
 // The scene's "characters": "default", a glTF file (relative to the scene file) carrying its role table,
-// or {"file": ..., "mapping": ...} for a user's character (docs/characters.md).
+// or {"file": ..., "mapping": ...} for a user's character (docs/characters.md, scene/character_json.h).
 void parseCharacters(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   if (!r.has("characters")) return;
   JsonObjectReader c = r.object("characters");
   const std::filesystem::path dir = std::filesystem::path(file).parent_path();
-  const auto character = [&](const char* key, std::string& path, std::string& mapping) {
-    const nlohmann::json* v = c.value(key);
-    if (!v) return;
-    const auto resolve = [&](const std::string& field, const std::string& name) {
-      const std::filesystem::path f = dir / name;
-      if (!std::filesystem::exists(f)) c.fail(field, "no such file: " + f.string());
-      return f.string();
-    };
-    if (v->is_string() && v->get<std::string>() == "default") {
-      path = "default";
-    } else if (v->is_string()) {
-      path = resolve(key, v->get<std::string>());
-    } else if (v->is_object()) {
-      JsonObjectReader o = c.object(key);
-      const std::string f = o.string("file", "");
-      if (f.empty()) o.fail("file", "expected a glTF file (.glb or .gltf)");
-      path = f == "default" ? f : std::filesystem::exists(dir / f) ? (dir / f).string() : "";
-      if (path.empty()) o.fail("file", "no such file: " + (dir / f).string());
-      const std::string m = o.string("mapping", "");
-      if (!m.empty()) {
-        if (!std::filesystem::exists(dir / m)) o.fail("mapping", "no such file: " + (dir / m).string());
-        mapping = (dir / m).string();
-      }
-      o.finish();
-    } else {
-      c.fail(key, "expected \"default\", a glTF file or {\"file\": ..., \"mapping\": ...}, got " + describeJson(*v));
-    }
-  };
-  character("horse", s.horse, s.horse_mapping);
-  character("rider", s.rider, s.rider_mapping);
+  const CharacterEntry horse = parseCharacterEntry(c, "horse", dir, {s.horse, s.horse_mapping});
+  const CharacterEntry rider = parseCharacterEntry(c, "rider", dir, {s.rider, s.rider_mapping});
+  s.horse = horse.file, s.horse_mapping = horse.mapping;
+  s.rider = rider.file, s.rider_mapping = rider.mapping;
   c.finish();
 }
 
@@ -206,22 +188,19 @@ void parseLook(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   } else if (r.has("quality")) {
     JsonObjectReader q = r.object("quality");
     if (q.has("preset")) applyPreset(s, findQualityPreset(q.string("preset", ""), file + ": quality.preset"));
-    s.samples = q.integer("samples", s.samples);
-    s.light_samples = q.integer("light_samples", s.light_samples);
-    s.ao_samples = q.integer("ao_samples", s.ao_samples);
-    if (s.samples < 1 || s.samples > 4096) q.fail("samples", "expected a whole number from 1 to 4096");
-    if (s.light_samples < 1 || s.light_samples > 256)
-      q.fail("light_samples", "expected a whole number from 1 to 256");
-    if (s.ao_samples < 0 || s.ao_samples > 256) q.fail("ao_samples", "expected a whole number from 0 to 256");
+    s.samples = q.integer("samples", s.samples, 1, 4096);
+    s.light_samples = q.integer("light_samples", s.light_samples, 1, 256);
+    s.ao_samples = q.integer("ao_samples", s.ao_samples, 0, 256);
     q.finish();
   }
   if (r.has("sun")) {
     JsonObjectReader sun = r.object("sun");
-    s.sun_direction = sun.numbers<3>("direction", s.sun_direction);
-    if (s.sun_direction[1] <= 0.0) sun.fail("direction", "expected a direction toward the sun with y > 0");
-    s.sun_angular_radius_deg = sun.number("angular_radius", s.sun_angular_radius_deg);
-    if (!(s.sun_angular_radius_deg >= 0.0 && s.sun_angular_radius_deg <= 20.0))
-      sun.fail("angular_radius", "expected degrees between 0 and 20");
+    s.sun_direction = sun.numbers<3>("direction", s.sun_direction, -1000.0, 1000.0);
+    // Above the horizon by a tenth of a degree at least: a sun at it (or a y of 1e-320) lights nothing.
+    const double length = std::hypot(s.sun_direction[0], s.sun_direction[1], s.sun_direction[2]);
+    if (!(s.sun_direction[1] >= std::sin(0.1 * 3.14159265358979323846 / 180.0) * length))
+      sun.fail("direction", "expected a direction toward the sun at least 0.1 degrees above the horizon (y > 0)");
+    s.sun_angular_radius_deg = sun.number("angular_radius", s.sun_angular_radius_deg, 0.0, 20.0, "degrees");
     sun.finish();
   }
   if (r.has("haze")) {
@@ -229,10 +208,8 @@ void parseLook(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
     JsonObjectReader haze = r.object("haze");
     s.haze_visibility_cm = haze.number("visibility_cm", s.haze_visibility_cm);
     if (!(s.haze_visibility_cm >= 100.0 && s.haze_visibility_cm <= 100000.0))
-      haze.fail("visibility_cm", "expected centimetres from 100 to 100000 (the ground ends 1 km out)");
-    s.haze_ortho_depth_cm = haze.number("ortho_depth_cm", s.haze_ortho_depth_cm);
-    if (!(s.haze_ortho_depth_cm >= 100.0 && s.haze_ortho_depth_cm <= 100000.0))
-      haze.fail("ortho_depth_cm", "expected centimetres from 100 to 100000");
+      haze.fail("visibility_cm", "expected centimetres from 100 to 100000 (the ground ends 1 km out), got " + numberText(s.haze_visibility_cm));
+    s.haze_ortho_depth_cm = haze.number("ortho_depth_cm", s.haze_ortho_depth_cm, 100.0, 100000.0, "centimetres");
     haze.finish();
   }
 }
@@ -247,7 +224,8 @@ void parsePairs(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   if (r.has("crowd")) {
     JsonObjectReader c = r.object("crowd");
     s.crowd = rig::parseCrowdSpec(c);
-    s.pairs = rig::generateCrowd(*s.crowd, s.terrain, s.fps, file, &s.pair_clips);
+    s.pairs = rig::generateCrowd(*s.crowd, s.terrain, s.fps, file, &s.pair_clips,
+                                 [&s](std::vector<rig::PairSpec>& pairs) { resolvePairCharacters(pairs, s, "crowd.characters"); });
   } else if (const nlohmann::json* riders = r.value("riders")) {
     if (!riders->is_array() || riders->empty())
       r.fail("riders", "expected a non-empty array of riders, got " + describeJson(*riders));
@@ -255,6 +233,7 @@ void parsePairs(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
       JsonObjectReader p(file, "riders[" + std::to_string(i) + "]", (*riders)[i]);
       s.pairs.push_back(rig::parsePairSpec(p));
     }
+    resolvePairCharacters(s.pairs, s, "riders");
     s.pair_clips = rig::validatePairs(s.pairs, s.terrain, s.fps, 0, file, "riders");
   }
 }
@@ -293,9 +272,11 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
   if (const nlohmann::json* o = r.value("profile_overrides")) {
     if (!o->is_object()) r.fail("profile_overrides", "expected an object, got " + describeJson(*o));
     s.profile_overrides = *o;
+    // Checked now, each against its parameter's range, as they will apply to whichever profile is named.
+    rig::RigProfile checked = rig::RigProfile::thesis();
+    rig::applyProfileOverrides(checked, s.profile_overrides, file + ": profile_overrides");
   }
-  s.fps = r.number("fps", s.fps);
-  if (!(s.fps > 0.0 && s.fps <= 240.0)) r.fail("fps", "expected frames per second between 0 and 240");
+  s.fps = r.number("fps", s.fps, kMinFps, kMaxFps, "frames per second");
   // A horse's own animation (or another horse's, read through its roles) plays whole unless the scene
   // says which frames.
   if (!s.clip.file.empty() && !r.has("frames") && !rig::readsControlNodes(s.clip))

@@ -106,6 +106,7 @@ struct SceneSpec {
   struct PathLimits {
     std::shared_ptr<const rig::PathLimitCheck> check;
     double clip_offset_s = 0;  // the path's clip is sampled at the shot's time plus this (a crowd's pair)
+    int pair = 0;              // the crowd's pair riding it (0: the scene's one pair); a pair playing its own animation has none
   };
   std::vector<PathLimits> limits;
   // The generated clip's gaits faster than horses go at them (rig::generatedGaitSpeeds, HorseLimits):

@@ -61,11 +61,15 @@ rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames, int 
     for (std::size_t i = 0; i < evaluated.pairs.size(); ++i) {
       const rig::BakedFrame& b = evaluated.pairs[i].baked;
       shot.pairs[i].poses.push_back(std::move(evaluated.pairs[i].pose));
+      shot.pairs[i].hoof_sliding.push_back(b.horse.hoof_sliding);
       lo = glm::min(lo, glm::dvec2(b.horse.travel_cm, b.horse.travel_z_cm));
       hi = glm::max(hi, glm::dvec2(b.horse.travel_cm, b.horse.travel_z_cm));
     }
     first.push_back(evaluated.pairs[0].baked);
   }
+  for (rig::BakedPair& pair : shot.pairs)  // most clips slide no hoof: nothing to write
+    if (std::none_of(pair.hoof_sliding.begin(), pair.hoof_sliding.end(), [](const std::array<bool, 4>& s) { return s[0] || s[1] || s[2] || s[3]; }))
+      pair.hoof_sliding.clear();
   if (scene.terrain && !scene.terrain->flat()) {
     // The ground under the baked frames' tracks and well around them (kBakedGroundMarginCm).
     scene.terrain->triangulate(lo - kBakedGroundMarginCm, hi + kBakedGroundMarginCm, kBakedGroundCellCm,

@@ -158,7 +158,7 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
     } else {
       ps.arena.execute([&] {
         rig::parallelForFirstError(scene.pairs.size(), [&](std::size_t i) {
-          ps.pairs[i].clip = rig::makePairClip(scene.pairs[i], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
+          ps.pairs[i].clip = rig::pairClip(scene.pairs[i], scene.terrain, source + ": pairs[" + std::to_string(i) + "]");
         });
       });
     }
@@ -168,6 +168,15 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
       p.clip_offset_s = spec.clip_offset_s;
       p.shown = std::make_unique<rig::ShiftedClip>(*p.clip, spec.clip_offset_s);
       p.profile = profiles.at(spec.profile);
+      if (spec.characters) {
+        // The user's characters (scene/crowd_characters.h), read and seated as the scene loaded: one
+        // build at every level (a file's mesh has one detail).
+        const rig::PairCharacters& own = *spec.characters;
+        p.seat = own.seat;
+        p.builds.assign(std::size_t(kDetailLevels), ps.builds.size());
+        ps.builds.push_back({rig::HorseParams{}, rig::RiderParams{}, own.horse, own.rider});
+        continue;
+      }
       for (int k = 0; k < kDetailLevels; ++k) {
         const Key key{spec.withers_height_cm, spec.rider_height_cm, spec.rider_build, spec.coat, spec.jacket, spec.hair,
                       spec.skin, k};
@@ -339,11 +348,10 @@ void ShotEvaluator::poseStage(const FrameRequest& request, std::size_t i, PairFr
   }
 }
 
-// A glTF shot's pair as its file keys it at the frame shown, on the flat ground it was keyed over; on a
-// treadmill its travel taken out (the file's joints moved back by the travel frame's origin).
+// A glTF shot's pair as its file keys it at the frame shown; on a treadmill its travel taken out (the file's joints moved back by the travel frame's origin).
 rig::MountedPose ShotEvaluator::filePose(const FrameRequest& request, std::size_t i, const rig::BakedFrame& baked) const {
   const int shown = request.shown.hold_frame > 0 ? request.shown.hold_frame : request.frame;
-  rig::MountedPose pose = file_->pose(i, shown, [](double, double) { return 0.0; });
+  rig::MountedPose pose = file_->pose(i, shown);
   if (request.shown.treadmill) {
     const glm::vec3 back(-float(baked.horse.travel_cm), 0.0f, -float(baked.horse.travel_z_cm));
     for (std::vector<glm::mat4>* joints : {&pose.horse, &pose.rider})

@@ -68,4 +68,17 @@ inline std::filesystem::path blenderRigifyRider(BlenderMade* made = nullptr) {
   return m.ok ? dir / "rigify-rider.glb" : std::filesystem::path();
 }
 
+// Blender's Rigify horse with its keyed walk (scripts/blender-rigify-horse OPTIONS --walk), made once for
+// every test that rides it, in STIRRUP_BINARY_DIR/test_own_horse/NAME: horse.glb and, as the oracle of its
+// walk, blender.json (Blender's own world place of every joint at every frame). The folder, or empty
+// with `made.ok` false and the script's output in `made.log`.
+inline std::filesystem::path blenderRigifyHorse(const std::string& name, const std::string& options, BlenderMade* made = nullptr) {
+  const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_own_horse" / name;
+  const std::filesystem::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
+  const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' '" + (dir / "horse.glb").string() + "' " + options +
+                                                       " --walk --expected '" + (dir / "blender.json").string() + "'");
+  if (made) *made = m;
+  return m.ok ? dir : std::filesystem::path();
+}
+
 }  // namespace stirrup::test

@@ -62,7 +62,7 @@ ReferenceSpec muybridgePlate(const fs::path& reference_dir) {
 
 // The scene a job renders: its scene file, or its glTF shot's (whose own frames and named views).
 SceneSpec jobScene(const MovieJob& job, const MovieOptions& o) {
-  return isGltfFile(job.scene) ? loadFileShot(job.scene).scene : loadScene(job.scene, {o.allow_impossible});
+  return isGltfFile(job.scene) ? loadFileShot(job.scene, 24.0, job.look).scene : loadScene(job.scene, {o.allow_impossible});
 }
 
 std::vector<int> movieFrames(const MovieJob& job, const SceneSpec& scene, const MovieOptions& o) {
@@ -82,7 +82,7 @@ struct MovieInput {
 MovieInput loadForMovie(const MovieJob& job, const MovieOptions& o) {
   MovieInput in;
   if (isGltfFile(job.scene)) {
-    in.file = loadFileShot(job.scene);
+    in.file = loadFileShot(job.scene, 24.0, job.look);
     in.scene = in.file->scene;
   } else {
     in.scene = loadScene(job.scene, {o.allow_impossible});
@@ -107,42 +107,46 @@ fs::path sharedDir(const fs::path& source_dir) {
 std::vector<MovieJob> defaultMovieSet(const fs::path& scenes_dir, const fs::path& reference_dir) {
   auto s = [&](const std::string& n) { return scenes_dir / (n + ".json"); };
   std::vector<MovieJob> set = {
-      {"jump_side", s("jump"), "side", "", ""},     {"jump_persp", s("jump"), "persp", "", ""},
-      {"rear_side", s("rear"), "side", "", ""},     {"rear_persp", s("rear"), "persp", "", ""},
-      {"stop_side", s("stop"), "side", "", ""},     {"stop_persp", s("stop"), "persp", "", ""},
-      {"stop_close", s("stop"), "close", "", ""},   {"stop_layered", s("stop"), "side", "", "rigid"},
-      {"trot_side", s("trot"), "side", "", ""},     {"trot_persp", s("trot"), "persp", "", ""},
-      {"trot_close", s("trot"), "close", "", ""},   {"trot_layered", s("trot"), "side", "", "rigid"},
-      {"walk_side", s("walk"), "side", "", ""},     {"walk_persp", s("walk"), "persp", "", ""},
-      {"walk_close", s("walk"), "close", "", ""},   {"walk_layered", s("walk"), "side", "", "rigid"},
-      {"buck_side", s("buck"), "side", "", ""},     {"buck_persp", s("buck"), "persp", "", ""},
-      {"canter_side", s("canter"), "side", "", ""}, {"gallop_side", s("gallop"), "side", "", ""},
+      {"jump_side", s("jump"), "side", "", "", {}},     {"jump_persp", s("jump"), "persp", "", "", {}},
+      {"rear_side", s("rear"), "side", "", "", {}},     {"rear_persp", s("rear"), "persp", "", "", {}},
+      {"stop_side", s("stop"), "side", "", "", {}},     {"stop_persp", s("stop"), "persp", "", "", {}},
+      {"stop_close", s("stop"), "close", "", "", {}},   {"stop_layered", s("stop"), "side", "", "rigid", {}},
+      {"trot_side", s("trot"), "side", "", "", {}},     {"trot_persp", s("trot"), "persp", "", "", {}},
+      {"trot_close", s("trot"), "close", "", "", {}},   {"trot_layered", s("trot"), "side", "", "rigid", {}},
+      {"walk_side", s("walk"), "side", "", "", {}},     {"walk_persp", s("walk"), "persp", "", "", {}},
+      {"walk_close", s("walk"), "close", "", "", {}},   {"walk_layered", s("walk"), "side", "", "rigid", {}},
+      {"buck_side", s("buck"), "side", "", "", {}},     {"buck_persp", s("buck"), "persp", "", "", {}},
+      {"canter_side", s("canter"), "side", "", "", {}}, {"gallop_side", s("gallop"), "side", "", "", {}},
       // The characters turning: horse and rider together (the rider rig rides the horse; neither is
       // shown alone), once holding a pose and once trotting in place.
-      {"turntable_pose", s("trot"), "turntable_pose", "1-96", ""},
-      {"turntable_trot", s("trot"), "turntable", "1-96", ""},
+      {"turntable_pose", s("trot"), "turntable_pose", "1-96", "", {}},
+      {"turntable_trot", s("trot"), "turntable", "1-96", "", {}},
       // A horse on a path (issue 15): turns, gait changes, lead changes and hills.
-      {"cross_country_persp", s("cross_country"), "persp", "", ""},
-      {"figure_eight_persp", s("figure_eight"), "persp", "", ""},
-      {"figure_eight_top", s("figure_eight"), "top", "", ""},
-      {"trail_persp", s("trail"), "persp", "", ""},
+      {"cross_country_persp", s("cross_country"), "persp", "", "", {}},
+      {"figure_eight_persp", s("figure_eight"), "persp", "", "", {}},
+      {"figure_eight_top", s("figure_eight"), "top", "", "", {}},
+      {"trail_persp", s("trail"), "persp", "", "", {}},
       // Crowds (issue 19): a troop cantering into a gallop over rolling ground, seen whole and with
       // one rider followed; eight riders of mixed profiles walking and trotting a trail.
-      {"cavalry_persp", s("cavalry"), "persp", "", ""},
-      {"cavalry_follow", s("cavalry"), "follow", "", ""},
-      {"ride_out_persp", s("ride_out"), "persp", "", ""},
-      {"ride_out_close", s("ride_out"), "close", "", ""},
+      {"cavalry_persp", s("cavalry"), "persp", "", "", {}},
+      {"cavalry_follow", s("cavalry"), "follow", "", "", {}},
+      {"ride_out_persp", s("ride_out"), "persp", "", "", {}},
+      {"ride_out_close", s("ride_out"), "close", "", "", {}},
   };
   if (fs::is_regular_file(reference_dir / "muybridge" / "horse-and-rider-gallop-plate.jpg"))
-    set.push_back({"gallop_layered", s("gallop"), "side", "", "reference"});
+    set.push_back({"gallop_layered", s("gallop"), "side", "", "reference", {}});
   return set;
 }
 
-std::vector<MovieJob> shotMovieSet(const fs::path& shot_file) {
-  loadFileShot(shot_file);  // a file that is not a shot is an error before any work
+std::vector<MovieJob> shotMovieSet(const fs::path& shot_file, const fs::path& look) {
+  const FileShot shot = loadFileShot(shot_file, 24.0, look);  // a file that is not a shot is an error before any work
   const std::string stem = shot_file.stem().string();
   std::vector<MovieJob> set;
-  for (const char* view : kShotViews) set.push_back({stem + "_" + view, shot_file, view, "", ""});
+  if (look.empty()) {
+    for (const char* view : kShotViews) set.push_back({stem + "_" + view, shot_file, view, "", "", {}});
+  } else {
+    for (const CameraSpec& c : shot.scene.cameras) set.push_back({stem + "_" + c.name, shot_file, c.name, "", "", look});
+  }
   return set;
 }
 

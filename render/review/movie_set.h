@@ -21,6 +21,9 @@ struct MovieJob {
   // Layered: "" (a plain movie), "rigid" (the rigged rider beside the rider rigidly fixed to the
   // saddle) or "reference" (the scene's reference footage, or Muybridge's gallop plate).
   std::string layered;
+  // A glTF shot's look: the scene whose cameras, image size, quality, sun, haze and ground it renders
+  // with (scene/file_shot.h loadFileShot); empty: the shot's own named views.
+  std::filesystem::path look;
 };
 
 // ../shared beside the repository: $STIRRUP_SHARED_DIR when set, else DATA_DIR/../shared (in a build
@@ -34,9 +37,10 @@ std::vector<MovieJob> defaultMovieSet(const std::filesystem::path& scenes_dir,
 
 // The set for a glTF shot (a `stirrup bake`, or Blender's export of one): STEM_side, STEM_persp,
 // STEM_close, STEM_turntable and STEM_top (STEM the file's stem), each over the shot's frames, rendered
-// as `stirrup render SHOT.glb` renders them (scene/file_shot.h). Reads the file: one that is not a
-// shot is a one-line InputError naming it.
-std::vector<MovieJob> shotMovieSet(const std::filesystem::path& shot_file);
+// as `stirrup render SHOT.glb` renders them (scene/file_shot.h); with a `look` scene, one movie a camera
+// of it instead (STEM_CAMERA), as `stirrup render SHOT.glb --scene LOOK.json` renders them. Reads the
+// files: one that is not a shot, or a look that is no scene, is a one-line InputError naming it.
+std::vector<MovieJob> shotMovieSet(const std::filesystem::path& shot_file, const std::filesystem::path& look = {});
 // Why the scene set's view `view` (e.g. "layered") cannot be made from a glTF shot; empty for the views
 // shotMovieSet makes, and for names that are no view of the set at all.
 std::string shotViewRefusal(const std::string& view);

@@ -7,6 +7,7 @@
 
 #include "rig/error.h"
 #include "rig/io/json_fields.h"
+#include "rig/mapping/character_mapping.h"
 
 namespace stirrup::rig {
 
@@ -21,16 +22,11 @@ CharacterMapping loadCharacterMapping(const std::filesystem::path& file, Charact
   if (character != expected)
     r.fail("character", "expected \"" + expected + "\" (this file is used for the " + expected + "), got \"" +
                             character + "\"");
-  m.scale_cm = r.number("scale_cm", m.scale_cm);
-  if (!(m.scale_cm > 0.0)) r.fail("scale_cm", "expected centimetres per file unit > 0");
-  m.forward = r.numbers<3>("forward", m.forward);
-  m.up = r.numbers<3>("up", m.up);
-  m.offset_cm = r.numbers<3>("offset_cm", m.offset_cm);
-  const auto len = [](const std::array<double, 3>& a) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; };
-  const double dot = m.forward[0] * m.up[0] + m.forward[1] * m.up[1] + m.forward[2] * m.up[2];
-  if (!(len(m.forward) > 1e-12)) r.fail("forward", "expected a non-zero direction");
-  if (!(len(m.up) > 1e-12)) r.fail("up", "expected a non-zero direction");
-  if (std::abs(dot) > 1e-6 * std::sqrt(len(m.forward) * len(m.up))) r.fail("up", "expected a direction at right angles to forward");
+  m.scale_cm = r.number("scale_cm", m.scale_cm, kMinMappingScaleCm, kMaxMappingScaleCm, "centimetres per file unit");
+  m.forward = r.numbers<3>("forward", m.forward, -kMaxMappingAxis, kMaxMappingAxis);
+  m.up = r.numbers<3>("up", m.up, -kMaxMappingAxis, kMaxMappingAxis);
+  m.offset_cm = r.numbers<3>("offset_cm", m.offset_cm, -kMaxMappingOffsetCm, kMaxMappingOffsetCm);
+  if (const auto [field, expected] = mappingAxesProblem(m.forward, m.up); !field.empty()) r.fail(field, expected);
   const nlohmann::json* roles = r.value("roles");
   if (!roles || !roles->is_object())
     r.fail("roles", "expected an object from role names to joint names, got " + (roles ? describeJson(*roles) : "nothing"));

@@ -164,6 +164,20 @@ int appendGround(tinygltf::Model& model, std::vector<unsigned char>& bin, const 
   return ground_root;
 }
 
+// The frames each hoof of the pair slides on purpose, by their seconds ({"lb": [2.0, 2.0417, ...]}), or
+// null when none does.
+tinygltf::Value hoofSlidingExtras(const BakedPair& pair, const std::vector<float>& seconds) {
+  static constexpr std::array<const char*, 4> kHooves = {"lf", "rf", "lb", "rb"};
+  tinygltf::Value::Object o;
+  for (std::size_t leg = 0; leg < 4; ++leg) {
+    tinygltf::Value::Array times;
+    for (std::size_t f = 0; f < pair.hoof_sliding.size(); ++f)
+      if (pair.hoof_sliding[f][leg]) times.emplace_back(double(seconds[f]));
+    if (!times.empty()) o[kHooves[leg]] = tinygltf::Value(times);
+  }
+  return o.empty() ? tinygltf::Value() : tinygltf::Value(o);
+}
+
 // A baked camera as a glTF camera on a node of its own (its motion keyed by the caller); returns the node.
 int appendCamera(tinygltf::Model& model, const BakedCamera& bc) {
   const double aspect = double(bc.width) / double(bc.height);
@@ -215,7 +229,16 @@ std::vector<unsigned char> bakedShotGlb(const BakedShot& shot) {
   model.asset.generator = "stirrup bake";
   std::vector<unsigned char> bin;
   std::vector<PairNodes> pair_nodes;
-  for (const BakedPair& pair : shot.pairs) pair_nodes.push_back(appendPair(model, bin, pair));
+  for (const BakedPair& pair : shot.pairs) {
+    if (!pair.hoof_sliding.empty() && pair.hoof_sliding.size() != frames)
+      throw std::invalid_argument("bakedShotGlb: expected the hooves' sliding at every frame or none");
+    pair_nodes.push_back(appendPair(model, bin, pair));
+    if (const tinygltf::Value sliding = hoofSlidingExtras(pair, shot.seconds); sliding.IsObject()) {
+      tinygltf::Value::Object extras;
+      extras["stirrup_hoof_sliding"] = sliding;
+      model.nodes[std::size_t(pair_nodes.back().horse_root)].extras = tinygltf::Value(extras);
+    }
+  }
   const int ground_root = shot.ground_indices.empty() ? -1 : appendGround(model, bin, shot);
 
   tinygltf::Animation anim;

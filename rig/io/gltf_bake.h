@@ -16,6 +16,7 @@
 // every track.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,6 +55,11 @@ struct BakedPair {
   // How the rig seated the rider (the leathers it set): in the scene's extras as "stirrup_seat" for a
   // single pair, on the pair's rider root's extras in a crowd; nothing when the rig left her as built.
   SeatReport seat;
+  // The hooves the clip slides on purpose (HorseFrame::hoof_sliding: a sliding stop's hinds), one entry
+  // a frame (empty: none does). On the horse root's extras as "stirrup_hoof_sliding": {"lb": [the
+  // seconds of the frames it slides], ...}, so `stirrup check` of the file does not count those slides
+  // as the scene's check does not (rig/io/gltf_shot.h).
+  std::vector<std::array<bool, 4>> hoof_sliding;
 };
 
 struct BakedShot {

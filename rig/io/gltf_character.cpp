@@ -26,6 +26,7 @@
 #include "rig/io/atomic_file.h"
 #include "rig/io/character_mapping_json.h"
 #include "rig/io/gltf_accessors.h"
+#include "rig/io/gltf_extras.h"
 #include "rig/io/gltf_mapping.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/io/gltf_texture.h"
@@ -261,7 +262,8 @@ std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned
   std::ostringstream os;
   if (!gltf.WriteGltfSceneToStream(&model, os, false, true)) throw std::runtime_error("glTF: cannot serialise the model");
   const std::string s = os.str();
-  return std::vector<unsigned char>(s.begin(), s.end());
+  // Empty lists in extras as [] (tinygltf writes them as null).
+  return withExactExtras(model, std::vector<unsigned char>(s.begin(), s.end()));
 }
 
 int addCentimetreRoot(tinygltf::Model& model, const std::string& name) {

@@ -19,6 +19,8 @@
 #include "rig/io/gltf_animation.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/io/json_fields.h"
+#include "rig/mapping/character_mapping.h"
+#include "rig/motion/speed_profile.h"
 
 namespace stirrup::rig {
 namespace {
@@ -172,16 +174,16 @@ ClipMapping loadClipMapping(const std::filesystem::path& file) {
   else r.fail("mode", "expected \"controls\" or \"skeleton\", got \"" + mode + "\"");
   m.animation = r.string("animation", "");
   m.loop = r.boolean("loop", m.mode == ClipMapping::Mode::Skeleton);
-  m.scale_cm = r.number("scale_cm", m.scale_cm);
-  if (!(m.scale_cm > 0.0)) r.fail("scale_cm", "expected centimetres per file unit > 0");
-  m.forward = r.numbers<3>("forward", m.forward);
-  m.up = r.numbers<3>("up", m.up);
+  m.scale_cm = r.number("scale_cm", m.scale_cm, kMinMappingScaleCm, kMaxMappingScaleCm, "centimetres per file unit");
+  m.forward = r.numbers<3>("forward", m.forward, -kMaxMappingAxis, kMaxMappingAxis);
+  m.up = r.numbers<3>("up", m.up, -kMaxMappingAxis, kMaxMappingAxis);
+  if (const auto [field, expected] = mappingAxesProblem(m.forward, m.up); !field.empty()) r.fail(field, expected);
   const std::string ground = r.string("ground", "lowest");
   if (ground != "lowest" && ground != "rest") r.fail("ground", "expected \"lowest\" or \"rest\", got \"" + ground + "\"");
   m.ground_at_lowest = ground == "lowest";
   if (const nlohmann::json* v = r.value("speed_cm_s")) {
     if (v->is_string() && v->get<std::string>() == "auto") m.speed_auto = true;
-    else if (v->is_number()) m.speed_cm_s = v->get<double>();
+    else if (v->is_number()) m.speed_cm_s = r.number("speed_cm_s", 0.0, 0.0, SpeedProfile::kMaxSpeedCmS, "centimetres per second");
     else r.fail("speed_cm_s", "expected centimetres per second or \"auto\", got " + describeJson(*v));
   }
   r.string("comment", "");

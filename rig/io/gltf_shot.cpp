@@ -17,14 +17,12 @@
 #include "rig/io/gltf_mapping.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/io/gltf_skin_joints.h"
+#include "rig/io/gltf_terrain.h"
 #include "rig/mapping/auto_mapping.h"
 #include "rig/mapping/mapping_skeleton.h"
 
 namespace stirrup::rig {
 namespace {
-
-constexpr std::array<HorseChannel, 4> kHoofLift = {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy, HorseChannel::lbHoofTy,
-                                                   HorseChannel::rbHoofTy};
 
 // Whether `node` is one of the skin's joints.
 bool isJointOf(const tinygltf::Skin& skin, int node) { return std::find(skin.joints.begin(), skin.joints.end(), node) != skin.joints.end(); }
@@ -39,14 +37,38 @@ int topJoint(const tinygltf::Skin& skin, const std::vector<int>& parent) {
   return 0;
 }
 
-// The armature's name: the skin's `skeleton` node where that is not one of its joints (stirrup's bake),
-// else the node its top joint hangs from (Blender's exporter: the armature object); else the skin's own.
-std::string armatureName(const tinygltf::Model& model, const std::vector<int>& parent, int k) {
+// The armature's node: the skin's `skeleton` node where that is not one of its joints (stirrup's bake),
+// else the node its top joint hangs from (Blender's exporter: the armature object); -1 for neither.
+int armatureNode(const tinygltf::Model& model, const std::vector<int>& parent, int k) {
   const tinygltf::Skin& skin = model.skins[std::size_t(k)];
-  if (skin.skeleton >= 0 && skin.skeleton < int(model.nodes.size()) && !isJointOf(skin, skin.skeleton))
-    return model.nodes[std::size_t(skin.skeleton)].name;
-  const int above = parent[std::size_t(skin.joints[std::size_t(topJoint(skin, parent))])];
-  return above >= 0 ? model.nodes[std::size_t(above)].name : skin.name;
+  if (skin.skeleton >= 0 && skin.skeleton < int(model.nodes.size()) && !isJointOf(skin, skin.skeleton)) return skin.skeleton;
+  return parent[std::size_t(skin.joints[std::size_t(topJoint(skin, parent))])];
+}
+
+// The armature's name: its node's (above), else the skin's own.
+std::string armatureName(const tinygltf::Model& model, const std::vector<int>& parent, int k) {
+  const int node = armatureNode(model, parent, k);
+  return node >= 0 ? model.nodes[std::size_t(node)].name : model.skins[std::size_t(k)].name;
+}
+
+// The seconds of the frames each hoof slides on purpose, as the bake records them on the horse's
+// armature ("stirrup_hoof_sliding", rig/io/gltf_bake.h); none where the file does not say.
+std::array<std::vector<double>, 4> hoofSlidingTimes(const tinygltf::Model& model, const std::vector<int>& parent, int horse_skin) {
+  static constexpr std::array<const char*, 4> kHooves = {"lf", "rf", "lb", "rb"};
+  std::array<std::vector<double>, 4> out;
+  const int node = armatureNode(model, parent, horse_skin);
+  if (node < 0) return out;
+  const tinygltf::Value& extras = model.nodes[std::size_t(node)].extras;
+  if (!extras.IsObject() || !extras.Has("stirrup_hoof_sliding") || !extras.Get("stirrup_hoof_sliding").IsObject()) return out;
+  const tinygltf::Value& sliding = extras.Get("stirrup_hoof_sliding");
+  for (std::size_t leg = 0; leg < 4; ++leg) {
+    const tinygltf::Value& times = sliding.Get(kHooves[leg]);
+    if (!times.IsArray()) continue;
+    for (std::size_t i = 0; i < times.ArrayLen(); ++i)
+      if (times.Get(int(i)).IsNumber() && std::isfinite(times.Get(int(i)).GetNumberAsDouble()))
+        out[leg].push_back(times.Get(int(i)).GetNumberAsDouble());
+  }
+  return out;
 }
 
 // One pair's skins as the file casts them.
@@ -140,15 +162,15 @@ CharacterMapping worldMapping(const tinygltf::Model& model, const std::string& f
     const tinygltf::Value& v = w.Get(key);
     bool ok = v.IsArray() && v.ArrayLen() == 3;
     for (int i = 0; ok && i < 3; ++i) {
-      ok = v.Get(i).IsNumber() && std::isfinite(v.Get(i).GetNumberAsDouble());
+      ok = v.Get(i).IsNumber() && std::abs(v.Get(i).GetNumberAsDouble()) <= (unit ? kMaxMappingAxis : kMaxMappingOffsetCm);
       out[std::size_t(i)] = ok ? v.Get(i).GetNumberAsDouble() : 0.0;
     }
     if (!ok || (unit && std::hypot(out[0], out[1], out[2]) < 1e-9))
       throw InputError(at + "." + key + ": expected three numbers" + (unit ? ", not all zero" : ""));
   };
-  if (!w.IsObject() || !w.Has("scale_cm") || !w.Get("scale_cm").IsNumber() || !(w.Get("scale_cm").GetNumberAsDouble() > 0.0) ||
-      !std::isfinite(w.Get("scale_cm").GetNumberAsDouble()))
-    throw InputError(at + ".scale_cm: expected centimetres a unit > 0");
+  if (!w.IsObject() || !w.Has("scale_cm") || !w.Get("scale_cm").IsNumber() || !(w.Get("scale_cm").GetNumberAsDouble() >= kMinMappingScaleCm) ||
+      !(w.Get("scale_cm").GetNumberAsDouble() <= kMaxMappingScaleCm))
+    throw InputError(at + ".scale_cm: expected centimetres a unit from 0.001 to 100000");
   world.scale_cm = w.Get("scale_cm").GetNumberAsDouble();
   vec("forward", world.forward, true);
   vec("up", world.up, true);
@@ -214,6 +236,8 @@ struct GltfShot::Impl {
   int frames = 1;
   std::vector<Pair> pairs;
   std::vector<std::array<ShotCharacter, 2>> characters;  // horse, rider: their skins and joints
+  std::vector<std::array<std::vector<double>, 4>> sliding_s;  // a pair's hooves sliding on purpose, at these seconds
+  std::shared_ptr<const TerrainMesh> ground;
 
   void readPairs(const tinygltf::Model& model, const GltfImageBytes& images, const std::vector<Cast>& cast, const std::vector<int>& parent);
   void readTimes(const tinygltf::Model& model, double default_fps);
@@ -247,6 +271,7 @@ void GltfShot::Impl::readPairs(const tinygltf::Model& model, const GltfImageByte
     p.rider = pc[1].character;
     pairs.push_back(std::move(p));
     characters.push_back(std::move(pc));
+    sliding_s.push_back(hoofSlidingTimes(model, parent, c.skin[0]));
   }
 }
 
@@ -286,6 +311,7 @@ std::unique_ptr<GltfShot> GltfShot::read(const std::filesystem::path& file, cons
                                                                           : GltfAnimation(model, f, options.animation));
   m.readPairs(model, images, cast, parent);
   m.readTimes(model, options.fps);
+  m.ground = gltfGroundMesh(model, f, mappingToRig(worldMapping(model, f)));
   return shot;
 } catch (const std::out_of_range&) {
   throw InputError(file.string() + ": not a valid glTF file (an index points past the end of its array)");
@@ -296,29 +322,34 @@ int GltfShot::frameCount() const { return impl_->frames; }
 double GltfShot::fps() const { return impl_->fps; }
 std::string GltfShot::animationName() const { return impl_->animation->name(); }
 const std::vector<std::string>& GltfShot::leftOut() const { return impl_->animation->leftOut(); }
+std::shared_ptr<const TerrainMesh> GltfShot::ground() const { return impl_->ground; }
 
-MountedPose GltfShot::pose(std::size_t pair, int frame, const GroundHeight& ground_height) const {
+std::array<bool, 4> GltfShot::hoofSliding(std::size_t pair, int frame) const {
+  const Impl& m = *impl_;
+  // The bake's seconds are (frame - 1) / fps from its first key; a frame slides within half a frame of one.
+  const double t = double(frame - 1) / m.fps, half = 0.5 / m.fps;
+  std::array<bool, 4> out{};
+  for (std::size_t leg = 0; leg < 4; ++leg)
+    for (const double s : m.sliding_s.at(pair)[leg]) out[leg] = out[leg] || std::abs(s - m.start - t) < half;
+  return out;
+}
+
+MountedPose GltfShot::pose(std::size_t pair, int frame) const {
   const Impl& m = *impl_;
   const std::vector<glm::dmat4> worlds = m.animation->worlds(m.start + double(frame - 1) / m.fps);
   const Pair& p = m.pairs.at(pair);
   const auto& [horse, rider] = m.characters.at(pair);
   const auto posed = [&](const ShotCharacter& c, const GltfFileJoint& j) { return glm::mat4(c.skin->posed(j, worlds[std::size_t(j.node)])); };
-  // The horse as keyed (rig/horse_pose.h poseHorse: points the rig added hang from their parents), its hooves
-  // down by their keyed lift.
+  // The horse as keyed (rig/horse_pose.h poseHorse: points the rig added hang from their parents).
   auto keyed = std::make_shared<KeyedHorsePose>();
   keyed->joint.assign(horse.joints.size(), glm::mat4(1.0f));
   keyed->keyed.assign(horse.joints.size(), 0);
   for (std::size_t j = 0; j < horse.joints.size(); ++j)
     if (horse.joints[j].node >= 0) keyed->joint[j] = posed(horse, horse.joints[j]), keyed->keyed[j] = 1;
   HorseFrame f;
-  for (std::size_t leg = 0; leg < 4; ++leg) {
-    const int hoof = p.horse.role(kHoofRoles[leg]);
-    const glm::vec3 at(keyed->joint[std::size_t(hoof)][3]);
-    f.controls[kHoofLift[leg]] = std::max(0.0, double(at.y) - ground_height(at.x, at.z) - horse.joints[std::size_t(hoof)].rest.y);
-  }
   f.keyed_pose = std::move(keyed);
   MountedPose out;
-  out.horse = poseHorse(p.horse, f, {}, &out.reach);
+  out.horse = poseHorse(p.horse, f);
   // The rider as keyed (the loader adds her no points; one would hang from its parent as at rest).
   const Skeleton& rs = p.rider.skeleton;
   out.rider.resize(rider.joints.size());

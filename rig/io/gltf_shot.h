@@ -23,18 +23,21 @@
 // Every character is read into stirrup's world through it, its mesh in its own units (gltfSkinUnits), so
 // the two characters of a pair, and the pairs, stand where the file has them and face +X at rest.
 //
-// A hoof is down where the horse's keyed controls say so (as rig/io/keyed_horse_clip.h measures them for
-// the horse's own animation): its lift (ty), the hoof joint's height above the ground under it less its
-// rest height, within rig::kKeyedContactCm (rig/horse_pose.h).
+// Ground: the meshes the file names as its ground (rig/io/gltf_terrain.h gltfGroundMesh: a bake's node
+// "ground", or an object of another tool named so), in stirrup's world through the same space as the
+// characters; none when the file has no such node. Whether a hoof is down is not the file's to say: the
+// check measures every frame's soles against the ground (rig/frame_check.h hoofDown), as it does a
+// scene's.
 #pragma once
 
+#include <array>
 #include <filesystem>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "rig/character.h"
+#include "rig/motion/terrain_mesh.h"
 #include "rig/pose.h"
 
 namespace stirrup::rig {
@@ -53,7 +56,6 @@ class GltfShot {
     int horse_skin = -1, rider_skin = -1;        // their skins in the file
     Character horse, rider;
   };
-  using GroundHeight = std::function<double(double x, double z)>;
 
   // The file read as a baked shot, or null when it is not one (above). Errors are one-line InputErrors
   // naming the file and what is missing: a horse without its rider, a skin whose roles cannot be found,
@@ -71,10 +73,16 @@ class GltfShot {
   std::string animationName() const;
   const std::vector<std::string>& leftOut() const;
 
+  // The file's own ground (above) in stirrup's world, or null: the file names none.
+  std::shared_ptr<const TerrainMesh> ground() const;
+  // The hooves (lf, rf, lb, rb) pair `pair`'s clip slides on purpose at frame `frame`, as the bake records
+  // them (rig/io/gltf_bake.h BakedPair::hoof_sliding; none where the file does not say).
+  std::array<bool, 4> hoofSliding(std::size_t pair, int frame) const;
+
   // Pair `pair` at frame `frame` (1 .. frameCount()): both skeletons' joints as the file keys them, in
-  // stirrup's world; `reach.planted` the hooves down (above) over the ground `ground_height` gives.
-  // Thread safe: frames may be posed in parallel.
-  MountedPose pose(std::size_t pair, int frame, const GroundHeight& ground_height) const;
+  // stirrup's world (no hoof targets: `reach` is left empty). Thread safe: frames may be posed in
+  // parallel.
+  MountedPose pose(std::size_t pair, int frame) const;
 
  private:
   GltfShot();

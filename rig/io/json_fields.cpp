@@ -72,10 +72,36 @@ double JsonObjectReader::number(const std::string& key, double fallback) {
   return d;
 }
 
+std::string JsonObjectReader::rangeText(double lo, double hi, double got, const char* what) {
+  return std::string("expected ") + what + " from " + numberText(lo) + " to " + numberText(hi) + ", got " + numberText(got);
+}
+
+double JsonObjectReader::number(const std::string& key, double fallback, double lo, double hi, const char* what) {
+  if (!has(key)) {
+    known_.insert(key);
+    return fallback;  // a default is the reader's, not the user's: not checked
+  }
+  const double d = number(key, fallback);
+  if (!(d >= lo && d <= hi)) fail(key, rangeText(lo, hi, d, what));
+  return d;
+}
+
+int JsonObjectReader::integer(const std::string& key, int fallback, int lo, int hi, const char* what) {
+  const nlohmann::json* v = value(key);
+  if (!v) return fallback;
+  if (!v->is_number_integer()) fail(key, std::string("expected ") + what + ", got " + describeJson(*v));
+  // Compared before the cast: a whole number past int's range would wrap.
+  const double d = v->get<double>();
+  if (!(d >= lo && d <= hi)) fail(key, rangeText(lo, hi, d, what));
+  return static_cast<int>(d);
+}
+
 int JsonObjectReader::integer(const std::string& key, int fallback) {
   const nlohmann::json* v = value(key);
   if (!v) return fallback;
   if (!v->is_number_integer()) fail(key, "expected a whole number, got " + describeJson(*v));
+  const double d = v->get<double>();
+  if (!(d >= -2147483648.0 && d <= 2147483647.0)) fail(key, "expected a whole number from -2147483648 to 2147483647, got " + describeJson(*v));
   return v->get<int>();
 }
 

@@ -23,21 +23,37 @@ nlohmann::json readJsonFile(const std::filesystem::path& file);
 // A short rendering of a JSON value for error messages: "wide", 12, [1,2], {...}.
 std::string describeJson(const nlohmann::json& value);
 
+// No limit but finiteness, for numbers() without a range.
+inline constexpr double kNoLimit = 1.7976931348623157e308;
+
 // A view of one JSON object at a field path. Reading a field marks it known; finish() rejects the rest.
 class JsonObjectReader {
  public:
   JsonObjectReader(std::string file, std::string path, const nlohmann::json& object);
 
   bool has(const std::string& key) const;
+  // A finite number (a field whose sensible range is its reader's to check).
   double number(const std::string& key, double fallback);
+  // A number from `lo` to `hi` (the range that makes sense for the field: a value outside it is a typo or
+  // a unit slip, and an absurd one, 1e-320 frames a second or 1e308 cm, turns into NaN downstream):
+  // "FILE: FIELD: expected WHAT from LO to HI, got V".
+  double number(const std::string& key, double fallback, double lo, double hi, const char* what = "a number");
   int integer(const std::string& key, int fallback);
+  int integer(const std::string& key, int fallback, int lo, int hi, const char* what = "a whole number");
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key, const std::string& fallback);
   // The raw value (marked known) or nullptr when absent.
   const nlohmann::json* value(const std::string& key);
-  // A fixed-size array of numbers.
+  // A fixed-size array of numbers, each from `lo` to `hi`.
   template <std::size_t N>
-  std::array<double, N> numbers(const std::string& key, std::array<double, N> fallback);
+  std::array<double, N> numbers(const std::string& key, std::array<double, N> fallback, double lo, double hi);
+  // The same with no range (each one finite): for fields whose reader checks them together.
+  template <std::size_t N>
+  std::array<double, N> numbers(const std::string& key, std::array<double, N> fallback) {
+    return numbers<N>(key, fallback, -kNoLimit, kNoLimit);
+  }
+  // The message for a number outside [lo, hi].
+  static std::string rangeText(double lo, double hi, double got, const char* what = "a number");
   JsonObjectReader object(const std::string& key);
 
   // The path of a field, for messages: "cameras[1].fov".
@@ -56,7 +72,7 @@ class JsonObjectReader {
 };
 
 template <std::size_t N>
-std::array<double, N> JsonObjectReader::numbers(const std::string& key, std::array<double, N> fallback) {
+std::array<double, N> JsonObjectReader::numbers(const std::string& key, std::array<double, N> fallback, double lo, double hi) {
   const nlohmann::json* v = value(key);
   if (!v) return fallback;
   if (!v->is_array() || v->size() != N)
@@ -66,6 +82,7 @@ std::array<double, N> JsonObjectReader::numbers(const std::string& key, std::arr
     if (!(*v)[i].is_number())
       fail(key + "[" + std::to_string(i) + "]", "expected a number, got " + describeJson((*v)[i]));
     out[i] = (*v)[i].get<double>();
+    if (!(out[i] >= lo && out[i] <= hi)) fail(key + "[" + std::to_string(i) + "]", rangeText(lo, hi, out[i]));
   }
   return out;
 }

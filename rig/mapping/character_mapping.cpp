@@ -151,6 +151,15 @@ std::vector<int> hangLegsFromPivots(const std::map<std::string, int>& roles, std
   return hung;
 }
 
+std::pair<std::string, std::string> mappingAxesProblem(const std::array<double, 3>& forward, const std::array<double, 3>& up) {
+  const auto len = [](const std::array<double, 3>& a) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; };
+  const double dot = forward[0] * up[0] + forward[1] * up[1] + forward[2] * up[2];
+  if (!(len(forward) > 1e-12)) return {"forward", "expected a non-zero direction"};
+  if (!(len(up) > 1e-12)) return {"up", "expected a non-zero direction"};
+  if (std::abs(dot) > 1e-6 * std::sqrt(len(forward) * len(up))) return {"up", "expected a direction at right angles to forward"};
+  return {};
+}
+
 glm::dmat4 mappingToRig(const CharacterMapping& m) {
   const glm::dvec3 fw = glm::normalize(glm::dvec3(m.forward[0], m.forward[1], m.forward[2]));
   const glm::dvec3 up = glm::normalize(glm::dvec3(m.up[0], m.up[1], m.up[2]));

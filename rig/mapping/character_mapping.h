@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <string_view>
 #include <vector>
 
@@ -44,6 +45,16 @@ const std::vector<std::string>& requiredRoles(CharacterKind kind);
 // missing hand or ball is a point the rig adds (rig/characters/seating.h); a missing braid or coat
 // tail is not animated.
 const std::vector<std::string>& optionalRoles(CharacterKind kind);
+
+// The numbers a mapping file may hold (our choices): a file unit from 0.01 mm to 1 km, axes with
+// components up to a million (only their directions count), an offset within 100 km.
+inline constexpr double kMinMappingScaleCm = 1e-3, kMaxMappingScaleCm = 1e5;
+inline constexpr double kMaxMappingAxis = 1e6;
+inline constexpr double kMaxMappingOffsetCm = 1e7;
+
+// What is wrong with a mapping's axes, as (field, expected): a direction of no length (or all but none:
+// 1e-320), or up not at right angles to forward; empty when they make a frame.
+std::pair<std::string, std::string> mappingAxesProblem(const std::array<double, 3>& forward, const std::array<double, 3>& up);
 
 struct CharacterMapping {
   std::map<std::string, std::string> roles;  // role -> joint name in the file

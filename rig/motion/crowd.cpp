@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <tuple>
 
 #include "rig/characters/palette.h"
@@ -103,8 +104,9 @@ void checkSpec(const CrowdSpec& s, const std::string& source) {
     const auto& known = crowdProfiles();
     if (std::find(known.begin(), known.end(), name) == known.end())
       throw InputError(at + "profiles." + name + ": expected one of thesis, english, novice");
-    if (!(weight >= 0.0 && std::isfinite(weight)))
-      throw InputError(at + "profiles." + name + ": expected a weight >= 0, got " + numberText(weight));
+    // Weights are relative: up to a million keeps their sum finite whatever the mix.
+    if (!(weight >= 0.0 && weight <= 1e6))
+      throw InputError(at + "profiles." + name + ": expected a weight from 0 to 1e+06, got " + numberText(weight));
     total += weight;
   }
   if (!(total > 0.0)) throw InputError(at + "profiles: expected at least one profile with a weight > 0");
@@ -115,6 +117,30 @@ void checkSpec(const CrowdSpec& s, const std::string& source) {
     if (!(r.lo <= r.hi && allowed.contains(r.lo) && allowed.contains(r.hi)))
       throw InputError(at + key + ": expected a range [low, high] within " + allowedRangeText(allowed) + unit + ", got [" +
                        numberText(r.lo) + ", " + numberText(r.hi) + "]");
+}
+
+// The crowd's "characters" entries onto the pairs they name: each pair by one entry at most.
+void applyCharacters(const CrowdSpec& spec, std::vector<PairSpec>& pairs, const std::string& at) {
+  std::vector<int> named_by(pairs.size(), -1);
+  for (std::size_t e = 0; e < spec.characters.size(); ++e) {
+    const CrowdSpec::Characters& c = spec.characters[e];
+    const std::string field = at + "characters[" + std::to_string(e) + "].";
+    std::vector<int> which = c.pairs;
+    if (which.empty())
+      for (int i = 0; i < int(pairs.size()); ++i) which.push_back(i);
+    for (const int i : which) {
+      if (i < 0 || i >= int(pairs.size()))
+        throw InputError(field + "pairs: expected pair indices from 0 to " + std::to_string(pairs.size() - 1) + ", got " + std::to_string(i));
+      if (named_by[std::size_t(i)] >= 0)
+        throw InputError(field + "pairs: pair " + std::to_string(i) + " is named by characters[" + std::to_string(named_by[std::size_t(i)]) +
+                         "] too (expected each pair in one entry at most)");
+      named_by[std::size_t(i)] = int(e);
+      PairSpec& p = pairs[std::size_t(i)];
+      p.horse_file = c.horse_file, p.horse_mapping = c.horse_mapping;
+      p.rider_file = c.rider_file, p.rider_mapping = c.rider_mapping;
+      p.animation = c.animation;
+    }
+  }
 }
 
 // The largest pair the spec's ranges allow.
@@ -152,8 +178,20 @@ RiderParams PairSpec::rider() const {
 std::unique_ptr<PathClip> makePairClip(const PairSpec& pair, std::shared_ptr<const Terrain> terrain,
                                        const std::string& source) {
   PathClipParams p = pair.path;
-  p.hoof_rest = pairExtent(pair.horse(), pair.rider()).hoof_rest;
+  p.hoof_rest = pairSpecExtent(pair).hoof_rest;
   return std::make_unique<PathClip>(std::move(p), std::move(terrain), source);
+}
+
+std::shared_ptr<const Clip> pairClip(const PairSpec& pair, std::shared_ptr<const Terrain> terrain, const std::string& source) {
+  if (pair.characters && pair.characters->own_clip) return pair.characters->own_clip;
+  return makePairClip(pair, std::move(terrain), source);
+}
+
+PairExtent pairSpecExtent(const PairSpec& pair) {
+  if (pair.characters) return pair.characters->extent;
+  if (pair.ownCharacters())
+    throw std::logic_error("pairSpecExtent: a pair naming its own characters, not resolved by the scene (scene/crowd_characters.h)");
+  return pairExtent(pair.horse(), pair.rider());
 }
 
 int crowdFrames(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, double fps, const std::string& source) {
@@ -206,7 +244,7 @@ Spacing minimumSpacing(const CrowdSpec& spec, const std::string& source) {
 }
 
 std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, double fps,
-                                    const std::string& source, PairClips* clips) {
+                                    const std::string& source, PairClips* clips, const PairResolver& resolve) {
   checkSpec(spec, source);
   const std::string at = source + ": crowd.";
   // The lead's own clip checks its points and speeds first, so their errors name crowd.lead.
@@ -283,8 +321,14 @@ std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const
     p.path.over = SpeedProfile::Over::Time;
     p.path.variation = spec.gait_variation;
     p.path.seed = clip_seed;
+    // Where it stands at the shot's start, facing the lead's way there.
+    const GroundPath::Sample slot = lead.at(behind);
+    p.slot_cm = slot.position + glm::dvec2{-slot.tangent.y, slot.tangent.x} * across;
+    p.slot_heading_deg = slot.heading_deg;
     pairs.push_back(std::move(p));
   }
+  applyCharacters(spec, pairs, at);
+  if (resolve) resolve(pairs);
   PairClips made = validatePairs(pairs, std::move(terrain), fps, frames, source, "crowd");
   if (clips) *clips = std::move(made);
   return pairs;
@@ -320,10 +364,10 @@ PairClips validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<cons
     if (!(p.clip_offset_s >= 0.0 && p.clip_offset_s <= kMaxStartOffsetS))
       throw InputError(at + "start_offset_s: expected seconds from 0 to " + numberText(kMaxStartOffsetS) + ", got " +
                        numberText(p.clip_offset_s));
-    clips[i] = makePairClip(p, terrain, source + ": " + field + "[" + std::to_string(i) + "]");
+    clips[i] = pairClip(p, terrain, source + ": " + field + "[" + std::to_string(i) + "]");
     views[i] = clips[i].get();
     offsets[i] = p.clip_offset_s;
-    extents[i] = pairExtent(p.horse(), p.rider());
+    extents[i] = pairSpecExtent(p);
   });
   if (frames <= 0) {
     // While any pair still rides.

@@ -21,6 +21,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -28,7 +30,9 @@
 
 #include <glm/vec2.hpp>
 
+#include "rig/character.h"
 #include "rig/characters/horse_character.h"
+#include "rig/characters/seating.h"
 #include "rig/characters/rider_character.h"
 #include "rig/motion/pair_footprint.h"
 #include "rig/motion/path_clip.h"
@@ -62,6 +66,17 @@ inline constexpr ProportionRange kRiderBuildRange{0.85, 1.25};
 // The rig profiles a pair may ride with (scenes/profiles/).
 const std::vector<std::string>& crowdProfiles();
 
+// A pair's own characters (issue 60: a troop of the user's horse), resolved by the scene before the
+// pairs are checked (scene/crowd_characters.h): each pair's horse and rider seated as a single pair's
+// are, the box they take at rest, and, where the pair plays its horse's own animation, that animation
+// placed at the pair's slot.
+struct PairCharacters {
+  std::shared_ptr<const Character> horse, rider;  // at rest, the rider seated on this horse
+  SeatReport seat;
+  PairExtent extent;                               // pairExtent(horse, rider)
+  std::shared_ptr<const Clip> own_clip;            // the horse's own animation, placed; null: a gait along the path
+};
+
 struct PairSpec {
   PathClipParams path;          // its own path, speed keys, clip variation and seed
   double clip_offset_s = 0;     // its clip is sampled at the shot's time plus this (its start phase)
@@ -70,6 +85,20 @@ struct PairSpec {
   // Colours by name (rig/characters/palette.h); the defaults are the default characters' own.
   std::string coat = "bay";                          // the horse's coat and points
   std::string jacket = "red", hair = "brown", skin = "light";  // the rider's
+  // The user's characters (issue 60): "default" (generated at the proportions and colours above) or a
+  // glTF file (the scene's folder resolved), with a mapping file or none (the file's role table, else
+  // the automatic mapping), as a scene's "characters" names them.
+  std::string horse_file = "default", horse_mapping, rider_file = "default", rider_mapping;
+  // With a horse file: its own animation by name (empty: its first), played from the pair's slot
+  // instead of a gait along the path.
+  std::optional<std::string> animation;
+  // Where the pair stands at the shot's start and the way it faces: its slot in the formation (a
+  // generated crowd), or the start of its path (a list). An own animation is placed there.
+  glm::dvec2 slot_cm{0.0};
+  double slot_heading_deg = 0.0;
+  // Resolved by the scene (scene/crowd_characters.h) when a file is named; null: generated characters.
+  std::shared_ptr<const PairCharacters> characters;
+  bool ownCharacters() const { return horse_file != "default" || rider_file != "default"; }
 
   HorseParams horse() const;    // scaledHorse (rig/characters/proportions.h), at these proportions and coat
   RiderParams rider() const;    // scaledRider, in these colours
@@ -97,6 +126,15 @@ struct CrowdSpec {
   // Each generated pair's coat, jacket, hair and skin are drawn uniformly from the palette's names
   // (rig/characters/palette.h).
   std::uint64_t seed = 1;
+  // The user's characters for some pairs (issue 60): each entry names its pairs (pair indices, as a
+  // frame list: "0-3", "0-29x2") and the horse and rider files they ride (PairSpec::horse_file ...) and
+  // whether they play the horse's own animation. A pair is named by one entry at most.
+  struct Characters {
+    std::vector<int> pairs;  // empty: every pair
+    std::string horse_file = "default", horse_mapping, rider_file = "default", rider_mapping;
+    std::optional<std::string> animation;
+  };
+  std::vector<Characters> characters;
 };
 
 // Limits of the variations (our choices): 10% covers a troop's spread of cruising speeds (a 900 cm/s
@@ -128,13 +166,16 @@ Spacing minimumSpacing(const CrowdSpec& spec, const std::string& source);
 
 // Each pair's clip as validatePairs made it, in pair order: a scene keeps them, so that a shot does not
 // make them again (a path clip scans its footfalls: some milliseconds a second of ride).
-using PairClips = std::vector<std::shared_ptr<const PathClip>>;
+using PairClips = std::vector<std::shared_ptr<const Clip>>;
+// Resolves the pairs' own characters before they are checked (the scene's: scene/crowd_characters.h).
+using PairResolver = std::function<void(std::vector<PairSpec>&)>;
 
 // The pairs of a crowd spec, checked (validatePairs). Errors are one-line InputErrors
 // "SOURCE: crowd.FIELD: expected ..." (source e.g. "scenes/cavalry.json"). The shot runs for the
 // lead's clip: crowdFrames(spec) frames at fps. `clips`, if given, receives validatePairs' clips.
+// `resolve`, if given, is run on the generated pairs before they are checked (their own characters).
 std::vector<PairSpec> generateCrowd(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, double fps,
-                                    const std::string& source, PairClips* clips = nullptr);
+                                    const std::string& source, PairClips* clips = nullptr, const PairResolver& resolve = {});
 
 // Frames a crowd's shot needs at fps: the lead path's clip, from frame 1 at t = 0 to its end.
 int crowdFrames(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, double fps, const std::string& source);
@@ -147,8 +188,14 @@ int crowdFrames(const CrowdSpec& spec, std::shared_ptr<const Terrain> terrain, d
 PairClips validatePairs(const std::vector<PairSpec>& pairs, std::shared_ptr<const Terrain> terrain, double fps, int frames,
                    const std::string& source, const std::string& field);
 
-// The pair's clip over the terrain (null: flat), its hooves turned about its own horse's rest places.
+// The pair's path clip over the terrain (null: flat), its hooves turned about its own horse's rest places
+// (its own characters' horse where it has one).
 std::unique_ptr<PathClip> makePairClip(const PairSpec& pair, std::shared_ptr<const Terrain> terrain,
                                        const std::string& source);
+// What the pair plays: its horse's own animation where it has one (PairCharacters::own_clip), else its
+// path clip.
+std::shared_ptr<const Clip> pairClip(const PairSpec& pair, std::shared_ptr<const Terrain> terrain, const std::string& source);
+// The box the pair takes: its own characters' where it has them, else its generated horse's and rider's.
+PairExtent pairSpecExtent(const PairSpec& pair);
 
 }  // namespace stirrup::rig

@@ -23,8 +23,9 @@ GroundPath::GroundPath(std::vector<glm::dvec2> points, const std::string& source
   if (points_.size() < 2)
     throw InputError(source + ": points: expected at least two points [x, z] (cm), got " + std::to_string(points_.size()));
   for (std::size_t i = 0; i < points_.size(); ++i) {
-    if (!std::isfinite(points_[i].x) || !std::isfinite(points_[i].y))
-      throw InputError(index(source, i) + ": expected finite coordinates (cm)");
+    if (!(std::abs(points_[i].x) <= kMaxCoordinateCm && std::abs(points_[i].y) <= kMaxCoordinateCm))
+      throw InputError(index(source, i) + ": expected coordinates from -1e+07 to 1e+07 cm, got [" + numberText(points_[i].x) + ", " +
+                       numberText(points_[i].y) + "]");
     if (i > 0 && glm::length(points_[i] - points_[i - 1]) < kMinSegmentCm)
       throw InputError(index(source, i) + ": expected a point at least 1 cm from points[" + std::to_string(i - 1) +
                        "] (a zero-length segment has no heading), got one " +

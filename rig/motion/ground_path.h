@@ -27,6 +27,9 @@ class GroundPath {
   GroundPath(std::vector<glm::dvec2> points, const std::string& source);
 
   static constexpr double kMinSegmentCm = 1.0;
+  // A point's coordinates lie within this of the origin (cm): 100 km, past any shot's ground (our
+  // choice: a coordinate of 1e308 would overflow the path's lengths to infinity).
+  static constexpr double kMaxCoordinateCm = 1e7;
   static constexpr int kSamplesPerSegment = 256;
 
   struct Sample {

@@ -9,6 +9,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "rig/horse_pose.h"
+#include "rig/skeleton.h"
+#include "rig/skin.h"
+
 namespace stirrup::rig {
 namespace {
 
@@ -66,6 +70,55 @@ PairExtent pairExtent(const HorseParams& h, const RiderParams& r) {
   e.hoof_rest = {glm::dvec2{h.fore_hoof.x, h.fore_hoof.z}, glm::dvec2{h.fore_hoof.x, -h.fore_hoof.z},
                  glm::dvec2{h.hind_hoof.x, h.hind_hoof.z}, glm::dvec2{h.hind_hoof.x, -h.hind_hoof.z}};
   e.hoof_radius_cm = std::max(h.hoof_radius, h.fetlock_radius);
+  return e;
+}
+
+PairExtent pairExtent(const Character& horse, const Character& rider) {
+  std::vector<glm::vec3> hp, rp;
+  skinPositions(horse.mesh, horse.skeleton, restWorlds(horse.skeleton), 1, hp);
+  skinPositions(rider.mesh, rider.skeleton, restWorlds(rider.skeleton), 1, rp);
+  const auto restOf = [&](const char* role) { return d3(horse.skeleton.restPosition(horse.role(role))); };
+  PairExtent e;
+  const glm::dvec3 neck = restOf("neck1");
+  const int tail_role = horse.roles.count("tail1") ? horse.role("tail1") : -1;
+  e.tail_root = tail_role >= 0 ? d3(horse.skeleton.restPosition(tail_role)) : glm::dvec3(1e300);
+  double neck_reach = 0.0, tail_reach = 0.0;
+  e.back_cm = 1e300, e.front_cm = -1e300;
+  for (const glm::vec3& v : hp) {
+    const glm::dvec3 p = d3(v);
+    e.back_cm = std::min(e.back_cm, p.x), e.front_cm = std::max(e.front_cm, p.x);
+    if (p.x > neck.x) neck_reach = std::max(neck_reach, glm::length(p - neck));
+    if (tail_role >= 0 && p.x < e.tail_root.x) tail_reach = std::max(tail_reach, glm::length(p - e.tail_root));
+    e.half_width_cm = std::max(e.half_width_cm, std::abs(p.z));
+    e.top_cm = std::max(e.top_cm, p.y);
+  }
+  e.front_cm = std::max(e.front_cm, neck.x + neck_reach);
+  if (tail_role >= 0) {
+    e.tail_reach_cm = tail_reach;
+    e.back_cm = std::min(e.back_cm, e.tail_root.x - tail_reach);
+  } else {
+    e.tail_root = restOf("root"), e.tail_reach_cm = 0.0;
+  }
+  // The rider's rest is in saddle space (rig/rider_pose.cpp: the posed saddle is her frame).
+  const glm::dmat4 saddle(horse.skeleton.restWorld(horse.role("saddle")));
+  for (const glm::vec3& rv : rp) {
+    const glm::dvec3 v(saddle * glm::dvec4(d3(rv), 1.0));
+    e.back_cm = std::min(e.back_cm, v.x), e.front_cm = std::max(e.front_cm, v.x);
+    e.half_width_cm = std::max(e.half_width_cm, std::abs(v.z));
+    e.top_cm = std::max(e.top_cm, v.y);
+  }
+  e.pivot = restOf("root");
+  e.hoof_rest = restHoofPlaces(horse);
+  // A hoof's reach about its joint: the farthest of the vertices its joint carries, seen from above.
+  static constexpr std::array<const char*, 4> kHooves = {"lfHoof", "rfHoof", "lbHoof", "rbHoof"};
+  for (const char* role : kHooves) {
+    const int joint = horse.role(role);
+    const glm::dvec3 at = d3(horse.skeleton.restPosition(joint));
+    for (std::size_t i = 0; i < hp.size(); ++i)
+      for (int k = 0; k < 4; ++k)
+        if (horse.mesh.joints[i][k] == joint && horse.mesh.weights[i][k] > 0.5f)
+          e.hoof_radius_cm = std::max(e.hoof_radius_cm, std::hypot(hp[i].x - at.x, hp[i].z - at.z));
+  }
   return e;
 }
 

@@ -26,6 +26,7 @@
 #include <glm/vec3.hpp>
 
 #include "rig/characters/horse_character.h"
+#include "rig/character.h"
 #include "rig/characters/rider_character.h"
 #include "rig/clip.h"
 
@@ -50,6 +51,13 @@ struct PairExtent {
 inline constexpr double kPoseMarginCm = 12.0;
 
 PairExtent pairExtent(const HorseParams& horse, const RiderParams& rider);
+// A user's pair (issue 60: a crowd pair riding a horse from a file, or a rider from one): the same box,
+// measured on both characters' skinned meshes at rest, the rider as seated on this horse (her rest in
+// its saddle's space, as the rig poses her). The head's
+// reach is a sphere about neck1 holding every horse vertex ahead of it, the tail's one about tail1
+// holding every vertex behind it (without a tail1 the body's own end), so no neck or tail angle takes
+// them out of the box; width and top from every vertex of both.
+PairExtent pairExtent(const Character& horse, const Character& rider);
 
 // A rectangle on the ground, (world x, world z) cm.
 struct GroundRect {

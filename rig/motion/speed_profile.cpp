@@ -17,9 +17,12 @@ SpeedProfile::SpeedProfile(std::vector<Key> keys, Over over, double duration_s, 
                                       std::string(over == Over::Time ? "seconds" : "cm") + ", cm/s], got none");
   for (std::size_t i = 0; i < keys_.size(); ++i) {
     const std::string field = source + ": speed[" + std::to_string(i) + "]";
-    if (!std::isfinite(keys_[i].at)) throw InputError(field + ": expected a finite " + (over == Over::Time ? "time" : "distance"));
-    if (!(std::isfinite(keys_[i].speed) && keys_[i].speed > 0.0))
-      throw InputError(field + ": expected a speed > 0 (cm/s), got " + numberText(keys_[i].speed));
+    if (!(std::abs(keys_[i].at) <= kMaxKeyAt))
+      throw InputError(field + ": expected a " + (over == Over::Time ? "time from -1e+07 to 1e+07 s" : "distance from -1e+07 to 1e+07 cm") +
+                       ", got " + numberText(keys_[i].at));
+    if (!(keys_[i].speed >= kMinSpeedCmS && keys_[i].speed <= kMaxSpeedCmS))
+      throw InputError(field + ": expected a speed from " + numberText(kMinSpeedCmS) + " to " + numberText(kMaxSpeedCmS) + " cm/s, got " +
+                       numberText(keys_[i].speed));
     if (i > 0 && !(keys_[i].at > keys_[i - 1].at))
       throw InputError(field + ": expected a " + (over == Over::Time ? "time" : "distance") + " after speed[" +
                        std::to_string(i - 1) + "]'s " + numberText(keys_[i - 1].at) + ", got " + numberText(keys_[i].at));

@@ -23,11 +23,16 @@ class SpeedProfile {
     double speed = 0;   // cm/s, > 0
   };
   // `duration_s`: how long the table covers (the clip's duration). Throws stirrup::InputError
-  // "SOURCE: speed[i]: expected ..." for no keys, a key not after the one before it, or a speed that
-  // is not a finite number > 0.
+  // "SOURCE: speed[i]: expected ..." for no keys, a key not after the one before it, a time or distance
+  // past kMaxKeyAt, or a speed outside kMinSpeedCmS to kMaxSpeedCmS.
   SpeedProfile(std::vector<Key> keys, Over over, double duration_s, const std::string& source);
 
   static constexpr double kStepS = 1.0 / 240.0;
+  // The speeds and key places a path may hold (our choices): from 1 cm/s (slower is standing still, and
+  // 1e-320 would make a ride of forever) to 50 m/s (past any horse: the limits check reports what a horse
+  // cannot do); keys within a day's seconds or 100 km along the path.
+  static constexpr double kMinSpeedCmS = 1.0, kMaxSpeedCmS = 5000.0;
+  static constexpr double kMaxKeyAt = 1e7;
 
   double speedAtTime(double t) const;      // cm/s
   double distanceAtTime(double t) const;   // cm from the start; t clamped to [0, duration]

@@ -11,7 +11,9 @@
 #include <memory>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <set>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,7 @@
 #include "rig/clip.h"
 #include "rig/io/gltf_clip.h"
 #include "scene/clip_factory.h"
+#include "scene/frame_range.h"
 #include "tests/cli/blender_script.h"
 #include "tests/cli/run_command.h"
 #include "tests/scene_folder.h"
@@ -276,7 +279,8 @@ TEST_F(CheckCli, ABakedTrotIsMeasuredAsAShot) {
   const CommandResult r = runStirrup("check " + quote(glb.string()));
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
-            glb.string() + ": a baked shot: 1 pair (horse and rider), 24 frames at 24 fps, animation \"trot\"");
+            glb.string() + ": a baked shot: 1 pair (horse and rider), 24 frames at 24 fps, animation \"trot\"; ground: flat (the file has "
+                           "no ground mesh: a node named \"ground\")");
   EXPECT_NE(r.out.find(glb.string() + ": not measured: over-reach: "), std::string::npos) << r.out;
   EXPECT_EQ(lastLine(r.out), glb.string() + ": 24 frames, 1 pair: 0 failures, 0 warnings, 0 notes");
   const CommandResult scene = runStirrup("check " + quote(STIRRUP_SOURCE_DIR "/scenes/trot.json") + " --frames 1-24 --json");
@@ -300,7 +304,8 @@ TEST_F(CheckCli, ABakedTrotIsMeasuredAsAShot) {
   const CommandResult other = runStirrup("check " + quote(renamed.string()));
   EXPECT_EQ(other.exit_code, 0) << other.out << other.err;
   EXPECT_EQ(other.out.substr(0, other.out.find('\n')),
-            renamed.string() + ": a baked shot: 1 pair (Hengst and Reiterin), 24 frames at 24 fps, animation \"trot\"");
+            renamed.string() + ": a baked shot: 1 pair (Hengst and Reiterin), 24 frames at 24 fps, animation \"trot\"; ground: flat (the "
+                               "file has no ground mesh: a node named \"ground\")");
 }
 
 // A crowd's bake (ride_out, 8 pairs, its first 12 frames) over the scene's own ground: every pair by
@@ -320,12 +325,74 @@ TEST_F(CheckCli, ABakedCrowdIsMeasuredPairByPair) {
   const CommandResult three = runStirrup("check " + quote(glb.string()) + " --scene " + scene + " --pairs 3,5");
   EXPECT_EQ(three.exit_code, 0) << three.err;
   EXPECT_EQ(lastLine(three.out), glb.string() + ": 12 frames, 2 pairs: 0 failures, 0 warnings, 0 notes");
-  // On flat ground (no --scene) the hooves of pairs on the hills (2 and 7) are in the ground, but the
-  // riders' rules do not depend on it: none has a finding.
-  const nlohmann::json flat = nlohmann::json::parse(runStirrup("check " + quote(glb.string()) + " --pairs 2,7 --json").out);
+  // Without --scene, on the ground the bake holds (its node "ground"): clean too, and the report says so.
+  const CommandResult own = runStirrup("check " + quote(glb.string()) + " --json");
+  EXPECT_EQ(own.exit_code, 0) << own.out << own.err;
+  const nlohmann::json on_file = nlohmann::json::parse(own.out);
+  EXPECT_EQ(on_file["ground"], "file");
+  EXPECT_NE(on_file["described"].get<std::string>().find("; ground: the file's ground mesh ("), std::string::npos) << on_file["described"];
+  // Its ground taken out (a tool that drops it), the ground is flat: the hooves of pairs on the hills (2
+  // and 7) are in the ground, but the riders' rules do not depend on it: none has a finding.
+  tinygltf::Model m = readGlbModel(glb);
+  for (tinygltf::Node& n : m.nodes)
+    if (n.name == "ground" || n.name == "ground_mesh") n.name = "terrain" + n.name.substr(6);
+  const fs::path bare = dir / "bare.glb";
+  writeGlbModel(m, bare);
+  const nlohmann::json flat = nlohmann::json::parse(runStirrup("check " + quote(bare.string()) + " --pairs 2,7 --json").out);
+  EXPECT_EQ(flat["ground"], "flat");
   EXPECT_GT(framesOf(flat, "hoof-in-ground").size(), 0u);
   for (const std::string& rule : kRiderRules) EXPECT_EQ(framesOf(flat, rule).size(), 0u) << rule;
 }
+
+// One truth (issue 60): `check SHOT.glb` of a scene's bake finds what `check SCENE.json` finds over the
+// same frames, for every rule both measure (a bake has no targets or path: over-reach and limits are the
+// scene's alone), pair by pair: on flat ground (trot), on hills (cross_country: the stretch from 11 s
+// where hooves land and lift on the slopes; the file's own ground mesh), and for a crowd on hills
+// (cavalry, 30 pairs). The counts are equal, and the frames they fall on.
+struct Agreement {
+  const char* scene;
+  const char* frames;
+  const char* ground;  // what the file check stands on
+};
+class FileCheckAgrees : public CheckCli, public ::testing::WithParamInterface<Agreement> {};
+
+TEST_P(FileCheckAgrees, WithTheScenesCheckOverTheSameFrames) {
+  const Agreement& a = GetParam();
+  const fs::path glb = bakeShot(dir, std::string(a.scene) + ".json", a.frames);
+  const CommandResult scene = runStirrup("check " + quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes" / a.scene).string() + ".json") +
+                                         " --frames " + a.frames + " --json");
+  const CommandResult file = runStirrup("check " + quote(glb.string()) + " --json");
+  ASSERT_LT(scene.exit_code, 3) << scene.err;
+  ASSERT_LT(file.exit_code, 3) << file.err;
+  const nlohmann::json c = nlohmann::json::parse(scene.out), f = nlohmann::json::parse(file.out);
+  EXPECT_EQ(f["read_as"], "shot");
+  EXPECT_EQ(f["ground"], a.ground);
+  EXPECT_EQ(f["frames"], c["frames"]);
+  EXPECT_EQ(f["pairs"], c["pairs"]);
+  // (pair, rule, severity) -> the frames of its findings (the file's frame 1 is the bake's first frame).
+  const int first = rig::parseFrameList(a.frames, "frames").front();
+  const auto byRule = [](const nlohmann::json& report, int frame_shift) {
+    std::map<std::tuple<int, std::string, std::string>, std::multiset<int>> out;
+    for (const auto& e : report["findings"]) {
+      const std::string rule = e["rule"];
+      if (rule == "over-reach" || rule == "limit" || e["severity"] == "note") continue;
+      out[{e["pair"].get<int>(), rule, e["severity"].get<std::string>()}].insert(e["frame"].get<int>() + frame_shift);
+    }
+    return out;
+  };
+  EXPECT_EQ(byRule(f, first - 1), byRule(c, 0));
+  int counted = 0;
+  for (const char* rule : {"hoof-slide", "hoof-in-ground", "rider-in-horse", "hand-off-rein", "foot-off-stirrup", "trunk-balance"}) {
+    EXPECT_EQ(f["rules"][rule], c["rules"][rule]) << rule;
+    counted += c["rules"][rule]["failures"].get<int>() + c["rules"][rule]["warnings"].get<int>();
+  }
+  std::printf("%s frames %s: the scene's check and its bake's agree, %d findings each (ground: %s)\n", a.scene, a.frames, counted, a.ground);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, FileCheckAgrees,
+                         ::testing::Values(Agreement{"trot", "1-24", "flat"}, Agreement{"cross_country", "265-312", "file"},
+                                           Agreement{"cavalry", "1-12", "file"}),
+                         [](const ::testing::TestParamInfo<Agreement>& i) { return std::string(i.param.scene); });
 
 // The rider moved 15 cm down into the horse at frames 5-8 by editing the bake's keys of her root joint
 // (the pelvis, in centimetres under the rider's metre node): rider-in-horse fails at those frames and no
@@ -352,6 +419,12 @@ TEST_F(CheckCli, ARiderKeyedIntoTheHorseFailsRiderInHorseAtThoseFrames) {
   const nlohmann::json report = nlohmann::json::parse(r.out);
   double deepest = 0, shallowest = 1e9, hand = 0, hand_least = 1e9;
   EXPECT_EQ(framesOf(report, "rider-in-horse", &deepest, &shallowest), (std::set<int>{5, 6, 7, 8}));
+  for (const auto& e : report["findings"])
+    if (e["rule"] == "rider-in-horse") EXPECT_NEAR(e["time_s"].get<double>(), (e["frame"].get<int>() - 1) / 24.0, 1e-9) << e.dump();
+  // As text, its time in seconds (frame 5: 4 frames at 24 fps).
+  const CommandResult text = runStirrup("check " + quote(sunk.string()));
+  EXPECT_NE(text.out.find(sunk.string() + ": frame 5 (0.167 s): failure: rider-in-horse: "), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("inf s"), std::string::npos) << text.out;
   EXPECT_GE(shallowest, 10.0);      // the failure bound: a limb through the barrel
   EXPECT_LE(deepest, 15.0 + 0.5);   // no deeper than moved (the bake's own contact is under half a centimetre)
   EXPECT_EQ(framesOf(report, "hand-off-rein", &hand, &hand_least), (std::set<int>{5, 6, 7, 8}));
@@ -429,6 +502,38 @@ TEST_F(CheckCli, BlendersReExportOfABakeIsMeasuredAndARiderMovedIntoTheHorseFail
   EXPECT_NEAR(hand, 15.0, 0.05);
   std::printf("Blender's re-export: %s; rider moved 15 cm: rider-in-horse %.2f to %.2f cm\n", c["described"].get<std::string>().c_str(),
               shallowest, deepest);
+}
+
+// Blender 3.4's re-export of the cross-country bake, as it is (issue 60): its ground comes back as the node
+// "ground" holding "ground_mesh", and the shot checks clean on it over hills and a gait change, as the
+// scene and its bake do (FileCheckAgrees), with the same counts as the bake.
+constexpr const char* kBlenderAsItIs = R"(
+src, out = args
+import_glb(src)
+bpy.ops.export_scene.gltf(filepath=out, export_format="GLB")
+)";
+
+TEST_F(CheckCli, BlendersReExportOfTheCrossCountryBakeChecksCleanOnItsOwnGround) {
+  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  const fs::path glb = bakeShot(dir, "cross_country.json", "265-312");
+  const fs::path again = dir / "cross_country_from_blender.glb";
+  const CommandResult b = runBlenderScript(dir / "as_it_is.py", kBlenderAsItIs, quote(glb.string()) + " " + quote(again.string()));
+  ASSERT_EQ(b.exit_code, 0) << b.out << b.err;
+  const tinygltf::Model m = readGlbModel(again);
+  EXPECT_EQ(m.asset.generator.rfind("Khronos glTF Blender I/O", 0), 0u) << m.asset.generator;
+  ASSERT_GE(nodeNamed(m, "ground_mesh"), 0);
+  const CommandResult r = runStirrup("check " + quote(again.string()) + " --json");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json report = nlohmann::json::parse(r.out);
+  EXPECT_EQ(report["read_as"], "shot");
+  EXPECT_EQ(report["ground"], "file");
+  EXPECT_EQ(report["frames"], 48);
+  EXPECT_EQ(report["failures"], 0);
+  EXPECT_EQ(report["warnings"], 0);
+  const nlohmann::json bake = nlohmann::json::parse(runStirrup("check " + quote(glb.string()) + " --json").out);
+  for (const char* rule : {"hoof-slide", "hoof-in-ground", "rider-in-horse", "hand-off-rein", "foot-off-stirrup", "trunk-balance"})
+    EXPECT_EQ(report["rules"][rule], bake["rules"][rule]) << rule;
+  std::printf("Blender's re-export of cross_country 265-312: %s\n", report["described"].get<std::string>().c_str());
 }
 
 // What cannot be checked is one line naming the file and what is missing, exit 3: a horse without its

@@ -95,6 +95,41 @@ TEST(Farm, TwoShotsRenderByteIdenticalToALocalRenderAndTheFinishingJobMakesTheMo
   fs::remove_all(farm);
 }
 
+// A glTF shot's movies (issue 60), with a scene's look: the trot's first 4 frames baked, its side movie
+// made by `stirrup movies SHOT.glb --scene trot.json` and by the farm, frame for frame the same.
+TEST(Farm, AShotsMoviesRenderOnTheFarmAsLocally) {
+  if (!clusterAnswers()) GTEST_SKIP() << "no Slurm cluster answers (scripts/slurm-local up needs root)";
+  const fs::path local = scratch("shot_local"), farm = scratch("shot_farm"), baked = scratch("shot_bake") / "trot_shot.glb";
+  const std::string scene = quote(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  ASSERT_EQ(runStirrup("bake " + scene + " --frames 1-4 -o " + quote(baked.string())).exit_code, 0);
+  const std::string shot = quote(baked.string()) + " --scene " + scene + " --only side " + kSmallSet;
+  const CommandResult l = runStirrup("movies " + shot + " --out " + quote(local.string()));
+  ASSERT_EQ(l.exit_code, 0) << l.err;
+  const CommandResult s = runStirrup("farm submit " + shot + " --movies --chunk 3 --out " + quote(farm.string()));
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_TRUE(std::regex_search(s.out, std::regex("trot_shot_side +job [0-9]+ \\(2 tasks\\)\n"))) << s.out;
+  const CommandResult st = runStirrup("farm status --wait " + quote(farm.string()));
+  ASSERT_EQ(st.exit_code, 0) << st.err;
+  EXPECT_NE(st.out.find("\ncomplete\n"), std::string::npos) << st.out;
+  // The tasks ran the shot with its look (absolute paths), as the local command did.
+  EXPECT_NE(readText(farm / "farm.json").find("--scene"), std::string::npos);
+  const auto local_frames = filesUnder(local / "frames"), farm_frames = filesUnder(farm / "frames");
+  ASSERT_EQ(local_frames.size(), 5u);  // 4 frames and a slate
+  ASSERT_EQ(farm_frames.size(), local_frames.size());
+  for (const auto& [name, content] : local_frames) {
+    ASSERT_TRUE(farm_frames.count(name)) << name;
+    EXPECT_TRUE(farm_frames.at(name) == content) << name << " differs";
+  }
+  EXPECT_TRUE(bytes(local / "trot_shot_side_sheet.png") == bytes(farm / "trot_shot_side_sheet.png"));
+  EXPECT_EQ(probeFrames(farm / "trot_shot_side.mp4"), "28\n");
+  EXPECT_EQ(probeFrames(farm / "trot_shot_side.mp4"), probeFrames(local / "trot_shot_side.mp4"));
+  // A scene's movies with --movies and a glTF look are refused before anything is submitted.
+  const CommandResult bad = runStirrup("farm submit " + scene + " --movies --out " + quote(scratch("shot_bad").string()));
+  EXPECT_NE(bad.exit_code, 0);
+  fs::remove_all(local);
+  fs::remove_all(farm);
+}
+
 TEST(Farm, ASingleSceneRendersThroughItsCameraAndEncodes) {
   if (!clusterAnswers()) GTEST_SKIP() << "no Slurm cluster answers (scripts/slurm-local up needs root)";
   const fs::path local = scratch("render_local"), farm = scratch("render_farm");

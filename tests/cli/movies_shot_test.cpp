@@ -138,6 +138,39 @@ TEST(MoviesShot, ABakeMakesPlayableMoviesOfThePair) {
   }
 }
 
+// With a look (issue 60: `movies SHOT.glb --scene LOOK.json`, as `render SHOT.glb --scene` takes it): the
+// movies are the look's cameras, made with its size, quality, sun and ground. Cross_country's bake (its
+// hills under it) with cross_country as the look: its four cameras listed; the top movie's kept frame is
+// render's of the same camera, look, frame, preset and size, to the byte between the burn-in bands.
+TEST(MoviesShot, WithALookTheMoviesAreTheLooksCameras) {
+  const fs::path dir = freshTestDir("movies_shot_test", "look");
+  const fs::path shot = dir / "cc.glb";
+  const std::string look = quote(STIRRUP_SOURCE_DIR "/scenes/cross_country.json");
+  ASSERT_EQ(runStirrup("bake " + look + " --frames 1-3 -o " + quote(shot.string())).exit_code, 0);
+  const CommandResult l = runStirrup("movies " + quote(shot.string()) + " --scene " + look + " --list");
+  ASSERT_EQ(l.exit_code, 0) << l.err;
+  std::string want;
+  for (const char* camera : {"persp", "side", "close", "top"}) want += std::string("cc_") + camera + "\t" + shot.string() + "\t" + camera + "\n";
+  EXPECT_EQ(l.out, want);
+  const fs::path out = dir / "movies";
+  const CommandResult m = runStirrup("movies " + quote(shot.string()) + " --scene " + look + " --only top --preset draft --resolution 160x90 " +
+                                     "--date 2026-01-01 --keep-frames --out " + quote(out.string()));
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  EXPECT_EQ(probe(out / "cc_top.mp4"), "h264,160,90,yuv420p,24/1,27\n");  // 24 slate frames and 3
+  const fs::path rendered = dir / "render";
+  const CommandResult r = runStirrup("render " + quote(shot.string()) + " --scene " + look + " --camera top --frames 2 --preset draft " +
+                                     "--resolution 160x90 --out " + quote(rendered.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<float> want_px = readChannels(rendered / "cross_country_top.0002.png", 0, 3);
+  const std::vector<float> kept = readChannels(out / "frames" / "cc_top" / "cc_top.0002.png", 0, 3);
+  ASSERT_EQ(want_px.size(), std::size_t(160 * 90 * 3));
+  ASSERT_EQ(kept.size(), want_px.size());
+  const int band = kBand;  // the burn-in bands: 15 rows at any height up to 360 (9-point text at least)
+  int unequal = 0;
+  for (std::size_t i = std::size_t(band) * 160 * 3; i < std::size_t(90 - band) * 160 * 3; ++i) unequal += kept[i] != want_px[i];
+  EXPECT_EQ(unequal, 0) << "the movie's frame is not render's";
+}
+
 // --list names the shot's set: its five views over the shot.
 TEST(MoviesShot, ListsTheShotsViews) {
   const fs::path dir = freshTestDir("movies_shot_test", "list");
@@ -172,6 +205,8 @@ TEST(MoviesShot, BadInputIsAOneLineErrorAndNoMovie) {
       {quote(shot) + " --only sideways", "--only: no movie named \"sideways\" for the glTF shot " + shot},
       {quote(STIRRUP_SOURCE_DIR "/scenes/trot.json"), STIRRUP_SOURCE_DIR "/scenes/trot.json: expected a glTF shot"},
       {quote(shot) + " --scenes " + quote(STIRRUP_SOURCE_DIR "/scenes"), "--scenes: chooses the scene set's scenes, not a glTF shot's"},
+      {"--scene " + quote(STIRRUP_SOURCE_DIR "/scenes/trot.json"), "--scene: the look of a glTF shot's movies"},
+      {quote(shot) + " --scene " + quote((dir / "nope.json").string()), (dir / "nope.json").string() + ": cannot open the file"},
   };
   for (const Case& c : cases) {
     const CommandResult r = runStirrup("movies " + c.args + " --preset draft --resolution 96x54 --out " + quote(out.string()));

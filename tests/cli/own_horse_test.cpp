@@ -52,12 +52,11 @@ const std::vector<Variant>& variants() {
 fs::path dirOf(const std::string& name) { return fs::path(STIRRUP_BINARY_DIR) / "test_own_horse" / name; }
 
 // A variant's horse with its walk, and Blender's joints at every frame: made once for every test process
-// of a run (tests/blender_fixture.h).
+// of a run (tests/blender_fixture.h), in dirOf(v.name).
 BlenderMade madeHorse(const Variant& v) {
-  const fs::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
-  const fs::path dir = dirOf(v.name);
-  return madeByBlender(dir, script, quote(script.string()) + " " + quote((dir / "horse.glb").string()) + " " + v.options +
-                                        " --walk --expected " + quote((dir / "blender.json").string()));
+  BlenderMade made;
+  blenderRigifyHorse(v.name, v.options, &made);
+  return made;
 }
 
 // A scene of the horse's own walk under the default rider: the character and the clip through one

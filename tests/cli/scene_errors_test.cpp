@@ -104,10 +104,10 @@ TEST_F(SceneErrors, BadPathsAndTerrainsAreOneLine) {
   expectError("render " + quote(f.string()), f.string() +
               ": clip: points[2]: expected a point at least 1 cm from points[1] (a zero-length segment has no heading), got one 0 cm away");
   f = scene(R"("points": [[0, 0], [500, 0]], "speed": [[0, 0]])");
-  expectError("render " + quote(f.string()), f.string() + ": clip: speed[0]: expected a speed > 0 (cm/s), got 0");
+  expectError("render " + quote(f.string()), f.string() + ": clip: speed[0]: expected a speed from 1 to 5000 cm/s, got 0");
   f = scene(R"("points": [[0, 0], [500, 0]], "speed": [[0, -3]])");
   expectError("bake " + quote(f.string()) + " --channels " + quote((dir / "out/c.csv").string()),
-              f.string() + ": clip: speed[0]: expected a speed > 0 (cm/s), got -3");
+              f.string() + ": clip: speed[0]: expected a speed from 1 to 5000 cm/s, got -3");
   f = scene(R"("points": [[0, 0], [500, "a"]], "speed": [[0, 300]])");
   expectError("render " + quote(f.string()), f.string() + ": clip.points[1]: expected a point [x, z] (cm), got an array of 2");
   const std::string path = R"("points": [[0, 0], [900, 0]], "speed": [[0, 300]])";

@@ -2,7 +2,9 @@
 // amount planted, and the unchanged frame has none. The faults are made by moving joints of the posed
 // frame (a hand 8 cm off its rein, the rider 20 cm down into the horse, ...), so the expected values are
 // the distances moved, not the code's own output.
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,7 @@
 
 #include "rig/bake.h"
 #include "rig/frame_check.h"
+#include "rig/horse_leg.h"
 #include "rig/pose.h"
 #include "rig/rig_profile.h"
 #include "scene/clip_factory.h"
@@ -212,6 +215,55 @@ TEST_F(FrameCheck, APlantedHoofBeyondReachIsAnOverReachFailure) {
   ASSERT_NE(x, nullptr);
   EXPECT_EQ(x->severity, CheckSeverity::Failure);
   EXPECT_GE(x->value, 5.0);  // the leg swings back from its hip, but 150 cm is far past any hind's reach
+}
+
+// The one contact test (hoofLiftCm, hoofDown) on a hoof whose joint stands 5 cm above its sole (a user's
+// horse: the default horse's is on it): at its rest height it is down; rolled 20 degrees over its toe
+// edge (6 cm ahead on the sole, the edge the leg solve rolls it over) it is still down, its joint 1.75 cm up;
+// raised 1 cm it is not; over a ground 10 cm lower it is not; 2 cm into the ground it is.
+TEST(HoofContact, AHoofRollingOverItsToeIsDownAndOneLiftedIsNot) {
+  const float rest = 5.0f;  // the hoof joint's rest height above the ground
+  const glm::mat4 at_rest = glm::translate(glm::mat4(1.0f), {30.0f, rest, 10.0f});
+  EXPECT_NEAR(hoofLiftCm(at_rest, rest, kFlat), 0.0, 1e-6);
+  EXPECT_TRUE(hoofDown(hoofLiftCm(at_rest, rest, kFlat)));
+  const HorseLegParams leg;
+  const glm::vec3 toe(30.0f + leg.toe_cm, 0.0f, 10.0f);
+  const glm::mat4 rolled = glm::translate(glm::mat4(1.0f), toe) * glm::rotate(glm::mat4(1.0f), glm::radians(-20.0f), {0, 0, 1}) *
+                           glm::translate(glm::mat4(1.0f), -toe) * at_rest;
+  EXPECT_GT(rolled[3].y - rest, 1.5f);  // the joint lifted by the roll (6 sin 20 + 5 (cos 20 - 1) = 1.75 cm)
+  EXPECT_NEAR(hoofLiftCm(rolled, rest, kFlat), 0.0, 1e-4);
+  EXPECT_TRUE(hoofDown(hoofLiftCm(rolled, rest, kFlat)));
+  const glm::mat4 raised = glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, 0.0f}) * at_rest;
+  EXPECT_NEAR(hoofLiftCm(raised, rest, kFlat), 1.0, 1e-5);
+  EXPECT_FALSE(hoofDown(hoofLiftCm(raised, rest, kFlat)));
+  EXPECT_NEAR(hoofLiftCm(at_rest, rest, [](double, double) { return -10.0; }), 10.0, 1e-5);
+  EXPECT_NEAR(hoofLiftCm(glm::translate(glm::mat4(1.0f), {0.0f, -2.0f, 0.0f}) * at_rest, rest, kFlat), -2.0, 1e-5);
+}
+
+// Over the default trot's first two strides: every hoof the clip plants is down by the contact test, the
+// ones the leg has rolled over the toe or heel at the ends of a stance (joint raised past the band)
+// among them; a hoof the clip lifts a centimetre or more never is.
+TEST_F(FrameCheck, EveryHoofTheTrotPlantsIsDownRollingOrNot) {
+  int planted = 0, rolled = 0;
+  for (int f = 1; f <= 48; ++f) {
+    const Posed p = trotFrame(f);
+    const FrameMeasures m = measure(f, p);
+    static constexpr std::array<HorseChannel, 4> kLift = {HorseChannel::lfHoofTy, HorseChannel::rfHoofTy, HorseChannel::lbHoofTy,
+                                                          HorseChannel::rbHoofTy};
+    static constexpr std::array<const char*, 4> kHooves = {"lfHoof", "rfHoof", "lbHoof", "rbHoof"};
+    for (std::size_t leg = 0; leg < 4; ++leg) {
+      const double ty = p.baked.horse.controls[kLift[leg]];
+      const int hoof = horse.role(kHooves[leg]);
+      const double raised = p.pose.horse[std::size_t(hoof)][3].y - horse.skeleton.restPosition(hoof).y;
+      if (ty >= 1.0) EXPECT_FALSE(m.down[leg]) << "frame " << f << " leg " << leg << " lifted " << ty;
+      if (ty != 0.0) continue;
+      ++planted;
+      rolled += raised > kHoofContactCm;
+      EXPECT_TRUE(m.down[leg]) << "frame " << f << " leg " << leg << " planted, joint raised " << raised << ", lift " << m.lift_cm[leg];
+    }
+  }
+  EXPECT_GT(rolled, 0);
+  std::printf("default trot, 48 frames: %d planted hoof-frames all down, %d of them rolled over an edge\n", planted, rolled);
 }
 
 // soleSlide: the least any point of the sole moves. A square sole 10 cm wide rolled about its front

@@ -3,14 +3,27 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "rig/bake.h"
+#include "rig/io/character_mapping_json.h"
+#include "rig/io/gltf_clip.h"
 #include "rig/motion/gait_reference.h"
 #include "rig/motion/path_clip.h"
+#include "rig/pose.h"
+#include "rig/rig_profile.h"
+#include "scene/camera.h"
+#include "scene/clip_factory.h"
 #include "scene/frame_range.h"
+#include "scene/profile_resolver.h"
+#include "tests/rig/default_characters.h"
 
 #include "rig/error.h"
 #include "tests/input_error.h"
@@ -37,7 +50,7 @@ TEST(Scene, EmptySceneTakesEveryDefault) {
 TEST(Scene, ReadsEveryField) {
   const SceneSpec s = parseScene(nlohmann::json::parse(R"({
     "name": "t", "clip": {"generator": "trot", "speed_cm_s": 300, "duty_factor": 0.42},
-    "profile": "novice", "profile_overrides": {"a": 1}, "fps": 30, "frames": "1-10x2",
+    "profile": "novice", "profile_overrides": {"eq7.lift_limit": 9}, "fps": 30, "frames": "1-10x2",
     "resolution": [320, 180], "quality": {"samples": 4, "light_samples": 2, "ao_samples": 1},
     "sun": {"direction": [0, 1, 0], "angular_radius": 1},
     "haze": {"visibility_cm": 30000, "ortho_depth_cm": 900},
@@ -47,7 +60,7 @@ TEST(Scene, ReadsEveryField) {
   EXPECT_EQ(s.gait.speed_cm_s, 300.0);
   EXPECT_EQ(s.gait.duty_factor[3], 0.42);
   EXPECT_EQ(s.profile, "novice");
-  EXPECT_EQ(s.profile_overrides["a"], 1);
+  EXPECT_EQ(s.profile_overrides["eq7.lift_limit"], 9);
   EXPECT_EQ(s.fps, 30.0);
   EXPECT_EQ(s.frames, "1-10x2");
   EXPECT_EQ(s.width, 320);
@@ -84,9 +97,9 @@ TEST(Scene, OutOfRangeValuesAreErrors) {
   EXPECT_EQ(errorOf(R"({"cameras": [{"type": "fisheye"}]})"),
             "scenes/x.json: cameras[0].type: expected \"orthographic\" or \"perspective\", got \"fisheye\"");
   EXPECT_EQ(errorOf(R"({"frames": "10-1"})"), "scenes/x.json: frames: \"10-1\": expected FIRST <= LAST");
-  EXPECT_EQ(errorOf(R"({"fps": 0})"), "scenes/x.json: fps: expected frames per second between 0 and 240");
+  EXPECT_EQ(errorOf(R"({"fps": 0})"), "scenes/x.json: fps: expected frames per second from 1 to 240, got 0");
   EXPECT_EQ(errorOf(R"({"haze": {"visibility_cm": 500000}})"),
-            "scenes/x.json: haze.visibility_cm: expected centimetres from 100 to 100000 (the ground ends 1 km out)");
+            "scenes/x.json: haze.visibility_cm: expected centimetres from 100 to 100000 (the ground ends 1 km out), got 500000");
   EXPECT_EQ(errorOf(R"({"haze": {"ortho_depth_cm": "far"}})"),
             "scenes/x.json: haze.ortho_depth_cm: expected a number, got \"far\"");
   EXPECT_EQ(errorOf(R"({"haze": {"fog": 1}})"), "scenes/x.json: haze.fog: unknown field");
@@ -267,7 +280,7 @@ TEST(SceneCrowd, FollowPairMustNameAPairOfTheCrowd) {
   EXPECT_EQ(errorOf(bad.dump()),
             "scenes/x.json: cameras[1].follow_pair: expected a pair index from 0 to 5 (the crowd has 6 pairs), got 6");
   bad["cameras"][1]["follow_pair"] = -1;
-  EXPECT_EQ(errorOf(bad.dump()), "scenes/x.json: cameras[1].follow_pair: expected a pair index >= 0");
+  EXPECT_EQ(errorOf(bad.dump()), "scenes/x.json: cameras[1].follow_pair: expected a pair index from 0 to 199, got -1");
   EXPECT_EQ(errorOf(R"({"cameras": [{"view": "side", "follow_pair": 0}]})"),
             "scenes/x.json: cameras[0].follow_pair: expected no follow_pair in a scene without a \"crowd\" or \"riders\"");
   bad["cameras"][1]["follow_pair"] = 0;
@@ -388,6 +401,195 @@ TEST(SceneLimits, AllowImpossibleLoadsAndWarnsEachFrameThatBreaksALimit) {
   const SceneSpec fine = parseScene(nlohmann::json::parse(R"({"clip": {"generator": "path", "points": [[0, 0], [3000, 0]], "speed": [[0, 300]]}})"),
                                     "scenes/x.json", {true});
   EXPECT_EQ(impossibleFrameWarning(fine, 1), "");
+}
+
+}  // namespace
+}  // namespace stirrup::render
+
+namespace stirrup::render {
+namespace {
+
+// Every number a scene, a mapping or a profile can hold, set in turn to the values a mutation run feeds a
+// reader (issue 60): each is refused as the file loads, in one line naming the file and the field, or is a
+// value that makes sense for the field, and then no number that is not finite reaches the rig (a few
+// frames baked, rig::bakeFrame's own check, and posed). 1e308 makes sense for no field: always refused.
+constexpr double kAbsurd[] = {1e-320, 1e308, -1e308, -1.0, 0.0};
+
+struct NumberField {
+  nlohmann::json::json_pointer at;
+  std::string key;  // the nearest object key above it: what the message must name
+};
+
+void numberFields(const nlohmann::json& j, const nlohmann::json::json_pointer& at, const std::string& key, std::vector<NumberField>& out) {
+  if (j.is_number()) out.push_back({at, key});
+  if (j.is_object())
+    for (const auto& [k, v] : j.items()) numberFields(v, at / k, k, out);
+  if (j.is_array())
+    for (std::size_t i = 0; i < j.size(); ++i) numberFields(j[i], at / i, key, out);
+}
+
+bool finite(const std::vector<glm::mat4>& joints) {
+  for (const glm::mat4& m : joints)
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+// A scene that loaded: its first, middle and last frames baked (rig::bakeFrame throws std::logic_error on
+// a number that is not finite) and posed on the default pair, its fixed cameras made into a film.
+void expectFiniteMotion(const SceneSpec& s, const std::string& what) {
+  const rig::RigProfile profile = resolveProfile(s);
+  std::vector<std::shared_ptr<const rig::Clip>> clips(s.pair_clips.begin(), s.pair_clips.end());
+  if (s.pairs.empty()) clips.push_back(makeSceneClip(s));
+  const std::vector<int> frames = rig::parseFrameList(s.frames, "frames");
+  for (const auto& clip : clips)
+    for (const int f : {frames.front(), frames[frames.size() / 2], frames.back()}) {
+      rig::BakedFrame b;
+      ASSERT_NO_THROW(b = rig::bakeFrame(*clip, profile, f, frameTime(s, f))) << what;
+      const rig::MountedPose pose = rig::poseMounted(rig::test::defaultHorse(), rig::test::defaultRider(), b.horse, b.rider, profile);
+      EXPECT_TRUE(finite(pose.horse) && finite(pose.rider)) << what << ": frame " << f;
+    }
+  for (const CameraSpec& c : s.cameras) {
+    if (!c.view.empty()) continue;
+    Camera cam;
+    cam.projection = c.orthographic ? Camera::Projection::Orthographic : Camera::Projection::Perspective;
+    cam.position = {c.position[0], c.position[1], c.position[2]};
+    cam.target = {c.target[0], c.target[1], c.target[2]};
+    cam.fov_deg = c.fov_deg, cam.ortho_height_cm = c.ortho_height_cm;
+    EXPECT_NO_THROW(CameraFrame(cam, s.width, s.height)) << what;
+  }
+}
+
+// Each number of `base` set to each absurd value: refused in one line naming `file` and the field, or
+// (for a value the field may hold) loaded and moving finitely. Returns how many were refused.
+int mutateEveryNumber(const nlohmann::json& base, const std::string& file) {
+  std::vector<NumberField> fields;
+  numberFields(base, nlohmann::json::json_pointer(), "", fields);
+  int refused = 0;
+  for (const NumberField& f : fields)
+    for (const double v : kAbsurd) {
+      nlohmann::json j = base;
+      j[f.at] = v;
+      const std::string what = f.at.to_string() + " = " + numberText(v);
+      std::optional<SceneSpec> s;
+      const std::string e = stirrup::test::errorOf([&] { s = parseScene(j, file); }, "");
+      if (!e.empty()) {
+        ++refused;
+        EXPECT_EQ(e.rfind(file + ": ", 0), 0u) << what << ": " << e;
+        // The field, or for two pairs moved into each other the list naming both (riders[0] and riders[1]).
+        const std::string list = f.at.to_string().substr(1, f.at.to_string().find('/', 1) - 1);
+        EXPECT_TRUE(e.find(f.key) != std::string::npos || e.find(list + ": " + list + "[") != std::string::npos ||
+                    e.find(list + ".formation: pairs ") != std::string::npos)
+            << what << ": " << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << what;
+        continue;
+      }
+      EXPECT_LT(std::abs(v), 1e300) << what << " was accepted";
+      expectFiniteMotion(*s, what);
+    }
+  return refused;
+}
+
+const std::string kFile = "/nonexistent/numbers/x.json";
+
+TEST(SceneNumbers, APathOverHillsWithItsLookAndCamerasRefusesEveryAbsurdNumber) {
+  const nlohmann::json base = nlohmann::json::parse(R"({
+    "fps": 24, "frames": "1-12", "resolution": [64, 36],
+    "clip": {"generator": "path", "points": [[0, 0], [800, 0], [1600, 300]], "speed": [[0, 300], [2, 500]],
+             "variation": 0.1, "seed": 3, "roll_limit_deg": 20, "duration_s": 30},
+    "terrain": {"hills": {"seed": 4, "amplitude_cm": 50, "wavelength_cm": 3000, "octaves": 2}},
+    "quality": {"samples": 4, "light_samples": 1, "ao_samples": 1},
+    "sun": {"direction": [0.45, 0.75, 0.5], "angular_radius": 2},
+    "haze": {"visibility_cm": 30000, "ortho_depth_cm": 900},
+    "cameras": [{"name": "o", "ortho_height": 300, "position": [0, 120, 900], "target": [0, 120, 0], "frame_margin": 0.1},
+                {"name": "p", "type": "perspective", "fov": 40, "position": [0, 150, 900], "target": [0, 100, 0],
+                 "motion": "orbit", "orbit_deg_per_frame": 2, "orbit_frames": 48, "damping": 0.5, "hold_frame": 3},
+                {"name": "f", "type": "perspective", "focal_length": 35, "position": [500, 150, 900], "target": [0, 100, 0]}],
+    "reference": {"file": "ref.png", "offset": 0, "rate": 1, "scale": 0.7, "position": [10, 10], "opacity": 0.5,
+                  "shift_x": [1, 2], "crop": [0, 0, 10, 10],
+                  "grid": {"rows": 2, "columns": 3, "margins": [0, 0, 0, 0], "cell_crop": [0, 0, 5, 5]}}})");
+  ASSERT_NO_THROW(expectFiniteMotion(parseScene(base, kFile), "the scene as written"));
+  const int refused = mutateEveryNumber(base, kFile);
+  EXPECT_GT(refused, 0);
+  // The mutation run's one way past the readers: 1e-320 frames a second.
+  EXPECT_EQ(stirrup::test::errorOf([&] { parseScene(nlohmann::json{{"fps", 1e-320}}, kFile); }),
+            kFile + ": fps: expected frames per second from 1 to 240, got 9.99989e-321");
+}
+
+// Every parameter of every generator, absent from the base and set in turn.
+TEST(SceneNumbers, EveryGeneratorsParametersRefuseEveryAbsurdNumber) {
+  for (const std::string& generator : rig::clipGenerators()) {
+    if (generator == "path") continue;  // above, with its points and speeds
+    for (const std::string& key : rig::clipGeneratorParameters(generator)) {
+      if (key == "gaits" || key == "lead" || key == "end_with_stop") continue;  // names and a flag, not numbers
+      SCOPED_TRACE(generator + "." + key);
+      mutateEveryNumber({{"frames", "1-6"}, {"allow_impossible", true}, {"clip", {{"generator", generator}, {key, 1}}}}, kFile);
+    }
+  }
+}
+
+TEST(SceneNumbers, ACrowdAndAListOfRidersRefuseEveryAbsurdNumber) {
+  const nlohmann::json crowd = nlohmann::json::parse(R"({"frames": "1-6", "crowd": {
+    "pairs": 2, "seed": 7, "lead": {"points": [[0, 0], [3000, 0]], "speed": [[0, 300], [3, 300]]},
+    "formation": {"files": 2, "file_spacing_cm": 400, "rank_spacing_cm": 1000, "jitter_cm": 10},
+    "speed_variation": 0.02, "start_offset_max_s": 0.5, "profiles": {"thesis": 1, "novice": 1},
+    "withers_height_cm": [150, 170], "rider_height_cm": [160, 180], "rider_build": [0.9, 1.1], "gait_variation": 0.1}})");
+  EXPECT_GT(mutateEveryNumber(crowd, kFile), 0);
+  const nlohmann::json riders = nlohmann::json::parse(R"({"frames": "1-6", "riders": [
+    {"points": [[0, 0], [2000, 0]], "speed": [[0, 300], [2, 320]], "start_offset_s": 0.3, "seed": 3, "variation": 0.1,
+     "withers_height_cm": 160, "rider_height_cm": 170, "rider_build": 1},
+    {"points": [[0, 500], [2000, 500]], "speed": [[0, 300]]}]})");
+  EXPECT_GT(mutateEveryNumber(riders, kFile), 0);
+}
+
+TEST(SceneNumbers, EveryProfileParameterRefusesEveryAbsurdNumber) {
+  for (const rig::RigParameter& p : rig::rigParameters()) {
+    SCOPED_TRACE(std::string(p.key));
+    mutateEveryNumber({{"frames", "1-6"}, {"profile_overrides", {{std::string(p.key), (p.min + p.max) / 2}}}}, kFile);
+  }
+}
+
+// A mapping file's numbers, read as a character's and as a clip's mapping.
+TEST(SceneNumbers, MappingFilesRefuseEveryAbsurdNumber) {
+  const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_scene_numbers";
+  std::filesystem::create_directories(dir);
+  const nlohmann::json character = nlohmann::json::parse(std::ifstream(std::filesystem::path(STIRRUP_SOURCE_DIR) / "scenes/characters/horse-mapping.json"));
+  const nlohmann::json clip = {{"mode", "skeleton"}, {"scale_cm", 100}, {"forward", {0, 0, 1}}, {"up", {0, 1, 0}}, {"speed_cm_s", 300},
+                               {"nodes", {{"lfHoof", "a"}, {"rfHoof", "b"}, {"lbHoof", "c"}, {"rbHoof", "d"}}}};
+  for (const auto& [base, as_clip] : {std::pair{character, false}, std::pair{clip, true}}) {
+    std::vector<NumberField> fields;
+    numberFields(base, nlohmann::json::json_pointer(), "", fields);
+    ASSERT_FALSE(fields.empty());
+    for (const NumberField& f : fields)
+      for (const double v : kAbsurd) {
+        nlohmann::json j = base;
+        j[f.at] = v;
+        const std::filesystem::path file = dir / "mapping.json";
+        std::ofstream(file) << j.dump();
+        const std::string what = f.at.to_string() + " = " + numberText(v);
+        std::optional<glm::dmat4> to_rig;
+        const std::string e = stirrup::test::errorOf([&] {
+          if (as_clip) {
+            const rig::ClipMapping m = rig::loadClipMapping(file);
+            rig::CharacterMapping c;
+            c.scale_cm = m.scale_cm, c.forward = m.forward, c.up = m.up;
+            to_rig = rig::mappingToRig(c);
+          } else {
+            to_rig = rig::mappingToRig(rig::loadCharacterMapping(file, rig::CharacterKind::Horse));
+          }
+        }, "");
+        if (!e.empty()) {
+          // The field, or the other axis it must stand at right angles to.
+          const std::string partner = f.key == "forward" ? "up" : f.key == "up" ? "forward" : f.key;
+          EXPECT_TRUE(e.rfind(file.string() + ": " + f.key, 0) == 0 || e.rfind(file.string() + ": " + partner, 0) == 0) << what << ": " << e;
+          continue;
+        }
+        EXPECT_LT(std::abs(v), 1e300) << what << " was accepted";
+        for (int c = 0; c < 4; ++c)
+          for (int r = 0; r < 4; ++r) EXPECT_TRUE(std::isfinite((*to_rig)[c][r])) << what;
+      }
+  }
 }
 
 }  // namespace

@@ -33,6 +33,29 @@ def meshes_of(arm):
     return out
 
 
+def is_ground_name(name):
+    """Whether an object's name makes it the shot's ground for stirrup check (docs/check.md, "The ground"):
+    "ground", or "ground" then "_", "." or "-" ("Ground.001", "ground_mesh"), any case."""
+    n = name.lower()
+    return n == "ground" or (n.startswith("ground") and n[6] in "_.-")
+
+
+def ground_objects():
+    """The scene's ground, exported with a shot: every mesh named as the ground or under an object so named,
+    with the objects between it and that name (so the name reaches the file)."""
+    out = []
+    for o in bpy.data.objects:
+        if o.type != "MESH":
+            continue
+        chain, a = [], o
+        while a is not None and not is_ground_name(a.name):
+            chain.append(a)
+            a = a.parent
+        if a is not None:
+            out += [x for x in chain + [a] if x not in out]
+    return out
+
+
 def has_action(arm):
     """Whether Blender plays an action on the armature: its active action, or an NLA strip's that is not muted."""
     ad = arm.animation_data
@@ -73,12 +96,13 @@ def _selected(context, objects):
             context.scene.frame_set(frame)
 
 
-def export(context, armatures, path, animations):
-    """Exports the armatures and their meshes to `path` (GLB): deform bones only, +Y up, the actions as
-    Blender plays them when `animations`, else the rest."""
+def export(context, armatures, path, animations, extra=()):
+    """Exports the armatures and their meshes (and the `extra` objects) to `path` (GLB): deform bones only,
+    +Y up, the actions as Blender plays them when `animations`, else the rest."""
     objects = []
     for arm in armatures:
         objects += [arm] + meshes_of(arm)
+    objects += [o for o in extra if o not in objects]
     with _selected(context, objects):
         try:
             bpy.ops.export_scene.gltf(
@@ -96,8 +120,9 @@ def shot(context, horse, rider, horse_map, rider_map, path):
     """The scene's horse and rider as one shot, as they stand in Blender, rewritten for stirrup (docs/check.md,
     "A baked shot"): the armatures named "horse" and "rider", each mesh node carrying its character's role
     table by bone name (stirrup_role_joints), and in the scene's extras the horse's mapping as the file's
-    world in stirrup's ("stirrup_world", rig/io/gltf_shot.h) and the scene's fps."""
-    export(context, [horse, rider], path, True)
+    world in stirrup's ("stirrup_world", rig/io/gltf_shot.h) and the scene's fps. The scene's ground goes with
+    them (ground_objects), so the check measures the hooves on it."""
+    export(context, [horse, rider], path, True, ground_objects())
     glb = gltf_files.Glb(path)
     nodes = glb.json["nodes"]
     parent = glb.parents()

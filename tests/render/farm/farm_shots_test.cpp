@@ -138,7 +138,7 @@ TEST(FarmShots, MovieShotsListTheFramesAndContactSheetFilesEachChunkWrites) {
   MovieOptions o;
   o.frames_limit = 5;
   o.contact_count = 2;
-  const std::vector<MovieJob> jobs = {{"trot_side", fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "trot.json", "side", "", ""}};
+  const std::vector<MovieJob> jobs = {{"trot_side", fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "trot.json", "side", "", "", {}}};
   const FarmPlan plan = planMovies(request("/shared/review", 3), jobs, o, {"--preset", "draft"}, true);
   ASSERT_EQ(plan.shots.size(), 1u);
   const FarmShot& shot = plan.shots[0];

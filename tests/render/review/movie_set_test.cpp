@@ -25,7 +25,7 @@ using test::errorOf;
 
 const fs::path kScenes = fs::path(STIRRUP_SOURCE_DIR) / "scenes";
 
-MovieJob trotSide(const std::string& frames = "") { return {"trot_side", kScenes / "trot.json", "side", frames, ""}; }
+MovieJob trotSide(const std::string& frames = "") { return {"trot_side", kScenes / "trot.json", "side", frames, "", {}}; }
 
 class MovieSetFiles : public ::testing::Test {
  protected:

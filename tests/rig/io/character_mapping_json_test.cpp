@@ -72,7 +72,7 @@ TEST(CharacterMappingJson, BadFieldsAreOneLineErrorsNamingTheField) {
   EXPECT_EQ(error(CharacterKind::Horse, mappingOf(CharacterKind::Rider)),
             f + ": character: expected \"horse\" (this file is used for the horse), got \"rider\"");
   EXPECT_EQ(error(CharacterKind::Rider, mappingOf(CharacterKind::Rider, {{"scale_cm", 0}})),
-            f + ": scale_cm: expected centimetres per file unit > 0");
+            f + ": scale_cm: expected centimetres per file unit from 0.001 to 100000, got 0");
   EXPECT_EQ(error(CharacterKind::Rider, mappingOf(CharacterKind::Rider, {{"up", {1, 0, 0}}})),
             f + ": up: expected a direction at right angles to forward");
   EXPECT_EQ(error(CharacterKind::Rider, mappingOf(CharacterKind::Rider, {{"forward", {0, 0, 0}}})),

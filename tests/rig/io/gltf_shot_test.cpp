@@ -1,7 +1,8 @@
 // A baked shot read back (rig/io/gltf_shot.cpp) from shots baked here, by the same writer `stirrup bake`
 // uses (rig/io/gltf_bake.h): the default pair at the generated trot, posed by rig::poseMounted, is the
 // oracle. Read back, every joint of both characters stands where the rig posed it, the hooves the clip
-// plants are down and those it lifts are not, and rig::PairCheck measures the same frame the same way.
+// plants are down and those it lifts are not, and rig::PairCheck measures the same frame the same way;
+// a shot's own ground comes back.
 // A crowd's pairs come back by their names; a file that is no shot is left to the clip reader. The
 // command (`stirrup check SHOT.glb`, Blender's re-export) is tests/cli/check_test.cpp.
 #include "rig/io/atomic_file.h"
@@ -121,23 +122,24 @@ TEST(GltfShot, ABakeReadBackStandsEveryJointWhereTheRigPosedIt) {
   int planted = 0, rolling = 0;
   for (int f = 1; f <= kFrames; ++f) {
     const MountedPose& want = trot().poses[std::size_t(f - 1)];
-    const MountedPose got = shot->pose(0, f, kFlat);
+    const MountedPose got = shot->pose(0, f);
     worst_joint = std::max({worst_joint, worstDistance(got.horse, want.horse), worstDistance(got.rider, want.rider)});
-    // Down as the keyed controls have it: the hoof joint, as the rig posed it, within the contact band
-    // of its rest height. A hoof the clip lifts a centimetre or more is never down; one it plants is,
-    // unless it rolls over its toe at the end of the stance, which raises the joint.
+    const FrameMeasures a = oracle.measure(f, 0, trot().frames[std::size_t(f - 1)].horse, want, kFlat);
+    const FrameMeasures b = checker.measure(f, 0, HorseFrame{}, got, kFlat);
+    // Down by the one contact test (the sole on the ground), the same in both: every hoof the clip plants
+    // is down, those rolling over the toe at the end of a stance too (the hoof joint raised past the
+    // contact band, the toe still on the ground); a hoof the clip lifts a centimetre or more never is.
     for (std::size_t leg = 0; leg < 4; ++leg) {
+      EXPECT_EQ(a.down[leg], b.down[leg]) << "frame " << f << " leg " << leg;
       const double ty = trot().frames[std::size_t(f - 1)].horse.controls[kLift[leg]];
       const int hoof = defaultHorse().role(kHooves[leg]);
       const double raised = want.horse[std::size_t(hoof)][3].y - defaultHorse().skeleton.restPosition(hoof).y;
-      EXPECT_EQ(got.reach.planted[leg], raised <= kKeyedContactCm) << "frame " << f << " leg " << leg << " raised " << raised;
-      if (ty >= 1.0) {
-        EXPECT_FALSE(got.reach.planted[leg]) << "frame " << f << " leg " << leg << " lifted " << ty;
+      if (ty >= 1.0) EXPECT_FALSE(b.down[leg]) << "frame " << f << " leg " << leg << " lifted " << ty;
+      if (ty == 0.0) {
+        EXPECT_TRUE(b.down[leg]) << "frame " << f << " leg " << leg << " planted, its joint raised " << raised;
+        ++planted, rolling += raised > kHoofContactCm;
       }
-      if (ty == 0.0) ++planted, rolling += !got.reach.planted[leg];
     }
-    const FrameMeasures a = oracle.measure(f, 0, trot().frames[std::size_t(f - 1)].horse, want, kFlat);
-    const FrameMeasures b = checker.measure(f, 0, HorseFrame{}, got, kFlat);
     worst_depth = std::max(worst_depth, double(std::abs(a.rider_depth_cm - b.rider_depth_cm)));
     deepest = std::max(deepest, double(b.rider_depth_cm));
     for (std::size_t side = 0; side < 2; ++side) {
@@ -149,9 +151,10 @@ TEST(GltfShot, ABakeReadBackStandsEveryJointWhereTheRigPosedIt) {
   }
   EXPECT_LT(worst_joint, 0.01);  // cm: float keys in metres
   EXPECT_LT(worst_depth, 0.01);
-  EXPECT_LT(rolling * 10, planted);  // a roll over the toe is the end of a stance, not most of it
+  EXPECT_GT(rolling, 0);  // the trot's landings roll over the toe: the case is exercised
+  EXPECT_EQ(shot->ground(), nullptr);  // baked on flat ground: no ground mesh
   std::printf("a bake read back: joints within %.5f cm, rider depth within %.5f cm (deepest %.2f cm); of %d planted hoof-frames %d "
-              "roll over the toe\n", worst_joint, worst_depth, deepest, planted, rolling);
+              "roll over the toe, all down\n", worst_joint, worst_depth, deepest, planted, rolling);
 }
 
 // A crowd's pairs by their names, each where its ride is (pair01 300 cm to the right of pair00's).
@@ -164,21 +167,92 @@ TEST(GltfShot, ACrowdsPairsComeBackByTheirNames) {
   EXPECT_EQ(shot->pairs()[1].index, 1);
   EXPECT_EQ(shot->pairs()[1].horse_armature, "pair01_horse");
   const MountedPose want = shifted(trot().poses[5], 300.0);
-  const MountedPose got = shot->pose(1, 6, kFlat);
+  const MountedPose got = shot->pose(1, 6);
   EXPECT_LT(worstDistance(got.horse, want.horse), 0.01);
   EXPECT_LT(worstDistance(got.rider, want.rider), 0.01);
 }
 
-// Over a ground 10 cm lower than the one the shot was keyed on every hoof is 10 cm above its rest height
-// over it, none within the contact band: none is down; on the flat ground the planted ones are.
-TEST(GltfShot, AHoofIsDownOverTheGroundItIsGiven) {
-  const fs::path file = writeShot(tempDir("ground") / "trot.glb", {""});
-  const std::unique_ptr<GltfShot> shot = GltfShot::read(file);
-  ASSERT_TRUE(shot);
-  const MountedPose lowered = shot->pose(0, 1, [](double, double) { return -10.0; });
-  const MountedPose flat = shot->pose(0, 1, kFlat);
-  EXPECT_EQ(std::count(lowered.reach.planted.begin(), lowered.reach.planted.end(), true), 0);
-  EXPECT_GT(std::count(flat.reach.planted.begin(), flat.reach.planted.end(), true), 0);
+// The shot's own ground: a bake over a terrain writes it (node "ground"), and it comes back in stirrup's
+// world, heights where the writer put them; a node another tool names "Ground.001" is ground too, one
+// named "groundhog" is not. A hoof is down over the ground it stands on and not over one 10 cm lower.
+TEST(GltfShot, ItsOwnGroundComesBackAndTheHoovesAreDownOnIt) {
+  const fs::path dir = tempDir("ground");
+  BakedShot shot;
+  shot.name = "trot";
+  shot.fps = kFps;
+  for (int f = 0; f < 2; ++f) shot.seconds.push_back(float(f / kFps));
+  BakedPair pair;
+  pair.horse = &defaultHorse();
+  pair.rider = &defaultRider();
+  pair.poses = {trot().poses[0], trot().poses[1]};
+  shot.pairs.push_back(pair);
+  // A slope 10 cm up a metre across z, under the horse from x = -500 to 500 cm.
+  shot.ground_vertices = {{-500, -50, -500}, {500, -50, -500}, {500, 50, 500}, {-500, 50, 500}};
+  shot.ground_indices = {0, 2, 1, 0, 3, 2};
+  const fs::path file = dir / "sloped.glb";
+  writeFileAtomically(file, bakedShotGlb(shot));
+  const std::unique_ptr<GltfShot> read = GltfShot::read(file);
+  ASSERT_TRUE(read);
+  ASSERT_TRUE(read->ground());
+  EXPECT_EQ(read->ground()->triangleCount(), 2u);
+  for (const glm::dvec2 at : {glm::dvec2(0, 0), glm::dvec2(120, -300), glm::dvec2(-400, 250)}) {
+    const auto hit = read->ground()->at(at.x, at.y);
+    ASSERT_TRUE(hit) << at.x << ", " << at.y;
+    EXPECT_NEAR(hit->height_cm, 0.1 * at.y, 1e-3) << at.x << ", " << at.y;
+  }
+
+  // Another tool's names: "Ground.001" is the ground, "groundhog" a prop.
+  tinygltf::Model model = stirrup::test::readGlbModel(file);
+  for (tinygltf::Node& n : model.nodes)
+    if (n.name == "ground") n.name = "Ground.001";
+  stirrup::test::writeGlbModel(model, dir / "renamed.glb");
+  const std::unique_ptr<GltfShot> renamed = GltfShot::read(dir / "renamed.glb");
+  ASSERT_TRUE(renamed && renamed->ground());
+  EXPECT_EQ(renamed->ground()->triangleCount(), 2u);
+  for (tinygltf::Node& n : model.nodes)
+    if (n.name == "Ground.001" || n.name == "ground_mesh") n.name = n.name == "ground_mesh" ? "groundhog_mesh" : "groundhog";
+  stirrup::test::writeGlbModel(model, dir / "prop.glb");
+  const std::unique_ptr<GltfShot> prop = GltfShot::read(dir / "prop.glb");
+  ASSERT_TRUE(prop);
+  EXPECT_EQ(prop->ground(), nullptr);
+
+  // The trot's first frame keyed on flat ground: down there, never over a ground 10 cm lower.
+  const std::unique_ptr<GltfShot> flat = GltfShot::read(writeShot(dir / "trot.glb", {""}));
+  const PairCheck checker(flat->pairs()[0].horse, flat->pairs()[0].rider, trot().profile.balance);
+  const MountedPose pose = flat->pose(0, 1);
+  const FrameMeasures on = checker.measure(1, 0, HorseFrame{}, pose, kFlat);
+  const FrameMeasures above = checker.measure(1, 0, HorseFrame{}, pose, [](double, double) { return -10.0; });
+  EXPECT_EQ(std::count(above.down.begin(), above.down.end(), true), 0);
+  EXPECT_GT(std::count(on.down.begin(), on.down.end(), true), 0);
+}
+
+// The hooves the clip slides on purpose (a sliding stop's hinds) are recorded by the bake on the horse's
+// armature and come back at their frames, so the file's check does not count them as the scene's does not.
+TEST(GltfShot, TheHoovesSlidOnPurposeComeBackAtTheirFrames) {
+  BakedShot shot;
+  shot.name = "stop";
+  shot.fps = kFps;
+  BakedPair pair;
+  pair.name = "pair00";
+  pair.horse = &defaultHorse();
+  pair.rider = &defaultRider();
+  for (int f = 0; f < 6; ++f) {
+    shot.seconds.push_back(float(f / kFps));
+    pair.poses.push_back(trot().poses[std::size_t(f)]);
+    pair.hoof_sliding.push_back({false, false, f >= 2, f >= 3});  // lb from frame 3, rb from frame 4
+  }
+  shot.pairs.push_back(pair);
+  const fs::path file = tempDir("sliding") / "stop.glb";
+  writeFileAtomically(file, bakedShotGlb(shot));
+  const std::unique_ptr<GltfShot> read = GltfShot::read(file);
+  ASSERT_TRUE(read);
+  for (int f = 1; f <= 6; ++f) {
+    const std::array<bool, 4> want = {false, false, f >= 3, f >= 4};
+    EXPECT_EQ(read->hoofSliding(0, f), want) << "frame " << f;
+  }
+  // Without the record (another tool's file, or a bake of a clip that slides nothing): none.
+  const std::unique_ptr<GltfShot> plain = GltfShot::read(writeShot(tempDir("sliding") / "trot.glb", {""}));
+  EXPECT_EQ(plain->hoofSliding(0, 2), (std::array<bool, 4>{}));
 }
 
 // A tool's world that is not stirrup's (the Blender add-on's: the user's horse facing where it does) is
@@ -211,7 +285,7 @@ TEST(GltfShot, AWorldNamedInTheScenesExtrasIsTakenToStirrups) {
   const std::unique_ptr<GltfShot> shot = GltfShot::read(turned);
   ASSERT_TRUE(shot);
   for (const int f : {1, 12}) {
-    const MountedPose got = shot->pose(0, f, kFlat);
+    const MountedPose got = shot->pose(0, f);
     const MountedPose& want = trot().poses[std::size_t(f - 1)];
     EXPECT_LT(worstDistance(got.horse, want.horse), 0.01) << "frame " << f;
     EXPECT_LT(worstDistance(got.rider, want.rider), 0.01) << "frame " << f;
@@ -223,7 +297,7 @@ TEST(GltfShot, AWorldNamedInTheScenesExtrasIsTakenToStirrups) {
             flat.string() + ": scenes[0].extras.stirrup_world.up: expected a direction across forward");
   const fs::path unscaled = withWorld({{"scale_cm", tinygltf::Value(0.0)}}, "unscaled.glb");
   EXPECT_EQ(stirrup::test::errorOf([&] { GltfShot::read(unscaled); }),
-            unscaled.string() + ": scenes[0].extras.stirrup_world.scale_cm: expected centimetres a unit > 0");
+            unscaled.string() + ": scenes[0].extras.stirrup_world.scale_cm: expected centimetres a unit from 0.001 to 100000");
 }
 
 // A horse clip (one animated skeleton, no skin) is not a shot: the clip reader takes it.

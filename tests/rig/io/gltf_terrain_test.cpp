@@ -108,3 +108,17 @@ TEST(GltfTerrain, BadFilesAreOneLineErrors) {
 
 }  // namespace
 }  // namespace stirrup::rig
+
+namespace stirrup::rig {
+namespace {
+
+// A shot's ground is named so (issue 60): "ground", or "ground" then "_", "." or "-", any case.
+TEST(GltfGround, NamedGroundOrGroundAndASeparator) {
+  for (const char* name : {"ground", "Ground", "GROUND", "ground_mesh", "Ground.001", "ground-hills"})
+    EXPECT_TRUE(isGroundNodeName(name)) << name;
+  for (const char* name : {"groundhog", "playground", "grounds", "", "terrain", "ground mesh"})
+    EXPECT_FALSE(isGroundNodeName(name)) << name;
+}
+
+}  // namespace
+}  // namespace stirrup::rig

@@ -301,7 +301,7 @@ TEST(Crowd, BadSpecsAreOneLineErrors) {
   s.profile_mix = {{"thesis", 0}, {"novice", 0}};
   EXPECT_EQ(gen(s), "s.json: crowd.profiles: expected at least one profile with a weight > 0");
   s.profile_mix = {{"thesis", -1}};
-  EXPECT_EQ(gen(s), "s.json: crowd.profiles.thesis: expected a weight >= 0, got -1");
+  EXPECT_EQ(gen(s), "s.json: crowd.profiles.thesis: expected a weight from 0 to 1e+06, got -1");
   s = parade(4, 2);
   s.speed_variation = 0.5;
   EXPECT_EQ(gen(s), "s.json: crowd.speed_variation: expected a fraction from 0 to 0.1, got 0.5");

@@ -116,9 +116,10 @@ TEST(GroundPath, BadPointsAreOneLineErrorsNamingTheField) {
   EXPECT_EQ(errorOf({{0, 0}, {100, 0}, {100.5, 0}}),
             "scene.json: clip.path: points[2]: expected a point at least 1 cm from points[1] (a zero-length "
             "segment has no heading), got one 0.5 cm away");
-  EXPECT_EQ(errorOf({{0, 0}, {std::nan(""), 0}}), "scene.json: clip.path: points[1]: expected finite coordinates (cm)");
+  EXPECT_EQ(errorOf({{0, 0}, {std::nan(""), 0}}), "scene.json: clip.path: points[1]: expected coordinates from -1e+07 to 1e+07 cm, got [nan, 0]");
   EXPECT_EQ(errorOf({{0, 0}, {std::numeric_limits<double>::infinity(), 0}}),
-            "scene.json: clip.path: points[1]: expected finite coordinates (cm)");
+            "scene.json: clip.path: points[1]: expected coordinates from -1e+07 to 1e+07 cm, got [inf, 0]");
+  EXPECT_EQ(errorOf({{0, 0}, {1e308, 0}}), "scene.json: clip.path: points[1]: expected coordinates from -1e+07 to 1e+07 cm, got [1e+308, 0]");
   EXPECT_EQ(errorOf({{0, 0}, {100, 0}}), "");
 }
 

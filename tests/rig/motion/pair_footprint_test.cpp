@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -59,10 +60,13 @@ PathClipParams canterToGallopTurns() {
 struct Outside {
   double cm = -1e9, roll_deg = 0;
 };
+Outside farthestOutside(const Character& horse, const Character& rider, const PairExtent& e, const RigProfile& profile);
 Outside farthestOutside(const HorseParams& hp_params, const RiderParams& rp_params, const RigProfile& profile) {
   const Character horse = hp_params.withers_height == HorseParams{}.withers_height ? test::defaultHorse() : buildHorse(hp_params);
   const Character rider = rp_params.head.y == RiderParams{}.head.y ? test::defaultRider() : buildRider(rp_params, hp_params.mount);
-  const PairExtent e = pairExtent(hp_params, rp_params);
+  return farthestOutside(horse, rider, pairExtent(hp_params, rp_params), profile);
+}
+Outside farthestOutside(const Character& horse, const Character& rider, const PairExtent& e, const RigProfile& profile) {
   PathClipParams params = canterToGallopTurns();
   params.hoof_rest = e.hoof_rest;
   const PathClip clip(params, nullptr, "test");
@@ -108,6 +112,23 @@ TEST(PairFootprint, HoldsTheSkinnedHorseAndRider) {
       EXPECT_GT(o.cm, -kPoseMarginCm - 5.0) << c.name;
       EXPECT_GT(o.roll_deg, 10.0) << c.name;  // the ride did roll the body into its turns
     }
+}
+
+// Measured on the characters themselves (a crowd pair riding a user's horse or rider, issue 60): the box
+// of the default pair's skinned meshes at rest holds them over the same ride, and is no looser than
+// the generator's parameters' box by more than a margin's worth.
+TEST(PairFootprint, MeasuredOnTheCharactersItHoldsThemToo) {
+  const PairExtent measured = pairExtent(test::defaultHorse(), test::defaultRider());
+  const PairExtent built = pairExtent(HorseParams{}, RiderParams{});
+  const Outside o = farthestOutside(test::defaultHorse(), test::defaultRider(), measured, RigProfile::thesis());
+  EXPECT_LE(o.cm, 0.0) << "a vertex " << o.cm << " cm outside the footprint";
+  EXPECT_GT(o.cm, -kPoseMarginCm - 5.0);
+  EXPECT_NEAR(measured.top_cm, built.top_cm, kPoseMarginCm);
+  EXPECT_NEAR(measured.half_width_cm, built.half_width_cm, kPoseMarginCm);
+  for (std::size_t h = 0; h < 4; ++h) EXPECT_NEAR(glm::length(measured.hoof_rest[h] - built.hoof_rest[h]), 0.0, 1.0) << h;
+  std::printf("measured box: %.1f to %.1f cm along, +-%.1f across, %.1f high (the generator's: %.1f to %.1f, +-%.1f, %.1f)\n",
+              measured.back_cm, measured.front_cm, measured.half_width_cm, measured.top_cm, built.back_cm, built.front_cm,
+              built.half_width_cm, built.top_cm);
 }
 
 // A larger pair than the default, built from the scaled generator parameters.

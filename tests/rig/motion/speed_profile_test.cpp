@@ -53,14 +53,15 @@ TEST(SpeedProfile, KeysOverDistance) {
 
 TEST(SpeedProfile, BadKeysAreOneLineErrorsNamingTheField) {
   EXPECT_EQ(errorOf({}), "scene.json: clip: speed: expected at least one key [seconds, cm/s], got none");
-  EXPECT_EQ(errorOf({{0, 300}, {1, 0}}), "scene.json: clip: speed[1]: expected a speed > 0 (cm/s), got 0");
-  EXPECT_EQ(errorOf({{0, -5}}), "scene.json: clip: speed[0]: expected a speed > 0 (cm/s), got -5");
+  EXPECT_EQ(errorOf({{0, 300}, {1, 0}}), "scene.json: clip: speed[1]: expected a speed from 1 to 5000 cm/s, got 0");
+  EXPECT_EQ(errorOf({{0, -5}}), "scene.json: clip: speed[0]: expected a speed from 1 to 5000 cm/s, got -5");
   EXPECT_EQ(errorOf({{0, std::numeric_limits<double>::quiet_NaN()}}),
-            "scene.json: clip: speed[0]: expected a speed > 0 (cm/s), got nan");
+            "scene.json: clip: speed[0]: expected a speed from 1 to 5000 cm/s, got nan");
   EXPECT_EQ(errorOf({{0, 300}, {0, 400}}), "scene.json: clip: speed[1]: expected a time after speed[0]'s 0, got 0");
   EXPECT_EQ(errorOf({{500, 300}, {200, 400}}, Over::Distance),
             "scene.json: clip: speed[1]: expected a distance after speed[0]'s 500, got 200");
-  EXPECT_EQ(errorOf({{std::numeric_limits<double>::infinity(), 300}}), "scene.json: clip: speed[0]: expected a finite time");
+  EXPECT_EQ(errorOf({{std::numeric_limits<double>::infinity(), 300}}), "scene.json: clip: speed[0]: expected a time from -1e+07 to 1e+07 s, got inf");
+  EXPECT_EQ(errorOf({{0, 1e308}}), "scene.json: clip: speed[0]: expected a speed from 1 to 5000 cm/s, got 1e+308");
 }
 
 // Walk to gallop and back: each change once, one gait at a time, up at the up thresholds and down at
