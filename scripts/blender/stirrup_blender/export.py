@@ -8,7 +8,7 @@ import tempfile
 import bpy
 import numpy as np
 
-from . import gltf_files, mapping, program
+from . import gltf_files, layer, program
 
 # Debian 12's numpy 1.24 removed the alias np.bool, which Blender 3.4's glTF exporter still uses.
 if "bool" not in vars(np):  # (hasattr would ask numpy's module __getattr__, which warns)
@@ -31,6 +31,56 @@ def meshes_of(arm):
         if o.parent == arm or any(m.type == "ARMATURE" and m.object == arm for m in o.modifiers):
             out.append(o)
     return out
+
+
+@contextlib.contextmanager
+def meshes_still(arm):
+    """Her meshes' Armature modifiers off in the viewport for the duration: the bones are evaluated as ever,
+    the bodies not deformed (what solving and measuring a pose frame by frame need)."""
+    mods = [m for o in meshes_of(arm) for m in o.modifiers if m.type == "ARMATURE" and m.object == arm and m.show_viewport]
+    for m in mods:
+        m.show_viewport = False
+    try:
+        yield
+    finally:
+        for m in mods:
+            m.show_viewport = True
+
+
+def unweighted_vertices(arm):
+    """[(mesh object, count)] of her meshes' vertices that no deform bone of hers weights: they will stay
+    where she stood."""
+    deform = {b.name for b in arm.data.bones if b.use_deform}
+    out = []
+    for o in meshes_of(arm):
+        groups = {g.index for g in o.vertex_groups if g.name in deform}
+        count = sum(1 for v in o.data.vertices if not any(g.group in groups and g.weight > 0.0 for g in v.groups))
+        if count:
+            out.append((o, count))
+    return out
+
+
+def _moves(obj):
+    """Whether anything animates the object's own transform (its or a parent's keys, NLA or constraints)."""
+    while obj is not None:
+        ad = obj.animation_data
+        if obj.constraints or (ad is not None and (ad.action is not None or len(ad.nla_tracks) or len(ad.drivers))):
+            return True
+        obj = obj.parent
+    return False
+
+
+def world_at_export(context, obj):
+    """The object's world matrix as Blender's glTF exporter writes it: at frame 0, where the exporter goes
+    before it writes (io_scene_gltf2's save)."""
+    if not _moves(obj):
+        return obj.matrix_world.copy()
+    scene = context.scene
+    now = scene.frame_current
+    scene.frame_set(0)
+    m = obj.matrix_world.copy()
+    scene.frame_set(now)
+    return m
 
 
 def has_action(arm):
@@ -75,16 +125,22 @@ def _selected(context, objects):
 
 def export(context, armatures, path, animations):
     """Exports the armatures and their meshes to `path` (GLB): deform bones only, +Y up, the actions as
-    Blender plays them when `animations`, else the rest."""
+    Blender plays them when `animations`, else the rest. Not "single armature" (the exporter's default), which
+    would also export every other armature action of the .blend, a ride's among them, on this armature."""
     objects = []
     for arm in armatures:
         objects += [arm] + meshes_of(arm)
-    with _selected(context, objects):
+    scene = context.scene
+    frames = list(range(scene.frame_start, scene.frame_end + 1))
+    with contextlib.ExitStack() as flat, _selected(context, objects):
+        if animations:  # a layered armature through one action holding its stack (the exporter plays no NLA)
+            for arm in armatures:
+                flat.enter_context(layer.flattened(context, arm, frames))
         try:
             bpy.ops.export_scene.gltf(
                 filepath=path, export_format="GLB", use_selection=True, export_yup=True, export_def_bones=True,
                 export_skins=True, export_apply=False, export_animations=animations, export_nla_strips=False,
-                export_force_sampling=True, export_frame_range=True, export_cameras=False, export_lights=False,
+                export_force_sampling=True, export_frame_range=True, export_anim_single_armature=False, export_cameras=False, export_lights=False,
                 export_extras=False, export_materials="EXPORT")
         except RuntimeError as e:
             raise program.StirrupError("Blender's glTF exporter failed on %s: %s" % (
