@@ -8,7 +8,7 @@ import tempfile
 import bpy
 import numpy as np
 
-from . import gltf_files, layer, program
+from . import gltf_files, layer, program, transforms
 
 # Debian 12's numpy 1.24 removed the alias np.bool, which Blender 3.4's glTF exporter still uses.
 if "bool" not in vars(np):  # (hasattr would ask numpy's module __getattr__, which warns)
@@ -145,7 +145,77 @@ def export(context, armatures, path, animations):
         except RuntimeError as e:
             raise program.StirrupError("Blender's glTF exporter failed on %s: %s" % (
                 ", ".join(a.name for a in armatures), program.last_line(str(e))))
+        if animations:
+            exact_joints(context, armatures, path)
     return path
+
+
+def exact_joints(context, armatures, path):
+    """Rewrites the keyed joints of an export as Blender evaluates them. Rigify's IK bones scale a little
+    (ik_stretch), and the exporter writes that as non-uniform scales that glTF's parent-child product turns
+    into a shear it cannot hold: a hoof up to 6 mm from where Blender shows it. Here each joint's world in the
+    file at each key is Blender's (G O P C: the object, the pose matrix, and the file's own axes for the bone,
+    C, found at the bind), its pose scale dropped (the object's own scale kept), and each joint keyed relative
+    to its parent's: positions and turns exact, the squash of a bone's length left out."""
+    glb = gltf_files.Glb(path)
+    times, worlds = gltf_files.keyed_worlds(glb) if glb.json.get("animations") else (None, None)
+    if times is None:
+        return
+    scene = context.scene
+    fps = scene.render.fps / scene.render.fps_base
+    nodes = glb.json["nodes"]
+    parent = glb.parents()
+    jobs = []
+    for arm in armatures:
+        node_of = _skin_joints(glb, arm)
+        if not node_of:
+            continue
+        o0 = gltf_files.armature_world(glb, arm.name)  # glTF axes: G O0
+        ibm = gltf_files.inverse_binds(glb, node_of["_skin"])
+        names = [n for n in node_of if n != "_skin" and n in arm.pose.bones]
+        rest = {n: transforms.np_matrix(arm.data.bones[n].matrix_local) for n in names}
+        c = {n: np.linalg.inv(o0 @ transforms.G @ rest[n]) @ np.linalg.inv(ibm[n]) for n in names}
+        jobs.append((arm, names, node_of, c))
+    now = scene.frame_current
+    new_world = {}
+    for k, t in enumerate(times):
+        scene.frame_set(int(round(t * fps)))
+        for arm, names, node_of, c in jobs:
+            o = transforms.np_matrix(arm.matrix_world)
+            s_o = abs(np.linalg.det(o[:3, :3])) ** (1.0 / 3.0)
+            for n in names:
+                w = transforms.G @ o @ transforms.np_matrix(arm.pose.bones[n].matrix) @ c[n]
+                u, _, vt = np.linalg.svd(w[:3, :3])
+                w[:3, :3] = (u @ vt) * s_o
+                new_world.setdefault(node_of[n], np.zeros((len(times), 4, 4)))[k] = w
+    scene.frame_set(now)
+    for j, w in new_world.items():
+        p = parent[j]
+        pw = new_world[p] if p in new_world else (worlds[p] if p >= 0 else np.broadcast_to(np.eye(4), w.shape))
+        local = np.linalg.inv(pw) @ w
+        scale = np.cbrt(np.abs(np.linalg.det(local[:, :3, :3])))
+        ch = glb.channels(j)
+        values = {"translation": local[:, :3, 3], "rotation": gltf_files.quaternions(local[:, :3, :3] / scale[:, None, None]),
+                  "scale": np.repeat(scale[:, None], 3, axis=1)}
+        for path_name, v in values.items():
+            if path_name in ch:
+                glb.set_accessor(ch[path_name], v)
+    glb.write(path)
+
+
+def _skin_joints(glb, arm):
+    """{bone name: joint node} of the skin whose joints hang from the armature node named like `arm`, with
+    "_skin": the skin's index; {} when the file has none."""
+    nodes = glb.json["nodes"]
+    parent = glb.parents()
+    for k, skin in enumerate(glb.json.get("skins", [])):
+        joints = set(skin["joints"])
+        top = [j for j in skin["joints"] if parent[j] not in joints]
+        if top and parent[top[0]] >= 0 and nodes[parent[top[0]]].get("name") == arm.name:
+            out = {nodes[j]["name"]: j for j in skin["joints"]}
+            out["_skin"] = k
+            return out
+    return {}
 
 
 def shot(context, horse, rider, horse_map, rider_map, path):
