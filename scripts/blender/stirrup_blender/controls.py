@@ -136,7 +136,7 @@ def mapping_plan(arm, text):
     unknown = sorted(set(data) - {"follow", "twist", "pole", "set"})
     if unknown:
         raise program.StirrupError("the rider mapping's controls: unknown field %s (expected follow, twist, pole, set)" % unknown[0])
-    plan = Plan("the controls named in the rider mapping")
+    plan = Plan("her rig (named in the rider mapping)")
     bones = arm.data.bones
 
     def bone(name, what):

@@ -117,7 +117,7 @@ def reduce(context, arm, action, tolerance, measure):
     stirrup's) says. Returns (keys before, keys after, worst distance left)."""
     dense = action.copy()
     before = key_count(action)
-    factor, worst = 1.0, None
+    factor, worst = 2.0, None  # from twice the allowance, halved until the joints keep within the tolerance
     try:
         for _ in range(ATTEMPTS):
             decimate(context, arm, action, tolerance, factor)

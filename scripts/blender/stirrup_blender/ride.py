@@ -146,21 +146,24 @@ class RiderTargets:
         return {n: self.pose[k, i] for i, n in enumerate(self.names)}
 
 
-def measure(context, rider, targets, frames):
-    """The worst distance (armature units) between her deform bones' heads as Blender evaluates the scene at
-    each of `frames` and where stirrup puts them, and the bone and frame where it is."""
+def evaluated_heads(context, rider, names, frames):
+    """Her deform bones' heads (armature space) as Blender evaluates the scene at each of `frames`:
+    (frames, bones, 3)."""
     scene = context.scene
     now = scene.frame_current
-    worst, where = 0.0, ""
-    for k, f in enumerate(frames):
+    out = []
+    for f in frames:
         scene.frame_set(f)
-        got = controls.deform_heads(rider, targets.names)
-        d = np.linalg.norm(got - targets.pose[k, :, :3, 3], axis=1)
-        i = int(np.argmax(d))
-        if d[i] > worst:
-            worst, where = float(d[i]), "%s at frame %d" % (targets.names[i], f)
+        out.append(controls.deform_heads(rider, names))
     scene.frame_set(now)
-    return worst, where
+    return np.array(out)
+
+
+def worst_of(a, b, names, frames):
+    """The worst distance between two sets of heads (frames, bones, 3), and the bone and frame where it is."""
+    d = np.linalg.norm(a - b, axis=2)
+    k, i = np.unravel_index(int(np.argmax(d)), d.shape)
+    return float(d[k, i]), "%s at frame %d" % (names[i], frames[k])
 
 
 def solve_controls(context, rider, plan, targets):
@@ -231,16 +234,22 @@ def ride(context):
 
 
 def report_ride(context, p, plan, targets, frames, action, keyed, unsupported, horse_action):
+    """What the ride did, as Blender shows it: her joints against stirrup's at every frame (and the keys
+    reduced, when asked, to within the tolerance of the dense ride), and the warnings."""
     s = context.scene.stirrup
     unit_cm = 100.0 * p.rider.matrix_world.to_scale()[0]
+    names = targets.names
     with layer.own_keys_aside(p.rider), export.meshes_still(p.rider):
-        worst, where = measure(context, p.rider, targets, frames)
+        dense = evaluated_heads(context, p.rider, names, frames)
+        shown = dense
         reduced = ""
         if s.reduce_keys:
-            before, after, worst = reduce.reduce(context, p.rider, action, s.reduce_tolerance_cm / unit_cm,
-                                                 lambda: measure(context, p.rider, targets, frames)[0])
-            where = measure(context, p.rider, targets, frames)[1]
-            reduced = "; keys reduced from %d to %d" % (before, after)
+            def against_dense():
+                return worst_of(evaluated_heads(context, p.rider, names, frames), dense, names, frames)[0]
+            before, after, left = reduce.reduce(context, p.rider, action, s.reduce_tolerance_cm / unit_cm, against_dense)
+            shown = evaluated_heads(context, p.rider, names, frames)
+            reduced = "; keys reduced from %d to %d, within %.2f cm of the dense ride" % (before, after, left * unit_cm)
+    worst, where = worst_of(shown, targets.pose[:, :, :3, 3], names, frames)
     what = plan.describe() if plan is not None else "%d bones of %s" % (len(keyed), p.rider.name)
     line = "stirrup rode frames %d-%d: %s keyed in the NLA track \"%s\"%s; her joints within %.2f cm of stirrup's (worst: %s)" % (
         frames[0], frames[-1], what, layer.TRACK, reduced, worst * unit_cm, where)
