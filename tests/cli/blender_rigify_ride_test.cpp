@@ -157,6 +157,13 @@ result["nod_kept_cm"] = worst_cm(heads(rider), nodded)
 result["nod_over_ride_cm"] = worst_cm(heads(rider), ridden)
 result["layer_again"] = ride_layer(rider)
 result["ride_actions"] = sorted(a.name for a in bpy.data.actions if a.get("stirrup_ride"))
+# The rig's pole mode (Rigify's pole_vector switch): the knees and elbows by their poles.
+rider.animation_data.action = None
+for p in ("thigh_parent.L", "thigh_parent.R", "upper_arm_parent.L", "upper_arm_parent.R"):
+    rider.pose.bones[p]["pole_vector"] = 1
+result["poles"] = attempt(bpy.ops.stirrup.ride)
+result["pole_bones"] = keyed_bones(ride_action(rider))
+result["keyed_poles"] = keyed(rider)
 )");
   ASSERT_RAN(run);
   const nlohmann::json& r = run.result;
@@ -186,6 +193,16 @@ result["ride_actions"] = sorted(a.name for a in bpy.data.actions if a.get("stirr
   EXPECT_EQ(r["layer_again"]["tracks"], nlohmann::json::parse(R"(["stirrup ride", "my layer"])"));
   EXPECT_NE(r["layer_again"]["active"], "") << "her nod's action";
   EXPECT_EQ(r["ride_actions"].size(), 1u) << "the first ride's action replaced, not left behind: " << r["ride_actions"];
+  // In pole mode the poles are keyed instead of the IK bases' twist, and she is where the bake puts her.
+  ASSERT_TRUE(r["poles"].contains("ok")) << r["poles"];
+  for (const char* c : {"thigh_ik_target.L", "thigh_ik_target.R", "upper_arm_ik_target.L", "upper_arm_ik_target.R"})
+    EXPECT_TRUE(has(r["pole_bones"], c)) << c << " is not keyed: " << r["pole_bones"];
+  EXPECT_FALSE(has(r["pole_bones"], "thigh_ik.L"));
+  std::string pole_where;
+  std::size_t compared = 0;
+  const double pole_worst =
+      worstAgainstBake(r["keyed_poles"], bakedRider(dir, dir / "work" / "horse.glb", dir / "rider_t.glb"), &compared, &pole_where);
+  EXPECT_LT(pole_worst, kRideCm) << "cm, " << pole_where;
 }
 
 // Ride in FK on the horse keyed on its FK controls: her FK chains keyed (thigh, shin, foot, toe, upper arm,
@@ -322,6 +339,12 @@ bpy.ops.object.mode_set(mode="OBJECT")
 rig_id = rider.data["rig_id"]
 del rider.data["rig_id"]
 tried["no rig_id"] = attempt(bpy.ops.stirrup.ride)
+rider.data["rig_id"] = rig_id
+walk = horse.animation_data.action
+horse.animation_data.action = None
+tried["horse without action"] = attempt(bpy.ops.stirrup.ride)
+horse.animation_data.action = walk
+del rider.data["rig_id"]
 bpy.ops.object.mode_set(mode="EDIT")
 rider.data.edit_bones["torso"].name = "body"
 bpy.ops.object.mode_set(mode="OBJECT")
@@ -363,6 +386,7 @@ result["keyed"] = keyed(rider)
       {"edit mode", "is in Edit Mode"},
       {"no rig_id", "but no rig_id"},
       {"not rigify", "has deform bones driven by constraints Ride cannot key through (DEF-"},
+      {"horse without action", "has no action, and constraints drive its deform bones"},
   };
   for (const auto& [what, text] : says) {
     ASSERT_TRUE(tried.contains(what)) << what;

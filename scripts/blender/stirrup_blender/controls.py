@@ -242,6 +242,8 @@ class Solver:
         return out
 
     # --- the helper armature and the temporary constraints ------------------------------------------
+    # They hold the controls from open() to close(): turning a constraint on and off makes Blender build
+    # its dependency graph anew, which costs more than an evaluation.
     def open(self, context):
         arm = self.arm
         data = bpy.data.armatures.new(HELPER)
@@ -268,10 +270,6 @@ class Solver:
             c.target, c.subtarget = helper, n
             self.constraints.append((n, c))
 
-    def hold(self, on):
-        for _, c in self.constraints:
-            c.influence = 1.0 if on else 0.0
-
     def close(self):
         for n, c in self.constraints:
             pb = self.arm.pose.bones.get(n)
@@ -296,6 +294,19 @@ class Solver:
         for (bone, prop), value in self.plan.set.items():
             self.arm.pose.bones[bone][prop] = value
 
+    def hold_at(self, targets):
+        """Live: the controls held at the targets by the helper's constraints, for Blender's next evaluation
+        (the one that draws the frame: no evaluation of its own). Each twist base's scale is corrected from
+        the IK result the last evaluation showed."""
+        pbs = self.arm.pose.bones
+        held = dict(targets)
+        for n in self.plan.twist:
+            got = np.array(pbs[n].matrix.to_scale())
+            if np.all(np.abs(got - 1.0) < 0.1):  # an evaluation of the held pose (not a frame before live)
+                self.scale[n] = self.scale[n] / got
+            held[n] = targets[n] @ np.diag(list(self.scale[n]) + [1.0])
+        self._pose_helper(held)
+
     def held_bases(self, context, targets):
         """Each control's own values (matrix_basis) that put it at its target, the rig evaluated once with
         every control held there: {control: Matrix}. A twist base is held at its target scaled by its scale
@@ -305,17 +316,14 @@ class Solver:
         for n in self.plan.twist:
             held[n] = targets[n] @ np.diag(list(self.scale[n]) + [1.0])
         self._pose_helper(held)
-        self.hold(True)
         context.view_layer.update()
         pbs = self.arm.pose.bones
         for n in self.plan.twist:
             self.scale[n] = self.scale[n] / np.array(pbs[n].matrix.to_scale())
             held[n] = targets[n] @ np.diag(list(self.scale[n]) + [1.0])
         convert = self.arm.convert_space
-        out = {n: convert(pose_bone=pbs[n], matrix=Matrix(held[n].tolist()), from_space="POSE", to_space="LOCAL")
-               for n in self.names}
-        self.hold(False)
-        return out
+        return {n: convert(pose_bone=pbs[n], matrix=Matrix(held[n].tolist()), from_space="POSE", to_space="LOCAL")
+                for n in self.names}
 
     def set_bases(self, bases):
         pbs = self.arm.pose.bones

@@ -60,15 +60,15 @@ class Session:
         self.rest_inv = np.array([np.linalg.inv(rest[i]) if i >= 0 else np.eye(4) for i in self.horse_index])
         self.rider_poser = transforms.Poser(p.rider, self.rider_joints, p.rider_at_export)
         self.rider_order = [self.rider_joints.index(n) for n in self.rider_poser.names]
-        # A control rig is posed through its controls, as Ride keys them (controls.py); the helper armature and
-        # the constraints that hold the controls for a moment stay until live is turned off.
+        # A control rig is posed through its controls, as Ride keys them (controls.py): held at their targets by
+        # the helper armature's constraints, so that the evaluation that draws the frame is the only one; the
+        # helper and the constraints stay until live is turned off.
         self.solver = None
         plan = controls.plan_for(p.rider, scene.stirrup.limbs, ride.controls_text(context))
         if plan is not None:
             self.solver = controls.Solver(p.rider, plan)
             self.solver.apply_sets()
             self.solver.open(context)
-            self.solver.hold(False)
         self.stale = set()
         self.busy = False
         self.frame_changed = False
@@ -110,7 +110,7 @@ class Session:
         else:
             pose = self.rider_poser.pose_matrices(rider, d[None])[0]
             targets = self.solver.targets({n: pose[k] for k, n in enumerate(self.rider_poser.names)})
-            self.solver.set_bases(self.solver.held_bases(bpy.context, targets))
+            self.solver.hold_at(targets)
         self.last_ms = answer.get("ms", 0.0)
         self.updates += 1
 
