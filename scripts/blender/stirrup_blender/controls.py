@@ -115,11 +115,12 @@ def rigify_human_plan(arm, limbs="IK"):
             follow(_side(end, s), chain[2])
             if tail:
                 follow(_side(tail + "_ik", s) if _side(tail + "_ik", s) in bones else _side(tail, s), tail_def)
-            uses_pole = bool(pb[_side(switch, s)].get("pole_vector", 0))
-            if uses_pole:
+            # The IK base keyed in both modes: its twist holds the knee's plane without a pole; with one (the
+            # rig's pole_vector switch) the pole does, and the base is keyed for the scale that keeps the
+            # chain its length (Rigify's ik2fk: correct_scale after match_pole_target).
+            plan.twist[_side(base, s)] = chain
+            if pb[_side(switch, s)].get("pole_vector", 0):
                 plan.pole[_side(pole, s)] = chain
-            else:
-                plan.twist[_side(base, s)] = chain
     return plan
 
 
@@ -176,7 +177,9 @@ def plan_for(arm, limbs="IK", controls_text=""):
         if arm.data.get("rig_id") is None:
             raise program.StirrupError("the rider, %s, has the controls of a rig Rigify generated (torso, foot_ik.L, ...) but no "
                                        "rig_id: regenerate it with Rigify, or name her controls in the rider mapping" % arm.name)
-        cons = [c for pb in arm.pose.bones for c in pb.constraints]
+        # (Rigify drives some constraints' mute itself, the IK with and without a pole: those do not count)
+        driven = {fc.data_path for fc in arm.animation_data.drivers} if arm.animation_data else set()
+        cons = [c for pb in arm.pose.bones for c in pb.constraints if c.path_from_id("mute") not in driven]
         if cons and all(c.mute for c in cons):
             raise program.StirrupError("the rider, %s, is a Rigify rig with every constraint muted: its controls move nothing "
                                        "(unmute them and ride again)" % arm.name)

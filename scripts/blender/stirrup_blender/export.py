@@ -130,12 +130,10 @@ def export(context, armatures, path, animations):
     objects = []
     for arm in armatures:
         objects += [arm] + meshes_of(arm)
-    scene = context.scene
-    frames = list(range(scene.frame_start, scene.frame_end + 1))
     with contextlib.ExitStack() as flat, _selected(context, objects):
         if animations:  # a layered armature through one action holding its stack (the exporter plays no NLA)
             for arm in armatures:
-                flat.enter_context(layer.flattened(context, arm, frames))
+                flat.enter_context(layer.flattened(context, arm))
         try:
             bpy.ops.export_scene.gltf(
                 filepath=path, export_format="GLB", use_selection=True, export_yup=True, export_def_bones=True,

@@ -7,6 +7,7 @@
 # layered armature is exported through a flattened copy: every channel of the stack, as Blender blends it,
 # keyed at every frame in one temporary action (flattened()).
 import contextlib
+import math
 
 import bpy
 
@@ -137,14 +138,23 @@ def _channels(arm):
     return seen
 
 
+def stack_frames(arm):
+    """The frames the armature's stack covers: from the first of its strips and active action to the last."""
+    ad = arm.animation_data
+    ranges = [tuple(ad.action.frame_range)] if ad.action is not None else []
+    ranges += [(st.frame_start, st.frame_end) for t in ad.nla_tracks if not t.mute for st in t.strips]
+    return list(range(int(math.floor(min(r[0] for r in ranges))), int(math.ceil(max(r[1] for r in ranges))) + 1))
+
+
 @contextlib.contextmanager
-def flattened(context, arm, frames):
+def flattened(context, arm):
     """For the duration, the armature plays one temporary action holding its whole stack as Blender blends
-    it, keyed at each of `frames`, with the NLA off: what the glTF exporter can sample. Nothing happens to an
-    armature that plays no NLA track."""
+    it, keyed at every frame the stack covers (as the exporter samples an action: over its own frames), with
+    the NLA off: what the glTF exporter can sample. Nothing happens to an armature that plays no NLA track."""
     if not layered(arm):
         yield
         return
+    frames = stack_frames(arm)
     ad = arm.animation_data
     channels = _channels(arm)
     scene = context.scene
