@@ -357,3 +357,17 @@ def deform_heads(arm, names):
     """The deform bones' heads (armature space) as Blender evaluated them: (n, 3)."""
     pbs = arm.pose.bones
     return np.array([pbs[n].head for n in names])
+
+
+def clear_leftovers():
+    """Removes a solve's helper and constraints left in a file (saved while Live was on): on loading a .blend."""
+    for obj in [o for o in bpy.data.objects if o.name.startswith(HELPER)]:
+        data = obj.data
+        bpy.data.objects.remove(obj)
+        if data is not None and data.users == 0:
+            bpy.data.armatures.remove(data)
+    for obj in bpy.data.objects:
+        if obj.type == "ARMATURE" and obj.pose is not None:
+            for pb in obj.pose.bones:
+                for c in [c for c in pb.constraints if c.name.startswith(SOLVE_CONSTRAINT)]:
+                    pb.constraints.remove(c)

@@ -253,16 +253,20 @@ def stop(context):
         bpy.app.timers.unregister(_refresh_tick)
     if _session is not None:
         _session.close()
-        rider = _session.rider()
         _session = None
-        s = context.scene.stirrup
-        if rider is not None and s.live_saved_action is not None:
-            rider.animation_data_create()
-            rider.animation_data.action = s.live_saved_action
-            s.live_saved_action = None
-        track = layer.track_of(rider) if rider is not None else None
-        if track is not None:
-            track.mute = False
+        restore(context.scene.stirrup)
+
+
+def restore(s):
+    """Her action and the ride's layer as they were before Live."""
+    rider = s.rider
+    if rider is not None and s.live_saved_action is not None:
+        rider.animation_data_create()
+        rider.animation_data.action = s.live_saved_action
+        s.live_saved_action = None
+    track = layer.track_of(rider) if rider is not None else None
+    if track is not None:
+        track.mute = False
 
 
 def stop_all():
