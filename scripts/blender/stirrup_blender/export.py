@@ -8,7 +8,7 @@ import tempfile
 import bpy
 import numpy as np
 
-from . import gltf_files, mapping, program
+from . import gltf_files, layer, program, transforms
 
 # Debian 12's numpy 1.24 removed the alias np.bool, which Blender 3.4's glTF exporter still uses.
 if "bool" not in vars(np):  # (hasattr would ask numpy's module __getattr__, which warns)
@@ -31,6 +31,56 @@ def meshes_of(arm):
         if o.parent == arm or any(m.type == "ARMATURE" and m.object == arm for m in o.modifiers):
             out.append(o)
     return out
+
+
+@contextlib.contextmanager
+def meshes_still(arm):
+    """Her meshes' Armature modifiers off in the viewport for the duration: the bones are evaluated as ever,
+    the bodies not deformed (what solving and measuring a pose frame by frame need)."""
+    mods = [m for o in meshes_of(arm) for m in o.modifiers if m.type == "ARMATURE" and m.object == arm and m.show_viewport]
+    for m in mods:
+        m.show_viewport = False
+    try:
+        yield
+    finally:
+        for m in mods:
+            m.show_viewport = True
+
+
+def unweighted_vertices(arm):
+    """[(mesh object, count)] of her meshes' vertices that no deform bone of hers weights: they will stay
+    where she stood."""
+    deform = {b.name for b in arm.data.bones if b.use_deform}
+    out = []
+    for o in meshes_of(arm):
+        groups = {g.index for g in o.vertex_groups if g.name in deform}
+        count = sum(1 for v in o.data.vertices if not any(g.group in groups and g.weight > 0.0 for g in v.groups))
+        if count:
+            out.append((o, count))
+    return out
+
+
+def _moves(obj):
+    """Whether anything animates the object's own transform (its or a parent's keys, NLA or constraints)."""
+    while obj is not None:
+        ad = obj.animation_data
+        if obj.constraints or (ad is not None and (ad.action is not None or len(ad.nla_tracks) or len(ad.drivers))):
+            return True
+        obj = obj.parent
+    return False
+
+
+def world_at_export(context, obj):
+    """The object's world matrix as Blender's glTF exporter writes it: at frame 0, where the exporter goes
+    before it writes (io_scene_gltf2's save)."""
+    if not _moves(obj):
+        return obj.matrix_world.copy()
+    scene = context.scene
+    now = scene.frame_current
+    scene.frame_set(0)
+    m = obj.matrix_world.copy()
+    scene.frame_set(now)
+    return m
 
 
 def has_action(arm):
@@ -75,21 +125,95 @@ def _selected(context, objects):
 
 def export(context, armatures, path, animations):
     """Exports the armatures and their meshes to `path` (GLB): deform bones only, +Y up, the actions as
-    Blender plays them when `animations`, else the rest."""
+    Blender plays them when `animations`, else the rest. Not "single armature" (the exporter's default), which
+    would also export every other armature action of the .blend, a ride's among them, on this armature."""
     objects = []
     for arm in armatures:
         objects += [arm] + meshes_of(arm)
-    with _selected(context, objects):
+    with contextlib.ExitStack() as flat, _selected(context, objects):
+        if animations:  # a layered armature through one action holding its stack (the exporter plays no NLA)
+            for arm in armatures:
+                flat.enter_context(layer.flattened(context, arm))
         try:
             bpy.ops.export_scene.gltf(
                 filepath=path, export_format="GLB", use_selection=True, export_yup=True, export_def_bones=True,
                 export_skins=True, export_apply=False, export_animations=animations, export_nla_strips=False,
-                export_force_sampling=True, export_frame_range=True, export_cameras=False, export_lights=False,
+                export_force_sampling=True, export_frame_range=True, export_anim_single_armature=False, export_cameras=False, export_lights=False,
                 export_extras=False, export_materials="EXPORT")
         except RuntimeError as e:
             raise program.StirrupError("Blender's glTF exporter failed on %s: %s" % (
                 ", ".join(a.name for a in armatures), program.last_line(str(e))))
+        if animations:
+            exact_joints(context, armatures, path)
     return path
+
+
+def exact_joints(context, armatures, path):
+    """Rewrites the keyed joints of an export as Blender evaluates them. Rigify's IK bones scale a little
+    (ik_stretch), and the exporter writes that as non-uniform scales that glTF's parent-child product turns
+    into a shear it cannot hold: a hoof up to 6 mm from where Blender shows it. Here each joint's world in the
+    file at each key is Blender's (G O P C: the object, the pose matrix, and the file's own axes for the bone,
+    C, found at the bind), its pose scale dropped (the object's own scale kept), and each joint keyed relative
+    to its parent's: positions and turns exact, the squash of a bone's length left out."""
+    glb = gltf_files.Glb(path)
+    times, worlds = gltf_files.keyed_worlds(glb) if glb.json.get("animations") else (None, None)
+    if times is None:
+        return
+    scene = context.scene
+    fps = scene.render.fps / scene.render.fps_base
+    nodes = glb.json["nodes"]
+    parent = glb.parents()
+    jobs = []
+    for arm in armatures:
+        node_of = _skin_joints(glb, arm)
+        if not node_of:
+            continue
+        o0 = gltf_files.armature_world(glb, arm.name)  # glTF axes: G O0
+        ibm = gltf_files.inverse_binds(glb, node_of["_skin"])
+        names = [n for n in node_of if n != "_skin" and n in arm.pose.bones]
+        rest = {n: transforms.np_matrix(arm.data.bones[n].matrix_local) for n in names}
+        c = {n: np.linalg.inv(o0 @ transforms.G @ rest[n]) @ np.linalg.inv(ibm[n]) for n in names}
+        jobs.append((arm, names, node_of, c))
+    now = scene.frame_current
+    new_world = {}
+    for k, t in enumerate(times):
+        scene.frame_set(int(round(t * fps)))
+        for arm, names, node_of, c in jobs:
+            o = transforms.np_matrix(arm.matrix_world)
+            s_o = abs(np.linalg.det(o[:3, :3])) ** (1.0 / 3.0)
+            for n in names:
+                w = transforms.G @ o @ transforms.np_matrix(arm.pose.bones[n].matrix) @ c[n]
+                u, _, vt = np.linalg.svd(w[:3, :3])
+                w[:3, :3] = (u @ vt) * s_o
+                new_world.setdefault(node_of[n], np.zeros((len(times), 4, 4)))[k] = w
+    scene.frame_set(now)
+    for j, w in new_world.items():
+        p = parent[j]
+        pw = new_world[p] if p in new_world else (worlds[p] if p >= 0 else np.broadcast_to(np.eye(4), w.shape))
+        local = np.linalg.inv(pw) @ w
+        scale = np.cbrt(np.abs(np.linalg.det(local[:, :3, :3])))
+        ch = glb.channels(j)
+        values = {"translation": local[:, :3, 3], "rotation": gltf_files.quaternions(local[:, :3, :3] / scale[:, None, None]),
+                  "scale": np.repeat(scale[:, None], 3, axis=1)}
+        for path_name, v in values.items():
+            if path_name in ch:
+                glb.set_accessor(ch[path_name], v)
+    glb.write(path)
+
+
+def _skin_joints(glb, arm):
+    """{bone name: joint node} of the skin whose joints hang from the armature node named like `arm`, with
+    "_skin": the skin's index; {} when the file has none."""
+    nodes = glb.json["nodes"]
+    parent = glb.parents()
+    for k, skin in enumerate(glb.json.get("skins", [])):
+        joints = set(skin["joints"])
+        top = [j for j in skin["joints"] if parent[j] not in joints]
+        if top and parent[top[0]] >= 0 and nodes[parent[top[0]]].get("name") == arm.name:
+            out = {nodes[j]["name"]: j for j in skin["joints"]}
+            out["_skin"] = k
+            return out
+    return {}
 
 
 def shot(context, horse, rider, horse_map, rider_map, path):

@@ -18,7 +18,7 @@ import time
 import bpy
 import numpy as np
 
-from . import export, program, ride, transforms
+from . import controls, export, layer, program, ride, transforms
 
 _session = None
 _errors = []
@@ -60,6 +60,15 @@ class Session:
         self.rest_inv = np.array([np.linalg.inv(rest[i]) if i >= 0 else np.eye(4) for i in self.horse_index])
         self.rider_poser = transforms.Poser(p.rider, self.rider_joints, p.rider_at_export)
         self.rider_order = [self.rider_joints.index(n) for n in self.rider_poser.names]
+        # A control rig is posed through its controls, as Ride keys them (controls.py): held at their targets by
+        # the helper armature's constraints, so that the evaluation that draws the frame is the only one; the
+        # helper and the constraints stay until live is turned off.
+        self.solver = None
+        plan = controls.plan_for(p.rider, scene.stirrup.limbs, ride.controls_text(context))
+        if plan is not None:
+            self.solver = controls.Solver(p.rider, plan)
+            self.solver.apply_sets()
+            self.solver.open(context)
         self.stale = set()
         self.busy = False
         self.frame_changed = False
@@ -96,7 +105,12 @@ class Session:
     def pose_rider(self, answer):
         rider = self.rider()
         d = np.array(answer["rider"], dtype=np.float64).reshape(-1, 4, 4).transpose(0, 2, 1)[self.rider_order]
-        self.rider_poser.set_pose(rider, self.rider_poser.bases(rider, d[None])[0])
+        if self.solver is None:
+            self.rider_poser.set_pose(rider, self.rider_poser.bases(rider, d[None])[0])
+        else:
+            pose = self.rider_poser.pose_matrices(rider, d[None])[0]
+            targets = self.solver.targets({n: pose[k] for k, n in enumerate(self.rider_poser.names)})
+            self.solver.hold_at(targets)
         self.last_ms = answer.get("ms", 0.0)
         self.updates += 1
 
@@ -134,6 +148,9 @@ class Session:
         return bool(self.stale)
 
     def close(self):
+        if self.solver is not None:
+            self.solver.close()
+            self.solver = None
         if self.proc.poll() is None:
             self.proc.stdin.close()
             try:
@@ -218,6 +235,9 @@ def start(context):
     if rider.animation_data and rider.animation_data.action:
         s.live_saved_action = rider.animation_data.action
         rider.animation_data.action = None
+    track = layer.track_of(rider)
+    if track is not None:
+        track.mute = True  # the ride's layer would pose her controls over the live pose
     _session = session
     bpy.app.handlers.frame_change_post.append(_on_frame)
     bpy.app.handlers.depsgraph_update_post.append(_on_depsgraph)
@@ -233,13 +253,20 @@ def stop(context):
         bpy.app.timers.unregister(_refresh_tick)
     if _session is not None:
         _session.close()
-        rider = _session.rider()
         _session = None
-        s = context.scene.stirrup
-        if rider is not None and s.live_saved_action is not None:
-            rider.animation_data_create()
-            rider.animation_data.action = s.live_saved_action
-            s.live_saved_action = None
+        restore(context.scene.stirrup)
+
+
+def restore(s):
+    """Her action and the ride's layer as they were before Live."""
+    rider = s.rider
+    if rider is not None and s.live_saved_action is not None:
+        rider.animation_data_create()
+        rider.animation_data.action = s.live_saved_action
+        s.live_saved_action = None
+    track = layer.track_of(rider) if rider is not None else None
+    if track is not None:
+        track.mute = False
 
 
 def stop_all():
