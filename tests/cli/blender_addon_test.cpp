@@ -1,8 +1,8 @@
-// The Blender add-on (scripts/blender/stirrup_blender, docs/blender.md) driven headless in Blender 3.4 as a
+// The Blender add-on (blender/stirrup_blender, docs/blender.md) driven headless in Blender 3.4 as a
 // user would drive it: enabled from the build tree (Blender's scripts folder set to build/blender, which
 // holds addons/stirrup_blender), the program found beside it (build/bin/stirrup, PATH holding no other),
-// Rigify's horse meta-rig with its body and keyed walk (scripts/blender-rigify-horse) and Rigify's human
-// (scripts/blender-rigify-rider) imported as a user's characters. The oracle for Ride is the command line:
+// Rigify's horse meta-rig with its body and keyed walk (tests/blender/rigify-horse) and Rigify's human
+// (tests/blender/rigify-rider) imported as a user's characters. The oracle for Ride is the command line:
 // `stirrup character map` and `stirrup bake --rider-only` on the characters as Blender exports them (the
 // test's own export, not the add-on's), her joints taken into the horse's file, which is Blender's world.
 // Skipped, with a message, where `blender` is not installed; the undo test also where `xvfb-run` is not
@@ -35,7 +35,7 @@ fs::path testDir(const std::string& name) { return addonTestDir(name); }
 // keyed on the armature object): made once for every test process of a run.
 fs::path horseFile() { return fs::path(STIRRUP_BINARY_DIR) / "test_blender_addon" / "fixture-horse" / "horse.glb"; }
 BlenderMade madeHorse() {
-  const fs::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
+  const fs::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-horse";
   return madeByBlender(horseFile().parent_path(), script, quote(script.string()) + " " + quote(horseFile().string()) + " --form metarig --bones all --walk");
 }
 

@@ -1,6 +1,6 @@
 // Ride on the rigs Blender animators use (docs/blender.md, "Riding a Rigify rig"): Rigify's generated human
-// (scripts/blender-rigify-rider --blend: 700-odd bones, her DEF- bones driven by constraints from her
-// controls, her body skinned to them) standing 3 m beside Rigify's generated horse (scripts/blender-rigify-
+// (tests/blender/rigify-rider --blend: 700-odd bones, her DEF- bones driven by constraints from her
+// controls, her body skinned to them) standing 3 m beside Rigify's generated horse (tests/blender/rigify-
 // horse --form generated --rigify-stretch: its walk keyed on its leg IK controls, or on its FK controls),
 // both as Blender holds them in a .blend, the add-on enabled from the build tree. What is measured is what
 // Blender shows: her DEF- bones evaluated with every constraint, against the command line's bake of the

@@ -2,7 +2,7 @@
 // scenes/characters/*.glb fails here; scripts/make-characters regenerates them), and bad parameters
 // are one-line errors. `character make humanoid` (standing test characters in other tools' style)
 // writes files the Khronos validator passes, shaped by its options, byte for byte the same each run.
-// scripts/blender-rigify-rider, where Blender is installed, makes a rider in Blender itself (Rigify's
+// tests/blender/rigify-rider, where Blender is installed, makes a rider in Blender itself (Rigify's
 // human meta-rig, generated, skinned, textured) and this file checks what it exported. `character map`
 // prints what it chose, writes a mapping file the importer takes, renders its preview through the
 // normal pipeline, and says in one line what it cannot do; a scene naming a file alone maps it on load.
@@ -234,14 +234,14 @@ TEST(CharacterMakeHumanoid, BadOptionsAreOneLineErrors) {
   EXPECT_NE(help.out.find("--names mixamo|rigify|unreal|vrm|humanik|none"), std::string::npos);
 }
 
-// ---- scripts/blender-rigify-rider: a rider from Blender's own Rigify, exported by Blender's glTF exporter.
+// ---- tests/blender/rigify-rider: a rider from Blender's own Rigify, exported by Blender's glTF exporter.
 TEST(CharacterBlenderRigify, ExportsAnUprightTexturedRiderSkinnedToDefBones) {
   if (runCommand("command -v blender >/dev/null").exit_code != 0)
     GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy): the Rigify rider is not made";
   const fs::path out = tempDir("blender_rigify") / "rigify-rider.glb";
-  const CommandResult r = runCommand(quote(STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider") + " " + quote(out.string()));
+  const CommandResult r = runCommand(quote(STIRRUP_SOURCE_DIR "/tests/blender/rigify-rider") + " " + quote(out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("blender-rigify-rider: wrote"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rigify-rider: wrote"), std::string::npos) << r.out;
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   std::string err, warn;
