@@ -20,10 +20,10 @@ bl_info = {
 
 if "bpy" in locals():  # a reload (F3 > Reload Scripts): take the modules' new code
     import importlib
-    for _m in (program, gltf_files, transforms, layer, controls, export, mapping, reduce, ride, live, check, review, properties, panel):  # noqa: F821
+    for _m in (program, gltf_files, transforms, layer, controls, export, mapping, reduce, tack, ride, live, check, review, properties, panel):  # noqa: F821
         importlib.reload(_m)
 else:
-    from . import program, gltf_files, transforms, layer, controls, export, mapping, reduce, ride, live, check, review, properties, panel
+    from . import program, gltf_files, transforms, layer, controls, export, mapping, reduce, tack, ride, live, check, review, properties, panel
 
 import bpy
 from bpy.app.handlers import persistent

@@ -216,12 +216,13 @@ def _skin_joints(glb, arm):
     return {}
 
 
-def shot(context, horse, rider, horse_map, rider_map, path):
+def shot(context, horse, rider, horse_map, rider_map, path, tack_rig=None):
     """The scene's horse and rider as one shot, as they stand in Blender, rewritten for stirrup (docs/check.md,
     "A baked shot"): the armatures named "horse" and "rider", each mesh node carrying its character's role
     table by bone name (stirrup_role_joints), and in the scene's extras the horse's mapping as the file's
-    world in stirrup's ("stirrup_world", rig/io/gltf_shot.h) and the scene's fps."""
-    export(context, [horse, rider], path, True)
+    world in stirrup's ("stirrup_world", rig/io/gltf_shot.h) and the scene's fps. With the tack's rig
+    (tack.py), the tack goes with the horse: merge_tack."""
+    export(context, [horse, rider] + ([tack_rig] if tack_rig is not None else []), path, True)
     glb = gltf_files.Glb(path)
     nodes = glb.json["nodes"]
     parent = glb.parents()
@@ -238,6 +239,15 @@ def shot(context, horse, rider, horse_map, rider_map, path):
                 nodes[arm_node]["name"] = kind
     if sorted(kind for kind, _ in cast.values()) != ["horse", "rider"]:
         raise program.StirrupError("%s: Blender's exporter wrote no armatures named %s and %s" % (path, horse.name, rider.name))
+    if tack_rig is not None:
+        tack_skin = [k for k, a in roots.items() if a >= 0 and nodes[a].get("name") == tack_rig.name]
+        if not tack_skin:
+            raise program.StirrupError("%s: Blender's exporter wrote no armature named %s" % (path, tack_rig.name))
+        horse_skin = [k for k, (kind, _) in cast.items() if kind == "horse"][0]
+        points = merge_tack(glb, horse_skin, tack_skin[0])
+        cast = {(k if k < tack_skin[0] else k - 1): v for k, v in cast.items()}
+        horse_map = dict(horse_map, roles=dict(horse_map["roles"], **{p: p for p in points}))
+        cast = {k: ((kind, horse_map) if kind == "horse" else (kind, data)) for k, (kind, data) in cast.items()}
     for node in nodes:
         if "skin" in node and node["skin"] in cast:
             node.setdefault("extras", {})["stirrup_role_joints"] = dict(cast[node["skin"]][1]["roles"])
@@ -249,3 +259,43 @@ def shot(context, horse, rider, horse_map, rider_map, path):
     glb.write(path)
     return glb
 
+
+
+def merge_tack(glb, horse_skin, tack_skin):
+    """The tack's rig merged into the horse, for stirrup to read the tack as the horse's (docs/blender.md,
+    "The tack"): the tack's points (the rig's bones that copy none of the horse's) become joints of the
+    horse's skin, with their inverse binds; the tack's meshes are skinned by the horse's skin, a bone that
+    copies the horse's weighted as that bone of the horse's; the tack's skin goes. Returns the points' names."""
+    from .tack import POINTS
+    js = glb.json
+    nodes = js["nodes"]
+    horse, tack = js["skins"][horse_skin], js["skins"][tack_skin]
+    names = [nodes[j]["name"] for j in tack["joints"]]
+    horse_index = {nodes[j]["name"]: k for k, j in enumerate(horse["joints"])}
+    ibm_h = glb.accessor(horse["inverseBindMatrices"])
+    ibm_t = glb.accessor(tack["inverseBindMatrices"])
+    remap, added, extra_ibm = [], [], []
+    for k, name in enumerate(names):
+        if name in POINTS:
+            remap.append(len(horse["joints"]) + len(added))
+            added.append(tack["joints"][k])
+            extra_ibm.append(ibm_t[k])
+        elif name in horse_index:
+            remap.append(horse_index[name])
+        else:
+            raise program.StirrupError("the tack's rig has a bone %s that is no bone of the horse's (expected its points %s or "
+                                       "copies of the horse's bones)" % (name, ", ".join(POINTS)))
+    horse["joints"] = horse["joints"] + added
+    horse["inverseBindMatrices"] = glb.append_accessor(np.vstack([ibm_h] + [np.atleast_2d(m) for m in extra_ibm]), 5126, "MAT4")
+    remap = np.array(remap)
+    for node in nodes:
+        if node.get("skin") == tack_skin:
+            for prim in js["meshes"][node["mesh"]]["primitives"]:
+                joints = glb.accessor(prim["attributes"]["JOINTS_0"]).astype(np.int64)
+                prim["attributes"]["JOINTS_0"] = glb.append_accessor(remap[joints], 5123, "VEC4")
+            node["skin"] = horse_skin
+    del js["skins"][tack_skin]
+    for node in nodes:
+        if node.get("skin", -1) > tack_skin:
+            node["skin"] -= 1
+    return [nodes[j]["name"] for j in added]

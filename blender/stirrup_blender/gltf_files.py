@@ -50,6 +50,23 @@ class Glb:
         if "min" in a:
             a["min"], a["max"] = values.min(axis=0).tolist(), values.max(axis=0).tolist()
 
+    def append_accessor(self, values, component_type, kind):
+        """A new accessor holding `values` (count, components) in a buffer view of its own at the end of the
+        binary chunk; returns its index."""
+        dtype = np.dtype(_TYPES[component_type])
+        data = np.ascontiguousarray(np.asarray(values).astype(dtype))
+        self.bin += b"\0" * (-len(self.bin) % 4)
+        views = self.json.setdefault("bufferViews", [])
+        views.append({"buffer": 0, "byteOffset": len(self.bin), "byteLength": data.nbytes})
+        self.bin += data.tobytes()
+        self.json["buffers"][0]["byteLength"] = len(self.bin)
+        accessors = self.json.setdefault("accessors", [])
+        a = {"bufferView": len(views) - 1, "componentType": component_type, "count": len(data), "type": kind}
+        if kind in ("SCALAR", "VEC2", "VEC3", "VEC4") and component_type == 5126:
+            a["min"], a["max"] = data.reshape(len(data), -1).min(axis=0).tolist(), data.reshape(len(data), -1).max(axis=0).tolist()
+        accessors.append(a)
+        return len(accessors) - 1
+
     def channels(self, node):
         """{path: output accessor} of the animation channels that key `node`."""
         out = {}

@@ -18,7 +18,7 @@ import time
 import bpy
 import numpy as np
 
-from . import controls, export, layer, program, ride, transforms
+from . import controls, export, layer, program, ride, tack, transforms
 
 _session = None
 _errors = []
@@ -63,6 +63,13 @@ class Session:
         # A control rig is posed through its controls, as Ride keys them (controls.py): held at their targets by
         # the helper armature's constraints, so that the evaluation that draws the frame is the only one; the
         # helper and the constraints stay until live is turned off.
+        # The tack's points (tack.py) move with her: posed from the deformations stirrup sends with hers.
+        self.tack_rig, self.tack_poser, self.tack_order = tack.rig_of(scene), None, []
+        tack_joints = ready.get("tack_joints", [])
+        if self.tack_rig is not None and tack_joints:
+            names = [n for n in tack_joints if n in self.tack_rig.data.bones]
+            self.tack_poser = transforms.Poser(self.tack_rig, names, np.eye(4))
+            self.tack_order = [tack_joints.index(n) for n in self.tack_poser.names]
         self.solver = None
         plan = controls.plan_for(p.rider, scene.stirrup.limbs, ride.controls_text(context))
         if plan is not None:
@@ -111,6 +118,9 @@ class Session:
             pose = self.rider_poser.pose_matrices(rider, d[None])[0]
             targets = self.solver.targets({n: pose[k] for k, n in enumerate(self.rider_poser.names)})
             self.solver.hold_at(targets)
+        if self.tack_poser is not None and "tack" in answer:
+            t = np.array(answer["tack"], dtype=np.float64).reshape(-1, 4, 4).transpose(0, 2, 1)[self.tack_order]
+            self.tack_poser.set_pose(self.tack_rig, self.tack_poser.bases(self.tack_rig, t[None])[0])
         self.last_ms = answer.get("ms", 0.0)
         self.updates += 1
 
@@ -235,9 +245,10 @@ def start(context):
     if rider.animation_data and rider.animation_data.action:
         s.live_saved_action = rider.animation_data.action
         rider.animation_data.action = None
-    track = layer.track_of(rider)
-    if track is not None:
-        track.mute = True  # the ride's layer would pose her controls over the live pose
+    for arm in (rider, session.tack_rig):
+        track = layer.track_of(arm) if arm is not None else None
+        if track is not None:
+            track.mute = True  # the ride's layer would pose her (and the tack) over the live pose
     _session = session
     bpy.app.handlers.frame_change_post.append(_on_frame)
     bpy.app.handlers.depsgraph_update_post.append(_on_depsgraph)
@@ -264,9 +275,10 @@ def restore(s):
         rider.animation_data_create()
         rider.animation_data.action = s.live_saved_action
         s.live_saved_action = None
-    track = layer.track_of(rider) if rider is not None else None
-    if track is not None:
-        track.mute = False
+    for arm in (rider, tack.rig_of_quietly(s.id_data)):
+        track = layer.track_of(arm) if arm is not None else None
+        if track is not None:
+            track.mute = False
 
 
 def stop_all():

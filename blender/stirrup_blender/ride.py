@@ -13,7 +13,7 @@ import os
 import bpy
 import numpy as np
 
-from . import controls, export, gltf_files, layer, mapping, program, reduce, transforms
+from . import controls, export, gltf_files, layer, mapping, program, reduce, tack, transforms
 
 
 def chosen(context):
@@ -202,6 +202,7 @@ def ride(context):
     horse, rider = chosen(context)
     plan = controls.plan_for(rider, s.limbs, controls_text(context))
     check_horse(horse)
+    tack.check_replaceable(context.scene)
     p = Prepared(context, export.work_dir(context))
     scene_file = p.write_scene()
     h, r = mapping.to_rig(p.maps["horse"]), mapping.to_rig(p.maps["rider"])
@@ -210,12 +211,14 @@ def ride(context):
     c = np.linalg.inv(h) @ r
     times, rider_d = file_deformations(ride_file, c)
     frames = p.blender_frames(times)
+    # The whole shot baked too: the tack stirrup fits the horse (tack.py), and a generated gait's horse.
+    shot_file = os.path.join(p.work, "ride-shot.glb")
+    program.run(["bake", scene_file, "-o", shot_file], context)
+    fitted_tack = tack.prepare(shot_file, p.horse, p.horse_at_export, h)
     horse_action = None
     if not p.horse_keyed:
-        # A generated gait moves the horse too: stirrup's whole bake, its horse's skin matrices (metres over
-        # centimetres: times 100) taken to the horse's file by H^-1 ... H.
-        shot_file = os.path.join(p.work, "ride-shot.glb")
-        program.run(["bake", scene_file, "-o", shot_file], context)
+        # A generated gait moves the horse: the bake's horse skin matrices (metres over centimetres: times
+        # 100) taken to the horse's file by H^-1 ... H.
         to_horse = np.linalg.inv(h) @ np.diag([100.0, 100.0, 100.0, 1.0])
         _, bake_d = file_deformations(shot_file, to_horse, armature="horse")
         horse_d = {n: d @ h for n, d in bake_d.items()}
@@ -228,7 +231,9 @@ def ride(context):
         p.horse.animation_data_create()
         p.horse.animation_data.action = horse_action
     layer.drop_if_unused(layer.put(p.rider, rider_action, frames[0]))
+    tack.bring(context, fitted_tack, frames)
     line = report_ride(context, p, plan, targets, frames, rider_action, keyed, unsupported, horse_action)
+    line += ("; the tack in the collection \"%s\"" % tack.COLLECTION) if fitted_tack is not None else "; the horse's own tack"
     s.last_ride = line
     return line
 

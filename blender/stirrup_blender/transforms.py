@@ -163,19 +163,20 @@ def _rotation_channels(pb, quats, prev_euler):
     return "rotation_euler", rows
 
 
-def _at_rest(path, values):
+def _at_rest(path, values, atol):
     rest = {"location": 0.0, "scale": 1.0, "rotation_euler": 0.0}
     if path == "rotation_quaternion":
-        return np.allclose(values, [1.0, 0.0, 0.0, 0.0], atol=1e-7) or np.allclose(values, [-1.0, 0.0, 0.0, 0.0], atol=1e-7)
+        return np.allclose(values, [1.0, 0.0, 0.0, 0.0], atol=atol) or np.allclose(values, [-1.0, 0.0, 0.0, 0.0], atol=atol)
     if path == "rotation_axis_angle":
-        return np.allclose(values[:, 0], 0.0, atol=1e-7)
-    return np.allclose(values, rest[path], atol=1e-7)
+        return np.allclose(values[:, 0], 0.0, atol=atol)
+    return np.allclose(values, rest[path], atol=atol)
 
 
-def key_action(arm, name, frames, names, bases, skip_rest=False):
+def key_action(arm, name, frames, names, bases, skip_rest=False, rest_atol=1e-7):
     """A new action named `name` keying the bones `names` at `frames` as `bases` (frames, bones, 4, 4) has
     them: location, rotation in the bone's mode and scale, LINEAR between frames. With skip_rest, a channel
-    at rest on every frame is not keyed (a control the ride leaves alone stays the animator's)."""
+    within rest_atol of rest on every frame is not keyed (a control the ride leaves alone stays the
+    animator's)."""
     action = bpy.data.actions.new(name)
     action.id_root = "OBJECT"
     frames = np.asarray(frames, dtype=np.float64)
@@ -192,7 +193,7 @@ def key_action(arm, name, frames, names, bases, skip_rest=False):
         base = 'pose.bones["%s"].' % bname.replace("\\", "\\\\").replace('"', '\\"')
         for path, rows in (("location", locs), (rot_path, rots), ("scale", scales)):
             values = np.asarray(rows, dtype=np.float64)
-            if skip_rest and _at_rest(path, values):
+            if skip_rest and _at_rest(path, values, rest_atol):
                 continue
             for i in range(values.shape[1]):
                 fc = action.fcurves.new(base + path, index=i, action_group=bname)
