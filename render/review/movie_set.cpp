@@ -309,6 +309,8 @@ MovieFrameMaker::MovieFrameMaker(const MovieJob& job, const MovieOptions& o, con
     : scene_(in.scene),
       shot_(makeShot(in, findCamera(in.scene, job.camera), resolveProfile(in.scene), o.threads)),
       facts_(movieFacts(job, o, in, all)) {
+  // The colour alone, except under reference footage, which may be laid by our matte (LayerCoverage).
+  shot_.setPasses(job.layered == "reference");
   if (job.layered == "rigid") {
     CameraSpec same = shot_.camera();  // exactly the rigged shot's framed camera
     same.view.clear();
