@@ -222,7 +222,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DefaultSceneChecks,
 TEST_F(CheckCli, TheFoxWalkSkatesWhereClipInfoSaysSo) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "the Khronos Fox is not in the data folder (" << fox.string() << ")";
-  const std::string scene = (fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox.json").string();
+  const std::string scene = (fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox/fox.json").string();
   const CommandResult info = runStirrup("clip info " + quote(scene) + " --json");
   ASSERT_EQ(info.exit_code, 0) << info.err;
   const nlohmann::json measured = nlohmann::json::parse(info.out);

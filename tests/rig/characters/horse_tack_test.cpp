@@ -4,7 +4,7 @@
 //    there (worked from the generator's parameters: the barrel ellipsoid's top at x = 10), the treads
 //    74 cm below it at the barrel's sides, the rein ends at the generated rider's grips, a bit at the
 //    mouth; the leathers, irons and reins separate pieces a rider's legs and hands may touch;
-//  * the Khronos Fox as a horse through a mapping that names no tack (scenes/fox-horse-mapping.json)
+//  * the Khronos Fox as a horse through a mapping that names no tack (scenes/fox/fox-horse-mapping.json)
 //    rides the default rider's trot: every frame her seat within 3 cm of where it is on the generated
 //    horse (in the saddle's frame), her feet on the treads, no leg vertex more than 2 cm inside the
 //    horse, every bone of the Fox keeping its length.
@@ -310,7 +310,7 @@ void rideTheTrot(const Character& horse, const Character& rider, const std::stri
 TEST(HorseTack, TheFoxWithoutTackRidesTheDefaultRidersTrot) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
-  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox-horse-mapping.json";
+  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox" / "fox-horse-mapping.json";
   const RigProfile profile = RigProfile::thesis();
   const RiddenPair pair = resolveRiddenPair(fox.string(), mapping.string(), "default", "", profile);
   const Character& horse = pair.horse;
@@ -336,7 +336,7 @@ TEST(HorseTack, TheFoxWithoutTackRidesTheDefaultRidersTrot) {
 TEST(HorseTack, AStandingUserRiderIsSeatedOnTheFoxsTackAndRidesTheTrot) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
-  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox-horse-mapping.json";
+  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox" / "fox-horse-mapping.json";
   const test::UserRiderSpec spec = test::userRiderSpecs().front();
   const test::UserRiderFiles files = test::writeUserRider(spec, fs::path(STIRRUP_BINARY_DIR) / "test_horse_tack");
   const RiddenPair pair = resolveRiddenPair(fox.string(), mapping.string(), files.glb.string(), files.mapping.string(), RigProfile::thesis());
