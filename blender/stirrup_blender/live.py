@@ -125,10 +125,12 @@ class Session:
         self.updates += 1
 
     def update(self, scene, depsgraph, sets=()):
-        """The current frame's horse handed over fresh (with any other frames refreshed), and the rider posed."""
+        """The current frame's horse handed over when stirrup's copy of it is stale (with any other frames
+        refreshed), and the rider posed. During playback with no edit, stirrup holds every frame as Blender
+        shows it (the export it started from, exact: export.exact_joints), so a frame change asks only for her."""
         frame = scene.frame_current
         sets = list(sets)
-        if self.first <= frame <= self.last:
+        if self.first <= frame <= self.last and frame in self.stale:
             sets.append({"frame": frame, "horse": self.horse_frame(depsgraph)})
             self.stale.discard(frame)
         self.busy = True
@@ -208,7 +210,7 @@ def _on_depsgraph(scene, depsgraph):
         _session.frame_changed = False
     if not edited:
         return
-    _session.stale = set(range(_session.first, _session.last + 1)) - {scene.frame_current}
+    _session.stale = set(range(_session.first, _session.last + 1))  # the current frame goes over at once, below
     _session.update(scene, depsgraph)
     if not bpy.app.timers.is_registered(_refresh_tick):
         bpy.app.timers.register(_refresh_tick, first_interval=0.05)

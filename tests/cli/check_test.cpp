@@ -217,7 +217,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DefaultSceneChecks,
                                            "cross_country", "figure_eight", "trail", "ride_out"),
                          [](const ::testing::TestParamInfo<const char*>& i) { return std::string(i.param); });
 
-// The Khronos Fox's walk (a third-party in-place cycle, read as a horse clip by scenes/fox-mapping.json)
+// The Khronos Fox's walk (a third-party in-place cycle, read as a horse clip by scenes/fox/fox-mapping.json)
 // skates: `clip info` reports each hoof sliding while down, and check finds the same hooves sliding.
 TEST_F(CheckCli, TheFoxWalkSkatesWhereClipInfoSaysSo) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb";
