@@ -158,6 +158,7 @@ PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions
   render::SceneSpec scene = benchScene();
   render::applyPreset(scene, preset);
   render::Shot shot(scene, rig::RigProfile::thesis(), scene.cameras.front(), o.threads);
+  shot.setPasses(false);  // PNG frames, as `stirrup render` writes them
   PresetResult r;
   r.name = std::string(preset.name);
   r.samples = preset.samples;
@@ -239,6 +240,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   const auto setup0 = Clock::now();
   render::Shot shot(scene, render::resolveProfile(scene), render::findCamera(scene, o.camera), o.threads);
   shot.setDetailLevel(o.detail);
+  shot.setPasses(false);  // PNG frames, as `stirrup render` writes them
   r.setup_s = render::secondsSince(setup0);
   r.setup = shot.setupTimings();
   // o.frames of the scene's frames, spread evenly over them.
@@ -269,6 +271,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   render::SceneSpec trot_scene = benchScene();
   render::applyPreset(trot_scene, preset);
   render::Shot trot(trot_scene, rig::RigProfile::thesis(), trot_scene.cameras.front(), o.threads);
+  trot.setPasses(false);
   trot.renderFrame(1);
   std::unique_ptr<render::Shot> flat;
   if (scene.terrain && !scene.terrain->flat()) {
@@ -277,6 +280,7 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
     flat = std::make_unique<render::Shot>(flat_scene, render::resolveProfile(flat_scene),
                                           render::findCamera(flat_scene, o.camera), o.threads);
     flat->setDetailLevel(o.detail);
+    flat->setPasses(false);
     flat->renderFrame(frames.front());
   }
   for (std::size_t i = 0; i < frames.size(); ++i) {

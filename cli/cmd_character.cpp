@@ -1,6 +1,6 @@
 // stirrup character make horse|rider [--param value ...] -o FILE.glb: builds a default character (or
 // one with changed proportions) and writes it as a skinned glTF 2.0 binary (docs/characters.md).
-// scripts/make-characters makes scenes/characters/*.glb with it.
+// The build makes scenes/characters/*.glb with it (CMakeLists.txt, the characters target).
 // stirrup character make humanoid [--pose t|a|relaxed] [--names ...] ... -o FILE.glb: a standing test
 // character written the way other tools write theirs (docs/characters.md, "Test characters").
 // stirrup character map FILE.glb --as rider|horse [-o MAP.json] [--preview P.png]: maps a user's

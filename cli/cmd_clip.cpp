@@ -249,7 +249,7 @@ void addClipCommand(CLI::App& app) {
       "A crowd scene's pairs are measured one by one, each its own path (--pair N: only pair N); --json\n"
       "  then gives {\"scene\", \"pairs\": [{\"pair\", \"name\", \"start_offset_s\", \"sections\", \"path\"}]}.\n"
       "Example: stirrup clip info gallop --speed_cm_s 1200\n"
-      "         stirrup clip info ../shared/assets/fox/Fox.glb --mapping scenes/fox-mapping.json --animation Run");
+      "         stirrup clip info ../shared/assets/fox/Fox.glb --mapping scenes/fox/fox-mapping.json --animation Run");
   in->add_option("clip", info->clip, "A .glb/.gltf file, a generator name, or a scene (.json: its clip; a path section by section)")->required();
   in->add_flag("--json", info->json, "Print JSON instead of a table");
   in->add_option("--mapping", info->mapping,

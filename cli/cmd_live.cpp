@@ -1,14 +1,17 @@
 // stirrup live SCENE: the rider kept on a horse another tool keys live (scene/live_rider.h), over a
 // line protocol on stdin and stdout: the Blender add-on's Live toggle (docs/blender.md, "Live").
 //
-//   out, once:   {"ready": true, "horse_joints": [...], "rider_joints": [...], "first": F0, "last": F1, "fps": FPS}
+//   out, once:   {"ready": true, "horse_joints": [...], "rider_joints": [...], "tack_joints": [...], "first": F0,
+//                 "last": F1, "fps": FPS}
 //   in, a line:  {"set": [{"frame": F, "horse": [[16 numbers]...]}...], "get": F}   (either part may be left out)
-//   out, a line: {"frame": F, "rider": [[16 numbers]...], "ms": MS}, or {"ok": true} without "get", or
-//                {"error": "one line"} for a request that could not be answered (the session goes on)
+//   out, a line: {"frame": F, "rider": [[16 numbers]...], "tack": [[16 numbers]...], "ms": MS}, or {"ok": true}
+//                without "get", or {"error": "one line"} for a request that could not be answered (the session goes on)
 //
 // Matrices are deformations (a joint's world times its inverse bind) in the glTF files' space, 16 numbers
 // column by column as glTF writes them; "horse" lists the horse's joints as "horse_joints" names them,
-// "rider" the rider's as "rider_joints" does. The session ends at the end of stdin.
+// "rider" the rider's as "rider_joints" does, "tack" the horse's tack joints (saddle, lStirrup, rStirrup,
+// lRein, rRein: the stirrups at her feet, the rein ends in her hands) as "tack_joints" does, from their rest
+// in the horse's file (scene/live_rider.h). The session ends at the end of stdin.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -64,10 +67,15 @@ nlohmann::json answer(rig::LiveRider& live, const std::string& line) {
   if (!request.contains("get")) return {{"ok", true}};
   if (!request["get"].is_number_integer()) throw InputError("get: expected a frame number");
   const int frame = request["get"].get<int>();
-  nlohmann::json rider = nlohmann::json::array();
-  for (const glm::dmat4& m : live.rider(frame)) rider.push_back(std::vector<double>(glm::value_ptr(m), glm::value_ptr(m) + 16));
+  std::vector<glm::dmat4> tack;
+  const std::vector<glm::dmat4> posed = live.rider(frame, &tack);
+  const auto matrices = [](const std::vector<glm::dmat4>& list) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const glm::dmat4& m : list) out.push_back(std::vector<double>(glm::value_ptr(m), glm::value_ptr(m) + 16));
+    return out;
+  };
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return {{"frame", frame}, {"rider", rider}, {"ms", ms}};
+  return {{"frame", frame}, {"rider", matrices(posed)}, {"tack", matrices(tack)}, {"ms", ms}};
 }
 
 void runLive(const LiveOptions& o) {
@@ -91,8 +99,9 @@ void runLive(const LiveOptions& o) {
     setup.first_frame = frames.front(), setup.last_frame = frames.back();
   }
   rig::LiveRider live(setup);
-  const nlohmann::json ready = {{"ready", true}, {"horse_joints", live.horseJoints()}, {"rider_joints", live.riderJoints()},
-                                {"first", live.firstFrame()}, {"last", live.lastFrame()}, {"fps", scene.fps}};
+  const nlohmann::json ready = {{"ready", true},        {"horse_joints", live.horseJoints()}, {"rider_joints", live.riderJoints()},
+                                {"tack_joints", live.tackJoints()}, {"first", live.firstFrame()},  {"last", live.lastFrame()},
+                                {"fps", scene.fps}};
   std::cout << ready.dump() << std::endl;
   std::string line;
   while (std::getline(std::cin, line)) {

@@ -10,6 +10,8 @@
 #include <set>
 #include <tuple>
 
+#include <sys/resource.h>
+
 #include "cli/commands.h"
 #include "cli/movie_set_options.h"
 #include "cli/options.h"
@@ -37,23 +39,45 @@ struct MoviesOptions {
   std::string timings;  // a TSV of where the time went, movie by movie
 };
 
-// One row a movie: its rendered frames, the seconds its frames took (set-up included) and the seconds
-// its movie, sheet and plot took, in the set's order. Written to a temporary name, then renamed.
+// One row a movie: its rendered frames, the seconds its frames took (set-up included; frames encoded from
+// memory: with the encoding and the sheet) and the seconds its movie, sheet and plot took after them
+// (from memory: the plot), and the encoders' CPU seconds (ffmpeg's: 0 for movies encoded from PNGs, which
+// this table does not count), in the set's order. Written to a temporary name, then renamed.
 void writeTimings(const std::filesystem::path& file, const std::vector<render::MovieResult>& results,
                   const std::vector<double>& render_s, const std::vector<double>& finish_s) {
   rig::replaceFileAtomically(file, [&](const std::filesystem::path& partial) {
     std::ofstream o(partial);
     if (!o) throw InputError("--timings: " + file.string() + ": cannot write (does its folder exist?)");
-    o << "movie\tframes\trender_s\tfinish_s\trender_s_per_frame\n";
+    o << "movie\tframes\trender_s\tfinish_s\trender_s_per_frame\tencode_cpu_s\n";
     char line[512];
     for (std::size_t i = 0; i < results.size(); ++i) {
       const int frames = results[i].frames;
-      std::snprintf(line, sizeof line, "%s\t%d\t%.3f\t%.3f\t%.4f\n", results[i].name.c_str(), frames, render_s[i],
-                    finish_s[i], frames > 0 ? render_s[i] / frames : 0.0);
+      std::snprintf(line, sizeof line, "%s\t%d\t%.3f\t%.3f\t%.4f\t%.3f\n", results[i].name.c_str(), frames, render_s[i],
+                    finish_s[i], frames > 0 ? render_s[i] / frames : 0.0, results[i].encode_cpu_s);
       o << line;
     }
     if (!o.flush()) throw InputError("--timings: " + file.string() + ": write failed");
   });
+}
+
+// The movement's channel plot beside a movie (one a scene file, written once); a glTF shot's rider is
+// posed as the file keys her: no channels of the rig's to plot.
+void addPlot(const render::MovieJob& job, const render::MovieOptions& mo, const std::filesystem::path& out,
+             std::map<std::filesystem::path, std::filesystem::path>& plots, render::MovieResult& result) {
+  if (render::isGltfFile(job.scene)) return;
+  if (!plots.count(job.scene)) plots[job.scene] = render::writeMovementPlot(job.scene, out, mo.allow_impossible);
+  result.plot = plots[job.scene];
+}
+
+// This process's CPU seconds so far, its own and its finished children's (the encoders).
+double cpuSeconds() {
+  double total = 0.0;
+  for (const int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
+    rusage u{};
+    getrusage(who, &u);
+    total += double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  }
+  return total;
 }
 
 void runMovies(const MoviesOptions& o) {
@@ -88,7 +112,20 @@ void runMovies(const MoviesOptions& o) {
   int done = 0;
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> render_s(jobs.size(), 0.0), finish_s(jobs.size(), 0.0);
-  for (std::size_t i = 0; i < jobs.size() && !o.finish; ++i) {
+  // A whole run makes each movie at once, its frames piped to the encoder from memory (frames on disk
+  // only with --keep-frames); a farm's stages (--frames, --finish) and --resume go through the files.
+  const bool from_memory = !o.finish && !o.resume && o.frames.empty();
+  std::vector<render::MovieResult> results;
+  std::map<fs::path, fs::path> plots;  // scene file -> its plot
+  for (std::size_t i = 0; i < jobs.size() && from_memory; ++i) {
+    results.push_back(render::renderMovie(jobs[i], mo, [&] { bar.step(++done); }));
+    render_s[i] = results.back().seconds;
+    const auto plot_start = std::chrono::steady_clock::now();
+    addPlot(jobs[i], mo, out, plots, results.back());
+    finish_s[i] = render::secondsSince(plot_start);
+    results.back().seconds += finish_s[i];
+  }
+  for (std::size_t i = 0; i < jobs.size() && !o.finish && !from_memory; ++i) {
     const auto movie_start = std::chrono::steady_clock::now();
     render::renderMovieFrames(jobs[i], mo, frames[i], o.resume, [&] { bar.step(++done); });
     render_s[i] = render::secondsSince(movie_start);
@@ -96,16 +133,10 @@ void runMovies(const MoviesOptions& o) {
   if (!o.frames.empty()) return;  // a farm task: the finishing job makes the movie
 
   // Stage 2: movies, contact sheets, plots, the index.
-  std::map<fs::path, fs::path> plots;  // scene file -> its plot
-  std::vector<render::MovieResult> results;
-  for (std::size_t i = 0; i < jobs.size(); ++i) {
-    const render::MovieJob& j = jobs[i];
+  for (std::size_t i = 0; i < jobs.size() && !from_memory; ++i) {
     const auto movie_start = std::chrono::steady_clock::now();
-    // A glTF shot's rider is posed as the file keys her: no channels of the rig's to plot.
-    const bool shot = render::isGltfFile(j.scene);
-    if (!shot && !plots.count(j.scene)) plots[j.scene] = render::writeMovementPlot(j.scene, out, mo.allow_impossible);
-    render::MovieResult r = render::finishMovie(j, mo);
-    if (!shot) r.plot = plots[j.scene];
+    render::MovieResult r = render::finishMovie(jobs[i], mo);
+    addPlot(jobs[i], mo, out, plots, r);
     finish_s[i] = render::secondsSince(movie_start);
     r.seconds = render_s[i] + finish_s[i];
     results.push_back(std::move(r));
@@ -115,8 +146,12 @@ void runMovies(const MoviesOptions& o) {
   const fs::path index = render::writeIndexPage(out, results);
   // The one line a script needs; details live in the index.
   std::printf("%s\n", index.string().c_str());
-  if (o.progress || isatty(STDERR_FILENO))
-    std::fprintf(stderr, "%zu movies, %d frames in %.1f s\n", results.size(), total, seconds);
+  if (o.progress || isatty(STDERR_FILENO)) {
+    double encode_s = 0.0;
+    for (const render::MovieResult& r : results) encode_s += r.encode_cpu_s;
+    std::fprintf(stderr, "%zu movies, %d frames in %.1f s; CPU %.1f s, of which the encoders %.1f s\n", results.size(),
+                 total, seconds, cpuSeconds(), encode_s);
+  }
 }
 
 }  // namespace

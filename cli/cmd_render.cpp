@@ -117,6 +117,7 @@ void runRender(const RenderOptions& o) {
   const int png_level = o.png_compression >= 0 ? o.png_compression : render::defaultPngCompression(scene);
   render::Shot shot = in.file ? render::Shot(std::make_shared<render::ShotEvaluator>(*in.file, profile, o.threads), shown, o.threads)
                               : render::Shot(scene, profile, shown, o.threads);
+  shot.setPasses(exr);  // PNG frames need the colour alone
   ProgressBar bar("render " + scene.name + "_" + camera.name, static_cast<int>(frames.size()), o.progress);
   // The frames to render (with --resume, those not yet written), so each can be evaluated while the
   // one before it traces (render::Shot::renderFrame's next frame).

@@ -70,8 +70,8 @@ void addSpineCommand(CLI::App& app) {
       "  \"chain_deficit\" (1 - sum of chords / length), ...}]}.\n"
       "  A joint's rotation maps bone axes to world: x along the bone to the next joint, y forward at rest.\n"
       "--plot draws every pose: x-y and z-y views side by side (grey FK, blue curve, orange chain).\n"
-      "Example: stirrup spine scenes/spine-demo.json --plot docs/images/curve-spine.png");
-  cmd->add_option("input", opts->input, "Spine poses (JSON), e.g. scenes/spine-demo.json")->required();
+      "Example: stirrup spine scenes/spine/demo.json --plot docs/images/curve-spine.png");
+  cmd->add_option("input", opts->input, "Spine poses (JSON), e.g. scenes/spine/demo.json")->required();
   cmd->add_option("-o,--output", opts->output, "Write the result JSON here (default: standard output)");
   cmd->add_option("--plot", opts->plot, "Draw every pose into this image (PNG)");
   cmd->callback([opts] { runSpine(*opts); });

@@ -93,6 +93,9 @@ class Shot {
   // pure function of the frame. A next frame that is not the one rendered next is evaluated again.
   Image renderFrame(int frame, std::optional<int> next_frame, RayLog* log = nullptr);
   Renderer& renderer() { return *renderer_; }
+  // Frames with the passes (depth, matte, normal, object id: EXR frames, a matte layer; the default) or
+  // the colour alone (PNG frames): Renderer::setPasses.
+  void setPasses(bool passes) { renderer_->setPasses(passes); }
   // The characters it evaluates (every pair of the scene).
   ShotEvaluator& characters() { return *characters_; }
   const std::shared_ptr<ShotEvaluator>& sharedCharacters() const { return characters_; }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <numeric>
@@ -10,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/type_precision.hpp>
 
+#include "rig/tack_part.h"
 #include "rig/texture.h"
 
 namespace stirrup::rig {
@@ -31,11 +33,27 @@ struct SkinnedMesh {
   std::vector<std::int32_t> triangle_textures;           // per triangle: index into textures, or -1
   std::vector<std::shared_ptr<const Texture>> textures;  // shared: a character's copies share the images
 
+  // A horse's tack, part by part (rig/tack_part.h): per vertex, the part it belongs to (None: the body);
+  // empty for a mesh without tack. A triangle belongs to its first vertex's part, as it takes that
+  // vertex's colour. Only the glTF writer reads it (rig/io/gltf_tack.h): nothing drawn depends on it.
+  std::vector<TackPart> tack_parts;
+
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return indices.size() / 3; }
   bool textured() const { return !textures.empty(); }
   // Triangle t's texture, or -1.
   int triangleTexture(std::size_t t) const { return triangle_textures.empty() ? -1 : triangle_textures[t]; }
+  TackPart tackPart(std::size_t v) const { return tack_parts.empty() ? TackPart::None : tack_parts[v]; }
+  TackPart triangleTackPart(std::size_t t) const { return tackPart(indices[t * 3]); }
+  bool hasTack() const {
+    return std::any_of(tack_parts.begin(), tack_parts.end(), [](TackPart p) { return p != TackPart::None; });
+  }
+  // Labels the vertices from `first` to the last as `part`, the others keeping theirs (None where unlabelled).
+  void labelTack(std::size_t first, TackPart part) {
+    if (tack_parts.empty() && part == TackPart::None) return;
+    tack_parts.resize(positions.size(), TackPart::None);
+    std::fill(tack_parts.begin() + std::ptrdiff_t(std::min(first, positions.size())), tack_parts.end(), part);
+  }
 };
 
 // Reorders the triangles so each base colour and texture (a triangle's colour is its first vertex's)

@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/bake.h"
+#include "rig/characters/horse_tack.h"
 #include "rig/error.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
@@ -68,6 +69,8 @@ struct LiveRider::Impl {
   std::vector<int> horse_nodes;           // each horse joint's node
   std::vector<glm::dmat4> bind;           // each horse joint's world at bind (its inverse bind inverted)
   std::vector<int> rider_index;           // each rider joint's index in the rider's skeleton
+  std::vector<std::string> tack_joints;
+  std::vector<int> tack_index;            // each tack joint's index in the horse's skeleton
   std::vector<std::vector<glm::dmat4>> table;  // node worlds, frame by frame from first_frame
   std::unique_ptr<KeyedHorseClip> clip;   // null after a frame changed
   glm::dmat4 from_horse_rig{1.0}, rider_to_rig{1.0};
@@ -96,6 +99,10 @@ LiveRider::LiveRider(const LiveRiderSetup& setup) : impl_(std::make_unique<Impl>
   const Skeleton& rs = setup.rider->skeleton;
   for (std::size_t j = 0; j < rs.size(); ++j)
     if (!rs.joints[j].rig_point) m.rider_joints.push_back(rs.joints[j].name), m.rider_index.push_back(int(j));
+  const Skeleton& hs = setup.horse->skeleton;
+  for (const char* role : kHorseTackRoles)
+    if (const auto it = setup.horse->roles.find(role); it != setup.horse->roles.end())
+      m.tack_joints.push_back(hs.joints[std::size_t(it->second)].name), m.tack_index.push_back(it->second);
   // The horse's own animation (every animation of the file together; none: its rest) until frames come in.
   const GltfAnimation own = GltfAnimation::together(m.model, file);
   for (int f = setup.first_frame; f <= setup.last_frame; ++f) m.table.push_back(own.worlds(f / setup.fps));
@@ -112,6 +119,7 @@ LiveRider::~LiveRider() = default;
 
 const std::vector<std::string>& LiveRider::horseJoints() const { return impl_->horse_joints; }
 const std::vector<std::string>& LiveRider::riderJoints() const { return impl_->rider_joints; }
+const std::vector<std::string>& LiveRider::tackJoints() const { return impl_->tack_joints; }
 int LiveRider::firstFrame() const { return impl_->setup.first_frame; }
 int LiveRider::lastFrame() const { return impl_->setup.last_frame; }
 
@@ -128,7 +136,7 @@ void LiveRider::setHorse(int frame, const std::vector<glm::dmat4>& deformations)
   m.clip.reset();
 }
 
-std::vector<glm::dmat4> LiveRider::rider(int frame) {
+std::vector<glm::dmat4> LiveRider::rider(int frame, std::vector<glm::dmat4>* tack) {
   Impl& m = *impl_;
   if (!m.clip) m.makeClip();
   // The tool's frame F plays the clip at F / fps, its first frame at the clip's start.
@@ -139,6 +147,13 @@ std::vector<glm::dmat4> LiveRider::rider(int frame) {
   out.reserve(m.rider_index.size());
   for (const int j : m.rider_index)
     out.push_back(m.from_horse_rig * glm::dmat4(pose.rider[std::size_t(j)]) * glm::dmat4(m.setup.rider->skeleton.skinBind(j)) * m.rider_to_rig);
+  if (tack) {
+    // The tack as poseMounted leaves it: the stirrups at her feet, the rein ends in her hands.
+    tack->clear();
+    for (const int j : m.tack_index)
+      tack->push_back(m.from_horse_rig * glm::dmat4(pose.horse[std::size_t(j)]) * glm::dmat4(m.setup.horse->skeleton.skinBind(j)) *
+                      m.setup.horse->source.to_rig);
+  }
   return out;
 }
 

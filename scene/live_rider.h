@@ -15,6 +15,12 @@
 //           keys (R^-1 S R, rig/io/gltf_rider_motion.h) taken from her file to the horse's, which is the
 //           tool's world: it poses her bones there whatever either armature's object transform.
 //
+//   and with it the horse's tack (kHorseTackRoles: the saddle, the stirrup treads, the rein hand ends) as
+//           stirrup poses it under her (rig::placeStirrups, rig::placeReins): each tack joint as a
+//           deformation from its rest in the horse's file to where it is, in the horse's file's space:
+//           H^-1 T H, T stirrup's skin matrix of the joint, H the horse's to_rig (what a mesh bound to the
+//           joint at rest in the horse's file needs to follow it, as her joints are handed out).
+//
 // The rider's motion at a frame reads the horse over about a second around it (the travel frame fitted
 // to its trunk, rig/io/keyed_horse_clip.h): the frames handed in make a table of the horse's joints, its
 // motion linear between frames, and the clip is made again from the table when a frame of it has changed
@@ -53,14 +59,18 @@ class LiveRider {
   // The horse's skin joints, in the order a frame hands them in; the rider's joints, in the order they come out.
   const std::vector<std::string>& horseJoints() const;
   const std::vector<std::string>& riderJoints() const;
+  // The horse's tack joints (the joints of its tack roles, kHorseTackRoles order: saddle, lStirrup,
+  // rStirrup, lRein, rRein; its own where it names them, else the rig's points), in the order they come out.
+  const std::vector<std::string>& tackJoints() const;
   int firstFrame() const;
   int lastFrame() const;
 
   // The horse at the tool's frame `frame` (first..last): one deformation per horseJoints(). A frame outside
   // the range or another count is an InputError.
   void setHorse(int frame, const std::vector<glm::dmat4>& deformations);
-  // The rider at the tool's frame `frame` (any: the horse holds its first and last frames beyond them).
-  std::vector<glm::dmat4> rider(int frame);
+  // The rider at the tool's frame `frame` (any: the horse holds its first and last frames beyond them),
+  // and, when `tack` is given, the horse's tack there: one deformation per tackJoints().
+  std::vector<glm::dmat4> rider(int frame, std::vector<glm::dmat4>* tack = nullptr);
 
  private:
   struct Impl;

@@ -58,23 +58,44 @@ inline BlenderMade madeByBlender(const std::filesystem::path& dir, const std::fi
   return made;
 }
 
-// Blender's own Rigify human (scripts/blender-rigify-rider), made once for every test that rides her:
-// the file's path, or empty with `made.ok` false and the script's output in `made.log`.
+// Blender's own Rigify human (tests/blender/rigify-rider), made once for every test that rides her:
+// the glTF file's path, or empty with `made.ok` false and the script's output in `made.log`. The same run
+// saves her as a .blend beside it (blenderRigifyRiderBlend): the generated rig with its controls, as an
+// animator has her in Blender.
 inline std::filesystem::path blenderRigifyRider(BlenderMade* made = nullptr) {
   const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_blender_riders" / "rigify";
-  const std::filesystem::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-rider";
-  const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' '" + (dir / "rigify-rider.glb").string() + "'");
+  const std::filesystem::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-rider";
+  const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' '" + (dir / "rigify-rider.glb").string() + "' --blend '" +
+                                                       (dir / "rigify-rider.blend").string() + "'");
   if (made) *made = m;
   return m.ok ? dir / "rigify-rider.glb" : std::filesystem::path();
 }
 
-// Blender's Rigify horse with its keyed walk (scripts/blender-rigify-horse OPTIONS --walk), made once for
+inline std::filesystem::path blenderRigifyRiderBlend(BlenderMade* made = nullptr) {
+  const std::filesystem::path glb = blenderRigifyRider(made);
+  return glb.empty() ? glb : glb.parent_path() / "rigify-rider.blend";
+}
+
+// Rigify's generated horse as an animator has it (tests/blender/rigify-horse --form generated, Rigify's
+// own IK stretch kept), its 48-frame walk keyed on the leg IK controls (ik.blend) and on the FK controls
+// (fk.blend), each with its thin body skinned to its DEF- bones: the folder holding both, made once.
+inline std::filesystem::path blenderRigifyHorses(BlenderMade* made = nullptr) {
+  const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_blender_riders" / "rigify-horses";
+  const std::filesystem::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-horse";
+  const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' --batch '" + dir.string() +
+                                                       "' 'ik:--form generated --walk --rigify-stretch --blend ik.blend'"
+                                                       " 'fk:--form generated --walk --walk-controls fk --rigify-stretch --blend fk.blend'");
+  if (made) *made = m;
+  return m.ok ? dir : std::filesystem::path();
+}
+
+// Blender's Rigify horse with its keyed walk (tests/blender/rigify-horse OPTIONS --walk), made once for
 // every test that rides it, in STIRRUP_BINARY_DIR/test_own_horse/NAME: horse.glb and, as the oracle of its
 // walk, blender.json (Blender's own world place of every joint at every frame). The folder, or empty
 // with `made.ok` false and the script's output in `made.log`.
 inline std::filesystem::path blenderRigifyHorse(const std::string& name, const std::string& options, BlenderMade* made = nullptr) {
   const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_own_horse" / name;
-  const std::filesystem::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
+  const std::filesystem::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-horse";
   const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' '" + (dir / "horse.glb").string() + "' " + options +
                                                        " --walk --expected '" + (dir / "blender.json").string() + "'");
   if (made) *made = m;

@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <optional>
+#include <utility>
 
 #include "render/review/burn_in.h"
 #include "render/review/channel_plot.h"
@@ -272,16 +274,103 @@ std::vector<fs::path> movieFrameFiles(const MovieJob& job, const MovieOptions& o
   return movieFrameFiles(job, o, frame, movieSheetFrames(job, o));
 }
 
+namespace {
+
+// What a movie's frames are made of, set up once a movie whichever way it is made (stage 1's files, or
+// renderMovie's frames in memory): the shot, the rigid rider's beside it or the reference footage, how
+// they are laid side by side, and what the burn-ins say.
+class MovieFrameMaker {
+ public:
+  MovieFrameMaker(const MovieJob& job, const MovieOptions& o, const MovieInput& in, const std::vector<int>& all);
+  // Frame f composed (both panels, or the footage laid over), before its burn-ins; `next` is the
+  // frame made after it, evaluated while f traces (Shot::renderFrame).
+  Image compose(int f, std::optional<int> next);
+  // The burn-ins (and the panels' labels) on a composed frame.
+  void burnIn(Image& image, int f) const {
+    render::burnIn(image, facts_, f);
+    if (style_.mode == LayerMode::SideBySide) labelPanels(image, panel_labels_);
+  }
+  const BurnInFacts& facts() const { return facts_; }
+
+ private:
+  static Shot makeShot(const MovieInput& in, const CameraSpec& camera, const rig::RigProfile& profile, int threads) {
+    // A glTF shot's pairs through the same evaluator and tracer as `stirrup render SHOT.glb`.
+    return in.file ? Shot(std::make_shared<ShotEvaluator>(*in.file, profile, threads), camera, threads)
+                   : Shot(in.scene, profile, camera, threads);
+  }
+
+  const SceneSpec& scene_;
+  Shot shot_;
+  std::unique_ptr<Shot> rigid_;
+  std::optional<FootageSequence> footage_;
+  LayerStyle style_;
+  std::vector<std::string> panel_labels_;
+  BurnInFacts facts_;
+};
+
+MovieFrameMaker::MovieFrameMaker(const MovieJob& job, const MovieOptions& o, const MovieInput& in,
+                                 const std::vector<int>& all)
+    : scene_(in.scene),
+      shot_(makeShot(in, findCamera(in.scene, job.camera), resolveProfile(in.scene), o.threads)),
+      facts_(movieFacts(job, o, in, all)) {
+  // The colour alone, except under reference footage, which may be laid by our matte (LayerCoverage).
+  shot_.setPasses(job.layered == "reference");
+  if (job.layered == "rigid") {
+    CameraSpec same = shot_.camera();  // exactly the rigged shot's framed camera
+    same.view.clear();
+    rigid_ = std::make_unique<Shot>(shot_.sharedCharacters(), same, o.threads);  // the same characters, read once
+    rigid_->setRigidRider(true);
+    panel_labels_ = {"rigged rider (stirrup)", "rider fixed to the saddle"};
+    style_.mode = LayerMode::SideBySide;
+    style_.labels = false;  // labelled below the burn-in band instead (labelPanels)
+  } else if (job.layered == "reference") {
+    const ReferenceSpec ref = sceneReference(scene_).value_or(muybridgePlate(o.reference_dir));
+    if (!referenceAvailable(ref)) throw InputError(job.scene.string() + ": reference: " + ref.file.string() + ": not found");
+    footage_ = openReference(ref, job.scene.string() + ": reference");
+    style_ = referenceStyle(ref, "STIRRUP");
+    if (style_.mode == LayerMode::SideBySide) {
+      panel_labels_ = {"stirrup", ref.label};
+      style_.labels = false;
+    }
+  } else if (!job.layered.empty()) {
+    throw InputError(job.name + ": layered: expected \"rigid\" or \"reference\", got \"" + job.layered + "\"");
+  }
+}
+
+Image MovieFrameMaker::compose(int f, std::optional<int> next) {
+  // Each frame evaluated while the one before traces (Shot::renderFrame); the rigid panel's shot
+  // shares the characters and takes its turn after, each joining its evaluation before it returns.
+  warnImpossibleFrame(scene_, f);
+  Image image = shot_.renderFrame(f, next);
+  if (rigid_) return layerFrame(image, rigid_->renderFrame(f, next), style_);
+  if (footage_) {
+    const std::optional<int> theirs = footage_->theirFrame(f);
+    const Image other = style_.mode == LayerMode::SideBySide && theirs ? footage_->source(*theirs)
+                                                                       : footage_->frame(f, image.width, image.height);
+    return layerFrame(image, other, style_);
+  }
+  return image;
+}
+
+// A movie's frames, checked: the job's frames (all of them, cut to frames_limit), or InputError.
+std::vector<int> checkedFrames(const MovieJob& job, const MovieOptions& o, const MovieInput& in) {
+  if (in.file && !job.layered.empty())
+    throw InputError(job.name + ": " + shotViewRefusal("layered") + " (" + job.scene.string() + ")");
+  std::vector<int> all = movieFrames(job, in.scene, o);
+  if (all.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
+  return all;
+}
+
+std::optional<int> nextFrame(const std::vector<int>& frames, std::size_t k) {
+  return k + 1 < frames.size() ? std::optional<int>(frames[k + 1]) : std::nullopt;
+}
+
+}  // namespace
+
 int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vector<int>& wanted, bool resume,
                       const std::function<void()>& frame_done) {
   const MovieInput in = loadForMovie(job, o);
-  const SceneSpec& scene = in.scene;
-  if (in.file && !job.layered.empty())
-    throw InputError(job.name + ": " + shotViewRefusal("layered") + " (" + job.scene.string() + ")");
-  const CameraSpec& camera = findCamera(scene, job.camera);
-  const rig::RigProfile profile = resolveProfile(scene);
-  const std::vector<int> all = movieFrames(job, scene, o);
-  if (all.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
+  const std::vector<int> all = checkedFrames(job, o, in);
   for (int f : wanted)
     if (std::find(all.begin(), all.end(), f) == all.end())
       throw InputError(job.name + ": frame " + std::to_string(f) + " is not one of the movie's frames (" +
@@ -295,60 +384,18 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
   }
   if (frames.empty()) return 0;
 
-  // A glTF shot's pairs through the same evaluator and tracer as `stirrup render SHOT.glb`.
-  Shot shot = in.file ? Shot(std::make_shared<ShotEvaluator>(*in.file, profile, o.threads), camera, o.threads)
-                      : Shot(scene, profile, camera, o.threads);
-  std::unique_ptr<Shot> rigid;
-  std::optional<FootageSequence> footage;
-  LayerStyle style;
-  std::vector<std::string> panel_labels;
-  if (job.layered == "rigid") {
-    CameraSpec same = shot.camera();  // exactly the rigged shot's framed camera
-    same.view.clear();
-    rigid = std::make_unique<Shot>(shot.sharedCharacters(), same, o.threads);  // the same characters, read once
-    rigid->setRigidRider(true);
-    panel_labels = {"rigged rider (stirrup)", "rider fixed to the saddle"};
-    style.mode = LayerMode::SideBySide;
-    style.labels = false;  // labelled below the burn-in band instead (labelPanels)
-  } else if (job.layered == "reference") {
-    const ReferenceSpec ref = sceneReference(scene).value_or(muybridgePlate(o.reference_dir));
-    if (!referenceAvailable(ref)) throw InputError(job.scene.string() + ": reference: " + ref.file.string() + ": not found");
-    footage = openReference(ref, job.scene.string() + ": reference");
-    style = referenceStyle(ref, "STIRRUP");
-    if (style.mode == LayerMode::SideBySide) {
-      panel_labels = {"stirrup", ref.label};
-      style.labels = false;
-    }
-  } else if (!job.layered.empty()) {
-    throw InputError(job.name + ": layered: expected \"rigid\" or \"reference\", got \"" + job.layered + "\"");
-  }
-
-  const BurnInFacts facts = movieFacts(job, o, in, all);
+  MovieFrameMaker maker(job, o, in, all);
   fs::create_directories(frameDir(job, o));
   // Burn-ins and the writes of frame f happen on the writer's thread while f + 1 renders.
   FrameWriter writer;
-  const bool side_by_side = style.mode == LayerMode::SideBySide;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const int f = frames[k];
-    // Each frame evaluated while the one before traces (Shot::renderFrame); the rigid panel's shot
-    // shares the characters and takes its turn after, each joining its evaluation before it returns.
-    const std::optional<int> next = k + 1 < frames.size() ? std::optional<int>(frames[k + 1]) : std::nullopt;
-    warnImpossibleFrame(scene, f);
-    Image image = shot.renderFrame(f, next);
-    if (rigid) {
-      image = layerFrame(image, rigid->renderFrame(f, next), style);
-    } else if (footage) {
-      const std::optional<int> theirs = footage->theirFrame(f);
-      const Image other = style.mode == LayerMode::SideBySide && theirs ? footage->source(*theirs)
-                                                                        : footage->frame(f, image.width, image.height);
-      image = layerFrame(image, other, style);
-    }
+    Image image = maker.compose(f, nextFrame(frames, k));
     const bool sheet = onSheet(sheet_frames, f);
-    writer.submit([image = std::move(image), &facts, &panel_labels, side_by_side, f, sheet,
-                   png = framePng(job, o, f), exr = sheetExr(job, o, f)]() mutable {
+    writer.submit([image = std::move(image), &maker, f, sheet, png = framePng(job, o, f),
+                   exr = sheetExr(job, o, f)]() mutable {
       if (sheet) writeRgbaExr(image, exr);  // before the PNG: a PNG present means the frame is whole
-      burnIn(image, facts, f);
-      if (side_by_side) labelPanels(image, panel_labels);
+      maker.burnIn(image, f);
       writePng(image, png);
     });
     if (frame_done) frame_done();
@@ -356,6 +403,43 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
   writer.wait();
   return static_cast<int>(frames.size());
 }
+
+namespace {
+
+// What a movie is, as the index lists it, before anything is encoded.
+MovieResult describeMovie(const MovieJob& job, const SceneSpec& scene, const BurnInFacts& facts,
+                          const std::vector<int>& frames) {
+  MovieResult result;
+  result.name = job.name;
+  result.scene = scene.name;
+  result.view = facts.view;
+  result.movement = facts.movement;
+  result.profile = facts.profile;
+  result.fps = scene.fps;
+  result.frames = static_cast<int>(frames.size());
+  // The slate: one second before the first frame.
+  result.slate_frames = std::max(1, static_cast<int>(std::lround(scene.fps)));
+  return result;
+}
+
+// The movies a job makes (NAME.mp4, NAME.mov), each with its codec.
+std::vector<std::pair<fs::path, MovieCodec>> movieFiles(const MovieJob& job, const MovieOptions& o) {
+  std::vector<std::pair<fs::path, MovieCodec>> files;
+  if (o.mp4) files.emplace_back(o.out / (job.name + ".mp4"), MovieCodec::H264);
+  if (o.mov) files.emplace_back(o.out / (job.name + ".mov"), o.mov_codec);
+  return files;
+}
+
+void writeSheet(const MovieJob& job, const MovieOptions& o, const SceneSpec& scene, const std::vector<ContactFrame>& sheet,
+                MovieResult& result) {
+  result.contact_sheet = o.out / (job.name + "_sheet.png");
+  writeContactSheet(job.name + "  (" + scene.name + ", " + result.view + ", profile " + result.profile + ")", sheet,
+                    result.contact_sheet);
+}
+
+fs::path slatePng(const MovieJob& job, const MovieOptions& o) { return frameDir(job, o) / (job.name + ".slate.png"); }
+
+}  // namespace
 
 MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
   const MovieInput in = loadForMovie(job, o);
@@ -374,36 +458,17 @@ MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
   for (int f : sheet_frames) sheet.push_back({f, readRgbaExr(sheetExr(job, o, f))});
 
   const BurnInFacts facts = movieFacts(job, o, in, frames);
-  MovieResult result;
-  result.name = job.name;
-  result.scene = scene.name;
-  result.view = facts.view;
-  result.movement = facts.movement;
-  result.profile = facts.profile;
-  result.fps = scene.fps;
-  result.frames = static_cast<int>(frames.size());
-
-  // The slate: one second before the first frame, at the frames' size.
-  const int slate_frames = std::max(1, static_cast<int>(std::lround(scene.fps)));
-  const fs::path slate_file = frameDir(job, o) / (job.name + ".slate.png");
+  MovieResult result = describeMovie(job, scene, facts, frames);
+  // The slate at the frames' size.
+  const fs::path slate_file = slatePng(job, o);
   writePng(makeSlate(sheet.front().image.width, sheet.front().image.height, facts), slate_file);
-  std::vector<fs::path> playlist(static_cast<std::size_t>(slate_frames), slate_file);
+  std::vector<fs::path> playlist(static_cast<std::size_t>(result.slate_frames), slate_file);
   playlist.insert(playlist.end(), files.begin(), files.end());
-  result.slate_frames = slate_frames;
-
-  if (o.mp4) {
-    const fs::path movie = o.out / (job.name + ".mp4");
-    encodeMovie({playlist, scene.fps, movie, 18, MovieCodec::H264});
+  for (const auto& [movie, codec] : movieFiles(job, o)) {
+    encodeMovie({playlist, scene.fps, movie, 18, codec});
     result.movies.push_back(movie);
   }
-  if (o.mov) {
-    const fs::path movie = o.out / (job.name + ".mov");
-    encodeMovie({playlist, scene.fps, movie, 18, o.mov_codec});
-    result.movies.push_back(movie);
-  }
-  result.contact_sheet = o.out / (job.name + "_sheet.png");
-  writeContactSheet(job.name + "  (" + scene.name + ", " + result.view + ", profile " + result.profile + ")", sheet,
-                    result.contact_sheet);
+  writeSheet(job, o, scene, sheet, result);
   if (!o.keep_frames) {
     std::error_code ec;
     fs::remove_all(frameDir(job, o), ec);
@@ -414,10 +479,92 @@ MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
   return result;
 }
 
+namespace {
+
+// A movie's encoders fed from memory (MovieEncoder), started at its first frame, whose size they take:
+// the slate first, then each frame. With keep_frames the same frames (and the slate) are also written
+// as stage 1 writes them, for a look or a later --finish.
+class MovieStreams {
+ public:
+  MovieStreams(const MovieJob& job, const MovieOptions& o, const BurnInFacts& facts, int slate_frames, double fps)
+      : job_(job), o_(o), facts_(facts), slate_frames_(slate_frames), fps_(fps) {}
+
+  // Frame f, burnt in.
+  void add(const Image& image, int f) {
+    if (!started_) start(image.width, image.height);
+    bytes_.resize(image.pixelCount() * 3);
+    encodeSrgb8(image.rgba, bytes_);
+    for (auto& e : encoders_) e->addFrame(bytes_);
+    if (o_.keep_frames) writePng(image, framePng(job_, o_, f));
+  }
+  // Waits for the encoders; returns the movies and the encoders' CPU seconds.
+  double finish(std::vector<fs::path>& movies) {
+    double cpu_s = 0.0;
+    for (auto& e : encoders_) {
+      e->finish();
+      cpu_s += e->cpuSeconds();
+    }
+    for (const auto& file : movieFiles(job_, o_)) movies.push_back(file.first);
+    return cpu_s;
+  }
+
+ private:
+  void start(int width, int height) {
+    started_ = true;
+    const Image slate = makeSlate(width, height, facts_);
+    if (o_.keep_frames) writePng(slate, slatePng(job_, o_));
+    bytes_.resize(slate.pixelCount() * 3);
+    encodeSrgb8(slate.rgba, bytes_);
+    for (const auto& [movie, codec] : movieFiles(job_, o_)) {
+      encoders_.push_back(std::make_unique<MovieEncoder>(MovieEncoder::Spec{movie, fps_, 18, codec}, width, height));
+      for (int k = 0; k < slate_frames_; ++k) encoders_.back()->addFrame(bytes_);
+    }
+  }
+
+  const MovieJob& job_;
+  const MovieOptions& o_;
+  const BurnInFacts& facts_;
+  int slate_frames_;
+  double fps_;
+  std::vector<std::unique_ptr<MovieEncoder>> encoders_;
+  std::vector<uint8_t> bytes_;  // the frame being sent, reused
+  bool started_ = false;
+};
+
+}  // namespace
+
 MovieResult renderMovie(const MovieJob& job, const MovieOptions& o, const std::function<void()>& frame_done) {
   const auto start = std::chrono::steady_clock::now();
-  renderMovieFrames(job, o, {}, false, frame_done);
-  MovieResult result = finishMovie(job, o);
+  const MovieInput in = loadForMovie(job, o);
+  const std::vector<int> frames = checkedFrames(job, o, in);
+  const std::vector<int> sheet_frames = contactFrames(frames, o.contact_count);
+  MovieFrameMaker maker(job, o, in, frames);
+  MovieResult result = describeMovie(job, in.scene, maker.facts(), frames);
+  if (o.keep_frames) fs::create_directories(frameDir(job, o));
+  MovieStreams streams(job, o, maker.facts(), result.slate_frames, in.scene.fps);
+  std::vector<ContactFrame> sheet;
+  {
+    // Burn-ins and the encoding of frame f happen on the writer's thread while f + 1 renders; the
+    // encoders (ffmpeg's own threads) take what the tracer leaves of the cores.
+    FrameWriter writer;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      const int f = frames[k];
+      Image image = maker.compose(f, nextFrame(frames, k));
+      if (onSheet(sheet_frames, f)) {  // the sheet's frames without burn-ins, as stage 1 keeps them
+        Image plain(image.width, image.height);
+        plain.rgba = image.rgba;
+        sheet.push_back({f, std::move(plain)});
+      }
+      writer.submit([image = std::move(image), &maker, &streams, f]() mutable {
+        maker.burnIn(image, f);
+        streams.add(image, f);
+      });
+      if (frame_done) frame_done();
+    }
+    writer.wait();
+  }
+  result.encode_cpu_s = streams.finish(result.movies);
+  writeSheet(job, o, in.scene, sheet, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -70,6 +70,7 @@ struct MovieResult {
   int slate_frames = 0;
   double fps = 24.0;
   double seconds = 0.0;                       // wall time to render and encode
+  double encode_cpu_s = 0.0;                  // renderMovie: the encoders' (ffmpeg's) CPU seconds
 };
 
 // The frames `job` renders with `options`, in playing order (the scene's or the job's frames, cut to
@@ -105,8 +106,12 @@ std::vector<std::filesystem::path> movieFrameFiles(const MovieJob& job, const Mo
 // removed unless keep_frames. InputError naming the first missing frame (nothing is encoded then).
 MovieResult finishMovie(const MovieJob& job, const MovieOptions& options);
 
-// Both stages: renders one movie; `frame_done` is called after each frame. Throws stirrup::InputError on
-// bad input and std::runtime_error when encoding fails (no movie is left then).
+// One movie at once, its frames never on disk: each frame rendered and burnt in goes straight to the
+// encoders (MovieEncoder, ffmpeg reading raw frames on a pipe) while the next one renders, and the
+// contact sheet is made from the frames kept in memory. The movie's pixels are those stage 2 makes from
+// stage 1's PNGs. With keep_frames the frames and the slate are also written as stage 1 writes them
+// (NAME.####.png, NAME.slate.png). `frame_done` is called after each frame. Throws stirrup::InputError
+// on bad input and std::runtime_error when encoding fails (no movie is left then).
 MovieResult renderMovie(const MovieJob& job, const MovieOptions& options,
                         const std::function<void()>& frame_done = {});
 

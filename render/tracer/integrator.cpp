@@ -413,8 +413,27 @@ void Integrator::characterPass(TileScratch& scratch) const {
 
 // Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
 // In lanes first: the flat ground's surface (and the whole light of open ground, most of a review
-// frame) where no character is nearer, and the sky behind every sample.
+// frame) where no character is nearer, and the sky behind every sample. Then every other surface a
+// sample sees is gathered into the surface lanes, shaded there, and its rays queued.
 void Integrator::surfacePass(const LaneConstants& constants, TileScratch& scratch, RayTally& tally) const {
+  groundAndSkyLanes(constants, scratch);
+  const std::size_t m = gatherSurfaces(scratch);
+  SurfaceLanes& surfaces = scratch.surfaces;
+  surfaces.setSize(m);
+  // The surfaces' sun and sky points, in lanes: slot k of surface m is point k * stride + m.
+  for (uint32_t k = 0; k < light_spp_; ++k)
+    stratifiedLanes(sun_layout_, scratch.sun_points, k * surfaces.stride, surfaces.padded, surfaces.sun_u.data(),
+                    surfaces.sun_v.data());
+  for (uint32_t k = 0; k < ao_spp_; ++k)
+    stratifiedLanes(sky_layout_, scratch.sky_points, k * surfaces.stride, surfaces.padded, surfaces.sky_u.data(),
+                    surfaces.sky_v.data());
+  hitSurfaceLanes(constants, surfaces);
+  shadingLanes(constants, surfaces);
+  queueOcclusionRays(scratch, tally);
+}
+
+// The ground where a sample sees it (t_shade: no character nearer) and the sky behind every sample.
+void Integrator::groundAndSkyLanes(const LaneConstants& constants, TileScratch& scratch) const {
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = scratch.samples.size();
   for (std::size_t k = 0; k < n; ++k) {
@@ -428,10 +447,16 @@ void Integrator::surfacePass(const LaneConstants& constants, TileScratch& scratc
     groundLanes(constants, lanes);
   }
   skyLanes(constants, lanes);
-  // Then every other surface a sample sees, gathered into the surface lanes in sample order: a
-  // character's hit triangle (its vertices' normals and colours), or the ground's surface.
+}
+
+// Each sample resolved where the lanes know its light (open ground, sky), else its surface gathered
+// into the surface lanes in sample order (a character's hit triangle, its vertices' normals and
+// colours, or the ground's surface) with its pixel's sun and sky sequences, set up when a pixel's first
+// sample needs them. Returns the number of surfaces.
+std::size_t Integrator::gatherSurfaces(TileScratch& scratch) const {
+  const CameraLanes& lanes = scratch.lanes;
   SurfaceLanes& surfaces = scratch.surfaces;
-  surfaces.reserve(n, int(light_spp_), int(ao_spp_));
+  surfaces.reserve(scratch.samples.size(), int(light_spp_), int(ao_spp_));
   StratifiedLanes &sun_points = scratch.sun_points, &sky_points = scratch.sky_points;
   sun_points.resize(surfaces.stride * light_spp_);
   sky_points.resize(surfaces.stride * ao_spp_);
@@ -472,25 +497,20 @@ void Integrator::surfacePass(const LaneConstants& constants, TileScratch& scratc
       ++m;
     }
   }
-  surfaces.setSize(m);
-  // The surfaces' sun and sky points, in lanes: slot k of surface m is point k * stride + m.
-  for (uint32_t k = 0; k < light_spp_; ++k)
-    stratifiedLanes(sun_layout_, sun_points, k * surfaces.stride, surfaces.padded, surfaces.sun_u.data(),
-                    surfaces.sun_v.data());
-  for (uint32_t k = 0; k < ao_spp_; ++k)
-    stratifiedLanes(sky_layout_, sky_points, k * surfaces.stride, surfaces.padded, surfaces.sky_u.data(),
-                    surfaces.sky_v.data());
-  hitSurfaceLanes(constants, surfaces);
-  shadingLanes(constants, surfaces);
-  // The shadow and sky rays that carry light, queued in sample order (each sample's sun rays, then
-  // its sky rays) for the box test.
+  return m;
+}
+
+// What the shading lanes left for each surface, back into its sample, and the shadow and sky rays that
+// carry light, queued in sample order (each sample's sun rays, then its sky rays) for the box test.
+void Integrator::queueOcclusionRays(TileScratch& scratch, RayTally& tally) const {
+  const SurfaceLanes& S = scratch.surfaces;
+  const std::size_t m = S.size;
   RayLanes& occluders = scratch.occluders;
   occluders.start(m * (light_spp_ + ao_spp_));
   scratch.occluder_is_sky.resize(m * (light_spp_ + ao_spp_));
   for (TileScratch::CameraSample& sample : scratch.samples) {
     if (sample.surface < 0) continue;
     const std::size_t s = std::size_t(sample.surface);
-    const SurfaceLanes& S = surfaces;
     sample.depth = S.depth[s];
     sample.normal = {S.nx[s], S.ny[s], S.nz[s]};
     sample.diffuse = {S.diffuse_r[s], S.diffuse_g[s], S.diffuse_b[s]};

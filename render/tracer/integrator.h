@@ -143,6 +143,11 @@ class Integrator {
   void groundPass(const LaneConstants& constants, TileScratch& scratch) const;
   void characterPass(TileScratch& scratch) const;
   void surfacePass(const LaneConstants& constants, TileScratch& scratch, RayTally& tally) const;
+  // surfacePass's steps, in order: the ground and the sky in lanes, the other surfaces gathered into the
+  // surface lanes (returns how many), and after the shading kernels, the shadow and sky rays queued.
+  void groundAndSkyLanes(const LaneConstants& constants, TileScratch& scratch) const;
+  std::size_t gatherSurfaces(TileScratch& scratch) const;
+  void queueOcclusionRays(TileScratch& scratch, RayTally& tally) const;
   void occluderPass(const LaneConstants& constants, TileScratch& scratch) const;
   void occlusionPass(TileScratch& scratch) const;
   void resolvePass(int count, TileScratch& scratch, PixelResult* out) const;

@@ -148,6 +148,10 @@ class Renderer {
   // seconds. The scene must be committed for the logged frame (call right after render()).
   double replay(const RayLog& log);
 
+  // Whether the next frames also fill Image::depth, matte, normal and object_id (RenderSettings::passes):
+  // EXR frames and a matte layer need them, a PNG's colour does not (they are a quarter of a frame's
+  // memory traffic at one sample a pixel). The colour is the same either way.
+  void setPasses(bool passes) { settings_.passes = passes; }
   const RenderSettings& settings() const { return settings_; }
   const RenderStats& lastStats() const { return stats_; }
 

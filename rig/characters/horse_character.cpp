@@ -172,30 +172,35 @@ void addLeg(const HorseParams& p, const HorseJoints& j, int leg, Character& c, I
   body.add(sole);
 }
 
-// Saddle pad, flaps and girth (shells around the barrel cut to a box) and the saddle's seat, pommel and
-// cantle, crisp against the coat.
+// Saddle pad, flaps and girth (shells around the barrel cut to a box: the "saddle pad") and the saddle's
+// seat, pommel and cantle (the "saddle"), crisp against the coat.
 void addSaddleShapes(const HorseParams& p, const HorseJoints& j, ImplicitBody& body) {
-  body.add(barrelShell(p, 1.8f, {j.seat.x - 28.0f, j.seat.y - 44.0f, -100.0f}, {j.seat.x + 28.0f, 300.0f, 100.0f},
-                       j.saddle, p.pad));
-  body.add(barrelShell(p, 3.2f, {j.seat.x - 16.0f, j.seat.y - 38.0f, -100.0f}, {j.seat.x + 22.0f, 300.0f, 100.0f},
-                       j.saddle, p.leather));
-  body.add(barrelShell(p, 1.0f, {j.seat.x + 16.0f, -100.0f, -100.0f}, {j.seat.x + 21.0f, j.seat.y - 36.0f, 100.0f},
-                       j.saddle, p.leather));
-  body.add(ellipsoid(j.seat + glm::vec3(-2.0f, -6.0f, 0.0f), {24.0f, 6.0f, 14.0f}, j.saddle, p.leather, 2.0f));
-  body.add(ellipsoid(j.seat + glm::vec3(22.0f, 1.0f, 0.0f), {7.0f, 7.0f, 10.0f}, j.saddle, p.leather, 3.0f));
-  body.add(ellipsoid(j.seat + glm::vec3(-22.0f, 3.0f, 0.0f), {5.5f, 8.0f, 13.0f}, j.saddle, p.leather, 3.0f,
-                     {1.0f, 0.5f, 0.0f}));
+  const auto part = [&](ImplicitPrimitive prim, TackPart tack) {
+    prim.tack_part = tack;
+    body.add(prim);
+  };
+  part(barrelShell(p, 1.8f, {j.seat.x - 28.0f, j.seat.y - 44.0f, -100.0f}, {j.seat.x + 28.0f, 300.0f, 100.0f}, j.saddle, p.pad),
+       TackPart::SaddlePad);
+  part(barrelShell(p, 3.2f, {j.seat.x - 16.0f, j.seat.y - 38.0f, -100.0f}, {j.seat.x + 22.0f, 300.0f, 100.0f}, j.saddle, p.leather),
+       TackPart::SaddlePad);
+  part(barrelShell(p, 1.0f, {j.seat.x + 16.0f, -100.0f, -100.0f}, {j.seat.x + 21.0f, j.seat.y - 36.0f, 100.0f}, j.saddle, p.leather),
+       TackPart::SaddlePad);
+  part(ellipsoid(j.seat + glm::vec3(-2.0f, -6.0f, 0.0f), {24.0f, 6.0f, 14.0f}, j.saddle, p.leather, 2.0f), TackPart::Saddle);
+  part(ellipsoid(j.seat + glm::vec3(22.0f, 1.0f, 0.0f), {7.0f, 7.0f, 10.0f}, j.saddle, p.leather, 3.0f), TackPart::Saddle);
+  part(ellipsoid(j.seat + glm::vec3(-22.0f, 3.0f, 0.0f), {5.5f, 8.0f, 13.0f}, j.saddle, p.leather, 3.0f, {1.0f, 0.5f, 0.0f}),
+       TackPart::Saddle);
 }
 
 // Thin tack as tubes on the polygonized mesh: stirrup leathers and irons, bridle, bit and reins (whose
 // hand ends are joints of their own).
 void addThinTack(const HorseParams& p, const HorseJoints& j, Character& c) {
   Skeleton& s = c.skeleton;
-  auto tube = [&](std::initializer_list<TubePoint> pts, float radius, glm::vec3 color, float sag = 0.0f) {
+  auto tube = [&](TackPart part, std::initializer_list<TubePoint> pts, float radius, glm::vec3 color, float sag = 0.0f) {
     TubeParams tp;
     tp.radius = radius;
     tp.color = color;
     tp.sag = sag;
+    tp.part = part;
     tp.sides = radius < 0.9f ? 6 : 8;
     appendTube(c.mesh, std::span<const TubePoint>(pts.begin(), pts.size()), tp);
   };
@@ -204,9 +209,9 @@ void addThinTack(const HorseParams& p, const HorseJoints& j, Character& c) {
     const glm::vec3 tread = s.restPosition(js);
     const glm::vec3 top = tread + glm::vec3(0.0f, 12.0f, 0.0f);
     const glm::vec3 a = tread + glm::vec3(0.0f, 0.0f, -5.5f), b = tread + glm::vec3(0.0f, 0.0f, 5.5f);
-    tube({{{j.seat.x, j.seat.y - 28.0f, (p.barrel_radii.z + 4.2f) * side}, j.saddle}, {top, js}}, p.strap_radius,
+    tube(stirrupLeather(side), {{{j.seat.x, j.seat.y - 28.0f, (p.barrel_radii.z + 4.2f) * side}, j.saddle}, {top, js}}, p.strap_radius,
          p.leather);
-    tube({{top, js}, {a + glm::vec3(0.0f, 2.0f, 0.0f), js}, {a, js}, {b, js}, {b + glm::vec3(0.0f, 2.0f, 0.0f), js},
+    tube(stirrupIron(side), {{top, js}, {a + glm::vec3(0.0f, 2.0f, 0.0f), js}, {a, js}, {b, js}, {b + glm::vec3(0.0f, 2.0f, 0.0f), js},
           {top, js}},
          0.7f, p.metal);
   }
@@ -215,24 +220,24 @@ void addThinTack(const HorseParams& p, const HorseJoints& j, Character& c) {
   const glm::vec3 crown = p.poll + glm::vec3(-3.0f, 8.5f, 0.0f);
   const glm::vec3 nose = p.poll + (p.muzzle - p.poll) * 0.68f + glm::vec3(1.5f, 6.0f, 0.0f);
   const float nz = p.muzzle_radius + 1.6f;
-  tube({{crown + glm::vec3(0.0f, -6.0f, -hz), j.head}, {crown + glm::vec3(0.0f, 0.0f, -hz * 0.6f), j.head},
+  tube(TackPart::Bridle, {{crown + glm::vec3(0.0f, -6.0f, -hz), j.head}, {crown + glm::vec3(0.0f, 0.0f, -hz * 0.6f), j.head},
         {crown + glm::vec3(0.0f, 0.0f, hz * 0.6f), j.head}, {crown + glm::vec3(0.0f, -6.0f, hz), j.head}},
        p.strap_radius, p.leather);
-  tube({{nose + glm::vec3(-2.0f, -10.0f, -nz), j.head}, {nose + glm::vec3(0.0f, 0.0f, -nz), j.head},
+  tube(TackPart::Bridle, {{nose + glm::vec3(-2.0f, -10.0f, -nz), j.head}, {nose + glm::vec3(0.0f, 0.0f, -nz), j.head},
         {nose + glm::vec3(0.0f, 1.5f, 0.0f), j.head}, {nose + glm::vec3(0.0f, 0.0f, nz), j.head},
         {nose + glm::vec3(-2.0f, -10.0f, nz), j.head}},
        p.strap_radius, p.leather);
-  tube({{bit_l + glm::vec3(0.0f, 0.0f, -1.0f), j.head}, {bit_r + glm::vec3(0.0f, 0.0f, 1.0f), j.head}}, 0.6f, p.metal);
+  tube(TackPart::Bit, {{bit_l + glm::vec3(0.0f, 0.0f, -1.0f), j.head}, {bit_r + glm::vec3(0.0f, 0.0f, 1.0f), j.head}}, 0.6f, p.metal);
   for (float side : {-1.0f, 1.0f}) {
     const glm::vec3 bit = side < 0 ? bit_l : bit_r;
-    tube({{crown + glm::vec3(0.0f, -6.0f, hz * side), j.head}, {bit + glm::vec3(0.0f, 1.0f, 0.0f), j.head}},
+    tube(TackPart::Bridle, {{crown + glm::vec3(0.0f, -6.0f, hz * side), j.head}, {bit + glm::vec3(0.0f, 1.0f, 0.0f), j.head}},
          p.strap_radius, p.leather);
     const glm::vec3 mid = p.neck_mid + glm::vec3(4.0f, 2.0f, (p.neck_mid_radius + 2.0f) * side);
     const glm::vec3 hand = j.seat + mirrorZ(p.mount.rein_grip, -side);
     // The hand end is its own joint, which placeReins moves to the rider's hand every frame.
     const int rein = addJointAt(s, side < 0 ? "lRein" : "rRein", j.saddle, hand);
     c.roles[side < 0 ? "lRein" : "rRein"] = rein;
-    tube({{bit, j.head}, {mid, j.neck2}, {hand, rein}}, p.rein_radius, p.leather, 3.0f);
+    tube(TackPart::Reins, {{bit, j.head}, {mid, j.neck2}, {hand, rein}}, p.rein_radius, p.leather, 3.0f);
   }
 }
 

@@ -73,6 +73,12 @@ void appendMesh(SkinnedMesh& to, const SkinnedMesh& from) {
   to.joints.insert(to.joints.end(), from.joints.begin(), from.joints.end());
   to.weights.insert(to.weights.end(), from.weights.begin(), from.weights.end());
   for (std::uint32_t i : from.indices) to.indices.push_back(base + i);
+  if (!from.tack_parts.empty()) {
+    to.tack_parts.resize(base, TackPart::None);
+    to.tack_parts.insert(to.tack_parts.end(), from.tack_parts.begin(), from.tack_parts.end());
+  } else {
+    to.labelTack(base, TackPart::None);
+  }
   // The tack is untextured: its own colours.
   if (to.textured()) {
     to.uvs.resize(to.positions.size(), glm::vec2(0.0f));
@@ -80,10 +86,12 @@ void appendMesh(SkinnedMesh& to, const SkinnedMesh& from) {
   }
 }
 
-// A shell around the barrel (inflated by `offset`) cut to a box, as the generator's pad, flaps and girth.
+// A shell around the barrel (inflated by `offset`) cut to a box, as the generator's pad, flaps and girth
+// (the "saddle pad" part).
 ImplicitPrimitive barrelShell(glm::vec3 centre, glm::vec3 radii, float offset, glm::vec3 clip_min, glm::vec3 clip_max,
                               int joint, glm::vec3 color) {
   ImplicitPrimitive s = ellipsoid(centre, radii + offset, joint, color, 0.3f);
+  s.tack_part = TackPart::SaddlePad;
   s.clip_min = clip_min;
   s.clip_max = clip_max;
   s.clip_round = 2.0f;
@@ -221,17 +229,21 @@ SkinnedMesh saddleMesh(const SeatPlace& at, int saddle, const HorseTackParams& p
                          {seat.x + 22.0f, seat.y + 50.0f, mid_z + far}, saddle, p.leather));
   shapes.add(barrelShell(barrel_centre, barrel_radii, 1.0f, {seat.x + 16.0f, at.bottom - 10.0f, mid_z - far},
                          {seat.x + 21.0f, seat.y - 36.0f, mid_z + far}, saddle, p.leather));
-  shapes.add(ellipsoid(seat + glm::vec3(-2.0f, -6.0f, 0.0f), {24.0f, 6.0f, 14.0f}, saddle, p.leather, 2.0f));
-  shapes.add(ellipsoid(seat + glm::vec3(22.0f, 1.0f, 0.0f), {7.0f, 7.0f, 10.0f}, saddle, p.leather, 3.0f));
-  shapes.add(ellipsoid(seat + glm::vec3(-22.0f, 3.0f, 0.0f), {5.5f, 8.0f, 13.0f}, saddle, p.leather, 3.0f, {1.0f, 0.5f, 0.0f}));
+  for (ImplicitPrimitive seat_part : {ellipsoid(seat + glm::vec3(-2.0f, -6.0f, 0.0f), {24.0f, 6.0f, 14.0f}, saddle, p.leather, 2.0f),
+                                      ellipsoid(seat + glm::vec3(22.0f, 1.0f, 0.0f), {7.0f, 7.0f, 10.0f}, saddle, p.leather, 3.0f),
+                                      ellipsoid(seat + glm::vec3(-22.0f, 3.0f, 0.0f), {5.5f, 8.0f, 13.0f}, saddle, p.leather, 3.0f, {1.0f, 0.5f, 0.0f})}) {
+    seat_part.tack_part = TackPart::Saddle;  // the seat, pommel and cantle
+    shapes.add(seat_part);
+  }
   PolygonizeParams poly;
   poly.cell = p.cell;
   poly.skin_falloff = 3.0f;
   return polygonize(shapes, poly);
 }
 
-void addTube(SkinnedMesh& mesh, std::initializer_list<TubePoint> pts, float radius, glm::vec3 color, float sag = 0.0f) {
+void addTube(SkinnedMesh& mesh, TackPart part, std::initializer_list<TubePoint> pts, float radius, glm::vec3 color, float sag = 0.0f) {
   TubeParams tp;
+  tp.part = part;
   tp.radius = radius;
   tp.color = color;
   tp.sag = sag;
@@ -328,7 +340,7 @@ glm::vec3 addBridle(SkinnedMesh& tack, const Character& horse, const HeadFrame& 
   centre.z = mid_z;
   const glm::vec3 bit_l = centre - glm::vec3(0.0f, 0.0f, mouth_half + 0.5f);
   bit_r = centre + glm::vec3(0.0f, 0.0f, mouth_half + 0.5f);
-  addTube(tack, {{bit_l + glm::vec3(0.0f, 0.0f, -1.0f), head}, {bit_r + glm::vec3(0.0f, 0.0f, 1.0f), head}}, 0.6f, p.metal);
+  addTube(tack, TackPart::Bit, {{bit_l + glm::vec3(0.0f, 0.0f, -1.0f), head}, {bit_r + glm::vec3(0.0f, 0.0f, 1.0f), head}}, 0.6f, p.metal);
   // The headstall: the cheek pieces from the bit up over the crown behind the ears' line (across the
   // head at the poll), at the bit's depth below the crown.
   float crown = 0.0f, crown_half = 0.0f;
@@ -338,10 +350,10 @@ glm::vec3 addBridle(SkinnedMesh& tack, const Character& horse, const HeadFrame& 
   const float hz = crown_half + 0.3f;
   const glm::vec3 cheek = h.poll + h.jaw * bit_depth, top = h.poll + h.jaw * (crown - 0.3f);
   const auto at = [&](glm::vec3 q, float z) { return glm::vec3(q.x, q.y, mid_z + z); };
-  addTube(tack, {{at(cheek, -hz), head}, {at(top, -0.6f * hz), head}, {at(top, 0.6f * hz), head}, {at(cheek, hz), head}}, p.strap_radius,
+  addTube(tack, TackPart::Bridle, {{at(cheek, -hz), head}, {at(top, -0.6f * hz), head}, {at(top, 0.6f * hz), head}, {at(cheek, hz), head}}, p.strap_radius,
           p.leather);
   for (float side : {-1.0f, 1.0f})
-    addTube(tack, {{at(cheek, hz * side), head}, {(side < 0 ? bit_l : bit_r) - h.jaw, head}}, p.strap_radius, p.leather);
+    addTube(tack, TackPart::Bridle, {{at(cheek, hz * side), head}, {(side < 0 ? bit_l : bit_r) - h.jaw, head}}, p.strap_radius, p.leather);
   return bit_l;
 }
 
@@ -413,6 +425,7 @@ void addReins(SkinnedMesh& tack, const Character& horse, const HeadFrame& h, con
     tp.color = p.leather;
     tp.sag = pts.size() > 3 ? 0.0f : 3.0f;  // carried over the skin the rein is taut there
     tp.sides = p.rein_radius < 0.9f ? 6 : 8;
+    tp.part = TackPart::Reins;
     appendTube(tack, pts, tp);
   }
 }
@@ -467,8 +480,8 @@ HorseTackReport addHorseTack(Character& horse, const std::string& file, const Ho
     const glm::vec3 tread = side < 0 ? l_tread : r_tread;
     const glm::vec3 up = tread + glm::vec3(0.0f, 12.0f, 0.0f);
     const glm::vec3 a = tread + glm::vec3(0.0f, 0.0f, -5.5f), b = tread + glm::vec3(0.0f, 0.0f, 5.5f);
-    addTube(tack, {{{seat.x, seat.y - 28.0f, at.mid_z + (at.half_width + 4.2f) * side}, saddle}, {up, js}}, p.strap_radius, p.leather);
-    addTube(tack, {{up, js}, {a + glm::vec3(0.0f, 2.0f, 0.0f), js}, {a, js}, {b, js}, {b + glm::vec3(0.0f, 2.0f, 0.0f), js}, {up, js}},
+    addTube(tack, stirrupLeather(side), {{{seat.x, seat.y - 28.0f, at.mid_z + (at.half_width + 4.2f) * side}, saddle}, {up, js}}, p.strap_radius, p.leather);
+    addTube(tack, stirrupIron(side), {{up, js}, {a + glm::vec3(0.0f, 2.0f, 0.0f), js}, {a, js}, {b, js}, {b + glm::vec3(0.0f, 2.0f, 0.0f), js}, {up, js}},
             0.7f, p.metal);
   }
   glm::vec3 bit_r(0.0f);

@@ -295,8 +295,8 @@ void joinCells(const std::vector<float>& field, const FieldGrid& grid, const std
       }
 }
 
-// 4. Per vertex: settle onto the zero set, normal from the gradient, colour of the nearest primitive,
-// weights falling off with distance past the nearest joint's primitives.
+// 4. Per vertex: settle onto the zero set, normal from the gradient, colour (and tack part) of the nearest
+// primitive, weights falling off with distance past the nearest joint's primitives.
 void settleVertices(const ImplicitBody& body, const PreparedBody& prepared, const PolygonizeParams& params,
                     SkinnedMesh& mesh) {
   const float h = params.cell;
@@ -306,6 +306,8 @@ void settleVertices(const ImplicitBody& body, const PreparedBody& prepared, cons
   mesh.colors.resize(nv);
   mesh.joints.resize(nv);
   mesh.weights.resize(nv);
+  const bool tack = std::any_of(body.primitives.begin(), body.primitives.end(), [](const ImplicitPrimitive& p) { return p.tack_part != TackPart::None; });
+  if (tack) mesh.tack_parts.assign(nv, TackPart::None);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::pair<float, int>> per_joint;
     std::vector<int> near;
@@ -339,6 +341,7 @@ void settleVertices(const ImplicitBody& body, const PreparedBody& prepared, cons
         if (d < nearest) {
           nearest = d;
           mesh.colors[v] = prim.color;
+          if (tack) mesh.tack_parts[v] = prim.tack_part;
         }
         auto it = std::find_if(per_joint.begin(), per_joint.end(),
                                [&](const auto& e) { return e.second == prim.joint; });

@@ -35,6 +35,9 @@ struct ImplicitPrimitive {
   glm::vec3 color{0.5f};
   // Primitives that only shape the surface (a fillet) but should not colour it or pull weights.
   bool paints = true;
+  // The part of a horse's tack it makes (None: the body). Each vertex takes the part of the primitive
+  // that gives it its colour (SkinnedMesh::tack_parts), so the part's surface is the one painted so.
+  TackPart tack_part = TackPart::None;
 };
 
 ImplicitPrimitive taperedCapsule(glm::vec3 a, glm::vec3 b, float ra, float rb, int joint,

@@ -60,7 +60,7 @@ struct StandingHumanoidParams {
   bool ground_root = false;       // a root joint on the ground below the pelvis (Unreal's "root", VRoid's "Root")
   // Clavicles, upper arms and thighs parented to the root (or none: roots of their own) instead of the
   // trunk: what Blender's deform-bones-only glTF export of a Rigify rig gives, since their Blender
-  // parents are the rig's ORG- and MCH- bones (scripts/blender-rigify-rider makes such a file).
+  // parents are the rig's ORG- and MCH- bones (tests/blender/rigify-rider makes such a file).
   bool detached_limbs = false;
 
   // Proportions, fractions of the height (Winter 2009, Fig. 4.1).

@@ -91,6 +91,7 @@ void appendTube(SkinnedMesh& mesh, std::span<const TubePoint> points, const Tube
     mesh.indices.insert(mesh.indices.end(), {start, base + (k + 1) % sides, base + k});
     mesh.indices.insert(mesh.indices.end(), {end, last + k, last + (k + 1) % sides});
   }
+  mesh.labelTack(base, params.part);
 }
 
 }  // namespace stirrup::rig

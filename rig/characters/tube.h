@@ -22,6 +22,7 @@ struct TubeParams {
   float ring_spacing = 3.0f;  // cm between rings along the tube
   float sag = 0.0f;           // cm the middle droops (downward, -Y), like a slack rein
   glm::vec3 color{0.0f};
+  TackPart part = TackPart::None;  // the part of a horse's tack it is (SkinnedMesh::tack_parts)
 };
 
 // Appends a closed tube (capped at both ends) along the polyline to mesh.

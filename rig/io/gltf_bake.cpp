@@ -99,16 +99,22 @@ PairNodes appendPair(tinygltf::Model& model, std::vector<unsigned char>& bin, co
   for (int which = 0; which < 2; ++which) {
     const Character& c = which == 0 ? *pair.horse : *pair.rider;
     const std::string role = which == 0 ? "horse:" : "rider:";
-    GltfCharacterNodes n = appendCharacterGltf(model, bin, c, role);
+    // The horse's tack a mesh node a part beside its body's (rig/io/gltf_tack.h), fitting its armature.
+    GltfCharacterNodes n = appendCharacterGltf(model, bin, c, role, which == 0);
+    for (const int node : n.tack_nodes) model.nodes[std::size_t(node)].extras.Get<tinygltf::Value::Object>()["stirrup_fits"] = tinygltf::Value(named + "horse");
     if (!named.empty()) {
       // Each armature is its own and named after its pair; its joints keep their skeleton's own names,
       // so one script drives every pair's bones.
-      model.nodes[std::size_t(n.mesh_node)].name.insert(0, named);
       model.skins[std::size_t(n.skin)].name.insert(0, named);
-      tinygltf::Mesh& mesh = model.meshes[std::size_t(model.nodes[std::size_t(n.mesh_node)].mesh)];
-      mesh.name.insert(0, named);
-      for (const tinygltf::Primitive& prim : mesh.primitives)
-        if (prim.material >= 0) model.materials[std::size_t(prim.material)].name.insert(0, named);
+      std::vector<int> mesh_nodes = n.tack_nodes;
+      mesh_nodes.insert(mesh_nodes.begin(), n.mesh_node);
+      for (const int node : mesh_nodes) {
+        model.nodes[std::size_t(node)].name.insert(0, named);
+        tinygltf::Mesh& mesh = model.meshes[std::size_t(model.nodes[std::size_t(node)].mesh)];
+        mesh.name.insert(0, named);
+        for (const tinygltf::Primitive& prim : mesh.primitives)
+          if (prim.material >= 0) model.materials[std::size_t(prim.material)].name.insert(0, named);
+      }
     }
     (which == 0 ? p.horse : p.rider) = n;
   }
@@ -288,7 +294,11 @@ std::vector<unsigned char> bakedShotGlb(const BakedShot& shot) {
   tinygltf::Scene scene;
   scene.name = shot.name;
   for (const PairNodes& p : pair_nodes) scene.nodes.insert(scene.nodes.end(), {p.horse_root, p.rider_root});
-  for (const PairNodes& p : pair_nodes) scene.nodes.insert(scene.nodes.end(), {p.horse.mesh_node, p.rider.mesh_node});
+  for (const PairNodes& p : pair_nodes) {
+    scene.nodes.push_back(p.horse.mesh_node);
+    scene.nodes.insert(scene.nodes.end(), p.horse.tack_nodes.begin(), p.horse.tack_nodes.end());
+    scene.nodes.push_back(p.rider.mesh_node);
+  }
   scene.nodes.insert(scene.nodes.end(), camera_nodes.begin(), camera_nodes.end());
   if (ground_root >= 0) scene.nodes.push_back(ground_root);
   tinygltf::Value::Object extras;

@@ -29,6 +29,7 @@
 #include "rig/io/gltf_extras.h"
 #include "rig/io/gltf_mapping.h"
 #include "rig/io/gltf_nodes.h"
+#include "rig/io/gltf_tack.h"
 #include "rig/io/gltf_texture.h"
 #include "rig/mapping/auto_mapping.h"
 #include "rig/mapping/mapping_skeleton.h"
@@ -113,8 +114,126 @@ int appendIndexAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin,
   return static_cast<int>(model.accessors.size()) - 1;
 }
 
+namespace {
+
+// Writes a character's mesh piece by piece (rig/io/gltf_tack.h GltfMeshPiece): its vertices' attributes,
+// then its triangles as one primitive per run of one base colour (a triangle's colour is its first
+// vertex's) and texture, in the order the runs first appear, a material per colour and texture.
+struct MeshPieceWriter {
+  tinygltf::Model& model;
+  std::vector<unsigned char>& bin;
+  const Character& c;
+  const std::string& prefix;
+  std::vector<int> textures;  // the mesh's textures in the file, written with the first textured piece
+
+  // The accessors of the piece's vertices (with "_TACK_PART" where `tack_attribute`): a primitive's
+  // attributes, shared by the piece's primitives.
+  tinygltf::Primitive attributes(const GltfMeshPiece& piece, bool tack_attribute) {
+    const SkinnedMesh& m = c.mesh;
+    const std::size_t nv = piece.vertices.empty() ? m.vertexCount() : piece.vertices.size();
+    const auto vertex = [&](std::size_t i) { return piece.vertices.empty() ? i : std::size_t(piece.vertices[i]); };
+    std::vector<float> pos(nv * 3), nor(nv * 3), col(nv * 3), wts(nv * 4);
+    std::vector<std::uint16_t> jts(nv * 4);
+    for (std::size_t i = 0; i < nv; ++i) {
+      const std::size_t v = vertex(i);
+      for (int k = 0; k < 3; ++k) {
+        pos[i * 3 + k] = m.positions[v][k];
+        nor[i * 3 + k] = m.normals[v][k];
+        col[i * 3 + k] = m.colors[v][k];
+      }
+      for (int k = 0; k < 4; ++k) {
+        wts[i * 4 + k] = m.weights[v][k];
+        jts[i * 4 + k] = m.weights[v][k] > 0.0f ? m.joints[v][k] : 0;
+      }
+    }
+    tinygltf::Primitive proto;
+    proto.mode = TINYGLTF_MODE_TRIANGLES;
+    proto.attributes["POSITION"] = appendFloatAccessor(model, bin, pos, 3, true, TINYGLTF_TARGET_ARRAY_BUFFER);
+    proto.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+    proto.attributes["_COLOR"] = appendFloatAccessor(model, bin, col, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+    proto.attributes["WEIGHTS_0"] = appendFloatAccessor(model, bin, wts, 4, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+    // A textured character: its texture coordinates and its textures (each image as the file held it).
+    // The tack is untextured: a part's mesh has none.
+    const bool textured = m.textured() && (piece.part == TackPart::None ||
+                                           std::any_of(piece.triangles.begin(), piece.triangles.end(),
+                                                       [&](std::uint32_t t) { return m.triangleTexture(t) >= 0; }));
+    if (textured) {
+      std::vector<float> uv(nv * 2);
+      for (std::size_t i = 0; i < nv; ++i) uv[i * 2] = m.uvs[vertex(i)].x, uv[i * 2 + 1] = m.uvs[vertex(i)].y;
+      proto.attributes["TEXCOORD_0"] = appendFloatAccessor(model, bin, uv, 2, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+      for (std::size_t i = textures.size(); i < m.textures.size(); ++i) {
+        const std::string name = m.textures[i]->name.empty() ? c.name + "_texture_" + std::to_string(i) : m.textures[i]->name;
+        textures.push_back(appendGltfTexture(model, bin, *m.textures[i], prefix + name));
+      }
+    }
+    tinygltf::Accessor a;
+    a.bufferView = appendBytes(model, bin, jts.data(), jts.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    a.count = nv;
+    a.type = TINYGLTF_TYPE_VEC4;
+    model.accessors.push_back(a);
+    proto.attributes["JOINTS_0"] = static_cast<int>(model.accessors.size()) - 1;
+    if (tack_attribute) {
+      std::vector<float> parts(nv);
+      for (std::size_t i = 0; i < nv; ++i) parts[i] = float(m.tackPart(vertex(i)));
+      proto.attributes["_TACK_PART"] = appendFloatAccessor(model, bin, parts, 1, false, TINYGLTF_TARGET_ARRAY_BUFFER);
+    }
+    return proto;
+  }
+
+  // The piece's mesh, named `name`, its k-th material `material_name(k)`; returns the mesh.
+  int mesh(const GltfMeshPiece& piece, const tinygltf::Primitive& proto, const std::string& name,
+           const std::function<std::string(std::size_t)>& material_name) {
+    const SkinnedMesh& m = c.mesh;
+    std::vector<std::uint32_t> index_of;  // the mesh's vertex -> the piece's (empty: the same)
+    if (!piece.vertices.empty()) {
+      index_of.assign(m.vertexCount(), 0);
+      for (std::size_t i = 0; i < piece.vertices.size(); ++i) index_of[piece.vertices[i]] = std::uint32_t(i);
+    }
+    tinygltf::Mesh mesh;
+    mesh.name = name;
+    const std::size_t nt = piece.triangles.size();
+    const auto colour = [&](std::size_t i) { return m.colors[m.indices[std::size_t(piece.triangles[i]) * 3]]; };
+    const auto texture = [&](std::size_t i) { return m.triangleTexture(piece.triangles[i]); };
+    std::map<std::tuple<float, float, float, int>, int> materials;
+    for (std::size_t t = 0; t < nt;) {
+      const glm::vec3 color = colour(t);
+      std::size_t end = t + 1;
+      while (end < nt && colour(end) == color && texture(end) == texture(t)) ++end;
+      const auto key = std::make_tuple(color.x, color.y, color.z, texture(t));
+      auto it = materials.find(key);
+      if (it == materials.end()) {
+        tinygltf::Material mat;
+        mat.name = material_name(materials.size());
+        mat.pbrMetallicRoughness.baseColorFactor = {color.x, color.y, color.z, 1.0};
+        mat.pbrMetallicRoughness.metallicFactor = 0.0;
+        mat.pbrMetallicRoughness.roughnessFactor = 0.7;
+        if (texture(t) >= 0) mat.pbrMetallicRoughness.baseColorTexture.index = textures.at(static_cast<std::size_t>(texture(t)));
+        model.materials.push_back(mat);
+        it = materials.emplace(key, static_cast<int>(model.materials.size()) - 1).first;
+      }
+      std::vector<std::uint32_t> indices;
+      indices.reserve((end - t) * 3);
+      for (std::size_t i = t; i < end; ++i)
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t v = m.indices[std::size_t(piece.triangles[i]) * 3 + std::size_t(k)];
+          indices.push_back(index_of.empty() ? v : index_of[v]);
+        }
+      tinygltf::Primitive prim = proto;
+      prim.material = it->second;
+      prim.indices = appendIndexAccessor(model, bin, indices);
+      mesh.primitives.push_back(prim);
+      t = end;
+    }
+    model.meshes.push_back(mesh);
+    return static_cast<int>(model.meshes.size()) - 1;
+  }
+};
+
+}  // namespace
+
 GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsigned char>& bin,
-                                       const Character& c, const std::string& prefix) {
+                                       const Character& c, const std::string& prefix, bool split_tack) {
   const Skeleton& s = c.skeleton;
   const SkinnedMesh& m = c.mesh;
   GltfCharacterNodes out;
@@ -136,86 +255,11 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
   for (std::size_t j = 0; j < s.size(); ++j)
     if (s.joints[j].parent >= 0) model.nodes[first + s.joints[j].parent].children.push_back(first + static_cast<int>(j));
 
-  // Vertex attributes, shared by every primitive.
-  const std::size_t nv = m.vertexCount();
-  std::vector<float> pos(nv * 3), nor(nv * 3), col(nv * 3), wts(nv * 4);
-  std::vector<std::uint16_t> jts(nv * 4);
-  for (std::size_t v = 0; v < nv; ++v) {
-    for (int k = 0; k < 3; ++k) {
-      pos[v * 3 + k] = m.positions[v][k];
-      nor[v * 3 + k] = m.normals[v][k];
-      col[v * 3 + k] = m.colors[v][k];
-    }
-    for (int k = 0; k < 4; ++k) {
-      wts[v * 4 + k] = m.weights[v][k];
-      jts[v * 4 + k] = m.weights[v][k] > 0.0f ? m.joints[v][k] : 0;
-    }
-  }
-  tinygltf::Primitive proto;
-  proto.mode = TINYGLTF_MODE_TRIANGLES;
-  proto.attributes["POSITION"] = appendFloatAccessor(model, bin, pos, 3, true, TINYGLTF_TARGET_ARRAY_BUFFER);
-  proto.attributes["NORMAL"] = appendFloatAccessor(model, bin, nor, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
-  proto.attributes["_COLOR"] = appendFloatAccessor(model, bin, col, 3, false, TINYGLTF_TARGET_ARRAY_BUFFER);
-  proto.attributes["WEIGHTS_0"] = appendFloatAccessor(model, bin, wts, 4, false, TINYGLTF_TARGET_ARRAY_BUFFER);
-  // A textured character: its texture coordinates and its textures (each image as the file held it).
-  std::vector<int> textures;
-  if (m.textured()) {
-    std::vector<float> uv(nv * 2);
-    for (std::size_t v = 0; v < nv; ++v) uv[v * 2] = m.uvs[v].x, uv[v * 2 + 1] = m.uvs[v].y;
-    proto.attributes["TEXCOORD_0"] = appendFloatAccessor(model, bin, uv, 2, false, TINYGLTF_TARGET_ARRAY_BUFFER);
-    for (std::size_t i = 0; i < m.textures.size(); ++i) {
-      const std::string name = m.textures[i]->name.empty() ? c.name + "_texture_" + std::to_string(i) : m.textures[i]->name;
-      textures.push_back(appendGltfTexture(model, bin, *m.textures[i], prefix + name));
-    }
-  }
-  {
-    tinygltf::Accessor a;
-    a.bufferView = appendBytes(model, bin, jts.data(), jts.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
-    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-    a.count = nv;
-    a.type = TINYGLTF_TYPE_VEC4;
-    model.accessors.push_back(a);
-    proto.attributes["JOINTS_0"] = static_cast<int>(model.accessors.size()) - 1;
-  }
-
-  // One primitive per run of triangles of one base colour (a triangle's colour is its first
-  // vertex's) and texture, in the order the runs first appear.
-  tinygltf::Mesh mesh;
-  mesh.name = prefix + c.name;
-  const std::size_t nt = m.triangleCount();
-  std::size_t t = 0;
-  std::map<std::tuple<float, float, float, int>, int> materials;
-  while (t < nt) {
-    const glm::vec3 color = m.colors[m.indices[t * 3]];
-    const int texture = m.triangleTexture(t);
-    std::size_t end = t + 1;
-    while (end < nt && m.colors[m.indices[end * 3]] == color && m.triangleTexture(end) == texture) ++end;
-    const auto key = std::make_tuple(color.x, color.y, color.z, texture);
-    auto it = materials.find(key);
-    if (it == materials.end()) {
-      tinygltf::Material mat;
-      mat.name = prefix + c.name + "_" + std::to_string(materials.size());
-      mat.pbrMetallicRoughness.baseColorFactor = {color.x, color.y, color.z, 1.0};
-      mat.pbrMetallicRoughness.metallicFactor = 0.0;
-      mat.pbrMetallicRoughness.roughnessFactor = 0.7;
-      if (texture >= 0) mat.pbrMetallicRoughness.baseColorTexture.index = textures.at(static_cast<std::size_t>(texture));
-      model.materials.push_back(mat);
-      it = materials.emplace(key, static_cast<int>(model.materials.size()) - 1).first;
-    }
-    tinygltf::Primitive prim = proto;
-    prim.material = it->second;
-    tinygltf::Accessor a;
-    a.bufferView = appendBytes(model, bin, m.indices.data() + t * 3, (end - t) * 3 * sizeof(std::uint32_t),
-                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    a.count = (end - t) * 3;
-    a.type = TINYGLTF_TYPE_SCALAR;
-    model.accessors.push_back(a);
-    prim.indices = static_cast<int>(model.accessors.size()) - 1;
-    mesh.primitives.push_back(prim);
-    t = end;
-  }
-  model.meshes.push_back(mesh);
+  // The body's mesh (and with `split_tack` one mesh a part of the tack, rig/io/gltf_tack.h).
+  const std::vector<GltfMeshPiece> pieces = gltfMeshPieces(m, split_tack);
+  MeshPieceWriter writer{model, bin, c, prefix, {}};
+  const tinygltf::Primitive body = writer.attributes(pieces[0], !split_tack && m.hasTack());
+  const int body_mesh = writer.mesh(pieces[0], body, prefix + c.name, [&](std::size_t k) { return prefix + c.name + "_" + std::to_string(k); });
 
   tinygltf::Skin skin;
   skin.name = prefix + c.name;
@@ -245,11 +289,25 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
 
   tinygltf::Node mesh_node;
   mesh_node.name = prefix + c.name + "_mesh";
-  mesh_node.mesh = static_cast<int>(model.meshes.size()) - 1;
+  mesh_node.mesh = body_mesh;
   mesh_node.skin = out.skin;
   mesh_node.extras = tinygltf::Value(extras);  // (tinygltf 2.7 does not write a skin's extras)
   model.nodes.push_back(mesh_node);
   out.mesh_node = static_cast<int>(model.nodes.size()) - 1;
+  for (std::size_t k = 1; k < pieces.size(); ++k) {
+    const std::string part(tackPartName(pieces[k].part));
+    tinygltf::Node node;
+    node.name = part;
+    node.mesh = writer.mesh(pieces[k], writer.attributes(pieces[k], false), part, [&](std::size_t n) {
+      char suffix[16];
+      std::snprintf(suffix, sizeof suffix, ".%03zu", n);
+      return n == 0 ? part : part + suffix;  // as Blender numbers a name's copies
+    });
+    node.skin = out.skin;
+    node.extras = tackNodeExtras(pieces[k].part, c.name, c.source.file);
+    model.nodes.push_back(node);
+    out.tack_nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+  }
   return out;
 }
 
@@ -294,17 +352,20 @@ std::vector<unsigned char> characterGlb(const Character& c) {
 void writeCharacterGlb(const Character& c, const std::filesystem::path& file) { writeFileAtomically(file, characterGlb(c)); }
 
 std::optional<std::map<std::string, int>> gltfRoleTable(const tinygltf::Model& model, const std::string& f, int skin, CharacterKind kind,
-                                                        bool* by_joint_name) {
+                                                        bool* by_joint_name, bool names_alone) {
   const tinygltf::Value* by_index = nullptr;
   const tinygltf::Value* by_name = nullptr;
+  // A table by joint names alone is another tool's (the Blender add-on writes its mappings' so).
   for (const tinygltf::Node& n : model.nodes)
-    if (n.skin == skin && n.extras.IsObject() && n.extras.Has("stirrup_roles")) {
-      by_index = &n.extras.Get("stirrup_roles");
+    if (n.skin == skin && n.extras.IsObject() && (n.extras.Has("stirrup_roles") || (names_alone && n.extras.Has("stirrup_role_joints")))) {
+      by_index = n.extras.Has("stirrup_roles") ? &n.extras.Get("stirrup_roles") : nullptr;
       by_name = n.extras.Has("stirrup_role_joints") ? &n.extras.Get("stirrup_role_joints") : nullptr;
     }
-  if (!by_index) return std::nullopt;
-  if (!by_index->IsObject())
+  if (!by_index && !by_name) return std::nullopt;
+  if (by_index && !by_index->IsObject())
     throw InputError(f + ": the file's role table (extras.stirrup_roles) is not an object (expected role -> joint index)");
+  if (!by_index && !by_name->IsObject())
+    throw InputError(f + ": the file's role table (extras.stirrup_role_joints) is not an object (expected role -> joint name)");
   const std::vector<std::string> names = gltfJointNames(model, skin);
   const int nj = static_cast<int>(names.size());
   const std::string kind_name(characterKindName(kind));
@@ -430,6 +491,8 @@ void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, co
     const tinygltf::Node& node = model.nodes[ni];
     if (node.mesh < 0 || node.skin != skin) continue;
     const tinygltf::Mesh& mesh = gltfElement(model.meshes, node.mesh, f + ": nodes[" + std::to_string(ni) + "].mesh", "mesh");
+    // A part of a horse's tack written a node a part (rig/io/gltf_tack.h).
+    const TackPart node_part = kind == CharacterKind::Horse ? gltfNodeTackPart(model, node, f + ": nodes[" + std::to_string(ni) + "]") : TackPart::None;
     for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const tinygltf::Primitive& prim = mesh.primitives[pi];
       const std::string pw = f + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
@@ -507,9 +570,14 @@ void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, co
         for (std::size_t v = 0; v < n; ++v) m.uvs[first_vertex + v] = tex.transform({uv[v * 2], uv[v * 2 + 1]});
       }
       if (fresh) {
-        const bool saddle = kind == CharacterKind::Horse &&
+        // The tack's parts: each vertex's "_TACK_PART", else the node's part (stirrup's own tack, never the horse's own saddle).
+        const std::vector<TackPart> parts = kind == CharacterKind::Horse && prim.attributes.count("_TACK_PART")
+                                                ? tackPartsOf(readAccessor(model, prim.attributes.at("_TACK_PART"), 1, pw + "._TACK_PART"), n, pw)
+                                                : std::vector<TackPart>(n, node_part);
+        const bool saddle = kind == CharacterKind::Horse && node_part == TackPart::None && !prim.attributes.count("_TACK_PART") &&
                             (saddleNamed(node.name) || saddleNamed(mesh.name) ||
                              (material && saddleNamed(material->name)));
+        const std::size_t first_new = m.positions.size();
         own_saddle.resize(m.positions.size() + n, saddle ? 1 : 0);
         for (std::size_t v = 0; v < n; ++v) {
           m.positions.push_back(toRig({pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]}));
@@ -531,6 +599,10 @@ void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, co
           if (!(sum > 0.0f)) throw InputError(pw + ".WEIGHTS_0: vertex " + std::to_string(v) + " has no weight");
           m.joints.push_back(jv);
           m.weights.push_back(std::abs(sum - 1.0f) > 1e-4f ? wv / sum : wv);
+        }
+        if (!m.tack_parts.empty() || std::any_of(parts.begin(), parts.end(), [](TackPart p) { return p != TackPart::None; })) {
+          m.tack_parts.resize(first_new, TackPart::None);
+          m.tack_parts.insert(m.tack_parts.end(), parts.begin(), parts.end());
         }
       }
       const std::size_t first_index = m.indices.size();

@@ -2,7 +2,7 @@
 // importing one (ours or a user's) into a rig::Character the posing jobs can drive.
 //
 // Writing: under a node "stirrup_cm" scaling centimetres to glTF's metres, the joints as nodes (named by their role where they have one), one skinned mesh with
-// smooth normals, triangles grouped into one primitive per base colour (one material each), at most
+// smooth normals (a horse's tack parts in "_TACK_PART", rig/io/gltf_tack.h), triangles grouped into one primitive per base colour (one material each), at most
 // four joints per vertex, inverse bind matrices; the exact per-vertex colour in `_COLOR` and the role
 // table in the skinned mesh node's extras ("stirrup_roles": role -> index into skin.joints, and
 // "stirrup_role_joints": role -> the joint's name, which survives a tool listing the joints in another
@@ -34,6 +34,7 @@ struct GltfCharacterNodes {
   std::vector<int> joint_nodes;  // one node per skeleton joint, in skeleton order
   int mesh_node = -1;
   int skin = -1;
+  std::vector<int> tack_nodes;  // split_tack: the tack's parts' mesh nodes (rig/io/gltf_tack.h), in kTackParts order
 };
 
 // Appends `size` bytes to `bin` (4-byte aligned) as a new buffer view of buffer 0; returns its index.
@@ -43,9 +44,12 @@ int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const v
 // becomes buffer 0 when the model is written); the caller adds the returned root nodes to a scene.
 // `prefix` is prepended to the mesh's, skin's and materials' names (for two characters in one file), never
 // to a joint's: joints keep their skeleton's own names (a file's, or a generated character's roles), each
-// character being an armature of its own.
+// character being an armature of its own. A horse's tack (SkinnedMesh::tack_parts) goes, with
+// `split_tack`, to a mesh node a part beside the body's (named by the part, not prefixed: the caller
+// names them for a crowd's pair), else into the one mesh with its parts as the "_TACK_PART" attribute
+// (rig/io/gltf_tack.h).
 GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsigned char>& bin,
-                                       const Character& character, const std::string& prefix = "");
+                                       const Character& character, const std::string& prefix = "", bool split_tack = false);
 // Appends float data as a tightly packed buffer view and accessor; returns the accessor.
 int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<float>& values,
                         int components, bool minmax, int target = 0);
@@ -94,9 +98,12 @@ Character loadCharacterGltf(const GltfSkinSource& source, CharacterKind kind, co
 // the required roles of `kind` and the optional ones it names; nullopt when the file has no table for
 // the skin. A role missing or pointing at no joint is a one-line InputError naming `file` and the role.
 // `by_joint_name`, when given, is set when the table named the joints (a file stirrup wrote before
-// stirrup_role_joints, or one from a tool that dropped it, has indices only).
+// stirrup_role_joints, or one from a tool that dropped it, has indices only). With `names_alone` a table
+// naming the joints only (extras.stirrup_role_joints without stirrup_roles: the Blender add-on's shot,
+// its horse's tack joints among them) is read too; it says nothing of the file's units and axes, so only
+// a reader that knows the file's world takes it (rig/io/gltf_shot.h).
 std::optional<std::map<std::string, int>> gltfRoleTable(const tinygltf::Model& model, const std::string& file, int skin,
-                                                        CharacterKind kind, bool* by_joint_name = nullptr);
+                                                        CharacterKind kind, bool* by_joint_name = nullptr, bool names_alone = false);
 
 // What a scene's "characters" entry names: "default" (the built-in generator), or a glTF file with
 // an optional mapping file (empty: the file's own role table, or the mapping it gets by itself, whose

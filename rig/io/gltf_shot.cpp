@@ -108,7 +108,7 @@ std::optional<std::map<std::string, int>> trustedRoleTable(const tinygltf::Model
   if (model.asset.generator.rfind("stirrup", 0) == 0) return gltfRoleTable(model, f, k, kind);
   try {
     bool named = false;
-    std::optional<std::map<std::string, int>> table = gltfRoleTable(model, f, k, kind, &named);
+    std::optional<std::map<std::string, int>> table = gltfRoleTable(model, f, k, kind, &named, true);
     return named ? table : std::nullopt;
   } catch (const InputError&) {
     return std::nullopt;  // a table the tool left out of step with the joints: the file maps by itself

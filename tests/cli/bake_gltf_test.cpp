@@ -257,18 +257,19 @@ TEST(BakeGltf, OneSkeletonPerCharacter) {
   EXPECT_EQ(seen, (std::set<int>{0, 1, 2}));  // the jump's follow cameras move
 }
 
-// The list above is every scene shipped in scenes/ (a new scene file must join it), but the crowds,
-// whose cameras BakeGltf.ACrowdBakesEveryPairWithItsCameras checks.
+// The list above is every scene shipped in scenes/ and its folders (a new scene file must join it), but
+// the crowds, whose cameras BakeGltf.ACrowdBakesEveryPairWithItsCameras checks.
 TEST(BakeGltf, CameraTestCoversEveryDefaultScene) {
   std::set<std::string> shipped;
-  for (const auto& e : fs::directory_iterator(fs::path(STIRRUP_SOURCE_DIR) / "scenes")) {
+  const fs::path root = fs::path(STIRRUP_SOURCE_DIR) / "scenes";
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
     const std::string text = e.path().extension() == ".json" ? readText(e.path()) : "";
     if (text.find("\"cameras\"") != std::string::npos && text.find("\"crowd\"") == std::string::npos &&
         text.find("\"riders\"") == std::string::npos)
-      shipped.insert(e.path().stem().string());
+      shipped.insert(fs::relative(e.path(), root).replace_extension().string());
   }
-  EXPECT_EQ(shipped, (std::set<std::string>{"buck", "canter", "cross_country", "figure_eight", "fox", "fox_horse", "fox_run", "gallop",
-                                            "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"}));
+  EXPECT_EQ(shipped, (std::set<std::string>{"buck", "canter", "cross_country", "figure_eight", "fox/fox", "fox/fox_horse", "fox/fox_run",
+                                            "gallop", "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"}));
 }
 
 // Over a terrain the baked file holds the ground (node "ground", scale 0.01, its mesh in cm): its
@@ -312,8 +313,8 @@ TEST(BakeGltf, AShotOverHillsCarriesItsGround) {
 }
 
 INSTANTIATE_TEST_SUITE_P(DefaultScenes, BakedCameras,
-                         testing::Values("buck", "canter", "cross_country", "figure_eight", "fox", "fox_horse", "fox_run", "gallop",
-                                         "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"));
+                         testing::Values("buck", "canter", "cross_country", "figure_eight", "fox/fox", "fox/fox_horse", "fox/fox_run",
+                                         "gallop", "gallop_layered", "jump", "rear", "stop", "trail", "trot", "walk"));
 
 }  // namespace
 }  // namespace stirrup::test

@@ -20,9 +20,11 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "rig/characters/horse_tack.h"
 #include "tests/cli/baked_file.h"
 #include "tests/cli/run_command.h"
 #include "tests/cli/bake_support.h"
+#include "tests/cli/own_horse_bake.h"
 
 namespace stirrup::test {
 namespace {
@@ -146,6 +148,64 @@ TEST(BakeGltf, AUsersRiderKeepsHerJointNames) {
   r = runStirrup("bake " + quote((dir / "trot.json").string()) + " --frames 1-6 --rider-only -o " + quote((dir / "motion.glb").string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(skinJoints(readGlbModel(dir / "motion.glb"), 0), file_joints);
+}
+
+// A user's horse (Blender's Rigify horse, no tack of its own) baked whole: the tack the rig made for it is
+// a mesh node a part beside the body's, each skinned by the horse's skin, saying which horse it fits (its
+// armature and its file), in the rig's tack colours; the tack's rig points are joints of the horse's skin,
+// keyed at every frame; the Khronos validator finds nothing wrong. `stirrup check` of the file reads the
+// whole horse back and measures her hands on the reins and her feet in the irons: clean, none unmeasured.
+TEST(BakeGltf, AUsersHorseGetsItsTackAsAPartANodeAndIsCheckedAtHandsAndFeet) {
+  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / "own_horse_tack";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const OwnHorseBake own = bakeOwnHorse(dir);
+  ASSERT_FALSE(own.baked.empty()) << own.why;
+  const tinygltf::Model model = readGlbModel(own.baked);
+  const AnimatedNodes nodes(model);
+  const int horse_root = nodeNamed(model, "horse");
+  ASSERT_GE(horse_root, 0);
+  int skin = -1;
+  for (std::size_t k = 0; k < model.skins.size(); ++k)
+    if (model.skins[k].skeleton == horse_root) skin = int(k);
+  ASSERT_GE(skin, 0);
+  const std::vector<int>& joints = model.skins[std::size_t(skin)].joints;
+  for (const char* tack : {"saddle", "lStirrup", "rStirrup", "lRein", "rRein"}) {
+    const auto j = std::find_if(joints.begin(), joints.end(), [&](int n) { return model.nodes[std::size_t(n)].name == tack; });
+    ASSERT_NE(j, joints.end()) << tack << " is not a joint of the horse's skin";
+    EXPECT_TRUE(nodes.keys.count({*j, "translation"})) << tack << " is not keyed";
+  }
+  const rig::HorseTackParams tack_params;
+  std::size_t parts = 0, tack_vertices = 0;
+  for (const tinygltf::Node& node : model.nodes) {
+    if (node.skin != skin || node.name == "horse:horse_mesh") continue;
+    ++parts;
+    EXPECT_EQ(node.extras.Get("stirrup_tack").Get<std::string>(), node.name);
+    EXPECT_EQ(node.extras.Get("stirrup_fits").Get<std::string>(), "horse");
+    EXPECT_EQ(node.extras.Get("stirrup_fits_file").Get<std::string>(), own.horse.string());
+    for (const tinygltf::Primitive& prim : model.meshes.at(std::size_t(node.mesh)).primitives) {
+      tack_vertices += model.accessors.at(std::size_t(prim.attributes.at("POSITION"))).count;
+      const std::vector<double>& c = model.materials.at(std::size_t(prim.material)).pbrMetallicRoughness.baseColorFactor;
+      const glm::vec3 colour(float(c[0]), float(c[1]), float(c[2]));
+      EXPECT_TRUE(colour == tack_params.leather || colour == tack_params.pad || colour == tack_params.metal) << node.name;
+    }
+  }
+  EXPECT_EQ(parts, 9u) << "saddle, saddle pad, bridle, bit, two leathers, two irons, reins";
+  std::printf("the Rigify horse's tack: %zu parts, %zu vertices\n", parts, tack_vertices);
+  bool skipped = false;
+  const std::string problems = validatorProblems(own.baked, skipped);
+  EXPECT_TRUE(skipped || problems.empty()) << problems;
+
+  const CommandResult check = runStirrup("check " + quote(own.baked.string()) + " --json");
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+  const nlohmann::json report = nlohmann::json::parse(check.out);
+  for (const nlohmann::json& u : report["unmeasured"]) {
+    EXPECT_NE(u["rule"], "hand-off-rein") << u.dump();
+    EXPECT_NE(u["rule"], "foot-off-stirrup") << u.dump();
+  }
+  for (const char* rule : {"hand-off-rein", "foot-off-stirrup", "rider-in-horse"}) EXPECT_TRUE(report["rules"].contains(rule)) << rule;
+  EXPECT_EQ(report["failures"], 0) << check.out;
 }
 
 }  // namespace

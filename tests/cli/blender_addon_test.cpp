@@ -1,8 +1,8 @@
-// The Blender add-on (scripts/blender/stirrup_blender, docs/blender.md) driven headless in Blender 3.4 as a
+// The Blender add-on (blender/stirrup_blender, docs/blender.md) driven headless in Blender 3.4 as a
 // user would drive it: enabled from the build tree (Blender's scripts folder set to build/blender, which
 // holds addons/stirrup_blender), the program found beside it (build/bin/stirrup, PATH holding no other),
-// Rigify's horse meta-rig with its body and keyed walk (scripts/blender-rigify-horse) and Rigify's human
-// (scripts/blender-rigify-rider) imported as a user's characters. The oracle for Ride is the command line:
+// Rigify's horse meta-rig with its body and keyed walk (tests/blender/rigify-horse) and Rigify's human
+// (tests/blender/rigify-rider) imported as a user's characters. The oracle for Ride is the command line:
 // `stirrup character map` and `stirrup bake --rider-only` on the characters as Blender exports them (the
 // test's own export, not the add-on's), her joints taken into the horse's file, which is Blender's world.
 // Skipped, with a message, where `blender` is not installed; the undo test also where `xvfb-run` is not
@@ -18,14 +18,8 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <tiny_gltf.h>
 
-#include "rig/io/character_mapping_json.h"
-#include "rig/mapping/character_mapping.h"
-#include "tests/blender_fixture.h"
-#include "tests/cli/baked_file.h"
-#include "tests/cli/blender_script.h"
-#include "tests/cli/run_command.h"
+#include "tests/cli/blender_addon_support.h"
 
 namespace stirrup::test {
 namespace {
@@ -35,33 +29,20 @@ namespace fs = std::filesystem;
 constexpr double kRideCm = 0.1;  // the issue's bar: her joints within 0.1 cm of the command line's bake
 constexpr int kWalkFrames = 48;  // the horse's walk: two strides at 24 fps, Blender frames 1-48
 
-fs::path testDir(const std::string& name) {
-  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_blender_addon" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path testDir(const std::string& name) { return addonTestDir(name); }
 
 // Rigify's horse meta-rig, its thin body skinned by automatic weights, and its 48-frame walk (the travel
 // keyed on the armature object): made once for every test process of a run.
 fs::path horseFile() { return fs::path(STIRRUP_BINARY_DIR) / "test_blender_addon" / "fixture-horse" / "horse.glb"; }
 BlenderMade madeHorse() {
-  const fs::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
+  const fs::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-horse";
   return madeByBlender(horseFile().parent_path(), script, quote(script.string()) + " " + quote(horseFile().string()) + " --form metarig --bones all --walk");
 }
 
-// What every test's script starts with after kBlenderScriptStart: the add-on enabled as Blender finds it
-// (BLENDER_USER_SCRIPTS), the program it found, the horse and rider imported and chosen in the panel's
-// settings, the scene's frames the walk's, and helpers. args: OUT_DIR HORSE.glb RIDER.glb.
-constexpr const char* kAddonStart = R"(
-import math, os, time
-import addon_utils
-from mathutils import Matrix, Vector
-out, horse_glb, rider_glb = args[0], args[1], args[2]
-mod = addon_utils.enable("stirrup_blender", default_set=True)
-assert mod is not None and hasattr(bpy.types.Scene, "stirrup"), "the add-on did not enable"
-from stirrup_blender import live, program, review
-result = {"addon": mod.__file__, "program": program.find_program()}
+// After kAddonEnable: the horse and rider imported and chosen in the panel's settings, the scene's frames
+// the walk's. args: OUT_DIR HORSE.glb RIDER.glb.
+constexpr const char* kImportCharacters = R"(
+horse_glb, rider_glb = args[1], args[2]
 
 def load(path):
     before = set(bpy.data.objects)
@@ -72,148 +53,28 @@ for o in list(bpy.data.objects):
     bpy.data.objects.remove(o)
 horse = load(horse_glb)
 rider = load(rider_glb)
-scene = bpy.context.scene
 scene.frame_start, scene.frame_end = 1, 48
-s = scene.stirrup
-s.work_dir = os.path.join(out, "work")
 s.horse, s.rider = horse, rider
-
-def heads(arm):
-    """Every deform bone's head in Blender's world, metres, at the current frame."""
-    bpy.context.view_layer.update()
-    return {b.name: arm.matrix_world @ b.head for b in arm.pose.bones if b.bone.use_deform}
-
-def gltf(v):  # Blender's world to glTF's (+Y up)
-    return [v.x, v.z, -v.y]
-
-def worst_cm(a, b):
-    return max((a[n] - b[n]).length for n in a) * 100.0
-
-def attempt(op, **kw):
-    """An operator run as a script runs it: Blender turns an error report into RuntimeError."""
-    try:
-        return {"ok": sorted(op(**kw))}
-    except RuntimeError as e:
-        return {"error": str(e).strip()}
-
-def done():
-    json.dump(result, open(os.path.join(out, "result.json"), "w"), indent=1)
-
-def finish():  # a windowed run's end (its script returns to Blender's event loop, which timers then drive)
-    done()
-    bpy.ops.wm.quit_blender()
 )";
 
-struct AddonRun {
-  CommandResult command;
-  nlohmann::json result;
-};
-
-// Runs kBlenderScriptStart + kAddonStart + body in Blender with the add-on found from the build tree and
-// the program beside it, and reads its result.json. With `windowed`, Blender runs in a window under
-// xvfb-run and the body ends the run itself (finish()), within 5 minutes.
+// Runs kImportCharacters + body with the add-on (tests/cli/blender_addon_support.h), the fixtures made first.
 AddonRun runAddonScript(const fs::path& dir, const std::string& body, bool windowed = false) {
   BlenderMade horse = madeHorse();
   BlenderMade rider_made;
   const fs::path rider = blenderRigifyRider(&rider_made);
-  AddonRun run;
   if (!horse.ok || !rider_made.ok) {
+    AddonRun run;
     run.command.err = "making the fixtures failed: " + horse.log + rider_made.log;
     return run;
   }
-  const fs::path script = dir / "script.py";
-  std::ofstream(script) << kBlenderScriptStart << kAddonStart << body << (windowed ? "" : "\ndone()\n");
-  const std::string env = "env BLENDER_USER_SCRIPTS=" + quote(STIRRUP_BINARY_DIR "/blender") + " PATH=/usr/bin:/bin ";
-  const std::string blender = windowed ? "timeout 300 xvfb-run -a -s '-screen 0 1280x800x24' blender" : "blender -b";
-  run.command = runCommand(env + blender + " --factory-startup --python-exit-code 3 --python " + quote(script.string()) + " -- " +
-                           quote(dir.string()) + " " + quote(horseFile().string()) + " " + quote(rider.string()) + " 2>&1");
-  if (fs::exists(dir / "result.json")) run.result = nlohmann::json::parse(readText(dir / "result.json"));
-  return run;
+  return runAddon(dir, std::string(kImportCharacters) + body, quote(horseFile().string()) + " " + quote(rider.string()), {}, windowed);
 }
-
-#define SKIP_WITHOUT_BLENDER() \
-  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)"
-
-#define ASSERT_RAN(run)                                                     \
-  ASSERT_EQ((run).command.exit_code, 0) << (run).command.out << (run).command.err; \
-  ASSERT_TRUE((run).result.is_object()) << (run).command.out
 
 // Found from the build tree, the program beside it.
 void expectFoundInTheBuildTree(const AddonRun& run) {
   EXPECT_EQ(fs::weakly_canonical(run.result["program"].get<std::string>()), fs::weakly_canonical(STIRRUP_EXE));
   EXPECT_EQ(fs::path(run.result["addon"].get<std::string>()).parent_path(), fs::path(STIRRUP_BINARY_DIR) / "blender/addons/stirrup_blender");
 }
-
-// Where `stirrup bake --rider-only` puts her joints, in the horse's file's world (Blender's, glTF axes,
-// metres) at each of the walk's frames: her file's joints (rider-only keeps her file's space) taken to
-// stirrup's world by her mapping and back to the horse's file by the horse's.
-std::map<std::string, std::vector<glm::dvec3>> bakedRider(const fs::path& dir) {
-  const std::string horse = (dir / "horse_t.glb").string(), rider = (dir / "rider_t.glb").string();
-  const std::string horse_map = (dir / "horse_t-map.json").string(), rider_map = (dir / "rider_t-map.json").string();
-  EXPECT_EQ(runStirrup("character map " + quote(horse) + " --as horse -o " + quote(horse_map)).exit_code, 0);
-  EXPECT_EQ(runStirrup("character map " + quote(rider) + " --as rider -o " + quote(rider_map)).exit_code, 0);
-  const nlohmann::json scene = {{"name", "oracle"},
-                                {"output", (dir / "out").string()},
-                                {"characters", {{"horse", {{"file", horse}, {"mapping", horse_map}}}, {"rider", {{"file", rider}, {"mapping", rider_map}}}}},
-                                {"clip", {{"file", horse}, {"mapping", horse_map}}}};
-  std::ofstream(dir / "oracle.json") << scene.dump(2);
-  const CommandResult bake = runStirrup("bake " + quote((dir / "oracle.json").string()) + " --rider-only -o " + quote((dir / "oracle.glb").string()));
-  EXPECT_EQ(bake.exit_code, 0) << bake.err;
-  const glm::dmat4 h = rig::mappingToRig(rig::loadCharacterMapping(horse_map, rig::CharacterKind::Horse));
-  const glm::dmat4 r = rig::mappingToRig(rig::loadCharacterMapping(rider_map, rig::CharacterKind::Rider));
-  const glm::dmat4 to_horse_file = glm::inverse(h) * r;
-  tinygltf::Model model;
-  tinygltf::TinyGLTF io;
-  std::string err, warn;
-  std::map<std::string, std::vector<glm::dvec3>> out;
-  if (!io.LoadBinaryFromFile(&model, &err, &warn, (dir / "oracle.glb").string())) {
-    ADD_FAILURE() << err;
-    return out;
-  }
-  const AnimatedNodes nodes(model);
-  for (const int j : model.skins.at(0).joints)
-    for (std::size_t key = 0; key < nodes.times.size(); ++key)
-      out[model.nodes[std::size_t(j)].name].push_back(glm::dvec3(to_horse_file * nodes.world(j, key)[3]));
-  return out;
-}
-
-// The worst distance (cm) between her joints as the add-on keyed them (result[key]: frame -> joint ->
-// glTF position) and as the command line bakes them; `compared` counts the joints compared.
-double worstAgainstBake(const nlohmann::json& keyed, const std::map<std::string, std::vector<glm::dvec3>>& baked, std::size_t* compared,
-                        std::string* where) {
-  double worst = 0.0;
-  *compared = 0;
-  for (const auto& [frame, joints] : keyed.items())
-    for (const auto& [name, p] : joints.items()) {
-      const auto it = baked.find(name);
-      if (it == baked.end()) continue;
-      const std::size_t key = std::size_t(std::stoi(frame) - 1);  // Blender's frame F is the bake's frame F
-      if (key >= it->second.size()) continue;
-      const double d = glm::length(glm::dvec3(p[0], p[1], p[2]) - it->second[key]) * 100.0;
-      if (d > worst) worst = d, *where = name + " at frame " + frame;
-      ++*compared;
-    }
-  return worst;
-}
-
-// The test's own export of the characters as they stand (horse keyed, rider at rest) and her keyed
-// joints at every frame, for the oracle.
-constexpr const char* kExportAndKeyed = R"(
-def export(arm, path, animations):
-    bpy.ops.object.select_all(action="DESELECT")
-    for o in [arm] + [c for c in arm.children if c.type == "MESH"]:
-        o.select_set(True)
-    bpy.context.view_layer.objects.active = arm
-    bpy.ops.export_scene.gltf(filepath=path, export_format="GLB", use_selection=True, export_def_bones=True,
-                              export_animations=animations, export_force_sampling=True)
-
-def keyed():
-    frames = {}
-    for f in range(1, 49):
-        scene.frame_set(f)
-        frames[str(f)] = {n: gltf(p) for n, p in heads(rider).items()}
-    return frames
-)";
 
 struct RideCase {
   std::string name;
@@ -231,16 +92,16 @@ class BlenderAddonRide : public ::testing::TestWithParam<RideCase> {};
 TEST_P(BlenderAddonRide, KeysHerJointsAsTheCommandLineBakesThem) {
   SKIP_WITHOUT_BLENDER();
   const fs::path dir = testDir("ride-" + GetParam().name);
-  const AddonRun run = runAddonScript(dir, std::string(kExportAndKeyed) + GetParam().setup + R"(
+  const AddonRun run = runAddonScript(dir, GetParam().setup + R"(
 before = dict(heads(rider))
 result["ride"] = attempt(bpy.ops.stirrup.ride)
 result["said"] = s.last_ride
-result["action"] = rider.animation_data.action.name if rider.animation_data and rider.animation_data.action else ""
+result["layer"] = ride_layer(rider)
 export(horse, os.path.join(out, "horse_t.glb"), True)
 export(rider, os.path.join(out, "rider_t.glb"), False)
 scene.frame_set(1)
 result["moved_from_rest_cm"] = worst_cm(heads(rider), before)
-result["keyed"] = keyed()
+result["keyed"] = keyed(rider)
 if paddock is not None:
     # moved again: the kept mappings move with the objects
     scene.frame_set(10)
@@ -258,11 +119,14 @@ if paddock is not None:
   expectFoundInTheBuildTree(run);
   ASSERT_TRUE(run.result["ride"].contains("ok")) << run.result["ride"];
   EXPECT_NE(run.result["said"].get<std::string>().find("stirrup rode frames 1-48"), std::string::npos) << run.result["said"];
-  EXPECT_EQ(run.result["action"], "rig_stirrup_ride");
+  // Her bones keyed in the ride's own NLA track, nothing of hers active (docs/blender.md, "The ride layer").
+  EXPECT_EQ(run.result["layer"]["tracks"], nlohmann::json::parse(R"(["stirrup ride"])"));
+  EXPECT_EQ(run.result["layer"]["action"], "rig_stirrup_ride");
+  EXPECT_EQ(run.result["layer"]["active"], "");
   EXPECT_GT(run.result["moved_from_rest_cm"].get<double>(), 20.0) << "she was seated, not left standing";
   std::size_t compared = 0;
   std::string where;
-  const double worst = worstAgainstBake(run.result["keyed"], bakedRider(dir), &compared, &where);
+  const double worst = worstAgainstBake(run.result["keyed"], bakedRider(dir, dir / "horse_t.glb", dir / "rider_t.glb"), &compared, &where);
   EXPECT_GT(compared, std::size_t(kWalkFrames) * 100u);
   EXPECT_LT(worst, kRideCm) << "cm, " << where;
   std::printf("%s: %zu joint positions, worst %.5f cm (%s)\n", GetParam().name.c_str(), compared, worst, where.c_str());
@@ -291,13 +155,13 @@ bpy.context.view_layer.update()
     });
 
 // Live: on, her pose at a frame is Ride's; a frame change moves her; the horse's travel keyed 10 cm higher
-// raises her with it; off, no handler, timer or process is left and her action is back.
+// raises her with it; off, no handler, timer or process is left and the ride's layer plays again.
 TEST(BlenderAddon, LiveFollowsAnEditedHorseKey) {
   SKIP_WITHOUT_BLENDER();
   const fs::path dir = testDir("live");
   const AddonRun run = runAddonScript(dir, R"(
 result["ride"] = attempt(bpy.ops.stirrup.ride)
-ridden_action = rider.animation_data.action
+track = rider.animation_data.nla_tracks["stirrup ride"]
 scene.frame_set(10)
 ridden = heads(rider)
 t = time.perf_counter()
@@ -306,7 +170,7 @@ result["start_s"] = time.perf_counter() - t
 session = live.session()
 result["on"] = session is not None and live.handlers_registered()
 result["error_on"] = live.last_error()
-result["action_set_aside"] = rider.animation_data.action is None
+result["layer_set_aside"] = track.mute
 scene.frame_set(20)
 result["frame_change_cm"] = worst_cm(heads(rider), ridden)
 t = time.perf_counter()
@@ -332,14 +196,14 @@ result["ms_in_stirrup"] = session.last_ms
 proc = session.proc
 s.live = False
 result["off"] = live.session() is None and not live.handlers_registered() and proc.poll() is not None
-result["action_back"] = rider.animation_data.action == ridden_action
+result["layer_back"] = not track.mute
 result["error"] = live.last_error()
 )");
   ASSERT_RAN(run);
   const nlohmann::json& r = run.result;
   ASSERT_TRUE(r["ride"].contains("ok")) << r["ride"];
   ASSERT_TRUE(r["on"].get<bool>()) << r["error_on"];
-  EXPECT_TRUE(r["action_set_aside"].get<bool>());
+  EXPECT_TRUE(r["layer_set_aside"].get<bool>());
   EXPECT_GT(r["frame_change_cm"].get<double>(), 20.0) << "frame 20 is a stride away from frame 10";
   EXPECT_LT(r["live_vs_ride_cm"].get<double>(), kRideCm);
   EXPECT_GT(r["stale"].get<int>(), 40) << "the edit made the other frames of the horse stale";
@@ -347,7 +211,7 @@ result["error"] = live.last_error()
   // How fast is measured by BM_LiveRider* (tests/bench/live_rider_bench.cpp), not asserted here: these
   // machines are noisy. The time is printed for the record.
   EXPECT_TRUE(r["off"].get<bool>());
-  EXPECT_TRUE(r["action_back"].get<bool>());
+  EXPECT_TRUE(r["layer_back"].get<bool>());
   EXPECT_EQ(r["error"], "");
   std::printf("live: started in %.2f s, a frame in %.1f ms (%.1f ms in stirrup), an edit in %.1f ms\n", r["start_s"].get<double>(),
               1000.0 * r["frame_s"].get<double>(), r["ms_in_stirrup"].get<double>(), 1000.0 * r["edit_s"].get<double>());
@@ -622,7 +486,8 @@ bpy.app.timers.register(watch, first_interval=1.0)
   EXPECT_NE(run.command.out.find("stirrup wrote " + (dir / "walk.mp4").string()), std::string::npos) << run.command.out;
 }
 
-// Undo after a ride gives her old action back (Blender keeps undo steps only with a window: Xvfb's).
+// Undo after a ride takes its layer away and leaves her own action as it was (Blender keeps undo steps only
+// with a window: Xvfb's).
 TEST(BlenderAddon, UndoGivesBackHerOldAction) {
   SKIP_WITHOUT_BLENDER();
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb): Blender's undo needs a window";
@@ -635,17 +500,19 @@ name = rider.name
 bpy.ops.ed.undo_push(message="loaded")
 bpy.ops.ed.undo_push(message="her own action")
 result["ride"] = attempt(bpy.ops.stirrup.ride)
-result["ridden"] = bpy.data.objects[name].animation_data.action.name
+result["ridden"] = ride_layer(bpy.data.objects[name])
 result["undo"] = attempt(bpy.ops.ed.undo)
-result["after_undo"] = bpy.data.objects[name].animation_data.action.name
+result["after_undo"] = ride_layer(bpy.data.objects[name])
 finish()
 )",
                                  true);
   ASSERT_RAN(run);
   ASSERT_TRUE(run.result["ride"].contains("ok")) << run.result["ride"];
-  EXPECT_EQ(run.result["ridden"], "rig_stirrup_ride");
+  EXPECT_EQ(run.result["ridden"]["action"], "rig_stirrup_ride");
+  EXPECT_EQ(run.result["ridden"]["active"], "her own") << "her own keys stay hers, over the ride";
   ASSERT_TRUE(run.result["undo"].contains("ok")) << run.result["undo"];
-  EXPECT_EQ(run.result["after_undo"], "her own");
+  EXPECT_EQ(run.result["after_undo"]["tracks"], nlohmann::json::array());
+  EXPECT_EQ(run.result["after_undo"]["active"], "her own");
 }
 
 }  // namespace

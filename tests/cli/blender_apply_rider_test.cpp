@@ -237,7 +237,7 @@ TEST(BlenderApplyRider, BadInputIsAOneLineError) {
   EXPECT_EQ(r.err, "scripts/blender-apply-rider: --frame: expected a frame number\n");
 }
 
-// Blender's own Rigify human (scripts/blender-rigify-rider: the meta-rig, the rig Rigify generates, a
+// Blender's own Rigify human (tests/blender/rigify-rider: the meta-rig, the rig Rigify generates, a
 // body skinned by automatic weights, exported by Blender's glTF exporter with deform bones only: 160
 // DEF- bones, the limbs and face roots of their own), with the mapping a user would write for Blender
 // 3.x's meta-rig: every one of its bones within 1 cm at every frame. (Two Blender launches: one makes
@@ -269,14 +269,14 @@ TEST(BlenderApplyRider, BlendersOwnRigifyRiderLandsWhereStirrupPutsHer) {
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }
 
-// Blender's own Rigify human on Blender's own Rigify horse (scripts/blender-rigify-horse: the generated
+// Blender's own Rigify human on Blender's own Rigify horse (tests/blender/rigify-horse: the generated
 // rig's deform bones, its own saddle, a walk keyed in Blender), each mapped by `stirrup character map`
 // (no mapping written by hand), the horse's walk through its one mapping: every bone of her file within
 // 1 cm of stirrup's pose at every frame once the rider-only file is on her own armature in Blender.
 TEST(BlenderApplyRider, BlendersRigifyRiderOnBlendersRigifyHorseGoesBackToHerSkeleton) {
   if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
   const fs::path made = fs::path(STIRRUP_BINARY_DIR) / "test_blender_horses";
-  const fs::path horse_script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
+  const fs::path horse_script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-horse";
   const BlenderMade horse = madeByBlender(made / "walk", horse_script,
                                           quote(horse_script.string()) + " " + quote((made / "walk" / "horse.glb").string()) +
                                               " --form generated --bones deform --saddle --walk");

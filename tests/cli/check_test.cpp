@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <cstring>
 #include <numbers>
 #include <filesystem>
 #include <iterator>
@@ -17,15 +19,19 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "rig/clip.h"
+#include "rig/io/gltf_animation.h"
 #include "rig/io/gltf_clip.h"
 #include "scene/clip_factory.h"
 #include "scene/frame_range.h"
 #include "tests/cli/blender_script.h"
+#include "tests/cli/own_horse_bake.h"
 #include "tests/cli/run_command.h"
 #include "tests/scene_folder.h"
 #include "tests/test_files.h"
@@ -220,12 +226,12 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DefaultSceneChecks,
                                            "cross_country", "figure_eight", "trail", "ride_out"),
                          [](const ::testing::TestParamInfo<const char*>& i) { return std::string(i.param); });
 
-// The Khronos Fox's walk (a third-party in-place cycle, read as a horse clip by scenes/fox-mapping.json)
+// The Khronos Fox's walk (a third-party in-place cycle, read as a horse clip by scenes/fox/fox-mapping.json)
 // skates: `clip info` reports each hoof sliding while down, and check finds the same hooves sliding.
 TEST_F(CheckCli, TheFoxWalkSkatesWhereClipInfoSaysSo) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "the Khronos Fox is not in the data folder (" << fox.string() << ")";
-  const std::string scene = (fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox.json").string();
+  const std::string scene = (fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox/fox.json").string();
   const CommandResult info = runStirrup("clip info " + quote(scene) + " --json");
   ASSERT_EQ(info.exit_code, 0) << info.err;
   const nlohmann::json measured = nlohmann::json::parse(info.out);
@@ -586,6 +592,105 @@ TEST_F(CheckCli, ASceneThatCannotBeCheckedExitsThree) {
   const CommandResult r = runStirrup("check " + quote(f));
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_EQ(r.err, "stirrup: " + f + ": cannot open the file (expected a readable JSON file)\n");
+}
+
+// A bake of a user's horse (tests/cli/own_horse_bake.h) rewritten as the Blender add-on exports a shot
+// whose horse carries the tack: the tack's joints are bones of a tack armature of their own ("stirrup
+// tack", its bones renamed as a user would name them), merged into the horse's skin, the role tables by
+// the joints' names alone (stirrup_role_joints, the tack roles naming those bones), no skin skeleton, and
+// Blender's generator. Read as a shot, the horse's tack roles are those joints: her hands and feet are
+// measured against them (clean), and the left rein's end keyed 15 cm off at frames 5-8 fails
+// hand-off-rein at those frames, by 15 cm, and no other.
+void blenderTackShot(const fs::path& baked, const fs::path& out, const std::function<void(tinygltf::Model&, const std::map<std::string, int>&)>& edit) {
+  tinygltf::Model m = readGlbModel(baked);
+  const rig::GltfAnimation animation = rig::GltfAnimation::together(m, baked.string());
+  const int horse_root = nodeNamed(m, "horse");
+  int skin = -1;
+  for (std::size_t k = 0; k < m.skins.size(); ++k)
+    if (m.skins[k].skeleton == horse_root) skin = int(k);
+  ASSERT_GE(skin, 0);
+  const std::map<std::string, std::string> renamed = {
+      {"saddle", "Saddle"}, {"lStirrup", "stirrup.L"}, {"rStirrup", "stirrup.R"}, {"lRein", "rein_end.L"}, {"rRein", "rein_end.R"}};
+  std::map<std::string, int> tack;  // role -> joint node
+  for (const int j : m.skins[std::size_t(skin)].joints)
+    if (renamed.count(m.nodes[std::size_t(j)].name)) tack[m.nodes[std::size_t(j)].name] = j;
+  ASSERT_EQ(tack.size(), 5u);
+  // The saddle (the tack's top bone) under an armature of its own, keyed against it at every key.
+  const int saddle = tack.at("saddle"), under = animation.parents()[std::size_t(saddle)];
+  std::vector<int>& siblings = m.nodes[std::size_t(under)].children;
+  siblings.erase(std::remove(siblings.begin(), siblings.end(), saddle), siblings.end());
+  tinygltf::Node armature;
+  armature.name = "stirrup tack";
+  armature.scale = {0.01, 0.01, 0.01};
+  armature.children = {saddle};
+  m.nodes.push_back(armature);
+  m.scenes.at(0).nodes.push_back(int(m.nodes.size()) - 1);
+  std::vector<float> t, r;
+  const double fps = m.scenes.at(0).extras.Get("fps").GetNumberAsDouble();
+  for (int k = 0; k <= int(std::lround(animation.duration() * fps)); ++k) {
+    const glm::dmat4 local = glm::scale(glm::dmat4(1.0), glm::dvec3(100.0)) * animation.worlds(k / fps)[std::size_t(saddle)];
+    const glm::dquat q = glm::normalize(glm::quat_cast(glm::dmat3(local)));
+    t.insert(t.end(), {float(local[3][0]), float(local[3][1]), float(local[3][2])});
+    r.insert(r.end(), {float(q.x), float(q.y), float(q.z), float(q.w)});
+  }
+  m.nodes[std::size_t(saddle)].translation = {t[0], t[1], t[2]};
+  m.nodes[std::size_t(saddle)].rotation = {r[0], r[1], r[2], r[3]};
+  for (const tinygltf::AnimationChannel& ch : m.animations.at(0).channels) {
+    if (ch.target_node != saddle) continue;
+    const std::vector<float>& values = ch.target_path == "translation" ? t : r;
+    const tinygltf::Accessor& a = m.accessors[std::size_t(m.animations[0].samplers[std::size_t(ch.sampler)].output)];
+    const tinygltf::BufferView& v = m.bufferViews[std::size_t(a.bufferView)];
+    ASSERT_EQ(a.count * (ch.target_path == "translation" ? 3u : 4u), values.size());
+    std::memcpy(m.buffers[0].data.data() + v.byteOffset + a.byteOffset, values.data(), values.size() * sizeof(float));
+  }
+  for (const auto& [role, node] : tack) m.nodes[std::size_t(node)].name = renamed.at(role);
+  for (tinygltf::Node& n : m.nodes) {
+    if (n.skin < 0 || !n.extras.IsObject() || !n.extras.Has("stirrup_roles")) continue;
+    tinygltf::Value::Object extras = n.extras.Get<tinygltf::Value::Object>();
+    extras.erase("stirrup_roles");
+    tinygltf::Value::Object by_name = extras["stirrup_role_joints"].Get<tinygltf::Value::Object>();
+    if (n.skin == skin)
+      for (const auto& [role, name] : renamed) by_name[role] = tinygltf::Value(name);
+    extras["stirrup_role_joints"] = tinygltf::Value(by_name);
+    n.extras = tinygltf::Value(extras);
+  }
+  for (tinygltf::Skin& k : m.skins) k.skeleton = -1;
+  m.asset.generator = "Khronos glTF Blender I/O v3.4.50";
+  edit(m, tack);
+  writeGlbModel(m, out);
+}
+
+TEST_F(CheckCli, ABlenderShotWhoseHorseNamesItsTackJointsIsMeasuredAtThem) {
+  if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
+  const OwnHorseBake own = bakeOwnHorse(dir);
+  ASSERT_FALSE(own.baked.empty()) << own.why;
+  const fs::path named = dir / "named_tack.glb", off = dir / "rein_off.glb";
+  blenderTackShot(own.baked, named, [](tinygltf::Model&, const std::map<std::string, int>&) {});
+  const CommandResult clean = runStirrup("check " + quote(named.string()) + " --json");
+  EXPECT_EQ(clean.exit_code, 0) << clean.out << clean.err;
+  const nlohmann::json c = nlohmann::json::parse(clean.out);
+  for (const nlohmann::json& u : c["unmeasured"]) EXPECT_TRUE(u["rule"] != "hand-off-rein" && u["rule"] != "foot-off-stirrup") << u.dump();
+  for (const std::string& rule : kRiderRules) EXPECT_EQ(framesOf(c, rule).size(), 0u) << rule << ": " << clean.out;
+
+  blenderTackShot(own.baked, off, [](tinygltf::Model& m, const std::map<std::string, int>& tack) {
+    for (const tinygltf::AnimationChannel& ch : m.animations.at(0).channels) {
+      if (ch.target_node != tack.at("lRein") || ch.target_path != "translation") continue;
+      const tinygltf::Accessor& a = m.accessors[std::size_t(m.animations[0].samplers[std::size_t(ch.sampler)].output)];
+      const tinygltf::BufferView& v = m.bufferViews[std::size_t(a.bufferView)];
+      auto* keys = reinterpret_cast<float*>(m.buffers[0].data.data() + v.byteOffset + a.byteOffset);
+      for (int frame = 5; frame <= 8; ++frame) keys[(frame - 1) * 3 + 1] += 15.0f;  // 15 cm up the saddle's y
+    }
+  });
+  const CommandResult r = runStirrup("check " + quote(off.string()) + " --json");
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  const nlohmann::json report = nlohmann::json::parse(r.out);
+  double worst = 0, least = 1e9;
+  EXPECT_EQ(framesOf(report, "hand-off-rein", &worst, &least), (std::set<int>{5, 6, 7, 8}));
+  EXPECT_NEAR(worst, 15.0, 0.05);
+  EXPECT_NEAR(least, 15.0, 0.05);
+  for (const auto& e : report["findings"])
+    if (e["rule"] == "hand-off-rein") EXPECT_EQ(e["where"], "left") << e.dump();
+  std::printf("the add-on's shot with its tack joints named: hand-off-rein %.2f to %.2f cm at frames 5-8\n", least, worst);
 }
 
 }  // namespace

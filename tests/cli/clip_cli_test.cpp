@@ -180,7 +180,7 @@ TEST(ClipCli, BadInputIsOneLine) {
 TEST(ClipCli, FoxThroughTheMapping) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << fox << " is not there";
-  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox-mapping.json";
+  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox/fox-mapping.json";
   for (const char* animation : {"Walk", "Run"}) {
     const CommandResult r = runStirrup("clip info " + quote(fox.string()) + " --mapping " + quote(mapping.string()) +
                                        " --animation " + animation + " --json");
@@ -202,14 +202,16 @@ TEST(ClipCli, EveryMovementSceneBakes) {
   }
 }
 
-// Every scene file in scenes/ (a JSON object with a "clip") bakes. A scene whose clip is a third-party
-// file outside the repository (the Khronos Fox in ../shared) that is not there is SKIPPED, never passed.
+// Every scene file in scenes/ and its folders (a JSON object with a "clip") bakes, named by its path there
+// with "_" for "/" (fox_fox for fox/fox.json). A scene whose clip is a third-party file outside the
+// repository (the Khronos Fox, scenes/fox/) that is not there is SKIPPED, never passed.
 std::vector<std::string> sceneFiles() {
   std::vector<std::string> out;
-  for (const auto& e : fs::directory_iterator(fs::path(STIRRUP_SOURCE_DIR) / "scenes")) {
+  const fs::path root = fs::path(STIRRUP_SOURCE_DIR) / "scenes";
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
     if (e.path().extension() != ".json") continue;
     const nlohmann::json j = nlohmann::json::parse(readText(e.path()), nullptr, false);
-    if (j.is_object() && j.contains("clip")) out.push_back(e.path().stem().string());
+    if (j.is_object() && j.contains("clip")) out.push_back(fs::relative(e.path(), root).replace_extension().string());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -250,21 +252,24 @@ class SceneFile : public ::testing::TestWithParam<std::string> {};
 TEST_P(SceneFile, Bakes) {
   const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (GetParam() + ".json");
   SKIP_IF_THIRD_PARTY_CLIP_IS_MISSING(scene);
-  const fs::path csv = outDir() / ("scene_" + GetParam() + ".csv");
+  const fs::path csv = outDir() / ("scene_" + scene.stem().string() + ".csv");
   fs::remove(csv);
   const CommandResult r = runStirrup("bake " + quote(scene.string()) + " --channels " + quote(csv.string()));
   ASSERT_EQ(r.exit_code, 0) << GetParam() << ": " << r.err;
   EXPECT_TRUE(fs::exists(csv));
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, SceneFile, ::testing::ValuesIn(sceneFiles()),
-                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(Scenes, SceneFile, ::testing::ValuesIn(sceneFiles()), [](const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  std::replace(name.begin(), name.end(), '/', '_');
+  return name;
+});
 
 TEST(SceneFile, TheFoxScenesAreAmongThem) {
   const std::vector<std::string> scenes = sceneFiles();
-  for (const char* s : {"fox", "fox_horse", "fox_run", "walk", "buck"})
+  for (const char* s : {"fox/fox", "fox/fox_horse", "fox/fox_run", "walk", "buck"})
     EXPECT_NE(std::find(scenes.begin(), scenes.end(), s), scenes.end()) << s;
-  EXPECT_EQ(std::find(scenes.begin(), scenes.end(), "fox-mapping"), scenes.end());
+  EXPECT_EQ(std::find(scenes.begin(), scenes.end(), "fox/fox-mapping"), scenes.end());
 }
 
 // A channel CSV as columns by name.
@@ -283,11 +288,11 @@ std::map<std::string, std::vector<double>> readColumns(const fs::path& csv) {
   return cols;
 }
 
-// scenes/fox.json (Walk) and scenes/fox_run.json (Run): the Khronos Fox through scenes/fox-mapping.json
+// scenes/fox/fox.json (Walk) and fox_run.json (Run): the Khronos Fox through scenes/fox/fox-mapping.json
 // drives the horse; baked, every hoof leaves the ground and comes back down, more than once.
 TEST(ClipCli, FoxScenesBakeWithHoovesThatRiseAndFall) {
   for (const char* name : {"fox", "fox_run"}) {
-    const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / (std::string(name) + ".json");
+    const fs::path scene = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox" / (std::string(name) + ".json");
     SKIP_IF_THIRD_PARTY_CLIP_IS_MISSING(scene);
     const fs::path csv = outDir() / (std::string(name) + "_hooves.csv");
     const CommandResult r = runStirrup("bake " + quote(scene.string()) + " --channels " + quote(csv.string()));
@@ -314,13 +319,13 @@ TEST(ClipCli, FoxScenesBakeWithHoovesThatRiseAndFall) {
   }
 }
 
-// The same scene copied where ../../shared does not exist: one line naming the scene file and field.
+// The same scene copied where the third-party files are not: one line naming the scene file and field.
 TEST(ClipCli, FoxSceneWithoutTheSharedAssetsIsAOneLineError) {
-  const fs::path dir = outDir() / "fox_alone" / "scenes";
-  fs::remove_all(dir.parent_path());
+  const fs::path dir = outDir() / "fox_alone" / "scenes" / "fox";
+  fs::remove_all(dir.parent_path().parent_path());
   fs::create_directories(dir);
   for (const char* f : {"fox.json", "fox-mapping.json"})
-    fs::copy_file(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / f, dir / f);
+    fs::copy_file(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox" / f, dir / f);
   const CommandResult r = runStirrup("bake " + quote((dir / "fox.json").string()) + " --channels " +
                                      quote((dir / "fox.csv").string()));
   EXPECT_EQ(r.exit_code, 1);

@@ -61,7 +61,7 @@ TEST_F(Installed, LaysOutTheProgramAndItsData) {
   EXPECT_FALSE(fs::is_symlink(prefix_ / "share/stirrup"));
   EXPECT_FALSE(fs::is_symlink(prefix_ / "share/stirrup/scenes"));
   // The Blender add-on (docs/blender.md), its own files.
-  for (const char* f : {"__init__.py", "ride.py", "live.py", "check.py", "review.py", "panel.py", "program.py"})
+  for (const char* f : {"__init__.py", "ride.py", "controls.py", "layer.py", "reduce.py", "live.py", "check.py", "review.py", "panel.py", "program.py"})
     EXPECT_TRUE(fs::is_regular_file(prefix_ / "share/stirrup/blender/stirrup_blender" / f)) << f;
   EXPECT_FALSE(fs::is_symlink(prefix_ / "share/stirrup/blender/stirrup_blender"));
   EXPECT_FALSE(fs::exists(prefix_ / "share/stirrup/blender/stirrup_blender/__pycache__"));

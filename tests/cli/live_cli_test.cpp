@@ -64,6 +64,10 @@ TEST(LiveCli, AnswersALineForEachRequestAndGoesOnAfterABadOne) {
   const std::size_t horse_joints = ready["horse_joints"].size(), rider_joints = ready["rider_joints"].size();
   EXPECT_GT(horse_joints, 20u);
   EXPECT_GT(rider_joints, 20u);
+  // The horse's tack joints, each of them a joint of the horse the tool hands in.
+  EXPECT_EQ(ready["tack_joints"], nlohmann::json({"saddle", "lStirrup", "rStirrup", "lRein", "rRein"}));
+  for (const nlohmann::json& tack : ready["tack_joints"])
+    EXPECT_NE(std::find(ready["horse_joints"].begin(), ready["horse_joints"].end(), tack), ready["horse_joints"].end()) << tack;
 
   std::ofstream requests(dir / "requests.jsonl");
   requests << nlohmann::json{{"get", 5}}.dump() << "\n"
@@ -84,6 +88,8 @@ TEST(LiveCli, AnswersALineForEachRequestAndGoesOnAfterABadOne) {
   ASSERT_EQ(out[1]["frame"], 5);
   ASSERT_EQ(out[1]["rider"].size(), rider_joints);
   EXPECT_EQ(out[1]["rider"][0].size(), 16u);
+  ASSERT_EQ(out[1]["tack"].size(), 5u) << "one deformation a tack joint";
+  EXPECT_EQ(out[1]["tack"][3].size(), 16u);
   EXPECT_EQ(out[2], nlohmann::json({{"error", "expected a JSON object a line"}}));
   EXPECT_EQ(out[3], nlohmann::json({{"error", "get: expected a frame number"}}));
   EXPECT_EQ(out[4], nlohmann::json({{"error", "live: frame 30: expected a frame from 0 to 23"}}));
@@ -97,6 +103,11 @@ TEST(LiveCli, AnswersALineForEachRequestAndGoesOnAfterABadOne) {
   for (std::size_t j = 0; j < rider_joints; ++j)
     for (std::size_t k = 12; k < 15; ++k) moved = std::max(moved, std::abs(out[8]["rider"][j][k].get<double>() - out[1]["rider"][j][k].get<double>()));
   EXPECT_GT(moved, 1e-3);
+  // The rein ends go with her hands: the tack at frame 5 moves with the horse handed in.
+  ASSERT_EQ(out[8]["tack"].size(), 5u);
+  double rein_moved = 0.0;
+  for (std::size_t k = 12; k < 15; ++k) rein_moved = std::max(rein_moved, std::abs(out[8]["tack"][3][k].get<double>() - out[1]["tack"][3][k].get<double>()));
+  EXPECT_GT(rein_moved, 1e-3);
 }
 
 // A scene whose clip is not the horse's own file cannot be kept live: a one-line error naming it.

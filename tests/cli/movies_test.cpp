@@ -27,6 +27,11 @@ std::string probe(const fs::path& movie) {
       .out;
 }
 
+// Every decoded frame's checksum (ffmpeg's framemd5 without its header): the pixels a viewer sees.
+std::string decodedFrames(const fs::path& movie) {
+  return runCommand("ffmpeg -v error -i " + quote(movie.string()) + " -f framemd5 - | grep -v '^#'").out;
+}
+
 class MoviesCommand : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -173,6 +178,11 @@ TEST(MoviesStages, FramesThenFinishMakeTheSameMovieAsOneRun) {
                            "frames/trot_side/trot_side.0005.png", "frames/trot_side/trot_side.slate.png"})
     EXPECT_TRUE(readText(one / file) == readText(two / file)) << file;
   EXPECT_EQ(probe(two / "trot_side.mp4"), probe(one / "trot_side.mp4"));
+  // One run pipes its frames to the encoder from memory; the farm's stages encode the PNGs: the same
+  // pixels (every decoded frame's checksum).
+  const std::string from_memory = decodedFrames(one / "trot_side.mp4");
+  EXPECT_EQ(std::count(from_memory.begin(), from_memory.end(), '\n'), 24 + 5);  // the slate and the frames
+  EXPECT_EQ(from_memory, decodedFrames(two / "trot_side.mp4"));
   EXPECT_FALSE(fs::exists(two / "frames/trot_side/trot_side.0001.sheet.exr"));  // kept frames are the PNGs
   fs::remove_all(one);
   fs::remove_all(two);
@@ -192,7 +202,7 @@ TEST(MoviesTimings, ARowAMovieWithItsFramesAndSeconds) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string text = readText(tsv);
   ASSERT_EQ(lineCount(text), 3u) << text;
-  EXPECT_EQ(text.substr(0, text.find('\n')), "movie\tframes\trender_s\tfinish_s\trender_s_per_frame");
+  EXPECT_EQ(text.substr(0, text.find('\n')), "movie\tframes\trender_s\tfinish_s\trender_s_per_frame\tencode_cpu_s");
   const std::regex row("(\\w+)\t(\\d+)\t([0-9.]+)\t([0-9.]+)\t([0-9.]+)");
   double total = 0.0;
   std::vector<std::string> names;

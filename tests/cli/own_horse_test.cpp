@@ -1,5 +1,5 @@
 // Your own horse, keyed in Blender (docs/characters.md, "Your own horse"), end to end through the
-// program: Blender's Rigify horse made headless by scripts/blender-rigify-horse (the metarig and the
+// program: Blender's Rigify horse made headless by tests/blender/rigify-horse (the metarig and the
 // generated rig, all bones and deform-only exports, a body skinned by Blender's automatic weights, a walk
 // keyed with planted stance hooves, its own saddle, the armature turned and scaled as an object),
 // mapped by `stirrup character map`, ridden, baked and checked. The oracle for "plays its walk exactly"
@@ -96,7 +96,7 @@ TEST_P(OwnHorse, MapsByNamePlaysItsWalkExactlyAndCarriesTheRider) {
   if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
   const Variant& v = GetParam();
   const BlenderMade made = madeHorse(v);
-  ASSERT_TRUE(made.ok) << "scripts/blender-rigify-horse failed: " << made.log;
+  ASSERT_TRUE(made.ok) << "tests/blender/rigify-horse failed: " << made.log;
   const fs::path dir = dirOf(v.name);
   const CommandResult map = runStirrup("character map " + quote((dir / "horse.glb").string()) + " --as horse -o " + quote((dir / "map.json").string()));
   ASSERT_EQ(map.exit_code, 0) << map.err;

@@ -1,7 +1,7 @@
 // A troop of the user's own horse (issue 60; docs/crowds.md, "Your own horses"), end to end through the
 // program: Blender's Rigify horse (the generated rig, deform bones, its saddle and keyed walk:
-// scripts/blender-rigify-horse) in a crowd of 8, with mixed riders: the crowd's generated riders at
-// their own proportions and Blender's Rigify human (scripts/blender-rigify-rider), six pairs walking
+// tests/blender/rigify-horse) in a crowd of 8, with mixed riders: the crowd's generated riders at
+// their own proportions and Blender's Rigify human (tests/blender/rigify-rider), six pairs walking
 // the lead's path on the generated gait and two playing the horse's own keyed walk from their slots.
 // The scene loads (every pair seated on its horse as a single pair is), checks clean, bakes (every pair's
 // armatures, the user's joints), the bake checks clean as the scene does, and a frame renders. The oracle
@@ -60,9 +60,9 @@ TEST(OwnTroop, EightRigifyHorsesWithMixedRidersBakeRenderAndCheckClean) {
   if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
   BlenderMade made;
   const fs::path horse_dir = blenderRigifyHorse("generated-deform-saddle", "--form generated --bones deform --saddle", &made);
-  ASSERT_TRUE(made.ok) << "scripts/blender-rigify-horse failed: " << made.log;
+  ASSERT_TRUE(made.ok) << "tests/blender/rigify-horse failed: " << made.log;
   const fs::path rider = blenderRigifyRider(&made);
-  ASSERT_TRUE(made.ok) << "scripts/blender-rigify-rider failed: " << made.log;
+  ASSERT_TRUE(made.ok) << "tests/blender/rigify-rider failed: " << made.log;
   const fs::path dir = freshTestDir("test_own_troop", "troop");
   const fs::path horse = horse_dir / "horse.glb", horse_map = dir / "horse-map.json", rider_map = dir / "rider-map.json";
   ASSERT_EQ(runStirrup("character map " + quote(horse.string()) + " --as horse -o " + quote(horse_map.string())).exit_code, 0);

@@ -40,7 +40,7 @@ namespace fs = std::filesystem;
 
 // One scratch folder per process (libFuzzer's -jobs run several), laid out so the files a seed names
 // are there, as beside the shipped scenes: inputs are written to ROOT/work/scene/, where characters/,
-// profiles/ and the *-mapping.json files link to the shipped scenes' (scenes/), and ROOT/scenes and
+// profiles/ and the *-mapping.json files (scenes/fox/ holds the Fox's) link to the shipped scenes', and ROOT/scenes and
 // ROOT/shared link to the source tree's scenes/ and the shared assets, for paths such as
 // "../../scenes/profiles/thesis.json" (tests/golden/) and "../../shared/assets/fox/Fox.glb"
 // (scenes/). The links are only read through: no target writes a file a scene names.
@@ -53,9 +53,10 @@ const fs::path& scratch() {
     std::error_code ec;
     fs::create_directory_symlink(scenes, root / "scenes", ec);
     fs::create_directory_symlink(fs::path(STIRRUP_SHARED_DIR), root / "shared", ec);
-    for (const auto& e : fs::directory_iterator(scenes)) {
+    for (const auto& e : fs::recursive_directory_iterator(scenes)) {
       const std::string name = e.path().filename().string();
-      if (name == "characters" || name == "profiles") fs::create_directory_symlink(e.path(), d / name, ec);
+      const bool top = e.path().parent_path() == scenes;
+      if (top && (name == "characters" || name == "profiles")) fs::create_directory_symlink(e.path(), d / name, ec);
       else if (name.size() > 13 && name.ends_with("-mapping.json")) fs::create_symlink(e.path(), d / name, ec);
     }
     std::atexit([] {

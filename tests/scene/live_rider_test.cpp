@@ -22,6 +22,7 @@
 #include "rig/io/keyed_horse_clip.h"
 #include "rig/mapping/mapping_skeleton.h"
 #include "rig/pose.h"
+#include "rig/tack_pose.h"
 #include "scene/ridden_pair.h"
 #include "tests/input_error.h"
 #include "tests/rig/io/baked_trot.h"
@@ -138,6 +139,42 @@ TEST(LiveRider, SheMovesWithTheHorseHandedIn) {
   edited.setHorse(5, raised);
   EXPECT_GT(worstEntry(edited.rider(5), at5), 0.02) << "the horse 10 cm higher at frame 5 moves her there";
   EXPECT_LT(worstEntry(edited.rider(kLast), at47), 1e-6) << "frame 47 reads the horse a second around it, not frame 5";
+}
+
+// With her, the horse's tack as stirrup poses it under her: its five joints, each a deformation from its
+// rest in the horse's file to where it is, as the rider's (H^-1 T H); a point at the rein joint's rest goes
+// to her hand and one at a tread's rest to the place placeStirrups hangs it, at every frame asked for.
+TEST(LiveRider, TheTackComesWithHerStirrupsAtHerFeetReinsInHerHands) {
+  const Trot& t = trot();
+  LiveRider live(t.setup);
+  EXPECT_EQ(live.tackJoints(), (std::vector<std::string>{"saddle", "lStirrup", "rStirrup", "lRein", "rRein"}));
+  const Character& horse = *t.setup.horse;
+  const Character& rider = *t.setup.rider;
+  const KeyedHorseClip clip(bakedTrot().file.string(), "", keyedHorseMapping(horse), &horse);
+  const std::string file = bakedTrot().file.string();
+  const tinygltf::Model model = readGltfFile(bakedTrot().file, file);
+  const glm::dmat4 from_horse_rig = glm::inverse(GltfSkinJoints(model, file, 0, keyedHorseMapping(horse).to_rig, 0.01).worldToRig());
+  const glm::dmat4 to_rig = horse.source.to_rig;
+  const auto inFile = [&](glm::vec3 rig) { return glm::dvec3(glm::inverse(to_rig) * glm::dvec4(rig, 1.0)); };
+  double hands = 0.0, treads = 0.0;
+  for (const int frame : {0, 17, kLast}) {
+    std::vector<glm::dmat4> tack;
+    live.rider(frame, &tack);
+    ASSERT_EQ(tack.size(), 5u);
+    const BakedFrame baked = bakeFrame(clip, t.setup.profile, frame, frame / kFps);
+    const MountedPose pose = poseMounted(horse, rider, baked.horse, baked.rider, t.setup.profile);
+    const auto moved = [&](int k, const char* role) { return glm::dvec3(tack[std::size_t(k)] * glm::dvec4(inFile(horse.skeleton.restPosition(horse.role(role))), 1.0)); };
+    const auto world = [&](glm::vec3 rig) { return glm::dvec3(from_horse_rig * glm::dvec4(rig, 1.0)); };
+    for (int side = 0; side < 2; ++side) {
+      const char* rein = side == 0 ? "lRein" : "rRein";
+      hands = std::max(hands, glm::length(moved(3 + side, rein) - world(glm::vec3(pose.rider[std::size_t(rider.role(side == 0 ? "lHand" : "rHand"))][3]))));
+      const glm::vec3 tread = stirrupTarget(horse, pose.horse, baked.rider, t.setup.profile.rider_unit_cm, side);
+      treads = std::max(treads, glm::length(moved(1 + side, side == 0 ? "lStirrup" : "rStirrup") - world(tread)));
+    }
+    EXPECT_LT(glm::length(moved(0, "saddle") - world(glm::vec3(pose.horse[std::size_t(horse.role("saddle"))][3]))), 1e-6);
+  }
+  EXPECT_LT(hands, 1e-6) << "file units (metres)";
+  EXPECT_LT(treads, 1e-6);
 }
 
 TEST(LiveRider, BadFramesAreOneLineErrors) {

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/rig/default_characters.h"
+#include "tests/rig/tack_labels.h"
 
 namespace stirrup::rig {
 namespace {
@@ -77,6 +78,34 @@ TEST(HorseCharacter, TheMeshStandsOnTheGround) {
   EXPECT_GT(hi.x, 140.0f);
   EXPECT_NEAR(hi.x - lo.x, 240.0f, 30.0f);
   EXPECT_NEAR(hi.z, -lo.z, 1.0f);  // left and right alike
+}
+
+// The tack is labelled part by part, by the piece that made each vertex's surface (the shape that gives it
+// its colour, or the tube): every vertex of a tack colour is tack and no tack vertex has the coat's, each
+// part has its colours and joints and the stirrups their sides; the horse built bare has no tack labels.
+TEST(HorseCharacter, TheTackIsLabelledPartByPart) {
+  const Character& h = defaultHorse();
+  test::expectTackLabelsFit(h);
+  const HorseParams p;
+  std::size_t tack_coloured = 0, labelled = 0;
+  for (std::size_t v = 0; v < h.mesh.vertexCount(); ++v) {
+    const glm::vec3 c = h.mesh.colors[v];
+    tack_coloured += c == p.leather || c == p.pad || c == p.metal;
+    labelled += h.mesh.tackPart(v) != TackPart::None;
+  }
+  EXPECT_EQ(labelled, tack_coloured);
+  // The saddle (seat, pommel, cantle) on top, the pad's flaps and girth below it down the barrel.
+  float saddle_low = 1e9f, pad_low = 1e9f;
+  for (std::size_t v = 0; v < h.mesh.vertexCount(); ++v) {
+    if (h.mesh.tackPart(v) == TackPart::Saddle) saddle_low = std::min(saddle_low, h.mesh.positions[v].y);
+    if (h.mesh.tackPart(v) == TackPart::SaddlePad) pad_low = std::min(pad_low, h.mesh.positions[v].y);
+  }
+  const float seat = h.skeleton.restPosition(h.role("saddle")).y;
+  EXPECT_GT(saddle_low, seat - 15.0f);
+  EXPECT_LT(pad_low, seat - 40.0f) << "the girth runs under the barrel";
+  HorseParams bare;
+  bare.tack = false;
+  EXPECT_TRUE(buildHorse(bare).mesh.tack_parts.empty());
 }
 
 }  // namespace

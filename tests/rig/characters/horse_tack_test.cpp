@@ -4,7 +4,7 @@
 //    there (worked from the generator's parameters: the barrel ellipsoid's top at x = 10), the treads
 //    74 cm below it at the barrel's sides, the rein ends at the generated rider's grips, a bit at the
 //    mouth; the leathers, irons and reins separate pieces a rider's legs and hands may touch;
-//  * the Khronos Fox as a horse through a mapping that names no tack (scenes/fox-horse-mapping.json)
+//  * the Khronos Fox as a horse through a mapping that names no tack (scenes/fox/fox-horse-mapping.json)
 //    rides the default rider's trot: every frame her seat within 3 cm of where it is on the generated
 //    horse (in the saddle's frame), her feet on the treads, no leg vertex more than 2 cm inside the
 //    horse, every bone of the Fox keeping its length.
@@ -33,6 +33,7 @@
 #include "scene/scene.h"
 #include "tests/input_error.h"
 #include "tests/rig/default_characters.h"
+#include "tests/rig/tack_labels.h"
 #include "tests/rig/user_riders.h"
 
 namespace stirrup::rig {
@@ -114,6 +115,10 @@ TEST(HorseTack, ABareHorseGetsItsSaddleWhereTheGeneratorPutsIt) {
   for (std::size_t v = bare_vertices; v < horse.mesh.vertexCount(); ++v)
     at_head += loose[v] && horse.mesh.joints[v][0] == horse.role("head") && horse.mesh.weights[v][0] > 0.5f;
   EXPECT_GT(at_head, 0u);
+  // Its parts are labelled (the horse's own vertices the body), each with its colours and joints.
+  test::expectTackLabelsFit(horse);
+  for (std::size_t v = 0; v < horse.mesh.vertexCount(); ++v)
+    ASSERT_EQ(horse.mesh.tackPart(v) == TackPart::None, v < bare_vertices) << "vertex " << v;
   // Again: the horse has its tack now, nothing more is added.
   const std::size_t with_tack = horse.mesh.vertexCount();
   EXPECT_FALSE(addHorseTack(horse, "bare.glb").added);
@@ -154,6 +159,7 @@ TEST(HorseTack, AHorsesOwnSaddleIsSatOnNotSaddledAgain) {
     own[v] = horse.mesh.joints[v][best] == horse.role("saddle");
   }
   for (const char* role : kHorseTackRoles) horse.roles.erase(role);
+  horse.mesh.tack_parts.clear();  // a user's file labels no tack of stirrup's
   const std::size_t before = horse.mesh.vertexCount();
   const HorseTackReport r = addHorseTack(horse, "saddled.glb", HorseTackParams{}, &own);
   ASSERT_TRUE(r.added);
@@ -161,6 +167,12 @@ TEST(HorseTack, AHorsesOwnSaddleIsSatOnNotSaddledAgain) {
   EXPECT_LT(glm::length(r.seat - seat), 2.0f) << "seat (" << r.seat.x << ", " << r.seat.y << ", " << r.seat.z << "), the generator's ("
                                               << seat.x << ", " << seat.y << ", " << seat.z << ")";
   EXPECT_LT(horse.mesh.vertexCount() - before, 8000u) << "vertices added";
+  // Its own saddle is its own: only the parts the rig added are labelled, no saddle or pad among them.
+  const std::map<TackPart, std::size_t> parts = test::tackPartCounts(horse.mesh);
+  EXPECT_EQ(parts.count(TackPart::Saddle) + parts.count(TackPart::SaddlePad), 0u);
+  EXPECT_EQ(parts.at(TackPart::None), before);
+  for (TackPart part : {TackPart::Bridle, TackPart::Bit, TackPart::StirrupLeatherL, TackPart::StirrupIronR, TackPart::Reins})
+    EXPECT_GT(parts.count(part), 0u) << tackPartName(part);
   Character bare = bareHorse();
   const std::size_t bare_before = bare.mesh.vertexCount();
   addHorseTack(bare, "bare.glb");
@@ -310,7 +322,7 @@ void rideTheTrot(const Character& horse, const Character& rider, const std::stri
 TEST(HorseTack, TheFoxWithoutTackRidesTheDefaultRidersTrot) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
-  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox-horse-mapping.json";
+  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox" / "fox-horse-mapping.json";
   const RigProfile profile = RigProfile::thesis();
   const RiddenPair pair = resolveRiddenPair(fox.string(), mapping.string(), "default", "", profile);
   const Character& horse = pair.horse;
@@ -336,7 +348,7 @@ TEST(HorseTack, TheFoxWithoutTackRidesTheDefaultRidersTrot) {
 TEST(HorseTack, AStandingUserRiderIsSeatedOnTheFoxsTackAndRidesTheTrot) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
-  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox-horse-mapping.json";
+  const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox" / "fox-horse-mapping.json";
   const test::UserRiderSpec spec = test::userRiderSpecs().front();
   const test::UserRiderFiles files = test::writeUserRider(spec, fs::path(STIRRUP_BINARY_DIR) / "test_horse_tack");
   const RiddenPair pair = resolveRiddenPair(fox.string(), mapping.string(), files.glb.string(), files.mapping.string(), RigProfile::thesis());

@@ -67,6 +67,27 @@ TEST(ImplicitBody, SphereIsClosedOutwardAndOnTheZeroSet) {
   }
 }
 
+// A shape of a horse's tack labels the vertices it paints (those nearest it) with its part; a body of no
+// tack labels none.
+TEST(ImplicitBody, ATackShapeLabelsTheSurfaceItPaints) {
+  ImplicitBody body;
+  body.add(taperedCapsule({-20, 0, 0}, {20, 0, 0}, 8.0f, 8.0f, 0, {1, 0, 0}));
+  PolygonizeParams params;
+  params.cell = 1.0f;
+  EXPECT_TRUE(polygonize(body, params).tack_parts.empty());
+  ImplicitPrimitive pad = ellipsoid({0, 8, 0}, {10, 3, 10}, 1, {0, 0, 1}, 0.5f);
+  pad.tack_part = TackPart::SaddlePad;
+  body.add(pad);
+  const SkinnedMesh m = polygonize(body, params);
+  ASSERT_EQ(m.tack_parts.size(), m.vertexCount());
+  std::size_t labelled = 0;
+  for (std::size_t v = 0; v < m.vertexCount(); ++v) {
+    EXPECT_EQ(m.tack_parts[v] == TackPart::SaddlePad, m.colors[v] == glm::vec3(0, 0, 1)) << v;
+    labelled += m.tack_parts[v] == TackPart::SaddlePad;
+  }
+  EXPECT_GT(labelled, 100u);
+}
+
 TEST(ImplicitBody, BlendedLimbIsClosedWithVerticesOnTheSurface) {
   ImplicitBody body;
   body.add(ellipsoid({0, 0, 0}, {20, 10, 12}, 0, {1, 0, 0}, 4.0f));

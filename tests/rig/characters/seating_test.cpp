@@ -218,7 +218,7 @@ TEST_P(SeatedUserRider, RidesTrotCanterAndJumpSeatedWithFeetInTheStirrupsAndHand
   ridesSeated(spec.name, files.glb, files.mapping);
 }
 
-// Blender's own Rigify human (scripts/blender-rigify-rider: Rigify's meta-rig and the rig it generates,
+// Blender's own Rigify human (tests/blender/rigify-rider: Rigify's meta-rig and the rig it generates,
 // a skinned body, Blender's glTF exporter: 160 DEF- bones, limbs and face roots of their own), with no
 // mapping: stirrup maps it by itself, seats it and rides it as the generated test characters.
 TEST(SeatedBlenderRigifyRider, MappedByItselfRidesTrotCanterAndJumpSeated) {

@@ -97,5 +97,25 @@ TEST(Tube, AppendsAfterWhatIsThereAndSkipsDegenerateTubes) {
   EXPECT_EQ(m.positions.size(), before);
 }
 
+// A tube of the tack labels its own vertices with its part; one that is no tack's labels nothing in a mesh
+// without tack, and its vertices as the body's in a mesh with tack.
+TEST(Tube, ATackTubeLabelsItsVerticesWithItsPart) {
+  SkinnedMesh m;
+  TubeParams p;
+  p.sides = 4;
+  appendTube(m, std::vector<TubePoint>{{{0, 0, 0}, 0}, {{0, 5, 0}, 0}}, p);
+  EXPECT_TRUE(m.tack_parts.empty());
+  const std::size_t body = m.vertexCount();
+  p.part = TackPart::StirrupIronR;
+  appendTube(m, std::vector<TubePoint>{{{0, 0, 0}, 0}, {{0, 5, 0}, 0}}, p);
+  const std::size_t iron = m.vertexCount();
+  p.part = TackPart::None;
+  appendTube(m, std::vector<TubePoint>{{{0, 0, 0}, 0}, {{0, 5, 0}, 0}}, p);
+  ASSERT_EQ(m.tack_parts.size(), m.vertexCount());
+  for (std::size_t v = 0; v < m.vertexCount(); ++v)
+    EXPECT_EQ(m.tack_parts[v], v >= body && v < iron ? TackPart::StirrupIronR : TackPart::None) << v;
+  EXPECT_EQ(m.triangleTackPart(m.triangleCount() - 1), TackPart::None);
+}
+
 }  // namespace
 }  // namespace stirrup::rig

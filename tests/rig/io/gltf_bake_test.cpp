@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -15,7 +16,10 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include "rig/io/gltf_animation.h"
+#include "rig/tack_part.h"
 #include "tests/rig/default_characters.h"
+#include "tests/rig/io/baked_trot.h"
 #include "tests/test_files.h"
 
 namespace stirrup::rig {
@@ -178,6 +182,74 @@ TEST(GltfBake, OneFrameIsStillAndInconsistentShotsAreRefused) {
   bad = twoFrameShot();
   bad.cameras[0].height = 0;
   EXPECT_THROW(bakedShotGlb(bad), std::invalid_argument);
+}
+
+// The horse's tack beside its body: a node a part, named as the part, skinned by the horse's skin, its
+// extras saying what it is and which horse it fits, its materials named after it in the colours stirrup
+// renders it in; in a crowd each pair's prefixed by the pair's name, as its body's are.
+TEST(GltfBake, TheTackIsANodeAPartOfTheHorsesSkin) {
+  const HorseParams hp;
+  for (const std::string pair_name : {"", "pair03"}) {
+    BakedShot shot = twoFrameShot();
+    shot.pairs[0].name = pair_name;
+    const tinygltf::Model m = stirrup::test::glbModel(bakedShotGlb(shot));
+    const std::string named = pair_name.empty() ? "" : pair_name + "_";
+    for (const TackPart part : kTackParts) {
+      const std::string name(tackPartName(part));
+      int n = -1;  // the mesh node (the saddle's rig point is a joint node "saddle" too)
+      for (std::size_t i = 0; i < m.nodes.size(); ++i)
+        if (m.nodes[i].name == named + name && m.nodes[i].mesh >= 0) n = int(i);
+      ASSERT_GE(n, 0) << named + name;
+      const tinygltf::Node& node = m.nodes[std::size_t(n)];
+      EXPECT_EQ(node.skin, 0) << name;
+      EXPECT_EQ(node.extras.Get("stirrup_tack").Get<std::string>(), name);
+      EXPECT_EQ(node.extras.Get("stirrup_fits").Get<std::string>(), named + "horse");
+      EXPECT_FALSE(node.extras.Has("stirrup_fits_file")) << "the generated horse comes from no file";
+      const tinygltf::Mesh& mesh = m.meshes.at(std::size_t(node.mesh));
+      EXPECT_EQ(mesh.name, named + name);
+      ASSERT_FALSE(mesh.primitives.empty());
+      EXPECT_EQ(m.materials.at(std::size_t(mesh.primitives[0].material)).name, named + name);
+      const bool metal = part == TackPart::Bit || part == TackPart::StirrupIronL || part == TackPart::StirrupIronR;
+      const glm::vec3 first = part == TackPart::SaddlePad ? hp.pad : metal ? hp.metal : hp.leather;
+      const std::vector<double>& c = m.materials[std::size_t(mesh.primitives[0].material)].pbrMetallicRoughness.baseColorFactor;
+      EXPECT_EQ(glm::vec3(float(c[0]), float(c[1]), float(c[2])), first) << name;
+      EXPECT_EQ(mesh.primitives.size(), part == TackPart::SaddlePad ? 2u : 1u) << name << ": one primitive a colour";
+      if (part == TackPart::SaddlePad) {
+        EXPECT_EQ(m.materials.at(std::size_t(mesh.primitives[1].material)).name, named + name + ".001");
+      }
+      const std::vector<int>& in_scene = m.scenes.at(0).nodes;
+      EXPECT_EQ(std::count(in_scene.begin(), in_scene.end(), n), 1) << name;
+    }
+  }
+}
+
+// The tack's rig points are joints of the horse's skin, keyed at every frame where stirrup poses them:
+// the bake of the default pair's trot has each rein's hand end in her hand and each tread at the ball of
+// her foot (rig::placeReins, rig::placeStirrups), within what the foot's leg solve leaves.
+TEST(GltfBake, TheTackJointsAreKeyedInHerHandsAndAtHerFeet) {
+  const tinygltf::Model m = stirrup::test::readGlbModel(test::bakedTrot().file);
+  const GltfAnimation animation = GltfAnimation::together(m, "trot.glb");
+  const auto joint = [&](int skin, const std::string& name) {
+    for (const int j : m.skins.at(std::size_t(skin)).joints)
+      if (m.nodes[std::size_t(j)].name == name) return j;
+    ADD_FAILURE() << "no joint " << name << " in skins[" << skin << "]";
+    return 0;
+  };
+  std::size_t keyed = 0;
+  for (const char* tack : {"saddle", "lStirrup", "rStirrup", "lRein", "rRein"}) keyed += animation.animates(joint(0, tack));
+  EXPECT_EQ(keyed, 5u) << "every tack joint moves with the trot";
+  double hands = 0.0, feet = 0.0;
+  for (int f = 0; f < test::kFrames; ++f) {
+    const std::vector<glm::dmat4> w = animation.worlds(f / test::kFps);
+    const auto at = [&](int node) { return glm::dvec3(w[std::size_t(node)][3]) * 100.0; };  // metres to cm
+    for (const char* side : {"l", "r"}) {
+      hands = std::max(hands, glm::length(at(joint(0, std::string(side) + "Rein")) - at(joint(1, std::string(side) + "Hand"))));
+      feet = std::max(feet, glm::length(at(joint(0, std::string(side) + "Stirrup")) - at(joint(1, std::string(side) + "Ball"))));
+    }
+  }
+  EXPECT_LT(hands, 1e-3) << "cm";
+  EXPECT_LT(feet, 1.0) << "cm";
+  std::printf("the trot's tack joints: rein ends within %.5f cm of her hands, treads within %.3f cm of her balls\n", hands, feet);
 }
 
 }  // namespace

@@ -58,6 +58,7 @@ void expectSameCharacter(const Character& a, const Character& b) {
   EXPECT_EQ(a.mesh.colors, b.mesh.colors);
   EXPECT_EQ(a.mesh.indices, b.mesh.indices);
   EXPECT_EQ(a.mesh.weights, b.mesh.weights);
+  EXPECT_EQ(a.mesh.tack_parts, b.mesh.tack_parts);
   ASSERT_EQ(a.mesh.joints.size(), b.mesh.joints.size());
   std::size_t differ = 0;  // joints that carry weight (unused slots are written as joint 0)
   for (std::size_t v = 0; v < a.mesh.joints.size(); ++v)
@@ -153,6 +154,23 @@ TEST(GltfCharacter, TheRoleTableReadsByJointNamesAndAnySkin) {
   }();
   ASSERT_TRUE(by_index);
   EXPECT_EQ(by_index->at("lfHoof"), 0);
+  // A table by the joints' names alone (the Blender add-on's shot writes its mappings' so) is read only
+  // where the reader asks for it: it says nothing of the file's units and axes (rig/io/gltf_shot.h does).
+  tinygltf::Model named_only = read;
+  tinygltf::Value::Object e = named_only.nodes[std::size_t(horse.mesh_node)].extras.Get<tinygltf::Value::Object>();
+  e.erase("stirrup_roles");
+  named_only.nodes[std::size_t(horse.mesh_node)].extras = tinygltf::Value(e);
+  EXPECT_FALSE(gltfRoleTable(named_only, "two.glb", 1, CharacterKind::Horse));
+  bool named = false;
+  const std::optional<std::map<std::string, int>> by_name = gltfRoleTable(named_only, "two.glb", 1, CharacterKind::Horse, &named, true);
+  ASSERT_TRUE(by_name);
+  EXPECT_TRUE(named);
+  for (const char* tack : {"saddle", "lStirrup", "rStirrup", "lRein", "rRein"})
+    EXPECT_EQ(read.nodes.at(std::size_t(read.skins.at(1).joints.at(std::size_t(by_name->at(tack))))).name, tack);
+  e["stirrup_role_joints"] = tinygltf::Value(std::string("saddle"));
+  named_only.nodes[std::size_t(horse.mesh_node)].extras = tinygltf::Value(e);
+  EXPECT_EQ(stirrup::test::errorOf([&] { gltfRoleTable(named_only, "two.glb", 1, CharacterKind::Horse, nullptr, true); }),
+            "two.glb: the file's role table (extras.stirrup_role_joints) is not an object (expected role -> joint name)");
 }
 
 TEST(GltfCharacter, UnknownJointNamesTheRoleTheJointAndTheFile) {

@@ -33,7 +33,7 @@ fs::path tempFile(const std::string& name) {
 }
 
 const fs::path kFox = fs::path(STIRRUP_SHARED_DIR) / "assets/fox/Fox.glb";
-const fs::path kFoxMapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox-mapping.json";
+const fs::path kFoxMapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes/fox/fox-mapping.json";
 
 void expectSameFrames(const Clip& a, const Clip& b, double fps, double duration) {
   for (int i = 0; i <= static_cast<int>(duration * fps); ++i) {

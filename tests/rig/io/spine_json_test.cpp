@@ -33,7 +33,7 @@ class SpineJson : public ::testing::Test {
 };
 
 TEST_F(SpineJson, ReadsTheShippedDemo) {
-  const SpineFile s = readSpineFile(STIRRUP_SOURCE_DIR "/scenes/spine-demo.json");
+  const SpineFile s = readSpineFile(STIRRUP_SOURCE_DIR "/scenes/spine/demo.json");
   EXPECT_EQ(s.bones, (std::array<double, 3>{10, 11, 10}));
   EXPECT_EQ(s.segments, 10);
   EXPECT_EQ(s.layout, ChainLayout::EqualArcLength);
@@ -52,7 +52,7 @@ TEST_F(SpineJson, ErrorsNameTheFileAndTheField) {
 }
 
 TEST_F(SpineJson, ResultJsonCarriesEveryJointAndTheLengths) {
-  const SpineFile s = readSpineFile(STIRRUP_SOURCE_DIR "/scenes/spine-demo.json");
+  const SpineFile s = readSpineFile(STIRRUP_SOURCE_DIR "/scenes/spine/demo.json");
   const CurveSpine spine(s.bones, s.segments, s.layout);
   const SpineResult r = spine.solve(s.poses[1].controllers, 1.0);
   const nlohmann::json j = spineResultToJson(r, 1.0);

@@ -258,7 +258,7 @@ TEST(AutoMapping, TheFoxMapsAsAHorseAndLoadsWithTheRigsTack) {
 
 // ---- Horses we did not make: Blender's Rigify horse.
 
-// scripts/blender-rigify-horse's files, each vertex weighted wholly to its nearest bone of the body's, so
+// tests/blender/rigify-horse's files, each vertex weighted wholly to its nearest bone of the body's, so
 // that which joints a file weights is known (one Blender run of six horses, under 10 s, made once for
 // every test process of a run: tests/blender_fixture.h): the meta-rig with a thin body (legs, trunk,
 // neck, head and tail weighted), a full body (every bone weighted: the mane, ears, jaw, eyes, nostrils,
@@ -268,7 +268,7 @@ const std::string& rigifyHorses() {
   static const std::string dir = []() -> std::string {
     if (!stirrup::test::blenderInstalled()) return "";
     const fs::path d = fs::path(STIRRUP_BINARY_DIR) / "test_blender_horses" / "mapping";
-    const fs::path script = STIRRUP_SOURCE_DIR "/scripts/blender-rigify-horse";
+    const fs::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-horse";
     const std::string command = "'" + script.string() + "' --batch '" + d.string() + "'" +
                                 " 'metarig-thin:--form metarig --weights nearest'"
                                 " 'metarig-full:--form metarig --body full --weights nearest'"
@@ -286,7 +286,7 @@ const std::string& rigifyHorses() {
   do {                                                                                                                    \
     if (rigifyHorses().empty())                                                                                           \
       GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy): Blender's Rigify horse is not made"; \
-    ASSERT_NE(rigifyHorses(), "failed") << "scripts/blender-rigify-horse failed";                                         \
+    ASSERT_NE(rigifyHorses(), "failed") << "tests/blender/rigify-horse failed";                                         \
   } while (0)
 
 AutoMapping mapRigifyHorse(const std::string& form, bool use_names) {

@@ -92,10 +92,19 @@ class Poser:
         """{name: (frames, 4, 4)} -> (frames, bones, 4, 4) in this poser's order."""
         return np.stack([deformations[n] for n in self.names], axis=1)
 
+    def pose_matrices(self, arm, d):
+        """The pose matrix (armature space) of every bone (frames, bones, 4, 4) that deforms as d (frames,
+        bones, 4, 4) does, the armature now where it stands."""
+        return (np.linalg.inv(np_matrix(arm.matrix_world)) @ G_INV) @ d @ self.after
+
     def bases(self, arm, d):
         """matrix_basis of every bone (frames, bones, 4, 4) from deformations d (frames, bones, 4, 4), the
         armature now where it stands; a parent outside the bones posed as it stands now."""
-        p = (np.linalg.inv(np_matrix(arm.matrix_world)) @ G_INV) @ d @ self.after
+        return self.bases_from_pose(arm, self.pose_matrices(arm, d))
+
+    def bases_from_pose(self, arm, p):
+        """matrix_basis of every bone (frames, bones, 4, 4) that gives it the pose matrix p (frames, bones, 4,
+        4), through Blender's parent relation."""
         pp = np.broadcast_to(np.eye(4), p.shape).copy()
         has = self.parent >= 0
         pp[:, has] = p[:, self.parent[has]]
@@ -154,9 +163,20 @@ def _rotation_channels(pb, quats, prev_euler):
     return "rotation_euler", rows
 
 
-def key_action(arm, name, frames, names, bases):
+def _at_rest(path, values, atol):
+    rest = {"location": 0.0, "scale": 1.0, "rotation_euler": 0.0}
+    if path == "rotation_quaternion":
+        return np.allclose(values, [1.0, 0.0, 0.0, 0.0], atol=atol) or np.allclose(values, [-1.0, 0.0, 0.0, 0.0], atol=atol)
+    if path == "rotation_axis_angle":
+        return np.allclose(values[:, 0], 0.0, atol=atol)
+    return np.allclose(values, rest[path], atol=atol)
+
+
+def key_action(arm, name, frames, names, bases, skip_rest=False, rest_atol=1e-7):
     """A new action named `name` keying the bones `names` at `frames` as `bases` (frames, bones, 4, 4) has
-    them: location, rotation in the bone's mode and scale, LINEAR between frames."""
+    them: location, rotation in the bone's mode and scale, LINEAR between frames. With skip_rest, a channel
+    within rest_atol of rest on every frame is not keyed (a control the ride leaves alone stays the
+    animator's)."""
     action = bpy.data.actions.new(name)
     action.id_root = "OBJECT"
     frames = np.asarray(frames, dtype=np.float64)
@@ -173,6 +193,8 @@ def key_action(arm, name, frames, names, bases):
         base = 'pose.bones["%s"].' % bname.replace("\\", "\\\\").replace('"', '\\"')
         for path, rows in (("location", locs), (rot_path, rots), ("scale", scales)):
             values = np.asarray(rows, dtype=np.float64)
+            if skip_rest and _at_rest(path, values, rest_atol):
+                continue
             for i in range(values.shape[1]):
                 fc = action.fcurves.new(base + path, index=i, action_group=bname)
                 fc.keyframe_points.add(len(frames))
@@ -182,3 +204,15 @@ def key_action(arm, name, frames, names, bases):
                 fc.keyframe_points.foreach_set("interpolation", [1] * len(frames))  # LINEAR
                 fc.update()
     return action
+
+
+def key_properties(action, frames, values):
+    """Keys custom properties ({(bone, property): value}) at the first and last of `frames`, CONSTANT."""
+    for (bone, prop), value in values.items():
+        path = 'pose.bones["%s"]["%s"]' % (bone.replace('"', '\\"'), prop)
+        fc = action.fcurves.new(path, index=0, action_group=bone)
+        ends = [frames[0], frames[-1]] if frames[-1] != frames[0] else [frames[0]]
+        fc.keyframe_points.add(len(ends))
+        fc.keyframe_points.foreach_set("co", [x for f in ends for x in (f, value)])
+        fc.keyframe_points.foreach_set("interpolation", [0] * len(ends))  # CONSTANT
+        fc.update()

@@ -26,6 +26,10 @@ class StirrupMapping(bpy.types.PropertyGroup):
     offset_cm: bpy.props.FloatVectorProperty(name="Offset (cm)", size=3, default=(0.0, 0.0, 0.0))
     object_matrix: bpy.props.FloatVectorProperty(size=16, default=(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1))
     report: bpy.props.StringProperty(name="character map said")
+    controls_text: bpy.props.StringProperty(
+        name="Controls", default="",
+        description="A rider's control rig that is neither Rigify's nor a bare skeleton: the Blender text holding which "
+                    "control follows which deform bone (JSON: follow, twist, pole, set; docs/blender.md)")
 
 
 class StirrupFinding(bpy.types.PropertyGroup):
@@ -68,6 +72,16 @@ class StirrupSettings(bpy.types.PropertyGroup):
     gait: bpy.props.EnumProperty(name="Gait", items=[
         ("walk", "Walk", ""), ("trot", "Trot", ""), ("canter", "Canter", ""), ("gallop", "Gallop", "")],
         default="trot", description="The gait stirrup generates for a horse without an action (ride keys the horse too)")
+    limbs: bpy.props.EnumProperty(name="Limbs", items=[
+        ("IK", "IK", "Her feet on foot_ik, her hands on hand_ik, knees and elbows by the IK base's twist or the pole"),
+        ("FK", "FK", "Her limbs on their FK controls")], default="IK",
+        description="Which of a control rig's limb controls Ride keys (the IK/FK switch keyed to match)")
+    reduce_keys: bpy.props.BoolProperty(
+        name="Reduce keys", default=False,
+        description="Thin the ride's keys with Blender's decimation to the fewest that keep her joints within the tolerance")
+    reduce_tolerance_cm: bpy.props.FloatProperty(
+        name="Tolerance (cm)", default=0.25, min=0.01, max=10.0,
+        description="How far (cm, in the world) reduced keys may let any of her joints stray from the ride")
     horse_map: bpy.props.PointerProperty(type=StirrupMapping)
     rider_map: bpy.props.PointerProperty(type=StirrupMapping)
     live: bpy.props.BoolProperty(name="Live", default=False, update=_live_update,

@@ -20,23 +20,47 @@ bl_info = {
 
 if "bpy" in locals():  # a reload (F3 > Reload Scripts): take the modules' new code
     import importlib
-    for _m in (program, gltf_files, transforms, mapping, export, ride, live, check, review, properties, panel):  # noqa: F821
+    for _m in (program, gltf_files, transforms, layer, controls, export, mapping, reduce, tack, ride, live, check, review, properties, panel):  # noqa: F821
         importlib.reload(_m)
 else:
-    from . import program, gltf_files, transforms, mapping, export, ride, live, check, review, properties, panel
+    from . import program, gltf_files, transforms, layer, controls, export, mapping, reduce, tack, ride, live, check, review, properties, panel
 
 import bpy
+from bpy.app.handlers import persistent
 
 _classes = properties.classes + ride.classes + live.classes + check.classes + review.classes + panel.classes
+
+
+@persistent
+def _before_load(_):
+    """Live ends with the file it was on (its process, handlers and timer)."""
+    live.stop_all()
+
+
+@persistent
+def _on_load(_):
+    """A file saved while Live was on holds its helper armature and constraints, her action set aside and the
+    ride's layer muted, and Live is off now: all put back."""
+    controls.clear_leftovers()
+    for scene in bpy.data.scenes:
+        s = scene.stirrup
+        if s.get("live"):
+            s["live"] = False  # (no update call: there is no session to stop)
+            live.restore(s)
 
 
 def register():
     for c in _classes:
         bpy.utils.register_class(c)
     bpy.types.Scene.stirrup = bpy.props.PointerProperty(type=properties.StirrupSettings)
+    bpy.app.handlers.load_pre.append(_before_load)
+    bpy.app.handlers.load_post.append(_on_load)
 
 
 def unregister():
+    for handlers, h in ((bpy.app.handlers.load_pre, _before_load), (bpy.app.handlers.load_post, _on_load)):
+        if h in handlers:
+            handlers.remove(h)
     live.stop_all()
     del bpy.types.Scene.stirrup
     for c in reversed(_classes):

@@ -28,7 +28,7 @@ class STIRRUP_OT_map(bpy.types.Operator):
         except program.StirrupError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
-        mapping.keep(getattr(s, self.kind + "_map"), obj, data, said)
+        mapping.keep(context, getattr(s, self.kind + "_map"), obj, data, said)
         self.report({"INFO"}, said.strip().splitlines()[0] if said.strip() else "mapped")
         return {"FINISHED"}
 
@@ -72,6 +72,13 @@ class VIEW3D_PT_stirrup(bpy.types.Panel):
         col.prop(s, "stirrup_holes_up")
         if s.horse is not None and not export.has_action(s.horse):
             col.prop(s, "gait")
+        row = col.row(align=True)
+        row.prop(s, "limbs", expand=True)
+        row = col.row(align=True)
+        row.prop(s, "reduce_keys")
+        sub = row.row(align=True)
+        sub.active = s.reduce_keys
+        sub.prop(s, "reduce_tolerance_cm", text="cm")
         row = col.row(align=True)
         row.scale_y = 1.4
         row.operator("stirrup.ride", icon="ARMATURE_DATA")
@@ -126,6 +133,8 @@ class _MappingPanel:
         col.prop(mp, "forward")
         col.prop(mp, "up")
         col.prop(mp, "offset_cm")
+        if self.kind == "rider":
+            col.prop_search(mp, "controls_text", bpy.data, "texts", text="Controls")
 
 
 class VIEW3D_PT_stirrup_horse_map(_MappingPanel, bpy.types.Panel):

@@ -6,7 +6,7 @@ import os
 
 import bpy
 
-from . import export, gltf_files, mapping, program, ride
+from . import export, gltf_files, mapping, program, ride, tack
 
 MARKER = "stirrup: "
 
@@ -20,7 +20,7 @@ def export_shot(context, name):
     work = export.work_dir(context)
     maps, new = mapping.for_both(context, work)
     path = os.path.join(work, name)
-    glb = export.shot(context, horse, rider, maps["horse"], maps["rider"], path)
+    glb = export.shot(context, horse, rider, maps["horse"], maps["rider"], path, tack_rig=tack.rig_of(context.scene))
     start = glb.start_time()
     fps = ride.fps_of(context.scene)
     scene = context.scene

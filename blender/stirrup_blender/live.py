@@ -18,7 +18,7 @@ import time
 import bpy
 import numpy as np
 
-from . import export, program, ride, transforms
+from . import controls, export, layer, program, ride, tack, transforms
 
 _session = None
 _errors = []
@@ -60,6 +60,22 @@ class Session:
         self.rest_inv = np.array([np.linalg.inv(rest[i]) if i >= 0 else np.eye(4) for i in self.horse_index])
         self.rider_poser = transforms.Poser(p.rider, self.rider_joints, p.rider_at_export)
         self.rider_order = [self.rider_joints.index(n) for n in self.rider_poser.names]
+        # A control rig is posed through its controls, as Ride keys them (controls.py): held at their targets by
+        # the helper armature's constraints, so that the evaluation that draws the frame is the only one; the
+        # helper and the constraints stay until live is turned off.
+        # The tack's points (tack.py) move with her: posed from the deformations stirrup sends with hers.
+        self.tack_rig, self.tack_poser, self.tack_order = tack.rig_of(scene), None, []
+        tack_joints = ready.get("tack_joints", [])
+        if self.tack_rig is not None and tack_joints:
+            names = [n for n in tack_joints if n in self.tack_rig.data.bones]
+            self.tack_poser = transforms.Poser(self.tack_rig, names, np.eye(4))
+            self.tack_order = [tack_joints.index(n) for n in self.tack_poser.names]
+        self.solver = None
+        plan = controls.plan_for(p.rider, scene.stirrup.limbs, ride.controls_text(context))
+        if plan is not None:
+            self.solver = controls.Solver(p.rider, plan)
+            self.solver.apply_sets()
+            self.solver.open(context)
         self.stale = set()
         self.busy = False
         self.frame_changed = False
@@ -96,15 +112,25 @@ class Session:
     def pose_rider(self, answer):
         rider = self.rider()
         d = np.array(answer["rider"], dtype=np.float64).reshape(-1, 4, 4).transpose(0, 2, 1)[self.rider_order]
-        self.rider_poser.set_pose(rider, self.rider_poser.bases(rider, d[None])[0])
+        if self.solver is None:
+            self.rider_poser.set_pose(rider, self.rider_poser.bases(rider, d[None])[0])
+        else:
+            pose = self.rider_poser.pose_matrices(rider, d[None])[0]
+            targets = self.solver.targets({n: pose[k] for k, n in enumerate(self.rider_poser.names)})
+            self.solver.hold_at(targets)
+        if self.tack_poser is not None and "tack" in answer:
+            t = np.array(answer["tack"], dtype=np.float64).reshape(-1, 4, 4).transpose(0, 2, 1)[self.tack_order]
+            self.tack_poser.set_pose(self.tack_rig, self.tack_poser.bases(self.tack_rig, t[None])[0])
         self.last_ms = answer.get("ms", 0.0)
         self.updates += 1
 
     def update(self, scene, depsgraph, sets=()):
-        """The current frame's horse handed over fresh (with any other frames refreshed), and the rider posed."""
+        """The current frame's horse handed over when stirrup's copy of it is stale (with any other frames
+        refreshed), and the rider posed. During playback with no edit, stirrup holds every frame as Blender
+        shows it (the export it started from, exact: export.exact_joints), so a frame change asks only for her."""
         frame = scene.frame_current
         sets = list(sets)
-        if self.first <= frame <= self.last:
+        if self.first <= frame <= self.last and frame in self.stale:
             sets.append({"frame": frame, "horse": self.horse_frame(depsgraph)})
             self.stale.discard(frame)
         self.busy = True
@@ -134,6 +160,9 @@ class Session:
         return bool(self.stale)
 
     def close(self):
+        if self.solver is not None:
+            self.solver.close()
+            self.solver = None
         if self.proc.poll() is None:
             self.proc.stdin.close()
             try:
@@ -181,7 +210,7 @@ def _on_depsgraph(scene, depsgraph):
         _session.frame_changed = False
     if not edited:
         return
-    _session.stale = set(range(_session.first, _session.last + 1)) - {scene.frame_current}
+    _session.stale = set(range(_session.first, _session.last + 1))  # the current frame goes over at once, below
     _session.update(scene, depsgraph)
     if not bpy.app.timers.is_registered(_refresh_tick):
         bpy.app.timers.register(_refresh_tick, first_interval=0.05)
@@ -218,6 +247,10 @@ def start(context):
     if rider.animation_data and rider.animation_data.action:
         s.live_saved_action = rider.animation_data.action
         rider.animation_data.action = None
+    for arm in (rider, session.tack_rig):
+        track = layer.track_of(arm) if arm is not None else None
+        if track is not None:
+            track.mute = True  # the ride's layer would pose her (and the tack) over the live pose
     _session = session
     bpy.app.handlers.frame_change_post.append(_on_frame)
     bpy.app.handlers.depsgraph_update_post.append(_on_depsgraph)
@@ -233,13 +266,21 @@ def stop(context):
         bpy.app.timers.unregister(_refresh_tick)
     if _session is not None:
         _session.close()
-        rider = _session.rider()
         _session = None
-        s = context.scene.stirrup
-        if rider is not None and s.live_saved_action is not None:
-            rider.animation_data_create()
-            rider.animation_data.action = s.live_saved_action
-            s.live_saved_action = None
+        restore(context.scene.stirrup)
+
+
+def restore(s):
+    """Her action and the ride's layer as they were before Live."""
+    rider = s.rider
+    if rider is not None and s.live_saved_action is not None:
+        rider.animation_data_create()
+        rider.animation_data.action = s.live_saved_action
+        s.live_saved_action = None
+    for arm in (rider, tack.rig_of_quietly(s.id_data)):
+        track = layer.track_of(arm) if arm is not None else None
+        if track is not None:
+            track.mute = False
 
 
 def stop_all():

@@ -9,23 +9,24 @@ import os
 
 import numpy as np
 
-from . import program, transforms
+from . import export, program, transforms
 
 KINDS = ("horse", "rider")
 
 
-def _object_matrix(obj):
-    return [v for row in obj.matrix_world for v in row]
+def _object_matrix(context, obj):
+    return [v for row in export.world_at_export(context, obj) for v in row]
 
 
-def stored(mp, obj):
+def stored(context, mp, obj):
     """The kept mapping, for obj as it stands now: a mapping file's JSON, or None when none was made for
-    this armature."""
+    this armature. The object's place is where Blender's exporter puts it (export.world_at_export: an
+    object keyed to travel is compared at the same frame each time)."""
     if mp.armature != obj.name or not mp.roles:
         return None
     h0 = transforms.mapping_matrix(mp.scale_cm, mp.forward, mp.up, mp.offset_cm)
     o0 = np.array(mp.object_matrix, dtype=np.float64).reshape(4, 4)
-    o1 = transforms.np_matrix(obj.matrix_world)
+    o1 = np.array(_object_matrix(context, obj), dtype=np.float64).reshape(4, 4)
     h1 = h0 @ transforms.G @ o0 @ np.linalg.inv(o1) @ transforms.G_INV
     parts = transforms.mapping_parts(h1)
     if parts is None:
@@ -52,12 +53,12 @@ def write(kind, data, work):
     return path
 
 
-def keep(mp, obj, data, said):
+def keep(context, mp, obj, data, said):
     """Keeps a mapping `character map` made for obj in the .blend."""
     mp.armature = obj.name
     mp.scale_cm = data["scale_cm"]
     mp.forward, mp.up, mp.offset_cm = data["forward"], data["up"], data["offset_cm"]
-    mp.object_matrix = _object_matrix(obj)
+    mp.object_matrix = _object_matrix(context, obj)
     mp.report = said.strip().splitlines()[0] if said.strip() else ""
     mp.roles.clear()
     for role, joint in data["roles"].items():
@@ -74,12 +75,11 @@ def for_both(context, work, exported=None):
     objects, or made by `character map` on a file exported for it (`exported`: kind -> the file already
     exported at rest or keyed; else one is exported at rest). Returns (kind -> mapping JSON, kind ->
     (JSON, what character map said) for those made now, to keep once the caller has succeeded)."""
-    from . import export
     s = context.scene.stirrup
     maps, new = {}, {}
     for kind in KINDS:
         obj = getattr(s, kind)
-        data = stored(getattr(s, kind + "_map"), obj)
+        data = stored(context, getattr(s, kind + "_map"), obj)
         if data is None:
             glb = (exported or {}).get(kind) or export.export(context, [obj], os.path.join(work, kind + "-rest.glb"), False)
             data, said = made(kind, glb, work, context)
@@ -91,4 +91,4 @@ def for_both(context, work, exported=None):
 def keep_new(context, new):
     s = context.scene.stirrup
     for kind, (data, said) in new.items():
-        keep(getattr(s, kind + "_map"), getattr(s, kind), data, said)
+        keep(context, getattr(s, kind + "_map"), getattr(s, kind), data, said)

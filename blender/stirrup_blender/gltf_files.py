@@ -33,6 +33,49 @@ class Glb:
         rows = np.lib.stride_tricks.as_strided(raw, shape=(a["count"], n * dtype.itemsize), strides=(stride, 1))
         return np.ascontiguousarray(rows).view(dtype).reshape(a["count"], n).astype(np.float64)
 
+    def set_accessor(self, index, values):
+        """Overwrites a float accessor's elements in place with `values` (count, components)."""
+        a = self.json["accessors"][index]
+        if a["componentType"] != 5126 or "sparse" in a:
+            raise ValueError("%s: accessor %d is not dense floats" % (self.path, index))
+        view = self.json["bufferViews"][a["bufferView"]]
+        n = _COMPONENTS[a["type"]]
+        values = np.asarray(values, dtype=np.float32).reshape(a["count"], n)
+        start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+        stride = view.get("byteStride", 0) or 4 * n
+        data = bytearray(self.bin)
+        for k in range(a["count"]):
+            data[start + k * stride:start + k * stride + 4 * n] = values[k].tobytes()
+        self.bin = bytes(data)
+        if "min" in a:
+            a["min"], a["max"] = values.min(axis=0).tolist(), values.max(axis=0).tolist()
+
+    def append_accessor(self, values, component_type, kind):
+        """A new accessor holding `values` (count, components) in a buffer view of its own at the end of the
+        binary chunk; returns its index."""
+        dtype = np.dtype(_TYPES[component_type])
+        data = np.ascontiguousarray(np.asarray(values).astype(dtype))
+        self.bin += b"\0" * (-len(self.bin) % 4)
+        views = self.json.setdefault("bufferViews", [])
+        views.append({"buffer": 0, "byteOffset": len(self.bin), "byteLength": data.nbytes})
+        self.bin += data.tobytes()
+        self.json["buffers"][0]["byteLength"] = len(self.bin)
+        accessors = self.json.setdefault("accessors", [])
+        a = {"bufferView": len(views) - 1, "componentType": component_type, "count": len(data), "type": kind}
+        if kind in ("SCALAR", "VEC2", "VEC3", "VEC4") and component_type == 5126:
+            a["min"], a["max"] = data.reshape(len(data), -1).min(axis=0).tolist(), data.reshape(len(data), -1).max(axis=0).tolist()
+        accessors.append(a)
+        return len(accessors) - 1
+
+    def channels(self, node):
+        """{path: output accessor} of the animation channels that key `node`."""
+        out = {}
+        for a in self.json.get("animations", []):
+            for ch in a["channels"]:
+                if ch["target"].get("node") == node:
+                    out[ch["target"]["path"]] = a["samplers"][ch["sampler"]]["output"]
+        return out
+
     def parents(self):
         parent = [-1] * len(self.json.get("nodes", []))
         for i, n in enumerate(self.json.get("nodes", [])):
@@ -79,6 +122,27 @@ def trs_matrices(t, r, s):
     m[:, :3, 3] = t
     m[:, 3, 3] = 1.0
     return m
+
+
+def quaternions(m):
+    """Unit quaternions (x, y, z, w) of rotation matrices (n, 3, 3), each on the side of the one before."""
+    out = np.empty((len(m), 4))
+    for k, r in enumerate(m):
+        t = np.trace(r)
+        if t > 0:
+            w = np.sqrt(1.0 + t) / 2
+            q = [(r[2, 1] - r[1, 2]) / (4 * w), (r[0, 2] - r[2, 0]) / (4 * w), (r[1, 0] - r[0, 1]) / (4 * w), w]
+        else:
+            i = int(np.argmax(np.diag(r)))
+            j, l = (i + 1) % 3, (i + 2) % 3
+            v = np.sqrt(max(1e-12, 1.0 + r[i, i] - r[j, j] - r[l, l])) / 2
+            q = [0.0, 0.0, 0.0, (r[l, j] - r[j, l]) / (4 * v)]
+            q[i], q[j], q[l] = v, (r[j, i] + r[i, j]) / (4 * v), (r[l, i] + r[i, l]) / (4 * v)
+        q = np.array(q) / np.linalg.norm(q)
+        if k and np.dot(q, out[k - 1]) < 0:
+            q = -q
+        out[k] = q
+    return out
 
 
 def node_rest(node):
