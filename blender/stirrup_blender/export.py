@@ -8,7 +8,7 @@ import tempfile
 import bpy
 import numpy as np
 
-from . import gltf_files, layer, program, transforms
+from . import gltf_files, layer, program, tack, transforms
 
 # Debian 12's numpy 1.24 removed the alias np.bool, which Blender 3.4's glTF exporter still uses.
 if "bool" not in vars(np):  # (hasattr would ask numpy's module __getattr__, which warns)
@@ -269,9 +269,9 @@ def shot(context, horse, rider, horse_map, rider_map, path, tack_rig=None):
         if not tack_skin:
             raise program.StirrupError("%s: Blender's exporter wrote no armature named %s" % (path, tack_rig.name))
         horse_skin = [k for k, (kind, _) in cast.items() if kind == "horse"][0]
-        points = merge_tack(glb, horse_skin, tack_skin[0])
+        merge_tack(glb, horse_skin, tack_skin[0])
         cast = {(k if k < tack_skin[0] else k - 1): v for k, v in cast.items()}
-        horse_map = dict(horse_map, roles=dict(horse_map["roles"], **{p: p for p in points}))
+        horse_map = dict(horse_map, roles=dict(horse_map["roles"], **tack.point_roles(tack_rig)))
         cast = {k: ((kind, horse_map) if kind == "horse" else (kind, data)) for k, (kind, data) in cast.items()}
     for node in nodes:
         if "skin" in node and node["skin"] in cast:
@@ -290,8 +290,7 @@ def merge_tack(glb, horse_skin, tack_skin):
     """The tack's rig merged into the horse, for stirrup to read the tack as the horse's (docs/blender.md,
     "The tack"): the tack's points (the rig's bones that copy none of the horse's) become joints of the
     horse's skin, with their inverse binds; the tack's meshes are skinned by the horse's skin, a bone that
-    copies the horse's weighted as that bone of the horse's; the tack's skin goes. Returns the points' names."""
-    from .tack import POINTS
+    copies the horse's weighted as that bone of the horse's; the tack's skin goes."""
     js = glb.json
     nodes = js["nodes"]
     horse, tack = js["skins"][horse_skin], js["skins"][tack_skin]
@@ -301,15 +300,12 @@ def merge_tack(glb, horse_skin, tack_skin):
     ibm_t = glb.accessor(tack["inverseBindMatrices"])
     remap, added, extra_ibm = [], [], []
     for k, name in enumerate(names):
-        if name in POINTS:
+        if name in horse_index:  # a bone that copies the horse's
+            remap.append(horse_index[name])
+        else:  # a tack point
             remap.append(len(horse["joints"]) + len(added))
             added.append(tack["joints"][k])
             extra_ibm.append(ibm_t[k])
-        elif name in horse_index:
-            remap.append(horse_index[name])
-        else:
-            raise program.StirrupError("the tack's rig has a bone %s that is no bone of the horse's (expected its points %s or "
-                                       "copies of the horse's bones)" % (name, ", ".join(POINTS)))
     horse["joints"] = horse["joints"] + added
     horse["inverseBindMatrices"] = glb.append_accessor(np.vstack([ibm_h] + [np.atleast_2d(m) for m in extra_ibm]), 5126, "MAT4")
     remap = np.array(remap)
@@ -323,4 +319,3 @@ def merge_tack(glb, horse_skin, tack_skin):
     for node in nodes:
         if node.get("skin", -1) > tack_skin:
             node["skin"] -= 1
-    return [nodes[j]["name"] for j in added]

@@ -24,7 +24,13 @@ COLLECTION = "stirrup tack"
 RIG = "stirrup tack rig"
 MARK = "stirrup_tack"  # custom property on what Ride made: the collection (the horse's name), the rig, each part
 FITS = "stirrup_fits"  # custom property on each part: the horse it fits
-POINTS = ("saddle", "lStirrup", "rStirrup", "lRein", "rRein")
+ROLE = "stirrup_role"  # custom property on each tack point's bone: its role (saddle, lStirrup ...)
+POINT_ROLES = ("saddle", "lStirrup", "rStirrup", "lRein", "rRein")  # the horse's tack roles (docs/round-trip.md)
+
+
+def point_roles(rig):
+    """The tack rig's points: role -> bone name."""
+    return {b[ROLE]: b.name for b in rig.data.bones if ROLE in b}
 
 
 class BakedTack:
@@ -41,6 +47,21 @@ class BakedTack:
         self.joint_nodes = skins[self.skin]["joints"]
         self.joint_names = [nodes[j]["name"] for j in self.joint_nodes]
         self.parts = [n for n in nodes if n.get("skin") == self.skin and "mesh" in n and MARK in n.get("extras", {})]
+        self.points = self._points(nodes)
+
+    def _points(self, nodes):
+        """The tack points' joint names: the horse's role table's saddle, stirrup and rein joints (the bake names
+        them "rig_saddle" ... on a horse with joints of those names already), else the roles' own names."""
+        for n in nodes:
+            extras = n.get("extras", {})
+            if n.get("skin") != self.skin or MARK in extras:
+                continue
+            by_name, by_index = extras.get("stirrup_role_joints", {}), extras.get("stirrup_roles", {})
+            names = [by_name.get(r) or (self.joint_names[by_index[r]] if isinstance(by_index.get(r), int) else None)
+                     for r in POINT_ROLES]
+            if all(isinstance(x, str) and x in self.joint_names for x in names):
+                return tuple(names)
+        return POINT_ROLES
 
     def primitives(self, node):
         """A part's primitives: [(positions (n, 3) cm, triangles (m, 3), joints (n, 4), weights (n, 4), base
@@ -67,7 +88,7 @@ class BakedTack:
         for k in used:
             while k is not None and k not in out:
                 out.add(k)
-                k = index.get(parents[self.joint_nodes[k]]) if self.joint_names[k] in POINTS else None
+                k = index.get(parents[self.joint_nodes[k]]) if self.joint_names[k] in self.points else None
         return sorted(out)
 
 
@@ -86,7 +107,7 @@ class Fitted:
         for k in baked.used_joints():
             name = baked.joint_names[k]
             p = index.get(parents[baked.joint_nodes[k]])
-            follows = name not in POINTS
+            follows = name not in baked.points
             if follows and name not in horse.data.bones:
                 raise program.StirrupError("the tack hangs from %s, which is no bone of the horse, %s (was it renamed since "
                                            "it was mapped?)" % (name, horse.name))
@@ -191,6 +212,8 @@ def build_rig(context, fitted, collection):
     bpy.ops.object.mode_set(mode="OBJECT")
     view_layer.objects.active = was
     for name, _, follows, _ in fitted.bones:
+        if not follows:  # the role it plays, for the shot Check exports (export.shot)
+            data.bones[name][ROLE] = POINT_ROLES[fitted.baked.points.index(name)]
         if follows:
             c = rig.pose.bones[name].constraints.new("COPY_TRANSFORMS")
             c.name = "follow the horse"
@@ -236,7 +259,7 @@ def build_part(fitted, node, rig, collection):
     mesh.polygons.foreach_set("use_smooth", [True] * len(faces))
     obj = bpy.data.objects.new(part, mesh)
     obj[MARK] = part
-    obj[FITS] = node["extras"].get(FITS, fitted.horse.name)
+    obj[FITS] = fitted.horse.name  # the Blender horse (the bake's extras name its armature there, "horse")
     collection.objects.link(obj)
     for name, vw in groups.items():
         g = obj.vertex_groups.new(name=name)

@@ -721,4 +721,11 @@ SeatedRider seatRider(const Character& rider, const Character& horse, const Seat
   return out;
 }
 
+std::vector<std::string> addContactPoints(Character& rider) {
+  SeatReport report;
+  const std::vector<glm::vec3> mesh = restMesh(rider);
+  addMissingPoints(rider, mesh, statureOf(mesh), restIsStanding(rider), report);
+  return report.added_points;
+}
+
 }  // namespace stirrup::rig

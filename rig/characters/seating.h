@@ -120,4 +120,10 @@ std::string seatedMisfit(const Character& rider, const Character& horse);
 // cannot be seated (a limb of no length, feet above the hips).
 SeatedRider seatRider(const Character& rider, const Character& horse, const SeatParams& params = {});
 
+// The contact points seatRider adds to a rider as it finds her at rest (a grip where her file names no
+// hand joint or names the wrist; for a standing rider, the sole under the ball of each foot, where the
+// tread carries her), and only those: what a shot from another tool needs for its rider to be measured as
+// the same rider is in a scene (rig/io/gltf_shot.h; docs/check.md, "One truth"). Returns the points added.
+std::vector<std::string> addContactPoints(Character& rider);
+
 }  // namespace stirrup::rig

@@ -10,6 +10,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/character.h"
+#include "rig/characters/seating.h"
 #include "rig/error.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
@@ -207,6 +208,10 @@ ShotCharacter readCharacter(const tinygltf::Model& model, const GltfImageBytes& 
   mapping.forward = world.forward, mapping.up = world.up, mapping.offset_cm = world.offset_cm;
   ShotCharacter out;
   out.character = loadCharacterGltf(GltfSkinSource{&model, &images, where, k}, kind, &mapping);
+  // A rider from another tool (a Blender export) gets the contact points a scene's seating gives her (the
+  // sole under the ball of each foot...), so her feet are measured where the bake of the same rider
+  // measures them; a bake's rider has them as joints of its own.
+  if (kind == CharacterKind::Rider && model.asset.generator.rfind("stirrup", 0) != 0) addContactPoints(out.character);
   out.skin = std::make_unique<GltfSkinJoints>(model, where, k, mappingToRig(mapping), units);
   const Skeleton& s = out.character.skeleton;
   out.joints.resize(s.size());

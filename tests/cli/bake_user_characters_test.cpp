@@ -187,7 +187,7 @@ TEST(BakeGltf, AUsersHorseGetsItsTackAsAPartANodeAndIsCheckedAtHandsAndFeet) {
     for (const tinygltf::Primitive& prim : model.meshes.at(std::size_t(node.mesh)).primitives) {
       tack_vertices += model.accessors.at(std::size_t(prim.attributes.at("POSITION"))).count;
       const std::vector<double>& c = model.materials.at(std::size_t(prim.material)).pbrMetallicRoughness.baseColorFactor;
-      const glm::vec3 colour(float(c[0]), float(c[1]), float(c[2]));
+      const glm::vec3 colour{float(c[0]), float(c[1]), float(c[2])};
       EXPECT_TRUE(colour == tack_params.leather || colour == tack_params.pad || colour == tack_params.metal) << node.name;
     }
   }

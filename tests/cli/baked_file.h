@@ -72,18 +72,24 @@ struct AnimatedNodes {
     return m;
   }
   // Every `stride`-th vertex of the skinned mesh on `mesh_node`, skinned at `key` (glTF 2.0 section
-  // 3.7.3: sum of weight * joint world * inverse bind matrix; the mesh node's own transform ignored).
-  std::vector<glm::dvec3> skinned(int mesh_node, std::size_t key, std::size_t stride) const {
+  // 3.7.3: sum of weight * joint world * inverse bind matrix; the mesh node's own transform ignored): of
+  // its first primitive, or with `every_primitive` of all its primitives' vertices one after another.
+  std::vector<glm::dvec3> skinned(int mesh_node, std::size_t key, std::size_t stride, bool every_primitive = false) const {
     const tinygltf::Node& n = model.nodes[mesh_node];
     const tinygltf::Skin& skin = model.skins.at(n.skin);
     const std::vector<float> ibm = accessorData<float>(model, skin.inverseBindMatrices);
     std::vector<glm::dmat4> joint(skin.joints.size());
     for (std::size_t j = 0; j < joint.size(); ++j)
       joint[j] = world(skin.joints[j], key) * glm::dmat4(glm::make_mat4(ibm.data() + 16 * j));
-    const tinygltf::Primitive& prim = model.meshes.at(n.mesh).primitives.at(0);
-    const std::vector<float> pos = accessorData<float>(model, prim.attributes.at("POSITION"));
-    const std::vector<float> wts = accessorData<float>(model, prim.attributes.at("WEIGHTS_0"));
-    const std::vector<std::uint16_t> jts = accessorData<std::uint16_t>(model, prim.attributes.at("JOINTS_0"));
+    std::vector<float> pos, wts;
+    std::vector<std::uint16_t> jts;
+    const std::vector<tinygltf::Primitive>& prims = model.meshes.at(n.mesh).primitives;
+    for (std::size_t i = 0; i < (every_primitive ? prims.size() : 1); ++i) {
+      const auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+      append(pos, accessorData<float>(model, prims.at(i).attributes.at("POSITION")));
+      append(wts, accessorData<float>(model, prims.at(i).attributes.at("WEIGHTS_0")));
+      append(jts, accessorData<std::uint16_t>(model, prims.at(i).attributes.at("JOINTS_0")));
+    }
     std::vector<glm::dvec3> out;
     for (std::size_t v = 0; v < pos.size() / 3; v += stride) {
       const glm::dvec4 p(pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2], 1.0);

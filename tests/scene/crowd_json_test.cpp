@@ -110,8 +110,10 @@ TEST(CrowdJson, BadRiderFieldsAreOneLineErrors) {
   EXPECT_EQ(errorOf([&] { pair(R"({"speed": [[0, 300]]})"); }), "s.json: riders[2].points: expected the path's points [[x, z], ...] (cm)");
   EXPECT_EQ(errorOf([&] { pair(R"({"points": [[0, 0], [500, 0]]})"); }),
             "s.json: riders[2].speed: expected speed keys [[seconds, cm/s], ...]");
+  EXPECT_EQ(errorOf([&] { pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "hat": "big"})"); }),
+            "s.json: riders[2].hat: unknown field");
   EXPECT_EQ(errorOf([&] { pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "horse": "big"})"); }),
-            "s.json: riders[2].horse: unknown field");
+            "s.json: riders[2].horse: no such file: big");
   EXPECT_EQ(errorOf([&] { pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "profile": 2})"); }),
             "s.json: riders[2].profile: expected a string, got 2");
   EXPECT_EQ(errorOf([&] { pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "speed_over": "space"})"); }),

@@ -113,7 +113,9 @@ TEST(GltfShot, ABakeReadBackStandsEveryJointWhereTheRigPosedIt) {
   const GltfShot::Pair& read = shot->pairs()[0];
   ASSERT_EQ(read.horse.skeleton.size(), defaultHorse().skeleton.size());
   ASSERT_EQ(read.rider.skeleton.size(), defaultRider().skeleton.size());
-  ASSERT_EQ(read.horse.mesh.vertexCount(), defaultHorse().mesh.vertexCount());
+  // The same triangles (the tack's parts written apart repeat their seams' vertices).
+  ASSERT_EQ(read.horse.mesh.triangleCount(), defaultHorse().mesh.triangleCount());
+  ASSERT_GE(read.horse.mesh.vertexCount(), defaultHorse().mesh.vertexCount());
 
   const PairCheck oracle(defaultHorse(), defaultRider(), trot().profile.balance);
   const PairCheck checker(read.horse, read.rider, trot().profile.balance);
