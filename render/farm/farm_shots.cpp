@@ -151,9 +151,11 @@ FarmPlan planMovies(const FarmRequest& r, const std::vector<MovieJob>& jobs, con
   for (const MovieJob& job : jobs) {
     FarmShot shot;
     shot.name = job.name;
-    shot.command = {r.stirrup.string(), "movies", "--out", r.out.string(), "--only", job.name};
+    // --only after the movies' own arguments: before a glTF shot's path, the option (a list) would take
+    // the path for a second name.
+    shot.command = {r.stirrup.string(), "movies", "--out", r.out.string()};
     shot.command.insert(shot.command.end(), movie_args.begin(), movie_args.end());
-    shot.command.push_back("--resume");
+    shot.command.insert(shot.command.end(), {"--only", job.name, "--resume"});
     shot.frames_dir = relativeTo(movieFrameDir(job, o), r.out);
     for (const fs::path& f : movieOutputs(job, o)) shot.outputs.push_back(relativeTo(f, r.out));
     int task = 0;
@@ -170,8 +172,8 @@ FarmPlan planMovies(const FarmRequest& r, const std::vector<MovieJob>& jobs, con
     names += (names.empty() ? "" : ",") + job.name;
   }
   plan.finish_command = {r.stirrup.string(), "movies", "--out", r.out.string(), "--finish"};
-  if (subset) plan.finish_command.insert(plan.finish_command.end(), {"--only", names});
   plan.finish_command.insert(plan.finish_command.end(), movie_args.begin(), movie_args.end());
+  if (subset) plan.finish_command.insert(plan.finish_command.end(), {"--only", names});
   return plan;
 }
 

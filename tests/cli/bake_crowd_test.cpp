@@ -76,7 +76,7 @@ TEST(BakeGltf, ACrowdBakesAtACoarserDetail) {
       rig::RiderParams rp = spec.rider();
       hp.cell *= render::kDetailCellFactor[level];
       rp.cell *= render::kDetailCellFactor[level];
-      built += rig::buildHorse(hp).mesh.positions.size() + rig::buildRider(rp, hp.mount).mesh.positions.size();
+      built += writtenVertices(rig::buildHorse(hp).mesh) + writtenVertices(rig::buildRider(rp, hp.mount).mesh);
     }
     EXPECT_EQ(vertices, built);
     ASSERT_EQ(model.animations.size(), 1u);
@@ -216,18 +216,21 @@ TEST(BakeGltf, ACrowdBakesEveryPairWithItsCameras) {
       const render::Camera rc = shot.cameraAtFrame(bake.frames[k]);
       const glm::dmat4 world = nodes.world(node, k);
       for (int pair : pairs) {
-        std::vector<glm::dvec3> horse, rider;
-        shot.pairPoints(pair, bake.frames[k], 25, horse, rider);
-        horse.insert(horse.end(), rider.begin(), rider.end());
-        std::vector<glm::dvec3> file;
+        // Every 25th vertex of the horse's body node and of the rider's, each against the vertex of
+        // stirrup's mesh it was written from.
+        std::vector<glm::dvec3> all_horse, all_rider, horse, file;
+        shot.pairPoints(pair, bake.frames[k], 1, all_horse, all_rider);
+        const std::vector<std::uint32_t> body = bodyVertices(shot.characters().horseAt(pair, 0).mesh);
         for (const char* who : {"horse", "rider"}) {
           std::snprintf(name, sizeof name, "pair%02d_%s:%s_mesh", pair, who, who);
           const int mesh = nodeNamed(model, name);
           ASSERT_GE(mesh, 0) << name;
-          const std::vector<glm::dvec3> points = nodes.skinned(mesh, k, 25);
-          file.insert(file.end(), points.begin(), points.end());
+          const std::vector<glm::dvec3> points = nodes.skinned(mesh, k, 1);
+          const bool is_horse = who[0] == 'h';
+          ASSERT_EQ(points.size(), is_horse ? body.size() : all_rider.size()) << name;
+          for (std::size_t v = 0; v < points.size(); v += 25)
+            file.push_back(points[v]), horse.push_back(is_horse ? all_horse.at(body[v]) : all_rider[v]);
         }
-        ASSERT_EQ(file.size(), horse.size());
         for (std::size_t p = 0; p < horse.size(); ++p) {
           const glm::dvec2 a = stirrupPixel(rc, horse[p], scene.width, scene.height);
           const glm::dvec2 b = gltfPixel(cam, world, file[p], scene.width, scene.height);

@@ -161,10 +161,8 @@ TEST_P(BakedCameras, ProjectTheCharactersLikeTheRender) {
   ASSERT_EQ(nodes.times.size(), frames.size());
   for (std::size_t k = 0; k < frames.size(); ++k)  // frame 1 at t = 0, for every track
     ASSERT_FLOAT_EQ(nodes.times[k], float((frames[k] - 1) / scene.fps)) << "frame " << frames[k];
-  int horse_mesh = -1, rider_mesh = -1;  // skins 0 and 1: horse and rider
-  for (std::size_t n = 0; n < model.nodes.size(); ++n)
-    if (model.nodes[n].skin == 0 || model.nodes[n].skin == 1)
-      (model.nodes[n].skin == 0 ? horse_mesh : rider_mesh) = static_cast<int>(n);
+  // The characters' bodies (the horse's tack is in nodes of its own beside its body's).
+  const int horse_mesh = nodeNamed(model, "horse:horse_mesh"), rider_mesh = nodeNamed(model, "rider:rider_mesh");
   ASSERT_GE(horse_mesh, 0);
   ASSERT_GE(rider_mesh, 0);
   constexpr std::size_t kStride = 5;
@@ -191,14 +189,19 @@ TEST_P(BakedCameras, ProjectTheCharactersLikeTheRender) {
       const std::size_t pose_key =
           hold > 0 ? static_cast<std::size_t>(std::find(frames.begin(), frames.end(), hold) - frames.begin()) : k;
       ASSERT_LT(pose_key, frames.size());
+      // Every kStride-th vertex of the horse's body node, then of the rider's, each against the vertex of
+      // stirrup's mesh it was written from.
+      const std::vector<std::uint32_t> body = bodyVertices(shot.characters().horseAt(0, 0).mesh);
       if (file_points[pose_key].empty()) {
-        file_points[pose_key] = nodes.skinned(horse_mesh, pose_key, kStride);
-        const std::vector<glm::dvec3> r = nodes.skinned(rider_mesh, pose_key, kStride);
-        file_points[pose_key].insert(file_points[pose_key].end(), r.begin(), r.end());
+        const std::vector<glm::dvec3> h = nodes.skinned(horse_mesh, pose_key, 1), r = nodes.skinned(rider_mesh, pose_key, 1);
+        ASSERT_EQ(h.size(), body.size());
+        for (std::size_t v = 0; v < h.size(); v += kStride) file_points[pose_key].push_back(h[v]);
+        for (std::size_t v = 0; v < r.size(); v += kStride) file_points[pose_key].push_back(r[v]);
       }
-      std::vector<glm::dvec3> horse, rider;
-      shot.characterPoints(frames[k], static_cast<int>(kStride), horse, rider);
-      horse.insert(horse.end(), rider.begin(), rider.end());
+      std::vector<glm::dvec3> all_horse, rider, horse;
+      shot.characterPoints(frames[k], 1, all_horse, rider);
+      for (std::size_t v = 0; v < body.size(); v += kStride) horse.push_back(all_horse.at(body[v]));
+      for (std::size_t v = 0; v < rider.size(); v += kStride) horse.push_back(rider[v]);
       ASSERT_EQ(horse.size(), file_points[pose_key].size());
       const render::Camera rc = shot.cameraAtFrame(frames[k]);
       const glm::dmat4 world = nodes.world(node, k);

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -13,11 +15,31 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include "rig/io/gltf_tack.h"
+#include "rig/mesh.h"
 #include "scene/camera.h"
 #include "tests/cli/run_command.h"
 #include "tests/test_files.h"
 
 namespace stirrup::test {
+
+// The vertex of stirrup's mesh each vertex of the bake's body node (`horse:horse_mesh`) was written from:
+// the body piece of rig::gltfMeshPieces, the tack's parts being nodes of their own (docs/round-trip.md,
+// "The tack"); a mesh without tack is written whole.
+inline std::vector<std::uint32_t> bodyVertices(const rig::SkinnedMesh& mesh) {
+  const rig::GltfMeshPiece body = rig::gltfMeshPieces(mesh, true).at(0);
+  if (!body.vertices.empty()) return body.vertices;
+  std::vector<std::uint32_t> all(mesh.vertexCount());
+  std::iota(all.begin(), all.end(), 0u);
+  return all;
+}
+
+// How many vertices the bake writes for a mesh: each piece's (the tack's seams in two pieces).
+inline std::size_t writtenVertices(const rig::SkinnedMesh& mesh) {
+  std::size_t n = 0;
+  for (const rig::GltfMeshPiece& p : rig::gltfMeshPieces(mesh, true)) n += p.vertices.empty() ? mesh.vertexCount() : p.vertices.size();
+  return n;
+}
 
 inline std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> cells;

@@ -258,8 +258,9 @@ result["findings"] = [f.rule for f in s.findings]
     for (const char* rider_rule : {"rider-in-horse", "hand-off-rein", "foot-off-stirrup", "trunk-balance"}) EXPECT_NE(rule, rider_rule);
 }
 
-// Check: the ridden walk is clean for the rider's rules; lowered 15 cm into the horse she is flagged at
-// every frame by a timeline marker "stirrup: rider-in-horse", the user's own marker left alone.
+// Check: the ridden walk is clean for the rider's rules, her hands and feet measured on the tack Ride
+// brought; lowered 15 cm into the horse she is flagged at every frame by timeline markers "stirrup:
+// rider-in-horse" and "stirrup: foot-off-stirrup", the user's own marker left alone.
 TEST(BlenderAddon, CheckMarksThePlantedFault) {
   SKIP_WITHOUT_BLENDER();
   const fs::path dir = testDir("check");
@@ -283,17 +284,20 @@ result["lowered"] = checked()
     for (const char* rule : {"rider-in-horse", "hand-off-rein", "foot-off-stirrup", "trunk-balance"})
       EXPECT_NE(f[1], rule) << r["ridden"]["summary"];
   EXPECT_EQ(r["ridden"]["markers"], nlohmann::json::parse(R"([["my own", 5]])")) << r["ridden"]["summary"];
-  // Her hands and feet are not measured: the user's horse holds no reins or stirrups of its own.
-  EXPECT_NE(r["ridden"]["unmeasured"].get<std::string>().find("hand-off-rein"), std::string::npos);
-  int flagged = 0;
+  // Her hands and feet are measured, on the tack Ride brought (docs/blender.md, "The tack").
+  for (const char* rule : {"hand-off-rein", "foot-off-stirrup"})
+    EXPECT_EQ(r["ridden"]["unmeasured"].get<std::string>().find(rule), std::string::npos) << r["ridden"]["unmeasured"];
+  // Lowered, she is in the horse, and her feet leave the irons (a marker a rule a frame).
+  std::map<std::string, int> flagged;
   for (const nlohmann::json& m : r["lowered"]["markers"]) {
     if (m[0] == "my own") continue;
-    EXPECT_EQ(m[0], "stirrup: rider-in-horse");
+    EXPECT_TRUE(m[0] == "stirrup: rider-in-horse" || m[0] == "stirrup: foot-off-stirrup" || m[0] == "stirrup: hand-off-rein") << m[0];
     EXPECT_GE(m[1].get<int>(), 1);
     EXPECT_LE(m[1].get<int>(), kWalkFrames);
-    ++flagged;
+    ++flagged[m[0].get<std::string>()];
   }
-  EXPECT_GE(flagged, kWalkFrames / 2) << r["lowered"]["summary"];
+  EXPECT_GE(flagged["stirrup: rider-in-horse"], kWalkFrames / 2) << r["lowered"]["summary"];
+  EXPECT_GE(flagged["stirrup: foot-off-stirrup"], kWalkFrames / 2) << r["lowered"]["summary"];
   EXPECT_NE(r["lowered"]["summary"].get<std::string>().find("rider-in-horse"), std::string::npos) << r["lowered"]["summary"];
 }
 

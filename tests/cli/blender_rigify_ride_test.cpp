@@ -156,7 +156,9 @@ scene.frame_set(19); scene.frame_set(20)
 result["nod_kept_cm"] = worst_cm(heads(rider), nodded)
 result["nod_over_ride_cm"] = worst_cm(heads(rider), ridden)
 result["layer_again"] = ride_layer(rider)
-result["ride_actions"] = sorted(a.name for a in bpy.data.actions if a.get("stirrup_ride"))
+result["ride_actions"] = sorted(a.name for a in bpy.data.actions if a.get("stirrup_ride") and a.id_root == "OBJECT" and rider.animation_data and
+                               any(st.action == a for t in rider.animation_data.nla_tracks for st in t.strips))
+result["all_ride_actions"] = sorted(a.name for a in bpy.data.actions if a.get("stirrup_ride"))
 # The rig's pole mode (Rigify's pole_vector switch): the knees and elbows by their poles.
 rider.animation_data.action = None
 for p in ("thigh_parent.L", "thigh_parent.R", "upper_arm_parent.L", "upper_arm_parent.R"):
@@ -192,7 +194,9 @@ result["keyed_poles"] = keyed(rider)
   EXPECT_LT(r["nod_kept_cm"].get<double>(), 0.05) << "a second ride keeps her nod where it was";
   EXPECT_EQ(r["layer_again"]["tracks"], nlohmann::json::parse(R"(["stirrup ride", "my layer"])"));
   EXPECT_NE(r["layer_again"]["active"], "") << "her nod's action";
-  EXPECT_EQ(r["ride_actions"].size(), 1u) << "the first ride's action replaced, not left behind: " << r["ride_actions"];
+  EXPECT_EQ(r["ride_actions"].size(), 1u) << "her ride's action in her layer: " << r["ride_actions"];
+  // The first ride's actions replaced, not left behind: hers and the tack rig's (docs/blender.md, "The tack").
+  EXPECT_EQ(r["all_ride_actions"].size(), 2u) << r["all_ride_actions"];
   // In pole mode the poles are keyed too, and she is where the bake puts her.
   ASSERT_TRUE(r["poles"].contains("ok")) << r["poles"];
   for (const char* c : {"thigh_ik_target.L", "thigh_ik_target.R", "upper_arm_ik_target.L", "upper_arm_ik_target.R"})

