@@ -52,6 +52,15 @@ int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const v
 
 namespace {
 
+// A joint index as a file gives it (a float read from any component type), for an error: whole numbers
+// as integers, anything else as it is.
+std::string jointIndexText(float j) {
+  if (std::isfinite(j) && j == std::floor(j) && std::abs(j) < 1e9f) return std::to_string(static_cast<long long>(j));
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(j));
+  return text;
+}
+
 int accessorType(int components) {
   switch (components) {
     case 1: return TINYGLTF_TYPE_SCALAR;
@@ -588,11 +597,12 @@ void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, co
           glm::u16vec4 jv(0);
           glm::vec4 wv(0.0f);
           for (int k = 0; k < 4; ++k) {
-            const int j = static_cast<int>(jts[v * 4 + k]);
+            const float j = jts[v * 4 + k];  // a float as read: cast only once it is known to be an index
             wv[k] = wts[v * 4 + k];
             if (wv[k] > 0.0f) {
-              if (j < 0 || j >= nj) throw InputError(pw + ".JOINTS_0: joint index " + std::to_string(j) + " outside skins[" + std::to_string(skin) + "]");
-              jv[k] = static_cast<std::uint16_t>(new_index[j]);
+              if (!(j >= 0.0f && j < float(nj)))  // a fuzzing finding: 2.8e29 cast to int first
+                throw InputError(pw + ".JOINTS_0: joint index " + jointIndexText(j) + " outside skins[" + std::to_string(skin) + "]");
+              jv[k] = static_cast<std::uint16_t>(new_index[static_cast<std::size_t>(j)]);
             }
           }
           const float sum = wv.x + wv.y + wv.z + wv.w;
