@@ -18,7 +18,9 @@ namespace fs = std::filesystem;
 
 void addMovieSetOptions(CLI::App* cmd, MovieSetArgs& a) {
   cmd->add_option("--preset,-p", a.preset, "Quality preset: draft, review or final")->capture_default_str();
-  cmd->add_option("--only", a.only, "Only these movies (comma-separated names; see stirrup movies --list)")->delimiter(',');
+  cmd->add_option("--only", a.only, "Only these movies (comma-separated names, or the option again; see stirrup movies --list)")
+      ->delimiter(',')
+      ->allow_extra_args(false);  // one value an occurrence: `--only side SHOT.glb` leaves the shot its place
   cmd->add_option("--frames-limit", a.frames_limit, "Render at most the first N frames of each movie")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--resolution", a.resolution, "WIDTHxHEIGHT instead of the scenes' (e.g. 640x360)");

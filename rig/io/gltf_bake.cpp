@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include "rig/io/gltf_character.h"
+#include "rig/io/gltf_writer.h"
 
 namespace stirrup::rig {
 
@@ -250,23 +251,11 @@ std::vector<unsigned char> bakedShotGlb(const BakedShot& shot) {
   tinygltf::Animation anim;
   anim.name = shot.name;
   const int input = appendFloatAccessor(model, bin, shot.seconds, 1, true);
-  const auto channel = [&](int node, const std::vector<float>& values, int components, const char* path) {
-    tinygltf::AnimationSampler s;
-    s.input = input;
-    s.output = appendFloatAccessor(model, bin, values, components, false);
-    s.interpolation = "LINEAR";
-    anim.samplers.push_back(s);
-    tinygltf::AnimationChannel ch;
-    ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
-    ch.target_node = node;
-    ch.target_path = path;
-    anim.channels.push_back(ch);
-  };
   const auto animate = [&](int node, const Tracks& tr) {
     setRest(model.nodes[node], tr);  // the first frame is the node's own transform
     if (!tr.moves() || frames < 2) return;
-    channel(node, tr.t, 3, "translation");
-    channel(node, tr.r, 4, "rotation");
+    appendLinearChannel(model, bin, anim, input, node, "translation", tr.t, 3);
+    appendLinearChannel(model, bin, anim, input, node, "rotation", tr.r, 4);
   };
   for (std::size_t i = 0; i < shot.pairs.size(); ++i) {
     for (int which = 0; which < 2; ++which) {

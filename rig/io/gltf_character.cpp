@@ -30,25 +30,12 @@
 #include "rig/io/gltf_mapping.h"
 #include "rig/io/gltf_nodes.h"
 #include "rig/io/gltf_tack.h"
+#include "rig/io/gltf_writer.h"
 #include "rig/io/gltf_texture.h"
 #include "rig/mapping/auto_mapping.h"
 #include "rig/mapping/mapping_skeleton.h"
 
 namespace stirrup::rig {
-
-int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const void* data, std::size_t size,
-                int target) {
-  while (bin.size() % 4) bin.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = bin.size();
-  view.byteLength = size;
-  view.target = target;
-  const auto* p = static_cast<const unsigned char*>(data);
-  bin.insert(bin.end(), p, p + size);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
 
 namespace {
 
@@ -59,17 +46,6 @@ std::string jointIndexText(float j) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", double(j));
   return text;
-}
-
-int accessorType(int components) {
-  switch (components) {
-    case 1: return TINYGLTF_TYPE_SCALAR;
-    case 2: return TINYGLTF_TYPE_VEC2;
-    case 3: return TINYGLTF_TYPE_VEC3;
-    case 4: return TINYGLTF_TYPE_VEC4;
-    case 16: return TINYGLTF_TYPE_MAT4;
-    default: throw std::invalid_argument("glTF: unsupported component count");
-  }
 }
 
 // The name a joint's node gets. A character read from a file keeps its file's names, whatever roles a
@@ -93,35 +69,6 @@ std::vector<std::string> jointNodeNames(const Character& c) {
 
 }  // namespace
 
-int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<float>& values,
-                        int components, bool minmax, int target) {
-  tinygltf::Accessor a;
-  a.bufferView = appendBytes(model, bin, values.data(), values.size() * sizeof(float), target);
-  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  a.count = values.size() / components;
-  a.type = accessorType(components);
-  if (minmax) {
-    a.minValues.assign(components, std::numeric_limits<double>::infinity());
-    a.maxValues.assign(components, -std::numeric_limits<double>::infinity());
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const int k = static_cast<int>(i % components);
-      a.minValues[k] = std::min<double>(a.minValues[k], values[i]);
-      a.maxValues[k] = std::max<double>(a.maxValues[k], values[i]);
-    }
-  }
-  model.accessors.push_back(a);
-  return static_cast<int>(model.accessors.size()) - 1;
-}
-
-int appendIndexAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<std::uint32_t>& indices) {
-  tinygltf::Accessor a;
-  a.bufferView = appendBytes(model, bin, indices.data(), indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  a.count = indices.size();
-  a.type = TINYGLTF_TYPE_SCALAR;
-  model.accessors.push_back(a);
-  return static_cast<int>(model.accessors.size()) - 1;
-}
 
 namespace {
 
@@ -320,27 +267,6 @@ GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsig
   return out;
 }
 
-std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned char> bin) {
-  while (bin.size() % 4) bin.push_back(0);
-  tinygltf::Buffer buffer;
-  buffer.data = std::move(bin);
-  model.buffers = {buffer};
-  tinygltf::TinyGLTF gltf;
-  std::ostringstream os;
-  if (!gltf.WriteGltfSceneToStream(&model, os, false, true)) throw std::runtime_error("glTF: cannot serialise the model");
-  const std::string s = os.str();
-  // Empty lists in extras as [] (tinygltf writes them as null).
-  return withExactExtras(model, std::vector<unsigned char>(s.begin(), s.end()));
-}
-
-int addCentimetreRoot(tinygltf::Model& model, const std::string& name) {
-  tinygltf::Node n;
-  n.name = name;
-  n.scale = {0.01, 0.01, 0.01};
-  model.nodes.push_back(n);
-  return static_cast<int>(model.nodes.size()) - 1;
-}
-
 std::vector<unsigned char> characterGlb(const Character& c) {
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -473,32 +399,166 @@ SkinRoles findSkinRoles(const tinygltf::Model& model, const std::string& f, int 
   return out;
 }
 
-// The mesh: every primitive of every node skinned by the skin, its vertices taken to rig space
-// (`toRig`, normals by `rot`) and bound to the rig's joints (`new_index`: the skin's joint -> the
-// skeleton's). `own_saddle` gets a flag a vertex: a horse's own saddle (below).
-void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, const std::string& f, int skin, CharacterKind kind,
-                  const std::vector<int>& new_index, const std::function<glm::vec3(glm::vec3)>& toRig, const glm::mat3& rot,
-                  SkinnedMesh& m, std::vector<char>& own_saddle) {
-  const int nj = static_cast<int>(new_index.size());
-  // Primitives that share their attributes (as written here) share their vertices, when their colours
-  // come from the same place (`_COLOR`, or the same material's base colour) and their texture
-  // coordinates too: a block of vertices read without texture coordinates takes the first textured
-  // primitive's; one read through another set or transform is not shared.
-  struct VertexBlock {
-    std::uint32_t first = 0;
-    std::optional<GltfTextureRef> uvs;  // how its texture coordinates were read, if they were
-  };
-  std::map<std::pair<std::map<std::string, int>, std::vector<float>>, std::vector<VertexBlock>> blocks;
+// A primitive's vertex attributes as read, checked for one of each a vertex.
+struct PrimitiveVertices {
+  std::vector<float> pos, nor, jts, wts;  // nor: zeros where the file has no normals
+  std::vector<float> col;                 // `_COLOR`, or COLOR_0 times the base colour; empty: `base`
+  glm::vec3 base{0.8f};                   // the material's base colour factor
+  std::size_t n = 0;                      // vertices
+};
+
+PrimitiveVertices readPrimitiveVertices(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                        const tinygltf::Material* material, const std::string& pw) {
+  if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) throw InputError(pw + ": expected triangles");
+  for (const char* a : {"POSITION", "JOINTS_0", "WEIGHTS_0"})
+    if (!prim.attributes.count(a)) throw InputError(pw + ": expected a " + std::string(a) + " attribute");
+  PrimitiveVertices out;
+  out.pos = readAccessor(model, prim.attributes.at("POSITION"), 3, pw + ".POSITION");
+  out.nor = prim.attributes.count("NORMAL") ? readAccessor(model, prim.attributes.at("NORMAL"), 3, pw + ".NORMAL")
+                                            : std::vector<float>(out.pos.size(), 0.0f);
+  out.jts = readAccessor(model, prim.attributes.at("JOINTS_0"), 4, pw + ".JOINTS_0");
+  out.wts = readAccessor(model, prim.attributes.at("WEIGHTS_0"), 4, pw + ".WEIGHTS_0");
+  const std::size_t n = out.n = out.pos.size() / 3;
+  if (out.nor.size() != n * 3 || out.jts.size() != n * 4 || out.wts.size() != n * 4) throw InputError(pw + ": attribute counts differ");
+  if (material) {
+    const auto& bc = material->pbrMetallicRoughness.baseColorFactor;
+    if (bc.size() >= 3) out.base = glm::vec3(float(bc[0]), float(bc[1]), float(bc[2]));
+  }
+  if (prim.attributes.count("_COLOR")) {
+    out.col = readAccessor(model, prim.attributes.at("_COLOR"), 3, pw + "._COLOR");
+    // A fuzzing finding: fewer colours than vertices read past the end.
+    if (out.col.size() != n * 3) throw InputError(pw + "._COLOR: expected one colour a vertex");
+  } else if (prim.attributes.count("COLOR_0")) {
+    const int ca = prim.attributes.at("COLOR_0");
+    const int comps = tinygltf::GetNumComponentsInType(gltfElement(model.accessors, ca, pw + ".COLOR_0", "accessor").type);
+    if (comps != 3 && comps != 4) throw InputError(pw + ".COLOR_0: expected a VEC3 or VEC4 accessor");
+    const std::vector<float> c0 = readAccessor(model, ca, comps, pw + ".COLOR_0");
+    if (c0.size() != n * static_cast<std::size_t>(comps)) throw InputError(pw + ".COLOR_0: expected one colour a vertex");
+    out.col.resize(n * 3);
+    for (std::size_t v = 0; v < n; ++v)
+      for (int k = 0; k < 3; ++k) out.col[v * 3 + k] = c0[v * comps + k] * out.base[k];
+  }
+  return out;
+}
+
+// Primitives that share their attributes (as written here) share their vertices, when their colours
+// come from the same place (`_COLOR`, or the same material's base colour) and their texture
+// coordinates too: a block of vertices read without texture coordinates takes the first textured
+// primitive's; one read through another set or transform is not shared.
+struct VertexBlock {
+  std::uint32_t first = 0;
+  std::optional<GltfTextureRef> uvs;  // how its texture coordinates were read, if they were
+};
+using VertexBlocks = std::map<std::pair<std::map<std::string, int>, std::vector<float>>, std::vector<VertexBlock>>;
+
+// A primitive's base colour texture: the texture coordinates it reads (one pair a vertex) and the
+// texture's index in m.textures (read once a file texture), or -1 without one.
+struct PrimitiveTexture {
+  GltfTextureRef ref;
+  std::vector<float> uv;
+  std::int32_t texture = -1;
+};
+
+PrimitiveTexture readPrimitiveTexture(const tinygltf::Model& model, const GltfImageBytes& images, const tinygltf::Primitive& prim,
+                                      const tinygltf::Material* material, const std::string& f, const std::string& pw, std::size_t n,
+                                      std::map<int, int>& texture_of, SkinnedMesh& m) {
+  std::string material_name;  // "materials[3] \"fur\"", for errors
+  if (material) {
+    const std::string& name = material->name;
+    material_name = "materials[" + std::to_string(prim.material) + "]" + (name.empty() ? "" : " \"" + name + "\"");
+  }
+  const std::string mw = f + ": " + material_name;
+  PrimitiveTexture out;
+  out.ref = baseColorTextureOf(model, prim.material, mw);
+  if (out.ref.texture < 0) return out;
+  const std::string set = "TEXCOORD_" + std::to_string(out.ref.tex_coord);
+  if (!prim.attributes.count(set))
+    throw InputError(pw + ": expected a " + set + " attribute (the base colour texture of " + material_name + " reads it)");
+  out.uv = readAccessor(model, prim.attributes.at(set), 2, pw + "." + set);
+  if (out.uv.size() != n * 2) throw InputError(pw + "." + set + ": expected one texture coordinate a vertex");
+  auto [it, added] = texture_of.emplace(out.ref.texture, static_cast<int>(m.textures.size()));
+  if (added) m.textures.push_back(readGltfTexture(model, images, out.ref.texture, mw + ".baseColorTexture"));
+  out.texture = it->second;
+  return out;
+}
+
+// How a primitive's vertices go into the rig: to rig space (`toRig`, normals by `rot`), bound to the
+// rig's joints (`new_index`: the skin's joint -> the skeleton's).
+struct VertexTransfer {
+  const std::vector<int>& new_index;
+  const std::function<glm::vec3(glm::vec3)>& toRig;
+  const glm::mat3& rot;
+  int skin = 0;
+};
+
+// Appends a primitive's vertices to `m`, each with its tack part and its own-saddle flag.
+void appendPrimitiveVertices(const PrimitiveVertices& p, const VertexTransfer& to, const std::vector<TackPart>& parts, bool saddle,
+                             const std::string& pw, SkinnedMesh& m, std::vector<char>& own_saddle) {
+  const int nj = static_cast<int>(to.new_index.size());
+  const std::size_t first_new = m.positions.size();
+  own_saddle.resize(m.positions.size() + p.n, saddle ? 1 : 0);
+  for (std::size_t v = 0; v < p.n; ++v) {
+    m.positions.push_back(to.toRig({p.pos[v * 3], p.pos[v * 3 + 1], p.pos[v * 3 + 2]}));
+    glm::vec3 nn = to.rot * glm::vec3(p.nor[v * 3], p.nor[v * 3 + 1], p.nor[v * 3 + 2]);
+    if (std::abs(glm::length(nn) - 1.0f) > 1e-3f) nn = glm::length(nn) > 0.0f ? glm::normalize(nn) : glm::vec3(0.0f);
+    m.normals.push_back(nn);  // zero: computed from the faces (fillMissingNormals)
+    m.colors.push_back(p.col.empty() ? p.base : glm::vec3(p.col[v * 3], p.col[v * 3 + 1], p.col[v * 3 + 2]));
+    glm::u16vec4 jv(0);
+    glm::vec4 wv(0.0f);
+    for (int k = 0; k < 4; ++k) {
+      const float j = p.jts[v * 4 + k];  // a float as read: cast only once it is known to be an index
+      wv[k] = p.wts[v * 4 + k];
+      if (wv[k] > 0.0f) {
+        if (!(j >= 0.0f && j < float(nj)))  // a fuzzing finding: 2.8e29 cast to int first
+          throw InputError(pw + ".JOINTS_0: joint index " + jointIndexText(j) + " outside skins[" + std::to_string(to.skin) + "]");
+        jv[k] = static_cast<std::uint16_t>(to.new_index[static_cast<std::size_t>(j)]);
+      }
+    }
+    const float sum = wv.x + wv.y + wv.z + wv.w;
+    if (!(sum > 0.0f)) throw InputError(pw + ".WEIGHTS_0: vertex " + std::to_string(v) + " has no weight");
+    m.joints.push_back(jv);
+    m.weights.push_back(std::abs(sum - 1.0f) > 1e-4f ? wv / sum : wv);
+  }
+  if (!m.tack_parts.empty() || std::any_of(parts.begin(), parts.end(), [](TackPart part) { return part != TackPart::None; })) {
+    m.tack_parts.resize(first_new, TackPart::None);
+    m.tack_parts.insert(m.tack_parts.end(), parts.begin(), parts.end());
+  }
+}
+
+// Appends a primitive's triangles (its indices, else its vertices in order) on the vertices from
+// `first_vertex`, and their texture.
+void appendPrimitiveTriangles(const tinygltf::Model& model, const tinygltf::Primitive& prim, std::size_t n, std::uint32_t first_vertex,
+                              std::int32_t texture, const std::string& pw, SkinnedMesh& m) {
+  const std::size_t first_index = m.indices.size();
+  if (prim.indices >= 0) {
+    for (std::uint32_t i : readIndices(model, prim.indices, pw + ".indices")) {
+      if (i >= n) throw InputError(pw + ".indices: index " + std::to_string(i) + " outside the vertices");
+      m.indices.push_back(first_vertex + i);
+    }
+  } else {
+    for (std::uint32_t i = 0; i < n; ++i) m.indices.push_back(first_vertex + i);
+  }
+  if ((m.indices.size() - first_index) % 3 != 0) throw InputError(pw + ": expected a whole number of triangles (indices a multiple of 3)");
+  if (texture >= 0 && m.triangle_textures.empty()) m.triangle_textures.assign(first_index / 3, -1);
+  if (!m.textures.empty()) m.triangle_textures.resize(m.indices.size() / 3, texture);
+}
+
+// A horse modelled with its own saddle: the vertices of primitives whose node, mesh or material is
+// called a saddle (rig/characters/horse_tack.h seats the rider on it instead of adding one).
+bool saddleNamed(std::string name) {
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return name.find("saddle") != std::string::npos;
+}
+
+// The mesh: every primitive of every node skinned by the skin, its vertices taken to the rig
+// (VertexTransfer). `own_saddle` gets a flag a vertex: a horse's own saddle (saddleNamed).
+void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, const std::string& f, CharacterKind kind,
+                  const VertexTransfer& to, SkinnedMesh& m, std::vector<char>& own_saddle) {
+  VertexBlocks blocks;
   std::map<int, int> texture_of;  // the file's texture -> index into m.textures
-  // A horse modelled with its own saddle: the vertices of primitives whose node, mesh or material is
-  // called a saddle (rig/characters/horse_tack.h seats the rider on it instead of adding one).
-  const auto saddleNamed = [](std::string name) {
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    return name.find("saddle") != std::string::npos;
-  };
   for (std::size_t ni = 0; ni < model.nodes.size(); ++ni) {
     const tinygltf::Node& node = model.nodes[ni];
-    if (node.mesh < 0 || node.skin != skin) continue;
+    if (node.mesh < 0 || node.skin != to.skin) continue;
     const tinygltf::Mesh& mesh = gltfElement(model.meshes, node.mesh, f + ": nodes[" + std::to_string(ni) + "].mesh", "mesh");
     // A part of a horse's tack written a node a part (rig/io/gltf_tack.h).
     const TackPart node_part = kind == CharacterKind::Horse ? gltfNodeTackPart(model, node, f + ": nodes[" + std::to_string(ni) + "]") : TackPart::None;
@@ -507,76 +567,26 @@ void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, co
       const std::string pw = f + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
       const tinygltf::Material* material =
           prim.material >= 0 ? &gltfElement(model.materials, prim.material, pw + ".material", "material") : nullptr;
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) throw InputError(pw + ": expected triangles");
-      for (const char* a : {"POSITION", "JOINTS_0", "WEIGHTS_0"})
-        if (!prim.attributes.count(a)) throw InputError(pw + ": expected a " + std::string(a) + " attribute");
-      const int pos_acc = prim.attributes.at("POSITION");
-      const std::vector<float> pos = readAccessor(model, pos_acc, 3, pw + ".POSITION");
-      const bool has_normals = prim.attributes.count("NORMAL") > 0;
-      std::vector<float> nor = has_normals ? readAccessor(model, prim.attributes.at("NORMAL"), 3, pw + ".NORMAL")
-                                           : std::vector<float>(pos.size(), 0.0f);
-      const std::vector<float> jts = readAccessor(model, prim.attributes.at("JOINTS_0"), 4, pw + ".JOINTS_0");
-      const std::vector<float> wts = readAccessor(model, prim.attributes.at("WEIGHTS_0"), 4, pw + ".WEIGHTS_0");
-      const std::size_t n = pos.size() / 3;
-      if (nor.size() != n * 3 || jts.size() != n * 4 || wts.size() != n * 4) throw InputError(pw + ": attribute counts differ");
-      glm::vec3 base(0.8f);
-      if (material) {
-        const auto& bc = material->pbrMetallicRoughness.baseColorFactor;
-        if (bc.size() >= 3) base = glm::vec3(float(bc[0]), float(bc[1]), float(bc[2]));
-      }
-      std::vector<float> col;
-      if (prim.attributes.count("_COLOR")) {
-        col = readAccessor(model, prim.attributes.at("_COLOR"), 3, pw + "._COLOR");
-        // A fuzzing finding: fewer colours than vertices read past the end.
-        if (col.size() != n * 3) throw InputError(pw + "._COLOR: expected one colour a vertex");
-      }
-      else if (prim.attributes.count("COLOR_0")) {
-        const int ca = prim.attributes.at("COLOR_0");
-        const int comps = tinygltf::GetNumComponentsInType(gltfElement(model.accessors, ca, pw + ".COLOR_0", "accessor").type);
-        if (comps != 3 && comps != 4) throw InputError(pw + ".COLOR_0: expected a VEC3 or VEC4 accessor");
-        const std::vector<float> c0 = readAccessor(model, ca, comps, pw + ".COLOR_0");
-        if (c0.size() != n * static_cast<std::size_t>(comps)) throw InputError(pw + ".COLOR_0: expected one colour a vertex");
-        col.resize(n * 3);
-        for (std::size_t v = 0; v < n; ++v)
-          for (int k = 0; k < 3; ++k) col[v * 3 + k] = c0[v * comps + k] * base[k];
-      }
-      // The base colour texture and the texture coordinates it reads.
-      std::string material_name;  // "materials[3] \"fur\"", for errors
-      if (material) {
-        const std::string& name = material->name;
-        material_name = "materials[" + std::to_string(prim.material) + "]" + (name.empty() ? "" : " \"" + name + "\"");
-      }
-      const std::string mw = f + ": " + material_name;
-      const GltfTextureRef tex = baseColorTextureOf(model, prim.material, mw);
-      std::vector<float> uv;
-      std::int32_t texture = -1;
-      if (tex.texture >= 0) {
-        const std::string set = "TEXCOORD_" + std::to_string(tex.tex_coord);
-        if (!prim.attributes.count(set))
-          throw InputError(pw + ": expected a " + set + " attribute (the base colour texture of " + material_name + " reads it)");
-        uv = readAccessor(model, prim.attributes.at(set), 2, pw + "." + set);
-        if (uv.size() != n * 2) throw InputError(pw + "." + set + ": expected one texture coordinate a vertex");
-        auto [it, added] = texture_of.emplace(tex.texture, static_cast<int>(m.textures.size()));
-        if (added) m.textures.push_back(readGltfTexture(model, images, tex.texture, mw + ".baseColorTexture"));
-        texture = it->second;
-      }
+      const PrimitiveVertices p = readPrimitiveVertices(model, prim, material, pw);
+      const std::size_t n = p.n;
+      const PrimitiveTexture tex = readPrimitiveTexture(model, images, prim, material, f, pw, n, texture_of, m);
       // Vertices already taken from an earlier primitive with the same attributes are reused.
       std::vector<float> colour_source;  // empty: the colours are `_COLOR`'s, the material's otherwise
-      if (!prim.attributes.count("_COLOR")) colour_source = {base.x, base.y, base.z};
+      if (!prim.attributes.count("_COLOR")) colour_source = {p.base.x, p.base.y, p.base.z};
       std::vector<VertexBlock>& candidates = blocks[{prim.attributes, colour_source}];
       VertexBlock* block = nullptr;
       for (VertexBlock& b : candidates)
-        if (texture < 0 || !b.uvs || b.uvs->sameCoordinates(tex)) {
+        if (tex.texture < 0 || !b.uvs || b.uvs->sameCoordinates(tex.ref)) {
           block = &b;
           break;
         }
       const bool fresh = block == nullptr;
       if (fresh) block = &candidates.emplace_back(VertexBlock{static_cast<std::uint32_t>(m.positions.size()), std::nullopt});
       const std::uint32_t first_vertex = block->first;
-      if (texture >= 0 && !block->uvs) {
-        block->uvs = tex;
+      if (tex.texture >= 0 && !block->uvs) {
+        block->uvs = tex.ref;
         m.uvs.resize(m.positions.size() + (fresh ? n : 0), glm::vec2(0.0f));
-        for (std::size_t v = 0; v < n; ++v) m.uvs[first_vertex + v] = tex.transform({uv[v * 2], uv[v * 2 + 1]});
+        for (std::size_t v = 0; v < n; ++v) m.uvs[first_vertex + v] = tex.ref.transform({tex.uv[v * 2], tex.uv[v * 2 + 1]});
       }
       if (fresh) {
         // The tack's parts: each vertex's "_TACK_PART", else the node's part (stirrup's own tack, never the horse's own saddle).
@@ -584,52 +594,64 @@ void readSkinMesh(const tinygltf::Model& model, const GltfImageBytes& images, co
                                                 ? tackPartsOf(readAccessor(model, prim.attributes.at("_TACK_PART"), 1, pw + "._TACK_PART"), n, pw)
                                                 : std::vector<TackPart>(n, node_part);
         const bool saddle = kind == CharacterKind::Horse && node_part == TackPart::None && !prim.attributes.count("_TACK_PART") &&
-                            (saddleNamed(node.name) || saddleNamed(mesh.name) ||
-                             (material && saddleNamed(material->name)));
-        const std::size_t first_new = m.positions.size();
-        own_saddle.resize(m.positions.size() + n, saddle ? 1 : 0);
-        for (std::size_t v = 0; v < n; ++v) {
-          m.positions.push_back(toRig({pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]}));
-          glm::vec3 nn = rot * glm::vec3(nor[v * 3], nor[v * 3 + 1], nor[v * 3 + 2]);
-          if (std::abs(glm::length(nn) - 1.0f) > 1e-3f) nn = glm::length(nn) > 0.0f ? glm::normalize(nn) : glm::vec3(0.0f);
-          m.normals.push_back(nn);  // zero: computed from the faces below
-          m.colors.push_back(col.empty() ? base : glm::vec3(col[v * 3], col[v * 3 + 1], col[v * 3 + 2]));
-          glm::u16vec4 jv(0);
-          glm::vec4 wv(0.0f);
-          for (int k = 0; k < 4; ++k) {
-            const float j = jts[v * 4 + k];  // a float as read: cast only once it is known to be an index
-            wv[k] = wts[v * 4 + k];
-            if (wv[k] > 0.0f) {
-              if (!(j >= 0.0f && j < float(nj)))  // a fuzzing finding: 2.8e29 cast to int first
-                throw InputError(pw + ".JOINTS_0: joint index " + jointIndexText(j) + " outside skins[" + std::to_string(skin) + "]");
-              jv[k] = static_cast<std::uint16_t>(new_index[static_cast<std::size_t>(j)]);
-            }
-          }
-          const float sum = wv.x + wv.y + wv.z + wv.w;
-          if (!(sum > 0.0f)) throw InputError(pw + ".WEIGHTS_0: vertex " + std::to_string(v) + " has no weight");
-          m.joints.push_back(jv);
-          m.weights.push_back(std::abs(sum - 1.0f) > 1e-4f ? wv / sum : wv);
-        }
-        if (!m.tack_parts.empty() || std::any_of(parts.begin(), parts.end(), [](TackPart p) { return p != TackPart::None; })) {
-          m.tack_parts.resize(first_new, TackPart::None);
-          m.tack_parts.insert(m.tack_parts.end(), parts.begin(), parts.end());
-        }
+                            (saddleNamed(node.name) || saddleNamed(mesh.name) || (material && saddleNamed(material->name)));
+        appendPrimitiveVertices(p, to, parts, saddle, pw, m, own_saddle);
       }
-      const std::size_t first_index = m.indices.size();
-      if (prim.indices >= 0) {
-        for (std::uint32_t i : readIndices(model, prim.indices, pw + ".indices")) {
-          if (i >= n) throw InputError(pw + ".indices: index " + std::to_string(i) + " outside the vertices");
-          m.indices.push_back(first_vertex + i);
-        }
-      } else {
-        for (std::uint32_t i = 0; i < n; ++i) m.indices.push_back(first_vertex + i);
-      }
-      if ((m.indices.size() - first_index) % 3 != 0) throw InputError(pw + ": expected a whole number of triangles (indices a multiple of 3)");
-      if (texture >= 0 && m.triangle_textures.empty()) m.triangle_textures.assign(first_index / 3, -1);
-      if (!m.textures.empty()) m.triangle_textures.resize(m.indices.size() / 3, texture);
+      appendPrimitiveTriangles(model, prim, n, first_vertex, tex.texture, pw, m);
     }
   }
-  if (m.indices.empty()) throw InputError(f + ": no triangles skinned by skins[" + std::to_string(skin) + "]");
+  if (m.indices.empty()) throw InputError(f + ": no triangles skinned by skins[" + std::to_string(to.skin) + "]");
+}
+
+// Each joint's parent joint: the nearest ancestor node that is a joint, then a Rigify rig's deform
+// bones as Rigify means them (rigifyDeformParents). -1 for a root.
+std::vector<int> skinJointParents(const tinygltf::Model& model, const std::string& f, const tinygltf::Skin& skin,
+                                  const std::vector<std::string>& joint_names) {
+  const int nj = static_cast<int>(skin.joints.size());
+  const std::vector<int> node_parent = gltfNodeParents(model, f);
+  std::map<int, int> node_joint;
+  for (int j = 0; j < nj; ++j) node_joint[skin.joints[j]] = j;
+  std::vector<int> parent(nj, -1);
+  for (int j = 0; j < nj; ++j)
+    for (int n = node_parent.at(skin.joints[j]); n >= 0; n = node_parent[n])
+      if (node_joint.count(n)) {
+        parent[j] = node_joint[n];
+        break;
+      }
+  rigifyDeformParents(parent, joint_names);
+  return parent;
+}
+
+// The joints parents first: as they are when the file lists them so (as written here), else sorted by
+// depth, stable.
+std::vector<int> parentsFirstOrder(const std::vector<int>& parent) {
+  const int nj = static_cast<int>(parent.size());
+  std::vector<int> depth(nj, 0), order(nj);
+  for (int j = 0; j < nj; ++j)
+    for (int p = parent[j]; p >= 0; p = parent[p]) ++depth[j];
+  for (int j = 0; j < nj; ++j) order[j] = j;
+  bool parents_first = true;
+  for (int j = 0; j < nj; ++j) parents_first = parents_first && parent[j] < j;
+  if (!parents_first) std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] < depth[b]; });
+  return order;
+}
+
+// Smooth normals (area-weighted face normals) where the file has none (zero normals).
+void fillMissingNormals(SkinnedMesh& m) {
+  std::vector<glm::vec3> acc(m.positions.size(), glm::vec3(0.0f));
+  bool missing = false;
+  for (const glm::vec3& n : m.normals) missing = missing || n == glm::vec3(0.0f);
+  if (!missing) return;
+  for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const std::uint32_t a = m.indices[t], b = m.indices[t + 1], c2 = m.indices[t + 2];
+    const glm::vec3 fn = glm::cross(m.positions[b] - m.positions[a], m.positions[c2] - m.positions[a]);
+    acc[a] += fn;
+    acc[b] += fn;
+    acc[c2] += fn;
+  }
+  for (std::size_t v = 0; v < m.normals.size(); ++v)
+    if (m.normals[v] == glm::vec3(0.0f))
+      m.normals[v] = glm::length(acc[v]) > 0.0f ? glm::normalize(acc[v]) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
 Character loadSkinUnchecked(const GltfSkinSource& source, CharacterKind kind, const CharacterMapping* given, AutoMapping* auto_mapped,
@@ -660,19 +682,7 @@ Character loadSkinUnchecked(const GltfSkinSource& source, CharacterKind kind, co
 
   // Joint bind positions from the inverse bind matrices (identity when absent).
   const std::vector<glm::mat4> ibm = gltfInverseBinds(model, f, skin_index);
-  // Parents: the nearest ancestor node that is a joint.
-  const std::vector<int> node_parent = gltfNodeParents(model, f);
-  std::map<int, int> node_joint;
-  for (int j = 0; j < nj; ++j) node_joint[skin.joints[j]] = j;
-  std::vector<int> parent(nj, -1);
-  for (int j = 0; j < nj; ++j)
-    for (int n = node_parent.at(skin.joints[j]); n >= 0; n = node_parent[n])
-      if (node_joint.count(n)) {
-        parent[j] = node_joint[n];
-        break;
-      }
-  // A Rigify rig's deform bones as Rigify means them (rigifyDeformParents).
-  rigifyDeformParents(parent, joint_names);
+  std::vector<int> parent = skinJointParents(model, f, skin, joint_names);  // hung loose roots get parents below
   // Joint bind positions from the inverse bind matrices (identity when absent), in the file's space.
   std::vector<glm::vec3> file_bind(nj);
   for (int j = 0; j < nj; ++j) file_bind[j] = glm::vec3(glm::inverse(ibm[j])[3]);
@@ -689,15 +699,7 @@ Character loadSkinUnchecked(const GltfSkinSource& source, CharacterKind kind, co
   if (mapping)
     if (const std::string problem = roleChainProblem(kind, role_joint, parent, joint_names, roles.hint); !problem.empty())
       throw InputError(where + ": " + problem);
-  // Parents first: depth order, stable.
-  std::vector<int> depth(nj, 0), order(nj);
-  for (int j = 0; j < nj; ++j)
-    for (int p = parent[j]; p >= 0; p = parent[p]) ++depth[j];
-  for (int j = 0; j < nj; ++j) order[j] = j;
-  // Kept as they are when the file lists parents first (as written here), else sorted by depth.
-  bool parents_first = true;
-  for (int j = 0; j < nj; ++j) parents_first = parents_first && parent[j] < j;
-  if (!parents_first) std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] < depth[b]; });
+  const std::vector<int> order = parentsFirstOrder(parent);
   std::vector<int> new_index(nj);
   for (int i = 0; i < nj; ++i) new_index[order[i]] = i;
 
@@ -718,27 +720,12 @@ Character loadSkinUnchecked(const GltfSkinSource& source, CharacterKind kind, co
   SkinnedMesh& m = c.mesh;
   const glm::mat3 rot = glm::mat3(convert) / static_cast<float>(mapping ? mapping->scale_cm : 1.0);
   std::vector<char> own_saddle;
-  readSkinMesh(model, *source.images, f, skin_index, kind, new_index, toRig, rot, m, own_saddle);
+  readSkinMesh(model, *source.images, f, kind, VertexTransfer{new_index, toRig, rot, skin_index}, m, own_saddle);
   if (roles.automatic && auto_mapped) *auto_mapped = *roles.automatic;
   c.source.file = f;
   if (mapping) c.source.to_rig = mappingToRig(*mapping);
   if (!m.textures.empty()) m.uvs.resize(m.positions.size(), glm::vec2(0.0f));
-  // Smooth normals (area-weighted face normals) where the file has none.
-  std::vector<glm::vec3> acc(m.positions.size(), glm::vec3(0.0f));
-  bool missing = false;
-  for (const glm::vec3& n : m.normals) missing = missing || n == glm::vec3(0.0f);
-  if (missing) {
-    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-      const std::uint32_t a = m.indices[t], b = m.indices[t + 1], c2 = m.indices[t + 2];
-      const glm::vec3 fn = glm::cross(m.positions[b] - m.positions[a], m.positions[c2] - m.positions[a]);
-      acc[a] += fn;
-      acc[b] += fn;
-      acc[c2] += fn;
-    }
-    for (std::size_t v = 0; v < m.normals.size(); ++v)
-      if (m.normals[v] == glm::vec3(0.0f))
-        m.normals[v] = glm::length(acc[v]) > 0.0f ? glm::normalize(acc[v]) : glm::vec3(0.0f, 1.0f, 0.0f);
-  }
+  fillMissingNormals(m);
   // A horse that names no tack gets the rig's (rig/characters/horse_tack.h), on its own saddle if it has one.
   if (kind == CharacterKind::Horse) {
     const HorseTackReport report = addHorseTack(c, where, HorseTackParams{}, &own_saddle);

@@ -1,7 +1,7 @@
 // Characters as skinned glTF 2.0 (docs/characters.md). Offline jobs: writing a built character, and
 // importing one (ours or a user's) into a rig::Character the posing jobs can drive.
 //
-// Writing: under a node "stirrup_cm" scaling centimetres to glTF's metres, the joints as nodes (named by their role where they have one), one skinned mesh with
+// Writing (through rig/io/gltf_writer.h): under a node "stirrup_cm" scaling centimetres to glTF's metres, the joints as nodes (named by their role where they have one), one skinned mesh with
 // smooth normals (a horse's tack parts in "_TACK_PART", rig/io/gltf_tack.h), triangles grouped into one primitive per base colour (one material each), at most
 // four joints per vertex, inverse bind matrices; the exact per-vertex colour in `_COLOR` and the role
 // table in the skinned mesh node's extras ("stirrup_roles": role -> index into skin.joints, and
@@ -37,9 +37,6 @@ struct GltfCharacterNodes {
   std::vector<int> tack_nodes;  // split_tack: the tack's parts' mesh nodes (rig/io/gltf_tack.h), in kTackParts order
 };
 
-// Appends `size` bytes to `bin` (4-byte aligned) as a new buffer view of buffer 0; returns its index.
-int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const void* data, std::size_t size, int target);
-
 // Appends `character` to `model`: nodes, mesh, materials, skin. Binary data goes to `bin` (which
 // becomes buffer 0 when the model is written); the caller adds the returned root nodes to a scene.
 // `prefix` is prepended to the mesh's, skin's and materials' names (for two characters in one file), never
@@ -50,16 +47,6 @@ int appendBytes(tinygltf::Model& model, std::vector<unsigned char>& bin, const v
 // (rig/io/gltf_tack.h).
 GltfCharacterNodes appendCharacterGltf(tinygltf::Model& model, std::vector<unsigned char>& bin,
                                        const Character& character, const std::string& prefix = "", bool split_tack = false);
-// Appends float data as a tightly packed buffer view and accessor; returns the accessor.
-int appendFloatAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<float>& values,
-                        int components, bool minmax, int target = 0);
-// Appends 32-bit indices as a SCALAR element-array accessor; returns its index.
-int appendIndexAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<std::uint32_t>& indices);
-// Adds a node `name` (scale 0.01): stirrup works in centimetres, glTF in metres, so joints hang
-// under it. Returns the node.
-int addCentimetreRoot(tinygltf::Model& model, const std::string& name = "stirrup_cm");
-// Serialises a model whose binary data is `bin` as .glb bytes.
-std::vector<unsigned char> glbBytes(tinygltf::Model& model, std::vector<unsigned char> bin);
 
 // The .glb bytes of one character.
 std::vector<unsigned char> characterGlb(const Character& character);

@@ -15,60 +15,21 @@
 
 #include "rig/channel_rotation.h"
 #include "rig/error.h"
+#include "rig/io/atomic_file.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_animation.h"
 #include "rig/io/gltf_nodes.h"
+#include "rig/io/gltf_writer.h"
 #include "rig/io/json_fields.h"
 #include "rig/mapping/character_mapping.h"
 #include "rig/motion/speed_profile.h"
 
 namespace stirrup::rig {
+
 namespace {
 
-// ---- writing ----
-
-struct BinaryWriter {
-  std::vector<unsigned char> bytes;
-  int addFloats(tinygltf::Model& model, const std::vector<float>& values, int components, bool minmax) {
-    while (bytes.size() % 4) bytes.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = bytes.size();
-    view.byteLength = values.size() * sizeof(float);
-    const auto* p = reinterpret_cast<const unsigned char*>(values.data());
-    bytes.insert(bytes.end(), p, p + view.byteLength);
-    model.bufferViews.push_back(view);
-    tinygltf::Accessor a;
-    a.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
-    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    a.count = values.size() / components;
-    a.type = components == 1 ? TINYGLTF_TYPE_SCALAR : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
-    if (minmax) {
-      a.minValues = {*std::min_element(values.begin(), values.end())};
-      a.maxValues = {*std::max_element(values.begin(), values.end())};
-    }
-    model.accessors.push_back(a);
-    return static_cast<int>(model.accessors.size()) - 1;
-  }
-};
-
-}  // namespace
-
-void writeClipGltf(const Clip& clip, const std::filesystem::path& file, const GltfWriteOptions& o) {
-  if (!(o.fps > 0.0)) throw InputError(file.string() + ": fps must be > 0");
-  const double end = o.end_s < 0.0 ? clip.duration() : o.end_s;
-  const int frames = std::max(2, static_cast<int>(std::floor((end - o.start_s) * o.fps + 1e-9)) + 1);
-
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "stirrup clip make";
-  // Nodes: the root carries the travel; the controls are its children, at rest = identity.
-  for (const char* n : kClipControlNames) {
-    tinygltf::Node node;
-    node.name = n;
-    model.nodes.push_back(node);
-  }
-  for (int i = 1; i < static_cast<int>(kClipControlNames.size()); ++i) model.nodes[0].children.push_back(i);
+// The root node's extras: the clip's name, the channel contract, and what the horse must clear.
+tinygltf::Value clipExtras(const Clip& clip) {
   tinygltf::Value::Object extras;
   extras["clip"] = tinygltf::Value(clip.name());
   extras["contract"] = tinygltf::Value(std::string("stirrup docs/channels.md: cm, Y up, +X travel, +Z right"));
@@ -87,7 +48,27 @@ void writeClipGltf(const Clip& clip, const std::filesystem::path& file, const Gl
     }
     extras["obstacles"] = tinygltf::Value(list);
   }
-  model.nodes[0].extras = tinygltf::Value(extras);
+  return tinygltf::Value(extras);
+}
+
+}  // namespace
+
+void writeClipGltf(const Clip& clip, const std::filesystem::path& file, const GltfWriteOptions& o) {
+  if (!(o.fps > 0.0)) throw InputError(file.string() + ": fps must be > 0");
+  const double end = o.end_s < 0.0 ? clip.duration() : o.end_s;
+  const int frames = std::max(2, static_cast<int>(std::floor((end - o.start_s) * o.fps + 1e-9)) + 1);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "stirrup clip make";
+  // Nodes: the root carries the travel; the controls are its children, at rest = identity.
+  for (const char* n : kClipControlNames) {
+    tinygltf::Node node;
+    node.name = n;
+    model.nodes.push_back(node);
+  }
+  for (int i = 1; i < static_cast<int>(kClipControlNames.size()); ++i) model.nodes[0].children.push_back(i);
+  model.nodes[0].extras = clipExtras(clip);
   tinygltf::Scene scene;
   scene.nodes = {0};
   model.scenes.push_back(scene);
@@ -125,36 +106,16 @@ void writeClipGltf(const Clip& clip, const std::filesystem::path& file, const Gl
     pushR(9, rotationFromChannels(0, f.tail_ry, f.tail_rz));
   }
   if (!turns) rotations[0].clear();  // a straight clip's root only translates, as before paths
-  BinaryWriter bin;
-  const int input = bin.addFloats(model, times, 1, true);
+  std::vector<unsigned char> bin;
+  const int input = appendFloatAccessor(model, bin, times, 1, true);
   tinygltf::Animation anim;
   anim.name = clip.name();
-  const auto addChannel = [&](int node, const std::vector<float>& values, int components, const char* path) {
-    tinygltf::AnimationSampler s;
-    s.input = input;
-    s.output = bin.addFloats(model, values, components, false);
-    s.interpolation = "LINEAR";
-    anim.samplers.push_back(s);
-    tinygltf::AnimationChannel ch;
-    ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
-    ch.target_node = node;
-    ch.target_path = path;
-    anim.channels.push_back(ch);
-  };
   for (int n = 0; n < static_cast<int>(kClipControlNames.size()); ++n) {
-    if (!translations[n].empty()) addChannel(n, translations[n], 3, "translation");
-    if (!rotations[n].empty()) addChannel(n, rotations[n], 4, "rotation");
+    if (!translations[n].empty()) appendLinearChannel(model, bin, anim, input, n, "translation", translations[n], 3);
+    if (!rotations[n].empty()) appendLinearChannel(model, bin, anim, input, n, "rotation", rotations[n], 4);
   }
   model.animations.push_back(anim);
-  tinygltf::Buffer buffer;
-  buffer.data = std::move(bin.bytes);
-  model.buffers.push_back(buffer);
-
-  if (!file.parent_path().empty()) std::filesystem::create_directories(file.parent_path());
-  const bool binary = file.extension() == ".glb";
-  tinygltf::TinyGLTF gltf;
-  if (!gltf.WriteGltfSceneToFile(&model, file.string(), false, true, !binary, binary))
-    throw InputError(file.string() + ": cannot write the glTF file");
+  writeFileAtomically(file, file.extension() == ".glb" ? glbBytes(model, std::move(bin)) : gltfTextBytes(model, std::move(bin)));
 }
 
 ClipMapping contractMapping() {

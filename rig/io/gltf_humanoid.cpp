@@ -10,24 +10,12 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
-#include "rig/io/gltf_character.h"
+#include "rig/io/gltf_writer.h"
 
 namespace stirrup::rig {
 namespace {
 
 constexpr double kMetresPerCm = 0.01;
-
-template <class T>
-int appendIntegerAccessor(tinygltf::Model& model, std::vector<unsigned char>& bin, const std::vector<T>& values,
-                          int component_type, int type, int components, int target) {
-  tinygltf::Accessor a;
-  a.bufferView = appendBytes(model, bin, values.data(), values.size() * sizeof(T), target);
-  a.componentType = component_type;
-  a.count = values.size() / components;
-  a.type = type;
-  model.accessors.push_back(a);
-  return static_cast<int>(model.accessors.size()) - 1;
-}
 
 std::vector<unsigned char> base64Decode(const std::string& text) {
   std::vector<unsigned char> out;

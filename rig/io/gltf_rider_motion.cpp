@@ -12,8 +12,8 @@
 #include "rig/error.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_bake.h"
-#include "rig/io/gltf_character.h"
 #include "rig/io/gltf_nodes.h"
+#include "rig/io/gltf_writer.h"
 #include "rig/mapping/character_mapping.h"
 
 namespace stirrup::rig {
@@ -91,6 +91,22 @@ void decompose(const glm::dmat4& m, glm::dvec3& t, glm::dquat& q, glm::dvec3& s)
   glm::dmat3 rot(m);
   for (int k = 0; k < 3; ++k) s[k] = glm::length(rot[k]), rot[k] /= s[k];
   q = glm::normalize(glm::quat_cast(rot));
+}
+
+// The scene's extras: the frame rate and how frames map to seconds, the rig's forward and up in the
+// file's axes, and the seat (rig/characters/seating.h).
+tinygltf::Value sceneExtras(const RiderMotion& motion, const glm::dmat4& from_rig) {
+  tinygltf::Value::Object extras;
+  extras["fps"] = tinygltf::Value(motion.fps);
+  extras["frame_time"] = tinygltf::Value(std::string("seconds = (frame - 1) / fps: frame 1 at t = 0"));
+  const auto fileDirection = [&](const glm::dvec3& rig) {
+    const glm::dvec3 d = glm::normalize(glm::dvec3(from_rig * glm::dvec4(rig, 0.0)));
+    return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(d.x), tinygltf::Value(d.y), tinygltf::Value(d.z)});
+  };
+  extras["stirrup_forward"] = fileDirection({1.0, 0.0, 0.0});
+  extras["stirrup_up"] = fileDirection({0.0, 1.0, 0.0});
+  if (const tinygltf::Value seat = seatExtras(motion.seat); seat.IsObject()) extras["stirrup_seat"] = seat;
+  return tinygltf::Value(extras);
 }
 
 }  // namespace
@@ -176,34 +192,15 @@ std::vector<unsigned char> riderMotionGlb(const Character& rider, const RiderMot
   tinygltf::Animation anim;
   anim.name = motion.name;
   const int input = appendFloatAccessor(model, bin, motion.seconds, 1, true);
-  for (const std::size_t j : written)
-    for (const auto& [path, values, comps] : {std::tuple{"translation", &tr[j], 3}, std::tuple{"rotation", &rot[j], 4}}) {
-      tinygltf::AnimationSampler sm;
-      sm.input = input;
-      sm.output = appendFloatAccessor(model, bin, *values, comps, false);
-      sm.interpolation = "LINEAR";
-      anim.samplers.push_back(sm);
-      tinygltf::AnimationChannel ch;
-      ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
-      ch.target_node = node_of[j];
-      ch.target_path = path;
-      anim.channels.push_back(ch);
-    }
+  for (const std::size_t j : written) {
+    appendLinearChannel(model, bin, anim, input, node_of[j], "translation", tr[j], 3);
+    appendLinearChannel(model, bin, anim, input, node_of[j], "rotation", rot[j], 4);
+  }
   model.animations.push_back(anim);
   tinygltf::Scene scene;
   scene.name = motion.name;
   scene.nodes = {0};
-  tinygltf::Value::Object extras;
-  extras["fps"] = tinygltf::Value(motion.fps);
-  extras["frame_time"] = tinygltf::Value(std::string("seconds = (frame - 1) / fps: frame 1 at t = 0"));
-  const auto fileDirection = [&](const glm::dvec3& rig) {
-    const glm::dvec3 d = glm::normalize(glm::dvec3(from_rig * glm::dvec4(rig, 0.0)));
-    return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(d.x), tinygltf::Value(d.y), tinygltf::Value(d.z)});
-  };
-  extras["stirrup_forward"] = fileDirection({1.0, 0.0, 0.0});
-  extras["stirrup_up"] = fileDirection({0.0, 1.0, 0.0});
-  if (const tinygltf::Value seat = seatExtras(motion.seat); seat.IsObject()) extras["stirrup_seat"] = seat;
-  scene.extras = tinygltf::Value(extras);
+  scene.extras = sceneExtras(motion, from_rig);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   return glbBytes(model, std::move(bin));

@@ -14,6 +14,19 @@ double smoothstep(double s) {
   return s * s * (3.0 - 2.0 * s);
 }
 
+// Keys (time, value) sorted by time, held flat before the first and after the last; between two keys
+// the value is `between(t0, v0, t1, v1)` of the keys either side (linear, or eased).
+template <class Between>
+double interpolateKeys(const std::vector<std::pair<double, double>>& keys, double t, Between between) {
+  if (keys.empty()) return 0.0;
+  if (t <= keys.front().first) return keys.front().second;
+  if (t >= keys.back().first) return keys.back().second;
+  auto it = std::upper_bound(keys.begin(), keys.end(), t, [](double v, const auto& k) { return v < k.first; });
+  const auto& [t1, v1] = *it;
+  const auto& [t0, v0] = *std::prev(it);
+  return between(t0, v0, t1, v1);
+}
+
 // 0 -> 1 -> 0 over s in [0, 1]. With plateau 0: sin(pi s)^1.5, highest at mid-swing (the hoof arc of
 // docs/gait-reference.md). With a plateau the rise and fall share the rest of the swing.
 double swingBump(double s, double plateau) {
@@ -101,13 +114,7 @@ void Ramp::add(double t, double v) {
 }
 
 double Ramp::at(double t) const {
-  if (keys_.empty()) return 0.0;
-  if (t <= keys_.front().first) return keys_.front().second;
-  if (t >= keys_.back().first) return keys_.back().second;
-  auto it = std::upper_bound(keys_.begin(), keys_.end(), t, [](double v, const auto& k) { return v < k.first; });
-  const auto& [t1, v1] = *it;
-  const auto& [t0, v0] = *std::prev(it);
-  return v0 + (v1 - v0) * (t - t0) / (t1 - t0);
+  return interpolateKeys(keys_, t, [t](double t0, double v0, double t1, double v1) { return v0 + (v1 - v0) * (t - t0) / (t1 - t0); });
 }
 
 double Ramp::integral(double t) const {
@@ -138,13 +145,7 @@ Keys& Keys::add(double t, double v) {
 }
 
 double Keys::at(double t) const {
-  if (keys_.empty()) return 0.0;
-  if (t <= keys_.front().first) return keys_.front().second;
-  if (t >= keys_.back().first) return keys_.back().second;
-  auto it = std::upper_bound(keys_.begin(), keys_.end(), t, [](double v, const auto& k) { return v < k.first; });
-  const auto& [t1, v1] = *it;
-  const auto& [t0, v0] = *std::prev(it);
-  return v0 + (v1 - v0) * smoothstep((t - t0) / (t1 - t0));
+  return interpolateKeys(keys_, t, [t](double t0, double v0, double t1, double v1) { return v0 + (v1 - v0) * smoothstep((t - t0) / (t1 - t0)); });
 }
 
 double Movement::flightElevationCm(double t) const {

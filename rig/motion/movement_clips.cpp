@@ -45,6 +45,17 @@ void setLastSwing(HoofSchedule& s, const SwingShape& w) {
   if (!s.empty()) s.back().swing = w;
 }
 
+// The timeline of `gaits` in turn, each segment_s long, blended over blend_s, varied by `v`.
+GaitTimeline gaitTimeline(const std::vector<GaitParams>& gaits, double segment_s, double blend_s, Variation v) {
+  if (gaits.empty()) throw InputError("gait sequence: no gaits");
+  GaitTimeline tl;
+  for (const GaitParams& g : gaits) tl.segments.push_back({g, segment_s});
+  tl.blend_s = blend_s;
+  tl.variation = v.amount;
+  tl.seed = v.seed;
+  return tl;
+}
+
 }  // namespace
 
 Movement makeSteadyGait(const GaitParams& gait, double duration_s, Variation v) {
@@ -52,13 +63,8 @@ Movement makeSteadyGait(const GaitParams& gait, double duration_s, Variation v) 
 }
 
 Movement makeGaitSequence(const std::vector<GaitParams>& gaits, double segment_s, double blend_s, Variation v) {
-  if (gaits.empty()) throw InputError("gait sequence: no gaits");
+  GaitTimeline tl = gaitTimeline(gaits, segment_s, blend_s, v);
   if (!(segment_s > blend_s)) throw InputError("gait sequence: each gait must last longer than the blend");
-  GaitTimeline tl;
-  for (const GaitParams& g : gaits) tl.segments.push_back({g, segment_s});
-  tl.blend_s = blend_s;
-  tl.variation = v.amount;
-  tl.seed = v.seed;
   Movement m;
   m.name = gaits.size() == 1 ? gaits.front().name : "sequence";
   m.duration_s = applyGaitTimeline(tl, m);
@@ -135,12 +141,7 @@ Movement makeStop(const StopParams& p, Variation v) {
 
 Movement makeGaitSequenceToStop(const std::vector<GaitParams>& gaits, double segment_s, double blend_s,
                                 const StopParams& p, Variation v) {
-  if (gaits.empty()) throw InputError("gait sequence: no gaits");
-  GaitTimeline tl;
-  for (const GaitParams& g : gaits) tl.segments.push_back({g, segment_s});
-  tl.blend_s = blend_s;
-  tl.variation = v.amount;
-  tl.seed = v.seed;
+  GaitTimeline tl = gaitTimeline(gaits, segment_s, blend_s, v);
   Movement m;
   m.name = gaits.size() == 1 ? "stop" : "sequence";
   const double t_s = applyGaitTimeline(tl, m);

@@ -25,6 +25,7 @@
 #include "tests/cli/run_command.h"
 #include "tests/cli/bake_support.h"
 #include "tests/cli/own_horse_bake.h"
+#include "tests/fox_horse.h"
 
 namespace stirrup::test {
 namespace {
@@ -36,25 +37,12 @@ namespace fs = std::filesystem;
 // material whose base colour texture is that image, TEXCOORD_0 on every horse vertex, and an
 // untextured rider as before; the Khronos validator finds no errors or warnings in it.
 TEST(BakeGltf, ATexturedUserHorseKeepsItsTexture) {
-  const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
+  const fs::path fox = stirrup::test::foxGlb();
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
   const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "test_bake_glb" / "fox_horse";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const nlohmann::json roles = {
-      {"root", "b_Hip_01"},        {"backMid", "b_Spine01_02"},  {"chest", "b_Spine02_03"},
-      {"withers", "b_Spine02_03"}, {"neck1", "b_Neck_04"},       {"neck2", "b_Neck_04"},
-      {"head", "b_Head_05"},       {"saddle", "b_Spine01_02"},   {"lStirrup", "b_Spine01_02"},
-      {"rStirrup", "b_Spine01_02"}, {"lRein", "b_Head_05"},      {"rRein", "b_Head_05"},
-      {"tail1", "b_Tail01_012"},   {"tail2", "b_Tail02_013"},    {"tail3", "b_Tail03_014"},
-      {"lfUpper", "b_LeftUpperArm_09"}, {"lfMiddle", "b_LeftForeArm_010"}, {"lfFetlock", "b_LeftHand_011"},
-      {"lfHoof", "b_LeftHand_011"},     {"rfUpper", "b_RightUpperArm_06"}, {"rfMiddle", "b_RightForeArm_07"},
-      {"rfFetlock", "b_RightHand_08"},  {"rfHoof", "b_RightHand_08"},      {"lbUpper", "b_LeftLeg01_015"},
-      {"lbMiddle", "b_LeftLeg02_016"},  {"lbFetlock", "b_LeftFoot01_017"}, {"lbHoof", "b_LeftFoot02_018"},
-      {"rbUpper", "b_RightLeg01_019"},  {"rbMiddle", "b_RightLeg02_020"},  {"rbFetlock", "b_RightFoot01_021"},
-      {"rbHoof", "b_RightFoot02_022"}};
-  std::ofstream(dir / "fox-horse.json")
-      << nlohmann::json{{"character", "horse"}, {"scale_cm", 3.5}, {"forward", {0, 0, 1}}, {"up", {0, 1, 0}}, {"roles", roles}}.dump(1);
+  std::ofstream(dir / "fox-horse.json") << stirrup::test::foxHorseMapping().dump(1);
   nlohmann::json scene = nlohmann::json::parse(std::ifstream(STIRRUP_SOURCE_DIR "/scenes/walk.json"));
   scene["characters"] = {{"horse", {{"file", fox.string()}, {"mapping", "fox-horse.json"}}}, {"rider", "default"}};
   std::ofstream(dir / "fox_walk.json") << scene.dump(1);

@@ -132,6 +132,28 @@ inline AddonRun runAddon(const std::filesystem::path& dir, const std::string& bo
   ASSERT_EQ((run).command.exit_code, 0) << (run).command.out << (run).command.err; \
   ASSERT_TRUE((run).result.is_object()) << (run).command.out
 
+// The Rigify human of the rider's .blend (args[1]) linked into the opened scene of the generated horse, beside it.
+inline constexpr const char* kRiderBesideTheHorse = R"(
+with bpy.data.libraries.load(args[1]) as (src, dst):
+    dst.objects = [n for n in src.objects if n in ("rider", "rider body")]
+for o in dst.objects:
+    scene.collection.objects.link(o)
+rider, horse = bpy.data.objects["rider"], bpy.data.objects["horse"]
+rider.location = (3.0, 0.0, 0.0)
+)";
+
+// Each case of `tried` (what the script attempted: case -> {"error": text}) failed with an error that
+// says `says[case]`, on one line.
+inline void expectOneLineErrors(const nlohmann::json& tried, const std::map<std::string, std::string>& says) {
+  for (const auto& [what, text] : says) {
+    ASSERT_TRUE(tried.contains(what)) << what;
+    ASSERT_TRUE(tried[what].contains("error")) << what << ": " << tried[what];
+    const std::string said = tried[what]["error"].get<std::string>();
+    EXPECT_NE(said.find(text), std::string::npos) << what << ": " << said;
+    EXPECT_EQ(said.find('\n'), std::string::npos) << what << ": one line, got " << said;
+  }
+}
+
 // Where `stirrup bake --rider-only` puts her joints, in the horse's file's world (Blender's, glTF axes,
 // metres) at each key: her file's joints (rider-only keeps her file's space) taken to stirrup's world by
 // her mapping and back to the horse's file by the horse's. The characters are mapped by `character map`

@@ -429,13 +429,7 @@ result["movie"] = os.path.exists(os.path.join(out, "x.mp4"))
       {"missing program", "no-such-stirrup, is not an executable file"},
       {"live, missing program", "no-such-stirrup, is not an executable file"},
   };
-  for (const auto& [what, text] : says) {
-    ASSERT_TRUE(tried.contains(what)) << what;
-    ASSERT_TRUE(tried[what].contains("error")) << what << ": " << tried[what];
-    const std::string said = tried[what]["error"].get<std::string>();
-    EXPECT_NE(said.find(text), std::string::npos) << what << ": " << said;
-    EXPECT_EQ(said.find('\n'), std::string::npos) << what << ": one line, got " << said;
-  }
+  expectOneLineErrors(tried, says);
   EXPECT_FALSE(tried["live, missing program"]["on"].get<bool>());
   EXPECT_TRUE(run.result["untouched"].get<bool>());
   EXPECT_FALSE(run.result["movie"].get<bool>());

@@ -117,13 +117,7 @@ TEST_P(BlenderTack, RideBringsTheTackWhereTheBakePutsIt) {
   ASSERT_TRUE(horses.ok && rider_blend.ok && metarig.ok) << horses.log << rider_blend.log << metarig.log;
   const bool generated = !GetParam().horse_blend.empty();
   const fs::path dir = addonTestDir("tack-" + GetParam().name);
-  const std::string setup = generated ? R"(
-with bpy.data.libraries.load(args[1]) as (src, dst):
-    dst.objects = [n for n in src.objects if n in ("rider", "rider body")]
-for o in dst.objects:
-    scene.collection.objects.link(o)
-rider, horse = bpy.data.objects["rider"], bpy.data.objects["horse"]
-rider.location = (3.0, 0.0, 0.0)
+  const std::string setup = generated ? std::string(kRiderBesideTheHorse) + R"(
 hands = ["DEF-palm.02.L", "DEF-palm.02.R"]
 )"
                                       : R"(
@@ -249,13 +243,7 @@ TEST(BlenderTack, BadTackInputIsRefusedInOneLine) {
   const fs::path rider = blenderRigifyRiderBlend(&rider_blend);
   ASSERT_TRUE(horses.ok && rider_blend.ok) << horses.log << rider_blend.log;
   const fs::path dir = addonTestDir("tack-bad");
-  const AddonRun run = runAddon(dir, std::string(kTackHelpers) + R"(
-with bpy.data.libraries.load(args[1]) as (src, dst):
-    dst.objects = [n for n in src.objects if n in ("rider", "rider body")]
-for o in dst.objects:
-    scene.collection.objects.link(o)
-rider, horse = bpy.data.objects["rider"], bpy.data.objects["horse"]
-rider.location = (3.0, 0.0, 0.0)
+  const AddonRun run = runAddon(dir, std::string(kTackHelpers) + kRiderBesideTheHorse + R"(
 scene.frame_start, scene.frame_end = 1, 24
 s.horse, s.rider = horse, rider
 tried = {}
@@ -293,12 +281,7 @@ result["tried"] = tried
       {"emptied, check", "holds no tack rig"},
       {"no head", "head"},
   };
-  for (const auto& [what, text] : says) {
-    ASSERT_TRUE(tried[what].contains("error")) << what << ": " << tried[what];
-    const std::string said = tried[what]["error"].get<std::string>();
-    EXPECT_NE(said.find(text), std::string::npos) << what << ": " << said;
-    EXPECT_EQ(said.find('\n'), std::string::npos) << what << ": one line, got " << said;
-  }
+  expectOneLineErrors(tried, says);
   for (const char* k : {"renamed_untouched", "emptied_untouched", "no_head_untouched"}) EXPECT_TRUE(run.result[k].get<bool>()) << k;
 }
 

@@ -180,6 +180,11 @@ TEST(MoviesShot, ListsTheShotsViews) {
   std::string want;
   for (const char* view : {"side", "persp", "close", "turntable", "top"}) want += std::string("trot_") + view + "\t" + shot + "\t" + view + "\n";
   EXPECT_EQ(l.out, want);
+  // --only before the shot takes one value an occurrence (names by commas, or the option again): the
+  // path after it is the shot, not a second name.
+  const CommandResult only = runStirrup("movies --only side --only top,close " + quote(shot) + " --list");
+  ASSERT_EQ(only.exit_code, 0) << only.err;
+  EXPECT_EQ(only.out, "trot_side\t" + shot + "\tside\ntrot_close\t" + shot + "\tclose\ntrot_top\t" + shot + "\ttop\n");
 }
 
 // Bad input: a .glb that is not a shot (not glTF at all; a horse clip), a view a shot cannot make asked for

@@ -35,8 +35,8 @@ double angleBetween(const glm::dquat& a, const glm::dquat& b) {
   return degrees(2.0 * std::atan2(glm::length(glm::dvec3(q.x, q.y, q.z)), std::abs(q.w)));
 }
 
-// Distance from p to the curve, by the nearest of a dense polyline and a local refinement.
-double distanceToCurve(const CubicSpline& c, const glm::dvec3& p) {
+// The parameter of the curve point nearest p (dense search, then a local refinement).
+double nearestParameter(const CubicSpline& c, const glm::dvec3& p) {
   constexpr int kDense = 4000;
   double best = 1e300, bestT = 0.0;
   for (int k = 0; k <= kDense; ++k) {
@@ -44,13 +44,18 @@ double distanceToCurve(const CubicSpline& c, const glm::dvec3& p) {
     const double d = glm::length(c.point(t) - p);
     if (d < best) best = d, bestT = t;
   }
-  double lo = std::max(0.0, bestT - c.endParameter() / kDense), hi = std::min(c.endParameter(), bestT + c.endParameter() / kDense);
-  for (int k = 0; k < 200; ++k) {
-    const double t = lo + (hi - lo) * k / 199.0;
-    best = std::min(best, glm::length(c.point(t) - p));
+  const double lo = std::max(0.0, bestT - c.endParameter() / kDense);
+  const double hi = std::min(c.endParameter(), bestT + c.endParameter() / kDense);
+  for (int k = 0; k <= 400; ++k) {
+    const double t = lo + (hi - lo) * k / 400.0;
+    const double d = glm::length(c.point(t) - p);
+    if (d < best) best = d, bestT = t;
   }
-  return best;
+  return bestT;
 }
+
+// Distance from p to the curve, at its nearest point.
+double distanceToCurve(const CubicSpline& c, const glm::dvec3& p) { return glm::length(c.point(nearestParameter(c, p)) - p); }
 
 double polylineLength(const CubicSpline& c, int chords) {
   double sum = 0.0;
@@ -172,24 +177,6 @@ double largestAngle(const SpineControllers& c) {
   return m;
 }
 
-// The parameter of the curve point nearest p (dense search, then a local refinement).
-double nearestParameter(const CubicSpline& c, const glm::dvec3& p) {
-  constexpr int kDense = 4000;
-  double best = 1e300, bestT = 0.0;
-  for (int k = 0; k <= kDense; ++k) {
-    const double t = c.endParameter() * k / kDense;
-    const double d = glm::length(c.point(t) - p);
-    if (d < best) best = d, bestT = t;
-  }
-  const double lo = std::max(0.0, bestT - c.endParameter() / kDense);
-  const double hi = std::min(c.endParameter(), bestT + c.endParameter() / kDense);
-  for (int k = 0; k <= 400; ++k) {
-    const double t = lo + (hi - lo) * k / 400.0;
-    const double d = glm::length(c.point(t) - p);
-    if (d < best) best = d, bestT = t;
-  }
-  return bestT;
-}
 
 // Arc length of the curve between parameters a < b, summed over a fine polyline: independent of the
 // Gauss–Legendre table the spine uses.

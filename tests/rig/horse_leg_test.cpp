@@ -162,15 +162,27 @@ TEST(HorseLeg, AHoofBeyondReachRollsOverItsToe) {
   EXPECT_NEAR(flat_heel.y, 0.0f, 1e-3f);
 }
 
+// The default horse as a user's mapped horse has it: no leg pivots.
+Character horseWithoutPivots() {
+  Character horse = defaultHorse();
+  for (const char* leg : kLegs) horse.roles.erase(std::string(leg) + "Pivot");
+  return horse;
+}
+
+// The left fore hoof planted 20 cm ahead, the left hind 20 cm behind.
+HorseFrame leftHoovesFore20Aft20() {
+  HorseFrame f;
+  f.controls[HorseChannel::lfHoofTx] = 20.0;
+  f.controls[HorseChannel::lbHoofTx] = -20.0;
+  return f;
+}
+
 // A horse that names no leg pivots (a user's glTF through a mapping) keeps the two-bone legs: the
 // joints above the elbow and stifle stay where the body carries them (the body's settle onto a short
 // planted leg turned off here; it has its own test below).
 TEST(HorseLeg, WithoutPivotsOnlyTheBonesBelowReach) {
-  Character horse = defaultHorse();
-  for (const char* leg : kLegs) horse.roles.erase(std::string(leg) + "Pivot");
-  HorseFrame f;
-  f.controls[HorseChannel::lfHoofTx] = 20.0;
-  f.controls[HorseChannel::lbHoofTx] = -20.0;
+  const Character horse = horseWithoutPivots();
+  const HorseFrame f = leftHoovesFore20Aft20();
   HorsePoseParams no_settle;
   no_settle.max_stance_settle_cm = 0.0f;
   const auto w = poseHorse(horse, f, no_settle);
@@ -184,11 +196,8 @@ TEST(HorseLeg, WithoutPivotsOnlyTheBonesBelowReach) {
 // settles straight down onto them (at most max_stance_settle_cm, 5 cm), which brings them nearer, and
 // no bone changes length.
 TEST(HorseLeg, ThePlantedLegShortOfItsPrintLetsTheBodySettle) {
-  Character horse = defaultHorse();
-  for (const char* leg : kLegs) horse.roles.erase(std::string(leg) + "Pivot");
-  HorseFrame f;
-  f.controls[HorseChannel::lfHoofTx] = 20.0;
-  f.controls[HorseChannel::lbHoofTx] = -20.0;
+  const Character horse = horseWithoutPivots();
+  const HorseFrame f = leftHoovesFore20Aft20();
   HorsePoseParams no_settle;
   no_settle.max_stance_settle_cm = 0.0f;
   HorseReach before, after;

@@ -9,25 +9,13 @@
 #include <gtest/gtest.h>
 
 #include "tests/input_error.h"
+#include "tests/render/review/solid_image.h"
 
 #include "rig/error.h"
 #include "scene/scene.h"
 
 namespace stirrup::render {
 namespace {
-
-Image solid(int w, int h, glm::vec4 c) {
-  Image img(w, h);
-  for (glm::vec4& p : img.rgba) p = c;
-  return img;
-}
-
-void expectRgb(const Image& img, int x, int y, glm::vec3 want, float tol = 1e-5f) {
-  const glm::vec4 p = img.at(x, y);
-  EXPECT_NEAR(p.x, want.x, tol) << "R at " << x << "," << y;
-  EXPECT_NEAR(p.y, want.y, tol) << "G at " << x << "," << y;
-  EXPECT_NEAR(p.z, want.z, tol) << "B at " << x << "," << y;
-}
 
 using test::errorOf;
 

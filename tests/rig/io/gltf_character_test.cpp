@@ -19,9 +19,11 @@
 #include "rig/error.h"
 #include "rig/io/gltf_accessors.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/gltf_writer.h"
 #include "rig/mapping/character_mapping.h"
 #include "rig/pose.h"
 #include "rig/skin.h"
+#include "tests/fox_horse.h"
 #include "tests/input_error.h"
 #include "tests/test_files.h"
 
@@ -233,20 +235,8 @@ TEST(GltfCharacter, AnIndexPastItsArrayIsOneLineNamingIt) {
 TEST(GltfCharacter, FoxMapsOntoHorseRoles) {
   const fs::path fox = fs::path(STIRRUP_SHARED_DIR) / "assets" / "fox" / "Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
-  nlohmann::json roles = {
-      {"root", "b_Hip_01"},        {"backMid", "b_Spine01_02"},  {"chest", "b_Spine02_03"},
-      {"withers", "b_Spine02_03"}, {"neck1", "b_Neck_04"},       {"neck2", "b_Neck_04"},
-      {"head", "b_Head_05"},       {"saddle", "b_Spine01_02"},   {"lStirrup", "b_Spine01_02"},
-      {"rStirrup", "b_Spine01_02"}, {"lRein", "b_Head_05"},      {"rRein", "b_Head_05"},
-      {"tail1", "b_Tail01_012"},   {"tail2", "b_Tail02_013"},    {"tail3", "b_Tail03_014"},
-      {"lfUpper", "b_LeftUpperArm_09"}, {"lfMiddle", "b_LeftForeArm_010"}, {"lfFetlock", "b_LeftHand_011"},
-      {"lfHoof", "b_LeftHand_011"},     {"rfUpper", "b_RightUpperArm_06"}, {"rfMiddle", "b_RightForeArm_07"},
-      {"rfFetlock", "b_RightHand_08"},  {"rfHoof", "b_RightHand_08"},      {"lbUpper", "b_LeftLeg01_015"},
-      {"lbMiddle", "b_LeftLeg02_016"},  {"lbFetlock", "b_LeftFoot01_017"}, {"lbHoof", "b_LeftFoot02_018"},
-      {"rbUpper", "b_RightLeg01_019"},  {"rbMiddle", "b_RightLeg02_020"},  {"rbFetlock", "b_RightFoot01_021"},
-      {"rbHoof", "b_RightFoot02_022"}};
   const fs::path dir = tempDir("fox");
-  nlohmann::json j = {{"character", "horse"}, {"scale_cm", 3.5}, {"forward", {0, 0, 1}}, {"up", {0, 1, 0}}, {"roles", roles}};
+  nlohmann::json j = stirrup::test::foxHorseMapping();
   const fs::path m = writeJson(dir / "fox-horse.json", j);
   const Character c = resolveCharacter(CharacterKind::Horse, fox.string(), m.string());
   EXPECT_EQ(c.skeleton.size(), 24u);

@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "rig/io/gltf_character.h"
 #include "rig/io/gltf_bake.h"
+#include "rig/io/gltf_writer.h"
 #include "rig/characters/seating.h"
 #include "tests/test_files.h"
 

@@ -15,6 +15,7 @@
 
 #include "rig/bake.h"
 #include "rig/io/gltf_character.h"
+#include "rig/io/gltf_nodes.h"
 #include "rig/io/gltf_rider_motion.h"
 #include "rig/motion/procedural_gait.h"
 #include "rig/pose.h"
@@ -27,15 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kCharacters = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "characters";
-
-glm::dmat4 nodeLocal(const tinygltf::Node& n) {
-  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
-  glm::dmat4 m(1.0);
-  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
-  if (n.rotation.size() == 4) m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
-  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
-  return m;
-}
 
 std::vector<int> parents(const tinygltf::Model& m) {
   std::vector<int> p(m.nodes.size(), -1);
@@ -79,7 +71,7 @@ void makeUserRider(const fs::path& glb, const fs::path& mapping) {
   ASSERT_TRUE(io.LoadBinaryFromFile(&m, &err, &warn, (kCharacters / "rider.glb").string())) << err;
   const std::vector<int> parent = parents(m);
   std::vector<glm::dmat4> local(m.nodes.size());
-  for (std::size_t n = 0; n < m.nodes.size(); ++n) local[n] = nodeLocal(m.nodes[n]);
+  for (std::size_t n = 0; n < m.nodes.size(); ++n) local[n] = gltfNodeLocal(m.nodes[n]);
   tinygltf::Skin& skin = m.skins[0];
   int root = skin.joints[0];
   while (parent[root] >= 0) root = parent[root];  // "stirrup_cm", scale 0.01
@@ -187,7 +179,7 @@ TEST(GltfRiderMotion, RoundTripsOntoTheUsersRider) {
     ASSERT_TRUE(user_node.count(out.nodes[n].name)) << out.nodes[n].name;
     to_user[n] = user_node[out.nodes[n].name];
     // The exported rest is the user's rest: the action applies to the user's armature as it is.
-    const glm::dmat4 a = nodeLocal(out.nodes[n]), b = nodeLocal(orig.nodes[to_user[n]]);
+    const glm::dmat4 a = gltfNodeLocal(out.nodes[n]), b = gltfNodeLocal(orig.nodes[to_user[n]]);
     for (int c = 0; c < 4; ++c) EXPECT_LT(glm::length(a[c] - b[c]), 1e-5) << out.nodes[n].name;
   }
   std::map<std::pair<int, std::string>, std::vector<float>> keys;
@@ -204,7 +196,7 @@ TEST(GltfRiderMotion, RoundTripsOntoTheUsersRider) {
   for (std::size_t k = 0; k < motion.seconds.size(); ++k) {
     // The user's rig with the keys of frame k put on its joints by name.
     std::vector<glm::dmat4> local(orig.nodes.size());
-    for (std::size_t n = 0; n < orig.nodes.size(); ++n) local[n] = nodeLocal(orig.nodes[n]);
+    for (std::size_t n = 0; n < orig.nodes.size(); ++n) local[n] = gltfNodeLocal(orig.nodes[n]);
     for (const auto& [out_node, u] : to_user) {
       const std::vector<float>& t = keys.at({out_node, "translation"});
       const std::vector<float>& r = keys.at({out_node, "rotation"});
