@@ -98,6 +98,139 @@ double channelValue(const rig::BakedFrame& b, const std::string& name) {
   return 0;
 }
 
+constexpr int kMaxRuns = 24;        // thumbnails rendered at most (the rest are listed)
+constexpr int kPlotHalfFrames = 24;  // a second either side at 24 fps
+
+// A run of flagged frames: consecutive frames of one pair, one rule and place, and its worst finding.
+struct FlaggedRun {
+  CheckedPair* pair;
+  const rig::CheckFinding* worst;
+  int first, last, count;
+};
+
+// The runs of every pair's failures and warnings, failures first, then in order of their first frame.
+std::vector<FlaggedRun> flaggedRuns(std::vector<CheckedPair>& pairs) {
+  std::vector<FlaggedRun> runs;
+  for (CheckedPair& p : pairs) {
+    std::vector<FlaggedRun> mine;
+    for (const rig::CheckFinding& f : p.findings) {
+      if (f.severity == rig::CheckSeverity::Note) continue;
+      bool joined = false;
+      for (FlaggedRun& r : mine)
+        if (r.worst->rule == f.rule && r.worst->where == f.where && f.frame > 0 && f.frame <= r.last + 1) {
+          r.last = std::max(r.last, f.frame);
+          ++r.count;
+          if (f.value > r.worst->value) r.worst = &f;
+          joined = true;
+          break;
+        }
+      if (!joined) mine.push_back({&p, &f, f.frame, f.frame, 1});
+    }
+    runs.insert(runs.end(), mine.begin(), mine.end());
+  }
+  std::stable_sort(runs.begin(), runs.end(), [](const FlaggedRun& a, const FlaggedRun& b) {
+    return int(a.worst->severity) != int(b.worst->severity) ? int(a.worst->severity) > int(b.worst->severity) : a.first < b.first;
+  });
+  return runs;
+}
+
+// The thumbnails of the runs' worst frames, at most kMaxRuns of them, each pair's shots made once a view.
+// Hoof and limit findings are seen from the side (the whole horse and its hooves), the rider's close up.
+class RunThumbnails {
+ public:
+  RunThumbnails(const CheckInput& in, const fs::path& dir) : dir_(dir), thumb_(in.scene) {
+    thumb_.width = 320;
+    thumb_.height = 180;
+    render::applyPreset(thumb_, render::findPreset("draft"));
+  }
+
+  // The <img> of the run's worst frame, rendered into the page's folder; "" past kMaxRuns or when
+  // there is nothing to render from (a baked shot has no scene, nor a clip whose channels drive the measure).
+  std::string imageHtml(const FlaggedRun& r) {
+    const rig::CheckFinding& f = *r.worst;
+    CheckedPair& p = *r.pair;
+    if (!(f.frame > 0 && rendered_ < kMaxRuns && p.clip)) return "";
+    const bool rider_rule = f.rule == "rider-in-horse" || f.rule == "hand-off-rein" || f.rule == "foot-off-stirrup" || f.rule == "trunk-balance";
+    const std::string view = rider_rule ? "close" : "side";
+    auto it = shots_.find({p.index, view});
+    if (it == shots_.end()) {
+      render::CameraSpec cam;
+      cam.name = view;
+      cam.view = view;
+      cam.follow_pair = p.name.empty() ? -1 : p.index;
+      it = shots_.emplace(std::make_pair(p.index, view), std::make_unique<render::Shot>(thumb_, p.profile, cam, 0)).first;
+    }
+    const std::string png = "frame_" + (p.name.empty() ? "" : std::to_string(p.index) + "_") + std::to_string(f.frame) + ".png";
+    render::writePng(it->second->renderFrame(f.frame), dir_ / png);
+    ++rendered_;
+    return "<img src=\"" + png + "\" width=\"320\" height=\"180\" alt=\"frame " + std::to_string(f.frame) + "\">";
+  }
+
+ private:
+  fs::path dir_;
+  render::SceneSpec thumb_;
+  int rendered_ = 0;
+  std::map<std::pair<int, std::string>, std::unique_ptr<render::Shot>> shots_;  // by pair index and view
+};
+
+// The run's measure plotted a second either side of its worst frame against the limit, and beside it
+// the channels that drive it (when the pair has a clip to bake them from).
+std::string runPlots(const FlaggedRun& r) {
+  const rig::CheckFinding& f = *r.worst;
+  const CheckedPair& p = *r.pair;
+  Series measure{f.rule + (f.where.empty() ? "" : " " + f.where), "#000", {}};
+  const std::vector<std::string> names = plotChannels(f.rule, f.where);
+  std::vector<Series> channels;
+  const char* colours[] = {"#1f77b4", "#2ca02c"};
+  for (std::size_t k = 0; k < names.size() && k < 2 && p.clip; ++k) channels.push_back({names[k], colours[k], {}});
+  for (std::size_t i = 0; i < p.measures.size(); ++i) {
+    const rig::FrameMeasures& m = p.measures[i];
+    if (std::abs(m.frame - f.frame) > kPlotHalfFrames) continue;
+    const rig::FrameMeasures* prev = i > 0 && p.measures[i - 1].frame == m.frame - 1 ? &p.measures[i - 1] : nullptr;
+    measure.points.emplace_back(m.frame, measureOf(m, prev, f.rule, f.where));
+    if (!p.clip) continue;
+    const rig::BakedFrame b = rig::bakeFrame(*p.clip, p.profile, m.frame, m.time_s);
+    for (std::size_t k = 0; k < channels.size(); ++k) channels[k].points.emplace_back(m.frame, channelValue(b, names[k]));
+  }
+  return svgPlot({measure}, {{"limit", f.bound}}, f.frame) + (p.clip ? svgPlot(channels, {}, f.frame) : "");
+}
+
+// One run's section of the page: its heading and worst finding, the thumbnail and the plots.
+std::string runSection(const FlaggedRun& r, RunThumbnails& thumbnails) {
+  const rig::CheckFinding& f = *r.worst;
+  const CheckedPair& p = *r.pair;
+  std::string body;
+  body += "<section class=\"" + std::string(rig::checkSeverityName(f.severity)) + "\"><h2>" +
+          render::htmlEscape((p.name.empty() ? "" : p.name + ": ") + f.rule + (f.where.empty() ? "" : " (" + f.where + ")")) + ", frame" +
+          (r.first == r.last ? " " + std::to_string(r.first) : "s " + std::to_string(r.first) + "-" + std::to_string(r.last)) + "</h2>";
+  body += "<p>" + render::htmlEscape(std::string(rig::checkSeverityName(f.severity)) + " at frame " + std::to_string(f.frame) + ": " + f.text) + "</p>";
+  body += thumbnails.imageHtml(r);
+  if (f.frame > 0) body += runPlots(r);
+  body += "</section>\n";
+  return body;
+}
+
+// The whole page around the runs' sections: the title, what was checked and counted, what was not measured.
+std::string checkPageHtml(const CheckInput& in, const std::vector<CheckedPair>& pairs, const std::vector<int>& frames, const Counts& counts,
+                          std::size_t runs, const std::string& body) {
+  std::string unmeasured;
+  for (const CheckedPair& p : pairs)
+    for (const std::string& u : p.unmeasured) unmeasured += "<li>" + render::htmlEscape((p.name.empty() ? "" : p.name + ": ") + u) + "</li>";
+  const std::string title = "stirrup check: " + in.source;
+  return "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + render::htmlEscape(title) +
+         "</title><style>body{font-family:sans-serif;margin:2em}section{border-top:1px solid #ccc;padding:.5em 0}"
+         "section.failure h2{color:#b00}section.warning h2{color:#a60}h2{font-size:1.1em}img,svg{vertical-align:top;margin-right:1em}"
+         "</style></head><body>\n<h1>" + render::htmlEscape(title) + "</h1>\n<p>" + render::htmlEscape(in.described) + ".</p>\n" +
+         (in.shot ? "<p>No thumbnails or channel plots: they need the scene the shot was baked from.</p>\n" : "") +
+         "<p>" + std::to_string(frames.size()) + " frames, " +
+         std::to_string(pairs.size()) + (pairs.size() == 1 ? " pair" : " pairs") + ": " + std::to_string(counts.failures) +
+         " failures, " + std::to_string(counts.warnings) + " warnings, " + std::to_string(counts.notes) + " notes; " +
+         std::to_string(runs) + " runs of flagged frames" +
+         (int(runs) > kMaxRuns ? " (thumbnails of the first " + std::to_string(kMaxRuns) + ")" : "") + ".</p>\n" +
+         (unmeasured.empty() ? "" : "<p>Not measured:</p><ul>" + unmeasured + "</ul>\n") +
+         (runs == 0 ? "<p>Nothing flagged.</p>\n" : body) + "</body></html>\n";
+}
+
 }  // namespace
 
 // JUnit XML: one test suite a pair, one test case a rule. A rule with failures fails its case; one with
@@ -150,104 +283,12 @@ std::string junitXml(const CheckInput& in, const std::vector<CheckedPair>& pairs
 // a thumbnail of its worst frame and the measure and channels plotted around it.
 void writeHtml(const CheckInput& in, std::vector<CheckedPair>& pairs, const std::vector<int>& frames, const fs::path& dir,
                const Counts& counts) {
-  constexpr int kMaxRuns = 24;        // thumbnails rendered at most (the rest are listed)
-  constexpr int kPlotHalfFrames = 24;  // a second either side at 24 fps
   fs::create_directories(dir);
-  struct Run {
-    CheckedPair* pair;
-    const rig::CheckFinding* worst;
-    int first, last, count;
-  };
-  std::vector<Run> runs;
-  for (CheckedPair& p : pairs) {
-    std::vector<Run> mine;
-    for (const rig::CheckFinding& f : p.findings) {
-      if (f.severity == rig::CheckSeverity::Note) continue;
-      bool joined = false;
-      for (Run& r : mine)
-        if (r.worst->rule == f.rule && r.worst->where == f.where && f.frame > 0 && f.frame <= r.last + 1) {
-          r.last = std::max(r.last, f.frame);
-          ++r.count;
-          if (f.value > r.worst->value) r.worst = &f;
-          joined = true;
-          break;
-        }
-      if (!joined) mine.push_back({&p, &f, f.frame, f.frame, 1});
-    }
-    runs.insert(runs.end(), mine.begin(), mine.end());
-  }
-  std::stable_sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
-    return int(a.worst->severity) != int(b.worst->severity) ? int(a.worst->severity) > int(b.worst->severity) : a.first < b.first;
-  });
-
+  const std::vector<FlaggedRun> runs = flaggedRuns(pairs);
   std::string body;
-  int rendered = 0;
-  render::SceneSpec thumb = in.scene;
-  thumb.width = 320;
-  thumb.height = 180;
-  render::applyPreset(thumb, render::findPreset("draft"));
-  // Hoof and limit findings are seen from the side (the whole horse and its hooves), the rider's close up.
-  std::map<std::pair<int, std::string>, std::unique_ptr<render::Shot>> shots;  // by pair index and view
-  for (const Run& r : runs) {
-    const rig::CheckFinding& f = *r.worst;
-    CheckedPair& p = *r.pair;
-    body += "<section class=\"" + std::string(rig::checkSeverityName(f.severity)) + "\"><h2>" +
-            render::htmlEscape((p.name.empty() ? "" : p.name + ": ") + f.rule + (f.where.empty() ? "" : " (" + f.where + ")")) + ", frame" +
-            (r.first == r.last ? " " + std::to_string(r.first) : "s " + std::to_string(r.first) + "-" + std::to_string(r.last)) + "</h2>";
-    body += "<p>" + render::htmlEscape(std::string(rig::checkSeverityName(f.severity)) + " at frame " + std::to_string(f.frame) + ": " + f.text) + "</p>";
-    // A baked shot has no scene to render a thumbnail from, nor a clip whose channels drive the measure.
-    if (f.frame > 0 && rendered < kMaxRuns && p.clip) {
-      const bool rider_rule = f.rule == "rider-in-horse" || f.rule == "hand-off-rein" || f.rule == "foot-off-stirrup" || f.rule == "trunk-balance";
-      const std::string view = rider_rule ? "close" : "side";
-      auto it = shots.find({p.index, view});
-      if (it == shots.end()) {
-        render::CameraSpec cam;
-        cam.name = view;
-        cam.view = view;
-        cam.follow_pair = p.name.empty() ? -1 : p.index;
-        it = shots.emplace(std::make_pair(p.index, view), std::make_unique<render::Shot>(thumb, p.profile, cam, 0)).first;
-      }
-      const std::string png = "frame_" + (p.name.empty() ? "" : std::to_string(p.index) + "_") + std::to_string(f.frame) + ".png";
-      render::writePng(it->second->renderFrame(f.frame), dir / png);
-      ++rendered;
-      body += "<img src=\"" + png + "\" width=\"320\" height=\"180\" alt=\"frame " + std::to_string(f.frame) + "\">";
-    }
-    if (f.frame > 0) {
-      Series measure{f.rule + (f.where.empty() ? "" : " " + f.where), "#000", {}};
-      const std::vector<std::string> names = plotChannels(f.rule, f.where);
-      std::vector<Series> channels;
-      const char* colours[] = {"#1f77b4", "#2ca02c"};
-      for (std::size_t k = 0; k < names.size() && k < 2 && p.clip; ++k) channels.push_back({names[k], colours[k], {}});
-      for (std::size_t i = 0; i < p.measures.size(); ++i) {
-        const rig::FrameMeasures& m = p.measures[i];
-        if (std::abs(m.frame - f.frame) > kPlotHalfFrames) continue;
-        const rig::FrameMeasures* prev = i > 0 && p.measures[i - 1].frame == m.frame - 1 ? &p.measures[i - 1] : nullptr;
-        measure.points.emplace_back(m.frame, measureOf(m, prev, f.rule, f.where));
-        if (!p.clip) continue;
-        const rig::BakedFrame b = rig::bakeFrame(*p.clip, p.profile, m.frame, m.time_s);
-        for (std::size_t k = 0; k < channels.size(); ++k) channels[k].points.emplace_back(m.frame, channelValue(b, names[k]));
-      }
-      body += svgPlot({measure}, {{"limit", f.bound}}, f.frame) + (p.clip ? svgPlot(channels, {}, f.frame) : "");
-    }
-    body += "</section>\n";
-  }
-  std::string unmeasured;
-  for (const CheckedPair& p : pairs)
-    for (const std::string& u : p.unmeasured) unmeasured += "<li>" + render::htmlEscape((p.name.empty() ? "" : p.name + ": ") + u) + "</li>";
-  const std::string title = "stirrup check: " + in.source;
-  std::string html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + render::htmlEscape(title) +
-                     "</title><style>body{font-family:sans-serif;margin:2em}section{border-top:1px solid #ccc;padding:.5em 0}"
-                     "section.failure h2{color:#b00}section.warning h2{color:#a60}h2{font-size:1.1em}img,svg{vertical-align:top;margin-right:1em}"
-                     "</style></head><body>\n<h1>" + render::htmlEscape(title) + "</h1>\n<p>" + render::htmlEscape(in.described) + ".</p>\n" +
-                     (in.shot ? "<p>No thumbnails or channel plots: they need the scene the shot was baked from.</p>\n" : "") +
-                     "<p>" + std::to_string(frames.size()) + " frames, " +
-                     std::to_string(pairs.size()) + (pairs.size() == 1 ? " pair" : " pairs") + ": " + std::to_string(counts.failures) +
-                     " failures, " + std::to_string(counts.warnings) + " warnings, " + std::to_string(counts.notes) + " notes; " +
-                     std::to_string(runs.size()) + " runs of flagged frames" +
-                     (int(runs.size()) > kMaxRuns ? " (thumbnails of the first " + std::to_string(kMaxRuns) + ")" : "") + ".</p>\n" +
-                     (unmeasured.empty() ? "" : "<p>Not measured:</p><ul>" + unmeasured + "</ul>\n") +
-                     (runs.empty() ? "<p>Nothing flagged.</p>\n" : body) + "</body></html>\n";
-  writeWhole(dir / "index.html", html);
+  RunThumbnails thumbnails(in, dir);
+  for (const FlaggedRun& r : runs) body += runSection(r, thumbnails);
+  writeWhole(dir / "index.html", checkPageHtml(in, pairs, frames, counts, runs.size(), body));
 }
 
 void printJson(const CheckInput& in, const std::vector<CheckedPair>& pairs, const std::vector<int>& frames, const Counts& counts,

@@ -43,16 +43,16 @@ glm::mat4 travelMatrix(const HorseFrame& frame) {
 
 namespace {
 
-// poseHorse with the body lowered `settle_cm` along the travel frame's up (see poseHorse).
-std::vector<glm::mat4> poseHorseSettled(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params,
-                                        HorseReach* reach, float settle_cm) {
+// The body's local transforms at `settle_cm` lowered: the travel frame carrying the rear pivot, the
+// back, neck, head and tail turned by their channels; the legs are left at rest for the IK to place.
+std::vector<glm::mat4> horseBodyLocals(const Character& horse, const HorseFrame& frame, const glm::mat4& travel,
+                                       float settle_cm) {
   const Skeleton& s = horse.skeleton;
   const HorseChannels& h = frame.controls;
   using C = HorseChannel;
   std::vector<glm::mat4> local = restLocals(s);
 
   // Body: the travel frame carries the rear pivot; rearPivot moves and turns it.
-  const glm::mat4 travel = travelMatrix(frame);
   const int root = horse.role("root");
   local[root] = travel * translate({float(h[C::rearPivotTx]), float(h[C::rearPivotTy]) - settle_cm, float(h[C::rearPivotTz])}) *
                 s.joints[root].rest_local * rot(-h[C::rearPivotRy], kY) * rot(h[C::rearPivotRz], kZ) *
@@ -85,63 +85,78 @@ std::vector<glm::mat4> poseHorseSettled(const Character& horse, const HorseFrame
   local[horse.role("head")] = s.joints[horse.role("head")].rest_local * rot(frame.head_rz, kZ);
   const double tail_parts = static_cast<double>(std::max(body.tail_length, 1));
   for (int j : body.tail) local[j] = s.joints[j].rest_local * rot(frame.tail_ry / tail_parts, kY) * rot(-frame.tail_rz / tail_parts, kZ);
-  std::vector<glm::mat4> world(s.size());
-  localToWorld(s, local, world);
+  return local;
+}
 
-  // Legs: hoof targets in the travel frame; the pastern folds back as the hoof lifts, the IK chain
-  // reaches for the fetlock above the hoof.
+// One leg reaching for its hoof target in the travel frame: the pastern folds back as the hoof lifts,
+// the IK chain reaches for the fetlock above the hoof. Marks the joints it places in `solved`.
+void reachHorseLeg(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params, const glm::mat4& travel,
+                   int leg, std::vector<glm::mat4>& world, std::vector<char>& solved, HorseReach* reach) {
+  using C = HorseChannel;
   static constexpr std::array<const char*, 4> kLegs = {"lf", "rf", "lb", "rb"};
   static constexpr std::array<std::array<C, 3>, 4> kHoofChannels = {{{C::lfHoofTx, C::lfHoofTy, C::lfHoofTz},
                                                                      {C::rfHoofTx, C::rfHoofTy, C::rfHoofTz},
                                                                      {C::lbHoofTx, C::lbHoofTy, C::lbHoofTz},
                                                                      {C::rbHoofTx, C::rbHoofTy, C::rbHoofTz}}};
-  std::vector<char> solved(s.size(), 0);  // joints the legs' IK places in world terms
-  for (int leg = 0; leg < 4; ++leg) {
-    const std::string n = kLegs[leg];
-    const int upper = horse.role(n + "Upper"), middle = horse.role(n + "Middle");
-    const int fetlock = horse.role(n + "Fetlock"), hoof = horse.role(n + "Hoof");
-    for (int j : {upper, middle, fetlock, hoof}) solved[j] = 1;
-    const glm::vec3 rest_upper = s.restPosition(upper), rest_middle = s.restPosition(middle);
-    const glm::vec3 rest_fetlock = s.restPosition(fetlock), rest_hoof = s.restPosition(hoof);
-    const auto& ch = kHoofChannels[leg];
-    const glm::vec3 offset{static_cast<float>(h[ch[0]]), static_cast<float>(h[ch[1]]), static_cast<float>(h[ch[2]])};
-    // The ground under the hoof lifts its target; the lift above it (the channel) folds the pastern.
-    const glm::vec3 ground{0.0f, static_cast<float>(frame.hoof_ground_cm[leg]), 0.0f};
-    const glm::vec3 hoof_target = transformPoint(travel, rest_hoof + offset + ground);
-    const float lift = std::clamp(offset.y / params.hoof_flex_full_lift, 0.0f, 1.0f);
-    const float flex = params.hoof_flex_deg * lift * lift * (3.0f - 2.0f * lift);
-    // The hoof sole turns to face backward, about the travel frame's sideways axis.
-    const glm::mat4 fold = glm::mat4(glm::mat3(travel)) * rot(-flex, kZ);
-    if (reach) reach->planted[std::size_t(leg)] = offset.y <= kPlantedLiftCm;
-    if (horse.roles.count(n + "Pivot")) {
-      // The whole limb reaches (rig/horse_leg.h): the default horse names its scapula and hip pivots.
-      HorseLegJoints joints;
-      joints.fore = leg < 2;
-      joints.pivot = horse.role(n + "Pivot");
-      joints.shoulder = horseLegShoulder(s, joints.pivot, upper);
-      joints.upper = upper;
-      joints.middle = middle;
-      joints.fetlock = fetlock;
-      joints.hoof = hoof;
-      for (int j : {joints.pivot, joints.shoulder})
-        if (j >= 0) solved[j] = 1;
-      const float short_cm = solveHorseLeg(s, joints, {hoof_target, fold}, params.leg, world);
-      if (reach) reach->short_cm[std::size_t(leg)] = short_cm;
-      continue;
-    }
-    const glm::vec3 fetlock_target = hoof_target + glm::vec3(fold * glm::vec4(rest_fetlock - rest_hoof, 0.0f));
-
-    const glm::vec3 rest_pole = restPole(rest_upper, rest_middle, rest_fetlock, 40.0f);
-    const int parent = s.joints[upper].parent;
-    const glm::vec3 pole = transformPoint(motion(s, world, parent), rest_pole);
-    const LimbPose limb = solveLimb(rest_upper, rest_middle, rest_fetlock, rest_pole, position(world[upper]),
-                                    fetlock_target, pole, params.leg.soften_cm);
-    world[upper] = limb.upper;
-    world[middle] = limb.middle;
-    world[fetlock] = translate(limb.end) * fold;
-    world[hoof] = translate(limb.end + glm::vec3(fold * glm::vec4(rest_hoof - rest_fetlock, 0.0f))) * fold;
-    if (reach) reach->short_cm[std::size_t(leg)] = glm::length(limb.end - fetlock_target);
+  const Skeleton& s = horse.skeleton;
+  const HorseChannels& h = frame.controls;
+  const std::string n = kLegs[leg];
+  const int upper = horse.role(n + "Upper"), middle = horse.role(n + "Middle");
+  const int fetlock = horse.role(n + "Fetlock"), hoof = horse.role(n + "Hoof");
+  for (int j : {upper, middle, fetlock, hoof}) solved[j] = 1;
+  const glm::vec3 rest_upper = s.restPosition(upper), rest_middle = s.restPosition(middle);
+  const glm::vec3 rest_fetlock = s.restPosition(fetlock), rest_hoof = s.restPosition(hoof);
+  const auto& ch = kHoofChannels[leg];
+  const glm::vec3 offset{static_cast<float>(h[ch[0]]), static_cast<float>(h[ch[1]]), static_cast<float>(h[ch[2]])};
+  // The ground under the hoof lifts its target; the lift above it (the channel) folds the pastern.
+  const glm::vec3 ground{0.0f, static_cast<float>(frame.hoof_ground_cm[leg]), 0.0f};
+  const glm::vec3 hoof_target = transformPoint(travel, rest_hoof + offset + ground);
+  const float lift = std::clamp(offset.y / params.hoof_flex_full_lift, 0.0f, 1.0f);
+  const float flex = params.hoof_flex_deg * lift * lift * (3.0f - 2.0f * lift);
+  // The hoof sole turns to face backward, about the travel frame's sideways axis.
+  const glm::mat4 fold = glm::mat4(glm::mat3(travel)) * rot(-flex, kZ);
+  if (reach) reach->planted[std::size_t(leg)] = offset.y <= kPlantedLiftCm;
+  if (horse.roles.count(n + "Pivot")) {
+    // The whole limb reaches (rig/horse_leg.h): the default horse names its scapula and hip pivots.
+    HorseLegJoints joints;
+    joints.fore = leg < 2;
+    joints.pivot = horse.role(n + "Pivot");
+    joints.shoulder = horseLegShoulder(s, joints.pivot, upper);
+    joints.upper = upper;
+    joints.middle = middle;
+    joints.fetlock = fetlock;
+    joints.hoof = hoof;
+    for (int j : {joints.pivot, joints.shoulder})
+      if (j >= 0) solved[j] = 1;
+    const float short_cm = solveHorseLeg(s, joints, {hoof_target, fold}, params.leg, world);
+    if (reach) reach->short_cm[std::size_t(leg)] = short_cm;
+    return;
   }
+  const glm::vec3 fetlock_target = hoof_target + glm::vec3(fold * glm::vec4(rest_fetlock - rest_hoof, 0.0f));
+
+  const glm::vec3 rest_pole = restPole(rest_upper, rest_middle, rest_fetlock, 40.0f);
+  const int parent = s.joints[upper].parent;
+  const glm::vec3 pole = transformPoint(motion(s, world, parent), rest_pole);
+  const LimbPose limb = solveLimb(rest_upper, rest_middle, rest_fetlock, rest_pole, position(world[upper]),
+                                  fetlock_target, pole, params.leg.soften_cm);
+  world[upper] = limb.upper;
+  world[middle] = limb.middle;
+  world[fetlock] = translate(limb.end) * fold;
+  world[hoof] = translate(limb.end + glm::vec3(fold * glm::vec4(rest_hoof - rest_fetlock, 0.0f))) * fold;
+  if (reach) reach->short_cm[std::size_t(leg)] = glm::length(limb.end - fetlock_target);
+}
+
+// poseHorse with the body lowered `settle_cm` along the travel frame's up (see poseHorse).
+std::vector<glm::mat4> poseHorseSettled(const Character& horse, const HorseFrame& frame, const HorsePoseParams& params,
+                                        HorseReach* reach, float settle_cm) {
+  const Skeleton& s = horse.skeleton;
+  const glm::mat4 travel = travelMatrix(frame);
+  const std::vector<glm::mat4> local = horseBodyLocals(horse, frame, travel, settle_cm);
+  std::vector<glm::mat4> world(s.size());
+  localToWorld(s, local, world);
+
+  std::vector<char> solved(s.size(), 0);  // joints the legs' IK places in world terms
+  for (int leg = 0; leg < 4; ++leg) reachHorseLeg(horse, frame, params, travel, leg, world, solved, reach);
   // Joints hanging from the legs that no role names (a user's toes, dewclaws, twist joints) are
   // carried by their parents as they hang at rest.
   carryUnsolved(s, local, solved, world);

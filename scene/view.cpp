@@ -137,6 +137,118 @@ void raiseOrthographicFilm(CameraSpec& spec, const std::vector<int>& frames, con
   spec.position = toArray(toVec(spec.position) + back * (need / back.y));
 }
 
+// What every framing pass reads: the frames, where the camera's motion takes it at each
+// (cameraFollowAtFrame, found once), and the points it frames there.
+struct FramingFrames {
+  const std::vector<int>& frames;
+  const std::vector<FollowFrame>& follows;
+  const std::vector<FramePoints>& pts;
+};
+
+// Aims at the centre of the points' bounds in the followed frame (turned back by the heading the
+// camera turns with, so a path clip's points are seen from the horse's side), from the view's
+// direction. Returns the radius of those bounds.
+double aimAtPointsCentre(CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip, const rig::RigProfile& profile,
+                         const FramingFrames& f) {
+  const std::vector<int>& frames = f.frames;
+  std::vector<glm::dvec3> los(frames.size(), glm::dvec3(kInf)), his(frames.size(), glm::dvec3(-kInf));
+  eachFrame(frames.size(), [&](std::size_t i) {
+    const int shown = spec.hold_frame > 0 ? spec.hold_frame : frames[i];
+    const glm::dvec3 follow = spec.motion == "fixed" ? glm::dvec3(0.0)
+                                                     : followPoint(spec, clip, profile, frameTime(scene, shown));
+    const HeadingTurn back(-f.follows[i].heading_deg);  // cameraHeadingAtFrame's, undone
+    f.pts[i].each([&](const glm::dvec3 p) {
+      const glm::dvec3 q = back(p - follow);
+      los[i] = glm::min(los[i], q), his[i] = glm::max(his[i], q);
+    });
+  });
+  glm::dvec3 lo(kInf), hi(-kInf);
+  for (std::size_t i = 0; i < frames.size(); ++i) lo = glm::min(lo, los[i]), hi = glm::max(hi, his[i]);
+  if (!(lo.x <= hi.x)) throw std::invalid_argument("frameView: the characters have no vertices");
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  const double radius = 0.5 * glm::length(hi - lo);
+  // A crowd seen whole (no follow_pair) is a wide shot of many pairs: from higher, on a wider lens.
+  const bool crowd_persp = scene.pairs.size() >= 2 && spec.follow_pair < 0 && spec.view == "persp";
+  if (crowd_persp) spec.fov_deg = fovFromFocal(kCrowdPerspFocalMm);
+  const glm::dvec3 dir = viewDirection(crowd_persp ? "crowd persp" : spec.view);
+  spec.target = toArray(centre);
+  spec.position = toArray(centre + dir * (spec.orthographic ? radius + 600.0 : 3.0 * radius));
+  return radius;
+}
+
+// The points' extent on the film over every frame: in the film plane for an orthographic camera, else
+// in film coordinates at the target's distance (so a truck by d moves them by d).
+struct FilmExtent {
+  double umin = kInf, umax = -kInf, vmin = kInf, vmax = -kInf;
+};
+
+FilmExtent filmExtent(const CameraSpec& spec, const FramingFrames& f) {
+  std::vector<FilmExtent> extents(f.frames.size());
+  eachFrame(f.frames.size(), [&](std::size_t i) {
+    const Camera cam = cameraFromFollow(spec, f.follows[i], f.frames[i]);
+    const Basis b = basisOf(cam);
+    const double dist = glm::length(cam.target - cam.position);
+    FilmExtent e;
+    f.pts[i].each([&](const glm::dvec3 p) {
+      const glm::dvec3 q = p - b.target;
+      const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
+      if (spec.orthographic) {
+        e.umin = std::min(e.umin, x), e.umax = std::max(e.umax, x), e.vmin = std::min(e.vmin, y), e.vmax = std::max(e.vmax, y);
+      } else {
+        const double depth = dist + z;  // along the view axis from the camera
+        if (depth <= 1.0) return;  // behind the camera: the dolly below moves it out
+        // Film coordinates at the target's distance (so a truck by d moves them by d).
+        e.umin = std::min(e.umin, x * dist / depth), e.umax = std::max(e.umax, x * dist / depth);
+        e.vmin = std::min(e.vmin, y * dist / depth), e.vmax = std::max(e.vmax, y * dist / depth);
+      }
+    });
+    extents[i] = e;
+  });
+  FilmExtent all;
+  for (const FilmExtent& e : extents)
+    all.umin = std::min(all.umin, e.umin), all.umax = std::max(all.umax, e.umax), all.vmin = std::min(all.vmin, e.vmin),
+    all.vmax = std::max(all.vmax, e.vmax);
+  return all;
+}
+
+// Trucks (shifts position and target together) to centre the extent: along the first frame's right/up
+// (constant for follow cameras, in their own turning frame: turned back by the first frame's heading);
+// an orbit only rises or sinks, along the world vertical.
+void truckToCentre(CameraSpec& spec, const FramingFrames& f, const FilmExtent& e, bool orbit) {
+  const Basis first = basisOf(cameraFromFollow(spec, f.follows[0], f.frames[0]));
+  glm::dvec3 right0 = first.right, up0 = first.up;
+  const double heading0 = f.follows[0].heading_deg;
+  right0 = turnByHeading(right0, -heading0), up0 = turnByHeading(up0, -heading0);
+  const double cu = 0.5 * (e.umin + e.umax), cv = 0.5 * (e.vmin + e.vmax);
+  glm::dvec3 shift = orbit ? glm::dvec3(0.0, cv / std::max(0.2, up0.y), 0.0) : right0 * cu + up0 * cv;
+  spec.position = toArray(toVec(spec.position) + shift);
+  spec.target = toArray(toVec(spec.target) + shift);
+}
+
+// Dollies a perspective camera back along the view axis until every point fits, |x| <= tw keep (dist' + z)
+// (th, tw: the tangents of the half field), and never inside the characters' `radius`.
+void dollyToFit(CameraSpec& spec, const FramingFrames& f, double th, double tw, double keep, double radius) {
+  std::vector<double> dists(f.frames.size());
+  eachFrame(f.frames.size(), [&](std::size_t i) {
+    const Camera cam = cameraFromFollow(spec, f.follows[i], f.frames[i]);
+    const Basis b = basisOf(cam);
+    double need = 0.0;
+    f.pts[i].each([&](const glm::dvec3 p) {
+      const glm::dvec3 q = p - b.target;
+      const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
+      need = std::max(need, std::abs(x) / (tw * keep) - z);
+      need = std::max(need, std::abs(y) / (th * keep) - z);
+      need = std::max(need, 1.05 * radius - z);  // never inside the characters
+    });
+    dists[i] = need;
+  });
+  double dist_needed = 0.0;
+  for (double need : dists) dist_needed = std::max(dist_needed, need);
+  const glm::dvec3 t = toVec(spec.target);
+  const glm::dvec3 back = glm::normalize(toVec(spec.position) - t);
+  spec.position = toArray(t + back * dist_needed);
+}
+
 }  // namespace
 
 void applyViewPreset(CameraSpec& spec) {
@@ -208,31 +320,10 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
   // camera but not its motion (cameraFollowAtFrame).
   std::vector<FollowFrame> follows(frames.size());
   eachFrame(frames.size(), [&](std::size_t i) { follows[i] = cameraFollowAtFrame(spec, scene, clip, profile, frames[i]); });
+  const FramingFrames framing{frames, follows, pts};
 
-  // 1. Aim at the centre of the points' bounds in the followed frame (turned back by the heading the
-  //    camera turns with, so a path clip's points are seen from the horse's side).
-  std::vector<glm::dvec3> los(frames.size(), glm::dvec3(kInf)), his(frames.size(), glm::dvec3(-kInf));
-  eachFrame(frames.size(), [&](std::size_t i) {
-    const int shown = spec.hold_frame > 0 ? spec.hold_frame : frames[i];
-    const glm::dvec3 follow = spec.motion == "fixed" ? glm::dvec3(0.0)
-                                                     : followPoint(spec, clip, profile, frameTime(scene, shown));
-    const HeadingTurn back(-follows[i].heading_deg);  // cameraHeadingAtFrame's, undone
-    pts[i].each([&](const glm::dvec3 p) {
-      const glm::dvec3 q = back(p - follow);
-      los[i] = glm::min(los[i], q), his[i] = glm::max(his[i], q);
-    });
-  });
-  glm::dvec3 lo(kInf), hi(-kInf);
-  for (std::size_t i = 0; i < frames.size(); ++i) lo = glm::min(lo, los[i]), hi = glm::max(hi, his[i]);
-  if (!(lo.x <= hi.x)) throw std::invalid_argument("frameView: the characters have no vertices");
-  const glm::dvec3 centre = 0.5 * (lo + hi);
-  const double radius = 0.5 * glm::length(hi - lo);
-  // A crowd seen whole (no follow_pair) is a wide shot of many pairs: from higher, on a wider lens.
-  const bool crowd_persp = scene.pairs.size() >= 2 && spec.follow_pair < 0 && spec.view == "persp";
-  if (crowd_persp) spec.fov_deg = fovFromFocal(kCrowdPerspFocalMm);
-  const glm::dvec3 dir = viewDirection(crowd_persp ? "crowd persp" : spec.view);
-  spec.target = toArray(centre);
-  spec.position = toArray(centre + dir * (spec.orthographic ? radius + 600.0 : 3.0 * radius));
+  // 1. Aim at the centre of the points' bounds in the followed frame.
+  const double radius = aimAtPointsCentre(spec, scene, clip, profile, framing);
 
   const double aspect = double(scene.width) / double(scene.height);
   const double keep = 1.0 - 2.0 * spec.frame_margin;  // fraction of the film the points may use
@@ -240,71 +331,16 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
 
   // 2. Truck (shift position and target together) to centre the extents, then size; three passes so
   //    the perspective centring sees the final distance.
-  struct Extent {
-    double umin = kInf, umax = -kInf, vmin = kInf, vmax = -kInf;
-  };
-  std::vector<Extent> extents(frames.size());
-  std::vector<double> dists(frames.size());
   for (int pass = 0; pass < 3; ++pass) {
     const double th = std::tan(0.5 * spec.fov_deg * rig::kPi / 180.0), tw = th * aspect;
-    eachFrame(frames.size(), [&](std::size_t i) {
-      const Camera cam = cameraFromFollow(spec, follows[i], frames[i]);
-      const Basis b = basisOf(cam);
-      const double dist = glm::length(cam.target - cam.position);
-      Extent e;
-      pts[i].each([&](const glm::dvec3 p) {
-        const glm::dvec3 q = p - b.target;
-        const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
-        if (spec.orthographic) {
-          e.umin = std::min(e.umin, x), e.umax = std::max(e.umax, x), e.vmin = std::min(e.vmin, y), e.vmax = std::max(e.vmax, y);
-        } else {
-          const double depth = dist + z;  // along the view axis from the camera
-          if (depth <= 1.0) return;  // behind the camera: the dolly below moves it out
-          // Film coordinates at the target's distance (so a truck by d moves them by d).
-          e.umin = std::min(e.umin, x * dist / depth), e.umax = std::max(e.umax, x * dist / depth);
-          e.vmin = std::min(e.vmin, y * dist / depth), e.vmax = std::max(e.vmax, y * dist / depth);
-        }
-      });
-      extents[i] = e;
-    });
-    double umin = kInf, umax = -kInf, vmin = kInf, vmax = -kInf;
-    for (const Extent& e : extents)
-      umin = std::min(umin, e.umin), umax = std::max(umax, e.umax), vmin = std::min(vmin, e.vmin), vmax = std::max(vmax, e.vmax);
-    const Basis first = basisOf(cameraFromFollow(spec, follows[0], frames[0]));
-    glm::dvec3 right0 = first.right, up0 = first.up;
-    // Centre: truck along the first frame's right/up (constant for follow cameras, in their own
-    // turning frame: turned back by the first frame's heading); an orbit only rises or sinks, along
-    // the world vertical.
-    const double heading0 = follows[0].heading_deg;
-    right0 = turnByHeading(right0, -heading0), up0 = turnByHeading(up0, -heading0);
-    const double cu = 0.5 * (umin + umax), cv = 0.5 * (vmin + vmax);
-    glm::dvec3 shift = orbit ? glm::dvec3(0.0, cv / std::max(0.2, up0.y), 0.0) : right0 * cu + up0 * cv;
-    spec.position = toArray(toVec(spec.position) + shift);
-    spec.target = toArray(toVec(spec.target) + shift);
+    const FilmExtent e = filmExtent(spec, framing);
+    truckToCentre(spec, framing, e, orbit);
     if (spec.orthographic) {
-      const double half = std::max(0.5 * (vmax - vmin), 0.5 * (umax - umin) / aspect);
-      const double halfu = orbit ? std::max(std::abs(umin), std::abs(umax)) / aspect : 0.0;
+      const double half = std::max(0.5 * (e.vmax - e.vmin), 0.5 * (e.umax - e.umin) / aspect);
+      const double halfu = orbit ? std::max(std::abs(e.umin), std::abs(e.umax)) / aspect : 0.0;
       spec.ortho_height_cm = 2.0 * std::max(half, halfu) / keep;
     } else {
-      // Dolly back along the view axis until every point fits: |x| <= tw keep (dist' + z).
-      eachFrame(frames.size(), [&](std::size_t i) {
-        const Camera cam = cameraFromFollow(spec, follows[i], frames[i]);
-        const Basis b = basisOf(cam);
-        double need = 0.0;
-        pts[i].each([&](const glm::dvec3 p) {
-          const glm::dvec3 q = p - b.target;
-          const double x = glm::dot(q, b.right), y = glm::dot(q, b.up), z = glm::dot(q, b.forward);
-          need = std::max(need, std::abs(x) / (tw * keep) - z);
-          need = std::max(need, std::abs(y) / (th * keep) - z);
-          need = std::max(need, 1.05 * radius - z);  // never inside the characters
-        });
-        dists[i] = need;
-      });
-      double dist_needed = 0.0;
-      for (double need : dists) dist_needed = std::max(dist_needed, need);
-      const glm::dvec3 t = toVec(spec.target);
-      const glm::dvec3 back = glm::normalize(toVec(spec.position) - t);
-      spec.position = toArray(t + back * dist_needed);
+      dollyToFit(spec, framing, th, tw, keep, radius);
     }
   }
   if (spec.orthographic) raiseOrthographicFilm(spec, frames, follows, pts);

@@ -589,84 +589,104 @@ HumanoidJoints addHumanoidJoints(const StandingHumanoidParams& p, const Humanoid
 
 // The body as implicit primitives, each on its joint. Each primitive's colour carries its texture region (x)
 // and chart frame (y: 0 the world, j + 1 joint j's bone frame); the real colours are set after polygonising.
-ImplicitBody humanoidBody(const StandingHumanoidParams& p, const HumanoidLayout& L, const HumanoidJoints& J,
-                          const Skeleton& s) {
-  const float H = L.H, k = L.k, g = L.g;
-  const int N = L.N, K = L.K;
-  ImplicitBody body;
-  const auto tag = [](HumanoidRegion r, int frame_joint) {
-    return glm::vec3(static_cast<float>(r), static_cast<float>(frame_joint + 1), 0.0f);
-  };
+// The pieces below add the trunk, the head, and each side's arm, hand and leg, in that order.
+struct HumanoidBodyBuilder {
   using R = HumanoidRegion;
-  const auto chain_at = [&](float y) {  // the spine joint nearest a height
+  const StandingHumanoidParams& p;
+  const HumanoidLayout& L;
+  const HumanoidJoints& J;
+  const Skeleton& s;
+  ImplicitBody& body;
+
+  static glm::vec3 tag(HumanoidRegion r, int frame_joint) {
+    return glm::vec3(static_cast<float>(r), static_cast<float>(frame_joint + 1), 0.0f);
+  }
+  int topSpine() const { return J.spine[L.N - 1]; }
+  // The spine joint nearest a height.
+  int chainAt(float y) const {
     int best = J.spine[0];
-    for (int i = 0; i < N; ++i)
+    for (int i = 0; i < L.N; ++i)
       if (std::abs(L.spine_pos[i].y - y) < std::abs(s.restPosition(best).y - y)) best = J.spine[i];
     return best;
-  };
-  const int top_spine = J.spine[N - 1];
-  // Hips in breeches, then the jacket over the abdomen, chest and shoulder girdle.
-  body.add(ellipsoid(L.pelvis_pos + glm::vec3(0.0f, -0.02f * H, 0.5f * k), {0.5f * p.hip_width * H * p.girth, 11.0f * g, 11.5f * g},
-                     J.pelvis, tag(R::Breeches, -1), 4.0f));
-  const glm::vec3 waist_c = L.spineAt(0.3f) + glm::vec3(0.0f, 0.0f, 0.5f * k);
-  const glm::vec3 chest_c = L.spineAt(0.7f) + glm::vec3(0.0f, 0.0f, 2.5f * k);
-  const glm::vec3 girdle_c(0.0f, L.shoulder_y - 1.0f * k, -0.5f * k);
-  body.add(ellipsoid(waist_c, {13.5f * g, 11.0f * g, 9.5f * g}, chain_at(waist_c.y), tag(R::Jacket, -1), 6.0f * k));
-  body.add(ellipsoid(chest_c, {16.0f * g, 15.0f * g, 11.5f * g}, chain_at(chest_c.y), tag(R::Jacket, -1), 6.0f * k));
-  body.add(ellipsoid(girdle_c, {0.5f * p.shoulder_width * H - 4.0f * k, 7.0f * g, 9.5f * g}, top_spine, tag(R::Jacket, -1), 5.0f * k));
-  // Neck and head.
-  {
-    const glm::vec3 a = L.neck_pos + glm::vec3(0.0f, -2.0f * k, 0.0f), b = L.head_pos + glm::vec3(0.0f, 2.0f * k, 0.5f * k);
-    if (K == 1) {
-      body.add(taperedCapsule(a, b, 5.5f * g, 5.0f * g, J.neck[0], tag(R::Skin, -1), 3.0f * k));
-    } else {
-      body.add(taperedCapsule(a, L.neck_chain[1], 5.5f * g, 5.2f * g, J.neck[0], tag(R::Skin, -1), 3.0f * k));
-      body.add(taperedCapsule(L.neck_chain[1], b, 5.2f * g, 5.0f * g, J.neck[1], tag(R::Skin, -1), 3.0f * k));
-    }
   }
-  body.add(ellipsoid(L.skull, {7.6f * k, 11.0f * k, 9.6f * k}, J.head, tag(R::Skin, J.head), 3.0f * k));
-  body.add(ellipsoid({0.0f, p.chin_height * H + 6.2f * k, L.head_pos.z + 3.5f * k}, {6.0f * k, 6.8f * k, 6.5f * k}, J.head,
-                     tag(R::Skin, J.head), 3.0f * k));
-  body.add(taperedCapsule({0.0f, L.eye_y - 1.0f * k, L.face_z - 0.8f * k}, {0.0f, L.eye_y - 4.3f * k, L.face_z + 1.2f * k}, 0.9f * k,
-                          1.4f * k, J.head, tag(R::Skin, J.head), 1.2f * k));  // nose
-  for (float sx : {-1.0f, 1.0f})
-    body.add(ellipsoid({sx * 7.5f * k, L.eye_y - 2.0f * k, L.skull.z - 0.8f * k}, {1.0f * k, 3.0f * k, 2.0f * k}, J.head,
-                       tag(R::Skin, J.head), 1.0f * k));  // ears
-  // Hair: a cap above the brows, the back of the head down to the nape, a ponytail.
-  ImplicitPrimitive cap = ellipsoid(L.skull + glm::vec3(0.0f, 0.3f * k, -0.5f * k), {8.3f * k, 11.5f * k, 10.3f * k}, J.head,
-                                    tag(R::Hair, J.head), 0.6f * k);
-  cap.clip_min.y = L.eye_y + 2.8f * k;
-  body.add(cap);
-  ImplicitPrimitive back_hair = ellipsoid(L.skull + glm::vec3(0.0f, -1.5f * k, -2.0f * k), {8.2f * k, 10.5f * k, 8.6f * k}, J.head,
-                                          tag(R::Hair, J.head), 0.6f * k);
-  back_hair.clip_max.z = L.skull.z - 2.0f * k;
-  body.add(back_hair);
-  body.add(taperedCapsule(L.skull + glm::vec3(0.0f, 1.0f * k, -9.5f * k), L.skull + glm::vec3(0.0f, -12.5f * k, -11.5f * k),
-                          2.6f * k, 1.6f * k, J.head, tag(R::Hair, J.head), 1.0f * k));
-  // Arms and legs, both sides.
-  for (int si = 0; si < 2; ++si) {
+  // A limb segment from a to b: one capsule on one joint, or two halves when the segment has a twist joint.
+  void twoHalves(glm::vec3 a, glm::vec3 b, float ra, float rb, const std::array<int, 2>& j, R region, float blend) const {
+    if (j[0] == j[1]) {
+      body.add(taperedCapsule(a, b, ra, rb, j[0], tag(region, j[0]), blend));
+      return;
+    }
+    const glm::vec3 mid = glm::mix(a, b, 0.5f);
+    const float rm = 0.5f * (ra + rb);
+    body.add(taperedCapsule(a, mid, ra, rm, j[0], tag(region, j[0]), blend));
+    body.add(taperedCapsule(mid, b, rm, rb, j[1], tag(region, j[1]), blend));
+  }
+
+  // Hips in breeches, then the jacket over the abdomen, chest and shoulder girdle.
+  void addTrunk() const {
+    const float H = L.H, k = L.k, g = L.g;
+    body.add(ellipsoid(L.pelvis_pos + glm::vec3(0.0f, -0.02f * H, 0.5f * k), {0.5f * p.hip_width * H * p.girth, 11.0f * g, 11.5f * g},
+                       J.pelvis, tag(R::Breeches, -1), 4.0f));
+    const glm::vec3 waist_c = L.spineAt(0.3f) + glm::vec3(0.0f, 0.0f, 0.5f * k);
+    const glm::vec3 chest_c = L.spineAt(0.7f) + glm::vec3(0.0f, 0.0f, 2.5f * k);
+    const glm::vec3 girdle_c(0.0f, L.shoulder_y - 1.0f * k, -0.5f * k);
+    body.add(ellipsoid(waist_c, {13.5f * g, 11.0f * g, 9.5f * g}, chainAt(waist_c.y), tag(R::Jacket, -1), 6.0f * k));
+    body.add(ellipsoid(chest_c, {16.0f * g, 15.0f * g, 11.5f * g}, chainAt(chest_c.y), tag(R::Jacket, -1), 6.0f * k));
+    body.add(ellipsoid(girdle_c, {0.5f * p.shoulder_width * H - 4.0f * k, 7.0f * g, 9.5f * g}, topSpine(), tag(R::Jacket, -1), 5.0f * k));
+  }
+
+  // Neck and head; hair: a cap above the brows, the back of the head down to the nape, a ponytail.
+  void addHead() const {
+    const float H = L.H, k = L.k, g = L.g;
+    {
+      const glm::vec3 a = L.neck_pos + glm::vec3(0.0f, -2.0f * k, 0.0f), b = L.head_pos + glm::vec3(0.0f, 2.0f * k, 0.5f * k);
+      if (L.K == 1) {
+        body.add(taperedCapsule(a, b, 5.5f * g, 5.0f * g, J.neck[0], tag(R::Skin, -1), 3.0f * k));
+      } else {
+        body.add(taperedCapsule(a, L.neck_chain[1], 5.5f * g, 5.2f * g, J.neck[0], tag(R::Skin, -1), 3.0f * k));
+        body.add(taperedCapsule(L.neck_chain[1], b, 5.2f * g, 5.0f * g, J.neck[1], tag(R::Skin, -1), 3.0f * k));
+      }
+    }
+    body.add(ellipsoid(L.skull, {7.6f * k, 11.0f * k, 9.6f * k}, J.head, tag(R::Skin, J.head), 3.0f * k));
+    body.add(ellipsoid({0.0f, p.chin_height * H + 6.2f * k, L.head_pos.z + 3.5f * k}, {6.0f * k, 6.8f * k, 6.5f * k}, J.head,
+                       tag(R::Skin, J.head), 3.0f * k));
+    body.add(taperedCapsule({0.0f, L.eye_y - 1.0f * k, L.face_z - 0.8f * k}, {0.0f, L.eye_y - 4.3f * k, L.face_z + 1.2f * k}, 0.9f * k,
+                            1.4f * k, J.head, tag(R::Skin, J.head), 1.2f * k));  // nose
+    for (float sx : {-1.0f, 1.0f})
+      body.add(ellipsoid({sx * 7.5f * k, L.eye_y - 2.0f * k, L.skull.z - 0.8f * k}, {1.0f * k, 3.0f * k, 2.0f * k}, J.head,
+                         tag(R::Skin, J.head), 1.0f * k));  // ears
+    ImplicitPrimitive cap = ellipsoid(L.skull + glm::vec3(0.0f, 0.3f * k, -0.5f * k), {8.3f * k, 11.5f * k, 10.3f * k}, J.head,
+                                      tag(R::Hair, J.head), 0.6f * k);
+    cap.clip_min.y = L.eye_y + 2.8f * k;
+    body.add(cap);
+    ImplicitPrimitive back_hair = ellipsoid(L.skull + glm::vec3(0.0f, -1.5f * k, -2.0f * k), {8.2f * k, 10.5f * k, 8.6f * k}, J.head,
+                                            tag(R::Hair, J.head), 0.6f * k);
+    back_hair.clip_max.z = L.skull.z - 2.0f * k;
+    body.add(back_hair);
+    body.add(taperedCapsule(L.skull + glm::vec3(0.0f, 1.0f * k, -9.5f * k), L.skull + glm::vec3(0.0f, -12.5f * k, -11.5f * k),
+                            2.6f * k, 1.6f * k, J.head, tag(R::Hair, J.head), 1.0f * k));
+  }
+
+  // One side's arm (si 0 the +x side): trapezius, deltoid, upper arm and forearm in the jacket.
+  void addArm(int si) const {
+    const float k = L.k, g = L.g;
     const float sx = si == 0 ? 1.0f : -1.0f;
     const auto m = [&](glm::vec3 v) { return glm::vec3(v.x * sx, v.y, v.z); };
     const HumanoidSide& S = J.sides[si];
-    const auto two_halves = [&](glm::vec3 a, glm::vec3 b, float ra, float rb, const std::array<int, 2>& j, R region,
-                                float blend) {
-      if (j[0] == j[1]) {
-        body.add(taperedCapsule(a, b, ra, rb, j[0], tag(region, j[0]), blend));
-        return;
-      }
-      const glm::vec3 mid = glm::mix(a, b, 0.5f);
-      const float rm = 0.5f * (ra + rb);
-      body.add(taperedCapsule(a, mid, ra, rm, j[0], tag(region, j[0]), blend));
-      body.add(taperedCapsule(mid, b, rm, rb, j[1], tag(region, j[1]), blend));
-    };
-    const int shoulder_joint = S.clavicle >= 0 ? S.clavicle : top_spine;
+    const int shoulder_joint = S.clavicle >= 0 ? S.clavicle : topSpine();
     body.add(taperedCapsule(L.neck_pos + glm::vec3(sx * 3.0f * k, 1.0f * k, 0.0f), m(L.shoulder_pos) + glm::vec3(-sx * 2.0f * k, 3.0f * k, 0.0f),
                             5.0f * g, 5.5f * g, shoulder_joint, tag(R::Jacket, -1), 3.0f * k));  // trapezius
     body.add(ellipsoid(m(L.shoulder_pos + L.upper_dir * (1.5f * k)) + glm::vec3(0.0f, 1.0f * k, 0.0f), {6.5f * g, 6.0f * g, 6.5f * g},
                        S.upper[0], tag(R::Jacket, S.upper[0]), 4.0f * k, m(L.upper_dir)));  // deltoid
-    two_halves(m(L.shoulder_pos), m(L.elbow_pos), 5.2f * g, 4.2f * g, S.upper, R::Jacket, 3.0f * k);
-    two_halves(m(L.elbow_pos), m(L.wrist_pos - L.fore_dir * (1.0f * k)), 4.2f * g, 3.3f * g, S.fore, R::Jacket, 2.0f * k);
-    // Hand: wrist, palm, a mitten of four fingers on the finger chain, the thumb.
+    twoHalves(m(L.shoulder_pos), m(L.elbow_pos), 5.2f * g, 4.2f * g, S.upper, R::Jacket, 3.0f * k);
+    twoHalves(m(L.elbow_pos), m(L.wrist_pos - L.fore_dir * (1.0f * k)), 4.2f * g, 3.3f * g, S.fore, R::Jacket, 2.0f * k);
+  }
+
+  // One side's hand: wrist, palm, a mitten of four fingers on the finger chain, the thumb.
+  void addHand(int si) const {
+    const float k = L.k, g = L.g;
+    const float sx = si == 0 ? 1.0f : -1.0f;
+    const auto m = [&](glm::vec3 v) { return glm::vec3(v.x * sx, v.y, v.z); };
+    const HumanoidSide& S = J.sides[si];
     const glm::vec3 hd = m(L.hand_dir), pn = m(L.palm_normal), ts = m(L.thumb_side);
     const glm::mat3 hand_axes(hd, pn, ts);
     const int palm_joint = S.palm >= 0 ? S.palm : S.hand;
@@ -692,11 +712,18 @@ ImplicitBody humanoidBody(const StandingHumanoidParams& p, const HumanoidLayout&
       body.add(taperedCapsule(m(L.thumb_pos[0]), m(L.thumb_pos[3] - L.thumb_dir * (0.9f * k)), 1.5f * k, 0.9f * k, S.hand,
                               tag(R::Skin, S.hand), 0.8f * k));
     }
-    // Leg: breeches to below the knee, then the boot; a flat sole on the ground.
-    two_halves(m(L.hip_pos) + glm::vec3(sx * 1.0f * k, 0.0f, 0.0f), m(L.knee_pos), 8.3f * g, 5.6f * g, S.thigh, R::Breeches, 4.0f * k);
+  }
+
+  // One side's leg: breeches to below the knee, then the boot; a flat sole on the ground.
+  void addLeg(int si) const {
+    const float k = L.k, g = L.g;
+    const float sx = si == 0 ? 1.0f : -1.0f;
+    const auto m = [&](glm::vec3 v) { return glm::vec3(v.x * sx, v.y, v.z); };
+    const HumanoidSide& S = J.sides[si];
+    twoHalves(m(L.hip_pos) + glm::vec3(sx * 1.0f * k, 0.0f, 0.0f), m(L.knee_pos), 8.3f * g, 5.6f * g, S.thigh, R::Breeches, 4.0f * k);
     const glm::vec3 boot_top = glm::mix(L.knee_pos, L.ankle_pos, 0.25f);
     body.add(taperedCapsule(m(L.knee_pos), m(boot_top), 5.6f * g, 5.2f * g, S.shin[0], tag(R::Breeches, S.shin[0]), 2.0f * k));
-    two_halves(m(boot_top), m(L.ankle_pos), 5.8f * g, 4.3f * g, S.shin, R::Boots, 1.0f * k);
+    twoHalves(m(boot_top), m(L.ankle_pos), 5.8f * g, 4.3f * g, S.shin, R::Boots, 1.0f * k);
     const glm::vec3 heel(L.hip_x, 4.2f * k, L.heel_z + 4.2f * k);
     ImplicitPrimitive foot = taperedCapsule(m(heel), m(glm::vec3(L.hip_x, 3.0f * k, L.ball_pos.z)), 4.2f * k, 3.8f * k, S.foot,
                                             tag(R::Boots, -1), 1.5f * k);
@@ -709,7 +736,20 @@ ImplicitBody humanoidBody(const StandingHumanoidParams& p, const HumanoidLayout&
     toe.clip_round = 0.4f * k;
     body.add(toe);
   }
+};
 
+ImplicitBody humanoidBody(const StandingHumanoidParams& p, const HumanoidLayout& L, const HumanoidJoints& J,
+                          const Skeleton& s) {
+  ImplicitBody body;
+  const HumanoidBodyBuilder b{p, L, J, s, body};
+  b.addTrunk();
+  b.addHead();
+  // Arms and legs, both sides.
+  for (int si = 0; si < 2; ++si) {
+    b.addArm(si);
+    b.addHand(si);
+    b.addLeg(si);
+  }
   return body;
 }
 

@@ -389,6 +389,81 @@ void riderArmRoles(const MappingSkeleton& s, const Liveness& l, const LimbPair& 
   }
 }
 
+// A biped's legs: the ankle the leg's first joint near the ground, hip and knee by Winter's lengths
+// and spacing, the ball the joint below the ankle.
+void riderLegRoles(const MappingSkeleton& s, const Liveness& l, const LimbPair& legs, const HeightFrame& hf, const std::string& cannot,
+                   const std::string& fix, TopologyRoles& t) {
+  const double H = hf.height;
+  const std::vector<int> chain = chainFrom(s, l, legs.a);
+  const std::vector<int> other = mirroredChain(s, l, chain, legs.a, legs.b);
+  int ankle = -1;
+  for (std::size_t i = 2; i < chain.size() && ankle < 0; ++i)
+    if (hf.of(s.position[chain[i]]) < kAnkleBand * H) ankle = static_cast<int>(i);
+  if (ankle < 0) {
+    ankle = static_cast<int>(chain.size()) - 1;
+    t.warnings.push_back("no leg joint near the ground: took the legs' last joints " + quoted(s, chain[ankle]) + " as the ankles");
+  }
+  if (ankle < 2)
+    throw InputError(cannot + "the legs from " + quoted(s, legs.a) + " have " + countText(chain.size(), "joint", "joints") +
+                     " (expected a hip, a knee and an ankle)" + fix);
+  const LimbFit fit = fitLimb(s, chain, other, H, kThighLength, kShinLength, kHipSpacing, ankle, ankle,
+                              std::vector<double>(chain.size(), 0.0));
+  const std::string why = "topology: leg lengths and spacing (Winter 2009)";
+  assign(t, "lHip", chain[fit.top], why);
+  assign(t, "rHip", other[fit.top], why);
+  assign(t, "lKnee", chain[fit.middle], why);
+  assign(t, "rKnee", other[fit.middle], why);
+  assign(t, "lAnkle", chain[ankle], "topology: the leg's first joint near the ground");
+  assign(t, "rAnkle", other[ankle], "topology: the leg's first joint near the ground");
+  if (ankle + 1 < static_cast<int>(chain.size())) {
+    assign(t, "lBall", chain[ankle + 1], "topology: the joint below the ankle");
+    assign(t, "rBall", other[ankle + 1], "topology: the joint below the ankle");
+  }
+}
+
+// A biped's neck and head: the head the top of the midline chain above where the arms branch, the neck
+// the joint above that branch (or, arms hung by proximity, the spine's first joint above the shoulders).
+void riderSpineRoles(const MappingSkeleton& s, const Liveness& l, const LimbPair& legs, const LimbPair& arms, double size,
+                     const glm::dvec3& up0, const HeightFrame& hf, const std::string& cannot, const std::string& fix,
+                     TopologyRoles& t) {
+  const int pelvis = legs.branch, branch = arms.branch;
+  const Mirror midline = mirrorOf(s, legs.a, legs.b);
+  const std::vector<int> to_branch = s.pathDown(pelvis, branch);
+  const std::vector<int> above = midlineChain(s, l, branch, midline, size, up0, 0.0, {arms.a, arms.b});
+  if (above.empty())
+    throw InputError(cannot + "no joint rises on the midline above " + quoted(s, branch) +
+                     ", where the arms branch (expected the neck and head)" + fix);
+  const int head = above.back();
+  bool arms_hung = false;
+  for (int root : {arms.a, arms.b})
+    for (int j : s.pathDown(branch, root)) arms_hung = arms_hung || s.hung[j];
+  int neck = -1;
+  std::string neck_why;
+  if (!arms_hung) {
+    neck = above.size() > 1 ? above.front() : branch;
+    neck_why = above.size() > 1 ? "topology: the joint above where the arms branch" : "topology: where the arms branch (no joint between it and the head)";
+    if (above.size() == 1) t.warnings.push_back("no neck joint between the shoulders and the head: the neck is " + quoted(s, branch));
+  } else {
+    // The arms were hung from the body by proximity, so where they branch says little: the neck is the
+    // first joint of the chain level with the shoulders or above.
+    const double shoulders = 0.5 * (hf.of(s.position[t.roles.at("lShoulder")]) + hf.of(s.position[t.roles.at("rShoulder")]));
+    std::vector<int> chain = to_branch;
+    chain.insert(chain.end(), above.begin(), above.end());
+    for (int j : chain)
+      if (hf.of(s.position[j]) >= shoulders) {
+        neck = j;
+        break;
+      }
+    if (neck == head || neck < 0) neck = s.parent[head];
+    neck_why = "topology: the spine's first joint above the shoulders";
+  }
+  if (neck < 0 || s.pathDown(pelvis, neck).size() < 2)
+    throw InputError(cannot + "no spine joint between the pelvis " + quoted(s, pelvis) + " and the neck" +
+                     (neck >= 0 ? " " + quoted(s, neck) : std::string()) + fix);
+  assign(t, "neck", neck, neck_why);
+  assign(t, "head", head, "topology: the top of the spine's chain");
+}
+
 }  // namespace
 
 TopologyRoles riderByTopology(const MappingSkeleton& s) {
@@ -433,73 +508,9 @@ TopologyRoles riderByTopology(const MappingSkeleton& s) {
   const double H = hf.height;
 
   assign(t, "pelvis", pelvis, "topology: where the legs branch");
-  // Legs.
-  {
-    const std::vector<int> chain = chainFrom(s, l, legs.a);
-    const std::vector<int> other = mirroredChain(s, l, chain, legs.a, legs.b);
-    int ankle = -1;
-    for (std::size_t i = 2; i < chain.size() && ankle < 0; ++i)
-      if (hf.of(s.position[chain[i]]) < kAnkleBand * H) ankle = static_cast<int>(i);
-    if (ankle < 0) {
-      ankle = static_cast<int>(chain.size()) - 1;
-      t.warnings.push_back("no leg joint near the ground: took the legs' last joints " + quoted(s, chain[ankle]) + " as the ankles");
-    }
-    if (ankle < 2)
-      throw InputError(cannot + "the legs from " + quoted(s, legs.a) + " have " + countText(chain.size(), "joint", "joints") +
-                       " (expected a hip, a knee and an ankle)" + fix);
-    const LimbFit fit = fitLimb(s, chain, other, H, kThighLength, kShinLength, kHipSpacing, ankle, ankle,
-                                std::vector<double>(chain.size(), 0.0));
-    const std::string why = "topology: leg lengths and spacing (Winter 2009)";
-    assign(t, "lHip", chain[fit.top], why);
-    assign(t, "rHip", other[fit.top], why);
-    assign(t, "lKnee", chain[fit.middle], why);
-    assign(t, "rKnee", other[fit.middle], why);
-    assign(t, "lAnkle", chain[ankle], "topology: the leg's first joint near the ground");
-    assign(t, "rAnkle", other[ankle], "topology: the leg's first joint near the ground");
-    if (ankle + 1 < static_cast<int>(chain.size())) {
-      assign(t, "lBall", chain[ankle + 1], "topology: the joint below the ankle");
-      assign(t, "rBall", other[ankle + 1], "topology: the joint below the ankle");
-    }
-  }
+  riderLegRoles(s, l, legs, hf, cannot, fix, t);
   riderArmRoles(s, l, arms, H, cannot, fix, t);
-  // Spine, neck and head.
-  {
-    const Mirror midline = mirrorOf(s, legs.a, legs.b);
-    const std::vector<int> to_branch = s.pathDown(pelvis, branch);
-    const std::vector<int> above = midlineChain(s, l, branch, midline, size, up0, 0.0, {arms.a, arms.b});
-    if (above.empty())
-      throw InputError(cannot + "no joint rises on the midline above " + quoted(s, branch) +
-                       ", where the arms branch (expected the neck and head)" + fix);
-    const int head = above.back();
-    bool arms_hung = false;
-    for (int root : {arms.a, arms.b})
-      for (int j : s.pathDown(branch, root)) arms_hung = arms_hung || s.hung[j];
-    int neck = -1;
-    std::string neck_why;
-    if (!arms_hung) {
-      neck = above.size() > 1 ? above.front() : branch;
-      neck_why = above.size() > 1 ? "topology: the joint above where the arms branch" : "topology: where the arms branch (no joint between it and the head)";
-      if (above.size() == 1) t.warnings.push_back("no neck joint between the shoulders and the head: the neck is " + quoted(s, branch));
-    } else {
-      // The arms were hung from the body by proximity, so where they branch says little: the neck is the
-      // first joint of the chain level with the shoulders or above.
-      const double shoulders = 0.5 * (hf.of(s.position[t.roles.at("lShoulder")]) + hf.of(s.position[t.roles.at("rShoulder")]));
-      std::vector<int> chain = to_branch;
-      chain.insert(chain.end(), above.begin(), above.end());
-      for (int j : chain)
-        if (hf.of(s.position[j]) >= shoulders) {
-          neck = j;
-          break;
-        }
-      if (neck == head || neck < 0) neck = s.parent[head];
-      neck_why = "topology: the spine's first joint above the shoulders";
-    }
-    if (neck < 0 || s.pathDown(pelvis, neck).size() < 2)
-      throw InputError(cannot + "no spine joint between the pelvis " + quoted(s, pelvis) + " and the neck" +
-                       (neck >= 0 ? " " + quoted(s, neck) : std::string()) + fix);
-    assign(t, "neck", neck, neck_why);
-    assign(t, "head", head, "topology: the top of the spine's chain");
-  }
+  riderSpineRoles(s, l, legs, arms, size, up0, hf, cannot, fix, t);
   return t;
 }
 

@@ -31,6 +31,108 @@ GroundPath::Sample extended(const GroundPath& path, double s) {
   return p;
 }
 
+// The seconds the path clip tables its speed profile over: the path at the slowest key's speed.
+double speedTableSeconds(const PathClipParams& params, double length) {
+  double slowest = 0.0;
+  for (const auto& k : params.speed) slowest = slowest == 0.0 ? k.speed : std::min(slowest, k.speed);
+  return slowest > 0.0 && std::isfinite(slowest) ? std::min(params.max_duration_s, length / slowest + 1.0) : 1.0;
+}
+
+// The horse's length and hoof tracks, from its rest hoof places (lf, rf, lb, rb).
+struct HorseFootprint {
+  double fore_x = 0, hind_x = 0;  // the fore and hind pairs' middles along the body
+  double body_cm = 0, track_cm = 0;
+};
+
+HorseFootprint horseFootprint(const std::array<glm::dvec2, 4>& rest) {
+  HorseFootprint f;
+  f.fore_x = 0.5 * (rest[0].x + rest[1].x), f.hind_x = 0.5 * (rest[2].x + rest[3].x);
+  f.body_cm = std::max(f.fore_x - f.hind_x, 1.0);
+  f.track_cm = 0.25 * (std::abs(rest[0].y) + std::abs(rest[1].y) + std::abs(rest[2].y) + std::abs(rest[3].y));
+  return f;
+}
+
+// When the horse has travelled a distance along the path: the samples ask in order of distance, so each
+// search starts from the time of the one before.
+struct TravelTimes {
+  const SpeedProfile& speed;
+  double table_s = 0;
+  double last = 0;  // the previous sample's time
+  // The first time the horse has travelled s: bisection from the previous sample's time (travel grows).
+  double at(double s) const {
+    double a = last, b = std::max(last, 1e-3);
+    while (speed.distanceAtTime(b) < s && b < table_s) b = std::min(table_s, b * 2.0 + 1e-3);
+    for (int i = 0; i < 50; ++i) {
+      const double mid = 0.5 * (a + b);
+      (speed.distanceAtTime(mid) < s ? a : b) = mid;
+    }
+    return b;
+  }
+};
+
+// One sample's value and bound of each limit (by HorseLimit; bound 0 = not applicable there).
+struct LimitRow {
+  std::array<double, kLimits>& value;
+  std::array<double, kLimits>& bound;
+  void set(HorseLimit limit, double v, double b) const {
+    value[std::size_t(limit)] = v;
+    bound[std::size_t(limit)] = b;
+  }
+};
+
+// Speed, and its rate: a forward difference at the clip's start (the speed holds before it). `power`
+// (cm²/s³) caps the acceleration at a = P / v.
+void readTravelLimits(const LimitRow& row, const SpeedProfile& speed, double t, double v, const HorseLimits& limits, double power) {
+  const double g = HorseLimits::kGravityCmS2;
+  row.set(HorseLimit::Speed, v, limits.top_speed_cm_s);
+  const double t0 = std::max(0.0, t - kAccelStepS), t1 = t + kAccelStepS;
+  const double accel = (speed.speedAtTime(t1) - speed.speedAtTime(t0)) / (t1 - t0);
+  row.set(HorseLimit::Acceleration, std::max(accel, 0.0), std::min(limits.max_accel_g * g, power / v));
+  row.set(HorseLimit::Deceleration, std::max(-accel, 0.0), limits.max_decel_g * g);
+}
+
+// The turn: curvature averaged over the horse's length is the heading's change across it. Returns the
+// turn's radius (0 going straight).
+double readTurnLimit(const LimitRow& row, const GroundPath& path, double s, double v, double body_cm, const HorseLimits& limits) {
+  const double turn_deg =
+      std::remainder(extended(path, s + 0.5 * body_cm).heading_deg - extended(path, s - 0.5 * body_cm).heading_deg, 360.0);
+  const double curvature = std::abs(turn_deg) / kDegreesPerRadian / body_cm;
+  row.set(HorseLimit::Turn, v * v * curvature, limits.hoof_friction * HorseLimits::kGravityCmS2);
+  return curvature > 0.0 ? 1.0 / curvature : 0.0;
+}
+
+double groundHeight(const Terrain* terrain, glm::dvec2 q) { return terrain ? terrain->height(q.x, q.y) : 0.0; }
+
+// Footing: the ground's slope across a hoof's footprint, on the left and right hoof tracks (degrees).
+double steepestFooting(const Terrain* terrain, const GroundPath::Sample& here, double track_cm, double half_foot) {
+  const glm::dvec2 right{-here.tangent.y, here.tangent.x};
+  double steepest = 0.0;
+  for (const double side : {-track_cm, track_cm}) {
+    const glm::dvec2 q = here.position + right * side;
+    const double dx =
+        (groundHeight(terrain, q + glm::dvec2{half_foot, 0}) - groundHeight(terrain, q - glm::dvec2{half_foot, 0})) / (2 * half_foot);
+    const double dz =
+        (groundHeight(terrain, q + glm::dvec2{0, half_foot}) - groundHeight(terrain, q - glm::dvec2{0, half_foot})) / (2 * half_foot);
+    steepest = std::max(steepest, std::atan(std::hypot(dx, dz)) * kDegreesPerRadian);
+  }
+  return steepest;
+}
+
+// The ground under the horse at arc length s, time t: its grade between the fore and hind hooves along
+// the path (+ climbing), the grade the gait is ridden on, and the footing under the hooves.
+void readGroundLimits(const LimitRow& row, const GroundPath& path, const Terrain* terrain, const GaitSchedule& gaits, double s,
+                      double t, const HorseFootprint& horse, const HorseLimits& limits) {
+  const GroundPath::Sample fore = extended(path, s + horse.fore_x), hind = extended(path, s + horse.hind_x);
+  const double grade = std::atan2(groundHeight(terrain, fore.position) - groundHeight(terrain, hind.position), horse.fore_x - horse.hind_x) *
+                       kDegreesPerRadian;
+  row.set(HorseLimit::Climb, std::max(grade, 0.0), limits.max_climb_deg);
+  row.set(HorseLimit::Descent, std::max(-grade, 0.0), limits.max_descent_deg);
+  const PathGait gait = gaits.gaitAt(t);
+  if (gait == PathGait::Canter || gait == PathGait::Gallop) row.set(HorseLimit::CanterGrade, std::abs(grade), limits.max_canter_grade_deg);
+  const double half_foot = 0.5 * limits.hoof_footprint_cm;
+  row.set(HorseLimit::Footing, steepestFooting(terrain, extended(path, s), horse.track_cm, half_foot), limits.max_footing_deg);
+}
+
 }  // namespace
 
 double HorseLimits::accelPowerCm2S3() const {
@@ -62,34 +164,13 @@ PathLimitCheck::PathLimitCheck(const PathClipParams& params, const Terrain* terr
   const std::string source = file_ + ": " + clip_field_;
   const GroundPath path(params.points, source);
   const double length = path.length();
-  // The speed profile over as long as the path clip tables it: the path at the slowest key's speed.
-  double slowest = 0.0;
-  for (const auto& k : params.speed) slowest = slowest == 0.0 ? k.speed : std::min(slowest, k.speed);
-  const double table_s = slowest > 0.0 && std::isfinite(slowest) ? std::min(params.max_duration_s, length / slowest + 1.0) : 1.0;
+  // The speed profile over as long as the path clip tables it.
+  const double table_s = speedTableSeconds(params, length);
   const SpeedProfile speed(params.speed, params.over, table_s, source);
   const GaitSchedule gaits(speed, params.thresholds);
-
-  // The horse's length and hoof tracks, from its rest hoof places (lf, rf, lb, rb).
-  const auto& rest = params.hoof_rest;
-  const double fore_x = 0.5 * (rest[0].x + rest[1].x), hind_x = 0.5 * (rest[2].x + rest[3].x);
-  const double body_cm = std::max(fore_x - hind_x, 1.0);
-  const double track_cm = 0.25 * (std::abs(rest[0].y) + std::abs(rest[1].y) + std::abs(rest[2].y) + std::abs(rest[3].y));
-  const double g = HorseLimits::kGravityCmS2;
+  const HorseFootprint horse = horseFootprint(params.hoof_rest);
   const double power = limits_.accelPowerCm2S3();  // cm²/s³: a = P / v
-  const double half_foot = 0.5 * limits_.hoof_footprint_cm;
-
-  const auto heightAt = [terrain](glm::dvec2 q) { return terrain ? terrain->height(q.x, q.y) : 0.0; };
-  double t = 0.0;
-  const auto timeAt = [&](double s) {
-    // The first time the horse has travelled s: bisection from the previous sample's time (travel grows).
-    double a = t, b = std::max(t, 1e-3);
-    while (speed.distanceAtTime(b) < s && b < table_s) b = std::min(table_s, b * 2.0 + 1e-3);
-    for (int i = 0; i < 50; ++i) {
-      const double mid = 0.5 * (a + b);
-      (speed.distanceAtTime(mid) < s ? a : b) = mid;
-    }
-    return b;
-  };
+  TravelTimes times{speed, table_s};
 
   const double step_cm = std::max(kSampleStepCm, length / double(kMaxSamples));
   const int steps = std::max(1, int(std::ceil(length / step_cm)));
@@ -99,55 +180,14 @@ PathLimitCheck::PathLimitCheck(const PathClipParams& params, const Terrain* terr
   for (int i = 0; i <= steps; ++i) {
     Sample x;
     x.s = std::min(length, double(i) * step_cm);
-    t = x.t = i == 0 ? 0.0 : timeAt(x.s);
+    times.last = x.t = i == 0 ? 0.0 : times.at(x.s);
     while (segment + 1 < segments && path.distanceAtPoint(std::size_t(segment) + 1) <= x.s) ++segment;
     x.segment = segment;
     x.v = speed.speedAtTime(x.t);
-
-    // Speed, and its rate: a forward difference at the clip's start (the speed holds before it).
-    x.value[std::size_t(HorseLimit::Speed)] = x.v;
-    x.bound[std::size_t(HorseLimit::Speed)] = limits_.top_speed_cm_s;
-    const double t0 = std::max(0.0, x.t - kAccelStepS), t1 = x.t + kAccelStepS;
-    const double accel = (speed.speedAtTime(t1) - speed.speedAtTime(t0)) / (t1 - t0);
-    x.value[std::size_t(HorseLimit::Acceleration)] = std::max(accel, 0.0);
-    x.bound[std::size_t(HorseLimit::Acceleration)] = std::min(limits_.max_accel_g * g, power / x.v);
-    x.value[std::size_t(HorseLimit::Deceleration)] = std::max(-accel, 0.0);
-    x.bound[std::size_t(HorseLimit::Deceleration)] = limits_.max_decel_g * g;
-
-    // The turn: curvature averaged over the horse's length is the heading's change across it.
-    const double turn_deg =
-        std::remainder(extended(path, x.s + 0.5 * body_cm).heading_deg - extended(path, x.s - 0.5 * body_cm).heading_deg, 360.0);
-    const double curvature = std::abs(turn_deg) / kDegreesPerRadian / body_cm;
-    x.radius_cm = curvature > 0.0 ? 1.0 / curvature : 0.0;
-    x.value[std::size_t(HorseLimit::Turn)] = x.v * x.v * curvature;
-    x.bound[std::size_t(HorseLimit::Turn)] = limits_.hoof_friction * g;
-
-    if (terrain && !terrain->flat()) {
-      // Grade: the ground between the fore and hind hooves, along the path (+ climbing).
-      const GroundPath::Sample fore = extended(path, x.s + fore_x), hind = extended(path, x.s + hind_x);
-      const double grade = std::atan2(heightAt(fore.position) - heightAt(hind.position), fore_x - hind_x) * kDegreesPerRadian;
-      x.value[std::size_t(HorseLimit::Climb)] = std::max(grade, 0.0);
-      x.bound[std::size_t(HorseLimit::Climb)] = limits_.max_climb_deg;
-      x.value[std::size_t(HorseLimit::Descent)] = std::max(-grade, 0.0);
-      x.bound[std::size_t(HorseLimit::Descent)] = limits_.max_descent_deg;
-      const PathGait gait = gaits.gaitAt(x.t);
-      if (gait == PathGait::Canter || gait == PathGait::Gallop) {
-        x.value[std::size_t(HorseLimit::CanterGrade)] = std::abs(grade);
-        x.bound[std::size_t(HorseLimit::CanterGrade)] = limits_.max_canter_grade_deg;
-      }
-      // Footing: the ground's slope across a hoof's footprint, on the left and right hoof tracks.
-      const GroundPath::Sample here = extended(path, x.s);
-      const glm::dvec2 right{-here.tangent.y, here.tangent.x};
-      double steepest = 0.0;
-      for (const double side : {-track_cm, track_cm}) {
-        const glm::dvec2 q = here.position + right * side;
-        const double dx = (heightAt(q + glm::dvec2{half_foot, 0}) - heightAt(q - glm::dvec2{half_foot, 0})) / (2 * half_foot);
-        const double dz = (heightAt(q + glm::dvec2{0, half_foot}) - heightAt(q - glm::dvec2{0, half_foot})) / (2 * half_foot);
-        steepest = std::max(steepest, std::atan(std::hypot(dx, dz)) * kDegreesPerRadian);
-      }
-      x.value[std::size_t(HorseLimit::Footing)] = steepest;
-      x.bound[std::size_t(HorseLimit::Footing)] = limits_.max_footing_deg;
-    }
+    const LimitRow row{x.value, x.bound};
+    readTravelLimits(row, speed, x.t, x.v, limits_, power);
+    x.radius_cm = readTurnLimit(row, path, x.s, x.v, horse.body_cm, limits_);
+    if (terrain && !terrain->flat()) readGroundLimits(row, path, terrain, gaits, x.s, x.t, horse, limits_);
     samples_.push_back(x);
   }
 
