@@ -47,42 +47,54 @@ float filteredChecker(float s, float t, float width) {
   return 0.5f + (odd - 0.5f) * contrast;
 }
 
+namespace {
+
+OccluderBox characterBox(const EmbreeScene& scene) {
+  const RTCBounds& b = scene.characterBounds();
+  return {{b.lower_x, b.lower_y, b.lower_z}, {b.upper_x, b.upper_y, b.upper_z}};
+}
+
+Sun makeSun(const RenderSettings& settings, const OccluderBox& box, float ground_floor) {
+  return Sun(settings.sun_direction, settings.sun_angular_radius_deg, settings.sun_color * settings.sun_strength, box,
+             ground_floor);
+}
+
+// The sky, with the lit ground's bounce: the mean checker's albedo under the sun and the open sky.
+Sky makeSky(const RenderSettings& settings, const OccluderBox& box, const Sun& sun) {
+  const glm::vec3 ground_albedo = 0.5f * (settings.ground_color_a + settings.ground_color_b);
+  const glm::vec3 bounce = ground_albedo * (sun.axisRadiance() * std::max(0.0f, sun.frame().z.y) +
+                                            settings.sky.upwardIrradianceOverPi());
+  return Sky(settings.sky, settings.ao_distance_cm, box, bounce);
+}
+
+}  // namespace
+
 Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
                        std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain,
                        float ground_floor, const SunHorizon* hills, const TerrainMesh* ground_mesh)
     : settings_(settings),
       characters_(scene.characters()),
+      bounds_lower_(characterBox(scene).lower),
+      bounds_upper_(characterBox(scene).upper),
+      bounds_radius_(characterBox(scene).empty() ? -1.0f : 0.5f * glm::length(bounds_upper_ - bounds_lower_)),
       meshes_(meshes_by_geometry),
+      ground_floor_(terrain ? ground_floor : 0.0f),
+      sun_(makeSun(settings, characterBox(scene), ground_floor_)),
+      sky_(makeSky(settings, characterBox(scene), sun_)),
+      brdf_(Brdf::blinnPhong(settings.specular, settings.shininess)),
+      ground_extent_(settings.ground_half_extent_cm),
       terrain_(terrain),
       hills_(hills),
       ground_mesh_(terrain ? ground_mesh : nullptr),
       slab_low_(-kInfinity),
       slab_high_(kInfinity),
       ground_(scene.ground()),
-      ground_floor_(terrain ? ground_floor : 0.0f),
+      spp_(uint32_t(settings.samples_per_pixel)),
+      light_spp_(uint32_t(settings.light_samples)),
+      ao_spp_(uint32_t(settings.ao_samples)),
       pixel_layout_(uint32_t(settings.samples_per_pixel)),
       sun_layout_(uint32_t(settings.samples_per_pixel * settings.light_samples)),
       sky_layout_(uint32_t(settings.samples_per_pixel * settings.ao_samples)) {
-  const RTCBounds& b = scene.characterBounds();
-  bounds_lower_ = {b.lower_x, b.lower_y, b.lower_z};
-  bounds_upper_ = {b.upper_x, b.upper_y, b.upper_z};
-  const bool empty = !(b.lower_x <= b.upper_x && b.lower_y <= b.upper_y && b.lower_z <= b.upper_z);
-  bounds_radius_ = empty ? -1.0f : 0.5f * glm::length(bounds_upper_ - bounds_lower_);
-  const glm::vec3 sun = glm::normalize(glm::vec3(settings.sun_direction));
-  sun_frame_ = Frame::around(sun);
-  inv_sun_dir_ = 1.0f / sun_frame_.z;  // inf for a zero component, which sunMayBeBlocked never uses
-  const float sun_angle = float(std::max(0.0, settings.sun_angular_radius_deg) * std::numbers::pi / 180.0);
-  sun_cos_max_ = std::cos(sun_angle);
-  sun_tan_ = std::tan(sun_angle);
-  sun_radiance_ = settings.sun_color * settings.sun_strength;
-  setGroundSunRegion();
-  const glm::vec3 ground_albedo = 0.5f * (settings.ground_color_a + settings.ground_color_b);
-  ground_bounce_ = ground_albedo * (sun_radiance_ * std::max(0.0f, sun.y) + settings.sky.upwardIrradianceOverPi());
-  blinn_norm_ = float(settings.shininess + 8) / 8.0f;
-  ground_extent_ = settings.ground_half_extent_cm;
-  spp_ = uint32_t(settings.samples_per_pixel);
-  light_spp_ = uint32_t(settings.light_samples);
-  ao_spp_ = uint32_t(settings.ao_samples);
   if (ground_mesh_ && !ground_mesh_->positions.empty()) {
     // Every point of the mesh, and so every hit, is within [min, max] height; a centimetre more each way
     // (far more than a hit's rounding in y) keeps a hit on the slab's faces inside the traced interval.
@@ -108,65 +120,10 @@ RTCRay makeRay(const glm::vec3& origin, const glm::vec3& direction, float t_far)
 
 }  // namespace
 
-// Whether any ray of the sun's cone from `origin` can meet the characters' bounding box. The cone is
-// covered by the axis ray against the box grown by the cone's radius at the box's far corner. When it
-// misses, the sun is certainly unblocked there and needs no shadow rays (most of the ground).
-bool Integrator::sunMayBeBlocked(const glm::vec3& origin) const {
-  if (bounds_radius_ < 0.0f) return false;
-  const glm::vec3 far_corner = glm::max(glm::abs(origin - bounds_lower_), glm::abs(origin - bounds_upper_));
-  const float margin = glm::length(far_corner) * sun_tan_ * 1.01f + 0.1f;
-  const glm::vec3 lower = bounds_lower_ - margin, upper = bounds_upper_ + margin;
-  const glm::vec3& d = sun_frame_.z;
-  float t0 = 0.0f, t1 = kInfinity;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0.0f) {
-      if (origin[a] < lower[a] || origin[a] > upper[a]) return false;
-      continue;
-    }
-    float near = (lower[a] - origin[a]) * inv_sun_dir_[a], far = (upper[a] - origin[a]) * inv_sun_dir_[a];
-    if (near > far) std::swap(near, far);
-    t0 = std::max(t0, near);
-    t1 = std::min(t1, far);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
-// sunMayBeBlocked(o) is true only when the sun's axis from o meets the characters' box grown by a
-// margin M(o) = |far corner| tan(sun radius) 1.01 + 0.1 (above). For a point o on the ground, hitting
-// it at q (in the grown box) means o = q - t d with t = (q.y - o.y) / d.y <= (H + M) / d.y, H the box's
-// top, and the far corner is at most t + |box extent| + sqrt(3) M from o. So M <= k ((H + M) / d.y +
-// |extent| + sqrt(3) M) + 0.1 with k = 1.01 tan: a bound on M, and with it a rectangle of the ground
-// outside which sunMayBeBlocked is certainly false. The rectangle answers most of the ground in four
-// comparisons, with the same answer the full test gives there.
-void Integrator::setGroundSunRegion() {
-  ground_sun_region_ = false;
-  const glm::vec3& d = sun_frame_.z;
-  if (bounds_radius_ < 0.0f || !(d.y > 0.0f)) return;
-  const float k = 1.01f * sun_tan_;
-  const float denominator = 1.0f - k / d.y - 1.7320508f * k;
-  if (!(denominator > 0.1f)) return;  // a low or very wide sun: no useful bound, always run the test
-  // Heights from the lowest ground (0 on the plane: then exactly the plane's bound).
-  const float top = std::max(bounds_upper_.y - ground_floor_, 0.0f);
-  const float extent = glm::length(bounds_upper_ - bounds_lower_);
-  const float margin = (k * (top / d.y + extent) + 0.1f) / denominator * 1.01f + 1.0f;  // + rounding slack
-  const float t_max = (top + margin) / d.y;
-  ground_sun_lower_ = {bounds_lower_.x - margin - std::max(0.0f, t_max * d.x),
-                       bounds_lower_.z - margin - std::max(0.0f, t_max * d.z)};
-  ground_sun_upper_ = {bounds_upper_.x + margin - std::min(0.0f, t_max * d.x),
-                       bounds_upper_.z + margin - std::min(0.0f, t_max * d.z)};
-  ground_sun_region_ = true;
-}
-
-bool Integrator::groundSunRegionExcludes(const glm::vec3& origin) const {
-  return ground_sun_region_ && origin.y >= ground_floor_ &&
-         (origin.x < ground_sun_lower_.x || origin.x > ground_sun_upper_.x || origin.z < ground_sun_lower_.y ||
-          origin.z > ground_sun_upper_.y);
-}
-
-bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const {
-  return !groundSunRegionExcludes(origin) && sunMayBeBlocked(origin);
-}
+// The sun's shadow-ray test (render/tracer/light.h).
+bool Integrator::sunMayBeBlocked(const glm::vec3& origin) const { return sun_.mayBeBlocked(origin); }
+bool Integrator::groundSunRegionExcludes(const glm::vec3& origin) const { return sun_.groundRegionExcludes(origin); }
+bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const { return sun_.groundMayBeBlocked(origin); }
 
 // A pixel of the batch: its sampler, and where its sun and sky sequences are (set up when the first of
 // its samples needs them: most pixels of a review frame are sky or open ground, which need neither).
@@ -257,27 +214,19 @@ LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
   k.square_cm = settings_.ground_square_cm;
   k.color_a = settings_.ground_color_a, k.color_b = settings_.ground_color_b;
   k.haze_visibility = settings_.haze.visibility_cm, k.haze_ortho_depth = settings_.haze.ortho_depth_cm;
-  k.horizon = settings_.sky.horizon, k.zenith = settings_.sky.zenith, k.below = settings_.sky.below;
   // An orthographic sky is graded from the ground's height under the camera's target.
   if (terrain_ && !camera.perspective()) {
     const glm::vec3 target = camera.positionF() + camera.forwardF() * camera.targetDistanceF();
     k.sky_floor = float(terrain_->height(double(target.x), double(target.z)));
   }
-  k.sun_y = sun_frame_.z.y;
-  k.sun_radiance = sun_radiance_;
-  k.sky_irradiance = settings_.sky.upwardIrradianceOverPi();
-  k.sun_region = ground_sun_region_ && settings_.open_ground_shortcuts;
+  sun_.toLanes(k);
+  sky_.toLanes(k);
+  brdf_.toLanes(k);
+  k.sun_region = k.sun_region && settings_.open_ground_shortcuts;
   k.open_ground_shortcuts = settings_.open_ground_shortcuts;
   k.ground_floor = ground_floor_;
-  k.sun_lower_x = ground_sun_lower_.x, k.sun_lower_z = ground_sun_lower_.y;
-  k.sun_upper_x = ground_sun_upper_.x, k.sun_upper_z = ground_sun_upper_.y;
-  k.ao_distance = settings_.ao_distance_cm;
   k.box_lower = bounds_lower_, k.box_upper = bounds_upper_;
   k.box_empty = bounds_radius_ < 0.0f;
-  k.sun_frame_x = sun_frame_.x, k.sun_frame_y = sun_frame_.y, k.sun_axis = sun_frame_.z;
-  k.sun_cos_max = sun_cos_max_, k.sun_tan = sun_tan_;
-  k.specular = settings_.specular, k.blinn_norm = blinn_norm_, k.shininess = settings_.shininess;
-  k.ground_bounce = ground_bounce_;
   k.light_samples = int(light_spp_), k.ao_samples = int(ao_spp_);
   return k;
 }
@@ -427,7 +376,7 @@ void Integrator::surfacePass(const LaneConstants& constants, TileScratch& scratc
   for (uint32_t k = 0; k < ao_spp_; ++k)
     stratifiedLanes(sky_layout_, scratch.sky_points, k * surfaces.stride, surfaces.padded, surfaces.sky_u.data(),
                     surfaces.sky_v.data());
-  hitSurfaceLanes(constants, surfaces);
+  Material::shadeLanes(constants, surfaces);
   shadingLanes(constants, surfaces);
   queueOcclusionRays(scratch, tally);
 }
@@ -621,7 +570,7 @@ void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) 
         sun = glm::vec3(0.0f);
         for (uint32_t k = 0; k < c->sun_pending; ++k, ++pending)
           if (open(*pending, scratch.sun_rays)) sun += pending->weight;
-        sun *= sun_radiance_ / float(light_spp_);
+        sun *= sun_.axisRadiance() / float(light_spp_);
       }
       if (!c->sky_traced) {
         radiance = sun + c->sky;
@@ -668,29 +617,14 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
     // A character: the hit and its triangle's vertices, for hitSurfaceLanes.
     const float t = rh->ray.tfar;
     const ShadingMesh& mesh = *meshes_[rh->hit.geomID];
-    const uint32_t* tri = &mesh.indices[size_t(rh->hit.primID) * 3];
     S.character[m] = -1;
     S.on_ground[m] = 0;
     S.ox[m] = c.origin.x, S.oy[m] = c.origin.y, S.oz[m] = c.origin.z, S.t[m] = t;
     S.gx[m] = rh->hit.Ng_x, S.gy[m] = rh->hit.Ng_y, S.gz[m] = rh->hit.Ng_z;
     S.u[m] = rh->hit.u, S.v[m] = rh->hit.v;
-    const glm::vec3 &n0 = mesh.normals[tri[0]], &n1 = mesh.normals[tri[1]], &n2 = mesh.normals[tri[2]];
-    S.n0x[m] = n0.x, S.n0y[m] = n0.y, S.n0z[m] = n0.z, S.n1x[m] = n1.x, S.n1y[m] = n1.y, S.n1z[m] = n1.z;
-    S.n2x[m] = n2.x, S.n2y[m] = n2.y, S.n2z[m] = n2.z;
-    const glm::vec3 &c0 = mesh.colors[tri[0]], &c1 = mesh.colors[tri[1]], &c2 = mesh.colors[tri[2]];
-    S.c0r[m] = c0.x, S.c0g[m] = c0.y, S.c0b[m] = c0.z, S.c1r[m] = c1.x, S.c1g[m] = c1.y, S.c1b[m] = c1.z;
-    S.c2r[m] = c2.x, S.c2g[m] = c2.y, S.c2b[m] = c2.z;
-    // A textured triangle's texture at the hit's uv, interpolated as Embree's barycentrics say (a
-    // scalar lookup: the same bits on every SIMD target and thread).
-    glm::vec3 texture(1.0f);
-    if (!mesh.triangle_textures.empty()) {
-      if (const int32_t k = mesh.triangle_textures[size_t(rh->hit.primID)]; k >= 0) {
-        const float b1 = rh->hit.u, b2 = rh->hit.v, b0 = 1.0f - b1 - b2;
-        const glm::vec2 uv = b0 * mesh.uvs[tri[0]] + b1 * mesh.uvs[tri[1]] + b2 * mesh.uvs[tri[2]];
-        texture = mesh.textures[size_t(k)]->sample(uv);
-      }
-    }
-    S.tr[m] = texture.x, S.tg[m] = texture.y, S.tb[m] = texture.z;
+    // Its material: the vertex normals and colours, and a texture's colour at the hit.
+    const MaterialHit hit{&mesh, rh->hit.primID, rh->hit.u, rh->hit.v};
+    Material::of(mesh, rh->hit.primID).gather(hit, S, m);
     // The ground under the hit (its downward sky rays stop just above it).
     S.ground_y[m] = 0.0f;
     S.hills[m] = 0;

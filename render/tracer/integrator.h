@@ -1,8 +1,9 @@
 // Shading for the review look: per camera sample, one primary ray, then direct sun through
 // `light_samples` shadow rays into the sun's cone and sky light through `ao_samples` cosine-weighted
-// occlusion rays. Surfaces are diffuse plus a small normalised Blinn-Phong lobe, smooth-shaded from the
-// vertex normals; the ground is a filtered checker. No indirect bounces except a constant ground
-// bounce seen by downward sky rays (so bellies are not black).
+// occlusion rays. The lights are render/tracer/light.h's Sun and Sky; the characters' surfaces are
+// render/tracer/material.h's Materials (diffuse plus a small normalised Blinn-Phong lobe, smooth-shaded
+// from the vertex normals, coloured by the vertices or a texture); the ground is a filtered checker. No
+// indirect bounces except a constant ground bounce seen by downward sky rays (so bellies are not black).
 #pragma once
 
 #include <cstdint>
@@ -16,7 +17,9 @@
 
 #include "render/tracer/embree_scene.h"
 #include "render/tracer/heightfield_mesh.h"
+#include "render/tracer/light.h"
 #include "render/tracer/lights.h"
+#include "render/tracer/material.h"
 #include "render/tracer/renderer.h"
 #include "render/tracer/sample_lanes.h"
 #include "render/tracer/sampler.h"
@@ -26,19 +29,6 @@
 #include "scene/camera.h"
 
 namespace stirrup::render {
-
-// What the integrator needs of a mesh: its id for the passes, and the per-vertex data Embree does
-// not keep (Embree has the positions and the triangles).
-struct ShadingMesh {
-  ObjectId id = ObjectId::Horse;
-  std::vector<uint32_t> indices;
-  std::vector<glm::vec3> colors;
-  std::vector<glm::vec3> normals;
-  // Base colour textures, as MeshDesc's (all empty: untextured).
-  std::vector<glm::vec2> uvs;
-  std::vector<int32_t> triangle_textures;
-  std::vector<std::shared_ptr<const rig::Texture>> textures;
-};
 
 // One pixel's result: filtered colour and coverage, and the passes.
 struct PixelResult {
@@ -171,29 +161,23 @@ class Integrator {
   bool hillsMayBlockSunAbove(const glm::vec3& p, double mesh_height) const;
   // How far along a camera ray the ground is seen before the haze ends it.
   float visibleDistance(const CameraFrame& camera) const;
-  void setGroundSunRegion();
 
   const RenderSettings& settings_;
   RTCScene characters_;
   glm::vec3 bounds_lower_, bounds_upper_;  // of the characters: occlusion rays missing it skip Embree
   float bounds_radius_;                    // of the sphere around the bounds; < 0: no characters
   std::span<const ShadingMesh* const> meshes_;
+  float ground_floor_;         // no ground point lies below this height
   // Derived once per frame.
-  Frame sun_frame_;
-  glm::vec3 inv_sun_dir_;      // 1 / the sun axis, per component: slab tests without divisions
-  float sun_cos_max_, sun_tan_;
-  bool ground_sun_region_;     // ground points outside [lower, upper] (x, z) see the sun unblocked
-  glm::vec2 ground_sun_lower_, ground_sun_upper_;
-  glm::vec3 sun_radiance_;     // of a white matte surface facing the sun
-  glm::vec3 ground_bounce_;    // radiance of the lit ground, seen by downward sky rays
+  Sun sun_;
+  Sky sky_;                    // its ground bounce: the radiance of the lit ground, seen by downward sky rays
+  Brdf brdf_;                  // the characters' (the ground is matte)
   float ground_extent_;        // the ground is the square |x|, |z| <= this at y = 0, hit analytically
   const rig::Terrain* terrain_;  // or, when set, this terrain's mesh in ground_
   const SunHorizon* hills_;      // with terrain_: where the hills certainly leave the sun open (null: nowhere)
   const TerrainMesh* ground_mesh_;  // with terrain_: the heightfield as traced (null: unknown)
   float slab_low_, slab_high_;   // with terrain_: every ground point's height is within these
   RTCScene ground_;
-  float ground_floor_;         // no ground point lies below this height
-  float blinn_norm_;           // (n + 8) / 8: Blinn-Phong lobe normalised for energy
   uint32_t spp_, light_spp_, ao_spp_;
   Stratified2D::Layout pixel_layout_, sun_layout_, sky_layout_;  // spp, spp * light, spp * ao points
 };

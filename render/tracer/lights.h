@@ -1,5 +1,6 @@
 // The two lights of the review look: a sun (a disc of a given angular radius, sampled as a cone so
-// shadows are soft) and a sky (a vertical gradient, sampled cosine-weighted for ambient occlusion).
+// shadows are soft) and a sky (a vertical gradient, sampled cosine-weighted for ambient occlusion): their
+// sampling and the arithmetic the lanes share. The Light interface over them is render/tracer/light.h.
 #pragma once
 
 #include <algorithm>

@@ -59,12 +59,131 @@ void HitSurfaceLanes(const LaneConstants& k, SurfaceLanes& S) {
   }
 }
 
-// Each surface's light that needs no ray, and the shadow and sky rays it needs (see shading_lanes.h).
+// BRDF times cosine for light arriving from wi (0 from below the surface): Brdf::reflected
+// (render/tracer/material.h) for a vector of surfaces.
+struct ReflectedLanes {
+  V3 n, ng, wo, diffuse;
+  MF glossy;
+  VF lobe_weight;
+  int shininess;
+
+  HWY_INLINE V3 operator()(const V3& wi) const {
+    const DF df;
+    const VF zero = Splat(0.0f);
+    const VF cos_n = Dot3(n, wi);
+    const MF lit = hn::Not(hn::Or(hn::Le(cos_n, zero), hn::Le(Dot3(ng, wi), zero)));
+    V3 f = diffuse;
+    if (!hn::AllFalse(df, glossy)) {
+      const VF cos_h = hn::Max(zero, Dot3(n, Normalize3(Add3(wi, wo))));
+      const VF lobe = hn::Mul(lobe_weight, PowWhole(cos_h, shininess));
+      f = Select3(glossy, V3{hn::Add(f.x, lobe), hn::Add(f.y, lobe), hn::Add(f.z, lobe)}, f);
+    }
+    f = Scale3(cos_n, f);
+    return Select3(lit, f, V3{zero, zero, zero});
+  }
+};
+
+// The sun (render/tracer/light.h, Sun) for the surfaces at i: shadow rays over its disc where any ray of
+// its cone may meet the characters; elsewhere once along its axis, with no ray. Ground points outside
+// the sun's rectangle are open at once.
+HWY_INLINE void SunLanes(const LaneConstants& k, SurfaceLanes& S, size_t i, const V3& origin, MF on_ground,
+                         const ReflectedLanes& reflected) {
+  const DF df;
+  const VF zero = Splat(0.0f), one = Splat(1.0f);
+  const Frame3 sun_frame = {Splat3(k.sun_frame_x), Splat3(k.sun_frame_y), Splat3(k.sun_axis)};
+  MF sun_traced = k.open_ground_shortcuts ? SunMayBeBlocked(k, origin) : hn::Not(hn::FirstN(df, 0));
+  if (k.sun_region) {
+    const MF outside = hn::Or(hn::Or(hn::Lt(origin.x, Splat(k.sun_lower_x)), hn::Gt(origin.x, Splat(k.sun_upper_x))),
+                              hn::Or(hn::Lt(origin.z, Splat(k.sun_lower_z)), hn::Gt(origin.z, Splat(k.sun_upper_z))));
+    const MF excluded = hn::And(on_ground, hn::And(hn::Ge(origin.y, Splat(k.ground_floor)), outside));
+    sun_traced = hn::AndNot(excluded, sun_traced);
+  }
+  sun_traced = hn::Or(sun_traced, LoadMask(S.hills, i));
+  StoreMask(sun_traced, S.sun_traced, i);
+  Store3(Mul3(reflected(sun_frame.z), Splat3(k.sun_radiance)), S.sun_r, S.sun_g, S.sun_b, i);
+  if (hn::AllFalse(df, sun_traced)) return;
+  for (int s = 0; s < k.light_samples; ++s) {
+    const size_t at = size_t(s) * S.stride + i;
+    const VF cos_t = hn::Sub(one, hn::Mul(Load(S.sun_u, at), hn::Sub(one, Splat(k.sun_cos_max))));
+    const VF sin_t = hn::Sqrt(hn::Max(zero, hn::Sub(one, hn::Mul(cos_t, cos_t))));
+    VF c, sn;
+    UnitCircle(Load(S.sun_v, at), c, sn);
+    const V3 wi = sun_frame.toWorld(hn::Mul(sin_t, c), hn::Mul(sin_t, sn), cos_t);
+    const V3 f = reflected(wi);
+    const MF carries = hn::Or(hn::Or(hn::Ne(f.x, zero), hn::Ne(f.y, zero)), hn::Ne(f.z, zero));
+    Store3(wi, S.sun_wx, S.sun_wy, S.sun_wz, at);
+    Store3(f, S.sun_fr, S.sun_fg, S.sun_fb, at);
+    StoreMask(hn::And(sun_traced, carries), S.sun_valid, at);
+  }
+}
+
+// Whether the surfaces at i need sky rays: ambient occlusion against the gradient sky, except open
+// ground farther than ao_distance from the characters, which sees the whole sky (Sky::mayBeBlocked).
+// Without the shortcuts (a crowd) every point samples the sky.
+HWY_INLINE MF SkyTraced(const LaneConstants& k, const V3& origin, const V3& ng, MF on_ground) {
+  const DF df;
+  const VF zero = Splat(0.0f);
+  if (k.box_empty) return hn::Not(hn::And(on_ground, hn::Gt(ng.y, zero)));  // no characters: infinitely far
+  if (!k.open_ground_shortcuts) return hn::Not(hn::FirstN(df, 0));
+  const V3 e = {hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.x), origin.x), hn::Sub(origin.x, Splat(k.box_upper.x))), zero),
+                hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.y), origin.y), hn::Sub(origin.y, Splat(k.box_upper.y))), zero),
+                hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.z), origin.z), hn::Sub(origin.z, Splat(k.box_upper.z))), zero)};
+  return hn::Not(hn::And(hn::And(on_ground, hn::Gt(ng.y, zero)), hn::Gt(Length3(e), Splat(k.ao_distance))));
+}
+
+// The sky (render/tracer/light.h, Sky) for the surfaces at i: the exact cosine-weighted mean where no
+// ray is needed, else its cosine-weighted rays. A character's rays heading down stop just short of the
+// ground: if nothing else is in the way they see the lit ground's bounce.
+HWY_INLINE void SkyLanes(const LaneConstants& k, SurfaceLanes& S, size_t i, const V3& origin, const V3& ng, const V3& n,
+                         const V3& diffuse, MF on_ground) {
+  const DF df;
+  const VF zero = Splat(0.0f), one = Splat(1.0f);
+  const MF sky_traced = SkyTraced(k, origin, ng, on_ground);
+  StoreMask(sky_traced, S.sky_traced, i);
+  Store3(Mul3(diffuse, Splat3(k.sky_irradiance)), S.sky_r, S.sky_g, S.sky_b, i);
+  if (hn::AllFalse(df, sky_traced)) return;
+  const Frame3 around = FrameAround(n);
+  const VF above = hn::Sub(origin.y, Load(S.ground_y, i));
+  const VF quarter_pi = Splat(3.14159265358979323846f / 4.0f);
+  for (int s = 0; s < k.ao_samples; ++s) {
+    const size_t at = size_t(s) * S.stride + i;
+    // sampleCosineHemisphere (render/tracer/lights.h).
+    const VF a = hn::Sub(hn::Mul(Splat(2.0f), Load(S.sky_u, at)), one);
+    const VF b = hn::Sub(hn::Mul(Splat(2.0f), Load(S.sky_v, at)), one);
+    const MF wide = hn::Gt(hn::Abs(a), hn::Abs(b));
+    const VF r = hn::IfThenElse(wide, a, b);
+    const VF angle = hn::IfThenElse(hn::Ne(r, zero), hn::Mul(quarter_pi, hn::Div(hn::IfThenElse(wide, b, a), r)), zero);
+    VF sn, c;
+    SinCosQuarterPi(angle, sn, c);
+    const VF dx = hn::Mul(r, hn::IfThenElse(wide, c, sn)), dy = hn::Mul(r, hn::IfThenElse(wide, sn, c));
+    const VF dz = hn::Sqrt(hn::Max(zero, hn::Sub(hn::Sub(one, hn::Mul(dx, dx)), hn::Mul(dy, dy))));
+    const V3 wi = around.toWorld(dx, dy, dz);
+    const MF toward_ground = hn::AndNot(on_ground, hn::Lt(wi.y, zero));
+    const VF to_ground = hn::Div(hn::Mul(Splat(0.999f), above), hn::Neg(wi.y));
+    const VF t_far = hn::IfThenElse(toward_ground, hn::Min(Splat(k.ao_distance), to_ground), Splat(k.ao_distance));
+    // SkyGradient::radiance, or the ground's bounce.
+    const MF down = hn::Lt(wi.y, zero);
+    const VF a_down = hn::Min(one, hn::Mul(Splat(-8.0f), wi.y));
+    const VF a_up = hn::Sqrt(hn::Max(wi.y, zero));
+    auto channel = [&](float horizon, float below, float zenith, float bounce) {
+      const VF sky = hn::IfThenElse(down, Mix(Splat(horizon), Splat(below), a_down), Mix(Splat(horizon), Splat(zenith), a_up));
+      return hn::IfThenElse(toward_ground, Splat(bounce), sky);
+    };
+    Store3(wi, S.sky_wx, S.sky_wy, S.sky_wz, at);
+    Store(t_far, S.sky_t_far, at);
+    Store(channel(k.horizon.x, k.below.x, k.zenith.x, k.ground_bounce.x), S.sky_lr, at);
+    Store(channel(k.horizon.y, k.below.y, k.zenith.y, k.ground_bounce.y), S.sky_lg, at);
+    Store(channel(k.horizon.z, k.below.z, k.zenith.z, k.ground_bounce.z), S.sky_lb, at);
+    StoreMask(hn::And(sky_traced, hn::Gt(Dot3(ng, wi), zero)), S.sky_valid, at);
+  }
+}
+
+// Each surface's light that needs no ray, and the shadow and sky rays it needs (see shading_lanes.h):
+// the secondary rays' origin and the material's BRDF, then the sun's and the sky's lanes.
 void ShadingLanes(const LaneConstants& k, SurfaceLanes& S) {
   const DF df;
   const size_t lanes = hn::Lanes(df);
   const VF zero = Splat(0.0f), one = Splat(1.0f);
-  const Frame3 sun_frame = {Splat3(k.sun_frame_x), Splat3(k.sun_frame_y), Splat3(k.sun_axis)};
   for (size_t i = 0; i < S.padded; i += lanes) {
     const V3 p = Load3(S.px, S.py, S.pz, i), ng = Load3(S.ngx, S.ngy, S.ngz, i), n = Load3(S.nx, S.ny, S.nz, i);
     const V3 wo = Neg3(Load3(S.dx, S.dy, S.dz, i));
@@ -80,102 +199,10 @@ void ShadingLanes(const LaneConstants& k, SurfaceLanes& S) {
     const V3 diffuse = Scale3(hn::Sub(one, specular), albedo);
     Store3(origin, S.rox, S.roy, S.roz, i);
     Store3(diffuse, S.diffuse_r, S.diffuse_g, S.diffuse_b, i);
-
-    // BRDF times cosine for light arriving from wi (0 from below the surface).
-    const MF glossy = hn::Gt(specular, zero);
-    const VF lobe_weight = hn::Mul(specular, Splat(k.blinn_norm));
-    auto reflected = [&](const V3& wi) {
-      const VF cos_n = Dot3(n, wi);
-      const MF lit = hn::Not(hn::Or(hn::Le(cos_n, zero), hn::Le(Dot3(ng, wi), zero)));
-      V3 f = diffuse;
-      if (!hn::AllFalse(df, glossy)) {
-        const VF cos_h = hn::Max(zero, Dot3(n, Normalize3(Add3(wi, wo))));
-        const VF lobe = hn::Mul(lobe_weight, PowWhole(cos_h, k.shininess));
-        f = Select3(glossy, V3{hn::Add(f.x, lobe), hn::Add(f.y, lobe), hn::Add(f.z, lobe)}, f);
-      }
-      f = Scale3(cos_n, f);
-      return Select3(lit, f, V3{zero, zero, zero});
-    };
-
-    // Sun: shadow rays over its disc where any ray of its cone may meet the characters; elsewhere
-    // once along its axis, with no ray. Ground points outside the sun's rectangle are open at once.
-    MF sun_traced = k.open_ground_shortcuts ? SunMayBeBlocked(k, origin) : hn::Not(hn::FirstN(df, 0));
-    if (k.sun_region) {
-      const MF outside = hn::Or(hn::Or(hn::Lt(origin.x, Splat(k.sun_lower_x)), hn::Gt(origin.x, Splat(k.sun_upper_x))),
-                                hn::Or(hn::Lt(origin.z, Splat(k.sun_lower_z)), hn::Gt(origin.z, Splat(k.sun_upper_z))));
-      const MF excluded = hn::And(on_ground, hn::And(hn::Ge(origin.y, Splat(k.ground_floor)), outside));
-      sun_traced = hn::AndNot(excluded, sun_traced);
-    }
-    sun_traced = hn::Or(sun_traced, LoadMask(S.hills, i));
-    StoreMask(sun_traced, S.sun_traced, i);
-    Store3(Mul3(reflected(sun_frame.z), Splat3(k.sun_radiance)), S.sun_r, S.sun_g, S.sun_b, i);
-    if (!hn::AllFalse(df, sun_traced)) {
-      for (int s = 0; s < k.light_samples; ++s) {
-        const size_t at = size_t(s) * S.stride + i;
-        const VF cos_t = hn::Sub(one, hn::Mul(Load(S.sun_u, at), hn::Sub(one, Splat(k.sun_cos_max))));
-        const VF sin_t = hn::Sqrt(hn::Max(zero, hn::Sub(one, hn::Mul(cos_t, cos_t))));
-        VF c, sn;
-        UnitCircle(Load(S.sun_v, at), c, sn);
-        const V3 wi = sun_frame.toWorld(hn::Mul(sin_t, c), hn::Mul(sin_t, sn), cos_t);
-        const V3 f = reflected(wi);
-        const MF carries = hn::Or(hn::Or(hn::Ne(f.x, zero), hn::Ne(f.y, zero)), hn::Ne(f.z, zero));
-        Store3(wi, S.sun_wx, S.sun_wy, S.sun_wz, at);
-        Store3(f, S.sun_fr, S.sun_fg, S.sun_fb, at);
-        StoreMask(hn::And(sun_traced, carries), S.sun_valid, at);
-      }
-    }
-
-    // Sky: ambient occlusion against the gradient sky. Open ground farther than ao_distance from
-    // the characters sees the whole sky: its exact cosine-weighted mean, no rays. A character's rays
-    // heading down stop just short of the ground: if nothing else is in the way they see the lit
-    // ground's bounce.
-    // Without the shortcuts (a crowd) every point samples the sky.
-    MF sky_traced = hn::Not(hn::FirstN(df, 0));
-    if (k.box_empty) {
-      sky_traced = hn::Not(hn::And(on_ground, hn::Gt(ng.y, zero)));  // no characters: infinitely far
-    } else if (k.open_ground_shortcuts) {
-      const V3 e = {hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.x), origin.x), hn::Sub(origin.x, Splat(k.box_upper.x))), zero),
-                    hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.y), origin.y), hn::Sub(origin.y, Splat(k.box_upper.y))), zero),
-                    hn::Max(hn::Max(hn::Sub(Splat(k.box_lower.z), origin.z), hn::Sub(origin.z, Splat(k.box_upper.z))), zero)};
-      sky_traced = hn::Not(hn::And(hn::And(on_ground, hn::Gt(ng.y, zero)), hn::Gt(Length3(e), Splat(k.ao_distance))));
-    }
-    StoreMask(sky_traced, S.sky_traced, i);
-    Store3(Mul3(diffuse, Splat3(k.sky_irradiance)), S.sky_r, S.sky_g, S.sky_b, i);
-    if (hn::AllFalse(df, sky_traced)) continue;
-    const Frame3 around = FrameAround(n);
-    const VF above = hn::Sub(origin.y, Load(S.ground_y, i));
-    const VF quarter_pi = Splat(3.14159265358979323846f / 4.0f);
-    for (int s = 0; s < k.ao_samples; ++s) {
-      const size_t at = size_t(s) * S.stride + i;
-      // sampleCosineHemisphere (render/tracer/lights.h).
-      const VF a = hn::Sub(hn::Mul(Splat(2.0f), Load(S.sky_u, at)), one);
-      const VF b = hn::Sub(hn::Mul(Splat(2.0f), Load(S.sky_v, at)), one);
-      const MF wide = hn::Gt(hn::Abs(a), hn::Abs(b));
-      const VF r = hn::IfThenElse(wide, a, b);
-      const VF angle = hn::IfThenElse(hn::Ne(r, zero), hn::Mul(quarter_pi, hn::Div(hn::IfThenElse(wide, b, a), r)), zero);
-      VF sn, c;
-      SinCosQuarterPi(angle, sn, c);
-      const VF dx = hn::Mul(r, hn::IfThenElse(wide, c, sn)), dy = hn::Mul(r, hn::IfThenElse(wide, sn, c));
-      const VF dz = hn::Sqrt(hn::Max(zero, hn::Sub(hn::Sub(one, hn::Mul(dx, dx)), hn::Mul(dy, dy))));
-      const V3 wi = around.toWorld(dx, dy, dz);
-      const MF toward_ground = hn::AndNot(on_ground, hn::Lt(wi.y, zero));
-      const VF to_ground = hn::Div(hn::Mul(Splat(0.999f), above), hn::Neg(wi.y));
-      const VF t_far = hn::IfThenElse(toward_ground, hn::Min(Splat(k.ao_distance), to_ground), Splat(k.ao_distance));
-      // SkyGradient::radiance, or the ground's bounce.
-      const MF down = hn::Lt(wi.y, zero);
-      const VF a_down = hn::Min(one, hn::Mul(Splat(-8.0f), wi.y));
-      const VF a_up = hn::Sqrt(hn::Max(wi.y, zero));
-      auto channel = [&](float horizon, float below, float zenith, float bounce) {
-        const VF sky = hn::IfThenElse(down, Mix(Splat(horizon), Splat(below), a_down), Mix(Splat(horizon), Splat(zenith), a_up));
-        return hn::IfThenElse(toward_ground, Splat(bounce), sky);
-      };
-      Store3(wi, S.sky_wx, S.sky_wy, S.sky_wz, at);
-      Store(t_far, S.sky_t_far, at);
-      Store(channel(k.horizon.x, k.below.x, k.zenith.x, k.ground_bounce.x), S.sky_lr, at);
-      Store(channel(k.horizon.y, k.below.y, k.zenith.y, k.ground_bounce.y), S.sky_lg, at);
-      Store(channel(k.horizon.z, k.below.z, k.zenith.z, k.ground_bounce.z), S.sky_lb, at);
-      StoreMask(hn::And(sky_traced, hn::Gt(Dot3(ng, wi), zero)), S.sky_valid, at);
-    }
+    const ReflectedLanes reflected{n, ng, wo, diffuse, hn::Gt(specular, zero), hn::Mul(specular, Splat(k.blinn_norm)),
+                                   k.shininess};
+    SunLanes(k, S, i, origin, on_ground, reflected);
+    SkyLanes(k, S, i, origin, ng, n, diffuse, on_ground);
   }
 }
 
