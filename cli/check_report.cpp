@@ -78,8 +78,8 @@ std::string svgPlot(const std::vector<Series>& series, const std::vector<std::pa
   }
   s.text({L, H - 6}, std::to_string(f0), kFontSize, ink);
   s.text({W - R, H - 6}, std::to_string(f1), kFontSize, ink, render::TextAlign::Right);
-  s.text({4, Y(hi) + 8}, printfNumber("%.3g", hi), kFontSize, ink);
-  s.text({4, Y(lo)}, printfNumber("%.3g", lo), kFontSize, ink);
+  s.text({4, Y(hi) + 8}, rig::printfNumber("%.3g", hi), kFontSize, ink);
+  s.text({4, Y(lo)}, rig::printfNumber("%.3g", lo), kFontSize, ink);
   return s.markup();
 }
 
@@ -182,10 +182,10 @@ void writeHtml(const CheckInput& in, std::vector<CheckedPair>& pairs, const std:
 
   std::string body;
   int rendered = 0;
-  render::SceneSpec thumb = in.scene;
+  scene::SceneSpec thumb = in.scene;
   thumb.width = 320;
   thumb.height = 180;
-  render::applyPreset(thumb, render::findPreset("draft"));
+  scene::applyPreset(thumb, scene::findPreset("draft"));
   // Hoof and limit findings are seen from the side (the whole horse and its hooves), the rider's close up.
   std::map<std::pair<int, std::string>, std::unique_ptr<render::Shot>> shots;  // by pair index and view
   for (const Run& r : runs) {
@@ -201,7 +201,7 @@ void writeHtml(const CheckInput& in, std::vector<CheckedPair>& pairs, const std:
       const std::string view = rider_rule ? "close" : "side";
       auto it = shots.find({p.index, view});
       if (it == shots.end()) {
-        render::CameraSpec cam;
+        scene::CameraSpec cam;
         cam.name = view;
         cam.view = view;
         cam.follow_pair = p.name.empty() ? -1 : p.index;
@@ -274,7 +274,7 @@ void printJson(const CheckInput& in, const std::vector<CheckedPair>& pairs, cons
   j["pair_names"] = names;
   j["unmeasured"] = unmeasured;
   nlohmann::json paths = nlohmann::json::array();
-  for (const render::SceneSpec::PathLimits& l : in.scene.limits) {
+  for (const scene::SceneSpec::PathLimits& l : in.scene.limits) {
     if (in.kind == CheckInput::Kind::Shot) break;  // --scene's paths are not the shot's
     nlohmann::json breaches = nlohmann::json::array();
     for (const rig::LimitBreach& b : l.check->breaches())
@@ -295,7 +295,7 @@ void printText(const CheckInput& in, const std::vector<CheckedPair>& pairs, cons
     for (const std::string& u : p.unmeasured)
       std::printf("%s: %snot measured: %s\n", in.source.c_str(), p.name.empty() ? "" : (p.name + ": ").c_str(), u.c_str());
     for (const rig::CheckFinding& f : p.findings) {
-      const std::string where = f.frame > 0 ? "frame " + std::to_string(f.frame) + " (" + printfNumber("%.3f", f.time_s) + " s)" : "the clip";
+      const std::string where = f.frame > 0 ? "frame " + std::to_string(f.frame) + " (" + rig::printfNumber("%.3f", f.time_s) + " s)" : "the clip";
       std::printf("%s: %s%s: %s: %s: %s\n", in.source.c_str(), where.c_str(), p.name.empty() ? "" : (", " + p.name).c_str(),
                   rig::checkSeverityName(f.severity), f.rule.c_str(), f.text.c_str());
     }
