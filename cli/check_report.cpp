@@ -78,8 +78,8 @@ std::string svgPlot(const std::vector<Series>& series, const std::vector<std::pa
   }
   s.text({L, H - 6}, std::to_string(f0), kFontSize, ink);
   s.text({W - R, H - 6}, std::to_string(f1), kFontSize, ink, render::TextAlign::Right);
-  s.text({4, Y(hi) + 8}, printfNumber("%.3g", hi), kFontSize, ink);
-  s.text({4, Y(lo)}, printfNumber("%.3g", lo), kFontSize, ink);
+  s.text({4, Y(hi) + 8}, rig::printfNumber("%.3g", hi), kFontSize, ink);
+  s.text({4, Y(lo)}, rig::printfNumber("%.3g", lo), kFontSize, ink);
   return s.markup();
 }
 
@@ -141,7 +141,7 @@ class RunThumbnails {
   RunThumbnails(const CheckInput& in, const fs::path& dir) : dir_(dir), thumb_(in.scene) {
     thumb_.width = 320;
     thumb_.height = 180;
-    render::applyPreset(thumb_, render::findPreset("draft"));
+    scene::applyPreset(thumb_, scene::findPreset("draft"));
   }
 
   // The <img> of the run's worst frame, rendered into the page's folder; "" past kMaxRuns or when
@@ -154,7 +154,7 @@ class RunThumbnails {
     const std::string view = rider_rule ? "close" : "side";
     auto it = shots_.find({p.index, view});
     if (it == shots_.end()) {
-      render::CameraSpec cam;
+      scene::CameraSpec cam;
       cam.name = view;
       cam.view = view;
       cam.follow_pair = p.name.empty() ? -1 : p.index;
@@ -168,7 +168,7 @@ class RunThumbnails {
 
  private:
   fs::path dir_;
-  render::SceneSpec thumb_;
+  scene::SceneSpec thumb_;
   int rendered_ = 0;
   std::map<std::pair<int, std::string>, std::unique_ptr<render::Shot>> shots_;  // by pair index and view
 };
@@ -315,7 +315,7 @@ void printJson(const CheckInput& in, const std::vector<CheckedPair>& pairs, cons
   j["pair_names"] = names;
   j["unmeasured"] = unmeasured;
   nlohmann::json paths = nlohmann::json::array();
-  for (const render::SceneSpec::PathLimits& l : in.scene.limits) {
+  for (const scene::SceneSpec::PathLimits& l : in.scene.limits) {
     if (in.kind == CheckInput::Kind::Shot) break;  // --scene's paths are not the shot's
     nlohmann::json breaches = nlohmann::json::array();
     for (const rig::LimitBreach& b : l.check->breaches())
@@ -336,7 +336,7 @@ void printText(const CheckInput& in, const std::vector<CheckedPair>& pairs, cons
     for (const std::string& u : p.unmeasured)
       std::printf("%s: %snot measured: %s\n", in.source.c_str(), p.name.empty() ? "" : (p.name + ": ").c_str(), u.c_str());
     for (const rig::CheckFinding& f : p.findings) {
-      const std::string where = f.frame > 0 ? "frame " + std::to_string(f.frame) + " (" + printfNumber("%.3f", f.time_s) + " s)" : "the clip";
+      const std::string where = f.frame > 0 ? "frame " + std::to_string(f.frame) + " (" + rig::printfNumber("%.3f", f.time_s) + " s)" : "the clip";
       std::printf("%s: %s%s: %s: %s: %s\n", in.source.c_str(), where.c_str(), p.name.empty() ? "" : (", " + p.name).c_str(),
                   rig::checkSeverityName(f.severity), f.rule.c_str(), f.text.c_str());
     }

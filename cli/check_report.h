@@ -44,7 +44,7 @@ struct CheckedPair {
 
 struct CheckInput {
   enum class Kind { Scene, Clip, Shot } kind = Kind::Scene;
-  render::SceneSpec scene;  // the scene; a clip's scene of its own; a baked shot's --scene (else the default)
+  scene::SceneSpec scene;  // the scene; a clip's scene of its own; a baked shot's --scene (else the default)
   std::string source;       // what the report names: the scene or glTF file
   std::string name;         // the scene's name, or the glTF file's stem
   std::string frames;       // the frames checked unless --frames says

@@ -38,8 +38,8 @@ struct BakeOptions {
 };
 
 // The whole shot as one glTF (scene/shot_bake.h).
-void writeBakedGlb(render::ShotEvaluator& characters, const std::vector<int>& frames, int level, const std::string& output) {
-  rig::writeFileAtomically(output, rig::bakedShotGlb(render::bakeShot(characters, frames, level)));
+void writeBakedGlb(scene::ShotEvaluator& characters, const std::vector<int>& frames, int level, const std::string& output) {
+  rig::writeFileAtomically(output, rig::bakedShotGlb(scene::bakeShot(characters, frames, level)));
 }
 
 // A crowd writes one file a pair: FILE's name with the pair's before its extension (out/c.csv ->
@@ -52,8 +52,8 @@ std::string pairFile(const std::string& file, const std::string& pair) {
 
 // Only the rider's skeleton animation, in the rider file's own joint names, units and axes
 // (rig/io/gltf_rider_motion.h), to put on the user's rider rig: one file a pair.
-void writeRiderGlb(render::ShotEvaluator& characters, std::vector<int> frames, const std::string& output) {
-  const render::SceneSpec& scene = characters.scene();
+void writeRiderGlb(scene::ShotEvaluator& characters, std::vector<int> frames, const std::string& output) {
+  const scene::SceneSpec& scene = characters.scene();
   std::sort(frames.begin(), frames.end());
   frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
   std::vector<rig::RiderMotion> motions(std::size_t(characters.pairCount()));
@@ -62,11 +62,11 @@ void writeRiderGlb(render::ShotEvaluator& characters, std::vector<int> frames, c
     motions[i].name = scene.name;
     motions[i].fps = scene.fps;
   }
-  render::ShotFrame evaluated;
+  scene::ShotFrame evaluated;
   for (int frame : frames) {
-    render::FrameRequest request;
+    scene::FrameRequest request;
     request.frame = frame;
-    request.until = render::EvalStage::Pose;
+    request.until = scene::EvalStage::Pose;
     characters.evaluate(request, evaluated);
     for (std::size_t i = 0; i < motions.size(); ++i) {
       motions[i].seconds.push_back(static_cast<float>(evaluated.pairs[i].baked.seconds));
@@ -79,7 +79,7 @@ void writeRiderGlb(render::ShotEvaluator& characters, std::vector<int> frames, c
 }
 
 // Columns: time, every horse channel, every rider channel, in contract order; one file a pair.
-void writeChannels(render::ShotEvaluator& characters, const std::vector<int>& frames, const std::string& output) {
+void writeChannels(scene::ShotEvaluator& characters, const std::vector<int>& frames, const std::string& output) {
   namespace fs = std::filesystem;
   std::vector<std::string_view> names;
   names.reserve(1 + rig::kHorseChannelCount + rig::kRiderChannelCount);
@@ -88,11 +88,11 @@ void writeChannels(render::ShotEvaluator& characters, const std::vector<int>& fr
   for (std::string_view n : rig::kRiderChannelNames) names.push_back(n);
   std::vector<double> frame_numbers;
   std::vector<std::vector<double>> values(std::size_t(characters.pairCount()));
-  render::ShotFrame evaluated;
+  scene::ShotFrame evaluated;
   for (int frame : frames) {
-    render::FrameRequest request;
+    scene::FrameRequest request;
     request.frame = frame;
-    request.until = render::EvalStage::Bake;
+    request.until = scene::EvalStage::Bake;
     characters.evaluate(request, evaluated);
     frame_numbers.push_back(frame);
     for (std::size_t i = 0; i < values.size(); ++i) {
@@ -112,17 +112,17 @@ void writeChannels(render::ShotEvaluator& characters, const std::vector<int>& fr
 
 void runBake(const BakeOptions& o) {
   namespace fs = std::filesystem;
-  const render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
-  const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
-  for (int frame : frames) render::warnImpossibleFrame(scene, frame);  // once a frame, whatever is written
-  if (o.channels.empty() && o.output.empty()) throw InputError("bake: nothing to write (expected --channels FILE or -o FILE.glb)");
-  if (o.rider_only && o.output.empty()) throw InputError("bake: --rider-only: expected -o FILE.glb to write the rider's motion to");
+  const scene::SceneSpec scene = scene::loadScene(o.scene, {o.allow_impossible});
+  const std::vector<int> frames = scene::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
+  for (int frame : frames) scene::warnImpossibleFrame(scene, frame);  // once a frame, whatever is written
+  if (o.channels.empty() && o.output.empty()) throw rig::InputError("bake: nothing to write (expected --channels FILE or -o FILE.glb)");
+  if (o.rider_only && o.output.empty()) throw rig::InputError("bake: --rider-only: expected -o FILE.glb to write the rider's motion to");
   if (!o.output.empty() && fs::path(o.output).extension() != ".glb")
-    throw InputError("bake: -o: expected a .glb file, got " + o.output);
+    throw rig::InputError("bake: -o: expected a .glb file, got " + o.output);
   // Every pair of the scene (one, or a crowd's), on all cores: the frames are the same at any count.
-  render::ShotEvaluator characters(scene, render::resolveProfile(scene), 0);
+  scene::ShotEvaluator characters(scene, scene::resolveProfile(scene), 0);
   if (o.detail > 0 && (!characters.isCrowd() || o.output.empty() || o.rider_only))
-    throw InputError("bake: --detail " + std::to_string(o.detail) +
+    throw rig::InputError("bake: --detail " + std::to_string(o.detail) +
                      ": expected 0 unless -o bakes a crowd (a single pair has only its own characters; --rider-only and "
                      "--channels write no mesh)");
   if (!o.output.empty()) {

@@ -61,13 +61,13 @@ std::optional<int> nextOf(const BenchOptions& o, const std::vector<int>& frames,
 int threadCount(const BenchOptions& o) { return o.threads > 0 ? o.threads : tbb::info::default_concurrency(); }
 
 // The zlib level a benched frame is written at: the option's, or what `stirrup render` would use.
-int pngLevel(const BenchOptions& o, const render::SceneSpec& scene) {
-  return o.png_compression >= 0 ? o.png_compression : render::defaultPngCompression(scene);
+int pngLevel(const BenchOptions& o, const scene::SceneSpec& scene) {
+  return o.png_compression >= 0 ? o.png_compression : scene::defaultPngCompression(scene);
 }
 
 // The benchmark scene: scenes/trot.json's content, built in so the numbers never depend on a file
 // someone edited. The quality is set per preset.
-render::SceneSpec benchScene() {
+scene::SceneSpec benchScene() {
   const nlohmann::json trot = nlohmann::json::parse(R"({
     "name": "trot",
     "clip": {"generator": "trot", "speed_cm_s": 360, "stride_hz": 1.26, "hoof_lift_cm": 14},
@@ -80,7 +80,7 @@ render::SceneSpec benchScene() {
        "position": [20, 255, 900], "target": [20, 100, 0], "follow": true}
     ]
   })");
-  return render::parseScene(trot, "bench");
+  return scene::parseScene(trot, "bench");
 }
 
 struct PresetResult {
@@ -153,10 +153,10 @@ auto withScratch(Bench bench) {
   }
 }
 
-PresetResult benchPreset(const render::QualityPreset& preset, const BenchOptions& o,
+PresetResult benchPreset(const scene::QualityPreset& preset, const BenchOptions& o,
                          const std::filesystem::path& scratch) {
-  render::SceneSpec scene = benchScene();
-  render::applyPreset(scene, preset);
+  scene::SceneSpec scene = benchScene();
+  scene::applyPreset(scene, preset);
   render::Shot shot(scene, rig::RigProfile::thesis(), scene.cameras.front(), o.threads);
   shot.setPasses(false);  // PNG frames, as `stirrup render` writes them
   PresetResult r;
@@ -230,21 +230,21 @@ struct SceneResult {
 // A frame's pose-to-trace time (ms), as the split above sums it.
 double frameTotalMs(const render::FrameTimings& t) { return t.pose_ms + t.skin_ms - t.build_ms + t.trace_ms; }
 
-SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOptions& o,
+SceneResult benchScenePreset(const scene::QualityPreset& preset, const BenchOptions& o,
                              const std::filesystem::path& scratch) {
-  render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
-  render::applyPreset(scene, preset);
+  scene::SceneSpec scene = scene::loadScene(o.scene, {o.allow_impossible});
+  scene::applyPreset(scene, preset);
   SceneResult r;
   r.preset = std::string(preset.name);
   r.png_level = pngLevel(o, scene);
   const auto setup0 = Clock::now();
-  render::Shot shot(scene, render::resolveProfile(scene), render::findCamera(scene, o.camera), o.threads);
+  render::Shot shot(scene, scene::resolveProfile(scene), scene::findCamera(scene, o.camera), o.threads);
   shot.setDetailLevel(o.detail);
   shot.setPasses(false);  // PNG frames, as `stirrup render` writes them
   r.setup_s = render::secondsSince(setup0);
   r.setup = shot.setupTimings();
   // o.frames of the scene's frames, spread evenly over them.
-  const std::vector<int> all = rig::parseFrameList(scene.frames, "frames");
+  const std::vector<int> all = scene::parseFrameList(scene.frames, "frames");
   std::vector<int> frames;
   for (int i = 0; i < o.frames; ++i) frames.push_back(all[std::size_t(i) * all.size() / std::size_t(o.frames)]);
   shot.renderFrame(frames.front());  // warm-up
@@ -268,17 +268,17 @@ SceneResult benchScenePreset(const render::QualityPreset& preset, const BenchOpt
   // The ratios: the same frames again, each followed by a frame of the built-in trot and, over a
   // terrain, by the same frame of the shot with its ground made flat (its clip, cameras and characters
   // made again on the plane), so the ratio is what the terrain costs.
-  render::SceneSpec trot_scene = benchScene();
-  render::applyPreset(trot_scene, preset);
+  scene::SceneSpec trot_scene = benchScene();
+  scene::applyPreset(trot_scene, preset);
   render::Shot trot(trot_scene, rig::RigProfile::thesis(), trot_scene.cameras.front(), o.threads);
   trot.setPasses(false);
   trot.renderFrame(1);
   std::unique_ptr<render::Shot> flat;
   if (scene.terrain && !scene.terrain->flat()) {
-    render::SceneSpec flat_scene = scene;
+    scene::SceneSpec flat_scene = scene;
     flat_scene.terrain.reset();
-    flat = std::make_unique<render::Shot>(flat_scene, render::resolveProfile(flat_scene),
-                                          render::findCamera(flat_scene, o.camera), o.threads);
+    flat = std::make_unique<render::Shot>(flat_scene, scene::resolveProfile(flat_scene),
+                                          scene::findCamera(flat_scene, o.camera), o.threads);
     flat->setDetailLevel(o.detail);
     flat->setPasses(false);
     flat->renderFrame(frames.front());
@@ -301,7 +301,7 @@ void runSceneBench(const BenchOptions& o) {
   const std::vector<SceneResult> results = withScratch([&](const std::filesystem::path& scratch) {
     std::vector<SceneResult> out;
     // The scene first, so the peak memory is the scene's (the trot's is far smaller).
-    for (const render::QualityPreset& p : render::qualityPresets())
+    for (const scene::QualityPreset& p : scene::qualityPresets())
       if (o.preset.empty() || o.preset == p.name) out.push_back(benchScenePreset(p, o, scratch));
     return out;
   });
@@ -366,7 +366,7 @@ void runBench(const BenchOptions& o) {
   if (!o.scene.empty()) return runSceneBench(o);
   const std::vector<PresetResult> results = withScratch([&](const std::filesystem::path& scratch) {
     std::vector<PresetResult> out;
-    for (const render::QualityPreset& p : render::qualityPresets()) out.push_back(benchPreset(p, o, scratch));
+    for (const scene::QualityPreset& p : scene::qualityPresets()) out.push_back(benchPreset(p, o, scratch));
     return out;
   });
   const int threads = threadCount(o);
@@ -425,7 +425,7 @@ void addBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember({"draft", "review", "final"}));
   cmd->add_option("--png-compression", opts->png_compression,
                   "zlib level of the written frames, 0-9 (default: as stirrup render picks it, 0 for draft, else 1)")
-      ->check(CLI::Range(render::kPngCompressionMin, render::kPngCompressionMax));
+      ->check(CLI::Range(scene::kPngCompressionMin, scene::kPngCompressionMax));
   cmd->add_flag("--no-overlap", opts->no_overlap,
                 "Evaluate each frame before its trace, as before frames were overlapped (for comparison)");
   cmd->add_option("--detail", opts->detail, "With --scene: -1 picks each pair's level of detail by its size on "

@@ -55,25 +55,25 @@ struct MapOptions {
 // them, so it shows what a render shows.
 void renderPreview(const MapOptions& o, const std::string& mapping_file, rig::CharacterKind kind) {
   namespace fs = std::filesystem;
-  if (fs::path(o.preview).extension() != ".png") throw InputError("--preview: " + o.preview + ": expected a file name ending in .png");
-  render::SceneSpec scene;
+  if (fs::path(o.preview).extension() != ".png") throw rig::InputError("--preview: " + o.preview + ": expected a file name ending in .png");
+  scene::SceneSpec scene;
   scene.name = "map_preview";
   scene.frames = std::to_string(o.frame);
   (kind == rig::CharacterKind::Rider ? scene.rider : scene.horse) = fs::absolute(o.file).string();
   (kind == rig::CharacterKind::Rider ? scene.rider_mapping : scene.horse_mapping) = mapping_file;
-  render::applyPreset(scene, render::findPreset("review"));
-  render::CameraSpec camera;
+  scene::applyPreset(scene, scene::findPreset("review"));
+  scene::CameraSpec camera;
   camera.name = "persp";
   camera.view = "persp";
   scene.cameras = {camera};
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   try {
     render::Shot shot(scene, profile, camera, o.threads);
     const render::Image image = shot.renderFrame(o.frame);
     if (!fs::path(o.preview).parent_path().empty()) fs::create_directories(fs::path(o.preview).parent_path());
     render::writePng(image, o.preview);
-  } catch (const InputError& e) {
-    throw InputError("--preview: not rendered: " + std::string(e.what()));
+  } catch (const rig::InputError& e) {
+    throw rig::InputError("--preview: not rendered: " + std::string(e.what()));
   }
   std::printf("preview: %s (frame %d of the trot, %s the default %s, three-quarter view)\n", o.preview.c_str(), o.frame,
               kind == rig::CharacterKind::Rider ? "the rider on" : "the horse under", kind == rig::CharacterKind::Rider ? "horse" : "rider");
@@ -85,7 +85,7 @@ std::string tackText(const std::string& file, const rig::AutoMapping& mapped) {
   rig::HorseTackReport tack;
   try {
     rig::loadCharacterGltf(file, rig::CharacterKind::Horse, &mapped.mapping, nullptr, &tack);
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     return "  tack     not placed: " + std::string(e.what()) + "\n";
   }
   if (!tack.added) return "  tack     the horse's own, mapped (saddle, stirrups and reins)\n";
@@ -99,10 +99,10 @@ std::string tackText(const std::string& file, const rig::AutoMapping& mapped) {
 
 void runMap(const MapOptions& o) {
   namespace fs = std::filesystem;
-  if (o.as != "rider" && o.as != "horse") throw InputError("character map: --as: expected rider or horse, got \"" + o.as + "\"");
+  if (o.as != "rider" && o.as != "horse") throw rig::InputError("character map: --as: expected rider or horse, got \"" + o.as + "\"");
   const rig::CharacterKind kind = o.as == "rider" ? rig::CharacterKind::Rider : rig::CharacterKind::Horse;
   if (!o.output.empty() && fs::path(o.output).extension() != ".json")
-    throw InputError("-o: " + o.output + ": expected a mapping file name ending in .json");
+    throw rig::InputError("-o: " + o.output + ": expected a mapping file name ending in .json");
   rig::AutoMappingParams params;
   params.use_names = !o.ignore_names;
   const rig::AutoMapping mapped = rig::autoMapCharacterFile(o.file, kind, params);
@@ -118,7 +118,7 @@ void runMap(const MapOptions& o) {
   if (!mapped.report.not_mapped.empty()) {
     std::string roles;
     for (const std::string& r : mapped.report.not_mapped) roles += (roles.empty() ? "" : ", ") + r;
-    throw InputError("--preview: not rendered: " + o.file + ": the " + o.as + "'s " + roles +
+    throw rig::InputError("--preview: not rendered: " + o.file + ": the " + o.as + "'s " + roles +
                      (mapped.report.not_mapped.size() == 1 ? " is" : " are") + " not mapped and this version needs " +
                      (mapped.report.not_mapped.size() == 1 ? "it" : "them") + " (name the joints in the mapping file -o writes)");
   }
@@ -171,14 +171,14 @@ rig::StandingHumanoidParams humanoidParams(const std::vector<std::string>& args)
       return a.substr(eq + 1);
     }
     key = a;
-    if (i + 1 >= args.size()) throw InputError(cmd + ": " + key + ": expected a value");
+    if (i + 1 >= args.size()) throw rig::InputError(cmd + ": " + key + ": expected a value");
     return args[++i];
   };
   const auto whole = [&](const std::string& key, const std::string& text, long long lo, long long hi) {
     long long v = 0;
     const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
     if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || v < lo || v > hi)
-      throw InputError(cmd + ": " + key + ": expected a whole number " + std::to_string(lo) + ".." + std::to_string(hi) +
+      throw rig::InputError(cmd + ": " + key + ": expected a whole number " + std::to_string(lo) + ".." + std::to_string(hi) +
                        ", got \"" + text + "\"");
     return v;
   };
@@ -188,7 +188,7 @@ rig::StandingHumanoidParams humanoidParams(const std::vector<std::string>& args)
     if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !(v >= lo && v <= hi)) {
       char range[64];
       std::snprintf(range, sizeof range, "%g..%g", lo, hi);
-      throw InputError(cmd + ": " + key + ": expected a number " + range + ", got \"" + text + "\"");
+      throw rig::InputError(cmd + ": " + key + ": expected a number " + range + ", got \"" + text + "\"");
     }
     return v;
   };
@@ -198,7 +198,7 @@ rig::StandingHumanoidParams humanoidParams(const std::vector<std::string>& args)
     std::string key;
     const std::string v = value_of(i, key);
     if (!rig::parseHumanoidNames(v, names))
-      throw InputError(cmd + ": --names: expected mixamo, rigify, unreal, vrm, humanik or none, got \"" + v + "\"");
+      throw rig::InputError(cmd + ": --names: expected mixamo, rigify, unreal, vrm, humanik or none, got \"" + v + "\"");
   }
   rig::StandingHumanoidParams p = rig::humanoidConventionDefaults(names);
   const std::map<std::string, bool rig::StandingHumanoidParams::*> switches = {
@@ -225,11 +225,11 @@ rig::StandingHumanoidParams humanoidParams(const std::vector<std::string>& args)
         continue;
       }
     std::string key;
-    if (a.rfind("--", 0) != 0) throw InputError(cmd + ": expected an option, got \"" + a + "\"");
+    if (a.rfind("--", 0) != 0) throw rig::InputError(cmd + ": expected an option, got \"" + a + "\"");
     const std::string name = a.substr(0, a.find('='));
     if (name != "--names" && name != "--pose" && name != "--spine-joints" && name != "--neck-joints" && name != "--joint-axes" &&
         name != "--height" && name != "--seed" && name != "--cell")
-      throw InputError(cmd + ": " + name + ": unknown option (expected one of --names --pose --spine-joints --neck-joints "
+      throw rig::InputError(cmd + ": " + name + ": unknown option (expected one of --names --pose --spine-joints --neck-joints "
                        "--shared-wrist-hand --no-toes --no-clavicles --no-fingers --split-limbs --end-joints --ground-root --detached-limbs "
                        "--joint-axes --height --seed --cell)");
     const std::string v = value_of(i, key);
@@ -237,7 +237,7 @@ rig::StandingHumanoidParams humanoidParams(const std::vector<std::string>& args)
       if (v == "t") p.pose = rig::HumanoidRestPose::T;
       else if (v == "a") p.pose = rig::HumanoidRestPose::A;
       else if (v == "relaxed") p.pose = rig::HumanoidRestPose::Relaxed;
-      else throw InputError(cmd + ": --pose: expected t, a or relaxed, got \"" + v + "\"");
+      else throw rig::InputError(cmd + ": --pose: expected t, a or relaxed, got \"" + v + "\"");
     } else if (key == "--spine-joints") {
       p.spine_joints = static_cast<int>(whole(key, v, 1, 8));
     } else if (key == "--neck-joints") {
@@ -245,7 +245,7 @@ rig::StandingHumanoidParams humanoidParams(const std::vector<std::string>& args)
     } else if (key == "--joint-axes") {
       if (v == "bone") p.joint_axes = rig::HumanoidJointAxes::Bone;
       else if (v == "world") p.joint_axes = rig::HumanoidJointAxes::World;
-      else throw InputError(cmd + ": --joint-axes: expected bone or world, got \"" + v + "\"");
+      else throw rig::InputError(cmd + ": --joint-axes: expected bone or world, got \"" + v + "\"");
     } else if (key == "--height") {
       p.height = number(key, v, 100.0f, 250.0f);
     } else if (key == "--seed") {
@@ -274,15 +274,15 @@ void runMake(const CharacterOptions& o) {
   if (o.kind == "horse") {
     rig::HorseParams p;
     applyParams(rig::horseParameters(), o.params, o.kind, p);
-    if (!(p.cell >= 0.5f)) throw InputError("character make horse: --cell: expected at least 0.5 cm");
+    if (!(p.cell >= 0.5f)) throw rig::InputError("character make horse: --cell: expected at least 0.5 cm");
     c = rig::buildHorse(p);
   } else if (o.kind == "rider") {
     rig::RiderParams p;
     applyParams(rig::riderParameters(), o.params, o.kind, p);
-    if (!(p.cell >= 0.5f)) throw InputError("character make rider: --cell: expected at least 0.5 cm");
+    if (!(p.cell >= 0.5f)) throw rig::InputError("character make rider: --cell: expected at least 0.5 cm");
     c = rig::buildRider(p, rig::HorseParams{}.mount);
   } else {
-    throw InputError("character make: expected horse, rider or humanoid, got \"" + o.kind + "\"");
+    throw rig::InputError("character make: expected horse, rider or humanoid, got \"" + o.kind + "\"");
   }
   const std::vector<unsigned char> bytes = rig::characterGlb(c);
   rig::writeFileAtomically(o.output, bytes);

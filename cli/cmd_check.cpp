@@ -79,19 +79,19 @@ CheckInput clipScene(const CheckOptions& o) {
   CheckInput in;
   in.kind = CheckInput::Kind::Clip;
   in.source = o.input;
-  in.scene = render::parseScene(j, o.input, {true});
+  in.scene = scene::parseScene(j, o.input, {true});
   in.name = in.scene.name;
-  const std::unique_ptr<rig::Clip> c = render::makeSceneClip(in.scene);
+  const std::unique_ptr<rig::Clip> c = scene::makeSceneClip(in.scene);
   const int last = std::max(1, 1 + int(std::floor(c->duration() * o.fps + 1e-9)));
   in.frames = in.scene.frames = "1-" + std::to_string(last);
-  in.described = "a horse clip ridden by the default pair, " + plural(std::size_t(last), "frame", "frames") + " at " + printfNumber("%g", o.fps) + " fps";
+  in.described = "a horse clip ridden by the default pair, " + plural(std::size_t(last), "frame", "frames") + " at " + rig::printfNumber("%g", o.fps) + " fps";
   return in;
 }
 
 // A baked shot (rig/io/gltf_shot.h): its own pairs and frames, on --scene's ground.
 CheckInput shotInput(const CheckOptions& o, std::unique_ptr<rig::GltfShot> shot) {
   if (!o.mapping.empty() || !o.reference.empty())
-    throw InputError("check: --mapping and --reference apply to a horse clip, and " + o.input + " is a baked shot");
+    throw rig::InputError("check: --mapping and --reference apply to a horse clip, and " + o.input + " is a baked shot");
   CheckInput in;
   in.kind = CheckInput::Kind::Shot;
   in.source = o.input;
@@ -99,7 +99,7 @@ CheckInput shotInput(const CheckOptions& o, std::unique_ptr<rig::GltfShot> shot)
   // The ground: --scene's terrain where it is given, else the file's own ground mesh, else flat.
   std::string ground;
   if (!o.scene.empty()) {
-    in.scene = render::loadScene(o.scene, {true});
+    in.scene = scene::loadScene(o.scene, {true});
     in.terrain = in.scene.terrain.get();
     in.ground = "scene";
     ground = "ground: " + o.scene + "'s " + (in.terrain && !in.terrain->flat() ? "terrain" : "flat ground");
@@ -116,7 +116,7 @@ CheckInput shotInput(const CheckOptions& o, std::unique_ptr<rig::GltfShot> shot)
   for (const rig::GltfShot::Pair& p : shot->pairs())
     names += (names.empty() ? "" : ", ") + (p.name.empty() ? p.horse_armature + " and " + p.rider_armature : p.name);
   in.described = "a baked shot: " + plural(shot->pairs().size(), "pair", "pairs") + " (" + names + "), " +
-                 plural(std::size_t(shot->frameCount()), "frame", "frames") + " at " + printfNumber("%g", shot->fps()) + " fps" +
+                 plural(std::size_t(shot->frameCount()), "frame", "frames") + " at " + rig::printfNumber("%g", shot->fps()) + " fps" +
                  (shot->animationName().empty() ? ", no animation" : ", animation \"" + shot->animationName() + "\"");
   for (const std::string& other : shot->leftOut()) in.described += " (\"" + other + "\" left out: it keys the same joints; --animation picks it)";
   in.described += "; " + ground;
@@ -125,22 +125,22 @@ CheckInput shotInput(const CheckOptions& o, std::unique_ptr<rig::GltfShot> shot)
 }
 
 CheckInput loadCheckInput(const CheckOptions& o) {
-  if (render::isGltfFile(o.input)) {
-    if (!fs::exists(o.input)) throw InputError(o.input + ": no such file");
+  if (scene::isGltfFile(o.input)) {
+    if (!fs::exists(o.input)) throw rig::InputError(o.input + ": no such file");
     rig::GltfShotOptions so;
     so.fps = o.fps;
     so.animation = o.animation;
     if (std::unique_ptr<rig::GltfShot> shot = rig::GltfShot::read(o.input, so)) return shotInput(o, std::move(shot));
     if (!o.scene.empty() || !o.profile.empty())
-      throw InputError("check: --scene and --profile apply to a baked shot, and " + o.input + " is a horse clip (no armatures \"horse\" and \"rider\")");
+      throw rig::InputError("check: --scene and --profile apply to a baked shot, and " + o.input + " is a horse clip (no armatures \"horse\" and \"rider\")");
     return clipScene(o);
   }
   if (!o.mapping.empty() || !o.animation.empty() || !o.reference.empty())
-    throw InputError("check: --mapping, --animation and --reference apply to a glTF clip, not to the scene " + o.input);
-  if (!o.scene.empty() || !o.profile.empty()) throw InputError("check: --scene and --profile apply to a baked shot, not to the scene " + o.input);
+    throw rig::InputError("check: --mapping, --animation and --reference apply to a glTF clip, not to the scene " + o.input);
+  if (!o.scene.empty() || !o.profile.empty()) throw rig::InputError("check: --scene and --profile apply to a baked shot, not to the scene " + o.input);
   CheckInput in;
   // Loaded whatever its limits: check reports them frame by frame.
-  in.scene = render::loadScene(o.input, {true});
+  in.scene = scene::loadScene(o.input, {true});
   in.source = in.scene.file.string();
   in.name = in.scene.name;
   in.frames = in.scene.frames;
@@ -152,17 +152,17 @@ CheckInput loadCheckInput(const CheckOptions& o) {
 }
 
 // The pairs to check: the scene's one pair, or a crowd's (all, or those --pairs lists).
-std::vector<CheckedPair> checkedPairs(const CheckInput& in, const CheckOptions& o, render::ShotEvaluator& shot) {
-  const render::SceneSpec& scene = in.scene;
+std::vector<CheckedPair> checkedPairs(const CheckInput& in, const CheckOptions& o, scene::ShotEvaluator& shot) {
+  const scene::SceneSpec& scene = in.scene;
   if (scene.pairs.empty() && !o.pairs.empty())
-    throw InputError("--pairs: expected a crowd scene, " + in.source + " has one horse and rider");
+    throw rig::InputError("--pairs: expected a crowd scene, " + in.source + " has one horse and rider");
   std::vector<int> chosen;
   if (o.pairs.empty()) {
     for (int i = 0; i < shot.pairCount(); ++i) chosen.push_back(i);
   } else {
-    for (const int i : rig::parseFrameList(o.pairs, "--pairs")) {
+    for (const int i : scene::parseFrameList(o.pairs, "--pairs")) {
       if (i < 0 || i >= shot.pairCount())
-        throw InputError("--pairs: expected pair indices from 0 to " + std::to_string(shot.pairCount() - 1) + ", got " + std::to_string(i));
+        throw rig::InputError("--pairs: expected pair indices from 0 to " + std::to_string(shot.pairCount() - 1) + ", got " + std::to_string(i));
       chosen.push_back(i);
     }
   }
@@ -201,19 +201,19 @@ std::vector<CheckedPair> shotPairs(const CheckInput& in, const CheckOptions& o) 
   const std::vector<rig::GltfShot::Pair>& all = in.shot->pairs();
   std::vector<int> chosen;
   if (!o.pairs.empty()) {
-    if (all.size() == 1 && all[0].name.empty()) throw InputError("--pairs: expected a crowd's shot, " + in.source + " has one horse and rider");
-    chosen = rig::parseFrameList(o.pairs, "--pairs");
+    if (all.size() == 1 && all[0].name.empty()) throw rig::InputError("--pairs: expected a crowd's shot, " + in.source + " has one horse and rider");
+    chosen = scene::parseFrameList(o.pairs, "--pairs");
     for (const int i : chosen)
       if (std::none_of(all.begin(), all.end(), [i](const rig::GltfShot::Pair& p) { return p.index == i; }))
-        throw InputError("--pairs: " + in.source + " has no pair " + std::to_string(i) + " (expected the NN of its pairNN_horse armatures)");
+        throw rig::InputError("--pairs: " + in.source + " has no pair " + std::to_string(i) + " (expected the NN of its pairNN_horse armatures)");
   }
   std::map<std::string, rig::RigProfile> resolved;  // by profile name: each resolved once
   const auto profileNamed = [&](const std::string& name, bool from_scene) -> const rig::RigProfile& {
     auto it = resolved.find(name);
     if (it != resolved.end()) return it->second;
-    render::SceneSpec named = in.scene;
+    scene::SceneSpec named = in.scene;
     named.profile = name;
-    return resolved.emplace(name, from_scene ? render::resolveProfile(named) : render::resolveProfile(name)).first->second;
+    return resolved.emplace(name, from_scene ? scene::resolveProfile(named) : scene::resolveProfile(name)).first->second;
   };
   std::vector<CheckedPair> out;
   for (std::size_t k = 0; k < all.size(); ++k) {
@@ -275,14 +275,14 @@ void measurePairs(std::vector<CheckedPair>& pairs, const std::vector<int>& frame
 // own travel (it has no path). A baked shot has neither.
 void addLimitFindings(const CheckInput& in, const std::vector<int>& frames, std::vector<CheckedPair>& pairs) {
   if (in.kind == CheckInput::Kind::Shot) return;
-  const render::SceneSpec& scene = in.scene;
+  const scene::SceneSpec& scene = in.scene;
   const double half = 0.5 / scene.fps;
   std::vector<rig::CheckFinding> limit_findings;
   for (std::size_t k = 0; k < scene.limits.size(); ++k) {
-    const render::SceneSpec::PathLimits& l = scene.limits[k];
+    const scene::SceneSpec::PathLimits& l = scene.limits[k];
     const int pair = l.pair;
     for (int frame : frames) {
-      const double t = render::frameTime(scene, frame);
+      const double t = scene::frameTime(scene, frame);
       for (const rig::LimitBreach& b : l.check->during(t + l.clip_offset_s - half, t + l.clip_offset_s + half)) {
         const std::string what = b.text.substr(b.text.find(": ") + 2);
         limit_findings.push_back({frame, t, pair, rig::CheckSeverity::Failure, "limit", rig::horseLimitName(b.limit), b.value, b.bound,
@@ -299,7 +299,7 @@ void addLimitFindings(const CheckInput& in, const std::vector<int>& frames, std:
   for (CheckedPair& p : pairs) {
     if (in.kind != CheckInput::Kind::Clip) break;
     for (int frame : frames) {
-      const double t = render::frameTime(scene, frame);
+      const double t = scene::frameTime(scene, frame);
       for (const auto& [limit, text] : rig::travelLimitsAt(*p.clip, t).breaches)
         limit_findings.push_back({frame, t, p.index, rig::CheckSeverity::Failure, "limit", rig::horseLimitName(limit), 0, 0,
                                   std::string(rig::horseLimitName(limit)) + " (the clip's travel): " + text});
@@ -314,15 +314,15 @@ void addLimitFindings(const CheckInput& in, const std::vector<int>& frames, std:
 nlohmann::json addGaitFindings(const CheckOptions& o, const CheckInput& in, std::vector<CheckedPair>& pairs) {
   if (o.reference.empty()) return nullptr;
   const auto ref = rig::gaitReference(o.reference);
-  if (!ref) throw InputError("check: --reference: expected walk, trot, canter, gallop, stop, jump, rear or buck, got \"" + o.reference + "\"");
+  if (!ref) throw rig::InputError("check: --reference: expected walk, trot, canter, gallop, stop, jump, rear or buck, got \"" + o.reference + "\"");
   rig::ClipInfoOptions io;
   io.fps = in.scene.fps;
   const rig::ClipInfo info = rig::measureClip(*pairs[0].clip, io);
   for (const rig::Verdict& v : rig::clipVerdicts(info, *ref)) {
     if (v.ok) continue;
     pairs[0].findings.push_back({0, 0, 0, rig::CheckSeverity::Warning, "gait", v.key, v.value, v.range.hi,
-                                 v.key + " " + printfNumber("%.4g", v.value) + " outside the " + o.reference + " reference's " + printfNumber("%.4g", v.range.lo) +
-                                     "-" + printfNumber("%.4g", v.range.hi) + (v.note.empty() ? "" : " (" + v.note + ")")});
+                                 v.key + " " + rig::printfNumber("%.4g", v.value) + " outside the " + o.reference + " reference's " + rig::printfNumber("%.4g", v.range.lo) +
+                                     "-" + rig::printfNumber("%.4g", v.range.hi) + (v.note.empty() ? "" : " (" + v.note + ")")});
   }
   return rig::clipInfoJson(info, &*ref);
 }
@@ -330,19 +330,19 @@ nlohmann::json addGaitFindings(const CheckOptions& o, const CheckInput& in, std:
 
 void check(const CheckOptions& o) {
   const CheckInput in = loadCheckInput(o);
-  const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? in.frames : o.frames, "--frames");
+  const std::vector<int> frames = scene::parseFrameList(o.frames.empty() ? in.frames : o.frames, "--frames");
   if (!o.html.empty() && fs::exists(o.html) && !fs::is_directory(o.html))
-    throw InputError("--html: expected a folder, " + o.html + " is a file");
+    throw rig::InputError("--html: expected a folder, " + o.html + " is a file");
   const rig::Terrain* terrain = in.terrain;
   const rig::PairCheck::GroundHeight ground = [terrain](double x, double z) { return terrain ? terrain->height(x, z) : 0.0; };
 
-  std::unique_ptr<render::ShotEvaluator> evaluator;  // a scene's or clip's pairs point into it
+  std::unique_ptr<scene::ShotEvaluator> evaluator;  // a scene's or clip's pairs point into it
   std::vector<CheckedPair> pairs;
   PoseAt poseAt;
   if (in.kind == CheckInput::Kind::Shot) {
     const int last = in.shot->frameCount();
     for (const int f : frames)
-      if (f < 1 || f > last) throw InputError("--frames: " + in.source + " keys frames 1-" + std::to_string(last) + ", got " + std::to_string(f));
+      if (f < 1 || f > last) throw rig::InputError("--frames: " + in.source + " keys frames 1-" + std::to_string(last) + ", got " + std::to_string(f));
     pairs = shotPairs(in, o);
     const double fps = in.shot->fps();
     poseAt = [&in, fps](const CheckedPair& p, int frame) {
@@ -351,10 +351,10 @@ void check(const CheckOptions& o) {
       return PosedFrame{(frame - 1) / fps, keyed, in.shot->pose(p.slot, frame)};
     };
   } else {
-    evaluator = std::make_unique<render::ShotEvaluator>(in.scene, render::resolveProfile(in.scene), 0);
+    evaluator = std::make_unique<scene::ShotEvaluator>(in.scene, scene::resolveProfile(in.scene), 0);
     pairs = checkedPairs(in, o, *evaluator);
     poseAt = [&](const CheckedPair& p, int frame) {
-      const double t = render::frameTime(in.scene, frame);
+      const double t = scene::frameTime(in.scene, frame);
       const rig::BakedFrame b = rig::bakeFrame(*p.clip, p.profile, frame, t);
       return PosedFrame{t, b.horse, rig::poseMounted(*p.horse, *p.rider, b.horse, b.rider, p.profile)};
     };
@@ -382,7 +382,7 @@ void check(const CheckOptions& o) {
 void runCheck(const CheckOptions& o) {
   try {
     check(o);
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     std::fprintf(stderr, "stirrup: %s\n", e.what());
     throw ExitStatus{3};
   }

@@ -55,17 +55,17 @@ nlohmann::json paramsJson(const std::string& command, const std::vector<std::str
   return j;
 }
 
-rig::ClipSpec generatorSpec(const std::string& command, const std::string& gait, const std::vector<std::string>& args) {
+scene::ClipSpec generatorSpec(const std::string& command, const std::string& gait, const std::vector<std::string>& args) {
   nlohmann::json j = paramsJson(command, args);
   j["generator"] = gait;
-  JsonObjectReader r(command, "", j);
-  return rig::parseClipSpec(r, std::filesystem::current_path());
+  rig::JsonObjectReader r(command, "", j);
+  return scene::parseClipSpec(r, std::filesystem::current_path());
 }
 
 void runMake(const ClipOptions& o) {
-  if (render::isGltfFile(o.clip)) throw InputError("clip make: expected a generator name, got the file " + o.clip);
-  const rig::ClipSpec spec = generatorSpec("clip make", o.clip, o.params);
-  const std::unique_ptr<rig::Clip> clip = rig::makeClip(spec);
+  if (scene::isGltfFile(o.clip)) throw rig::InputError("clip make: expected a generator name, got the file " + o.clip);
+  const scene::ClipSpec spec = generatorSpec("clip make", o.clip, o.params);
+  const std::unique_ptr<rig::Clip> clip = scene::makeClip(spec);
   rig::GltfWriteOptions w;
   w.fps = o.fps;
   rig::writeClipGltf(*clip, o.output, w);
@@ -142,16 +142,16 @@ void runPathInfo(const std::string& scene_file, const rig::PathClip& clip, const
 
 // A crowd's pairs each ride their own path clip (rig::makePairClip, from the ride's start: a pair's start
 // phase only shifts it in the shot): each measured as one path is, every pair or only --pair's.
-void runCrowdInfo(const render::SceneSpec& scene, const ClipOptions& o) {
+void runCrowdInfo(const scene::SceneSpec& scene, const ClipOptions& o) {
   const int count = int(scene.pairs.size());
   if (o.pair >= count)
-    throw InputError("clip info: --pair: expected a pair index from 0 to " + std::to_string(count - 1) + ", got " + std::to_string(o.pair));
+    throw rig::InputError("clip info: --pair: expected a pair index from 0 to " + std::to_string(count - 1) + ", got " + std::to_string(o.pair));
   const std::string source = scene.file.string();
   nlohmann::json pairs = nlohmann::json::array();
   std::string text;
   for (int i = o.pair >= 0 ? o.pair : 0; i < (o.pair >= 0 ? o.pair + 1 : count); ++i) {
     const rig::PairSpec& spec = scene.pairs[std::size_t(i)];
-    const std::string name = render::crowdPairName(i, count);
+    const std::string name = scene::crowdPairName(i, count);
     if (spec.animation) {
       // A pair playing its horse's own animation rides no path: `clip info` of the horse's file measures it.
       const std::string what = source + " " + name + ": plays its horse's own animation" +
@@ -177,23 +177,23 @@ void runInfo(const ClipOptions& o) {
   std::string reference = o.reference;
   if (std::filesystem::path(o.clip).extension() == ".json") {
     // A scene: its clip, over its terrain. A path clip is measured section by section.
-    if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a scene: " + o.params[0]);
-    const render::SceneSpec scene = render::loadScene(o.clip, {o.allow_impossible});
+    if (!o.params.empty()) throw rig::InputError("clip info: generator parameters do not apply to a scene: " + o.params[0]);
+    const scene::SceneSpec scene = scene::loadScene(o.clip, {o.allow_impossible});
     if (!scene.pairs.empty()) return runCrowdInfo(scene, o);
-    if (o.pair >= 0) throw InputError("clip info: --pair: expected a crowd scene (\"crowd\" or \"riders\"), got one horse and rider in " + o.clip);
-    clip = render::makeSceneClip(scene);
+    if (o.pair >= 0) throw rig::InputError("clip info: --pair: expected a crowd scene (\"crowd\" or \"riders\"), got one horse and rider in " + o.clip);
+    clip = scene::makeSceneClip(scene);
     if (const auto* path = dynamic_cast<const rig::PathClip*>(clip.get())) return runPathInfo(o.clip, *path, o);
     if (reference.empty()) reference = scene.clip.generator;  // empty for a glTF clip
-  } else if (render::isGltfFile(o.clip)) {
-    if (!o.params.empty()) throw InputError("clip info: generator parameters do not apply to a file: " + o.params[0]);
-    if (!std::filesystem::exists(o.clip)) throw InputError(o.clip + ": no such file");
+  } else if (scene::isGltfFile(o.clip)) {
+    if (!o.params.empty()) throw rig::InputError("clip info: generator parameters do not apply to a file: " + o.params[0]);
+    if (!std::filesystem::exists(o.clip)) throw rig::InputError(o.clip + ": no such file");
     // Read as a scene's clip block reads it: a stirrup clip, a clip mapping, or a horse through its roles.
     nlohmann::json block = {{"file", std::filesystem::absolute(o.clip).string()}};
     if (!o.mapping.empty()) block["mapping"] = std::filesystem::absolute(o.mapping).string();
     if (!o.animation.empty()) block["animation"] = o.animation;
-    JsonObjectReader r(o.clip, "", block);
-    const rig::ClipSpec spec = rig::parseClipSpec(r, "");
-    clip = rig::makeClip(spec);
+    rig::JsonObjectReader r(o.clip, "", block);
+    const scene::ClipSpec spec = scene::parseClipSpec(r, "");
+    clip = scene::makeClip(spec);
     // Another tool's animation: its stance hooves are rarely exactly down; a cycle (a skeleton mapping's,
     // or a horse's animated in place) is measured over several loops.
     const auto* keyed = dynamic_cast<const rig::KeyedHorseClip*>(clip.get());
@@ -203,14 +203,14 @@ void runInfo(const ClipOptions& o) {
     io.end_s = clip->duration() * (o.loops > 0 ? o.loops : cycle ? 4 : 1);
     if (skeleton) io.ground_cm = 0.5;
   } else {
-    clip = rig::makeClip(generatorSpec("clip info", o.clip, o.params));
+    clip = scene::makeClip(generatorSpec("clip info", o.clip, o.params));
     if (reference.empty()) reference = o.clip;
   }
   if (o.ground_cm >= 0.0) io.ground_cm = o.ground_cm;
   const rig::ClipInfo info = rig::measureClip(*clip, io);
   const auto ref = rig::gaitReference(reference);
   if (!reference.empty() && !ref && !o.reference.empty())
-    throw InputError("clip info: --reference: expected walk, trot, canter, gallop, stop, jump, rear or buck, got \"" + reference + "\"");
+    throw rig::InputError("clip info: --reference: expected walk, trot, canter, gallop, stop, jump, rear or buck, got \"" + reference + "\"");
   if (o.json) std::printf("%s\n", rig::clipInfoJson(info, ref ? &*ref : nullptr).dump(2).c_str());
   else std::printf("%s", rig::formatClipInfo(info, ref ? &*ref : nullptr).c_str());
 }
@@ -221,14 +221,14 @@ void addClipCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("clip", "Make horse clips as glTF and measure clips against gait-reference");
   cmd->require_subcommand(1);
   std::string generators;
-  for (const auto& g : rig::clipGenerators()) generators += (generators.empty() ? "" : ", ") + g;
+  for (const auto& g : scene::clipGenerators()) generators += (generators.empty() ? "" : ", ") + g;
 
   auto make = std::make_shared<ClipOptions>();
   CLI::App* mk = cmd->add_subcommand("make", "Write a generated clip as glTF 2.0 (control nodes + one animation)");
   std::string footer = "Generators: " + generators + ".\nParameters per generator:\n";
-  for (const auto& g : rig::clipGenerators()) {
+  for (const auto& g : scene::clipGenerators()) {
     footer += "  " + g + ":";
-    for (const auto& p : rig::clipGeneratorParameters(g)) footer += " --" + p;
+    for (const auto& p : scene::clipGeneratorParameters(g)) footer += " --" + p;
     footer += "\n";
   }
   footer += "Example: stirrup clip make jump --fence_height_cm 110 --seed 7 -o out/jump.glb";

@@ -23,12 +23,12 @@ struct DiffOptions {
   double scale = 16.0;
 };
 
-bool isSequence(const std::string& s) { return render::FrameSequence::isPattern(s); }
+bool isSequence(const std::string& s) { return scene::FrameSequence::isPattern(s); }
 
 // Frames of a sequence pattern NAME.####.png found on disk, by frame number.
 std::map<int, fs::path> findFrames(const std::string& pattern) {
-  std::map<int, fs::path> frames = render::FrameSequence::parse(pattern)->scan();
-  if (frames.empty()) throw InputError(pattern + ": no frames match the pattern");
+  std::map<int, fs::path> frames = scene::FrameSequence::parse(pattern)->scan();
+  if (frames.empty()) throw rig::InputError(pattern + ": no frames match the pattern");
   return frames;
 }
 
@@ -55,16 +55,16 @@ void compareAll(const DiffOptions& o) {
   };
   std::vector<FramePair> pairs;
   if (isSequence(o.a) != isSequence(o.b))
-    throw InputError("diff: expected two images or two sequences (NAME.####.png), got one of each");
+    throw rig::InputError("diff: expected two images or two sequences (NAME.####.png), got one of each");
   if (isSequence(o.a)) {
     const auto fa = findFrames(o.a), fb = findFrames(o.b);
     for (const auto& [frame, file] : fa) {
       auto it = fb.find(frame);
-      if (it == fb.end()) throw InputError(o.b + ": frame " + std::to_string(frame) + " is missing");
+      if (it == fb.end()) throw rig::InputError(o.b + ": frame " + std::to_string(frame) + " is missing");
       pairs.push_back({frame, file, it->second});
     }
     for (const auto& [frame, file] : fb)
-      if (!fa.count(frame)) throw InputError(o.a + ": frame " + std::to_string(frame) + " is missing");
+      if (!fa.count(frame)) throw rig::InputError(o.a + ": frame " + std::to_string(frame) + " is missing");
   } else {
     pairs.push_back({0, o.a, o.b});
   }
@@ -75,7 +75,7 @@ void compareAll(const DiffOptions& o) {
     if (!o.diff_image.empty()) {
       diff_image = o.diff_image;
       if (isSequence(o.a) && isSequence(o.diff_image))  // OUT.####.png: the frame number in the #s
-        diff_image = render::FrameSequence::parse(o.diff_image)->path(frame);
+        diff_image = scene::FrameSequence::parse(o.diff_image)->path(frame);
       else if (pairs.size() > 1)  // one diff image per frame: OUT.ext -> OUT.<frame file name>
         diff_image = fs::path(o.diff_image).replace_extension("").string() + "." + b.filename().string();
       std::error_code ec;  // a failure here shows as the write's own one-line error
@@ -93,7 +93,7 @@ void compareAll(const DiffOptions& o) {
 void runDiff(const DiffOptions& o) {
   try {
     compareAll(o);
-  } catch (const InputError& e) {  // images that cannot be compared: idiff's exit status 3
+  } catch (const rig::InputError& e) {  // images that cannot be compared: idiff's exit status 3
     std::fprintf(stderr, "stirrup: %s\n", e.what());
     throw ExitStatus{3};
   }

@@ -39,7 +39,7 @@ struct SubmitOptions {
   // 48 frames a task keeps the per-task cost (about 2 s of a slot: the scheduler's cycle and the program's
   // start) near a tenth of the task at the review preset; docs/farm.md has the measurements.
   int chunk = 48;
-  render::farm::SbatchSettings sbatch;
+  render::SbatchSettings sbatch;
   std::string stirrup;
   bool dry_run = false;
 };
@@ -53,71 +53,71 @@ std::string utcNow() {
   return text;
 }
 
-void printPlan(const render::farm::FarmPlan& plan, bool dry_run) {
+void printPlan(const render::FarmPlan& plan, bool dry_run) {
   std::size_t width = 6;
   for (const auto& shot : plan.shots) width = std::max(width, shot.name.size());
   for (const auto& shot : plan.shots) {
     std::printf("%-*s  ", static_cast<int>(width), shot.name.c_str());
-    if (dry_run) std::printf("sbatch --array=1-%zu %s\n", shot.chunks.size(), render::farm::scriptFile(plan, shot.name).c_str());
+    if (dry_run) std::printf("sbatch --array=1-%zu %s\n", shot.chunks.size(), render::scriptFile(plan, shot.name).c_str());
     else std::printf("job %s (%zu tasks)\n", shot.array_jobs.front().c_str(), shot.chunks.size());
   }
   std::printf("%-*s  ", static_cast<int>(width), "finish");
-  if (dry_run) std::printf("sbatch --dependency=afterok:<the jobs above> %s\n", render::farm::finishScriptFile(plan).c_str());
+  if (dry_run) std::printf("sbatch --dependency=afterok:<the jobs above> %s\n", render::finishScriptFile(plan).c_str());
   else std::printf("job %s (after all of them)\n", plan.finish_jobs.front().c_str());
-  std::printf("%s\n", render::farm::manifestFile(plan.out).c_str());
+  std::printf("%s\n", render::manifestFile(plan.out).c_str());
 }
 
 void runSubmit(const SubmitOptions& o, const CLI::App& cmd) {
   // Everything is checked before anything is written or submitted.
   // --movies makes the movie set, or a glTF shot's movies (stirrup movies SHOT.glb) when SHOT.glb is given.
-  const bool shot_movies = o.movies && render::isGltfFile(o.scene);
+  const bool shot_movies = o.movies && scene::isGltfFile(o.scene);
   if (!shot_movies && o.movies == !o.scene.empty())
-    throw InputError("farm submit: expected a SCENE to render (with --camera), --movies for the movie set, or a glTF SHOT with --movies "
+    throw rig::InputError("farm submit: expected a SCENE to render (with --camera), --movies for the movie set, or a glTF SHOT with --movies "
                      "for its movies, not " + std::string(o.movies ? "a scene with --movies" : "neither"));
-  if (o.chunk <= 0) throw InputError("--chunk: expected a positive number of frames a task, got " + std::to_string(o.chunk));
+  if (o.chunk <= 0) throw rig::InputError("--chunk: expected a positive number of frames a task, got " + std::to_string(o.chunk));
   if (o.sbatch.cpus_per_task <= 0)
-    throw InputError("--cpus-per-task: expected a positive number, got " + std::to_string(o.sbatch.cpus_per_task));
-  if (o.out.empty()) throw InputError("--out: expected the shared output folder");
+    throw rig::InputError("--cpus-per-task: expected a positive number, got " + std::to_string(o.sbatch.cpus_per_task));
+  if (o.out.empty()) throw rig::InputError("--out: expected the shared output folder");
   if (!o.movies)
     for (const char* movie_only : {"--only", "--frames-limit", "--scenes", "--scene", "--mov", "--no-mp4", "--keep-frames", "--date"})
-      if (cmd.count(movie_only)) throw InputError(std::string(movie_only) + ": only with --movies");
+      if (cmd.count(movie_only)) throw rig::InputError(std::string(movie_only) + ": only with --movies");
   if (o.movies)
     for (const char* render_only : {"--camera", "--frames", "--set"})
-      if (cmd.count(render_only)) throw InputError(std::string(render_only) + ": only with a SCENE, not with --movies");
+      if (cmd.count(render_only)) throw rig::InputError(std::string(render_only) + ": only with a SCENE, not with --movies");
 
-  const fs::path stirrup = o.stirrup.empty() ? render::programDir() / "stirrup" : fs::path(o.stirrup);
+  const fs::path stirrup = o.stirrup.empty() ? scene::programDir() / "stirrup" : fs::path(o.stirrup);
   if (!stirrup.is_absolute() || ::access(stirrup.c_str(), X_OK) != 0)
-    throw InputError("--stirrup: " + stirrup.string() + ": expected the absolute path of the stirrup program every node runs");
+    throw rig::InputError("--stirrup: " + stirrup.string() + ": expected the absolute path of the stirrup program every node runs");
 
-  render::farm::requireSlurm();
+  render::requireSlurm();
   if (!o.sbatch.partition.empty()) {
-    const std::vector<std::string> partitions = render::farm::slurmPartitions();
+    const std::vector<std::string> partitions = render::slurmPartitions();
     if (std::find(partitions.begin(), partitions.end(), o.sbatch.partition) == partitions.end()) {
       std::string names;
       for (const auto& p : partitions) names += (names.empty() ? "" : ", ") + p;
-      throw InputError("--partition: no partition \"" + o.sbatch.partition + "\" on this cluster (expected one of " + names + ")");
+      throw rig::InputError("--partition: no partition \"" + o.sbatch.partition + "\" on this cluster (expected one of " + names + ")");
     }
   }
   const fs::path out = fs::absolute(o.out).lexically_normal();
-  render::farm::checkSharedOutput(out, render::farm::slurmNodeCount());
-  if (fs::exists(render::farm::manifestFile(out)) && !o.dry_run)
-    throw InputError("--out: " + out.string() + " already holds a farm (farm.json): use stirrup farm status or resume, "
+  render::checkSharedOutput(out, render::slurmNodeCount());
+  if (fs::exists(render::manifestFile(out)) && !o.dry_run)
+    throw rig::InputError("--out: " + out.string() + " already holds a farm (farm.json): use stirrup farm status or resume, "
                      "or another folder");
 
-  render::farm::FarmRequest request;
+  render::FarmRequest request;
   request.out = out;
   request.chunk = o.chunk;
   request.stirrup = stirrup;
   request.sbatch = o.sbatch;
   request.submitted = utcNow();
-  render::farm::FarmPlan plan;
+  render::FarmPlan plan;
   if (o.movies) {
     MovieSetArgs set = o.set;
     if (shot_movies) set.shot = o.scene;
     set.out = out.string();
     if (set.date.empty()) set.date = render::todayUtc();  // every task and the slate say the same day
     const render::MovieOptions mo = movieOptions(set);
-    plan = render::farm::planMovies(request, selectMovies(set, mo), mo, movieSetArguments(set), !set.only.empty());
+    plan = render::planMovies(request, selectMovies(set, mo), mo, movieSetArguments(set), !set.only.empty());
   } else {
     std::vector<std::string> args;
     if (cmd.count("--preset")) args.insert(args.end(), {"--preset", o.set.preset});
@@ -128,38 +128,38 @@ void runSubmit(const SubmitOptions& o, const CLI::App& cmd) {
     for (const std::string& s : o.sets) args.insert(args.end(), {"--set", s});
     if (o.set.allow_impossible) args.push_back("--allow-impossible");
     // The scene as the tasks must find it: absolute, after the data-folder lookup of a relative path.
-    const fs::path scene_file = fs::absolute(render::findSceneFile(o.scene));
+    const fs::path scene_file = fs::absolute(scene::findSceneFile(o.scene));
     // A view camera framed once, here, as the tasks see the scene (preset, size, profile settings):
     // every chunk reads it from the plan instead of framing the view again.
-    render::SceneSpec scene = render::loadScene(scene_file, {o.set.allow_impossible});
-    if (cmd.count("--preset")) render::applyPreset(scene, render::findPreset(o.set.preset));
+    scene::SceneSpec scene = scene::loadScene(scene_file, {o.set.allow_impossible});
+    if (cmd.count("--preset")) scene::applyPreset(scene, scene::findPreset(o.set.preset));
     if (!o.set.resolution.empty()) std::tie(scene.width, scene.height) = parseResolution(o.set.resolution);
-    const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));
-    const auto framed = render::farm::planCamera(scene, profile, render::findCamera(scene, o.camera));
-    plan = render::farm::planRender(request, scene_file, o.camera, o.frames, args, framed);
+    const rig::RigProfile profile = scene::resolveProfileForEveryPair(scene, parseSets(o.sets));
+    const auto framed = render::planCamera(scene, profile, scene::findCamera(scene, o.camera));
+    plan = render::planRender(request, scene_file, o.camera, o.frames, args, framed);
   }
 
   if (o.dry_run) {
-    render::farm::writeScripts(plan);
-    render::farm::writeManifest(plan);
+    render::writeScripts(plan);
+    render::writeManifest(plan);
   } else {
-    render::farm::submitPlan(plan);
+    render::submitPlan(plan);
   }
   printPlan(plan, o.dry_run);
 }
 
 void runStatus(const std::string& out, bool wait) {
-  const render::farm::FarmPlan plan = render::farm::readManifest(out);
-  render::farm::requireSlurm();
-  if (wait) render::farm::waitForPlan(plan);
-  const render::farm::FarmStatus status = render::farm::farmStatus(plan);
-  std::fputs(render::farm::describeStatus(plan, status).c_str(), stdout);
+  const render::FarmPlan plan = render::readManifest(out);
+  render::requireSlurm();
+  if (wait) render::waitForPlan(plan);
+  const render::FarmStatus status = render::farmStatus(plan);
+  std::fputs(render::describeStatus(plan, status).c_str(), stdout);
 }
 
 void runResume(const std::string& out) {
-  render::farm::FarmPlan plan = render::farm::readManifest(out);
-  render::farm::requireSlurm();
-  const render::farm::ResumeResult r = render::farm::resumePlan(plan);
+  render::FarmPlan plan = render::readManifest(out);
+  render::requireSlurm();
+  const render::ResumeResult r = render::resumePlan(plan);
   if (r.partial_files_removed > 0) std::printf("removed %d partial files left by killed tasks\n", r.partial_files_removed);
   for (const std::string& chunk : r.resubmitted) std::printf("resubmitted %s\n", chunk.c_str());
   if (!r.array_jobs.empty()) std::printf("jobs %s\n", r.array_jobs.c_str());

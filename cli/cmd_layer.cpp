@@ -46,11 +46,11 @@ struct LayerOptions {
   bool allow_impossible = false;  // --scene beyond a horse's limits: its reference block is read anyway
 };
 
-bool isPattern(const std::string& s) { return render::FrameSequence::isPattern(s); }
+bool isPattern(const std::string& s) { return scene::FrameSequence::isPattern(s); }
 
 // NAME.####.ext (or NAME.%04d.ext) with the frame number filled in; one image is itself.
 fs::path frameFile(const std::string& pattern, int frame) {
-  const std::optional<render::FrameSequence> sequence = render::FrameSequence::parse(pattern);
+  const std::optional<scene::FrameSequence> sequence = scene::FrameSequence::parse(pattern);
   return sequence ? sequence->path(frame) : fs::path(pattern);
 }
 
@@ -59,26 +59,26 @@ glm::vec2 parsePosition(const std::string& text) {
   float x = 0, y = 0;
   char comma = 0;
   if (!(s >> x >> comma >> y) || comma != ',' || !(s >> std::ws).eof())
-    throw InputError("--position: expected x,y in pixels of A's frame, got \"" + text + "\"");
+    throw rig::InputError("--position: expected x,y in pixels of A's frame, got \"" + text + "\"");
   return {x, y};
 }
 
-render::PlateGrid parseGrid(const LayerOptions& o) {
-  render::PlateGrid g;
+scene::PlateGrid parseGrid(const LayerOptions& o) {
+  scene::PlateGrid g;
   std::istringstream s(o.grid);
   char x = 0;
   if (!(s >> g.rows >> x >> g.columns) || (x != 'x' && x != 'X') || !(s >> std::ws).eof() || g.rows < 1 ||
       g.columns < 1)
-    throw InputError("--grid: expected ROWSxCOLUMNS (for example 2x6), got \"" + o.grid + "\"");
+    throw rig::InputError("--grid: expected ROWSxCOLUMNS (for example 2x6), got \"" + o.grid + "\"");
   if (!o.margins.empty()) {
     std::istringstream m(o.margins);
     char c1 = 0, c2 = 0, c3 = 0;
     if (!(m >> g.margin_left >> c1 >> g.margin_top >> c2 >> g.margin_right >> c3 >> g.margin_bottom) || c1 != ',' ||
         c2 != ',' || c3 != ',' || !(m >> std::ws).eof() || g.margin_left < 0 || g.margin_top < 0 ||
         g.margin_right < 0 || g.margin_bottom < 0)
-      throw InputError("--margins: expected left,top,right,bottom in pixels >= 0, got \"" + o.margins + "\"");
+      throw rig::InputError("--margins: expected left,top,right,bottom in pixels >= 0, got \"" + o.margins + "\"");
   }
-  if (!o.cell_crop.empty()) g.cell_crop = render::parsePixelRect(o.cell_crop, "--cell-crop");
+  if (!o.cell_crop.empty()) g.cell_crop = scene::parsePixelRect(o.cell_crop, "--cell-crop");
   g.snap = o.snap;
   return g;
 }
@@ -87,22 +87,22 @@ render::LayerCoverage parseCoverage(const std::string& s) {
   if (s == "matte") return render::LayerCoverage::Matte;
   if (s == "alpha") return render::LayerCoverage::Alpha;
   if (s == "full") return render::LayerCoverage::Full;
-  throw InputError("--coverage: expected matte, alpha or full, got \"" + s + "\"");
+  throw rig::InputError("--coverage: expected matte, alpha or full, got \"" + s + "\"");
 }
 
-render::FootageEdge parseEdge(const std::string& s) {
-  if (s == "hold") return render::FootageEdge::Hold;
-  if (s == "loop") return render::FootageEdge::Loop;
-  if (s == "blank") return render::FootageEdge::Blank;
-  throw InputError("--edge: expected hold, loop or blank, got \"" + s + "\"");
+scene::FootageEdge parseEdge(const std::string& s) {
+  if (s == "hold") return scene::FootageEdge::Hold;
+  if (s == "loop") return scene::FootageEdge::Loop;
+  if (s == "blank") return scene::FootageEdge::Blank;
+  throw rig::InputError("--edge: expected hold, loop or blank, got \"" + s + "\"");
 }
 
 // B and the style from a scene's "reference" block; false (after saying so) when its file is absent.
 bool referenceFromScene(const LayerOptions& o, render::FootageSequence& b, render::LayerStyle& style) {
-  const render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
+  const scene::SceneSpec scene = scene::loadScene(o.scene, {o.allow_impossible});
   if (!scene.reference)
-    throw InputError(o.scene + ": reference: expected a \"reference\" block naming the footage (see docs/layered.md)");
-  const render::ReferenceSpec& ref = *scene.reference;
+    throw rig::InputError(o.scene + ": reference: expected a \"reference\" block naming the footage (see docs/layered.md)");
+  const scene::ReferenceSpec& ref = *scene.reference;
   if (!render::referenceAvailable(ref)) {
     std::printf("%s: skipped: the reference footage %s is not there\n", o.scene.c_str(), ref.file.string().c_str());
     return false;
@@ -117,7 +117,7 @@ bool referenceFromScene(const LayerOptions& o, render::FootageSequence& b, rende
 void runLayer(const LayerOptions& o) {
   // Everything is checked before the first frame is written.
   render::LayerStyle style;
-  style.mode = render::parseLayerMode(o.mode, "--mode");
+  style.mode = scene::parseLayerMode(o.mode, "--mode");
   style.opacity = o.opacity;
   style.difference_gain = o.gain;
   style.coverage = parseCoverage(o.coverage);
@@ -134,38 +134,38 @@ void runLayer(const LayerOptions& o) {
   if (o.frames.empty()) {
     for (int f = a.first; f < a.first + a.frameCount(); ++f) frames.push_back(f);
   } else {
-    frames = rig::parseFrameList(o.frames, "--frames");
+    frames = scene::parseFrameList(o.frames, "--frames");
     for (int f : frames)
       if (f < a.first || f >= a.first + a.frameCount())
-        throw InputError(o.a + ": frame " + std::to_string(f) + " is not in the sequence (it has frames " +
+        throw rig::InputError(o.a + ": frame " + std::to_string(f) + " is not in the sequence (it has frames " +
                          std::to_string(a.first) + "-" + std::to_string(a.first + a.frameCount() - 1) + ")");
   }
-  if (!a_sequence && frames.size() > 1) throw InputError("--frames: A is one image, so give at most one frame");
+  if (!a_sequence && frames.size() > 1) throw rig::InputError("--frames: A is one image, so give at most one frame");
   if (frames.size() > 1 && !isPattern(o.out))
-    throw InputError("-o: expected a sequence pattern like OUT.####.png for " + std::to_string(frames.size()) +
+    throw rig::InputError("-o: expected a sequence pattern like OUT.####.png for " + std::to_string(frames.size()) +
                      " frames, got \"" + o.out + "\"");
   const std::string ext = fs::path(o.out).extension().string();
-  if (ext != ".png" && ext != ".exr") throw InputError("-o: expected a .png or .exr file or pattern, got \"" + o.out + "\"");
+  if (ext != ".png" && ext != ".exr") throw rig::InputError("-o: expected a .png or .exr file or pattern, got \"" + o.out + "\"");
   if (const fs::path dir = fs::path(o.out).parent_path(); !dir.empty() && !fs::is_directory(dir))
-    throw InputError("-o: no such folder " + dir.string());
+    throw rig::InputError("-o: no such folder " + dir.string());
 
   // B: a scene's reference footage, the other sequence, an image, or a plate cut into frames.
   render::FootageSequence b;
   const bool placement_given = o.scale.has_value() || !o.position.empty() || !o.crop.empty() || o.offset != 0 ||
                                o.rate != 1.0 || o.flip_x || !o.grid.empty();
   if (!o.scene.empty()) {
-    if (!o.b.empty()) throw InputError("--scene: the scene's reference is B; give A and -o only");
+    if (!o.b.empty()) throw rig::InputError("--scene: the scene's reference is B; give A and -o only");
     if (placement_given)
-      throw InputError("--scene: the scene's reference block places B; edit it rather than giving --crop, --scale, ...");
+      throw rig::InputError("--scene: the scene's reference block places B; edit it rather than giving --crop, --scale, ...");
     if (!referenceFromScene(o, b, style)) return;
   } else if (o.b.empty()) {
-    throw InputError("expected B (a sequence, an image or a plate) or --scene SCENE with a reference block");
+    throw rig::InputError("expected B (a sequence, an image or a plate) or --scene SCENE with a reference block");
   } else if (!o.grid.empty()) {
     b.images = render::cutPlate(render::readLinearImage(o.b), parseGrid(o), o.b);
     b.name = o.b;
   } else {
     if (!o.margins.empty() || !o.cell_crop.empty() || o.snap)
-      throw InputError("--margins, --cell-crop and --snap cut a plate: give --grid ROWSxCOLUMNS too");
+      throw rig::InputError("--margins, --cell-crop and --snap cut a plate: give --grid ROWSxCOLUMNS too");
     b = render::openFootage(fs::path(o.b));
     // B numbered like A: offset 0 shows B's first frame at A's first frame.
   }
@@ -173,7 +173,7 @@ void runLayer(const LayerOptions& o) {
     b.offset = o.offset;
     b.rate = o.rate;
     b.edge = parseEdge(o.edge);
-    if (!o.crop.empty()) b.crop = render::parsePixelRect(o.crop, "--crop");
+    if (!o.crop.empty()) b.crop = scene::parsePixelRect(o.crop, "--crop");
     b.flip_x = o.flip_x;
   }
 
@@ -184,7 +184,7 @@ void runLayer(const LayerOptions& o) {
   // Side by side without placement shows B as it is (cropped); the other modes need B on A's canvas,
   // by default scaled to A's height and centred.
   const bool placed = !o.scene.empty() || o.scale.has_value() || !o.position.empty() ||
-                      style.mode != render::LayerMode::SideBySide;
+                      style.mode != scene::LayerMode::SideBySide;
   if (o.scene.empty()) {
     b.scale = o.scale.value_or(float(first_a.height) / float(crop_h));
     b.position = o.position.empty() ? glm::vec2((first_a.width - crop_w * b.scale) / 2.0f, 0.0f) : parsePosition(o.position);
@@ -199,7 +199,7 @@ void runLayer(const LayerOptions& o) {
     const render::Image out = render::layeredFrame(a, b, f, style, placed, crop_w, crop_h);
     const fs::path file = frameFile(o.out, f);
     if (ext == ".exr")
-      render::writeExr(out, file, {{"stirrup:frame", std::to_string(f)}, {"stirrup:layer", render::layerModeName(style.mode)}});
+      render::writeExr(out, file, {{"stirrup:frame", std::to_string(f)}, {"stirrup:layer", scene::layerModeName(style.mode)}});
     else
       render::writePng(out, file);
   }

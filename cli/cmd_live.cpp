@@ -38,25 +38,25 @@ struct LiveOptions {
 };
 
 glm::dmat4 matrixOf(const nlohmann::json& m, const std::string& where) {
-  if (!m.is_array() || m.size() != 16) throw InputError(where + ": expected 16 numbers");
+  if (!m.is_array() || m.size() != 16) throw rig::InputError(where + ": expected 16 numbers");
   glm::dmat4 out;
   for (int k = 0; k < 16; ++k) {
-    if (!m[std::size_t(k)].is_number()) throw InputError(where + ": expected 16 numbers");
+    if (!m[std::size_t(k)].is_number()) throw rig::InputError(where + ": expected 16 numbers");
     glm::value_ptr(out)[k] = m[std::size_t(k)].get<double>();
   }
   return out;
 }
 
 // One request answered: the frames set, then the rider at "get".
-nlohmann::json answer(rig::LiveRider& live, const std::string& line) {
+nlohmann::json answer(scene::LiveRider& live, const std::string& line) {
   const auto t0 = std::chrono::steady_clock::now();
   const nlohmann::json request = nlohmann::json::parse(line, nullptr, false);
-  if (!request.is_object()) throw InputError("expected a JSON object a line");
+  if (!request.is_object()) throw rig::InputError("expected a JSON object a line");
   if (request.contains("set")) {
-    if (!request["set"].is_array()) throw InputError("set: expected a list of {\"frame\": F, \"horse\": [...]}");
+    if (!request["set"].is_array()) throw rig::InputError("set: expected a list of {\"frame\": F, \"horse\": [...]}");
     for (const nlohmann::json& s : request["set"]) {
       if (!s.is_object() || !s.contains("frame") || !s["frame"].is_number_integer() || !s.contains("horse") || !s["horse"].is_array())
-        throw InputError("set: expected {\"frame\": F, \"horse\": [...]} entries");
+        throw rig::InputError("set: expected {\"frame\": F, \"horse\": [...]} entries");
       const int frame = s["frame"].get<int>();
       std::vector<glm::dmat4> horse;
       for (std::size_t k = 0; k < s["horse"].size(); ++k)
@@ -65,7 +65,7 @@ nlohmann::json answer(rig::LiveRider& live, const std::string& line) {
     }
   }
   if (!request.contains("get")) return {{"ok", true}};
-  if (!request["get"].is_number_integer()) throw InputError("get: expected a frame number");
+  if (!request["get"].is_number_integer()) throw rig::InputError("get: expected a frame number");
   const int frame = request["get"].get<int>();
   std::vector<glm::dmat4> tack;
   const std::vector<glm::dmat4> posed = live.rider(frame, &tack);
@@ -79,14 +79,14 @@ nlohmann::json answer(rig::LiveRider& live, const std::string& line) {
 }
 
 void runLive(const LiveOptions& o) {
-  const render::SceneSpec scene = render::loadScene(o.scene);
+  const scene::SceneSpec scene = scene::loadScene(o.scene);
   std::error_code ec;
   if (scene.clip.file.empty() || scene.horse == "default" || !std::filesystem::equivalent(scene.clip.file, scene.horse, ec))
-    throw InputError(o.scene + ": clip.file: expected the horse's own file (" + scene.horse +
+    throw rig::InputError(o.scene + ": clip.file: expected the horse's own file (" + scene.horse +
                      "): live reads the horse as the other tool keys it");
-  const rig::RigProfile profile = render::resolveProfile(scene);
-  rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
-  rig::LiveRiderSetup setup;
+  const rig::RigProfile profile = scene::resolveProfile(scene);
+  scene::RiddenPair pair = scene::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+  scene::LiveRiderSetup setup;
   setup.horse_file = scene.horse;
   setup.horse = std::make_shared<const rig::Character>(std::move(pair.horse));
   setup.rider = std::make_shared<const rig::Character>(std::move(pair.rider));
@@ -95,10 +95,10 @@ void runLive(const LiveOptions& o) {
   if (o.last >= o.first) {
     setup.first_frame = o.first, setup.last_frame = o.last;
   } else {
-    const std::vector<int> frames = rig::parseFrameList(scene.frames, o.scene + ": frames");
+    const std::vector<int> frames = scene::parseFrameList(scene.frames, o.scene + ": frames");
     setup.first_frame = frames.front(), setup.last_frame = frames.back();
   }
-  rig::LiveRider live(setup);
+  scene::LiveRider live(setup);
   const nlohmann::json ready = {{"ready", true},        {"horse_joints", live.horseJoints()}, {"rider_joints", live.riderJoints()},
                                 {"tack_joints", live.tackJoints()}, {"first", live.firstFrame()},  {"last", live.lastFrame()},
                                 {"fps", scene.fps}};
@@ -109,7 +109,7 @@ void runLive(const LiveOptions& o) {
     nlohmann::json out;
     try {
       out = answer(live, line);
-    } catch (const InputError& e) {
+    } catch (const rig::InputError& e) {
       out = {{"error", e.what()}};
     }
     std::cout << out.dump() << std::endl;

@@ -47,7 +47,7 @@ void writeTimings(const std::filesystem::path& file, const std::vector<render::M
                   const std::vector<double>& render_s, const std::vector<double>& finish_s) {
   rig::replaceFileAtomically(file, [&](const std::filesystem::path& partial) {
     std::ofstream o(partial);
-    if (!o) throw InputError("--timings: " + file.string() + ": cannot write (does its folder exist?)");
+    if (!o) throw rig::InputError("--timings: " + file.string() + ": cannot write (does its folder exist?)");
     o << "movie\tframes\trender_s\tfinish_s\trender_s_per_frame\tencode_cpu_s\n";
     char line[512];
     for (std::size_t i = 0; i < results.size(); ++i) {
@@ -56,7 +56,7 @@ void writeTimings(const std::filesystem::path& file, const std::vector<render::M
                     finish_s[i], frames > 0 ? render_s[i] / frames : 0.0, results[i].encode_cpu_s);
       o << line;
     }
-    if (!o.flush()) throw InputError("--timings: " + file.string() + ": write failed");
+    if (!o.flush()) throw rig::InputError("--timings: " + file.string() + ": write failed");
   });
 }
 
@@ -64,7 +64,7 @@ void writeTimings(const std::filesystem::path& file, const std::vector<render::M
 // posed as the file keys her: no channels of the rig's to plot.
 void addPlot(const render::MovieJob& job, const render::MovieOptions& mo, const std::filesystem::path& out,
              std::map<std::filesystem::path, std::filesystem::path>& plots, render::MovieResult& result) {
-  if (render::isGltfFile(job.scene)) return;
+  if (scene::isGltfFile(job.scene)) return;
   if (!plots.count(job.scene)) plots[job.scene] = render::writeMovementPlot(job.scene, out, mo.allow_impossible);
   result.plot = plots[job.scene];
 }
@@ -88,16 +88,16 @@ void runMovies(const MoviesOptions& o) {
     for (const auto& j : jobs) std::printf("%s\t%s\t%s\n", j.name.c_str(), j.scene.string().c_str(), j.camera.c_str());
     return;
   }
-  if (!o.frames.empty() && o.finish) throw InputError("--frames: renders frames only; --finish makes movies of frames already rendered, not both");
-  if (!o.timings.empty() && !o.frames.empty()) throw InputError("--timings: a farm task's share (--frames) makes no movie to time");
+  if (!o.frames.empty() && o.finish) throw rig::InputError("--frames: renders frames only; --finish makes movies of frames already rendered, not both");
+  if (!o.timings.empty() && !o.frames.empty()) throw rig::InputError("--timings: a farm task's share (--frames) makes no movie to time");
   if (!o.timings.empty()) {  // checked before any frame is rendered
     const fs::path folder = fs::absolute(o.timings).parent_path();
-    if (!fs::is_directory(folder)) throw InputError("--timings: " + o.timings + ": cannot write (does its folder exist?)");
+    if (!fs::is_directory(folder)) throw rig::InputError("--timings: " + o.timings + ": cannot write (does its folder exist?)");
   }
   if (!o.frames.empty() && jobs.size() != 1)
-    throw InputError("--frames: expected exactly one movie with --only NAME, got " + std::to_string(jobs.size()));
+    throw rig::InputError("--frames: expected exactly one movie with --only NAME, got " + std::to_string(jobs.size()));
   const fs::path out = o.set.out;
-  if (fs::exists(out) && !fs::is_directory(out)) throw InputError("--out: " + out.string() + ": not a folder");
+  if (fs::exists(out) && !fs::is_directory(out)) throw rig::InputError("--out: " + out.string() + ": not a folder");
   fs::create_directories(out);
 
   // Stage 1 (render/review/movie_set.h): the frames, unless --finish.
@@ -105,7 +105,7 @@ void runMovies(const MoviesOptions& o) {
   int total = 0;
   if (!o.finish)
     for (std::size_t i = 0; i < jobs.size(); ++i) {
-      frames[i] = o.frames.empty() ? render::movieFrameList(jobs[i], mo) : rig::parseFrameList(o.frames, "--frames");
+      frames[i] = o.frames.empty() ? render::movieFrameList(jobs[i], mo) : scene::parseFrameList(o.frames, "--frames");
       total += static_cast<int>(frames[i].size());
     }
   ProgressBar bar("movies", total, o.progress);

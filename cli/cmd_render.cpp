@@ -38,8 +38,8 @@ struct RenderOptions {
   std::string format = "png";
   bool exr = false;
   int threads = 0;
-  int padding = render::kDefaultFramePadding;
-  int png_compression = -1;  // -1: the scene's default (render::defaultPngCompression)
+  int padding = scene::kDefaultFramePadding;
+  int png_compression = -1;  // -1: the scene's default (scene::defaultPngCompression)
   bool progress = false;
   bool resume = false;
   std::string camera_plan;  // a farm plan (farm.json) whose framed camera this shot uses
@@ -52,25 +52,25 @@ struct RenderOptions {
 // What renders: a scene's pairs evaluated, or a glTF shot's as the file keys them
 // (scene/file_shot.h), both through one evaluator and one tracer.
 struct RenderInput {
-  render::SceneSpec scene;
-  std::optional<render::FileShot> file;
+  scene::SceneSpec scene;
+  std::optional<scene::FileShot> file;
   rig::RigProfile profile;
 };
 
 RenderInput loadRenderInput(const RenderOptions& o) {
   RenderInput in;
-  if (render::isGltfFile(o.scene)) {
-    if (!o.camera_plan.empty()) throw InputError("--camera-plan: a farm's plan applies to a scene, not to the glTF shot " + o.scene);
-    in.file = render::loadFileShot(o.scene, o.fps, o.look);
+  if (scene::isGltfFile(o.scene)) {
+    if (!o.camera_plan.empty()) throw rig::InputError("--camera-plan: a farm's plan applies to a scene, not to the glTF shot " + o.scene);
+    in.file = scene::loadFileShot(o.scene, o.fps, o.look);
     in.scene = in.file->scene;
-    if (!o.preset.empty() || o.look.empty()) render::applyPreset(in.scene, render::findPreset(o.preset.empty() ? "review" : o.preset));
+    if (!o.preset.empty() || o.look.empty()) scene::applyPreset(in.scene, scene::findPreset(o.preset.empty() ? "review" : o.preset));
   } else {
-    if (!o.look.empty()) throw InputError("--scene: applies to a glTF shot, and " + o.scene + " is a scene");
-    in.scene = render::loadScene(o.scene, {o.allow_impossible});
-    if (!o.preset.empty()) render::applyPreset(in.scene, render::findPreset(o.preset));
+    if (!o.look.empty()) throw rig::InputError("--scene: applies to a glTF shot, and " + o.scene + " is a scene");
+    in.scene = scene::loadScene(o.scene, {o.allow_impossible});
+    if (!o.preset.empty()) scene::applyPreset(in.scene, scene::findPreset(o.preset));
   }
   if (!o.resolution.empty()) std::tie(in.scene.width, in.scene.height) = parseResolution(o.resolution);
-  in.profile = render::resolveProfileForEveryPair(in.scene, parseSets(o.sets));
+  in.profile = scene::resolveProfileForEveryPair(in.scene, parseSets(o.sets));
   if (in.file) in.file->scene = in.scene;
   return in;
 }
@@ -78,21 +78,21 @@ RenderInput loadRenderInput(const RenderOptions& o) {
 void runRender(const RenderOptions& o) {
   namespace fs = std::filesystem;
   if (!o.movie.empty() && fs::path(o.movie).extension() != ".mp4")
-    throw InputError("--movie: " + o.movie + ": expected a file name ending in .mp4");
+    throw rig::InputError("--movie: " + o.movie + ": expected a file name ending in .mp4");
   const std::string format = o.exr ? "both" : o.format;
   const bool png = format != "exr", exr = format != "png";
-  if (!o.movie.empty() && !png) throw InputError("--movie: needs PNG frames; use --format png or both");
-  if (o.encode_only && o.movie.empty()) throw InputError("--encode-only: expected --movie FILE.mp4 to encode");
+  if (!o.movie.empty() && !png) throw rig::InputError("--movie: needs PNG frames; use --format png or both");
+  if (o.encode_only && o.movie.empty()) throw rig::InputError("--encode-only: expected --movie FILE.mp4 to encode");
   const RenderInput in = loadRenderInput(o);
-  const render::SceneSpec& scene = in.scene;
+  const scene::SceneSpec& scene = in.scene;
   const rig::RigProfile& profile = in.profile;
-  const render::CameraSpec& camera = render::findCamera(scene, o.camera);
-  const std::vector<int> frames = rig::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
+  const scene::CameraSpec& camera = scene::findCamera(scene, o.camera);
+  const std::vector<int> frames = scene::parseFrameList(o.frames.empty() ? scene.frames : o.frames, "--frames");
   const fs::path dir = o.out.empty() ? scene.output : fs::path(o.out);
   const OutputFolder folder(dir);  // taken back if the render fails before writing a frame
   const std::string shot_name = scene.name + "_" + camera.name;
-  const render::FrameSequence png_frames = render::FrameSequence::named(dir, shot_name, ".png", o.padding);
-  const render::FrameSequence exr_frames = render::FrameSequence::named(dir, shot_name, ".exr", o.padding);
+  const scene::FrameSequence png_frames = scene::FrameSequence::named(dir, shot_name, ".png", o.padding);
+  const scene::FrameSequence exr_frames = scene::FrameSequence::named(dir, shot_name, ".exr", o.padding);
 
   if (o.encode_only) {
     // A farm's last step: every frame must already be there; render nothing, encode.
@@ -100,7 +100,7 @@ void runRender(const RenderOptions& o) {
     for (int frame : frames) {
       written.push_back(png_frames.path(frame));
       if (!fs::is_regular_file(written.back()))
-        throw InputError("--encode-only: frame " + std::to_string(frame) + " is missing (" + written.back().string() + ")");
+        throw rig::InputError("--encode-only: frame " + std::to_string(frame) + " is missing (" + written.back().string() + ")");
     }
     render::encodeMovie({written, scene.fps, o.movie, 18});
     std::printf("%s\n", o.movie.c_str());
@@ -108,14 +108,14 @@ void runRender(const RenderOptions& o) {
   }
 
   // A farm task's camera, framed once when the farm was planned (render/farm/farm_plan.h).
-  render::CameraSpec shown = camera;
+  scene::CameraSpec shown = camera;
   if (!o.camera_plan.empty()) {
     std::string where;
-    const render::farm::PlannedCamera planned = render::farm::plannedCameraOf(o.camera_plan, shot_name, where);
-    shown = render::farm::plannedCameraSpec(scene, profile, camera, planned, where);
+    const render::PlannedCamera planned = render::plannedCameraOf(o.camera_plan, shot_name, where);
+    shown = render::plannedCameraSpec(scene, profile, camera, planned, where);
   }
-  const int png_level = o.png_compression >= 0 ? o.png_compression : render::defaultPngCompression(scene);
-  render::Shot shot = in.file ? render::Shot(std::make_shared<render::ShotEvaluator>(*in.file, profile, o.threads), shown, o.threads)
+  const int png_level = o.png_compression >= 0 ? o.png_compression : scene::defaultPngCompression(scene);
+  render::Shot shot = in.file ? render::Shot(std::make_shared<scene::ShotEvaluator>(*in.file, profile, o.threads), shown, o.threads)
                               : render::Shot(scene, profile, shown, o.threads);
   shot.setPasses(exr);  // PNG frames need the colour alone
   ProgressBar bar("render " + scene.name + "_" + camera.name, static_cast<int>(frames.size()), o.progress);
@@ -134,11 +134,11 @@ void runRender(const RenderOptions& o) {
     const fs::path png_file = png_frames.path(frame), exr_file = exr_frames.path(frame);
     if (next < to_render.size() && to_render[next] == frame) {
       ++next;
-      render::warnImpossibleFrame(scene, frame);
+      scene::warnImpossibleFrame(scene, frame);
       const std::optional<int> next_frame = next < to_render.size() ? std::optional<int>(to_render[next]) : std::nullopt;
       render::Image image = shot.renderFrame(frame, next_frame);
       const render::ExrMetadata metadata =
-          exr ? render::exrFrameMetadata(shot.cameraAtFrame(frame), camera.name, frame, render::frameTime(scene, frame),
+          exr ? render::exrFrameMetadata(shot.cameraAtFrame(frame), camera.name, frame, scene::frameTime(scene, frame),
                                          scene.name)
               : render::ExrMetadata{};
       // Written while the next frame renders (render/tracer/frame_writer.h); still each to a temporary name.
@@ -195,10 +195,10 @@ void addRenderCommand(CLI::App& app) {
                   "zlib level of the PNG frames, 0 (stored: the fastest write, the largest file) to 9 (the "
                   "smallest file); the pixels are the same at every level. Default: 0 for a draft (one sample "
                   "a pixel), else 1")
-      ->check(CLI::Range(render::kPngCompressionMin, render::kPngCompressionMax));
+      ->check(CLI::Range(scene::kPngCompressionMin, scene::kPngCompressionMax));
   cmd->add_flag("--exr", opts->exr, "Also write the EXR frames (same as --format both)");
   cmd->add_option("--threads,-t", opts->threads, "Render threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, render::kMaxFramePadding));
+  cmd->add_option("--padding", opts->padding, "Digits in frame numbers")->check(CLI::Range(1, scene::kMaxFramePadding));
   cmd->add_flag("--resume", opts->resume, "Skip frames whose file already exists");
   cmd->add_option("--camera-plan", opts->camera_plan,
                   "Use the view camera framed in this farm plan (OUT/farm.json; stirrup farm's tasks pass it) instead "

@@ -40,7 +40,7 @@ struct RigOptions {
   bool allow_impossible = false;  // rig balance: a scene beyond a horse's limits loads, warning each frame
 };
 
-rig::RigProfile resolveProfile(const RigOptions& o) { return render::resolveProfile(o.profile, parseSets(o.sets)); }
+rig::RigProfile resolveProfile(const RigOptions& o) { return scene::resolveProfile(o.profile, parseSets(o.sets)); }
 
 void runEval(const RigOptions& o) {
   const rig::RigProfile profile = resolveProfile(o);
@@ -74,23 +74,23 @@ void runParams(const RigOptions& o) {
 // by the shot's evaluator (scene/shot_evaluator.h) with its own profile, the scene's overrides and
 // then --set applied.
 void runBalance(const RigOptions& o) {
-  render::SceneSpec scene = render::loadScene(o.scene, {o.allow_impossible});
+  scene::SceneSpec scene = scene::loadScene(o.scene, {o.allow_impossible});
   // A crowd's pairs resolve their own profiles from the scene: --set joins its overrides, after them.
-  const rig::RigProfile profile = render::resolveProfileForEveryPair(scene, parseSets(o.sets));
-  render::ShotEvaluator characters(scene, profile, 0);
+  const rig::RigProfile profile = scene::resolveProfileForEveryPair(scene, parseSets(o.sets));
+  scene::ShotEvaluator characters(scene, profile, 0);
   const bool crowd = characters.isCrowd();
   std::ostringstream out;
   out << (crowd ? "pair," : "")
       << "frame,back_pitch_deg,thesis_lean_deg,channel_lean_deg,support_lean_deg,inertia_lean_deg,lean_deg,"
          "turn_deg,seat_lift_cm,limited,turn_tilt_deg,roll_deg,side_lean_deg\n";
   char row[320];
-  render::ShotFrame frame;
-  for (int f : rig::parseFrameList(scene.frames, "frames")) {
-    render::FrameRequest request;
+  scene::ShotFrame frame;
+  for (int f : scene::parseFrameList(scene.frames, "frames")) {
+    scene::FrameRequest request;
     request.frame = f;
-    request.until = render::EvalStage::Pose;
+    request.until = scene::EvalStage::Pose;
     characters.evaluate(request, frame);
-    render::warnImpossibleFrame(scene, f);
+    scene::warnImpossibleFrame(scene, f);
     for (int i = 0; i < characters.pairCount(); ++i) {
       const rig::Character& horse = characters.horse(i);
       const rig::Character& rider = characters.rider(i);

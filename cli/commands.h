@@ -1,5 +1,5 @@
 // Each subcommand of `stirrup` lives in its own file and registers itself on the app here.
-// A callback reports bad input by throwing stirrup::InputError (one line, printed by main, exit 1).
+// A callback reports bad input by throwing rig::InputError (one line, printed by main, exit 1).
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const stirrup::cli::ExitStatus& s) {
     return s.code;
-  } catch (const stirrup::InputError& e) {
+  } catch (const stirrup::rig::InputError& e) {
     std::fprintf(stderr, "stirrup: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {

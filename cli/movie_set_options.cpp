@@ -37,7 +37,7 @@ void addMovieSetOptions(CLI::App* cmd, MovieSetArgs& a) {
 }
 
 render::MovieOptions movieOptions(const MovieSetArgs& a) {
-  render::findPreset(a.preset);  // a bad name is an error before any work
+  scene::findPreset(a.preset);  // a bad name is an error before any work
   render::MovieOptions mo;
   mo.out = a.out;
   mo.preset = a.preset;
@@ -48,16 +48,16 @@ render::MovieOptions movieOptions(const MovieSetArgs& a) {
   mo.mp4 = !a.no_mp4;
   mo.allow_impossible = a.allow_impossible;
   if (!a.mov.empty()) {
-    if (a.mov != "prores" && a.mov != "h264") throw InputError("--mov: expected prores or h264, got \"" + a.mov + "\"");
+    if (a.mov != "prores" && a.mov != "h264") throw rig::InputError("--mov: expected prores or h264, got \"" + a.mov + "\"");
     mo.mov = true;
     mo.mov_codec = a.mov == "prores" ? render::MovieCodec::ProRes : render::MovieCodec::H264;
   }
-  if (!mo.mp4 && !mo.mov) throw InputError("--no-mp4: expected --mov as well (there would be no movie)");
+  if (!mo.mp4 && !mo.mov) throw rig::InputError("--no-mp4: expected --mov as well (there would be no movie)");
   if (!a.resolution.empty()) std::tie(mo.width, mo.height) = parseResolution(a.resolution);
   // Muybridge's plate is in ../shared beside the data folder (the repository's, in a build tree) or
   // $STIRRUP_SHARED_DIR.
-  const std::optional<fs::path> data = render::findDataDir();
-  const fs::path scenes = a.scenes.empty() ? render::dataDir() / "scenes" : fs::path(a.scenes);
+  const std::optional<fs::path> data = scene::findDataDir();
+  const fs::path scenes = a.scenes.empty() ? scene::dataDir() / "scenes" : fs::path(a.scenes);
   mo.reference_dir = render::sharedDir(data ? *data : fs::weakly_canonical(scenes).parent_path()) / "reference";
   return mo;
 }
@@ -67,8 +67,8 @@ namespace {
 // A glTF shot's set, cut to --only: a name is the movie's (STEM_side) or its view's (side); a view of the
 // scene set that a shot cannot make is refused by name, never skipped.
 std::vector<render::MovieJob> selectShotMovies(const MovieSetArgs& a) {
-  if (!render::isGltfFile(a.shot)) throw InputError(a.shot + ": expected a glTF shot (.glb or .gltf); the scene set is made without one");
-  if (!a.scenes.empty()) throw InputError("--scenes: chooses the scene set's scenes, not a glTF shot's (" + a.shot + ")");
+  if (!scene::isGltfFile(a.shot)) throw rig::InputError(a.shot + ": expected a glTF shot (.glb or .gltf); the scene set is made without one");
+  if (!a.scenes.empty()) throw rig::InputError("--scenes: chooses the scene set's scenes, not a glTF shot's (" + a.shot + ")");
   std::vector<render::MovieJob> jobs = render::shotMovieSet(a.shot, a.look);
   if (a.only.empty()) return jobs;
   const std::string prefix = fs::path(a.shot).stem().string() + "_";
@@ -78,11 +78,11 @@ std::vector<render::MovieJob> selectShotMovies(const MovieSetArgs& a) {
     const std::string view = name.substr(prefix.size());
     // The shot's own views refuse the scene set's views they cannot make; a look's cameras are its own.
     if (const std::string why = render::shotViewRefusal(view); !why.empty() && a.look.empty())
-      throw InputError("--only: " + n + ": " + why + " (" + a.shot + ")");
+      throw rig::InputError("--only: " + n + ": " + why + " (" + a.shot + ")");
     if (std::none_of(jobs.begin(), jobs.end(), [&](const render::MovieJob& j) { return j.name == name; })) {
       std::string names, views;
       for (const auto& j : jobs) names += (names.empty() ? "" : ", ") + j.name, views += (views.empty() ? "" : ", ") + j.camera;
-      throw InputError("--only: no movie named \"" + n + "\" for the glTF shot " + a.shot + " (expected one of " + names +
+      throw rig::InputError("--only: no movie named \"" + n + "\" for the glTF shot " + a.shot + " (expected one of " + names +
                        ", or a " + (a.look.empty() ? "view" : "camera of " + a.look) + ": " + views + ")");
     }
     wanted.push_back(name);
@@ -95,9 +95,9 @@ std::vector<render::MovieJob> selectShotMovies(const MovieSetArgs& a) {
 
 std::vector<render::MovieJob> selectMovies(const MovieSetArgs& a, const render::MovieOptions& mo) {
   if (!a.shot.empty()) return selectShotMovies(a);
-  if (!a.look.empty()) throw InputError("--scene: the look of a glTF shot's movies (stirrup movies SHOT.glb --scene LOOK.json); the scene set has its own");
-  const fs::path scenes = a.scenes.empty() ? render::dataDir() / "scenes" : fs::path(a.scenes);
-  if (!fs::is_directory(scenes)) throw InputError("--scenes: " + scenes.string() + ": no such folder");
+  if (!a.look.empty()) throw rig::InputError("--scene: the look of a glTF shot's movies (stirrup movies SHOT.glb --scene LOOK.json); the scene set has its own");
+  const fs::path scenes = a.scenes.empty() ? scene::dataDir() / "scenes" : fs::path(a.scenes);
+  if (!fs::is_directory(scenes)) throw rig::InputError("--scenes: " + scenes.string() + ": no such folder");
   std::vector<render::MovieJob> jobs = render::defaultMovieSet(scenes, mo.reference_dir);
   if (a.only.empty()) return jobs;
   std::set<std::string> known;
@@ -106,7 +106,7 @@ std::vector<render::MovieJob> selectMovies(const MovieSetArgs& a, const render::
     if (!known.count(n)) {
       std::string names;
       for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
-      throw InputError("--only: no movie named \"" + n + "\" (expected one of " + names + ")");
+      throw rig::InputError("--only: no movie named \"" + n + "\" (expected one of " + names + ")");
     }
   std::erase_if(jobs, [&](const render::MovieJob& j) { return std::find(a.only.begin(), a.only.end(), j.name) == a.only.end(); });
   return jobs;
@@ -115,7 +115,7 @@ std::vector<render::MovieJob> selectMovies(const MovieSetArgs& a, const render::
 std::vector<std::string> movieSetArguments(const MovieSetArgs& a) {
   std::vector<std::string> args;
   if (!a.shot.empty()) args.push_back(fs::absolute(a.shot).string());
-  if (!a.look.empty()) args.insert(args.end(), {"--scene", fs::absolute(render::findSceneFile(a.look)).string()});
+  if (!a.look.empty()) args.insert(args.end(), {"--scene", fs::absolute(scene::findSceneFile(a.look)).string()});
   args.insert(args.end(), {"--preset", a.preset});
   if (a.frames_limit > 0) args.insert(args.end(), {"--frames-limit", std::to_string(a.frames_limit)});
   if (!a.resolution.empty()) args.insert(args.end(), {"--resolution", a.resolution});

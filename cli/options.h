@@ -22,7 +22,7 @@ inline std::pair<int, int> parseResolution(const std::string& text, const std::s
   char x = 0;
   std::istringstream in(text);
   if (!(in >> w >> x >> h) || x != 'x' || w < 16 || h < 16 || w > 8192 || h > 8192 || !in.eof())
-    throw InputError(option + ": expected WIDTHxHEIGHT (16-8192 each), got \"" + text + "\"");
+    throw rig::InputError(option + ": expected WIDTHxHEIGHT (16-8192 each), got \"" + text + "\"");
   return {w, h};
 }
 
@@ -33,7 +33,7 @@ inline nlohmann::json parseSets(const std::vector<std::string>& sets) {
   for (const std::string& s : sets) {
     const std::size_t eq = s.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw InputError("--set: expected key=value (e.g. eq1.w1_pivot_pitch=0.05), got \"" + s + "\"");
+      throw rig::InputError("--set: expected key=value (e.g. eq1.w1_pivot_pitch=0.05), got \"" + s + "\"");
     const std::string key = s.substr(0, eq);
     const std::string text = s.substr(eq + 1);
     double v = 0;
@@ -55,14 +55,14 @@ inline std::vector<std::pair<std::string, std::string>> namedParameters(const st
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a.rfind("--", 0) != 0 || a.size() < 3)
-      throw InputError(command + ": expected --parameter value, got \"" + a + "\"");
+      throw rig::InputError(command + ": expected --parameter value, got \"" + a + "\"");
     std::string key = a.substr(2);
     std::string value;
     if (const auto eq = key.find('='); eq != std::string::npos) {
       value = key.substr(eq + 1);
       key = key.substr(0, eq);
     } else {
-      if (i + 1 >= args.size()) throw InputError(command + ": --" + key + ": expected a value");
+      if (i + 1 >= args.size()) throw rig::InputError(command + ": --" + key + ": expected a value");
       value = args[++i];
     }
     for (char& c : key)

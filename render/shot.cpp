@@ -26,11 +26,11 @@ MeshDesc meshOf(ObjectId id, const rig::Character& c) {
 
 }  // namespace
 
-GroundRegion fineGroundRegion(const SceneSpec& scene, const std::vector<const rig::Clip*>& clips) {
+GroundRegion fineGroundRegion(const scene::SceneSpec& scene, const std::vector<const rig::Clip*>& clips) {
   GroundRegion r{1e300, 1e300, -1e300, -1e300};
-  for (int f : rig::parseFrameList(scene.frames, "frames")) {
+  for (int f : scene::parseFrameList(scene.frames, "frames")) {
     for (const rig::Clip* clip : clips) {
-      const rig::HorseFrame h = clip->sampleTravel(frameTime(scene, f));
+      const rig::HorseFrame h = clip->sampleTravel(scene::frameTime(scene, f));
       r.x0 = std::min(r.x0, h.travel_cm), r.x1 = std::max(r.x1, h.travel_cm);
       r.z0 = std::min(r.z0, h.travel_z_cm), r.z1 = std::max(r.z1, h.travel_z_cm);
     }
@@ -39,25 +39,25 @@ GroundRegion fineGroundRegion(const SceneSpec& scene, const std::vector<const ri
           r.z1 + kFineGroundMarginCm};
 }
 
-Shot::Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
+Shot::Shot(const scene::SceneSpec& scene, const rig::RigProfile& profile, const scene::CameraSpec& camera, int threads,
            BvhUpdate bvh)
     : Shot(buildCharacters(scene, profile, threads), camera, threads, bvh) {}
 
-Shot::BuiltCharacters Shot::buildCharacters(const SceneSpec& scene, const rig::RigProfile& profile, int threads) {
+Shot::BuiltCharacters Shot::buildCharacters(const scene::SceneSpec& scene, const rig::RigProfile& profile, int threads) {
   const auto t0 = Clock::now();
-  BuiltCharacters built{std::make_shared<ShotEvaluator>(scene, profile, threads)};
+  BuiltCharacters built{std::make_shared<scene::ShotEvaluator>(scene, profile, threads)};
   built.ms = msSince(t0);
   return built;
 }
 
-Shot::Shot(BuiltCharacters built, const CameraSpec& camera, int threads, BvhUpdate bvh)
+Shot::Shot(BuiltCharacters built, const scene::CameraSpec& camera, int threads, BvhUpdate bvh)
     : Shot(std::move(built.characters), camera, threads, bvh) {
   setup_.characters_ms = built.ms;
 }
 
-Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, int threads, BvhUpdate bvh)
+Shot::Shot(std::shared_ptr<scene::ShotEvaluator> characters, const scene::CameraSpec& camera, int threads, BvhUpdate bvh)
     : scene_(characters->scene()), characters_(std::move(characters)) {
-  const SceneSpec& scene = scene_;
+  const scene::SceneSpec& scene = scene_;
   RenderSettings settings;
   settings.width = scene.width;
   settings.height = scene.height;
@@ -91,7 +91,7 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
   // If the framing throws, `terrain` (a local, gone before the members) waits for its thread in its
   // destructor, as std::async's futures do, so nothing the thread uses is unwound under it.
   const auto t0 = Clock::now();
-  camera_ = std::make_unique<ShotCamera>(*characters_, camera);
+  camera_ = std::make_unique<scene::ShotCamera>(*characters_, camera);
   setup_.framing_ms = msSince(t0);
   if (terrain.valid()) terrain.get();  // its error, if any, is the shot's
   // A pair of one level (a single pair: its characters as read or built) joins the renderer now, with
@@ -106,8 +106,8 @@ Shot::Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, 
 }
 
 void Shot::setDetailLevel(int level) {
-  if (level < -1 || level >= kDetailLevels)
-    throw std::invalid_argument("Shot::setDetailLevel: expected -1 to " + std::to_string(kDetailLevels - 1));
+  if (level < -1 || level >= scene::kDetailLevels)
+    throw std::invalid_argument("Shot::setDetailLevel: expected -1 to " + std::to_string(scene::kDetailLevels - 1));
   detail_level_ = level;
   ahead_frame_.reset();
 }
@@ -131,7 +131,7 @@ void Shot::addObstacles() {
     for (const char* hoof : {"lfHoof", "rfHoof", "lbHoof", "rbHoof"})
       middle += 0.25 * horse.skeleton.restPosition(horse.role(hoof)).x;
     for (const rig::Obstacle& o : obstacles) {
-      const PropMesh fence = makeFence(o, o.travel_cm + middle);
+      const scene::PropMesh fence = scene::makeFence(o, o.travel_cm + middle);
       const int mesh = renderer_->addMesh(
           MeshDesc{ObjectId::Ground, fence.indices, fence.colors, fence.positions.size(), fence.positions});
       renderer_->updateMesh(mesh, fence.positions, fence.normals);
@@ -140,17 +140,17 @@ void Shot::addObstacles() {
 }
 
 rig::BakedFrame Shot::bake(int frame) const {
-  return rig::bakeFrame(camera_->clip(), camera_->profile(), frame, frameTime(scene_, frame));
+  return rig::bakeFrame(camera_->clip(), camera_->profile(), frame, scene::frameTime(scene_, frame));
 }
 
-Camera Shot::cameraAt(const rig::BakedFrame& baked) const { return cameraAtFrame(baked.frame); }
+scene::Camera Shot::cameraAt(const rig::BakedFrame& baked) const { return cameraAtFrame(baked.frame); }
 
-Camera Shot::cameraAtFrame(int frame) const { return camera_->at(frame); }
+scene::Camera Shot::cameraAtFrame(int frame) const { return camera_->at(frame); }
 
 void Shot::evaluatePoints(int frame, int pair) {
-  FrameRequest request;
+  scene::FrameRequest request;
   request.frame = frame;
-  request.shown = shownAs(camera_->spec(), rigid_rider_);
+  request.shown = scene::shownAs(camera_->spec(), rigid_rider_);
   request.level.fixed = 0;
   request.only_pair = pair;
   characters_->evaluate(request, frame_);
@@ -162,7 +162,7 @@ void Shot::pairPoints(int pair, int frame, int stride, std::vector<glm::dvec3>& 
   evaluatePoints(frame, pair);
   horse.clear();
   rider.clear();
-  appendPoints(frame_.pairs[std::size_t(pair)], stride, horse, rider);
+  scene::appendPoints(frame_.pairs[std::size_t(pair)], stride, horse, rider);
 }
 
 void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse,
@@ -170,7 +170,7 @@ void Shot::characterPoints(int frame, int stride, std::vector<glm::dvec3>& horse
   evaluatePoints(frame, -1);
   horse.clear();
   rider.clear();
-  for (const PairFrame& p : frame_.pairs) appendPoints(p, stride, horse, rider);
+  for (const scene::PairFrame& p : frame_.pairs) scene::appendPoints(p, stride, horse, rider);
 }
 
 // Levels shown for the first time join the renderer, each with its own fixed geometry ids (pair,
@@ -180,11 +180,11 @@ void Shot::showMeshes() {
   timings_.pairs_at_level = {};
   timings_.skinned_vertices = 0;
   for (std::size_t i = 0; i < frame_.pairs.size(); ++i) {
-    const PairFrame& p = frame_.pairs[i];
+    const scene::PairFrame& p = frame_.pairs[i];
     std::vector<std::array<int, 2>>& pair_meshes = meshes_[i];
     std::array<int, 2>& shown = pair_meshes[std::size_t(p.level)];
     if (shown[0] < 0) {
-      const int id = 2 * (int(i) * kDetailLevels + p.level);
+      const int id = 2 * (int(i) * scene::kDetailLevels + p.level);
       MeshDesc horse = meshOf(ObjectId::Horse, characters_->horseAt(int(i), p.level));
       MeshDesc rider = meshOf(ObjectId::Rider, characters_->riderAt(int(i), p.level));
       horse.geometry_id = id;
@@ -202,10 +202,10 @@ void Shot::showMeshes() {
   }
 }
 
-FrameRequest Shot::frameRequest(int frame, const Camera& camera) const {
-  FrameRequest request;
+scene::FrameRequest Shot::frameRequest(int frame, const scene::Camera& camera) const {
+  scene::FrameRequest request;
   request.frame = frame;
-  request.shown = shownAs(camera_->spec(), rigid_rider_);
+  request.shown = scene::shownAs(camera_->spec(), rigid_rider_);
   request.level = {detail_level_, &camera, scene_.width, scene_.height};
   return request;
 }
@@ -214,9 +214,9 @@ Image Shot::renderFrame(int frame, RayLog* log) { return renderFrame(frame, std:
 
 Image Shot::renderFrame(int frame, std::optional<int> next_frame, RayLog* log) {
   const auto call0 = Clock::now();
-  const Camera camera = cameraAtFrame(frame);
+  const scene::Camera camera = cameraAtFrame(frame);
   auto t0 = Clock::now();
-  EvalTimings eval;
+  scene::EvalTimings eval;
   timings_.evaluated_ahead = ahead_frame_ == frame;
   if (timings_.evaluated_ahead) {
     std::swap(frame_, ahead_);
@@ -236,7 +236,7 @@ Image Shot::renderFrame(int frame, std::optional<int> next_frame, RayLog* log) {
 
   // The next frame's evaluation, as one more task on the renderer's threads while this one commits and
   // traces. It writes ahead_ and the evaluator (which the renderer never reads); its camera lives here.
-  const Camera next_camera = next_frame ? cameraAtFrame(*next_frame) : camera;
+  const scene::Camera next_camera = next_frame ? cameraAtFrame(*next_frame) : camera;
   std::function<void()> evaluate_next;
   if (next_frame) {
     evaluate_next = [this, request = frameRequest(*next_frame, next_camera)] {

@@ -35,7 +35,7 @@ inline constexpr double kFineGroundMarginCm = 300.0;
 
 // The box (x, z) the horses' travel frames cross over the scene's frames, grown by kFineGroundMarginCm:
 // the region a Shot meshes its terrain finely over (makeTerrainMesh).
-GroundRegion fineGroundRegion(const SceneSpec& scene, const std::vector<const rig::Clip*>& clips);
+GroundRegion fineGroundRegion(const scene::SceneSpec& scene, const std::vector<const rig::Clip*>& clips);
 
 // Timings of the last frame, in milliseconds, for progress reports and benchmarks.
 struct FrameTimings {
@@ -72,12 +72,12 @@ class Shot {
  public:
   // threads: 0 = all cores. The profile is resolved by the caller (name, file and overrides).
   // `bvh`: how the BVH follows the characters (the default is the renderer's; others for benchmarks).
-  Shot(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera, int threads,
+  Shot(const scene::SceneSpec& scene, const rig::RigProfile& profile, const scene::CameraSpec& camera, int threads,
        BvhUpdate bvh = RenderSettings{}.bvh_update);
   // A shot of the scene `characters` evaluates, sharing them with the other shots made from them (a
   // layered movie's rigid panel beside the rigged one): the characters are read, seated and built
   // once. The shots must render one after the other, not at once (the evaluator is not reentrant).
-  Shot(std::shared_ptr<ShotEvaluator> characters, const CameraSpec& camera, int threads,
+  Shot(std::shared_ptr<scene::ShotEvaluator> characters, const scene::CameraSpec& camera, int threads,
        BvhUpdate bvh = RenderSettings{}.bvh_update);
   ~Shot();
 
@@ -97,8 +97,8 @@ class Shot {
   // the colour alone (PNG frames): Renderer::setPasses.
   void setPasses(bool passes) { renderer_->setPasses(passes); }
   // The characters it evaluates (every pair of the scene).
-  ShotEvaluator& characters() { return *characters_; }
-  const std::shared_ptr<ShotEvaluator>& sharedCharacters() const { return characters_; }
+  scene::ShotEvaluator& characters() { return *characters_; }
+  const std::shared_ptr<scene::ShotEvaluator>& sharedCharacters() const { return characters_; }
   // The bake at a frame of what the camera follows (a single pair's clip; in a crowd the followed
   // pair's, or the crowd's middle) with its profile; every pair's is characters().evaluate's.
   rig::BakedFrame bake(int frame) const;
@@ -106,11 +106,11 @@ class Shot {
   const SetupTimings& setupTimings() const { return setup_; }
 
   // The render camera at a frame (follow cameras travel with the horse; scene/camera_motion.h).
-  Camera cameraAt(const rig::BakedFrame& baked) const;
-  Camera cameraAtFrame(int frame) const;
+  scene::Camera cameraAt(const rig::BakedFrame& baked) const;
+  scene::Camera cameraAtFrame(int frame) const;
   // The camera as resolved: a view camera (scene/view.h) framed from the characters' bounds over
   // the clip when the Shot was made.
-  const CameraSpec& camera() const { return camera_->spec(); }
+  const scene::CameraSpec& camera() const { return camera_->spec(); }
   // World positions of every `stride`-th skinned vertex of the horse and the rider at a frame, as it
   // is shown (a treadmill camera removes the travel, a held pose holds its frame). In a crowd: of
   // every pair's horse and rider.
@@ -131,11 +131,11 @@ class Shot {
  private:
   // The scene's characters built, with the time they took (SetupTimings::characters_ms).
   struct BuiltCharacters {
-    std::shared_ptr<ShotEvaluator> characters;
+    std::shared_ptr<scene::ShotEvaluator> characters;
     double ms = 0;
   };
-  static BuiltCharacters buildCharacters(const SceneSpec& scene, const rig::RigProfile& profile, int threads);
-  Shot(BuiltCharacters built, const CameraSpec& camera, int threads, BvhUpdate bvh);
+  static BuiltCharacters buildCharacters(const scene::SceneSpec& scene, const rig::RigProfile& profile, int threads);
+  Shot(BuiltCharacters built, const scene::CameraSpec& camera, int threads, BvhUpdate bvh);
   void addObstacles();
   // Adds the meshes of each pair's level shown in frame_ that the renderer does not hold yet, shows
   // those levels and hides the others, and updates the shown meshes' vertices.
@@ -144,18 +144,18 @@ class Shot {
   // rider), every pair at full detail or only `pair`.
   void evaluatePoints(int frame, int pair);
   // The request renderFrame evaluates a frame with, seen through `camera` (its levels of detail).
-  FrameRequest frameRequest(int frame, const Camera& camera) const;
+  scene::FrameRequest frameRequest(int frame, const scene::Camera& camera) const;
 
-  SceneSpec scene_;
-  std::shared_ptr<ShotEvaluator> characters_;
-  std::unique_ptr<ShotCamera> camera_;
+  scene::SceneSpec scene_;
+  std::shared_ptr<scene::ShotEvaluator> characters_;
+  std::unique_ptr<scene::ShotCamera> camera_;
   std::unique_ptr<Renderer> renderer_;
-  ShotFrame frame_;  // the characters' last evaluated frame
+  scene::ShotFrame frame_;  // the characters' last evaluated frame
   // The frame evaluated ahead (renderFrame's next_frame), its number and its evaluation's timings;
   // cleared when anything that changes a frame's request changes.
-  ShotFrame ahead_;
+  scene::ShotFrame ahead_;
   std::optional<int> ahead_frame_;
-  EvalTimings ahead_timings_;
+  scene::EvalTimings ahead_timings_;
   // Each pair's meshes in the renderer, per level (horse, rider; -1 until first shown).
   std::vector<std::vector<std::array<int, 2>>> meshes_;
   FrameTimings timings_;

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace stirrup {
+namespace stirrup::rig {
 
 // The message with its control characters written as escapes (a newline as \n, others as \xNN), so a
 // message quoting the user's own text (a key, a field, a frame list holding a newline) stays one line
@@ -59,4 +59,4 @@ struct InputError : std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(oneLineMessage(message)) {}
 };
 
-}  // namespace stirrup
+}  // namespace stirrup::rig

@@ -30,7 +30,7 @@ struct HorsePoseParams {
 // travel_z_cm), turned by heading_deg).
 glm::mat4 travelMatrix(const HorseFrame& frame);
 // The horse's hooves standing square, in its travel frame: (x forward, z right) cm, lf rf lb rb. A
-// path clip turns planted hooves about these (rig::ClipSpec::hoof_rest).
+// path clip turns planted hooves about these (scene::ClipSpec::hoof_rest).
 std::array<glm::dvec2, 4> restHoofPlaces(const Character& horse);
 
 // The horse at one frame: in its travel frame (travelMatrix); the body (root at the hips) moved and

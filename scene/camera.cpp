@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 Ray Camera::generateRay(double u, double v, double aspect) const {
   // The pixel count only matters for footprints; rays depend on the aspect alone.
@@ -73,4 +73,4 @@ Ray CameraFrame::ray(double u, double v) const {
 
 double CameraFrame::viewDepth(const glm::dvec3& p) const { return glm::dot(p - position_, forward_); }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 struct Ray {
   glm::dvec3 origin;
@@ -97,4 +97,4 @@ class CameraFrame {
   float target_distance_f_;
 };
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -8,7 +8,7 @@
 #include "rig/rider_rig.h"
 #include "rig/units.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 
@@ -191,4 +191,4 @@ Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::
   return cameraFromFollow(spec, cameraFollowAtFrame(spec, scene, clip, profile, frame), frame);
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

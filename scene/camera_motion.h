@@ -30,7 +30,7 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // The critically damped response to a path p(t), lag-free for constant velocity:
 //   y(t) = integral over s >= 0 of h(s) [p(t - s) + s p'(t - s)] ds,  h(s) = s e^(-s/tau) / tau^2.
@@ -93,4 +93,4 @@ Camera cameraFromFollow(const CameraSpec& spec, const FollowFrame& follow, int f
 Camera cameraAtFrame(const CameraSpec& spec, const SceneSpec& scene, const rig::Clip& clip,
                      const rig::RigProfile& profile, int frame);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

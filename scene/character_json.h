@@ -9,7 +9,7 @@
 
 #include "rig/io/json_fields.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 struct CharacterEntry {
   std::string file = "default";  // "default", or the file's path (the scene's folder resolved)
@@ -17,7 +17,7 @@ struct CharacterEntry {
 };
 
 // The entry `key` of `r` (absent: `fallback`); files resolve against `dir`.
-CharacterEntry parseCharacterEntry(JsonObjectReader& r, const std::string& key, const std::filesystem::path& dir,
+CharacterEntry parseCharacterEntry(rig::JsonObjectReader& r, const std::string& key, const std::filesystem::path& dir,
                                    const CharacterEntry& fallback = {});
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

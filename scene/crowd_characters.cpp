@@ -16,7 +16,7 @@
 #include "scene/ridden_pair.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 using CharacterKey = std::tuple<rig::CharacterKind, std::string, std::string>;  // kind, file, mapping
@@ -54,7 +54,7 @@ void resolvePairCharacters(std::vector<rig::PairSpec>& pairs, const SceneSpec& s
   const std::string source = scene.file.string();
   for (std::size_t i = 0; i < pairs.size(); ++i)
     if (pairs[i].animation && scene.terrain && !scene.terrain->flat())
-      throw InputError(source + ": " + field + ": pair " + std::to_string(i) + " plays its horse's own animation \"" + *pairs[i].animation +
+      throw rig::InputError(source + ": " + field + ": pair " + std::to_string(i) + " plays its horse's own animation \"" + *pairs[i].animation +
                        "\", keyed on flat ground (expected a crowd on flat ground, or the generated gait over the terrain)");
   const auto files = readFiles(pairs);
   // Each profile name resolved once, as the shot's evaluator resolves a crowd's (the scene's overrides applied).
@@ -72,7 +72,7 @@ void resolvePairCharacters(std::vector<rig::PairSpec>& pairs, const SceneSpec& s
                                                       : *files.at({rig::CharacterKind::Horse, p.horse_file, p.horse_mapping});
     rig::Character rider = p.rider_file == "default" ? rig::buildRider(p.rider(), p.horse().mount)
                                                       : *files.at({rig::CharacterKind::Rider, p.rider_file, p.rider_mapping});
-    rig::RiddenPair seated = rig::seatPair(std::move(horse), std::move(rider), profiles.at(p.profile));
+    scene::RiddenPair seated = scene::seatPair(std::move(horse), std::move(rider), profiles.at(p.profile));
     auto c = std::make_shared<rig::PairCharacters>();
     c->extent = rig::pairExtent(seated.horse, seated.rider);
     c->seat = seated.seat;
@@ -83,4 +83,4 @@ void resolvePairCharacters(std::vector<rig::PairSpec>& pairs, const SceneSpec& s
   });
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

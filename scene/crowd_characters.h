@@ -5,7 +5,7 @@
 //   - each file read once (rig::resolveCharacter, through its mapping), shared by the pairs naming it;
 //   - a pair without a rider file rides the generated rider at its own proportions and colours, without
 //     a horse file the generated horse at its own;
-//   - the rider seated on the horse with the pair's own profile (rig::seatPair: a standing rider seated
+//   - the rider seated on the horse with the pair's own profile (scene::seatPair: a standing rider seated
 //     by the rig, a seated one fitted to a horse she was not built for, the leathers set to her leg);
 //   - the box the pair takes at rest (rig::pairExtent of the seated characters), for the crowd's
 //     footprint check;
@@ -21,7 +21,7 @@
 
 #include "rig/motion/crowd.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 struct SceneSpec;
 
@@ -30,4 +30,4 @@ struct SceneSpec;
 // file and `field` ("crowd.characters", "riders").
 void resolvePairCharacters(std::vector<rig::PairSpec>& pairs, const SceneSpec& scene, const std::string& field);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -19,9 +19,9 @@
 #include "rig/io/json_fields.h"
 #include "rig/motion/crowd.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 
-CrowdSpec parseCrowdSpec(JsonObjectReader& r);
-PairSpec parsePairSpec(JsonObjectReader& r);
+rig::CrowdSpec parseCrowdSpec(rig::JsonObjectReader& r);
+rig::PairSpec parsePairSpec(rig::JsonObjectReader& r);
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

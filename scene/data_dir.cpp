@@ -6,7 +6,7 @@
 
 #include "rig/error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -49,11 +49,11 @@ std::optional<fs::path> findDataDir() {
 fs::path dataDir() {
   if (std::optional<fs::path> d = findDataDir()) return *d;
   if (const char* env = std::getenv("STIRRUP_DATA"); env && *env)
-    throw InputError(std::string("STIRRUP_DATA: ") + env + ": no scenes/ folder there (expected stirrup's data folder, e.g. /usr/share/stirrup)");
+    throw rig::InputError(std::string("STIRRUP_DATA: ") + env + ": no scenes/ folder there (expected stirrup's data folder, e.g. /usr/share/stirrup)");
   const fs::path beside = besideProgram();
-  throw InputError("stirrup's data folder not found (looked for scenes/ in " +
+  throw rig::InputError("stirrup's data folder not found (looked for scenes/ in " +
                    (beside.empty() ? std::string(STIRRUP_DATA_FROM_PROGRAM " beside the program") : beside.string()) +
                    "; install stirrup with cmake --install or set STIRRUP_DATA)");
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

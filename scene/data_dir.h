@@ -10,13 +10,13 @@
 #include <filesystem>
 #include <optional>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // The data folder (canonical), or nullopt when neither place holds a scenes/ folder.
 std::optional<std::filesystem::path> findDataDir();
-// The data folder; throws stirrup::InputError naming the places looked in when there is none.
+// The data folder; throws rig::InputError naming the places looked in when there is none.
 std::filesystem::path dataDir();
 // The folder of the running program (/proc/self/exe's folder); empty if the system does not say.
 std::filesystem::path programDir();
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

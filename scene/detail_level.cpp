@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 double pixelsPerCm(const Camera& camera, int height, const glm::dvec3& point, double reach_cm) {
   if (camera.projection == Camera::Projection::Orthographic) return height / camera.ortho_height_cm;
@@ -41,4 +41,4 @@ int detailLevel(double horse_cell_cm, double pixels_per_cm) {
   return level;
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

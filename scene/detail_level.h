@@ -18,7 +18,7 @@
 
 #include "scene/camera.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 inline constexpr int kDetailLevels = 3;
 // Level k's cell is the character's cell times this.
@@ -54,4 +54,4 @@ int detailLevel(double horse_cell_cm, double pixels_per_cm);
 // at its nearest point (pixelsPerCm less kPairReachCm).
 int pairDetailLevel(const Camera& camera, int width, int height, const glm::dvec3& horse_root, double horse_cell_cm);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

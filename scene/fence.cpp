@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 void addVertex(PropMesh& m, const glm::vec3& p, const glm::vec3& n, const glm::vec3& c) {
@@ -90,4 +90,4 @@ PropMesh makeFence(const rig::Obstacle& obstacle, double x_cm, const FenceStyle&
   return m;
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -10,7 +10,7 @@
 
 #include "rig/clip.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // A rigid mesh in world centimetres: positions, unit normals and linear base colours per vertex,
 // three indices per triangle, counter-clockwise seen from outside.
@@ -34,4 +34,4 @@ struct FenceStyle {
 // third of the height. Throws std::invalid_argument for a height or width <= 0.
 PropMesh makeFence(const rig::Obstacle& obstacle, double x_cm, const FenceStyle& style = {});
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

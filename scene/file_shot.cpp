@@ -6,7 +6,7 @@
 #include "rig/error.h"
 #include "rig/io/keyed_horse_clip.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 bool isGltfFile(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
@@ -19,7 +19,7 @@ FileShot loadFileShot(const std::filesystem::path& file, double fps, const std::
   options.fps = fps;
   std::unique_ptr<rig::GltfShot> shot = rig::GltfShot::read(file, options);
   if (!shot)
-    throw InputError(file.string() +
+    throw rig::InputError(file.string() +
                      ": not a shot (expected a stirrup bake or Blender's export of one: armatures \"horse\" and \"rider\", or a "
                      "horse's and a rider's skins; a horse clip renders from a scene that names it as its clip)");
   FileShot out;
@@ -64,4 +64,4 @@ std::unique_ptr<rig::Clip> fileShotTravel(const FileShot& shot, std::size_t pair
   return std::make_unique<rig::KeyedHorseClip>(shot.file, "", rig::keyedHorseMapping(p.horse), nullptr, options);
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

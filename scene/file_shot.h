@@ -25,7 +25,7 @@
 #include "rig/io/gltf_shot.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // Whether `file` names a glTF file (.glb or .gltf, any case): what `stirrup render` reads as a shot.
 bool isGltfFile(const std::filesystem::path& file);
@@ -46,4 +46,4 @@ FileShot loadFileShot(const std::filesystem::path& file, double fps = 24.0, cons
 // keyed (no travel added in place).
 std::unique_ptr<rig::Clip> fileShotTravel(const FileShot& shot, std::size_t pair);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -6,7 +6,7 @@
 
 #include "rig/error.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
 bool parseInt(std::string_view s, int& out) {
@@ -17,7 +17,7 @@ bool parseInt(std::string_view s, int& out) {
 }
 
 [[noreturn]] void fail(const std::string& context, std::string_view part, const std::string& why) {
-  throw InputError(context + ": \"" + std::string(part) + "\": " + why);
+  throw rig::InputError(context + ": \"" + std::string(part) + "\": " + why);
 }
 
 }  // namespace
@@ -91,4 +91,4 @@ std::string formatFrameList(const std::vector<int>& frames) {
   return out;
 }
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 
 // 999999: six digits, the widest frame number a render farm's ###### padding writes.
 inline constexpr int kMaxFrameNumber = 999999;
@@ -18,7 +18,7 @@ inline constexpr int kMaxFrameNumber = 999999;
 // a baked glTF of that many frames is already ~100 MB.
 inline constexpr int kMaxFrameCount = 100000;
 
-// Parses a frame list; throws stirrup::InputError naming `context` (for example "--frames") and the
+// Parses a frame list; throws rig::InputError naming `context` (for example "--frames") and the
 // part of the list that is wrong.
 std::vector<int> parseFrameList(const std::string& spec, const std::string& context);
 
@@ -30,4 +30,4 @@ std::string formatFrameRange(int first, int last);
 // render farm writes a chunk of a shot into a job script. Frames must not repeat.
 std::string formatFrameList(const std::vector<int>& frames);
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -7,7 +7,7 @@
 
 #include "rig/error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 namespace fs = std::filesystem;
 
@@ -17,7 +17,7 @@ bool isDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; 
 
 void checkPadding(int padding, const std::string& context) {
   if (padding < 0 || padding > kMaxFramePadding)
-    throw InputError(context + ": expected a frame number padding from 0 to " + std::to_string(kMaxFramePadding) +
+    throw rig::InputError(context + ": expected a frame number padding from 0 to " + std::to_string(kMaxFramePadding) +
                      " digits, got " + std::to_string(padding));
 }
 
@@ -47,10 +47,10 @@ std::optional<FrameSequence> FrameSequence::parse(const fs::path& pattern) {
     size_t end = hash;
     while (end < name.size() && name[end] == '#') ++end;
     if (name.find('#', end) != std::string::npos)
-      throw InputError(context + ": expected one run of # for the frame number, got two");
+      throw rig::InputError(context + ": expected one run of # for the frame number, got two");
     const int padding = int(std::min<size_t>(end - hash, 99));
     if (padding > kMaxFramePadding)
-      throw InputError(context + ": expected at most " + std::to_string(kMaxFramePadding) +
+      throw rig::InputError(context + ": expected at most " + std::to_string(kMaxFramePadding) +
                        " # for the frame number, got " + std::to_string(end - hash));
     return FrameSequence(pattern.parent_path(), name.substr(0, hash), padding, name.substr(end));
   }
@@ -60,11 +60,11 @@ std::optional<FrameSequence> FrameSequence::parse(const fs::path& pattern) {
     while (i < name.size() && isDigit(name[i])) ++i;
     if (i >= name.size() || name[i] != 'd') continue;
     if (i - pct - 1 > 2)
-      throw InputError(context + ": expected %d or %0Nd with N at most " + std::to_string(kMaxFramePadding) +
+      throw rig::InputError(context + ": expected %d or %0Nd with N at most " + std::to_string(kMaxFramePadding) +
                        " for the frame number, got " + name.substr(pct, i + 1 - pct));
     const int padding = i == pct + 1 ? 0 : std::stoi(name.substr(pct + 1, i - pct - 1));
     if (padding > kMaxFramePadding)
-      throw InputError(context + ": expected %d or %0Nd with N at most " + std::to_string(kMaxFramePadding) +
+      throw rig::InputError(context + ": expected %d or %0Nd with N at most " + std::to_string(kMaxFramePadding) +
                        " for the frame number, got " + name.substr(pct, i + 1 - pct));
     return FrameSequence(pattern.parent_path(), name.substr(0, pct), padding, name.substr(i + 1));
   }
@@ -74,7 +74,7 @@ std::optional<FrameSequence> FrameSequence::parse(const fs::path& pattern) {
 bool FrameSequence::isPattern(const fs::path& pattern) {
   try {
     return parse(pattern).has_value();
-  } catch (const InputError&) {
+  } catch (const rig::InputError&) {
     return true;  // a sequence pattern, if a wrong one: parse names the mistake
   }
 }
@@ -91,7 +91,7 @@ fs::path FrameSequence::path(int frame) const { return folder_ / fileName(frame)
 std::map<int, fs::path> FrameSequence::scan() const {
   const fs::path dir = folder_.empty() ? fs::path(".") : folder_;
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw InputError(pattern() + ": no such folder " + dir.string());
+  if (!fs::is_directory(dir, ec)) throw rig::InputError(pattern() + ": no such folder " + dir.string());
   std::map<int, fs::path> frames;
   fs::directory_iterator it(dir, ec);
   for (; !ec && it != fs::directory_iterator(); it.increment(ec)) {
@@ -110,8 +110,8 @@ std::map<int, fs::path> FrameSequence::scan() const {
     if (!it->is_regular_file(file_ec)) continue;
     frames[frame] = it->path();
   }
-  if (ec) throw InputError(pattern() + ": cannot list the folder " + dir.string() + " (" + ec.message() + ")");
+  if (ec) throw rig::InputError(pattern() + ": cannot list the folder " + dir.string() + " (" + ec.message() + ")");
   return frames;
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -14,11 +14,11 @@
 #include <optional>
 #include <string>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // NAME.0001.png: the padding `stirrup render` (its --padding default), the review movies and the farm write.
 inline constexpr int kDefaultFramePadding = 4;
-// Nine digits: every frame number an int holds to 999999999, and far past rig::kMaxFrameNumber (six).
+// Nine digits: every frame number an int holds to 999999999, and far past scene::kMaxFrameNumber (six).
 inline constexpr int kMaxFramePadding = 9;
 
 // `frame` zero-padded to `padding` characters, the sign counting as one ("%0*d"): 7 -> "0007",
@@ -60,4 +60,4 @@ class FrameSequence {
   int padding_ = kDefaultFramePadding;
 };
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

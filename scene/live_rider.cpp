@@ -17,7 +17,7 @@
 #include "rig/mapping/mapping_skeleton.h"
 #include "rig/pose.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
 // At most this many frames of the horse's motion (10 minutes at 24 fps): the table holds every node of
@@ -26,7 +26,7 @@ constexpr int kMaxLiveFrames = 14400;
 
 // The horse's joints frame by frame, linear between frames: the motion the live clip reads. A copy is
 // taken for each clip, so a clip never sees the table change under it.
-class TableMotion final : public NodeMotion {
+class TableMotion final : public rig::NodeMotion {
  public:
   TableMotion(std::vector<std::vector<glm::dmat4>> frames, int first, double fps) : frames_(std::move(frames)), first_(first), fps_(fps) {}
   std::string name() const override { return "live"; }
@@ -64,7 +64,7 @@ class TableMotion final : public NodeMotion {
 struct LiveRider::Impl {
   LiveRiderSetup setup;
   tinygltf::Model model;
-  KeyedHorseMapping mapping;
+  rig::KeyedHorseMapping mapping;
   std::vector<std::string> horse_joints, rider_joints;
   std::vector<int> horse_nodes;           // each horse joint's node
   std::vector<glm::dmat4> bind;           // each horse joint's world at bind (its inverse bind inverted)
@@ -72,13 +72,13 @@ struct LiveRider::Impl {
   std::vector<std::string> tack_joints;
   std::vector<int> tack_index;            // each tack joint's index in the horse's skeleton
   std::vector<std::vector<glm::dmat4>> table;  // node worlds, frame by frame from first_frame
-  std::unique_ptr<KeyedHorseClip> clip;   // null after a frame changed
+  std::unique_ptr<rig::KeyedHorseClip> clip;   // null after a frame changed
   glm::dmat4 from_horse_rig{1.0}, rider_to_rig{1.0};
 
   void makeClip() {
-    KeyedHorseOptions options;
+    rig::KeyedHorseOptions options;
     options.motion = std::make_shared<TableMotion>(table, setup.first_frame, setup.fps);
-    clip = std::make_unique<KeyedHorseClip>(model, setup.horse_file.string(), "", mapping, setup.horse.get(), options);
+    clip = std::make_unique<rig::KeyedHorseClip>(model, setup.horse_file.string(), "", mapping, setup.horse.get(), options);
   }
 };
 
@@ -89,28 +89,28 @@ LiveRider::LiveRider(const LiveRiderSetup& setup) : impl_(std::make_unique<Impl>
   if (!setup.horse || !setup.rider) throw std::invalid_argument("LiveRider: expected a horse and a rider");
   const int frames = setup.last_frame - setup.first_frame + 1;
   if (frames < 1 || frames > kMaxLiveFrames)
-    throw InputError("live: frames " + std::to_string(setup.first_frame) + " to " + std::to_string(setup.last_frame) +
+    throw rig::InputError("live: frames " + std::to_string(setup.first_frame) + " to " + std::to_string(setup.last_frame) +
                      ": expected 1 to " + std::to_string(kMaxLiveFrames) + " frames");
-  m.model = readGltfFile(setup.horse_file, file);
-  m.mapping = keyedHorseMapping(*setup.horse);
-  m.horse_joints = gltfJointNames(m.model, 0);
-  m.horse_nodes = checkedSkin(m.model, file, "horse").joints;
-  for (const glm::mat4& ibm : gltfInverseBinds(m.model, file, 0)) m.bind.push_back(glm::inverse(glm::dmat4(ibm)));
-  const Skeleton& rs = setup.rider->skeleton;
+  m.model = rig::readGltfFile(setup.horse_file, file);
+  m.mapping = rig::keyedHorseMapping(*setup.horse);
+  m.horse_joints = rig::gltfJointNames(m.model, 0);
+  m.horse_nodes = rig::checkedSkin(m.model, file, "horse").joints;
+  for (const glm::mat4& ibm : rig::gltfInverseBinds(m.model, file, 0)) m.bind.push_back(glm::inverse(glm::dmat4(ibm)));
+  const rig::Skeleton& rs = setup.rider->skeleton;
   for (std::size_t j = 0; j < rs.size(); ++j)
     if (!rs.joints[j].rig_point) m.rider_joints.push_back(rs.joints[j].name), m.rider_index.push_back(int(j));
-  const Skeleton& hs = setup.horse->skeleton;
-  for (const char* role : kHorseTackRoles)
+  const rig::Skeleton& hs = setup.horse->skeleton;
+  for (const char* role : rig::kHorseTackRoles)
     if (const auto it = setup.horse->roles.find(role); it != setup.horse->roles.end())
       m.tack_joints.push_back(hs.joints[std::size_t(it->second)].name), m.tack_index.push_back(it->second);
   // The horse's own animation (every animation of the file together; none: its rest) until frames come in.
-  const GltfAnimation own = GltfAnimation::together(m.model, file);
+  const rig::GltfAnimation own = rig::GltfAnimation::together(m.model, file);
   for (int f = setup.first_frame; f <= setup.last_frame; ++f) m.table.push_back(own.worlds(f / setup.fps));
   // Her joints go out in the horse's file's world: stirrup's world taken back through the horse's mapping
   // and the units of the file's world against its mesh's (gltfSkinUnits: 1 for Blender's metres, 0.01
   // for a bake's joints bound in centimetres under its metre world), as KeyedHorseClip reads it in.
   const auto root = std::find(m.horse_joints.begin(), m.horse_joints.end(), m.mapping.roles.count("root") ? m.mapping.roles.at("root") : "");
-  const double units = root == m.horse_joints.end() ? 1.0 : gltfSkinUnits(m.model, file, 0, int(root - m.horse_joints.begin()), own);
+  const double units = root == m.horse_joints.end() ? 1.0 : rig::gltfSkinUnits(m.model, file, 0, int(root - m.horse_joints.begin()), own);
   m.from_horse_rig = glm::scale(glm::dmat4(1.0), glm::dvec3(units)) * glm::inverse(m.mapping.to_rig);
   m.rider_to_rig = setup.rider->source.to_rig;
 }
@@ -126,10 +126,10 @@ int LiveRider::lastFrame() const { return impl_->setup.last_frame; }
 void LiveRider::setHorse(int frame, const std::vector<glm::dmat4>& deformations) {
   Impl& m = *impl_;
   if (frame < firstFrame() || frame > lastFrame())
-    throw InputError("live: frame " + std::to_string(frame) + ": expected a frame from " + std::to_string(firstFrame()) + " to " +
+    throw rig::InputError("live: frame " + std::to_string(frame) + ": expected a frame from " + std::to_string(firstFrame()) + " to " +
                      std::to_string(lastFrame()));
   if (deformations.size() != m.horse_joints.size())
-    throw InputError("live: frame " + std::to_string(frame) + ": expected " + std::to_string(m.horse_joints.size()) +
+    throw rig::InputError("live: frame " + std::to_string(frame) + ": expected " + std::to_string(m.horse_joints.size()) +
                      " horse joints, got " + std::to_string(deformations.size()));
   std::vector<glm::dmat4>& worlds = m.table[std::size_t(frame - firstFrame())];
   for (std::size_t k = 0; k < deformations.size(); ++k) worlds[std::size_t(m.horse_nodes[k])] = deformations[k] * m.bind[k];
@@ -141,8 +141,8 @@ std::vector<glm::dmat4> LiveRider::rider(int frame, std::vector<glm::dmat4>* tac
   if (!m.clip) m.makeClip();
   // The tool's frame F plays the clip at F / fps, its first frame at the clip's start.
   const double seconds = (frame - firstFrame()) / m.setup.fps;
-  const BakedFrame baked = bakeFrame(*m.clip, m.setup.profile, frame, seconds);
-  const MountedPose pose = poseMounted(*m.setup.horse, *m.setup.rider, baked.horse, baked.rider, m.setup.profile);
+  const rig::BakedFrame baked = rig::bakeFrame(*m.clip, m.setup.profile, frame, seconds);
+  const rig::MountedPose pose = rig::poseMounted(*m.setup.horse, *m.setup.rider, baked.horse, baked.rider, m.setup.profile);
   std::vector<glm::dmat4> out;
   out.reserve(m.rider_index.size());
   for (const int j : m.rider_index)
@@ -157,4 +157,4 @@ std::vector<glm::dmat4> LiveRider::rider(int frame, std::vector<glm::dmat4>* tac
   return out;
 }
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

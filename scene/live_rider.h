@@ -38,12 +38,12 @@
 #include "rig/io/keyed_horse_clip.h"
 #include "rig/rig_profile.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 
 struct LiveRiderSetup {
   std::filesystem::path horse_file;
-  std::shared_ptr<const Character> horse, rider;  // the horse read from horse_file, the rider seated on it
-  RigProfile profile;
+  std::shared_ptr<const rig::Character> horse, rider;  // the horse read from horse_file, the rider seated on it
+  rig::RigProfile profile;
   double fps = 24.0;
   int first_frame = 1, last_frame = 1;  // the tool's frames the horse's motion spans
 };
@@ -77,4 +77,4 @@ class LiveRider {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

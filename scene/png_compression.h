@@ -7,10 +7,10 @@
 // picks its level (scene/preset.h) and the tracer's writePng takes it.
 #pragma once
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 inline constexpr int kPngCompressionMin = 0, kPngCompressionMax = 9;
 inline constexpr int kReviewPngCompression = 1;
 inline constexpr int kDraftPngCompression = 0;
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

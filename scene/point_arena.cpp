@@ -7,7 +7,7 @@
 
 #include <sys/mman.h>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;  // x86-64's transparent huge page
@@ -51,4 +51,4 @@ std::size_t PointArena::reservedBytes() const {
   return bytes;
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -13,7 +13,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 class PointArena {
  public:
@@ -41,4 +41,4 @@ class PointArena {
   std::vector<Block> blocks_;
 };
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

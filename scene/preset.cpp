@@ -6,7 +6,7 @@
 #include "rig/error.h"
 #include "scene/png_compression.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // Numbers chosen by measurement on the 2-core development machine (docs/performance.md).
@@ -23,7 +23,7 @@ std::span<const QualityPreset> qualityPresets() { return kPresets; }
 const QualityPreset& findPreset(std::string_view name) {
   for (const QualityPreset& p : kPresets)
     if (p.name == name) return p;
-  throw InputError("--preset: expected draft, review or final, got " + std::string(name));
+  throw rig::InputError("--preset: expected draft, review or final, got " + std::string(name));
 }
 
 void applyPreset(SceneSpec& scene, const QualityPreset& p) {
@@ -39,4 +39,4 @@ int defaultPngCompression(const SceneSpec& scene) {
   return is_draft ? kDraftPngCompression : kReviewPngCompression;
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -7,7 +7,7 @@
 
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 struct QualityPreset {
   std::string_view name;
@@ -19,7 +19,7 @@ struct QualityPreset {
 // draft (playblast speed), review (the movies' default), final (stills and turntables), in that order.
 std::span<const QualityPreset> qualityPresets();
 
-// The preset called `name`; throws stirrup::InputError
+// The preset called `name`; throws rig::InputError
 // "--preset: expected draft, review or final, got NAME" for any other name.
 const QualityPreset& findPreset(std::string_view name);
 
@@ -32,4 +32,4 @@ void applyPreset(SceneSpec& scene, const QualityPreset& p);
 // the trace for the cores; the others at review's level 1.
 int defaultPngCompression(const SceneSpec& scene);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -10,7 +10,7 @@
 #include "scene/rig_profile_json.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 namespace fs = std::filesystem;
 
@@ -30,15 +30,15 @@ bool isProfilePath(const std::string& value) {
 }
 
 rig::RigProfile findProfile(const std::string& value, const ProfileSearch& search, const std::string& context) {
-  if (value.empty()) throw InputError(context + ": expected a rig profile name or a .json path, got \"\"");
+  if (value.empty()) throw rig::InputError(context + ": expected a rig profile name or a .json path, got \"\"");
   if (isProfilePath(value)) {
     const fs::path file = search.base / value;
-    return rig::loadRigProfile(file.string(), file.parent_path());
+    return scene::loadRigProfile(file.string(), file.parent_path());
   }
   std::error_code ec;
   for (const fs::path& folder : search.folders)
     if (const fs::path file = folder / (value + ".json"); fs::is_regular_file(file, ec))
-      return rig::loadRigProfile(file.string(), folder);
+      return scene::loadRigProfile(file.string(), folder);
   if (value == "rigid") return rig::RigProfile::rigidRider();
 
   std::set<std::string> names = {"rigid"};
@@ -50,14 +50,14 @@ rig::RigProfile findProfile(const std::string& value, const ProfileSearch& searc
   }
   std::string expected;
   for (const std::string& n : names) expected += n + ", ";
-  throw InputError(context + ": no rig profile \"" + value + "\" in " + (folders.empty() ? "any folder" : folders) +
+  throw rig::InputError(context + ": no rig profile \"" + value + "\" in " + (folders.empty() ? "any folder" : folders) +
                    " (expected one of " + expected + "or a path to a .json file)");
 }
 
 rig::RigProfile resolveProfile(const SceneSpec& scene, const nlohmann::json& sets) {
   rig::RigProfile p = findProfile(scene.profile, profileSearch(scene.file), scene.file.string() + ": profile");
-  rig::applyProfileOverrides(p, scene.profile_overrides, scene.file.string() + ": profile_overrides");
-  rig::applyProfileOverrides(p, sets, "--set");
+  scene::applyProfileOverrides(p, scene.profile_overrides, scene.file.string() + ": profile_overrides");
+  scene::applyProfileOverrides(p, sets, "--set");
   return p;
 }
 
@@ -69,8 +69,8 @@ rig::RigProfile resolveProfileForEveryPair(SceneSpec& scene, const nlohmann::jso
 
 rig::RigProfile resolveProfile(const std::string& value, const nlohmann::json& sets) {
   rig::RigProfile p = findProfile(value, profileSearch(), "--profile");
-  rig::applyProfileOverrides(p, sets, "--set");
+  scene::applyProfileOverrides(p, sets, "--set");
   return p;
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -11,7 +11,7 @@
 // A scene's own folder comes first so a scene renders with the profiles it was made with whoever runs
 // it (a farm node's environment included). "rigid" is built in (RigProfile::rigidRider()) unless one
 // of the folders has a rigid.json. Then the scene's profile_overrides apply, then the command line's
-// --set, each checked against the parameter table (rig::applyProfileOverrides).
+// --set, each checked against the parameter table (scene::applyProfileOverrides).
 #pragma once
 
 #include <filesystem>
@@ -22,7 +22,7 @@
 
 #include "rig/rig_profile.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 struct SceneSpec;
 
@@ -41,7 +41,7 @@ bool isProfilePath(const std::string& value);
 
 // The profile `value` names, found by `search`. InputError naming `context` ("--profile",
 // "scenes/x.json: profile") when no folder holds the name, listing the folders and the names they
-// hold; a file's own errors name the file (rig::loadRigProfile).
+// hold; a file's own errors name the file (scene::loadRigProfile).
 rig::RigProfile findProfile(const std::string& value, const ProfileSearch& search, const std::string& context);
 
 // The scene's profile: its "profile" found by profileSearch(scene.file), its profile_overrides applied,
@@ -56,4 +56,4 @@ rig::RigProfile resolveProfileForEveryPair(SceneSpec& scene, const nlohmann::jso
 // The command line's --profile VALUE found by profileSearch(), then `sets` (--set).
 rig::RigProfile resolveProfile(const std::string& value, const nlohmann::json& sets = nlohmann::json::object());
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

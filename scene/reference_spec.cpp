@@ -6,7 +6,7 @@
 
 #include "rig/error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 namespace fs = std::filesystem;
 
@@ -23,7 +23,7 @@ LayerMode parseLayerMode(const std::string& name, const std::string& context) {
   if (name == "over") return LayerMode::Over;
   if (name == "difference") return LayerMode::Difference;
   if (name == "onion-skin" || name == "onion") return LayerMode::OnionSkin;
-  throw InputError(context + ": expected side-by-side, over, difference or onion-skin, got \"" + name + "\"");
+  throw rig::InputError(context + ": expected side-by-side, over, difference or onion-skin, got \"" + name + "\"");
 }
 
 const char* layerModeName(LayerMode mode) {
@@ -42,7 +42,7 @@ PixelRect parsePixelRect(const std::string& text, const std::string& context) {
   std::istringstream s(text);
   if (!(s >> r.x >> c1 >> r.y >> c2 >> r.width >> c3 >> r.height) || c1 != ',' || c2 != ',' || c3 != ',' ||
       !(s >> std::ws).eof() || r.width <= 0 || r.height <= 0 || r.x < 0 || r.y < 0)
-    throw InputError(context + ": expected x,y,width,height in pixels (x, y >= 0; width, height > 0), got \"" +
+    throw rig::InputError(context + ": expected x,y,width,height in pixels (x, y >= 0; width, height > 0), got \"" +
                      text + "\"");
   return r;
 }
@@ -52,12 +52,12 @@ PixelRect parsePixelRect(const std::string& text, const std::string& context) {
 constexpr double kMaxPixels = 65536.0;
 constexpr int kMaxGridCells = 1000;
 
-ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) {
+ReferenceSpec parseReferenceSpec(rig::JsonObjectReader r, const fs::path& scene_dir) {
   ReferenceSpec ref;
   const std::string file = r.string("file", "");
   if (file.empty()) r.fail("file", "expected an image, a plate or a NAME.####.ext sequence, relative to the scene file");
   ref.file = scene_dir / file;
-  const auto rect = [&](JsonObjectReader& o, const std::string& key, PixelRect fallback) {
+  const auto rect = [&](rig::JsonObjectReader& o, const std::string& key, PixelRect fallback) {
     if (!o.has(key)) return fallback;
     const std::array<double, 4> v = o.numbers<4>(key, {}, 0.0, kMaxPixels);
     for (double d : v)
@@ -68,7 +68,7 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
     return p;
   };
   if (r.has("grid")) {
-    JsonObjectReader g = r.object("grid");
+    rig::JsonObjectReader g = r.object("grid");
     PlateGrid grid;
     grid.rows = g.integer("rows", grid.rows, 1, kMaxGridCells, "a count of rows");
     grid.columns = g.integer("columns", grid.columns, 1, kMaxGridCells, "a count of columns");
@@ -100,9 +100,9 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
     if (!v->is_array()) r.fail("shift_x", "expected an array of pixel shifts, one per footage frame");
     for (size_t i = 0; i < v->size(); ++i) {
       const std::string at = "shift_x[" + std::to_string(i) + "]";
-      if (!(*v)[i].is_number()) r.fail(at, "expected a number, got " + describeJson((*v)[i]));
+      if (!(*v)[i].is_number()) r.fail(at, "expected a number, got " + rig::describeJson((*v)[i]));
       const double d = (*v)[i].get<double>();
-      if (!(d >= -kMaxPixels && d <= kMaxPixels)) r.fail(at, JsonObjectReader::rangeText(-kMaxPixels, kMaxPixels, d, "pixels"));
+      if (!(d >= -kMaxPixels && d <= kMaxPixels)) r.fail(at, rig::JsonObjectReader::rangeText(-kMaxPixels, kMaxPixels, d, "pixels"));
       ref.shift_x.push_back(float(d));
     }
   }
@@ -110,7 +110,7 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
     const std::string mode = r.string("mode", "");
     try {
       ref.mode = parseLayerMode(mode, "mode");
-    } catch (const InputError&) {
+    } catch (const rig::InputError&) {
       r.fail("mode", "expected side-by-side, over, difference or onion-skin, got \"" + mode + "\"");
     }
   }
@@ -120,4 +120,4 @@ ReferenceSpec parseReferenceSpec(JsonObjectReader r, const fs::path& scene_dir) 
   return ref;
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

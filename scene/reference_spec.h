@@ -12,7 +12,7 @@
 
 #include "rig/io/json_fields.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // How two sequences are laid together (render/review/layer.h LayerStyle).
 enum class LayerMode { SideBySide, Over, Difference, OnionSkin };
@@ -74,6 +74,6 @@ struct ReferenceSpec {
 // Parses the block `r` points at; `file` is resolved against scene_dir. A wrong type or value is an
 // InputError naming the scene file and the field ("scenes/x.json: reference.grid.rows: ..."). A
 // missing file is not an error here (render/review/layer.h referenceAvailable).
-ReferenceSpec parseReferenceSpec(JsonObjectReader r, const std::filesystem::path& scene_dir);
+ReferenceSpec parseReferenceSpec(rig::JsonObjectReader r, const std::filesystem::path& scene_dir);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

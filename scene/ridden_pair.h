@@ -12,19 +12,19 @@
 #include "rig/characters/seating.h"
 #include "rig/rig_profile.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 
 struct RiddenPair {
-  Character horse, rider;
-  SeatReport seat;
+  rig::Character horse, rider;
+  rig::SeatReport seat;
 };
 
 // `*_file` is "default" (the built-in generator) or a glTF path; `*_mapping` a mapping file or empty.
 RiddenPair resolveRiddenPair(const std::string& horse_file, const std::string& horse_mapping,
                              const std::string& rider_file, const std::string& rider_mapping,
-                             const RigProfile& profile);
+                             const rig::RigProfile& profile);
 
 // Seats an already resolved rider on an already resolved horse as resolveRiddenPair does.
-RiddenPair seatPair(Character horse, Character rider, const RigProfile& profile);
+RiddenPair seatPair(rig::Character horse, rig::Character rider, const rig::RigProfile& profile);
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

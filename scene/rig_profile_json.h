@@ -10,14 +10,14 @@
 
 #include "rig/rig_profile.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 
 // nameOrPath: a name ("thesis") looked up as profilesDir/NAME.json, or a path to a .json file.
 // Parameters the file does not name keep the thesis value.
-RigProfile loadRigProfile(const std::string& nameOrPath, const std::filesystem::path& profilesDir);
+rig::RigProfile loadRigProfile(const std::string& nameOrPath, const std::filesystem::path& profilesDir);
 // Overrides single parameters by their JSON key; unknown key or wrong type -> InputError naming `context` and the key.
-void applyProfileOverrides(RigProfile& p, const nlohmann::json& overrides, const std::string& context);
+void applyProfileOverrides(rig::RigProfile& p, const nlohmann::json& overrides, const std::string& context);
 // The JSON form of a profile: name, doc and every parameter by key.
-nlohmann::json profileToJson(const RigProfile& p);
+nlohmann::json profileToJson(const rig::RigProfile& p);
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -20,7 +20,7 @@
 #include "scene/rig_profile_json.h"
 #include "scene/terrain_json.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // The ranges a scene's numbers must lie in (our choices: wide enough for any shot, narrow enough that
@@ -35,19 +35,19 @@ constexpr int kMaxFrame = 1000000;
 
 // The scene's clip: {"generator": NAME, parameters...} or {"file": CLIP.glb, "mapping": MAP.json,
 // "animation": NAME}; paths are relative to the scene file. Steady gaits also fill `gait`.
-rig::ClipSpec parseClip(JsonObjectReader r, const std::filesystem::path& scene_dir, rig::GaitParams& gait) {
-  rig::ClipSpec spec = rig::parseClipSpec(r, scene_dir);
-  if (auto g = rig::steadyGaitParams(spec)) gait = *g;
+scene::ClipSpec parseClip(rig::JsonObjectReader r, const std::filesystem::path& scene_dir, rig::GaitParams& gait) {
+  scene::ClipSpec spec = scene::parseClipSpec(r, scene_dir);
+  if (auto g = scene::steadyGaitParams(spec)) gait = *g;
   return spec;
 }
 
 const QualityPreset& findQualityPreset(const std::string& name, const std::string& context) {
   for (const QualityPreset& p : qualityPresets())
     if (p.name == name) return p;
-  throw InputError(context + ": expected \"draft\", \"review\" or \"final\", got \"" + name + "\"");
+  throw rig::InputError(context + ": expected \"draft\", \"review\" or \"final\", got \"" + name + "\"");
 }
 
-CameraSpec parseCamera(JsonObjectReader r, int index) {
+CameraSpec parseCamera(rig::JsonObjectReader r, int index) {
   CameraSpec c;
   c.name = r.string("name", index == 0 ? "side" : "camera" + std::to_string(index));
   const std::string type = r.string("type", "orthographic");
@@ -102,7 +102,7 @@ constexpr const char* kRendersAnyway = "allow_impossible or --allow-impossible r
 // clip's field, the speed and its gait's limit, unless the scene allows the impossible.
 void checkLimits(SceneSpec& s) {
   const std::string file = s.file.string();
-  if (const auto params = rig::pathClipParams(s.clip))
+  if (const auto params = scene::pathClipParams(s.clip))
     s.limits.push_back({std::make_shared<const rig::PathLimitCheck>(*params, s.terrain.get(), file, "clip"), 0.0, 0});
   // Each pair's path read in parallel (each check walks its whole path); kept in pair order.
   std::vector<SceneSpec::PathLimits> pairs(s.pairs.size());
@@ -116,14 +116,14 @@ void checkLimits(SceneSpec& s) {
     if (l.check) s.limits.push_back(l);
   // A crowd's pairs ride paths; the default trot in s.clip is no one's.
   if (s.pairs.empty())
-    for (const rig::GaitSpeed& g : rig::generatedGaitSpeeds(s.clip))
+    for (const rig::GaitSpeed& g : scene::generatedGaitSpeeds(s.clip))
       if (const auto b = rig::gaitSpeedBreach(g)) s.gait_breaches.push_back(*b);
   if (s.allow_impossible) return;
   for (const SceneSpec::PathLimits& l : s.limits)
-    if (const std::string e = l.check->error(); !e.empty()) throw InputError(e + " (" + kRendersAnyway + ")");
+    if (const std::string e = l.check->error(); !e.empty()) throw rig::InputError(e + " (" + kRendersAnyway + ")");
   if (!s.gait_breaches.empty()) {
     const rig::GaitSpeedBreach& b = s.gait_breaches.front();
-    throw InputError(s.clip.source + "." + b.speed.field + ": " + b.text(std::string("; ") + kRendersAnyway));
+    throw rig::InputError(s.clip.source + "." + b.speed.field + ": " + b.text(std::string("; ") + kRendersAnyway));
   }
 }
 
@@ -157,21 +157,21 @@ void warnImpossibleFrame(const SceneSpec& scene, int frame) {
 std::unique_ptr<rig::Clip> makeSceneClip(const SceneSpec& scene) {
   // A crowd's pairs ride their own clips; the default trot in scene.clip is no one's.
   if (!scene.pairs.empty())
-    throw InputError(scene.file.string() + ": " + (scene.crowd ? "crowd" : "riders") +
+    throw rig::InputError(scene.file.string() + ": " + (scene.crowd ? "crowd" : "riders") +
                      ": expected a scene of one horse and rider here (each pair of a crowd rides its own clip)");
   // A path turns its hooves about the horse's rest places, and a horse's own file plays on it as keyed:
   // both need the horse.
-  if (scene.horse == "default" || (scene.clip.generator != "path" && scene.clip.file.empty())) return rig::makeClip(scene.clip);
-  return rig::makeClip(scene.clip, rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping));
+  if (scene.horse == "default" || (scene.clip.generator != "path" && scene.clip.file.empty())) return scene::makeClip(scene.clip);
+  return scene::makeClip(scene.clip, rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping));
 }
 
 namespace {
 
 // The scene's "characters": "default", a glTF file (relative to the scene file) carrying its role table,
 // or {"file": ..., "mapping": ...} for a user's character (docs/characters.md, scene/character_json.h).
-void parseCharacters(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
+void parseCharacters(rig::JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   if (!r.has("characters")) return;
-  JsonObjectReader c = r.object("characters");
+  rig::JsonObjectReader c = r.object("characters");
   const std::filesystem::path dir = std::filesystem::path(file).parent_path();
   const CharacterEntry horse = parseCharacterEntry(c, "horse", dir, {s.horse, s.horse_mapping});
   const CharacterEntry rider = parseCharacterEntry(c, "rider", dir, {s.rider, s.rider_mapping});
@@ -182,11 +182,11 @@ void parseCharacters(JsonObjectReader& r, const std::string& file, SceneSpec& s)
 
 // The look: "quality" (a preset's name, or {"preset": "draft", "samples": 8} where explicit fields override
 // the preset), "sun" and "haze".
-void parseLook(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
+void parseLook(rig::JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   if (const nlohmann::json* qv = r.value("quality"); qv && qv->is_string()) {
     applyPreset(s, findQualityPreset(qv->get<std::string>(), file + ": quality"));
   } else if (r.has("quality")) {
-    JsonObjectReader q = r.object("quality");
+    rig::JsonObjectReader q = r.object("quality");
     if (q.has("preset")) applyPreset(s, findQualityPreset(q.string("preset", ""), file + ": quality.preset"));
     s.samples = q.integer("samples", s.samples, 1, 4096);
     s.light_samples = q.integer("light_samples", s.light_samples, 1, 256);
@@ -194,7 +194,7 @@ void parseLook(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
     q.finish();
   }
   if (r.has("sun")) {
-    JsonObjectReader sun = r.object("sun");
+    rig::JsonObjectReader sun = r.object("sun");
     s.sun_direction = sun.numbers<3>("direction", s.sun_direction, -1000.0, 1000.0);
     // Above the horizon by a tenth of a degree at least: a sun at it (or a y of 1e-320) lights nothing.
     const double length = std::hypot(s.sun_direction[0], s.sun_direction[1], s.sun_direction[2]);
@@ -205,33 +205,33 @@ void parseLook(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   }
   if (r.has("haze")) {
     // At most the ground's 1 km extent: farther, its edge would show before the haze hides it.
-    JsonObjectReader haze = r.object("haze");
+    rig::JsonObjectReader haze = r.object("haze");
     s.haze_visibility_cm = haze.number("visibility_cm", s.haze_visibility_cm);
     if (!(s.haze_visibility_cm >= 100.0 && s.haze_visibility_cm <= 100000.0))
-      haze.fail("visibility_cm", "expected centimetres from 100 to 100000 (the ground ends 1 km out), got " + numberText(s.haze_visibility_cm));
+      haze.fail("visibility_cm", "expected centimetres from 100 to 100000 (the ground ends 1 km out), got " + rig::numberText(s.haze_visibility_cm));
     s.haze_ortho_depth_cm = haze.number("ortho_depth_cm", s.haze_ortho_depth_cm, 100.0, 100000.0, "centimetres");
     haze.finish();
   }
 }
 
 // A crowd or a list of riders: each pair rides its own path, so the scene's one clip has no place beside it.
-void parsePairs(JsonObjectReader& r, const std::string& file, SceneSpec& s) {
+void parsePairs(rig::JsonObjectReader& r, const std::string& file, SceneSpec& s) {
   if (r.has("crowd") || r.has("riders")) {
     const char* key = r.has("crowd") ? "crowd" : "riders";
     if (r.has("crowd") && r.has("riders")) r.fail("riders", "expected either \"crowd\" or \"riders\", not both");
     if (r.has("clip")) r.fail("clip", std::string("expected no clip beside \"") + key + "\" (each pair rides its own path)");
   }
   if (r.has("crowd")) {
-    JsonObjectReader c = r.object("crowd");
-    s.crowd = rig::parseCrowdSpec(c);
+    rig::JsonObjectReader c = r.object("crowd");
+    s.crowd = scene::parseCrowdSpec(c);
     s.pairs = rig::generateCrowd(*s.crowd, s.terrain, s.fps, file, &s.pair_clips,
                                  [&s](std::vector<rig::PairSpec>& pairs) { resolvePairCharacters(pairs, s, "crowd.characters"); });
   } else if (const nlohmann::json* riders = r.value("riders")) {
     if (!riders->is_array() || riders->empty())
-      r.fail("riders", "expected a non-empty array of riders, got " + describeJson(*riders));
+      r.fail("riders", "expected a non-empty array of riders, got " + rig::describeJson(*riders));
     for (std::size_t i = 0; i < riders->size(); ++i) {
-      JsonObjectReader p(file, "riders[" + std::to_string(i) + "]", (*riders)[i]);
-      s.pairs.push_back(rig::parsePairSpec(p));
+      rig::JsonObjectReader p(file, "riders[" + std::to_string(i) + "]", (*riders)[i]);
+      s.pairs.push_back(scene::parsePairSpec(p));
     }
     resolvePairCharacters(s.pairs, s, "riders");
     s.pair_clips = rig::validatePairs(s.pairs, s.terrain, s.fps, 0, file, "riders");
@@ -244,49 +244,49 @@ void checkCameraPairs(const std::string& file, const SceneSpec& s) {
     const CameraSpec& c = s.cameras[i];
     const std::string at = file + ": cameras[" + std::to_string(i) + "].";
     if (c.follow_pair >= 0 && s.pairs.empty())
-      throw InputError(at + "follow_pair: expected no follow_pair in a scene without a \"crowd\" or \"riders\"");
+      throw rig::InputError(at + "follow_pair: expected no follow_pair in a scene without a \"crowd\" or \"riders\"");
     if (c.follow_pair >= int(s.pairs.size()))
-      throw InputError(at + "follow_pair: expected a pair index from 0 to " + std::to_string(s.pairs.size() - 1) +
+      throw rig::InputError(at + "follow_pair: expected a pair index from 0 to " + std::to_string(s.pairs.size() - 1) +
                        " (the crowd has " + std::to_string(s.pairs.size()) + " pairs), got " + std::to_string(c.follow_pair));
     // On a treadmill every pair would ride in place, through the others.
-    if (c.treadmill && !s.pairs.empty()) throw InputError(at + "treadmill: expected false in a crowd scene");
+    if (c.treadmill && !s.pairs.empty()) throw rig::InputError(at + "treadmill: expected false in a crowd scene");
   }
 }
 
 }  // namespace
 
 SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const SceneLoadOptions& options) {
-  JsonObjectReader r(file, "", json);
+  rig::JsonObjectReader r(file, "", json);
   SceneSpec s;
   s.file = file;
   s.allow_impossible = r.boolean("allow_impossible", false) || options.allow_impossible;
   s.name = r.string("name", std::filesystem::path(file).stem().string());
   if (r.has("clip")) s.clip = parseClip(r.object("clip"), std::filesystem::path(file).parent_path(), s.gait);
   if (r.has("terrain")) {
-    JsonObjectReader t = r.object("terrain");
-    s.terrain = rig::parseTerrain(t, std::filesystem::path(file).parent_path());
+    rig::JsonObjectReader t = r.object("terrain");
+    s.terrain = scene::parseTerrain(t, std::filesystem::path(file).parent_path());
   }
   s.clip.terrain = s.terrain;
   parseCharacters(r, file, s);
   s.profile = r.string("profile", s.profile);
   if (const nlohmann::json* o = r.value("profile_overrides")) {
-    if (!o->is_object()) r.fail("profile_overrides", "expected an object, got " + describeJson(*o));
+    if (!o->is_object()) r.fail("profile_overrides", "expected an object, got " + rig::describeJson(*o));
     s.profile_overrides = *o;
     // Checked now, each against its parameter's range, as they will apply to whichever profile is named.
     rig::RigProfile checked = rig::RigProfile::thesis();
-    rig::applyProfileOverrides(checked, s.profile_overrides, file + ": profile_overrides");
+    scene::applyProfileOverrides(checked, s.profile_overrides, file + ": profile_overrides");
   }
   s.fps = r.number("fps", s.fps, kMinFps, kMaxFps, "frames per second");
   // A horse's own animation (or another horse's, read through its roles) plays whole unless the scene
   // says which frames.
-  if (!s.clip.file.empty() && !r.has("frames") && !rig::readsControlNodes(s.clip))
-    s.frames = "1-" + std::to_string(std::max(1, int(std::lround(rig::fileClipDuration(s.clip) * s.fps)) + 1));
+  if (!s.clip.file.empty() && !r.has("frames") && !scene::readsControlNodes(s.clip))
+    s.frames = "1-" + std::to_string(std::max(1, int(std::lround(scene::fileClipDuration(s.clip) * s.fps)) + 1));
   s.frames = r.string("frames", s.frames);
-  rig::parseFrameList(s.frames, file + ": frames");
+  scene::parseFrameList(s.frames, file + ": frames");
   if (const nlohmann::json* res = r.value("resolution")) {
     if (!res->is_array() || res->size() != 2 || !(*res)[0].is_number_integer() ||
         !(*res)[1].is_number_integer())
-      r.fail("resolution", "expected [width, height] in whole pixels, got " + describeJson(*res));
+      r.fail("resolution", "expected [width, height] in whole pixels, got " + rig::describeJson(*res));
     s.width = (*res)[0].get<int>();
     s.height = (*res)[1].get<int>();
     if (s.width < 8 || s.height < 8 || s.width > 8192 || s.height > 8192)
@@ -295,11 +295,11 @@ SceneSpec parseScene(const nlohmann::json& json, const std::string& file, const 
   parseLook(r, file, s);
   if (const nlohmann::json* cams = r.value("cameras")) {
     if (!cams->is_array() || cams->empty())
-      r.fail("cameras", "expected a non-empty array of cameras, got " + describeJson(*cams));
+      r.fail("cameras", "expected a non-empty array of cameras, got " + rig::describeJson(*cams));
     s.cameras.clear();
     for (std::size_t i = 0; i < cams->size(); ++i) {
       const std::string path = "cameras[" + std::to_string(i) + "]";
-      s.cameras.push_back(parseCamera(JsonObjectReader(file, path, (*cams)[i]), static_cast<int>(i)));
+      s.cameras.push_back(parseCamera(rig::JsonObjectReader(file, path, (*cams)[i]), static_cast<int>(i)));
     }
   }
   s.output = r.string("output", "out/" + s.name);
@@ -325,7 +325,7 @@ std::filesystem::path findSceneFile(const std::filesystem::path& file) {
 
 SceneSpec loadScene(const std::filesystem::path& file, const SceneLoadOptions& options) {
   const std::filesystem::path f = findSceneFile(file);
-  return parseScene(readJsonFile(f), f.string(), options);
+  return parseScene(rig::readJsonFile(f), f.string(), options);
 }
 
 const CameraSpec& findCamera(const SceneSpec& scene, const std::string& name) {
@@ -334,10 +334,10 @@ const CameraSpec& findCamera(const SceneSpec& scene, const std::string& name) {
     if (c.name == name) return c;
   std::string known;
   for (const CameraSpec& c : scene.cameras) known += (known.empty() ? "" : ", ") + c.name;
-  throw InputError(scene.file.string() + ": cameras: no camera named \"" + name + "\" (the scene has " +
+  throw rig::InputError(scene.file.string() + ": cameras: no camera named \"" + name + "\" (the scene has " +
                    known + ")");
 }
 
 double frameTime(const SceneSpec& scene, int frame) { return (frame - 1) / scene.fps; }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -17,7 +17,7 @@
 #include "scene/clip_factory.h"
 #include "scene/reference_spec.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 struct CameraSpec {
   std::string name = "side";
@@ -59,7 +59,7 @@ struct SceneSpec {
   std::filesystem::path file;        // where the scene was read from (empty for built-in defaults)
   std::string name = "trot";
   rig::GaitParams gait = rig::trotParams();  // the steady gait when clip is one (walk/trot/canter/gallop)
-  rig::ClipSpec clip;                         // what plays: a generator and its parameters, or a glTF file
+  scene::ClipSpec clip;                         // what plays: a generator and its parameters, or a glTF file
   // The ground (scene/terrain_json.h); null = the flat plane. The same object is clip.terrain.
   std::shared_ptr<const rig::Terrain> terrain;
   // "default" (the built-in generator) or a glTF file (resolved against the scene's folder), with an
@@ -109,7 +109,7 @@ struct SceneSpec {
     int pair = 0;              // the crowd's pair riding it (0: the scene's one pair); a pair playing its own animation has none
   };
   std::vector<PathLimits> limits;
-  // The generated clip's gaits faster than horses go at them (rig::generatedGaitSpeeds, HorseLimits):
+  // The generated clip's gaits faster than horses go at them (scene::generatedGaitSpeeds, HorseLimits):
   // refused like a path, unless `allow_impossible`; then kept here, for the warnings and `stirrup check`.
   std::vector<rig::GaitSpeedBreach> gait_breaches;
 };
@@ -118,7 +118,7 @@ struct SceneLoadOptions {
   bool allow_impossible = false;  // --allow-impossible: load a scene beyond a horse's limits, with warnings
 };
 
-// Reads a scene file; throws stirrup::InputError "FILE: FIELD: expected ..., got ..." on bad input.
+// Reads a scene file; throws rig::InputError "FILE: FIELD: expected ..., got ..." on bad input.
 // A relative path that does not exist from the working folder is looked up in stirrup's data folder
 // (scene/data_dir.h), so `stirrup render scenes/trot.json` works from anywhere once installed.
 SceneSpec loadScene(const std::filesystem::path& file, const SceneLoadOptions& options = {});
@@ -145,5 +145,5 @@ std::string impossibleFrameWarning(const SceneSpec& scene, int frame);
 // Writes that line (if any) to stderr.
 void warnImpossibleFrame(const SceneSpec& scene, int frame);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene
 

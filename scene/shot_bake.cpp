@@ -7,7 +7,7 @@
 #include "scene/camera.h"
 #include "scene/shot_camera.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // The camera node's transform as glTF wants it (looks down -Z, +Y up): the render camera's own basis,
@@ -104,4 +104,4 @@ rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames, int 
 }
 
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -10,7 +10,7 @@
 #include "rig/io/gltf_bake.h"
 #include "scene/shot_evaluator.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // The frames sorted, each once. Pair i of the shot is the evaluator's pair i, named by its pairName;
 // its characters are the evaluator's at `level` of detail (scene/detail_level.h: 0 full, 1 half,
@@ -18,4 +18,4 @@ namespace stirrup::render {
 // skeleton, so the animation is the same at each: only the meshes are coarser.
 rig::BakedShot bakeShot(ShotEvaluator& characters, std::vector<int> frames, int level = 0);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -9,7 +9,7 @@
 #include "scene/point_arena.h"
 #include "scene/view.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // A pair's view is framed from every third skinned vertex (our choice: a third of a mesh whose
@@ -24,9 +24,9 @@ ShotCamera::ShotCamera(ShotEvaluator& characters, const CameraSpec& camera)
   if (characters.isCrowd()) {
     const std::string at = scene_.file.string() + ": cameras." + camera.name + ".";
     if (camera.follow_pair >= characters.pairCount())
-      throw InputError(at + "follow_pair: expected a pair index from 0 to " + std::to_string(characters.pairCount() - 1) +
+      throw rig::InputError(at + "follow_pair: expected a pair index from 0 to " + std::to_string(characters.pairCount() - 1) +
                        ", got " + std::to_string(camera.follow_pair));
-    if (camera.treadmill) throw InputError(at + "treadmill: expected false in a crowd scene");
+    if (camera.treadmill) throw rig::InputError(at + "treadmill: expected false in a crowd scene");
   }
   if (follow >= 0 || !characters.isCrowd()) {
     clip_ = &characters.shownClip(std::max(0, follow));
@@ -84,4 +84,4 @@ ShotCamera::~ShotCamera() = default;
 
 Camera ShotCamera::at(int frame) const { return cameraAtFrame(spec_, scene_, *clip_, *profile_, frame); }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

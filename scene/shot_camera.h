@@ -14,7 +14,7 @@
 #include "scene/scene.h"
 #include "scene/shot_evaluator.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 class ShotCamera {
  public:
@@ -41,4 +41,4 @@ class ShotCamera {
   const rig::RigProfile* profile_ = nullptr;
 };
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

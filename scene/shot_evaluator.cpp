@@ -26,7 +26,7 @@
 #include "scene/profile_resolver.h"
 #include "scene/ridden_pair.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -122,10 +122,10 @@ ShotEvaluator::ShotEvaluator(const SceneSpec& scene, const rig::RigProfile& prof
     // The one pair: the scene's characters (as read or built, seated by the rig) on the scene's clip,
     // on the shot's threads (building a character meshes it in parallel).
     Pairs::Pair p;
-    rig::RiddenPair pair;
+    scene::RiddenPair pair;
     ps.arena.execute([&] {
-      pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
-      p.clip = rig::makeClip(scene.clip, pair.horse);  // a path clip turns hooves about this horse's rest places
+      pair = scene::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+      p.clip = scene::makeClip(scene.clip, pair.horse);  // a path clip turns hooves about this horse's rest places
     });
     p.profile = profile;
     p.seat = pair.seat;
@@ -495,4 +495,4 @@ void appendCorners(const PairFrame& pair, std::vector<glm::vec3>& horse, std::ve
   corners(pair.rider_positions, rider);
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

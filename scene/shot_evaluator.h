@@ -32,7 +32,7 @@
 #include "scene/file_shot.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // How a camera shows the characters (not where it is): what the frame's bake is changed by.
 struct ShownAs {
@@ -160,4 +160,4 @@ void appendPoints(const PairFrame& pair, int stride, std::vector<glm::dvec3>& ho
 // The 8 corners of a pair's horse's and rider's bounding boxes, appended.
 void appendCorners(const PairFrame& pair, std::vector<glm::vec3>& horse, std::vector<glm::vec3>& rider);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -3,20 +3,20 @@
 #include "rig/error.h"
 #include "rig/io/gltf_terrain.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 
-std::shared_ptr<const Terrain> parseTerrain(JsonObjectReader& r, const std::filesystem::path& base_dir) {
+std::shared_ptr<const rig::Terrain> parseTerrain(rig::JsonObjectReader& r, const std::filesystem::path& base_dir) {
   const std::string source = r.file();
   if (r.has("file") && r.has("hills")) r.fail("file", "expected either \"file\" or \"hills\", not both");
   if (r.has("file")) {
     const std::string file = r.string("file", "");
     r.finish();
     const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
-    return std::make_shared<const Terrain>(Terrain::mesh(loadTerrainGltf(path, source + ": " + r.fieldPath("file"))));
+    return std::make_shared<const rig::Terrain>(rig::Terrain::mesh(rig::loadTerrainGltf(path, source + ": " + r.fieldPath("file"))));
   }
   if (r.has("hills")) {
-    JsonObjectReader h = r.object("hills");
-    HillsParams p;
+    rig::JsonObjectReader h = r.object("hills");
+    rig::HillsParams p;
     const int seed = h.integer("seed", static_cast<int>(p.seed));
     if (seed < 0) h.fail("seed", "expected a whole number from 0 to 2147483647, got " + std::to_string(seed));
     p.seed = static_cast<std::uint32_t>(seed);
@@ -25,10 +25,10 @@ std::shared_ptr<const Terrain> parseTerrain(JsonObjectReader& r, const std::file
     p.octaves = h.integer("octaves", p.octaves);
     h.finish();
     r.finish();
-    return std::make_shared<const Terrain>(Terrain::hills(p, source));
+    return std::make_shared<const rig::Terrain>(rig::Terrain::hills(p, source));
   }
   r.finish();
   r.fail("hills", "expected \"hills\": {\"seed\", \"amplitude_cm\", \"wavelength_cm\", \"octaves\"} or \"file\": a glTF mesh");
 }
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

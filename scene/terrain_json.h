@@ -10,10 +10,10 @@
 #include "rig/io/json_fields.h"
 #include "rig/motion/terrain.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 
 // Reads the terrain object `r` (already the "terrain" field's reader); errors name the file and field.
 // Relative files resolve against base_dir.
-std::shared_ptr<const Terrain> parseTerrain(JsonObjectReader& r, const std::filesystem::path& base_dir);
+std::shared_ptr<const rig::Terrain> parseTerrain(rig::JsonObjectReader& r, const std::filesystem::path& base_dir);
 
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -12,7 +12,7 @@
 #include "scene/camera_motion.h"
 #include "scene/frame_range.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -96,7 +96,7 @@ constexpr std::array<double, 3> kTopUp = {0.0, 0.0, -1.0};
 CameraSpec frameTopView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& clip,
                         const std::vector<FramePoints>& pts) {
   glm::dvec3 lo(kInf), hi(-kInf);
-  for (int f : rig::parseFrameList(scene.frames, "frames")) {
+  for (int f : scene::parseFrameList(scene.frames, "frames")) {
     const rig::HorseFrame h = clip.sampleTravel(frameTime(scene, f));
     const glm::dvec3 travel(h.travel_cm, h.ground_y_cm, h.travel_z_cm);
     lo = glm::min(lo, travel), hi = glm::max(hi, travel);
@@ -287,7 +287,7 @@ void applyViewPreset(CameraSpec& spec) {
 }
 
 std::vector<int> framingFrames(const CameraSpec& spec, const SceneSpec& scene) {
-  std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
   if (spec.motion == "orbit") {
     const int n = spec.orbit_frames > 0
                       ? spec.orbit_frames
@@ -347,4 +347,4 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
   return spec;
 }
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -26,7 +26,7 @@
 #include "rig/rig_profile.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 
 // Sets projection, lens, motion, up and direction of `spec` from its view (no-op when view is empty).
 void applyViewPreset(CameraSpec& spec);
@@ -47,4 +47,4 @@ CameraSpec frameView(CameraSpec spec, const SceneSpec& scene, const rig::Clip& c
                      const rig::RigProfile& profile, const std::vector<int>& frames,
                      const CharacterPoints& points);
 
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -13,7 +13,7 @@ template <typename F>
 std::string errorOf(F&& f, const char* none = "(no error)") {
   try {
     f();
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     return e.what();
   }
   return none;

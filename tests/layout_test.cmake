@@ -16,12 +16,19 @@
 # the folders has no cycle. A folder with sources that is not in the list is a violation too (a new
 # folder must be given its place). The commands that draw no pixel (STIRRUP_NO_PIXELS: bake, rig,
 # clip) include nothing of render/ either.
+# The namespace follows the folder too: a file's namespace is stirrup::<its top-level folder> (all of
+# rig/** is stirrup::rig, scene/ stirrup::scene, all of render/** stirrup::render, cli/ stirrup::cli),
+# so a reader who greps the folder a qualified name says finds it. Every `namespace stirrup...` opening
+# line in a source or header must be that namespace or one nested in it (stirrup::rig::pose_transforms);
+# a bare `namespace stirrup {` is a violation. Namespaces outside stirrup (anonymous ones, hwy::, a
+# third-party forward declaration) are not checked.
 # Run as `cmake -DSOURCE_DIR=... -P layout_test.cmake`; each violation prints one line naming the file,
-# the line, the include and the two layers, and the script fails. With -DSELF_TEST=ON it checks a
-# scratch tree instead holding a planted cycle (rig/ and rig/io/ including each other), a tracer file
-# including the review, a library file including the program, a scene file including the tracer, a
-# pixel-free command including render/ and a folder outside the order, and fails unless exactly those
-# six are caught (so the check cannot pass idly).
+# the line, the include and the two layers (or the namespace found and the one expected), and the
+# script fails. With -DSELF_TEST=ON it checks a scratch tree instead holding a planted cycle (rig/ and
+# rig/io/ including each other), a tracer file including the review, a library file including the
+# program, a scene file including the tracer, a pixel-free command including render/, a folder outside
+# the order, a scene header in stirrup::render and a rig header in a bare stirrup namespace, and fails
+# unless exactly those eight are caught (so the check cannot pass idly).
 #
 # With -DCHECK=mirrored_tests it checks instead that tests mirror the source tree file for file: every
 # library source, rig/**.cpp, scene/*.cpp and render/**.cpp (not the program, cli/), has its test file
@@ -33,7 +40,8 @@ set(STIRRUP_LAYERS rig rig/characters rig/motion rig/mapping rig/io scene render
 set(STIRRUP_NO_PIXELS cli/cmd_bake.cpp cli/cmd_rig.cpp cli/cmd_clip.cpp)
 
 # Appends one line to out_var for every include, in every source and header under `root`'s layers, of a
-# project file in a layer above the including file's, and for every folder of sources outside the order.
+# project file in a layer above the including file's, for every `namespace stirrup...` line that is not
+# the file's top folder's namespace or one nested in it, and for every folder of sources outside the order.
 function(check_tree root out_var)
   set(violations)
   file(GLOB_RECURSE all RELATIVE "${root}" "${root}/rig/*.h" "${root}/rig/*.cpp" "${root}/scene/*.h"
@@ -49,6 +57,8 @@ function(check_tree root out_var)
       endif()
       continue()
     endif()
+    string(REGEX REPLACE "/.*" "" top "${folder}")
+    set(expected_ns "stirrup::${top}")
     file(STRINGS "${root}/${rel}" lines)
     set(n 0)
     foreach(line IN LISTS lines)
@@ -61,6 +71,12 @@ function(check_tree root out_var)
           list(APPEND violations "${rel}:${n}: #include \"${included}\": ${folder} includes ${to}, a layer above it")
         elseif(rel IN_LIST STIRRUP_NO_PIXELS AND included MATCHES "^render/")
           list(APPEND violations "${rel}:${n}: #include \"${included}\": a command that draws no pixel includes render/")
+        endif()
+      elseif(line MATCHES "^[ \t]*namespace[ \t]+(stirrup(::[A-Za-z0-9_:]+)?)[ \t]*({|$)")
+        set(found_ns "${CMAKE_MATCH_1}")
+        string(FIND "${found_ns}::" "${expected_ns}::" at)
+        if(NOT at EQUAL 0)
+          list(APPEND violations "${rel}:${n}: namespace ${found_ns}: a file under ${top}/ is in ${expected_ns} (or a namespace nested in it)")
         endif()
       endif()
     endforeach()
@@ -131,7 +147,11 @@ if(SELF_TEST)
   # edge is a violation. Then a tracer file including the review (an include indented, spaced), a
   # review file including the program, the scene including the tracer, the bake command including the
   # renderer, and a folder nobody placed. Includes that keep to the order (the reader including the
-  # runtime, the shot including the tracer and scene, the bake command the scene) must pass.
+  # runtime, the shot including the tracer and scene, the bake command the scene) must pass. Then two
+  # namespaces that do not follow the folder: a scene header in stirrup::render, a rig header in bare
+  # stirrup. Namespaces that do (rig/io in stirrup::rig, a nested stirrup::rig::pose_transforms, the
+  # tracer in stirrup::render with Highway's and an anonymous namespace inside, a third-party forward
+  # declaration, the program in stirrup::cli) must pass.
   file(MAKE_DIRECTORY "${root}/rig/io" "${root}/scene" "${root}/render/tracer" "${root}/render/review" "${root}/render/extra"
        "${root}/cli")
   file(WRITE "${root}/rig/pose.h" "#pragma once\n#include \"rig/skeleton.h\"\n#include \"rig/io/gltf_clip.h\"\n")
@@ -142,6 +162,12 @@ if(SELF_TEST)
   file(WRITE "${root}/cli/cmd_bake.cpp" "#include \"scene/scene.h\"\n#include \"render/shot.h\"\n")
   file(WRITE "${root}/render/review/movie.cpp" "#include \"render/shot.h\"\n#include \"cli/options.h\"\n")
   file(WRITE "${root}/render/extra/thing.cpp" "#include \"rig/pose.h\"\n")
+  file(WRITE "${root}/scene/camera.h" "#pragma once\nnamespace tinygltf {\nclass Model;\n}\n\nnamespace stirrup::render {\nstruct Camera {};\n}  // namespace stirrup::render\n")
+  file(WRITE "${root}/rig/error.h" "#pragma once\n\nnamespace stirrup {\nstruct InputError {};\n}  // namespace stirrup\n")
+  file(WRITE "${root}/rig/io/json_fields.h" "#pragma once\n\nnamespace stirrup::rig {\nstruct JsonObjectReader {};\n}  // namespace stirrup::rig\n")
+  file(WRITE "${root}/rig/pose_transforms.cpp" "namespace stirrup::rig::pose_transforms {\nnamespace {\n}  // namespace\n}\n")
+  file(WRITE "${root}/render/tracer/lanes.cpp" "namespace stirrup::render {\nnamespace {\nint a;\n}\n}\nHWY_BEFORE_NAMESPACE();\nnamespace hwy {\nnamespace HWY_NAMESPACE {\n}\n}\n")
+  file(WRITE "${root}/cli/commands.h" "#pragma once\n#include \"scene/scene.h\"\nnamespace stirrup::cli {\nusing namespace stirrup::rig;\n}  // namespace stirrup::cli\n")
   check_tree("${root}" violations)
   file(REMOVE_RECURSE "${root}")
   set(expected
@@ -149,14 +175,16 @@ if(SELF_TEST)
     "render/extra/: a folder of sources with no place in the layer order (tests/layout_test.cmake STIRRUP_LAYERS)"
     "render/review/movie.cpp:2: #include \"cli/options.h\": render/review includes cli, a layer above it"
     "render/tracer/image.cpp:2: #include \"render/review/text.h\": render/tracer includes render/review, a layer above it"
+    "rig/error.h:3: namespace stirrup: a file under rig/ is in stirrup::rig (or a namespace nested in it)"
     "rig/pose.h:3: #include \"rig/io/gltf_clip.h\": rig includes rig/io, a layer above it"
+    "scene/camera.h:6: namespace stirrup::render: a file under scene/ is in stirrup::scene (or a namespace nested in it)"
     "scene/view.cpp:2: #include \"render/tracer/image.h\": scene includes render/tracer, a layer above it")
   list(SORT violations)
   if(NOT violations STREQUAL expected)
     string(REPLACE ";" "\n  " got "${violations}")
-    message(FATAL_ERROR "layout check self-test: expected exactly the 6 planted violations, got:\n  ${got}")
+    message(FATAL_ERROR "layout check self-test: expected exactly the 8 planted violations, got:\n  ${got}")
   endif()
-  message(STATUS "layout check self-test: the planted cycle and the 5 other planted violations caught, nothing else")
+  message(STATUS "layout check self-test: the planted cycle and the 7 other planted violations caught, nothing else")
   return()
 endif()
 
@@ -169,6 +197,6 @@ if(violations)
     message("${v}")
   endforeach()
   list(LENGTH violations n)
-  message(FATAL_ERROR "layout check: ${n} include(s) break the layout's rules")
+  message(FATAL_ERROR "layout check: ${n} include(s) or namespace(s) break the layout's rules")
 endif()
-message(STATUS "layout check: every include keeps to the layer order ${STIRRUP_LAYERS}")
+message(STATUS "layout check: every include keeps to the layer order ${STIRRUP_LAYERS}, every namespace to its top folder")

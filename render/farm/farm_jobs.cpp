@@ -10,7 +10,7 @@
 #include "rig/error.h"
 #include "scene/frame_range.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 namespace fs = std::filesystem;
 
 namespace {
@@ -83,7 +83,7 @@ void submitPlan(FarmPlan& plan) {
   } catch (...) {
     try {
       scancel(submitted);
-    } catch (const InputError&) {
+    } catch (const rig::InputError&) {
       // The first error is the one to report.
     }
     throw;
@@ -103,7 +103,7 @@ FarmStatus farmStatus(const FarmPlan& plan) {
     for (const FarmChunk& chunk : shot.chunks) {
       ChunkStatus c;
       c.task = chunk.task;
-      c.frames = rig::formatFrameList(chunk.frames);
+      c.frames = scene::formatFrameList(chunk.frames);
       for (const std::string& f : chunk.files) c.missing_files += fs::is_regular_file(plan.out / f) ? 0 : 1;
       // The newest array that ran this chunk has the say.
       for (auto job = shot.array_jobs.rbegin(); job != shot.array_jobs.rend(); ++job) {
@@ -223,4 +223,4 @@ void waitForPlan(const FarmPlan& plan, double poll_seconds) {
   }
 }
 
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

@@ -10,7 +10,7 @@
 
 #include "render/farm/farm_plan.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 
 // Submits one job array a shot and the finishing job after them all (afterok); records the job ids in
 // the plan and writes the manifest and scripts. When any sbatch fails, the jobs already submitted are
@@ -63,4 +63,4 @@ ResumeResult resumePlan(FarmPlan& plan);
 // Blocks until no job of the plan is pending or running (polling squeue).
 void waitForPlan(const FarmPlan& plan, double poll_seconds = 1.0);
 
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

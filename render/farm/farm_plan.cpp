@@ -12,7 +12,7 @@
 #include "rig/io/json_fields.h"
 #include "scene/frame_range.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -25,7 +25,7 @@ void writeTextAtomically(const fs::path& file, const std::string& text, fs::perm
 
 std::string commandLine(const std::vector<std::string>& argv) {
   std::string line;
-  for (const std::string& a : argv) line += (line.empty() ? "" : " ") + shellQuote(a);
+  for (const std::string& a : argv) line += (line.empty() ? "" : " ") + quoteShellWord(a);
   return line;
 }
 
@@ -42,27 +42,27 @@ std::string sbatchHeader(const FarmPlan& plan, const std::string& job_name, cons
   if (!plan.sbatch.time.empty()) s << "#SBATCH --time=" << plan.sbatch.time << "\n";
   if (!plan.sbatch.mem.empty()) s << "#SBATCH --mem=" << plan.sbatch.mem << "\n";
   s << "set -euo pipefail\n"
-    << "cd " << shellQuote(plan.out.string()) << "\n";
+    << "cd " << quoteShellWord(plan.out.string()) << "\n";
   return s.str();
 }
 
-std::vector<std::string> stringArray(const JsonObjectReader& r, const std::string& key, const json& v) {
-  if (!v.is_array()) r.fail(key, "expected an array of strings, got " + describeJson(v));
+std::vector<std::string> stringArray(const rig::JsonObjectReader& r, const std::string& key, const json& v) {
+  if (!v.is_array()) r.fail(key, "expected an array of strings, got " + rig::describeJson(v));
   std::vector<std::string> out;
   for (std::size_t i = 0; i < v.size(); ++i) {
-    if (!v[i].is_string()) r.fail(key + "[" + std::to_string(i) + "]", "expected a string, got " + describeJson(v[i]));
+    if (!v[i].is_string()) r.fail(key + "[" + std::to_string(i) + "]", "expected a string, got " + rig::describeJson(v[i]));
     out.push_back(v[i].get<std::string>());
   }
   return out;
 }
 
-std::vector<std::string> requiredStrings(JsonObjectReader& r, const std::string& key) {
+std::vector<std::string> requiredStrings(rig::JsonObjectReader& r, const std::string& key) {
   const json* v = r.value(key);
   if (!v) r.fail(key, "expected an array of strings (missing)");
   return stringArray(r, key, *v);
 }
 
-std::string requiredString(JsonObjectReader& r, const std::string& key) {
+std::string requiredString(rig::JsonObjectReader& r, const std::string& key) {
   if (!r.has(key)) r.fail(key, "expected a string (missing)");
   return r.string(key, "");
 }
@@ -79,7 +79,7 @@ json cameraJson(const PlannedCamera& c) {
           {"fov_deg", c.fov_deg}};
 }
 
-PlannedCamera readCamera(JsonObjectReader& r) {
+PlannedCamera readCamera(rig::JsonObjectReader& r) {
   PlannedCamera c;
   c.name = requiredString(r, "name");
   c.key = requiredString(r, "key");
@@ -109,7 +109,7 @@ PlannedCamera readCamera(JsonObjectReader& r) {
 }  // namespace
 
 std::vector<std::vector<int>> chunkFrames(const std::vector<int>& frames, int chunk) {
-  if (chunk <= 0) throw InputError("--chunk: expected a positive number of frames, got " + std::to_string(chunk));
+  if (chunk <= 0) throw rig::InputError("--chunk: expected a positive number of frames, got " + std::to_string(chunk));
   std::vector<std::vector<int>> chunks;
   for (std::size_t i = 0; i < frames.size(); i += static_cast<std::size_t>(chunk))
     chunks.emplace_back(frames.begin() + static_cast<long>(i),
@@ -117,7 +117,7 @@ std::vector<std::vector<int>> chunkFrames(const std::vector<int>& frames, int ch
   return chunks;
 }
 
-std::string shellQuote(const std::string& word) {
+std::string quoteShellWord(const std::string& word) {
   std::string q = "'";
   for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
@@ -133,7 +133,7 @@ std::string taskScript(const FarmPlan& plan, const FarmShot& shot) {
   s << sbatchHeader(plan, "stirrup:" + shot.name, shot.name + ".%A_%a.log");
   s << "# One chunk of frames a task: sbatch --array=1-" << shot.chunks.size() << " runs them all, --array=3 redoes chunk 3.\n"
     << "case \"${SLURM_ARRAY_TASK_ID:?run this script as a Slurm job array}\" in\n";
-  for (const FarmChunk& c : shot.chunks) s << "  " << c.task << ") frames=" << rig::formatFrameList(c.frames) << " ;;\n";
+  for (const FarmChunk& c : shot.chunks) s << "  " << c.task << ") frames=" << scene::formatFrameList(c.frames) << " ;;\n";
   s << "  *) echo \"stirrup farm: " << shot.name << " has no chunk $SLURM_ARRAY_TASK_ID\" >&2; exit 2 ;;\n"
     << "esac\n"
     << "exec " << commandLine(shot.command) << " --threads \"${SLURM_CPUS_PER_TASK:-1}\" --frames \"$frames\"\n";
@@ -170,7 +170,7 @@ void writeManifest(const FarmPlan& plan) {
   for (const FarmShot& shot : plan.shots) {
     json chunks = json::array();
     for (const FarmChunk& c : shot.chunks)
-      chunks.push_back({{"task", c.task}, {"frames", rig::formatFrameList(c.frames)}, {"files", c.files}});
+      chunks.push_back({{"task", c.task}, {"frames", scene::formatFrameList(c.frames)}, {"files", c.files}});
     j["shots"].push_back({{"name", shot.name},
                           {"command", shot.command},
                           {"frames_dir", shot.frames_dir},
@@ -188,15 +188,15 @@ void writeManifest(const FarmPlan& plan) {
 FarmPlan readManifest(const fs::path& out) {
   const fs::path file = manifestFile(out);
   if (!fs::is_regular_file(file))
-    throw InputError(file.string() + ": no farm manifest here (expected the output folder of stirrup farm submit)");
+    throw rig::InputError(file.string() + ": no farm manifest here (expected the output folder of stirrup farm submit)");
   return readManifestFile(file);
 }
 
 FarmPlan readManifestFile(const fs::path& file) {
-  if (!fs::is_regular_file(file)) throw InputError(file.string() + ": no such farm manifest");
-  const json j = readJsonFile(file);
-  if (!j.is_object()) throw InputError(file.string() + ": expected a JSON object");
-  JsonObjectReader r(file.string(), "", j);
+  if (!fs::is_regular_file(file)) throw rig::InputError(file.string() + ": no such farm manifest");
+  const json j = rig::readJsonFile(file);
+  if (!j.is_object()) throw rig::InputError(file.string() + ": expected a JSON object");
+  rig::JsonObjectReader r(file.string(), "", j);
   if (r.string("format", "") != "stirrup farm manifest 1")
     r.fail("format", "expected \"stirrup farm manifest 1\"");
   FarmPlan plan;
@@ -205,7 +205,7 @@ FarmPlan readManifestFile(const fs::path& file) {
   if (plan.kind != "render" && plan.kind != "movies") r.fail("kind", "expected \"render\" or \"movies\"");
   plan.submitted = r.string("submitted", "");
   {
-    JsonObjectReader s = r.object("sbatch");
+    rig::JsonObjectReader s = r.object("sbatch");
     plan.sbatch.partition = s.string("partition", "");
     plan.sbatch.account = s.string("account", "");
     plan.sbatch.time = s.string("time", "");
@@ -218,7 +218,7 @@ FarmPlan readManifestFile(const fs::path& file) {
   for (std::size_t i = 0; i < shots->size(); ++i) {
     const std::string path = "shots[" + std::to_string(i) + "]";
     if (!(*shots)[i].is_object()) r.fail(path, "expected an object");
-    JsonObjectReader sr(file.string(), path, (*shots)[i]);
+    rig::JsonObjectReader sr(file.string(), path, (*shots)[i]);
     FarmShot shot;
     shot.name = requiredString(sr, "name");
     shot.command = requiredStrings(sr, "command");
@@ -230,17 +230,17 @@ FarmPlan readManifestFile(const fs::path& file) {
     for (std::size_t k = 0; k < chunks->size(); ++k) {
       const std::string cpath = path + ".chunks[" + std::to_string(k) + "]";
       if (!(*chunks)[k].is_object()) r.fail(cpath, "expected an object");
-      JsonObjectReader cr(file.string(), cpath, (*chunks)[k]);
+      rig::JsonObjectReader cr(file.string(), cpath, (*chunks)[k]);
       FarmChunk c;
       c.task = cr.integer("task", 0);
       if (c.task != static_cast<int>(k) + 1) cr.fail("task", "expected " + std::to_string(k + 1));
-      c.frames = rig::parseFrameList(requiredString(cr, "frames"), file.string() + ": " + cpath + ".frames");
+      c.frames = scene::parseFrameList(requiredString(cr, "frames"), file.string() + ": " + cpath + ".frames");
       c.files = requiredStrings(cr, "files");
       cr.finish();
       shot.chunks.push_back(std::move(c));
     }
     if (sr.has("camera")) {
-      JsonObjectReader cr = sr.object("camera");
+      rig::JsonObjectReader cr = sr.object("camera");
       shot.camera = readCamera(cr);
     }
     sr.finish();
@@ -252,4 +252,4 @@ FarmPlan readManifestFile(const fs::path& file) {
   return plan;
 }
 
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

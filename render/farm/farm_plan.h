@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 
 // sbatch options, as the site names them; empty means the site's default.
 struct SbatchSettings {
@@ -82,6 +82,6 @@ FarmPlan readManifest(const std::filesystem::path& out);
 FarmPlan readManifestFile(const std::filesystem::path& file);
 
 // Single-quoted for a POSIX shell.
-std::string shellQuote(const std::string& word);
+std::string quoteShellWord(const std::string& word);
 
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

@@ -20,7 +20,7 @@
 #include "scene/shot_evaluator.h"
 #include "scene/view.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 namespace fs = std::filesystem;
 
 namespace {
@@ -43,9 +43,9 @@ FarmPlan planRender(const FarmRequest& r, const fs::path& scene_file, const std:
                     const std::optional<PlannedCamera>& framed) {
   // The tasks render it with --allow-impossible when asked to: it loads here as it will there.
   const bool allow = std::find(render_args.begin(), render_args.end(), "--allow-impossible") != render_args.end();
-  const SceneSpec scene = loadScene(scene_file, {allow});
-  const CameraSpec& camera = findCamera(scene, camera_name);
-  const std::vector<int> frames = rig::parseFrameList(frames_spec.empty() ? scene.frames : frames_spec, "--frames");
+  const scene::SceneSpec scene = scene::loadScene(scene_file, {allow});
+  const scene::CameraSpec& camera = scene::findCamera(scene, camera_name);
+  const std::vector<int> frames = scene::parseFrameList(frames_spec.empty() ? scene.frames : frames_spec, "--frames");
   FarmPlan plan = emptyPlan(r, "render");
   const std::string name = scene.name + "_" + camera.name;
   const std::vector<std::string> shot_args = {"render", fs::absolute(scene_file).string(), "--camera", camera.name,
@@ -63,7 +63,7 @@ FarmPlan planRender(const FarmRequest& r, const fs::path& scene_file, const std:
     shot.command.insert(shot.command.end(), {"--camera-plan", manifestFile(r.out).string()});
   }
   shot.frames_dir = ".";
-  const FrameSequence frames_named = FrameSequence::named("", name, ".png");  // as `stirrup render` names them
+  const scene::FrameSequence frames_named = scene::FrameSequence::named("", name, ".png");  // as `stirrup render` names them
   shot.outputs = {name + ".mp4"};
   int task = 0;
   for (std::vector<int>& chunk : chunkFrames(frames, r.chunk)) {
@@ -77,19 +77,19 @@ FarmPlan planRender(const FarmRequest& r, const fs::path& scene_file, const std:
   plan.finish_command = {r.stirrup.string()};
   plan.finish_command.insert(plan.finish_command.end(), shot_args.begin(), shot_args.end());
   plan.finish_command.insert(plan.finish_command.end(), render_args.begin(), render_args.end());
-  plan.finish_command.insert(plan.finish_command.end(), {"--frames", rig::formatFrameList(frames), "--encode-only",
+  plan.finish_command.insert(plan.finish_command.end(), {"--frames", scene::formatFrameList(frames), "--encode-only",
                                                          "--movie", (r.out / (name + ".mp4")).string()});
   return plan;
 }
 
-std::string framingKey(const SceneSpec& scene, const rig::RigProfile& profile) {
+std::string framingKey(const scene::SceneSpec& scene, const rig::RigProfile& profile) {
   std::string text;
   if (!scene.file.empty()) {
     std::ifstream in(scene.file, std::ios::binary);
     text.assign(std::istreambuf_iterator<char>(in), {});
   }
   text += "\nframes " + scene.frames + "\nsize " + std::to_string(scene.width) + "x" + std::to_string(scene.height);
-  text += "\nprofile " + rig::profileToJson(profile).dump();
+  text += "\nprofile " + scene::profileToJson(profile).dump();
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
   for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
   char hex[17];
@@ -97,12 +97,12 @@ std::string framingKey(const SceneSpec& scene, const rig::RigProfile& profile) {
   return hex;
 }
 
-std::optional<PlannedCamera> planCamera(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
+std::optional<PlannedCamera> planCamera(const scene::SceneSpec& scene, const rig::RigProfile& profile, const scene::CameraSpec& camera,
                                         int threads) {
   if (camera.view.empty()) return std::nullopt;
-  ShotEvaluator characters(scene, profile, threads);
-  const ShotCamera framed(characters, camera);
-  const CameraSpec& s = framed.spec();
+  scene::ShotEvaluator characters(scene, profile, threads);
+  const scene::ShotCamera framed(characters, camera);
+  const scene::CameraSpec& s = framed.spec();
   PlannedCamera c;
   c.name = camera.name;
   c.key = framingKey(scene, profile);
@@ -111,18 +111,18 @@ std::optional<PlannedCamera> planCamera(const SceneSpec& scene, const rig::RigPr
   return c;
 }
 
-CameraSpec plannedCameraSpec(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
+scene::CameraSpec plannedCameraSpec(const scene::SceneSpec& scene, const rig::RigProfile& profile, const scene::CameraSpec& camera,
                              const PlannedCamera& planned, const std::string& where) {
   if (planned.name != camera.name)
-    throw InputError(where + ".name: expected \"" + camera.name + "\" (the camera rendered), got \"" + planned.name + "\"");
+    throw rig::InputError(where + ".name: expected \"" + camera.name + "\" (the camera rendered), got \"" + planned.name + "\"");
   if (camera.view.empty())
-    throw InputError(where + ": expected no camera for " + camera.name + ", which has no view to frame");
+    throw rig::InputError(where + ": expected no camera for " + camera.name + ", which has no view to frame");
   const std::string key = framingKey(scene, profile);
   if (planned.key != key)
-    throw InputError(where + ".key: expected " + key + " (the scene, its frames, the image size and the rig profile as they "
+    throw rig::InputError(where + ".key: expected " + key + " (the scene, its frames, the image size and the rig profile as they "
                      "are now), got " + planned.key + ": they changed since the plan was made; submit the farm again");
-  CameraSpec spec = camera;
-  applyViewPreset(spec);
+  scene::CameraSpec spec = camera;
+  scene::applyViewPreset(spec);
   spec.view.clear();  // framed already: Shot takes it as it is
   spec.position = planned.position, spec.target = planned.target, spec.up = planned.up;
   spec.seat_from_pivot_cm = planned.seat_from_pivot_cm;
@@ -135,15 +135,15 @@ PlannedCamera plannedCameraOf(const fs::path& file, const std::string& shot, std
   for (std::size_t i = 0; i < plan.shots.size(); ++i) {
     if (plan.shots[i].name != shot) continue;
     where = file.string() + ": shots[" + std::to_string(i) + "].camera";
-    if (!plan.shots[i].camera) throw InputError(where + ": expected the framed camera of " + shot + " (missing)");
+    if (!plan.shots[i].camera) throw rig::InputError(where + ": expected the framed camera of " + shot + " (missing)");
     return *plan.shots[i].camera;
   }
-  throw InputError(file.string() + ": shots: expected a shot named " + shot + " (the scene's and camera's names)");
+  throw rig::InputError(file.string() + ": shots: expected a shot named " + shot + " (the scene's and camera's names)");
 }
 
 FarmPlan planMovies(const FarmRequest& r, const std::vector<MovieJob>& jobs, const MovieOptions& options,
                     const std::vector<std::string>& movie_args, bool subset) {
-  if (jobs.empty()) throw InputError("--movies: no movies to render");
+  if (jobs.empty()) throw rig::InputError("--movies: no movies to render");
   MovieOptions o = options;
   o.out = r.out;
   FarmPlan plan = emptyPlan(r, "movies");
@@ -179,14 +179,14 @@ FarmPlan planMovies(const FarmRequest& r, const std::vector<MovieJob>& jobs, con
 
 void checkSharedOutput(const fs::path& out, int cluster_nodes) {
   std::error_code ec;
-  if (fs::exists(out, ec) && !fs::is_directory(out, ec)) throw InputError("--out: " + out.string() + ": not a folder");
+  if (fs::exists(out, ec) && !fs::is_directory(out, ec)) throw rig::InputError("--out: " + out.string() + ": not a folder");
   // The filesystem is judged at the nearest folder that exists, before anything is made.
   fs::path existing = out;
   while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
     existing = existing.parent_path();
   struct statfs fs_info {};
   if (::statfs(existing.c_str(), &fs_info) != 0)
-    throw InputError("--out: " + out.string() + ": cannot read its filesystem");
+    throw rig::InputError("--out: " + out.string() + ": cannot read its filesystem");
   // Filesystem magic numbers from linux/magic.h and the network filesystems' own headers.
   const std::map<long, const char*> in_memory = {{0x01021994L, "tmpfs"}, {0x858458f6L, "ramfs"}};
   const std::map<long, const char*> network = {
@@ -196,16 +196,16 @@ void checkSharedOutput(const fs::path& out, int cluster_nodes) {
       {0x5346414FL, "OpenAFS"}};
   const long type = static_cast<long>(fs_info.f_type) & 0xFFFFFFFFL;
   if (const auto it = in_memory.find(type); it != in_memory.end())
-    throw InputError("--out: " + out.string() + ": on " + it->second +
+    throw rig::InputError("--out: " + out.string() + ": on " + it->second +
                      ", in this machine's memory, which the cluster's nodes do not share; use a folder on a shared "
                      "filesystem (NFS, Lustre, CephFS)");
   if (cluster_nodes > 1 && !network.count(type))
-    throw InputError("--out: " + out.string() + ": on a local disk, not shared by the cluster's " +
+    throw rig::InputError("--out: " + out.string() + ": on a local disk, not shared by the cluster's " +
                      std::to_string(cluster_nodes) + " nodes; use a folder on a shared filesystem (NFS, Lustre, CephFS)");
   fs::create_directories(out, ec);
-  if (ec) throw InputError("--out: " + out.string() + ": cannot make the folder (" + ec.message() + ")");
+  if (ec) throw rig::InputError("--out: " + out.string() + ": cannot make the folder (" + ec.message() + ")");
   if (::access(out.c_str(), W_OK) != 0)
-    throw InputError("--out: " + out.string() + ": not writable (the farm's tasks write their frames here)");
+    throw rig::InputError("--out: " + out.string() + ": not writable (the farm's tasks write their frames here)");
 }
 
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

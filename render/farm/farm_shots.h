@@ -13,7 +13,7 @@
 #include "rig/rig_profile.h"
 #include "scene/scene.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 
 // What every plan needs: where, how finely cut, which program, which scheduler settings.
 struct FarmRequest {
@@ -36,16 +36,16 @@ FarmPlan planRender(const FarmRequest& request, const std::filesystem::path& sce
 
 // What a view's framing reads, as a hash: the scene file's text, the frames it is framed over, the
 // image's size and the resolved rig profile. A camera planned for one key is refused for another.
-std::string framingKey(const SceneSpec& scene, const rig::RigProfile& profile);
+std::string framingKey(const scene::SceneSpec& scene, const rig::RigProfile& profile);
 // `camera` (a view camera of `scene`) framed now, as the characters and the clip place it
 // (scene/shot_camera.h), for a plan; none for a camera without a view (nothing to frame).
-std::optional<PlannedCamera> planCamera(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
+std::optional<PlannedCamera> planCamera(const scene::SceneSpec& scene, const rig::RigProfile& profile, const scene::CameraSpec& camera,
                                         int threads = 0);
 // The camera a shot renders with instead of framing `camera` again: its view's preset with the
 // planned position, target, up, size and lens, and no view left to frame (Shot takes it as it is).
 // `where` names the plan's camera in errors ("FILE: shots[0].camera"): a one-line InputError when
 // it is another camera's or was framed for another key.
-CameraSpec plannedCameraSpec(const SceneSpec& scene, const rig::RigProfile& profile, const CameraSpec& camera,
+scene::CameraSpec plannedCameraSpec(const scene::SceneSpec& scene, const rig::RigProfile& profile, const scene::CameraSpec& camera,
                              const PlannedCamera& planned, const std::string& where);
 // The planned camera of the shot `shot` in the manifest `file`, and where it is ("FILE:
 // shots[0].camera", for plannedCameraSpec's errors): an InputError naming the file when the plan has
@@ -62,4 +62,4 @@ FarmPlan planMovies(const FarmRequest& request, const std::vector<MovieJob>& job
 // network filesystem (NFS, Lustre, CephFS, GPFS, BeeGFS, SMB...).
 void checkSharedOutput(const std::filesystem::path& out, int cluster_nodes);
 
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

@@ -16,7 +16,7 @@
 
 extern char** environ;
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 namespace {
 
 std::string firstLine(const std::string& text) {
@@ -37,14 +37,14 @@ std::vector<std::string> lines(const std::string& text) {
 ProgramResult slurmCommand(const std::vector<std::string>& argv) {
   ProgramResult r = runProgram(argv, kSlurmCommandTimeoutSeconds);
   if (r.timed_out)
-    throw InputError("farm: " + argv[0] + " did not answer within " + std::to_string(int(kSlurmCommandTimeoutSeconds)) +
+    throw rig::InputError("farm: " + argv[0] + " did not answer within " + std::to_string(int(kSlurmCommandTimeoutSeconds)) +
                      " s (is the Slurm controller up?)");
   if (!r.started)
-    throw InputError("farm: " + argv[0] + " not found on PATH (install slurm-wlm, load the site's Slurm module, "
+    throw rig::InputError("farm: " + argv[0] + " not found on PATH (install slurm-wlm, load the site's Slurm module, "
                      "or start a local cluster with scripts/slurm-local up)");
   if (r.exit_code != 0) {
     const std::string why = firstLine(r.err.empty() ? r.out : r.err);
-    throw InputError("farm: " + argv[0] + " failed (exit " + std::to_string(r.exit_code) + ")" +
+    throw rig::InputError("farm: " + argv[0] + " failed (exit " + std::to_string(r.exit_code) + ")" +
                      (why.empty() ? "" : ": " + why));
   }
   return r;
@@ -125,7 +125,7 @@ void requireSlurm() {
   for (const char* program : {"sbatch", "squeue", "sinfo", "scancel"}) {
     const ProgramResult r = runProgram({program, "--version"});
     if (!r.started)
-      throw InputError(std::string("farm: Slurm is not reachable: ") + program +
+      throw rig::InputError(std::string("farm: Slurm is not reachable: ") + program +
                        " is not on PATH (install slurm-wlm, load the site's Slurm module, or start a local "
                        "cluster with scripts/slurm-local up)");
   }
@@ -135,7 +135,7 @@ void requireSlurm() {
     const std::vector<std::string> said = lines(ping.err.empty() ? ping.out : ping.err);
     const std::string why = ping.timed_out ? "no answer within " + std::to_string(int(kSlurmCommandTimeoutSeconds)) + " s"
                                            : (said.empty() ? "" : said.back());
-    throw InputError("farm: Slurm is not reachable: no controller answers sinfo" + (why.empty() ? "" : " (" + why + ")") +
+    throw rig::InputError("farm: Slurm is not reachable: no controller answers sinfo" + (why.empty() ? "" : " (" + why + ")") +
                      "; start one with scripts/slurm-local up, or check SLURM_CONF");
   }
 }
@@ -167,7 +167,7 @@ std::string sbatch(const std::filesystem::path& script, const std::vector<std::s
   // --parsable prints "JOBID" or "JOBID;CLUSTER".
   std::string id = out.substr(0, out.find(';'));
   if (id.empty() || !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    throw InputError("farm: sbatch " + script.string() + ": expected a job id, got \"" + out + "\"");
+    throw rig::InputError("farm: sbatch " + script.string() + ": expected a job id, got \"" + out + "\"");
   return id;
 }
 
@@ -207,11 +207,11 @@ void scancel(const std::vector<std::string>& ids) {
   std::vector<std::string> argv = {"scancel"};
   argv.insert(argv.end(), ids.begin(), ids.end());
   const ProgramResult r = runProgram(argv);
-  if (!r.started) throw InputError("farm: scancel not found on PATH");
+  if (!r.started) throw rig::InputError("farm: scancel not found on PATH");
   // scancel exits non-zero for a job that has already ended; only other complaints are errors.
   if (r.exit_code != 0 && r.err.find("already completed") == std::string::npos &&
       r.err.find("Invalid job id") == std::string::npos)
-    throw InputError("farm: scancel failed: " + firstLine(r.err));
+    throw rig::InputError("farm: scancel failed: " + firstLine(r.err));
 }
 
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

@@ -1,6 +1,6 @@
 // The Slurm commands stirrup farm uses (sbatch, squeue, sacct, scancel, sinfo), run as programs: the
 // same commands a user types, so a site's wrappers and its SLURM_CONF apply unchanged. Every failure is a
-// one-line stirrup::InputError saying which command failed and what it said.
+// one-line rig::InputError saying which command failed and what it said.
 #pragma once
 
 #include <filesystem>
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 
 // A program run without a shell: its exit code and what it printed. `started` is false when it could
 // not be run at all (not on PATH); `timed_out` when it was killed after `timeout_seconds` (0: no limit).
@@ -45,4 +45,4 @@ std::map<std::string, std::string> slurmJobStates(const std::vector<std::string>
 // scancel each id (a job or "JOB_TASK"); ids that have already ended are not an error.
 void scancel(const std::vector<std::string>& ids);
 
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

@@ -54,7 +54,7 @@ void burnIn(Image& image, const BurnInFacts& f, int frame) {
                size, FontStyle::SansBold);
   drawTextMask(mask, image.width, image.height, image.width - pad, top, "profile " + f.profile, size,
                FontStyle::Sans, TextAlign::Right);
-  drawTextMask(mask, image.width, image.height, pad, bottom, "frame " + paddedFrameNumber(frame), size, FontStyle::Mono);
+  drawTextMask(mask, image.width, image.height, pad, bottom, "frame " + scene::paddedFrameNumber(frame), size, FontStyle::Mono);
   drawTextMask(mask, image.width, image.height, image.width - pad, bottom, timecode(frame, f.fps), size,
                FontStyle::Mono, TextAlign::Right);
   paint(image, mask, glm::vec3(0.92f));

@@ -58,7 +58,7 @@ void writeContactSheet(const std::string& title, const std::vector<ContactFrame>
     const int col = int(i) % cols, row = int(i) / cols;
     const int x = gap + col * (tw + gap), y = titleH + row * (th + label + gap);
     c.paste(x, y, tw, th, thumbnail(frames[i].image, tw, th));
-    c.text(x + tw / 2, y + th + 17, "frame " + paddedFrameNumber(frames[i].frame), 14, {0.85f, 0.85f, 0.85f},
+    c.text(x + tw / 2, y + th + 17, "frame " + scene::paddedFrameNumber(frames[i].frame), 14, {0.85f, 0.85f, 0.85f},
            TextAlign::Center, FontStyle::Mono);
   }
   if (!file.parent_path().empty()) std::filesystem::create_directories(file.parent_path());

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string rectText(const PixelRect& r) {
+std::string rectText(const scene::PixelRect& r) {
   return std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.width) + "," +
          std::to_string(r.height);
 }
@@ -37,20 +37,20 @@ std::string numberText(double v) {
 }
 
 // The rectangle `crop` of an image w x h, or all of it when empty; InputError when outside.
-PixelRect effectiveCrop(const PixelRect& crop, int w, int h, const std::string& context) {
+scene::PixelRect effectiveCrop(const scene::PixelRect& crop, int w, int h, const std::string& context) {
   if (crop.empty()) {
     if (crop.width < 0 || crop.height < 0)
-      throw InputError(context + ": expected a width and height >= 0, got " + rectText(crop));
-    return PixelRect{0, 0, w, h};
+      throw rig::InputError(context + ": expected a width and height >= 0, got " + rectText(crop));
+    return scene::PixelRect{0, 0, w, h};
   }
   if (crop.x < 0 || crop.y < 0 || crop.x + crop.width > w || crop.y + crop.height > h)
-    throw InputError(context + ": rectangle " + rectText(crop) + " (x,y,w,h) lies outside the " + sizeText(w, h) +
+    throw rig::InputError(context + ": rectangle " + rectText(crop) + " (x,y,w,h) lies outside the " + sizeText(w, h) +
                      " image");
   return crop;
 }
 
 // Bilinear sample at continuous coordinates (pixel centres at +0.5), clamped to `r`.
-glm::vec3 sampleBilinear(const Image& img, const PixelRect& r, double u, double v) {
+glm::vec3 sampleBilinear(const Image& img, const scene::PixelRect& r, double u, double v) {
   const double fu = u - 0.5, fv = v - 0.5;
   const int x0 = int(std::floor(fu)), y0 = int(std::floor(fv));
   const float fx = float(fu - x0), fy = float(fv - y0);
@@ -64,7 +64,7 @@ glm::vec3 sampleBilinear(const Image& img, const PixelRect& r, double u, double 
 }
 
 // Our canvas's pixel (x, y) centre in the crop's coordinates, or nothing where the footage does not reach.
-Image placeOnCanvas(const Image& src, const PixelRect& crop, float scale, glm::vec2 position, bool flip_x,
+Image placeOnCanvas(const Image& src, const scene::PixelRect& crop, float scale, glm::vec2 position, bool flip_x,
                     int width, int height) {
   Image out(width, height);
   const double s = scale;
@@ -115,16 +115,16 @@ int snapEdge(const std::vector<float>& lum, int w, int h, bool columns, int nomi
 }  // namespace
 
 Image readLinearImage(const fs::path& file) {
-  if (!fs::exists(file)) throw InputError(file.string() + ": no such image file");
+  if (!fs::exists(file)) throw rig::InputError(file.string() + ": no such image file");
   auto in = OIIO::ImageInput::open(file.string());
-  if (!in) throw InputError(file.string() + ": cannot read the image (" + OIIO::geterror() + ")");
+  if (!in) throw rig::InputError(file.string() + ": cannot read the image (" + OIIO::geterror() + ")");
   const OIIO::ImageSpec spec = in->spec();
   const int nc = spec.nchannels;
   if (spec.width <= 0 || spec.height <= 0 || nc < 1)
-    throw InputError(file.string() + ": expected an image with pixels, got " + sizeText(spec.width, spec.height));
+    throw rig::InputError(file.string() + ": expected an image with pixels, got " + sizeText(spec.width, spec.height));
   std::vector<float> px(size_t(spec.width) * size_t(spec.height) * size_t(nc));
   if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, px.data()))
-    throw InputError(file.string() + ": cannot read the image (" + in->geterror() + ")");
+    throw rig::InputError(file.string() + ": cannot read the image (" + in->geterror() + ")");
   in->close();
   const OIIO::TypeDesc::BASETYPE base = OIIO::TypeDesc::BASETYPE(spec.format.basetype);
   const bool linear = base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE;
@@ -152,9 +152,9 @@ std::optional<int> FootageSequence::theirFrame(int our_frame) const {
   if (n <= 0) return std::nullopt;
   const long long index = offset + static_cast<long long>(std::floor((our_frame - 1) * rate + 1e-9));
   switch (edge) {
-    case FootageEdge::Hold: return first + int(std::clamp<long long>(index, 0, n - 1));
-    case FootageEdge::Loop: return first + int(((index % n) + n) % n);
-    case FootageEdge::Blank:
+    case scene::FootageEdge::Hold: return first + int(std::clamp<long long>(index, 0, n - 1));
+    case scene::FootageEdge::Loop: return first + int(((index % n) + n) % n);
+    case scene::FootageEdge::Blank:
       if (index < 0 || index >= n) return std::nullopt;
       return first + int(index);
   }
@@ -164,7 +164,7 @@ std::optional<int> FootageSequence::theirFrame(int our_frame) const {
 Image FootageSequence::source(int their_frame) const {
   const int index = their_frame - first;
   if (index < 0 || index >= frameCount())
-    throw InputError(name + ": no frame " + std::to_string(their_frame) + " (the footage has frames " +
+    throw rig::InputError(name + ": no frame " + std::to_string(their_frame) + " (the footage has frames " +
                      std::to_string(first) + "-" + std::to_string(first + frameCount() - 1) + ")");
   if (!images.empty()) return images[size_t(index)];
   return readLinearImage(files[size_t(index)]);
@@ -174,41 +174,41 @@ Image FootageSequence::frame(int our_frame, int width, int height) const {
   const std::optional<int> their = theirFrame(our_frame);
   if (!their) return Image(width, height);
   const Image src = source(*their);
-  const PixelRect c = effectiveCrop(crop, src.width, src.height, name + ": crop");
+  const scene::PixelRect c = effectiveCrop(crop, src.width, src.height, name + ": crop");
   const size_t index = size_t(*their - first);
   const float dx = index < shift_x.size() ? shift_x[index] * scale * (flip_x ? -1.0f : 1.0f) : 0.0f;
   return placeOnCanvas(src, c, scale, position + glm::vec2(dx, 0.0f), flip_x, width, height);
 }
 
 void FootageSequence::validate(const std::string& context) const {
-  if (frameCount() <= 0) throw InputError(context + ": expected at least one footage frame, got none");
+  if (frameCount() <= 0) throw rig::InputError(context + ": expected at least one footage frame, got none");
   if (!(std::isfinite(rate) && rate > 0))
-    throw InputError(context + ": rate: expected their frames per our frame > 0, got " + numberText(rate));
+    throw rig::InputError(context + ": rate: expected their frames per our frame > 0, got " + numberText(rate));
   if (!(std::isfinite(scale) && scale > 0))
-    throw InputError(context + ": scale: expected a number > 0, got " + numberText(scale));
+    throw rig::InputError(context + ": scale: expected a number > 0, got " + numberText(scale));
   if (!std::isfinite(position.x) || !std::isfinite(position.y))
-    throw InputError(context + ": position: expected finite pixel coordinates");
+    throw rig::InputError(context + ": position: expected finite pixel coordinates");
   for (const fs::path& f : files)
-    if (!fs::exists(f)) throw InputError(context + ": " + f.string() + ": no such image file");
+    if (!fs::exists(f)) throw rig::InputError(context + ": " + f.string() + ": no such image file");
   const Image src = source(first);
   effectiveCrop(crop, src.width, src.height, context + ": crop");
 }
 
 FootageSequence openFootage(const fs::path& pattern) {
-  const std::optional<FrameSequence> sequence = FrameSequence::parse(pattern);
+  const std::optional<scene::FrameSequence> sequence = scene::FrameSequence::parse(pattern);
   FootageSequence seq;
   seq.name = pattern.string();
   if (!sequence) {
-    if (!fs::exists(pattern)) throw InputError(pattern.string() + ": no such image file");
+    if (!fs::exists(pattern)) throw rig::InputError(pattern.string() + ": no such image file");
     seq.files = {pattern};
     return seq;
   }
   const std::map<int, fs::path> found = sequence->scan();
-  if (found.empty()) throw InputError(pattern.string() + ": no frames match this sequence pattern");
+  if (found.empty()) throw rig::InputError(pattern.string() + ": no frames match this sequence pattern");
   seq.first = found.begin()->first;
   for (const auto& [number, file] : found) {
     if (number != seq.first + int(seq.files.size()))
-      throw InputError(pattern.string() + ": frame " + std::to_string(seq.first + int(seq.files.size())) +
+      throw rig::InputError(pattern.string() + ": frame " + std::to_string(seq.first + int(seq.files.size())) +
                        " is missing (found frames " + std::to_string(seq.first) + " to " +
                        std::to_string(found.rbegin()->first) + ")");
     seq.files.push_back(file);
@@ -217,9 +217,9 @@ FootageSequence openFootage(const fs::path& pattern) {
 }
 
 FootageSequence openFootage(std::vector<fs::path> files, int first) {
-  if (files.empty()) throw InputError("footage: expected at least one image file, got none");
+  if (files.empty()) throw rig::InputError("footage: expected at least one image file, got none");
   for (const fs::path& f : files)
-    if (!fs::exists(f)) throw InputError(f.string() + ": no such image file");
+    if (!fs::exists(f)) throw rig::InputError(f.string() + ": no such image file");
   FootageSequence seq;
   seq.name = files.front().string();
   seq.files = std::move(files);
@@ -227,9 +227,9 @@ FootageSequence openFootage(std::vector<fs::path> files, int first) {
   return seq;
 }
 
-std::vector<Image> cutPlate(const Image& plate, const PlateGrid& g, const std::string& context) {
+std::vector<Image> cutPlate(const Image& plate, const scene::PlateGrid& g, const std::string& context) {
   const auto need = [&](bool ok, const std::string& field, const std::string& expected) {
-    if (!ok) throw InputError(context + ": grid." + field + ": " + expected);
+    if (!ok) throw rig::InputError(context + ": grid." + field + ": " + expected);
   };
   need(g.rows >= 1, "rows", "expected an integer >= 1, got " + std::to_string(g.rows));
   need(g.columns >= 1, "columns", "expected an integer >= 1, got " + std::to_string(g.columns));
@@ -240,7 +240,7 @@ std::vector<Image> cutPlate(const Image& plate, const PlateGrid& g, const std::s
   need(cw >= 1 && ch >= 1, "margins",
        "leave no room for " + std::to_string(g.rows) + "x" + std::to_string(g.columns) + " cells in the " +
            sizeText(plate.width, plate.height) + " plate");
-  const PixelRect crop = g.cell_crop.empty() ? PixelRect{0, 0, int(cw), int(ch)} : g.cell_crop;
+  const scene::PixelRect crop = g.cell_crop.empty() ? scene::PixelRect{0, 0, int(cw), int(ch)} : g.cell_crop;
   need(crop.x >= 0 && crop.y >= 0 && crop.width > 0 && crop.height > 0, "cell_crop",
        "expected x, y >= 0 and a width and height > 0, got " + rectText(crop));
 
@@ -261,7 +261,7 @@ std::vector<Image> cutPlate(const Image& plate, const PlateGrid& g, const std::s
         x0 = snapEdge(lum, plate.width, plate.height, true, x0, slack_x, y0 + int(ch / 4), y0 + int(3 * ch / 4));
         y0 = snapEdge(lum, plate.width, plate.height, false, y0, slack_y, x0 + int(cw / 4), x0 + int(3 * cw / 4));
       }
-      const PixelRect r{x0 + crop.x, y0 + crop.y, crop.width, crop.height};
+      const scene::PixelRect r{x0 + crop.x, y0 + crop.y, crop.width, crop.height};
       need(r.x + r.width <= plate.width && r.y + r.height <= plate.height, "cell_crop",
            rectText(crop) + " of cell " + std::to_string(int(frames.size()) + 1) + " (at " + std::to_string(x0) + "," +
                std::to_string(y0) + ") lies outside the " + sizeText(plate.width, plate.height) + " plate");
@@ -273,21 +273,21 @@ std::vector<Image> cutPlate(const Image& plate, const PlateGrid& g, const std::s
   return frames;
 }
 
-std::vector<Image> cutPlate(const fs::path& plate_file, const PlateGrid& grid) {
+std::vector<Image> cutPlate(const fs::path& plate_file, const scene::PlateGrid& grid) {
   return cutPlate(readLinearImage(plate_file), grid, plate_file.string());
 }
 
-bool referenceAvailable(const ReferenceSpec& ref) {
-  if (!FrameSequence::isPattern(ref.file)) return fs::is_regular_file(ref.file);
+bool referenceAvailable(const scene::ReferenceSpec& ref) {
+  if (!scene::FrameSequence::isPattern(ref.file)) return fs::is_regular_file(ref.file);
   try {
     openFootage(ref.file);
     return true;
-  } catch (const InputError&) {
+  } catch (const rig::InputError&) {
     return false;
   }
 }
 
-FootageSequence openReference(const ReferenceSpec& ref, const std::string& context) {
+FootageSequence openReference(const scene::ReferenceSpec& ref, const std::string& context) {
   FootageSequence seq;
   if (ref.grid) {
     seq.images = cutPlate(readLinearImage(ref.file), *ref.grid, context + ": " + ref.file.string());
@@ -304,13 +304,13 @@ FootageSequence openReference(const ReferenceSpec& ref, const std::string& conte
   seq.flip_x = ref.flip_x;
   seq.validate(context);
   if (!ref.shift_x.empty() && int(ref.shift_x.size()) != seq.frameCount())
-    throw InputError(context + ": shift_x: expected one shift per footage frame (" + std::to_string(seq.frameCount()) +
+    throw rig::InputError(context + ": shift_x: expected one shift per footage frame (" + std::to_string(seq.frameCount()) +
                      "), got " + std::to_string(ref.shift_x.size()));
   seq.shift_x = ref.shift_x;
   return seq;
 }
 
-LayerStyle referenceStyle(const ReferenceSpec& ref, const std::string& ours_label) {
+LayerStyle referenceStyle(const scene::ReferenceSpec& ref, const std::string& ours_label) {
   LayerStyle s;
   s.mode = ref.mode;
   s.opacity = ref.opacity;
@@ -328,7 +328,7 @@ Image layeredFrame(const FootageSequence& a, const FootageSequence& b, int frame
     other = b.frame(mapped, ours.width, ours.height);
   } else if (const std::optional<int> their = b.theirFrame(mapped)) {
     const Image src = b.source(*their);
-    const PixelRect c = b.crop.empty() ? PixelRect{0, 0, src.width, src.height} : b.crop;
+    const scene::PixelRect c = b.crop.empty() ? scene::PixelRect{0, 0, src.width, src.height} : b.crop;
     FootageSequence one;
     one.images = {src};
     one.crop = c;
@@ -337,7 +337,7 @@ Image layeredFrame(const FootageSequence& a, const FootageSequence& b, int frame
   } else {
     other = Image(blank_width, blank_height);
   }
-  if (style.mode != LayerMode::OnionSkin) return layerFrame(ours, other, style);
+  if (style.mode != scene::LayerMode::OnionSkin) return layerFrame(ours, other, style);
   const int last = a.first + a.frameCount() - 1;
   std::vector<Image> ghosts;
   std::vector<int> offsets;

@@ -25,7 +25,7 @@ namespace {
 OIIO::ImageBuf readImage(const std::filesystem::path& file) {
   OIIO::ImageBuf buf(file.string());
   if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-    throw InputError(file.string() + ": cannot read the image (" + buf.geterror() + ")");
+    throw rig::InputError(file.string() + ": cannot read the image (" + buf.geterror() + ")");
   return buf;
 }
 
@@ -37,11 +37,11 @@ DiffResult compareImageFiles(const std::filesystem::path& a_file, const std::fil
   const OIIO::ImageBuf a = readImage(a_file), b = readImage(b_file);
   const OIIO::ImageSpec &sa = a.spec(), &sb = b.spec();
   if (sa.width != sb.width || sa.height != sb.height)
-    throw InputError(a_file.string() + " is " + std::to_string(sa.width) + "x" + std::to_string(sa.height) +
+    throw rig::InputError(a_file.string() + " is " + std::to_string(sa.width) + "x" + std::to_string(sa.height) +
                      " but " + b_file.string() + " is " + std::to_string(sb.width) + "x" +
                      std::to_string(sb.height) + ": expected images of the same size");
   if (sa.nchannels != sb.nchannels)
-    throw InputError(a_file.string() + " has " + std::to_string(sa.nchannels) + " channels but " +
+    throw rig::InputError(a_file.string() + " has " + std::to_string(sa.nchannels) + " channels but " +
                      b_file.string() + " has " + std::to_string(sb.nchannels) +
                      ": expected the same channel count");
 
@@ -93,7 +93,7 @@ DiffResult compareImageFiles(const std::filesystem::path& a_file, const std::fil
     OIIO::ImageBuf out(OIIO::ImageSpec(r.width, r.height, nc, OIIO::TypeDesc::UINT8));
     out.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, diff.data());
     if (!out.write(diff_image.string()))
-      throw InputError(diff_image.string() + ": cannot write the diff image (" + out.geterror() + ")");
+      throw rig::InputError(diff_image.string() + ": cannot write the diff image (" + out.geterror() + ")");
   }
   return r;
 }

@@ -29,7 +29,7 @@ struct DiffResult {
 };
 
 // Compares two image files. Different sizes or channel counts, or an unreadable file, throw
-// stirrup::InputError naming the files. When diff_image is not empty, writes |a - b| scaled by
+// rig::InputError naming the files. When diff_image is not empty, writes |a - b| scaled by
 // `diff_scale` so small differences are visible.
 DiffResult compareImageFiles(const std::filesystem::path& a, const std::filesystem::path& b,
                              const DiffThresholds& t, const std::filesystem::path& diff_image = {},

@@ -17,7 +17,7 @@ namespace {
 
 void requireSameSize(const Image& a, const Image& b, const char* what) {
   if (a.width != b.width || a.height != b.height)
-    throw InputError(std::string("layer ") + what + ": the two images must be the same size, got " +
+    throw rig::InputError(std::string("layer ") + what + ": the two images must be the same size, got " +
                      std::to_string(a.width) + "x" + std::to_string(a.height) + " and " +
                      std::to_string(b.width) + "x" + std::to_string(b.height));
 }
@@ -164,7 +164,7 @@ Image onionSkin(const Image& ours, std::span<const Image> ghosts, std::span<cons
                 const Image& other, const LayerStyle& style) {
   requireSameSize(ours, other, "onion-skin");
   if (ghosts.size() != ghost_offsets.size())
-    throw InputError("layer onion-skin: " + std::to_string(ghosts.size()) + " ghost frames but " +
+    throw rig::InputError("layer onion-skin: " + std::to_string(ghosts.size()) + " ghost frames but " +
                      std::to_string(ghost_offsets.size()) + " offsets");
   for (const Image& g : ghosts) requireSameSize(ours, g, "onion-skin");
   const int step = std::max(1, style.onion_step);
@@ -179,7 +179,7 @@ Image onionSkin(const Image& ours, std::span<const Image> ghosts, std::span<cons
   Image out = opaqueCopy(other);
   for (size_t i : order) {
     const int d = ghost_offsets[i];
-    if (d == 0) throw InputError("layer onion-skin: a ghost frame offset is 0 (the current frame)");
+    if (d == 0) throw rig::InputError("layer onion-skin: a ghost frame offset is 0 (the current frame)");
     const int ring = std::max(1, (std::abs(d) + step - 1) / step);
     const float opacity = style.opacity * std::pow(style.onion_falloff, float(ring - 1));
     layOver(out, ghosts[i], opacity, style.coverage, d < 0 ? style.onion_before : style.onion_after);
@@ -200,14 +200,14 @@ std::vector<int> onionGhostFrames(int frame, const LayerStyle& style, int first,
 
 Image layerFrame(const Image& ours, const Image& other, const LayerStyle& style) {
   switch (style.mode) {
-    case LayerMode::SideBySide: return sideBySide(ours, other, style);
-    case LayerMode::Over: {
+    case scene::LayerMode::SideBySide: return sideBySide(ours, other, style);
+    case scene::LayerMode::Over: {
       requireSameSize(ours, other, "over");
       Image out = opaqueCopy(other);
       layOver(out, ours, style.opacity, style.coverage, glm::vec4(1.0f));
       return out;
     }
-    case LayerMode::Difference: {
+    case scene::LayerMode::Difference: {
       requireSameSize(ours, other, "difference");
       Image out(ours.width, ours.height);
       for (size_t i = 0; i < out.pixelCount(); ++i) {
@@ -216,7 +216,7 @@ Image layerFrame(const Image& ours, const Image& other, const LayerStyle& style)
       }
       return out;
     }
-    case LayerMode::OnionSkin: return onionSkin(ours, {}, {}, other, style);
+    case scene::LayerMode::OnionSkin: return onionSkin(ours, {}, {}, other, style);
   }
   return opaqueCopy(ours);
 }

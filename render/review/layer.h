@@ -37,7 +37,7 @@ enum class LayerCoverage {
 };
 
 struct LayerStyle {
-  LayerMode mode = LayerMode::SideBySide;
+  scene::LayerMode mode = scene::LayerMode::SideBySide;
 
   // Over: out = k * ours + (1 - k) * other with k = opacity * coverage(ours) per pixel.
   // OnionSkin: opacity of the nearest ghost frames (see onion_falloff).
@@ -115,8 +115,8 @@ struct FootageSequence {
 
   int offset = 0;
   double rate = 1.0;
-  FootageEdge edge = FootageEdge::Hold;
-  PixelRect crop;
+  scene::FootageEdge edge = scene::FootageEdge::Hold;
+  scene::PixelRect crop;
   float scale = 1.0f;
   glm::vec2 position = {0.0f, 0.0f};
   bool flip_x = false;
@@ -145,19 +145,19 @@ FootageSequence openFootage(const std::filesystem::path& pattern);
 FootageSequence openFootage(std::vector<std::filesystem::path> files, int first = 1);
 
 // InputError naming `context` and the field when the grid does not fit the plate.
-std::vector<Image> cutPlate(const Image& plate, const PlateGrid& grid, const std::string& context);
-std::vector<Image> cutPlate(const std::filesystem::path& plate_file, const PlateGrid& grid);
+std::vector<Image> cutPlate(const Image& plate, const scene::PlateGrid& grid, const std::string& context);
+std::vector<Image> cutPlate(const std::filesystem::path& plate_file, const scene::PlateGrid& grid);
 
 // ---------------------------------------------------------------------------------------------------
 // ReferenceSpec, a scene's "reference" block, is in scene/reference_spec.h.
 
 // True when the reference's file (or the first frame of its pattern) exists; a layered movie against
 // a missing reference is skipped with a message, not an error.
-bool referenceAvailable(const ReferenceSpec& ref);
+bool referenceAvailable(const scene::ReferenceSpec& ref);
 // The footage the spec describes (the plate cut when it has a grid); InputError naming `context`.
-FootageSequence openReference(const ReferenceSpec& ref, const std::string& context);
+FootageSequence openReference(const scene::ReferenceSpec& ref, const std::string& context);
 // A LayerStyle from the spec's mode, opacity and label (ours labelled `ours_label`).
-LayerStyle referenceStyle(const ReferenceSpec& ref, const std::string& ours_label = "STIRRUP");
+LayerStyle referenceStyle(const scene::ReferenceSpec& ref, const std::string& ours_label = "STIRRUP");
 
 // Frame `frame` of A composited with B, as `stirrup layer` writes it: B's frame is the one for A's
 // frame counted from A's first frame (b.theirFrame(frame - a.first + 1)). `placed`: B is placed on A's

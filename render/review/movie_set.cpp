@@ -37,38 +37,38 @@ namespace fs = std::filesystem;
 
 // The scene's own reference block, when the scene format has one (scene/reference_spec.h ReferenceSpec).
 template <typename S>
-std::optional<ReferenceSpec> sceneReference(const S& scene) {
+std::optional<scene::ReferenceSpec> sceneReference(const S& scene) {
   if constexpr (requires { scene.reference; }) {
     if constexpr (requires { scene.reference.has_value(); }) {
-      if (scene.reference.has_value()) return ReferenceSpec(*scene.reference);
+      if (scene.reference.has_value()) return scene::ReferenceSpec(*scene.reference);
     } else {
-      return ReferenceSpec(scene.reference);
+      return scene::ReferenceSpec(scene.reference);
     }
   }
   return std::nullopt;
 }
 
 // Muybridge's horse-and-rider plate (2872x1008, 6x2 cells), laid beside the render.
-ReferenceSpec muybridgePlate(const fs::path& reference_dir) {
-  ReferenceSpec r;
+scene::ReferenceSpec muybridgePlate(const fs::path& reference_dir) {
+  scene::ReferenceSpec r;
   r.file = reference_dir / "muybridge" / "horse-and-rider-gallop-plate.jpg";
-  PlateGrid grid;
+  scene::PlateGrid grid;
   grid.rows = 2;
   grid.columns = 6;
   r.grid = grid;
-  r.edge = FootageEdge::Loop;
-  r.mode = LayerMode::SideBySide;
+  r.edge = scene::FootageEdge::Loop;
+  r.mode = scene::LayerMode::SideBySide;
   r.label = "MUYBRIDGE 1887";
   return r;
 }
 
 // The scene a job renders: its scene file, or its glTF shot's (whose own frames and named views).
-SceneSpec jobScene(const MovieJob& job, const MovieOptions& o) {
-  return isGltfFile(job.scene) ? loadFileShot(job.scene, 24.0, job.look).scene : loadScene(job.scene, {o.allow_impossible});
+scene::SceneSpec jobScene(const MovieJob& job, const MovieOptions& o) {
+  return scene::isGltfFile(job.scene) ? scene::loadFileShot(job.scene, 24.0, job.look).scene : scene::loadScene(job.scene, {o.allow_impossible});
 }
 
-std::vector<int> movieFrames(const MovieJob& job, const SceneSpec& scene, const MovieOptions& o) {
-  std::vector<int> frames = rig::parseFrameList(job.frames.empty() ? scene.frames : job.frames,
+std::vector<int> movieFrames(const MovieJob& job, const scene::SceneSpec& scene, const MovieOptions& o) {
+  std::vector<int> frames = scene::parseFrameList(job.frames.empty() ? scene.frames : job.frames,
                                                 job.scene.string() + ": frames");
   if (o.frames_limit > 0 && static_cast<int>(frames.size()) > o.frames_limit) frames.resize(std::size_t(o.frames_limit));
   return frames;
@@ -77,19 +77,19 @@ std::vector<int> movieFrames(const MovieJob& job, const SceneSpec& scene, const 
 // What a movie renders: a scene, or a glTF shot's pairs as the file keys them and the scene the shot
 // gives (scene/file_shot.h), at the movie's preset and size.
 struct MovieInput {
-  SceneSpec scene;
-  std::optional<FileShot> file;
+  scene::SceneSpec scene;
+  std::optional<scene::FileShot> file;
 };
 
 MovieInput loadForMovie(const MovieJob& job, const MovieOptions& o) {
   MovieInput in;
-  if (isGltfFile(job.scene)) {
-    in.file = loadFileShot(job.scene, 24.0, job.look);
+  if (scene::isGltfFile(job.scene)) {
+    in.file = scene::loadFileShot(job.scene, 24.0, job.look);
     in.scene = in.file->scene;
   } else {
-    in.scene = loadScene(job.scene, {o.allow_impossible});
+    in.scene = scene::loadScene(job.scene, {o.allow_impossible});
   }
-  applyPreset(in.scene, findPreset(o.preset));
+  scene::applyPreset(in.scene, scene::findPreset(o.preset));
   if (o.width > 0) in.scene.width = o.width;
   if (o.height > 0) in.scene.height = o.height;
   if (in.file) in.file->scene = in.scene;
@@ -141,13 +141,13 @@ std::vector<MovieJob> defaultMovieSet(const fs::path& scenes_dir, const fs::path
 }
 
 std::vector<MovieJob> shotMovieSet(const fs::path& shot_file, const fs::path& look) {
-  const FileShot shot = loadFileShot(shot_file, 24.0, look);  // a file that is not a shot is an error before any work
+  const scene::FileShot shot = scene::loadFileShot(shot_file, 24.0, look);  // a file that is not a shot is an error before any work
   const std::string stem = shot_file.stem().string();
   std::vector<MovieJob> set;
   if (look.empty()) {
     for (const char* view : kShotViews) set.push_back({stem + "_" + view, shot_file, view, "", "", {}});
   } else {
-    for (const CameraSpec& c : shot.scene.cameras) set.push_back({stem + "_" + c.name, shot_file, c.name, "", "", look});
+    for (const scene::CameraSpec& c : shot.scene.cameras) set.push_back({stem + "_" + c.name, shot_file, c.name, "", "", look});
   }
   return set;
 }
@@ -172,14 +172,14 @@ std::vector<int> movieFrameList(const MovieJob& job, const MovieOptions& o) {
 int movieFrameCount(const MovieJob& job, const MovieOptions& o) { return static_cast<int>(movieFrameList(job, o).size()); }
 
 fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out, bool allow_impossible) {
-  const SceneSpec scene = loadScene(scene_file, {allow_impossible});
+  const scene::SceneSpec scene = scene::loadScene(scene_file, {allow_impossible});
   // A crowd's plot is one pair's: the one a camera follows (the first such), else the first pair, as
   // the shot's evaluator bakes it (its own clip at its start phase, its own profile).
-  ShotEvaluator characters(scene, resolveProfile(scene), 0);
+  scene::ShotEvaluator characters(scene, scene::resolveProfile(scene), 0);
   int pair = 0;
   std::string title = scene.name, profile_name = scene.profile;
   if (characters.isCrowd()) {
-    for (const CameraSpec& c : scene.cameras)
+    for (const scene::CameraSpec& c : scene.cameras)
       if (c.follow_pair >= 0) {
         pair = c.follow_pair;
         break;
@@ -188,11 +188,11 @@ fs::path writeMovementPlot(const fs::path& scene_file, const fs::path& out, bool
     profile_name = scene.pairs.at(std::size_t(pair)).profile;
   }
   std::vector<rig::BakedFrame> baked;
-  ShotFrame frame;
-  for (int f : rig::parseFrameList(scene.frames, scene_file.string() + ": frames")) {
-    FrameRequest request;
+  scene::ShotFrame frame;
+  for (int f : scene::parseFrameList(scene.frames, scene_file.string() + ": frames")) {
+    scene::FrameRequest request;
     request.frame = f;
-    request.until = EvalStage::Bake;
+    request.until = scene::EvalStage::Bake;
     request.only_pair = pair;
     characters.evaluate(request, frame);
     baked.push_back(frame.pairs[std::size_t(pair)].baked);
@@ -211,10 +211,10 @@ namespace {
 
 fs::path frameDir(const MovieJob& job, const MovieOptions& o) { return o.out / "frames" / job.name; }
 fs::path framePng(const MovieJob& job, const MovieOptions& o, int f) {
-  return FrameSequence::named(frameDir(job, o), job.name, ".png").path(f);
+  return scene::FrameSequence::named(frameDir(job, o), job.name, ".png").path(f);
 }
 fs::path sheetExr(const MovieJob& job, const MovieOptions& o, int f) {
-  return FrameSequence::named(frameDir(job, o), job.name, ".sheet.exr").path(f);
+  return scene::FrameSequence::named(frameDir(job, o), job.name, ".sheet.exr").path(f);
 }
 
 std::string movieView(const MovieJob& job) { return job.layered.empty() ? job.camera : "layered (" + job.camera + ")"; }
@@ -222,7 +222,7 @@ std::string movieView(const MovieJob& job) { return job.layered.empty() ? job.ca
 // What the slate and the burn-ins say: a function of the job, the options and the movie's frames only,
 // so every farm task burns in the same facts.
 BurnInFacts movieFacts(const MovieJob& job, const MovieOptions& o, const MovieInput& in, const std::vector<int>& frames) {
-  const SceneSpec& scene = in.scene;
+  const scene::SceneSpec& scene = in.scene;
   BurnInFacts facts;
   facts.scene = scene.name;
   facts.view = movieView(job);
@@ -231,13 +231,13 @@ BurnInFacts movieFacts(const MovieJob& job, const MovieOptions& o, const MovieIn
     facts.movement = "as keyed" + (animation.empty() ? std::string() : " (" + animation + ")");
     facts.profile = "as keyed";
   } else {
-    facts.movement = rig::makeClip(scene.clip)->name();  // the name only: no need to read the horse for its hooves
+    facts.movement = scene::makeClip(scene.clip)->name();  // the name only: no need to read the horse for its hooves
     facts.profile = scene.profile;
   }
   facts.fps = scene.fps;
   facts.frames = std::to_string(frames.front()) + "-" + std::to_string(frames.back());
   facts.frame_count = static_cast<int>(frames.size());
-  const QualityPreset& preset = findPreset(o.preset);
+  const scene::QualityPreset& preset = scene::findPreset(o.preset);
   facts.quality = std::string(preset.name) + " (samples a pixel: " + std::to_string(preset.samples) + ")";
   facts.date = o.date.empty() ? todayUtc() : o.date;
   return facts;
@@ -288,18 +288,18 @@ class MovieFrameMaker {
   // The burn-ins (and the panels' labels) on a composed frame.
   void burnIn(Image& image, int f) const {
     render::burnIn(image, facts_, f);
-    if (style_.mode == LayerMode::SideBySide) labelPanels(image, panel_labels_);
+    if (style_.mode == scene::LayerMode::SideBySide) labelPanels(image, panel_labels_);
   }
   const BurnInFacts& facts() const { return facts_; }
 
  private:
-  static Shot makeShot(const MovieInput& in, const CameraSpec& camera, const rig::RigProfile& profile, int threads) {
+  static Shot makeShot(const MovieInput& in, const scene::CameraSpec& camera, const rig::RigProfile& profile, int threads) {
     // A glTF shot's pairs through the same evaluator and tracer as `stirrup render SHOT.glb`.
-    return in.file ? Shot(std::make_shared<ShotEvaluator>(*in.file, profile, threads), camera, threads)
+    return in.file ? Shot(std::make_shared<scene::ShotEvaluator>(*in.file, profile, threads), camera, threads)
                    : Shot(in.scene, profile, camera, threads);
   }
 
-  const SceneSpec& scene_;
+  const scene::SceneSpec& scene_;
   Shot shot_;
   std::unique_ptr<Shot> rigid_;
   std::optional<FootageSequence> footage_;
@@ -311,41 +311,41 @@ class MovieFrameMaker {
 MovieFrameMaker::MovieFrameMaker(const MovieJob& job, const MovieOptions& o, const MovieInput& in,
                                  const std::vector<int>& all)
     : scene_(in.scene),
-      shot_(makeShot(in, findCamera(in.scene, job.camera), resolveProfile(in.scene), o.threads)),
+      shot_(makeShot(in, scene::findCamera(in.scene, job.camera), scene::resolveProfile(in.scene), o.threads)),
       facts_(movieFacts(job, o, in, all)) {
   // The colour alone, except under reference footage, which may be laid by our matte (LayerCoverage).
   shot_.setPasses(job.layered == "reference");
   if (job.layered == "rigid") {
-    CameraSpec same = shot_.camera();  // exactly the rigged shot's framed camera
+    scene::CameraSpec same = shot_.camera();  // exactly the rigged shot's framed camera
     same.view.clear();
     rigid_ = std::make_unique<Shot>(shot_.sharedCharacters(), same, o.threads);  // the same characters, read once
     rigid_->setRigidRider(true);
     panel_labels_ = {"rigged rider (stirrup)", "rider fixed to the saddle"};
-    style_.mode = LayerMode::SideBySide;
+    style_.mode = scene::LayerMode::SideBySide;
     style_.labels = false;  // labelled below the burn-in band instead (labelPanels)
   } else if (job.layered == "reference") {
-    const ReferenceSpec ref = sceneReference(scene_).value_or(muybridgePlate(o.reference_dir));
-    if (!referenceAvailable(ref)) throw InputError(job.scene.string() + ": reference: " + ref.file.string() + ": not found");
+    const scene::ReferenceSpec ref = sceneReference(scene_).value_or(muybridgePlate(o.reference_dir));
+    if (!referenceAvailable(ref)) throw rig::InputError(job.scene.string() + ": reference: " + ref.file.string() + ": not found");
     footage_ = openReference(ref, job.scene.string() + ": reference");
     style_ = referenceStyle(ref, "STIRRUP");
-    if (style_.mode == LayerMode::SideBySide) {
+    if (style_.mode == scene::LayerMode::SideBySide) {
       panel_labels_ = {"stirrup", ref.label};
       style_.labels = false;
     }
   } else if (!job.layered.empty()) {
-    throw InputError(job.name + ": layered: expected \"rigid\" or \"reference\", got \"" + job.layered + "\"");
+    throw rig::InputError(job.name + ": layered: expected \"rigid\" or \"reference\", got \"" + job.layered + "\"");
   }
 }
 
 Image MovieFrameMaker::compose(int f, std::optional<int> next) {
   // Each frame evaluated while the one before traces (Shot::renderFrame); the rigid panel's shot
   // shares the characters and takes its turn after, each joining its evaluation before it returns.
-  warnImpossibleFrame(scene_, f);
+  scene::warnImpossibleFrame(scene_, f);
   Image image = shot_.renderFrame(f, next);
   if (rigid_) return layerFrame(image, rigid_->renderFrame(f, next), style_);
   if (footage_) {
     const std::optional<int> theirs = footage_->theirFrame(f);
-    const Image other = style_.mode == LayerMode::SideBySide && theirs ? footage_->source(*theirs)
+    const Image other = style_.mode == scene::LayerMode::SideBySide && theirs ? footage_->source(*theirs)
                                                                        : footage_->frame(f, image.width, image.height);
     return layerFrame(image, other, style_);
   }
@@ -355,9 +355,9 @@ Image MovieFrameMaker::compose(int f, std::optional<int> next) {
 // A movie's frames, checked: the job's frames (all of them, cut to frames_limit), or InputError.
 std::vector<int> checkedFrames(const MovieJob& job, const MovieOptions& o, const MovieInput& in) {
   if (in.file && !job.layered.empty())
-    throw InputError(job.name + ": " + shotViewRefusal("layered") + " (" + job.scene.string() + ")");
+    throw rig::InputError(job.name + ": " + shotViewRefusal("layered") + " (" + job.scene.string() + ")");
   std::vector<int> all = movieFrames(job, in.scene, o);
-  if (all.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
+  if (all.empty()) throw rig::InputError(job.scene.string() + ": frames: no frames to render");
   return all;
 }
 
@@ -373,7 +373,7 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
   const std::vector<int> all = checkedFrames(job, o, in);
   for (int f : wanted)
     if (std::find(all.begin(), all.end(), f) == all.end())
-      throw InputError(job.name + ": frame " + std::to_string(f) + " is not one of the movie's frames (" +
+      throw rig::InputError(job.name + ": frame " + std::to_string(f) + " is not one of the movie's frames (" +
                        std::to_string(all.front()) + "-" + std::to_string(all.back()) + ")");
   const std::vector<int> sheet_frames = contactFrames(all, o.contact_count);
   std::vector<int> frames;
@@ -407,7 +407,7 @@ int renderMovieFrames(const MovieJob& job, const MovieOptions& o, const std::vec
 namespace {
 
 // What a movie is, as the index lists it, before anything is encoded.
-MovieResult describeMovie(const MovieJob& job, const SceneSpec& scene, const BurnInFacts& facts,
+MovieResult describeMovie(const MovieJob& job, const scene::SceneSpec& scene, const BurnInFacts& facts,
                           const std::vector<int>& frames) {
   MovieResult result;
   result.name = job.name;
@@ -430,7 +430,7 @@ std::vector<std::pair<fs::path, MovieCodec>> movieFiles(const MovieJob& job, con
   return files;
 }
 
-void writeSheet(const MovieJob& job, const MovieOptions& o, const SceneSpec& scene, const std::vector<ContactFrame>& sheet,
+void writeSheet(const MovieJob& job, const MovieOptions& o, const scene::SceneSpec& scene, const std::vector<ContactFrame>& sheet,
                 MovieResult& result) {
   result.contact_sheet = o.out / (job.name + "_sheet.png");
   writeContactSheet(job.name + "  (" + scene.name + ", " + result.view + ", profile " + result.profile + ")", sheet,
@@ -443,15 +443,15 @@ fs::path slatePng(const MovieJob& job, const MovieOptions& o) { return frameDir(
 
 MovieResult finishMovie(const MovieJob& job, const MovieOptions& o) {
   const MovieInput in = loadForMovie(job, o);
-  const SceneSpec& scene = in.scene;
+  const scene::SceneSpec& scene = in.scene;
   const std::vector<int> frames = movieFrames(job, scene, o);
-  if (frames.empty()) throw InputError(job.scene.string() + ": frames: no frames to render");
+  if (frames.empty()) throw rig::InputError(job.scene.string() + ": frames: no frames to render");
   const std::vector<int> sheet_frames = contactFrames(frames, o.contact_count);
   std::vector<fs::path> files;
   for (int f : frames) {
     for (const fs::path& file : movieFrameFiles(job, o, f, sheet_frames))  // (the scene read once, above)
       if (!fs::is_regular_file(file))
-        throw InputError(job.name + ": frame " + std::to_string(f) + " is missing (" + file.string() + ")");
+        throw rig::InputError(job.name + ": frame " + std::to_string(f) + " is missing (" + file.string() + ")");
     files.push_back(framePng(job, o, f));
   }
   std::vector<ContactFrame> sheet;

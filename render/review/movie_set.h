@@ -110,7 +110,7 @@ MovieResult finishMovie(const MovieJob& job, const MovieOptions& options);
 // encoders (MovieEncoder, ffmpeg reading raw frames on a pipe) while the next one renders, and the
 // contact sheet is made from the frames kept in memory. The movie's pixels are those stage 2 makes from
 // stage 1's PNGs. With keep_frames the frames and the slate are also written as stage 1 writes them
-// (NAME.####.png, NAME.slate.png). `frame_done` is called after each frame. Throws stirrup::InputError
+// (NAME.####.png, NAME.slate.png). `frame_done` is called after each frame. Throws rig::InputError
 // on bad input and std::runtime_error when encoding fails (no movie is left then).
 MovieResult renderMovie(const MovieJob& job, const MovieOptions& options,
                         const std::function<void()>& frame_done = {});

@@ -103,7 +103,7 @@ void Canvas::write(const std::filesystem::path& file) const {
         const OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::UINT8);
         if (!out || !out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb_.data()) ||
             !out->close())
-          throw InputError(file.string() + ": cannot write the image");
+          throw rig::InputError(file.string() + ": cannot write the image");
       },
       rig::TempName::KeepExtension);
 }
@@ -118,7 +118,7 @@ namespace {
 
 // A coordinate to a tenth of a pixel, without a trailing ".0".
 std::string svgNumber(double v) {
-  std::string s = printfNumber("%.1f", v);
+  std::string s = rig::printfNumber("%.1f", v);
   if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
   return s == "-0" ? "0" : s;
 }

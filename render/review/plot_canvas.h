@@ -62,7 +62,7 @@ class PlotSurface {
   // Text with its baseline at y; x is the left edge, centre or right edge.
   virtual void text(glm::dvec2 at, const std::string& s, int size, const Color& c, TextAlign align = TextAlign::Left,
                     FontStyle style = FontStyle::Sans) = 0;
-  // Writes the file whole or not at all; throws stirrup::InputError naming the file on failure.
+  // Writes the file whole or not at all; throws rig::InputError naming the file on failure.
   virtual void write(const std::filesystem::path& file) const = 0;
 
  protected:
@@ -91,7 +91,7 @@ class Canvas : public PlotSurface {
             FontStyle style = FontStyle::Sans) override;
   // Pastes an RGB image (display-referred, row-major, w*h*3) with its top-left at (x, y).
   void paste(int x, int y, int w, int h, const std::vector<float>& rgb);
-  // Writes an 8-bit PNG; throws stirrup::InputError naming the file on failure.
+  // Writes an 8-bit PNG; throws rig::InputError naming the file on failure.
   void write(const std::filesystem::path& file) const override;
 
   void blend(int x, int y, double coverage, const Color& c);

@@ -26,7 +26,7 @@ const Color kTwistColor = {0.10f, 0.60f, 0.25f};
 
 void writeSpinePlot(const std::vector<rig::SpineResult>& poses, const std::filesystem::path& file,
                     const SpinePlotStyle& style) {
-  if (poses.empty()) throw InputError(file.string() + ": no poses to plot");
+  if (poses.empty()) throw rig::InputError(file.string() + ": no poses to plot");
   const int count = static_cast<int>(poses.size());
   const int perRow = std::min(count, style.poses_per_row);
   const int rows = (count + perRow - 1) / perRow;

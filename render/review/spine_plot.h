@@ -19,7 +19,7 @@ struct SpinePlotStyle {
   int poses_per_row = 3;  // each pose takes two panels; rows as needed
 };
 
-// Writes FILE via FILE.tmp.EXT and a rename. Throws stirrup::InputError if the image can't be written.
+// Writes FILE via FILE.tmp.EXT and a rename. Throws rig::InputError if the image can't be written.
 void writeSpinePlot(const std::vector<rig::SpineResult>& poses, const std::filesystem::path& file,
                     const SpinePlotStyle& style = {});
 

@@ -26,7 +26,7 @@ std::filesystem::path locate(FontStyle style) {
   const std::string name = fileName(style);
   if (const char* env = std::getenv("STIRRUP_FONT"); env && *env) {
     if (fs::is_regular_file(env)) return env;
-    throw InputError(std::string("STIRRUP_FONT: ") + env + ": no such font file (expected a .ttf file)");
+    throw rig::InputError(std::string("STIRRUP_FONT: ") + env + ": no such font file (expected a .ttf file)");
   }
   for (const char* dir : {"/usr/share/fonts/truetype/dejavu", "/usr/share/fonts/dejavu", "/usr/share/fonts/TTF",
                           "/usr/local/share/fonts", "/usr/share/fonts/truetype"}) {
@@ -42,7 +42,7 @@ std::filesystem::path locate(FontStyle style) {
     const fs::path p(std::string(buf, n));
     if (n > 0 && p.filename().string().find("DejaVu") != std::string::npos && fs::is_regular_file(p)) return p;
   }
-  throw InputError(std::string("font: ") + name +
+  throw rig::InputError(std::string("font: ") + name +
                    " not found (install fonts-dejavu-core, run scripts/setup, or set STIRRUP_FONT to a .ttf file)");
 }
 

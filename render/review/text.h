@@ -12,7 +12,7 @@ namespace stirrup::render {
 
 enum class FontStyle { Sans, SansBold, Mono };
 
-// The font file for a style; throws stirrup::InputError if no DejaVu font can be found.
+// The font file for a style; throws rig::InputError if no DejaVu font can be found.
 std::filesystem::path findFont(FontStyle style = FontStyle::Sans);
 
 enum class TextAlign { Left, Center, Right };

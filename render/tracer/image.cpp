@@ -115,7 +115,7 @@ void writePng(const Image& image, const fs::path& file, int compression) {
   if (image.rgba.size() != image.pixelCount() || image.rgba.empty()) {
     throw std::invalid_argument("writePng: image has no pixels");
   }
-  if (compression < kPngCompressionMin || compression > kPngCompressionMax) {
+  if (compression < scene::kPngCompressionMin || compression > scene::kPngCompressionMax) {
     throw std::invalid_argument("writePng: compression " + std::to_string(compression) + " is not a zlib level 0 to 9");
   }
   std::vector<uint8_t> bytes(image.pixelCount() * 3);
@@ -189,10 +189,10 @@ void writeExr(const Image& image, const fs::path& file, const ExrMetadata& metad
   writeAtomically(file, "openexr", spec, OIIO::TypeDesc::FLOAT, data.data());
 }
 
-ExrMetadata exrFrameMetadata(const Camera& camera, const std::string& camera_name, int frame, double time_s,
+ExrMetadata exrFrameMetadata(const scene::Camera& camera, const std::string& camera_name, int frame, double time_s,
                              const std::string& scene_name) {
-  const bool ortho = camera.projection == Camera::Projection::Orthographic;
-  const CameraFrame view(camera, 1.0, 1);
+  const bool ortho = camera.projection == scene::Camera::Projection::Orthographic;
+  const scene::CameraFrame view(camera, 1.0, 1);
   // worldToCamera as OpenEXR defines it: row vectors (p * M), a camera looking down its -Z axis with
   // +Y up. Stored row-major, glm's column-major array read as rows is exactly that layout.
   glm::mat4 m(1.0f);
@@ -244,13 +244,13 @@ Image readRgbaExr(const fs::path& file) {
     return text;
   };
   auto in = OIIO::ImageInput::open(file.string());
-  if (!in) throw InputError(file.string() + ": cannot read (" + oneLine(OIIO::geterror()) + ")");
+  if (!in) throw rig::InputError(file.string() + ": cannot read (" + oneLine(OIIO::geterror()) + ")");
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.nchannels != 4 || spec.width <= 0 || spec.height <= 0)
-    throw InputError(file.string() + ": expected an RGBA image, got " + std::to_string(spec.nchannels) + " channels");
+    throw rig::InputError(file.string() + ": expected an RGBA image, got " + std::to_string(spec.nchannels) + " channels");
   Image image(spec.width, spec.height);
   if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, image.rgba.data()))
-    throw InputError(file.string() + ": cannot read (" + oneLine(in->geterror()) + ")");
+    throw rig::InputError(file.string() + ": cannot read (" + oneLine(in->geterror()) + ")");
   return image;
 }
 

@@ -58,7 +58,7 @@ void encodeSrgb8(std::span<const glm::vec4> rgba, std::span<uint8_t> rgb);
 // Review image: opaque 8-bit sRGB RGB (the sky is part of the picture; alpha is left out so viewers
 // and movie encoders never show the sky as transparent), at zlib level `compression` (0 to 9; else
 // std::invalid_argument). Throws std::runtime_error on failure.
-void writePng(const Image& image, const std::filesystem::path& file, int compression = kReviewPngCompression);
+void writePng(const Image& image, const std::filesystem::path& file, int compression = scene::kReviewPngCompression);
 
 // One attribute of an EXR header: a string, int, float, 3-vector (v3f) or 4x4 matrix (m44f).
 struct ExrAttribute {
@@ -82,7 +82,7 @@ Image readRgbaExr(const std::filesystem::path& file);
 // The header attributes that let a compositor line up a frame: the camera (projection, position,
 // target, vertical fov in degrees or ortho height in cm, and the standard worldToCamera matrix),
 // the frame, its time in seconds and the scene's name, under "stirrup:" names.
-ExrMetadata exrFrameMetadata(const Camera& camera, const std::string& camera_name, int frame, double time_s,
+ExrMetadata exrFrameMetadata(const scene::Camera& camera, const std::string& camera_name, int frame, double time_s,
                              const std::string& scene_name);
 
 }  // namespace stirrup::render

@@ -190,7 +190,7 @@ bool blocked(const RTCRay& ray) { return ray.tfar < 0.0f; }  // Embree sets tfar
 
 }  // namespace
 
-void Integrator::renderTile(const CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
+void Integrator::renderTile(const scene::CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
                             RayTally& tally, PixelResult* out) const {
   const int width = x1 - x0, count = width * (y1 - y0);
   const int batch = std::max(1, kBatchSamples / int(spp_));
@@ -201,7 +201,7 @@ void Integrator::renderTile(const CameraFrame& camera, int x0, int x1, int y0, i
   }
 }
 
-LaneConstants Integrator::laneConstants(const CameraFrame& camera) const {
+LaneConstants Integrator::laneConstants(const scene::CameraFrame& camera) const {
   LaneConstants k;
   camera.laneView(k.perspective, k.pixel_dx, k.pixel_dy, k.half_width, k.half_height, k.footprint_at_0,
                   k.footprint_per_cm);
@@ -697,7 +697,7 @@ bool Integrator::hillsMayBlockSunAbove(const glm::vec3& p, double ground_height)
   return !hills_->openAbove(p, secondaryRaySlack(p), ground_height);
 }
 
-float Integrator::visibleDistance(const CameraFrame& camera) const {
+float Integrator::visibleDistance(const scene::CameraFrame& camera) const {
   return camera.perspective() ? settings_.haze.visibility_cm
                               : camera.targetDistanceF() + settings_.haze.ortho_depth_cm;
 }

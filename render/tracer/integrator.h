@@ -107,11 +107,11 @@ class Integrator {
   // samples of the batch (one rtcIntersect1M), then all shadow and sky rays their shading needs (one
   // rtcOccluded1M each), then the sums. Each pixel's result depends on its own samples only, so it is
   // the same whatever tile or batch the pixel falls in.
-  void renderTile(const CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
+  void renderTile(const scene::CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
                   RayTally& tally, PixelResult* out) const;
 
   // What the SIMD kernels read (render/tracer/sample_lanes.h, render/tracer/shading_lanes.h), for this frame's camera.
-  LaneConstants laneConstants(const CameraFrame& camera) const;
+  LaneConstants laneConstants(const scene::CameraFrame& camera) const;
 
   // Whether any ray of the sun's cone from `origin` can meet the characters' box (false: the sun is
   // certainly unblocked there and needs no shadow rays).
@@ -160,7 +160,7 @@ class Integrator {
   // horizon map is of that mesh: Renderer::setTerrain).
   bool hillsMayBlockSunAbove(const glm::vec3& p, double mesh_height) const;
   // How far along a camera ray the ground is seen before the haze ends it.
-  float visibleDistance(const CameraFrame& camera) const;
+  float visibleDistance(const scene::CameraFrame& camera) const;
 
   const RenderSettings& settings_;
   RTCScene characters_;

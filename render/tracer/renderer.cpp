@@ -164,9 +164,9 @@ void Renderer::setMeshEnabled(int mesh, bool enabled) {
   state_->scene.setEnabled(state_->geometry_of_mesh[size_t(mesh)], enabled);
 }
 
-Image Renderer::render(const Camera& camera, int frame, RayLog* log, const std::function<void()>& alongside) {
+Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, const std::function<void()>& alongside) {
   const int w = settings_.width, h = settings_.height;
-  const CameraFrame camera_frame(camera, w, h);
+  const scene::CameraFrame camera_frame(camera, w, h);
   Image image(w, h);
   if (settings_.passes) {
     image.depth.assign(image.pixelCount(), 0.0f);

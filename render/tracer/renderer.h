@@ -141,7 +141,7 @@ class Renderer {
   // committed, while the frame traces, and returns when both are done (its exception is rethrown
   // here). The threads stay as many as RenderSettings::threads (frames overlapped: the shot evaluates
   // its next frame so, render/shot.h). It must not touch the renderer.
-  Image render(const Camera& camera, int frame, RayLog* log = nullptr, const std::function<void()>& alongside = {});
+  Image render(const scene::Camera& camera, int frame, RayLog* log = nullptr, const std::function<void()>& alongside = {});
 
   // Casts the logged rays through Embree alone on the renderer's threads, in streams of 256
   // consecutive rays with rtcIntersect1M / rtcOccluded1M as the integrator does, and returns the wall-clock

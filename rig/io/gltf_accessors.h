@@ -1,5 +1,5 @@
 // Reading a glTF file and its accessors: the checked reads every glTF reader here shares (characters,
-// terrain meshes). A bad file or accessor is a stirrup::InputError naming `where`.
+// terrain meshes). A bad file or accessor is a rig::InputError naming `where`.
 #pragma once
 
 #include <cstdint>

@@ -24,7 +24,7 @@ class Model;
 
 namespace stirrup::rig {
 
-// Throws stirrup::InputError, one line starting "FIELD: FILE: ", for a missing or unreadable file, a
+// Throws rig::InputError, one line starting "FIELD: FILE: ", for a missing or unreadable file, a
 // broken node hierarchy or accessor, a non-finite vertex, or no triangles. `field` names where the
 // file was given (e.g. "scene.json: terrain.file").
 std::shared_ptr<const TerrainMesh> loadTerrainGltf(const std::filesystem::path& file, const std::string& field);

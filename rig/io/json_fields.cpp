@@ -7,7 +7,7 @@
 
 #include "rig/error.h"
 
-namespace stirrup {
+namespace stirrup::rig {
 
 nlohmann::json readJsonFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -134,4 +134,4 @@ void JsonObjectReader::finish() const {
   }
 }
 
-}  // namespace stirrup
+}  // namespace stirrup::rig

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace stirrup {
+namespace stirrup::rig {
 
 // The UTF-8 byte-order mark some editors put first in a file ("CSV UTF-8", "UTF-8 with BOM"). JSON and
 // channel CSV readers skip it.
@@ -87,4 +87,4 @@ std::array<double, N> JsonObjectReader::numbers(const std::string& key, std::arr
   return out;
 }
 
-}  // namespace stirrup
+}  // namespace stirrup::rig

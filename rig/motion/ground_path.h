@@ -21,7 +21,7 @@ namespace stirrup::rig {
 
 class GroundPath {
  public:
-  // Points in the ground plane, cm: (world x, world z). Throws stirrup::InputError "SOURCE: points[i]:
+  // Points in the ground plane, cm: (world x, world z). Throws rig::InputError "SOURCE: points[i]:
   // expected ..." for fewer than two points, a non-finite coordinate, or a point repeating the one
   // before it (closer than kMinSegmentCm: a zero-length segment has no heading).
   GroundPath(std::vector<glm::dvec2> points, const std::string& source);

@@ -127,7 +127,7 @@ std::optional<GaitSpeedBreach> gaitSpeedBreach(const GaitSpeed& speed, const Hor
 class PathLimitCheck {
  public:
   // `file` names the scene and `clip_field` the path's clip in it ("clip", "crowd.pairs[3]") in
-  // messages. Throws stirrup::InputError for a path or speed the path clip itself refuses. `terrain`
+  // messages. Throws rig::InputError for a path or speed the path clip itself refuses. `terrain`
   // null = flat.
   PathLimitCheck(const PathClipParams& params, const Terrain* terrain, std::string file, std::string clip_field,
                  const HorseLimits& limits = {});

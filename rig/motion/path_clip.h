@@ -62,7 +62,7 @@ struct PathClipParams {
 
 class PathClip final : public Clip {
  public:
-  // Throws stirrup::InputError "SOURCE: FIELD: ..." (source e.g. "scene.json: clip") for a bad path or
+  // Throws rig::InputError "SOURCE: FIELD: ..." (source e.g. "scene.json: clip") for a bad path or
   // speed, or a path the speeds would take longer than max_duration_s to ride. `terrain` null = flat.
   PathClip(PathClipParams params, std::shared_ptr<const Terrain> terrain, const std::string& source);
 

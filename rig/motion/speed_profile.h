@@ -22,7 +22,7 @@ class SpeedProfile {
     double at = 0;      // seconds (Over::Time) or cm along the path (Over::Distance)
     double speed = 0;   // cm/s, > 0
   };
-  // `duration_s`: how long the table covers (the clip's duration). Throws stirrup::InputError
+  // `duration_s`: how long the table covers (the clip's duration). Throws rig::InputError
   // "SOURCE: speed[i]: expected ..." for no keys, a key not after the one before it, a time or distance
   // past kMaxKeyAt, or a speed outside kMinSpeedCmS to kMaxSpeedCmS.
   SpeedProfile(std::vector<Key> keys, Over over, double duration_s, const std::string& source);

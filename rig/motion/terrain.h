@@ -31,7 +31,7 @@ struct HillsParams {
 class Terrain {
  public:
   Terrain() = default;  // flat, at height 0
-  // Rolling hills. Throws stirrup::InputError "SOURCE: terrain.FIELD: expected ..., got ..." for an
+  // Rolling hills. Throws rig::InputError "SOURCE: terrain.FIELD: expected ..., got ..." for an
   // amplitude outside 0-5000 cm, a wavelength outside 100-1 000 000 cm, or octaves outside 1-6.
   static Terrain hills(const HillsParams& params, const std::string& source);
   // A mesh. Off it (or over a hole) the ground is at the mesh's lowest vertex; covers() says where it is.

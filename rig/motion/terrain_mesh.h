@@ -16,7 +16,7 @@ namespace stirrup::rig {
 class TerrainMesh {
  public:
   // Vertices in cm (world, Y up) and three indices per triangle. Triangles standing on edge (no area
-  // seen from above) carry no ground and are skipped. Throws stirrup::InputError "SOURCE: ..." for a
+  // seen from above) carry no ground and are skipped. Throws rig::InputError "SOURCE: ..." for a
   // non-finite vertex, an index past the vertices, or no triangle with area seen from above.
   TerrainMesh(std::vector<glm::dvec3> vertices, std::vector<std::uint32_t> indices, const std::string& source);
 

@@ -17,13 +17,13 @@ namespace {
 // The whole bake from the scene: characters built at full detail, every frame posed, both cameras
 // resolved (the persp view framed over the ride), the glTF's bytes made (not written to disk).
 void BM_CavalryBake(benchmark::State& state) {
-  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
-  const rig::RigProfile profile = render::resolveProfile(scene);
-  const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
+  const rig::RigProfile profile = scene::resolveProfile(scene);
+  const std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
   std::size_t bytes = 0;
   for (auto _ : state) {
-    render::ShotEvaluator characters(scene, profile, 0);
-    const std::vector<unsigned char> glb = rig::bakedShotGlb(render::bakeShot(characters, frames));
+    scene::ShotEvaluator characters(scene, profile, 0);
+    const std::vector<unsigned char> glb = rig::bakedShotGlb(scene::bakeShot(characters, frames));
     bytes = glb.size();
     benchmark::DoNotOptimize(glb.data());
   }
@@ -35,11 +35,11 @@ BENCHMARK(BM_CavalryBake)->Unit(benchmark::kSecond)->Iterations(1);
 
 // One frame of the 30 pairs baked and posed, the characters already built.
 void BM_CavalryPoseFrame(benchmark::State& state) {
-  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
-  render::ShotEvaluator characters(scene, render::resolveProfile(scene), 0);
-  render::ShotFrame frame;
-  render::FrameRequest request;
-  request.until = render::EvalStage::Pose;
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
+  scene::ShotEvaluator characters(scene, scene::resolveProfile(scene), 0);
+  scene::ShotFrame frame;
+  scene::FrameRequest request;
+  request.until = scene::EvalStage::Pose;
   characters.evaluate(request, frame);  // builds every pair's coarsest level, which posing uses
   int f = 1;
   for (auto _ : state) {

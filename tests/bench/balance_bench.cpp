@@ -26,11 +26,11 @@ struct RearFrames {
   rig::RigProfile profile;
   std::vector<rig::BakedFrame> frames;
   RearFrames() {
-    const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
-    profile = render::resolveProfile(scene);
-    const auto clip = rig::makeClip(scene.clip);
-    for (int f : rig::parseFrameList(scene.frames, "frames"))
-      frames.push_back(rig::bakeFrame(*clip, profile, f, render::frameTime(scene, f)));
+    const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
+    profile = scene::resolveProfile(scene);
+    const auto clip = scene::makeClip(scene.clip);
+    for (int f : scene::parseFrameList(scene.frames, "frames"))
+      frames.push_back(rig::bakeFrame(*clip, profile, f, scene::frameTime(scene, f)));
   }
 };
 const RearFrames& rear() {

@@ -12,6 +12,8 @@
 namespace {
 
 using namespace stirrup::rig;
+using stirrup::scene::ClipSpec;
+using stirrup::scene::makeClip;
 
 // Arg 0: the default horse with its pivot roles removed (two-bone legs); 1: the default horse.
 void BM_PoseHorse(benchmark::State& state) {

@@ -23,6 +23,10 @@
 namespace {
 
 using namespace stirrup::rig;
+using stirrup::scene::LiveRider;
+using stirrup::scene::LiveRiderSetup;
+using stirrup::scene::RiddenPair;
+using stirrup::scene::resolveRiddenPair;
 
 LiveRiderSetup trotSetup() {
   const RigProfile profile;

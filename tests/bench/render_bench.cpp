@@ -33,8 +33,8 @@ void BM_BuildDefaultCharacters(benchmark::State& state) {
 BENCHMARK(BM_BuildDefaultCharacters)->Unit(benchmark::kMillisecond);
 
 void BM_TrotPoseAndSkin(benchmark::State& state) {
-  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   const rig::Character horse = rig::buildDefaultHorse(), rider = rig::buildDefaultRider();
   const render::Shot shot(scene, profile, scene.cameras.front(), 0);
   std::vector<glm::vec3> positions, normals;
@@ -52,8 +52,8 @@ BENCHMARK(BM_TrotPoseAndSkin)->Unit(benchmark::kMillisecond);
 
 // A whole frame of the default trot side view: bake, pose, skin, BVH, trace (no PNG write).
 void BM_TrotFrame(benchmark::State& state) {
-  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   render::Shot shot(scene, profile, scene.cameras.front(), 0);
   int frame = 1;
   for (auto _ : state) {
@@ -67,10 +67,10 @@ BENCHMARK(BM_TrotFrame)->Unit(benchmark::kMillisecond)->UseRealTime();
 // A frame of the trot side view at each quality preset (arg: 0 draft, 1 review, 2 final): more
 // samples a pixel cost more, which `stirrup bench` reports as fps; compared here, not in a timed test.
 void BM_TrotFramePreset(benchmark::State& state) {
-  render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
-  const render::QualityPreset& preset = render::qualityPresets()[static_cast<std::size_t>(state.range(0))];
-  render::applyPreset(scene, preset);
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  const scene::QualityPreset& preset = scene::qualityPresets()[static_cast<std::size_t>(state.range(0))];
+  scene::applyPreset(scene, preset);
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   render::Shot shot(scene, profile, scene.cameras.front(), 0);
   shot.renderFrame(1);  // the first frame builds what later frames refit; not timed
   int frame = 2;
@@ -87,9 +87,9 @@ BENCHMARK(BM_TrotFramePreset)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisec
 // The 8-bit sRGB encoding of a rendered 640 x 360 trot frame (review), as every PNG write makes it on the
 // writer's thread: what a frame's write costs before zlib.
 void BM_EncodeSrgb8(benchmark::State& state) {
-  render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
-  render::applyPreset(scene, render::qualityPresets()[1]);
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  scene::applyPreset(scene, scene::qualityPresets()[1]);
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   render::Shot shot(scene, profile, scene.cameras.front(), 0);
   const render::Image image = shot.renderFrame(30);
   std::vector<uint8_t> bytes(image.rgba.size() * 3);
@@ -105,9 +105,9 @@ BENCHMARK(BM_EncodeSrgb8)->Unit(benchmark::kMicrosecond);
 // update and trace, in ms per frame. The renderer's default (Refit) is the one with the least of the
 // two together; a cheaper-looking update that slows the trace does not win.
 void BM_TrotFrameBvh(benchmark::State& state) {
-  render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
-  render::applyPreset(scene, render::findPreset("review"));
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  scene::applyPreset(scene, scene::findPreset("review"));
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   const auto mode = static_cast<render::BvhUpdate>(state.range(0));
   render::Shot shot(scene, profile, scene.cameras.front(), 0, mode);
   shot.renderFrame(1);  // the first commit builds (Refit: over the rest pose); not timed

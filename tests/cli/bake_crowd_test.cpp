@@ -54,7 +54,7 @@ TEST(BakeGltf, ACrowdBakesAtACoarserDetail) {
   std::ofstream(scene_file) << R"({"riders": [
     {"points": [[0, -300], [3000, -300]], "speed": [[0, 300]], "seed": 1, "withers_height_cm": 150},
     {"points": [[0, 300], [3000, 300]], "speed": [[0, 300]], "seed": 2, "rider_height_cm": 185}]})";
-  const render::SceneSpec scene = render::loadScene(scene_file);
+  const scene::SceneSpec scene = scene::loadScene(scene_file);
   std::uintmax_t bytes[3] = {};
   std::vector<float> rotations[3];
   for (int level : {0, 2}) {
@@ -74,8 +74,8 @@ TEST(BakeGltf, ACrowdBakesAtACoarserDetail) {
     for (const rig::PairSpec& spec : scene.pairs) {
       rig::HorseParams hp = spec.horse();
       rig::RiderParams rp = spec.rider();
-      hp.cell *= render::kDetailCellFactor[level];
-      rp.cell *= render::kDetailCellFactor[level];
+      hp.cell *= scene::kDetailCellFactor[level];
+      rp.cell *= scene::kDetailCellFactor[level];
       built += writtenVertices(rig::buildHorse(hp).mesh) + writtenVertices(rig::buildRider(rp, hp.mount).mesh);
     }
     EXPECT_EQ(vertices, built);
@@ -126,7 +126,7 @@ CavalryBake bakeCavalry(const std::string& folder) {
 // --channels writes one file a pair; the Khronos validator finds no error or warning.
 TEST(BakeGltf, ACrowdBakesEveryPairWithItsCameras) {
   const CavalryBake bake = bakeCavalry("cavalry");
-  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
   ASSERT_EQ(scene.pairs.size(), 30u);
   const tinygltf::Model model = readGlbModel(bake.glb);
   const AnimatedNodes nodes(model);
@@ -162,9 +162,9 @@ TEST(BakeGltf, ACrowdBakesEveryPairWithItsCameras) {
   double worst_t = 0.0;
   for (int i : {0, 17, 29}) {
     const rig::PairSpec& spec = scene.pairs[std::size_t(i)];
-    render::SceneSpec named = scene;
+    scene::SceneSpec named = scene;
     named.profile = spec.profile;
-    const rig::RigProfile profile = render::resolveProfile(named);
+    const rig::RigProfile profile = scene::resolveProfile(named);
     const auto clip = rig::makePairClip(spec, scene.terrain, "test");
     const rig::HorseParams hp = spec.horse();
     const rig::Character horse = rig::buildHorse(hp), rider = rig::buildRider(spec.rider(), hp.mount);
@@ -201,9 +201,9 @@ TEST(BakeGltf, ACrowdBakesEveryPairWithItsCameras) {
   // Every camera, through which the file's pairs land where the render puts its own (full detail,
   // as Shot::pairPoints gives them): the followed pair for the follow camera; three pairs for the view.
   ASSERT_EQ(model.cameras.size(), 2u);
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   for (std::size_t c = 0; c < scene.cameras.size(); ++c) {
-    const render::CameraSpec& spec = scene.cameras[c];
+    const scene::CameraSpec& spec = scene.cameras[c];
     SCOPED_TRACE("camera " + spec.name);
     render::Shot shot(scene, profile, spec, 0);
     const int node = nodeNamed(model, "camera:" + spec.name);
@@ -213,7 +213,7 @@ TEST(BakeGltf, ACrowdBakesEveryPairWithItsCameras) {
     double worst = 0.0;
     std::size_t projected = 0;
     for (std::size_t k : {std::size_t(0), std::size_t(3)}) {
-      const render::Camera rc = shot.cameraAtFrame(bake.frames[k]);
+      const scene::Camera rc = shot.cameraAtFrame(bake.frames[k]);
       const glm::dmat4 world = nodes.world(node, k);
       for (int pair : pairs) {
         // Every 25th vertex of the horse's body node and of the rider's, each against the vertex of
@@ -252,9 +252,9 @@ TEST(BakeGltf, ACrowdBakesEveryPairWithItsCameras) {
   }
   {
     const rig::PairSpec& spec = scene.pairs[17];
-    render::SceneSpec named = scene;
+    scene::SceneSpec named = scene;
     named.profile = spec.profile;
-    const rig::RigProfile pair_profile = render::resolveProfile(named);
+    const rig::RigProfile pair_profile = scene::resolveProfile(named);
     const auto clip = rig::makePairClip(spec, scene.terrain, "test");
     std::stringstream csv(readText(bake.csv.parent_path() / "cavalry_pair17.csv"));
     std::string line;
@@ -323,10 +323,10 @@ json.dump(out, open(answer, "w"))
 TEST(BakeGltf, BlenderOpensACrowdBakeAsItsArmatures) {
   if (!blenderInstalled()) GTEST_SKIP() << "blender is not installed (apt-get install blender python3-numpy)";
   const CavalryBake bake = bakeCavalry("cavalry_blender");
-  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/cavalry.json");
   const tinygltf::Model model = readGlbModel(bake.glb);
   const AnimatedNodes nodes(model);
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   const std::vector<std::size_t> keys = {1, 4};  // stirrup frames 41 and 161: Blender frames 40 and 160
   const auto blender = [](const glm::dvec3& gltf_m) { return glm::dvec3(gltf_m.x, -gltf_m.z, gltf_m.y); };
 
@@ -334,10 +334,10 @@ TEST(BakeGltf, BlenderOpensACrowdBakeAsItsArmatures) {
                         {"bone", "root"}, {"projections", nlohmann::json::array()}};
   for (std::size_t k : keys) ask["frames"].push_back(bake.frames[k] - 1);
   std::vector<std::vector<glm::dvec2>> expected;  // stirrup's pixels, one list a projection
-  for (const render::CameraSpec& spec : scene.cameras) {
+  for (const scene::CameraSpec& spec : scene.cameras) {
     render::Shot shot(scene, profile, spec, 0);
     for (std::size_t k : keys) {
-      const render::Camera rc = shot.cameraAtFrame(bake.frames[k]);
+      const scene::Camera rc = shot.cameraAtFrame(bake.frames[k]);
       nlohmann::json points = nlohmann::json::array();
       std::vector<glm::dvec2> pixels;
       for (int pair : spec.follow_pair >= 0 ? std::vector<int>{spec.follow_pair} : std::vector<int>{0, 17, 29}) {

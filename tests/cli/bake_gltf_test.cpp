@@ -77,9 +77,9 @@ TEST(BakeGltf, RoundTripsTheJointTransforms) {
   }
   const std::vector<float> times = floats(anim.samplers[0].input);
 
-  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
-  const rig::RigProfile profile = render::resolveProfile(scene);
-  const auto clip = rig::makeClip(scene.clip);
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  const rig::RigProfile profile = scene::resolveProfile(scene);
+  const auto clip = scene::makeClip(scene.clip);
   const rig::Character horse = rig::resolveCharacter(rig::CharacterKind::Horse, scene.horse, scene.horse_mapping);
   const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, scene.rider, scene.rider_mapping);
   const std::vector<int> list = {1, 4, 7, 10, 13, 16, 19, 22};
@@ -87,7 +87,7 @@ TEST(BakeGltf, RoundTripsTheJointTransforms) {
   double worst_t = 0.0, worst_r = 0.0;
   int checked = 0;
   for (std::size_t k = 0; k < list.size(); k += 3) {
-    const rig::BakedFrame b = rig::bakeFrame(*clip, profile, list[k], render::frameTime(scene, list[k]));
+    const rig::BakedFrame b = rig::bakeFrame(*clip, profile, list[k], scene::frameTime(scene, list[k]));
     EXPECT_FLOAT_EQ(times[k], static_cast<float>(b.seconds));
     const rig::MountedPose pose = rig::poseMounted(horse, rider, b.horse, b.rider, profile);
     for (int which = 0; which < 2; ++which) {
@@ -123,8 +123,8 @@ TEST(BakeGltf, RoundTripsTheJointTransforms) {
       if (n.camera == static_cast<int>(i)) cam = &n;
     ASSERT_NE(cam, nullptr);
     EXPECT_EQ(cam->name, "camera:" + scene.cameras[i].name);
-    render::CameraSpec spec = scene.cameras[i];
-    render::applyViewPreset(spec);  // a view sets its own projection
+    scene::CameraSpec spec = scene.cameras[i];
+    scene::applyViewPreset(spec);  // a view sets its own projection
     EXPECT_EQ(model.cameras[i].type, spec.orthographic ? "orthographic" : "perspective");
   }
 }
@@ -153,11 +153,11 @@ TEST_P(BakedCameras, ProjectTheCharactersLikeTheRender) {
           if (!fs::exists(character)) GTEST_SKIP() << name << " rides " << character << ", which is not there (../shared/assets)";
         }
   }
-  const render::SceneSpec scene = render::loadScene(file);
+  const scene::SceneSpec scene = scene::loadScene(file);
   const fs::path glb = bakeGlb(name + ".json", scene.frames);
   const tinygltf::Model model = readGlbModel(glb);
   const AnimatedNodes nodes(model);
-  const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  const std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
   ASSERT_EQ(nodes.times.size(), frames.size());
   for (std::size_t k = 0; k < frames.size(); ++k)  // frame 1 at t = 0, for every track
     ASSERT_FLOAT_EQ(nodes.times[k], float((frames[k] - 1) / scene.fps)) << "frame " << frames[k];
@@ -168,7 +168,7 @@ TEST_P(BakedCameras, ProjectTheCharactersLikeTheRender) {
   constexpr std::size_t kStride = 5;
   std::vector<std::vector<glm::dvec3>> file_points(frames.size());  // both characters, metres
 
-  const rig::RigProfile profile = render::resolveProfile(scene);
+  const rig::RigProfile profile = scene::resolveProfile(scene);
   ASSERT_EQ(model.cameras.size(), scene.cameras.size());
   for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
     SCOPED_TRACE(name + " camera " + scene.cameras[i].name);
@@ -203,7 +203,7 @@ TEST_P(BakedCameras, ProjectTheCharactersLikeTheRender) {
       for (std::size_t v = 0; v < body.size(); v += kStride) horse.push_back(all_horse.at(body[v]));
       for (std::size_t v = 0; v < rider.size(); v += kStride) horse.push_back(rider[v]);
       ASSERT_EQ(horse.size(), file_points[pose_key].size());
-      const render::Camera rc = shot.cameraAtFrame(frames[k]);
+      const scene::Camera rc = shot.cameraAtFrame(frames[k]);
       const glm::dmat4 world = nodes.world(node, k);
       for (std::size_t p = 0; p < horse.size(); ++p) {
         const glm::dvec2 a = stirrupPixel(rc, horse[p], width, height);
@@ -294,7 +294,7 @@ TEST(BakeGltf, AShotOverHillsCarriesItsGround) {
   const tinygltf::BufferView& pv = model.bufferViews.at(std::size_t(pa.bufferView));
   std::vector<float> p(pa.count * 3);
   std::memcpy(p.data(), model.buffers[0].data.data() + pv.byteOffset + pa.byteOffset, p.size() * sizeof(float));
-  const render::SceneSpec scene = render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trail.json");
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trail.json");
   ASSERT_TRUE(scene.terrain);
   double worst = 0, lo_x = 1e30, hi_x = -1e30, lo_y = 1e30, hi_y = -1e30;
   for (std::size_t i = 0; i < pa.count; ++i) {
@@ -304,7 +304,7 @@ TEST(BakeGltf, AShotOverHillsCarriesItsGround) {
   }
   EXPECT_LT(worst, 0.01) << "cm: the file's ground is the scene's";
   EXPECT_GT(hi_y - lo_y, 200.0) << "the hills are in it";
-  const auto clip = render::makeSceneClip(scene);
+  const auto clip = scene::makeSceneClip(scene);
   EXPECT_LT(lo_x, clip->sample(0).travel_cm - 1000.0);
   EXPECT_GT(hi_x, clip->sample(clip->duration()).travel_cm + 1000.0);
   EXPECT_GT(model.accessors.at(std::size_t(prim.indices)).count, 30000u);

@@ -43,7 +43,7 @@ TEST(BakeGltf, RiderOnlyWritesTheRiderAlone) {
   EXPECT_TRUE(model.cameras.empty());
   ASSERT_EQ(model.skins.size(), 1u);
   ASSERT_EQ(model.animations.size(), 1u);
-  const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, render::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json").rider, "");
+  const rig::Character rider = rig::resolveCharacter(rig::CharacterKind::Rider, scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json").rider, "");
   ASSERT_EQ(model.skins[0].joints.size(), rider.skeleton.size());
   for (std::size_t j = 0; j < rider.skeleton.size(); ++j)
     EXPECT_EQ(model.nodes[model.skins[0].joints[j]].name, rider.skeleton.joints[j].name);

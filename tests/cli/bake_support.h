@@ -93,18 +93,18 @@ inline glm::dvec2 gltfPixel(const tinygltf::Camera& cam, const glm::dmat4& world
 
 // A world point (centimetres) in pixels through stirrup's render camera: film (u, v) with u right and
 // v down, checked against the ray the renderer traces through that film point.
-inline glm::dvec2 stirrupPixel(const render::Camera& cam, glm::dvec3 p, int width, int height) {
-  const render::CameraFrame f(cam, width, height);
+inline glm::dvec2 stirrupPixel(const scene::Camera& cam, glm::dvec3 p, int width, int height) {
+  const scene::CameraFrame f(cam, width, height);
   const glm::dvec3 d = p - cam.position;
   double x = glm::dot(d, f.right()), y = glm::dot(d, f.upward());
   double half_h = 0.5 * cam.ortho_height_cm;
-  if (cam.projection == render::Camera::Projection::Perspective) {
+  if (cam.projection == scene::Camera::Projection::Perspective) {
     x /= glm::dot(d, f.forward()), y /= glm::dot(d, f.forward());
     half_h = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
   }
   const double half_w = half_h * width / height;
   const double u = 0.5 * (x / half_w + 1.0), v = 0.5 * (1.0 - y / half_h);
-  const render::Ray ray = f.ray(u, v);
+  const scene::Ray ray = f.ray(u, v);
   const glm::dvec3 off = p - ray.origin;
   EXPECT_LT(glm::length(off - glm::dot(off, ray.direction) * ray.direction), 1e-6 * (1.0 + glm::length(off)))
       << "the inverse of the renderer's ray generation";

@@ -1,7 +1,7 @@
 // scripts/blender-apply-rider end to end: a rider stirrup has never seen (tests/rig/user_riders.h) rides
 // a trot in a scene that names her file and mapping; `stirrup bake --rider-only` writes her motion; the
 // script puts it on her own armature in Blender 3.4 and compares every joint's world position at every
-// frame with stirrup's own posing (rig::poseMounted over rig::resolveRiddenPair, taken into her file's
+// frame with stirrup's own posing (rig::poseMounted over scene::resolveRiddenPair, taken into her file's
 // space by the inverse of source.to_rig). Skipped, with a message, where `blender` is not installed.
 #include <cstdlib>
 #include <filesystem>
@@ -95,14 +95,14 @@ Baked bakeUserRider(const rig::test::UserRiderFiles& files, const fs::path& dir,
 
   // stirrup's posing, as `stirrup render` poses her; a joint's origin is where its world matrix puts
   // (0, 0, 0), taken back into her file's space.
-  const render::SceneSpec s = render::loadScene(scene_file);
-  const rig::RigProfile profile = render::resolveProfile(s);
-  const std::unique_ptr<rig::Clip> clip = render::makeSceneClip(s);
-  const rig::RiddenPair pair = rig::resolveRiddenPair(s.horse, s.horse_mapping, s.rider, s.rider_mapping, profile);
+  const scene::SceneSpec s = scene::loadScene(scene_file);
+  const rig::RigProfile profile = scene::resolveProfile(s);
+  const std::unique_ptr<rig::Clip> clip = scene::makeSceneClip(s);
+  const scene::RiddenPair pair = scene::resolveRiddenPair(s.horse, s.horse_mapping, s.rider, s.rider_mapping, profile);
   const glm::dmat4 from_rig = glm::inverse(pair.rider.source.to_rig);
   const rig::Skeleton& skeleton = pair.rider.skeleton;
   for (int frame = 1; frame <= kFrames; ++frame) {
-    const rig::BakedFrame f = rig::bakeFrame(*clip, profile, frame, render::frameTime(s, frame));
+    const rig::BakedFrame f = rig::bakeFrame(*clip, profile, frame, scene::frameTime(s, frame));
     const rig::MountedPose pose = rig::poseMounted(pair.horse, pair.rider, f.horse, f.rider, profile);
     nlohmann::json joints = nlohmann::json::object();
     for (std::size_t j = 0; j < skeleton.size(); ++j) {

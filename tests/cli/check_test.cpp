@@ -112,7 +112,7 @@ class PlantedFault : public rig::Clip {
 fs::path writeClip(const fs::path& file, PlantedFault::Fault fault) {
   rig::GltfWriteOptions w;
   w.fps = 120;  // keyed finely, so the stance edges keep their time (LINEAR keys at 24 fps shorten the stance)
-  rig::writeClipGltf(PlantedFault(rig::makeClip(rig::ClipSpec{}), fault), file, w);
+  rig::writeClipGltf(PlantedFault(scene::makeClip(scene::ClipSpec{}), fault), file, w);
   return file;
 }
 
@@ -376,7 +376,7 @@ TEST_P(FileCheckAgrees, WithTheScenesCheckOverTheSameFrames) {
   EXPECT_EQ(f["frames"], c["frames"]);
   EXPECT_EQ(f["pairs"], c["pairs"]);
   // (pair, rule, severity) -> the frames of its findings (the file's frame 1 is the bake's first frame).
-  const int first = rig::parseFrameList(a.frames, "frames").front();
+  const int first = scene::parseFrameList(a.frames, "frames").front();
   const auto byRule = [](const nlohmann::json& report, int frame_shift) {
     std::map<std::tuple<int, std::string, std::string>, std::multiset<int>> out;
     for (const auto& e : report["findings"]) {

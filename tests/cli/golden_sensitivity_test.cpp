@@ -87,7 +87,7 @@ json perturbedScene(const Perturbation& p) {
     }
     case Change::SunTurn: {
       // The golden scene's sun (the default unless it names one), turned about the vertical.
-      const render::SceneSpec spec = render::loadScene(golden_scene);
+      const scene::SceneSpec spec = scene::loadScene(golden_scene);
       scene["sun"]["direction"] = turn(spec.sun_direction, p.amount);
       break;
     }

@@ -86,7 +86,7 @@ template <typename F>
 int expectOnlyInputErrors(F&& f) {
   try {
     f();
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     const std::string what = e.what();
     if (what.empty() || what.find('\n') != std::string::npos) {
       std::fprintf(stderr, "InputError message is not one line: \"%s\"\n", what.c_str());
@@ -112,16 +112,16 @@ void sampleClip(const rig::Clip& clip) {
 SceneStage sceneJsonStage(const std::uint8_t* data, std::size_t size) {
   SceneStage stage = SceneStage::Refused;
   expectOnlyInputErrors([&] {
-    const render::SceneSpec scene = render::loadScene(writeInput(data, size, "scene.json"));
+    const scene::SceneSpec scene = scene::loadScene(writeInput(data, size, "scene.json"));
     stage = SceneStage::Read;
     // What every command does next: the profile with its overrides, the clip, the first frames baked.
-    const rig::RigProfile profile = render::resolveProfile(scene);
+    const rig::RigProfile profile = scene::resolveProfile(scene);
     stage = SceneStage::Profile;
-    const std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
+    const std::unique_ptr<rig::Clip> clip = scene::makeClip(scene.clip);
     stage = SceneStage::Clip;
-    const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+    const std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
     for (std::size_t i = 0; i < std::min<std::size_t>(frames.size(), 2); ++i)
-      (void)rig::bakeFrame(*clip, profile, frames[i], render::frameTime(scene, frames[i]));
+      (void)rig::bakeFrame(*clip, profile, frames[i], scene::frameTime(scene, frames[i]));
     stage = SceneStage::Baked;
   });
   return stage;
@@ -134,9 +134,9 @@ int sceneJson(const std::uint8_t* data, std::size_t size) {
 
 int rigProfileJson(const std::uint8_t* data, std::size_t size) {
   return expectOnlyInputErrors([&] {
-    const rig::RigProfile p = rig::loadRigProfile(writeInput(data, size, "p.json").string(), scratch() / "profiles");
+    const rig::RigProfile p = scene::loadRigProfile(writeInput(data, size, "p.json").string(), scratch() / "profiles");
     (void)rig::evaluateRider(rig::HorseChannels{}, p);
-    (void)rig::profileToJson(p).dump();
+    (void)scene::profileToJson(p).dump();
   });
 }
 
@@ -151,7 +151,7 @@ int profileSets(const std::uint8_t* data, std::size_t size) {
       start = nl + 1;
     }
     rig::RigProfile p = rig::RigProfile::thesis();
-    rig::applyProfileOverrides(p, cli::parseSets(sets), "--set");
+    scene::applyProfileOverrides(p, cli::parseSets(sets), "--set");
     (void)rig::evaluateRider(rig::HorseChannels{}, p);
   });
 }
@@ -219,15 +219,15 @@ int mappingJson(const std::uint8_t* data, std::size_t size) {
 
 int frameSpec(const std::uint8_t* data, std::size_t size) {
   return expectOnlyInputErrors([&] {
-    const std::vector<int> frames = rig::parseFrameList(std::string(reinterpret_cast<const char*>(data), size), "--frames");
-    if (frames.size() > static_cast<std::size_t>(rig::kMaxFrameCount)) std::abort();
+    const std::vector<int> frames = scene::parseFrameList(std::string(reinterpret_cast<const char*>(data), size), "--frames");
+    if (frames.size() > static_cast<std::size_t>(scene::kMaxFrameCount)) std::abort();
   });
 }
 
 int farmManifest(const std::uint8_t* data, std::size_t size) {
   // farm status and resume read OUT/farm.json back; a hand-edited or damaged one must be a one-line error.
   const fs::path file = writeInput(data, size, "farm.json");
-  return expectOnlyInputErrors([&] { (void)render::farm::readManifest(file.parent_path()); });
+  return expectOnlyInputErrors([&] { (void)render::readManifest(file.parent_path()); });
 }
 
 }  // namespace stirrup::fuzz

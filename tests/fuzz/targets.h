@@ -3,7 +3,7 @@
 // STIRRUP_FUZZ=ON, docs/fuzzing.md); tests/fuzz/replay_test.cpp replays the checked-in corpora and
 // every regression input through the same functions in the normal build.
 //
-// The oracle: a reader may reject input only with stirrup::InputError, whose message is one line
+// The oracle: a reader may reject input only with rig::InputError, whose message is one line
 // (rig/error.h). Any other exception, a crash, a hang or a sanitizer report is a finding.
 #pragma once
 

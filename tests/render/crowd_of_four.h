@@ -8,8 +8,8 @@
 
 namespace stirrup::render::test {
 
-inline SceneSpec crowdOfFour() {
-  return parseScene(nlohmann::json::parse(R"({"name": "crowd4", "frames": "1-24", "resolution": [320, 180],
+inline scene::SceneSpec crowdOfFour() {
+  return scene::parseScene(nlohmann::json::parse(R"({"name": "crowd4", "frames": "1-24", "resolution": [320, 180],
     "riders": [
       {"points": [[0, -300], [3000, -300]], "speed": [[0, 300]], "profile": "thesis", "seed": 1,
        "withers_height_cm": 150, "rider_height_cm": 160, "rider_build": 0.9},

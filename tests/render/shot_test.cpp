@@ -35,8 +35,8 @@ namespace stirrup::render {
 namespace {
 
 // A path over rolling hills (issue 15), as a scene file gives it.
-SceneSpec pathOverHills() {
-  return parseScene(nlohmann::json::parse(R"({
+scene::SceneSpec pathOverHills() {
+  return scene::parseScene(nlohmann::json::parse(R"({
     "name": "path1",
     "clip": {"generator": "path", "points": [[0,0],[2000,0],[3500,1000],[3500,3000]],
              "speed": [[0,380],[40,380]]},
@@ -49,16 +49,16 @@ SceneSpec pathOverHills() {
 // on the track where the horse is at a later frame (so no character is in the way), the ground in
 // the depth pass lies on Terrain::height to half a centimetre, plus the slope times the sample's jitter.
 TEST(Shot, StandsTheHorseOnTheSceneTerrain) {
-  const SceneSpec scene = pathOverHills();
+  const scene::SceneSpec scene = pathOverHills();
   ASSERT_TRUE(scene.terrain && !scene.terrain->flat());
-  const auto clip = rig::makeClip(scene.clip);
+  const auto clip = scene::makeClip(scene.clip);
   constexpr double kViewCm = 16.0, kTopCm = 1000.0, kOnSurfaceCm = 0.5;
   const double jitter_cm = 2.0 * kViewCm / scene.height;  // the tent filter reaches a pixel either side
   for (int later : {120, 200}) {
-    const rig::HorseFrame h = clip->sample(frameTime(scene, later));
+    const rig::HorseFrame h = clip->sample(scene::frameTime(scene, later));
     // Off the plane y = 0 by more than the tolerance, so the flat ground would fail here.
     ASSERT_GT(std::abs(scene.terrain->height(h.travel_cm, h.travel_z_cm)), 5.0) << "frame " << later;
-    CameraSpec down;
+    scene::CameraSpec down;
     down.motion = "fixed";
     down.follow = false;
     down.orthographic = true;
@@ -66,7 +66,7 @@ TEST(Shot, StandsTheHorseOnTheSceneTerrain) {
     down.position = {h.travel_cm, kTopCm, h.travel_z_cm};
     down.target = {h.travel_cm, 0.0, h.travel_z_cm};
     down.up = {0.0, 0.0, -1.0};
-    Shot shot(scene, resolveProfile(scene), down, 1);
+    Shot shot(scene, scene::resolveProfile(scene), down, 1);
     const Image img = shot.renderFrame(1);  // the horse is still at the start
     const double cm_per_px = kViewCm / scene.height;
     for (int py = 0; py < img.height; ++py) {
@@ -91,18 +91,18 @@ TEST(Shot, StandsTheHorseOnTheSceneTerrain) {
 TEST(Shot, TheFineGroundReachesEveryHoofWithRoomToSpare) {
   constexpr double kSpareCm = 150.0;
   for (const auto& [name, stride] : {std::pair{"trail", 3}, {"cross_country", 3}, {"ride_out", 3}, {"cavalry", 12}}) {
-    const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
+    const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
     ASSERT_TRUE(scene.terrain && !scene.terrain->flat()) << name;
-    ShotEvaluator evaluator(scene, resolveProfile(scene), 0);
+    scene::ShotEvaluator evaluator(scene, scene::resolveProfile(scene), 0);
     std::vector<const rig::Clip*> tracks;
     for (int i = 0; i < evaluator.pairCount(); ++i) tracks.push_back(&evaluator.shownClip(i));
     const GroundRegion fine = fineGroundRegion(scene, tracks);
-    const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
-    ShotFrame out;
+    const std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
+    scene::ShotFrame out;
     for (std::size_t f = 0; f < frames.size(); f += std::size_t(stride)) {
-      FrameRequest request;
+      scene::FrameRequest request;
       request.frame = frames[f];
-      request.until = EvalStage::Pose;
+      request.until = scene::EvalStage::Pose;
       evaluator.evaluate(request, out);
       for (int pair = 0; pair < evaluator.pairCount(); ++pair) {
         const rig::Character& horse = evaluator.horse(pair);
@@ -136,9 +136,9 @@ int bandColumns(const Image& img) {
 // the bottom rows are the ground and the horse as the rows above them are, never a band; and the
 // check itself sees a band when there is one.
 TEST(Shot, TheRearsCloseViewHasNoLightBandAtTheBottom) {
-  SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
+  scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
   scene.width = 192, scene.height = 108, scene.samples = 4, scene.light_samples = 1, scene.ao_samples = 1;
-  Shot shot(scene, resolveProfile(scene), findCamera(scene, "close"), 0);
+  Shot shot(scene, scene::resolveProfile(scene), scene::findCamera(scene, "close"), 0);
   for (int frame : {1, 30, 45, 58, 70, 85, 96}) {
     Image img = shot.renderFrame(frame);
     EXPECT_LT(bandColumns(img), img.width / 4) << "frame " << frame;
@@ -168,22 +168,22 @@ std::string crowdJson(const std::string& second_profile = "english") {
                 {"name": "follow2", "view": "side", "follow_pair": 2}]})";
 }
 
-SceneSpec crowdScene(const std::string& second_profile = "english") {
-  return parseScene(nlohmann::json::parse(crowdJson(second_profile)),
+scene::SceneSpec crowdScene(const std::string& second_profile = "english") {
+  return scene::parseScene(nlohmann::json::parse(crowdJson(second_profile)),
                     std::string(STIRRUP_SOURCE_DIR) + "/scenes/crowd4.json");
 }
 
 // The pixel a world point falls in, by the pinhole or orthographic projection written out here from
 // the camera's definition (scene/camera.h: v from top to bottom; vertical fov; aspect width / height),
 // not through the renderer's CameraFrame. False when it is behind the camera.
-bool projectToPixel(const Camera& c, int w, int h, const glm::dvec3& p, double& px, double& py) {
+bool projectToPixel(const scene::Camera& c, int w, int h, const glm::dvec3& p, double& px, double& py) {
   const glm::dvec3 forward = glm::normalize(c.target - c.position);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
   const glm::dvec3 up = glm::cross(right, forward);
   const glm::dvec3 q = p - c.position;
   const double x = glm::dot(q, right), y = glm::dot(q, up), z = glm::dot(q, forward);
   double half_h = 0.5 * c.ortho_height_cm, nx = x, ny = y;
-  if (c.projection == Camera::Projection::Perspective) {
+  if (c.projection == scene::Camera::Projection::Perspective) {
     if (z <= 1.0) return false;
     half_h = std::tan(0.5 * glm::radians(c.fov_deg));
     nx = x / z, ny = y / z;
@@ -199,18 +199,18 @@ bool projectToPixel(const Camera& c, int w, int h, const glm::dvec3& p, double& 
 // the barrel, projects onto a horse or rider pixel in the object-id pass and a covered matte pixel, at
 // three frames, in the perspective view of the whole crowd and in the side view.
 TEST(Shot, DrawsEveryPairOfACrowdWhereItsHorseIs) {
-  const SceneSpec scene = crowdScene();
+  const scene::SceneSpec scene = crowdScene();
   ASSERT_EQ(scene.pairs.size(), 4u);
   for (const char* name : {"persp", "side"}) {
-    Shot shot(scene, resolveProfile(scene), findCamera(scene, name), 0);
+    Shot shot(scene, scene::resolveProfile(scene), scene::findCamera(scene, name), 0);
     ASSERT_EQ(shot.pairCount(), 4);
     for (int frame : {1, 12, 24}) {
       const Image img = shot.renderFrame(frame);
-      const Camera cam = shot.cameraAtFrame(frame);
+      const scene::Camera cam = shot.cameraAtFrame(frame);
       for (std::size_t i = 0; i < scene.pairs.size(); ++i) {
         const rig::PairSpec& pair = scene.pairs[i];
         const auto clip = rig::makePairClip(pair, scene.terrain, "test");
-        const rig::HorseFrame h = clip->sample(frameTime(scene, frame) + pair.clip_offset_s);
+        const rig::HorseFrame h = clip->sample(scene::frameTime(scene, frame) + pair.clip_offset_s);
         const glm::dvec3 barrel(h.travel_cm, h.ground_y_cm + 0.62 * pair.withers_height_cm, h.travel_z_cm);
         double px = 0, py = 0;
         ASSERT_TRUE(projectToPixel(cam, img.width, img.height, barrel, px, py));
@@ -226,9 +226,9 @@ TEST(Shot, DrawsEveryPairOfACrowdWhereItsHorseIs) {
 
 // A crowd's frame is the same bytes (colour and every pass) at one thread and at all of them.
 TEST(Shot, RendersACrowdTheSameAtAnyThreadCount) {
-  const SceneSpec scene = crowdScene();
-  Shot one(scene, resolveProfile(scene), findCamera(scene, "persp"), 1);
-  Shot all(scene, resolveProfile(scene), findCamera(scene, "persp"), 0);
+  const scene::SceneSpec scene = crowdScene();
+  Shot one(scene, scene::resolveProfile(scene), scene::findCamera(scene, "persp"), 1);
+  Shot all(scene, scene::resolveProfile(scene), scene::findCamera(scene, "persp"), 0);
   for (int frame : {5, 17}) {
     const Image a = one.renderFrame(frame), b = all.renderFrame(frame);
     EXPECT_TRUE(a.rgba == b.rgba) << "frame " << frame;
@@ -240,13 +240,13 @@ TEST(Shot, RendersACrowdTheSameAtAnyThreadCount) {
 // evaluator, and renders every frame as a shot with characters of its own does, the rigged and the
 // rigid rider, the two shots rendering in turn.
 TEST(Shot, ShotsSharingTheirCharactersRenderAsShotsOfTheirOwn) {
-  const SceneSpec scene = pathOverHills();
-  CameraSpec camera;
+  const scene::SceneSpec scene = pathOverHills();
+  scene::CameraSpec camera;
   camera.ortho_height_cm = 400;
-  Shot rigged(scene, resolveProfile(scene), camera, 1);
+  Shot rigged(scene, scene::resolveProfile(scene), camera, 1);
   Shot shared(rigged.sharedCharacters(), camera, 1);
   EXPECT_EQ(&shared.characters(), &rigged.characters());
-  Shot own(scene, resolveProfile(scene), camera, 1);
+  Shot own(scene, scene::resolveProfile(scene), camera, 1);
   shared.setRigidRider(true);
   own.setRigidRider(true);
   for (int frame : {3, 40, 41}) {
@@ -264,20 +264,20 @@ TEST(Shot, ShotsSharingTheirCharactersRenderAsShotsOfTheirOwn) {
 // frames a named view times all three; a shot sharing another's characters builds none; flat ground
 // meshes nothing.
 TEST(Shot, SetupTimingsSayWhatTheShotBuilt) {
-  const SceneSpec hills = pathOverHills();
-  CameraSpec side;
+  const scene::SceneSpec hills = pathOverHills();
+  scene::CameraSpec side;
   side.name = "side";
   side.view = "side";
-  Shot own(hills, resolveProfile(hills), side, 1);
+  Shot own(hills, scene::resolveProfile(hills), side, 1);
   EXPECT_GT(own.setupTimings().characters_ms, 0.0);
   EXPECT_GT(own.setupTimings().terrain_ms, 0.0);
   EXPECT_GT(own.setupTimings().framing_ms, 0.0);
   Shot shared(own.sharedCharacters(), side, 1);
   EXPECT_EQ(shared.setupTimings().characters_ms, 0.0);
   EXPECT_GT(shared.setupTimings().terrain_ms, 0.0);
-  SceneSpec flat = hills;
+  scene::SceneSpec flat = hills;
   flat.terrain.reset();
-  Shot on_flat(flat, resolveProfile(flat), side, 1);
+  Shot on_flat(flat, scene::resolveProfile(flat), side, 1);
   EXPECT_EQ(on_flat.setupTimings().terrain_ms, 0.0);
   EXPECT_GT(on_flat.setupTimings().framing_ms, 0.0);
 }
@@ -293,13 +293,13 @@ TEST(Shot, AskedForOneThreadNoWorkerJoinsItsSetUpOrFrames) {
     void on_scheduler_entry(bool is_worker) override { joined += is_worker ? 1 : 0; }
   } workers;
   workers.observe(true);
-  SceneSpec hills = pathOverHills();
+  scene::SceneSpec hills = pathOverHills();
   hills.sun_direction = {0.9, 0.22, 0.35};  // low: the hills' horizon map is built
-  CameraSpec side;
+  scene::CameraSpec side;
   side.name = "side";
   side.view = "side";
   {
-    Shot shot(hills, resolveProfile(hills), side, 1);
+    Shot shot(hills, scene::resolveProfile(hills), side, 1);
     shot.renderFrame(12);
     shot.renderFrame(13, 14);  // and with the next frame evaluated ahead
     shot.renderFrame(14);
@@ -324,9 +324,9 @@ bool sameBytes(const Image& a, const Image& b) {
 // ahead (and levels are built during another frame's trace). A frame asked ahead but not rendered next
 // is evaluated again.
 TEST(Shot, FramesOverlappedRenderTheBytesOfFramesAlone) {
-  const SceneSpec scene = crowdScene();
-  Shot ahead(scene, resolveProfile(scene), findCamera(scene, "persp"), 0);
-  Shot alone(scene, resolveProfile(scene), findCamera(scene, "persp"), 1);
+  const scene::SceneSpec scene = crowdScene();
+  Shot ahead(scene, scene::resolveProfile(scene), scene::findCamera(scene, "persp"), 0);
+  Shot alone(scene, scene::resolveProfile(scene), scene::findCamera(scene, "persp"), 1);
   const std::vector<int> frames = {1, 9, 2, 24};
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const Image a = ahead.renderFrame(frames[k], k + 1 < frames.size() ? std::optional<int>(frames[k + 1]) : std::nullopt);
@@ -343,13 +343,13 @@ TEST(Shot, FramesOverlappedRenderTheBytesOfFramesAlone) {
 // they trace, taking turns: each renders what a shot of its own renders. Switching the rider to rigid
 // after a frame was evaluated ahead drops that frame: it was evaluated with the rigged rider.
 TEST(Shot, ShotsSharingTheirCharactersMayEachEvaluateAhead) {
-  const SceneSpec scene = pathOverHills();
-  CameraSpec camera;
+  const scene::SceneSpec scene = pathOverHills();
+  scene::CameraSpec camera;
   camera.ortho_height_cm = 400;
-  Shot rigged(scene, resolveProfile(scene), camera, 0);
+  Shot rigged(scene, scene::resolveProfile(scene), camera, 0);
   Shot rigid(rigged.sharedCharacters(), camera, 0);
   rigid.setRigidRider(true);
-  Shot own_rigged(scene, resolveProfile(scene), camera, 1), own_rigid(scene, resolveProfile(scene), camera, 1);
+  Shot own_rigged(scene, scene::resolveProfile(scene), camera, 1), own_rigid(scene, scene::resolveProfile(scene), camera, 1);
   own_rigid.setRigidRider(true);
   const std::vector<int> frames = {3, 4, 40, 41};
   for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -373,12 +373,12 @@ TEST(Shot, ShotsSharingTheirCharactersMayEachEvaluateAhead) {
 // by the tent filter's pixel. Both are seen through the same camera (the first one's resolved view, so
 // the framing cannot move with the pose).
 TEST(Shot, ChangingOnePairsProfileChangesOnlyItsPixels) {
-  const SceneSpec a = crowdScene("english"), b = crowdScene("novice");
-  CameraSpec camera = Shot(a, resolveProfile(a), findCamera(a, "persp"), 0).camera();
+  const scene::SceneSpec a = crowdScene("english"), b = crowdScene("novice");
+  scene::CameraSpec camera = Shot(a, scene::resolveProfile(a), scene::findCamera(a, "persp"), 0).camera();
   camera.view.clear();
   // Twice as far as the view frames the crowd, so the pair's reach is well inside the frame.
   for (int i = 0; i < 3; ++i) camera.position[i] = camera.target[i] + 2.0 * (camera.position[i] - camera.target[i]);
-  Shot shot_a(a, resolveProfile(a), camera, 0), shot_b(b, resolveProfile(b), camera, 0);
+  Shot shot_a(a, scene::resolveProfile(a), camera, 0), shot_b(b, scene::resolveProfile(b), camera, 0);
   // Full detail, as pairPoints gives the points (the levels are the same in both shots anyway).
   shot_a.setDetailLevel(0);
   shot_b.setDetailLevel(0);
@@ -388,7 +388,7 @@ TEST(Shot, ChangingOnePairsProfileChangesOnlyItsPixels) {
   const glm::dvec3 sun = glm::normalize(glm::dvec3(a.sun_direction[0], a.sun_direction[1], a.sun_direction[2]));
   for (int frame : {8, 20}) {
     const Image ia = shot_a.renderFrame(frame), ib = shot_b.renderFrame(frame);
-    const Camera cam = shot_a.cameraAtFrame(frame);
+    const scene::Camera cam = shot_a.cameraAtFrame(frame);
     std::vector<glm::dvec3> pts, horse_a, horse_b, rider;
     shot_a.pairPoints(kPair, frame, 1, horse_a, rider);
     pts = rider;
@@ -445,19 +445,19 @@ TEST(Shot, FollowsAPairOfACrowdAsASinglePair) {
   const std::string path = R"("points": [[0, 0], [1500, 300], [3000, 0]], "speed": [[0, 320]], "seed": 5, "variation": 0.1)";
   const std::string common = R"("frames": "1-12", "resolution": [96, 54], "quality": {"samples": 1}, )";
   const std::string file = std::string(STIRRUP_SOURCE_DIR) + "/scenes/follow1.json";
-  const SceneSpec single = parseScene(nlohmann::json::parse("{" + common + R"("clip": {"generator": "path", )" + path +
+  const scene::SceneSpec single = scene::parseScene(nlohmann::json::parse("{" + common + R"("clip": {"generator": "path", )" + path +
                                                             R"(}, "cameras": [{"view": "close"}, {"name": "persp", "view": "persp"}]})"),
                                       file);
-  const SceneSpec crowd = parseScene(nlohmann::json::parse("{" + common + R"("riders": [{)" + path +
+  const scene::SceneSpec crowd = scene::parseScene(nlohmann::json::parse("{" + common + R"("riders": [{)" + path +
                                                            R"(}], "cameras": [{"view": "close", "follow_pair": 0},
                                                                {"name": "persp", "view": "persp", "follow_pair": 0}]})"),
                                      file);
   for (std::size_t c = 0; c < 2; ++c) {
-    Shot one(single, resolveProfile(single), single.cameras[c], 0);
-    Shot pair(crowd, resolveProfile(crowd), crowd.cameras[c], 0);
+    Shot one(single, scene::resolveProfile(single), single.cameras[c], 0);
+    Shot pair(crowd, scene::resolveProfile(crowd), crowd.cameras[c], 0);
     pair.setDetailLevel(0);
     for (int frame : {1, 12}) {
-      const Camera a = one.cameraAtFrame(frame), b = pair.cameraAtFrame(frame);
+      const scene::Camera a = one.cameraAtFrame(frame), b = pair.cameraAtFrame(frame);
       EXPECT_NEAR(glm::length(a.position - b.position), 0.0, 1e-6) << single.cameras[c].name << " frame " << frame;
       EXPECT_NEAR(glm::length(a.target - b.target), 0.0, 1e-6) << single.cameras[c].name << " frame " << frame;
       EXPECT_TRUE(one.renderFrame(frame).rgba == pair.renderFrame(frame).rgba) << single.cameras[c].name << " frame " << frame;
@@ -471,25 +471,25 @@ TEST(Shot, FollowsAPairOfACrowdAsASinglePair) {
 // One default pair trotting straight, seen by a fixed 30-degree camera at 640 x 360 (review quality)
 // from the distance each switch happens at, measured from its horse's rear pivot.
 TEST(Shot, ACrowdsLevelOfDetailSwitchesAtItsStatedSizeWithoutAPop) {
-  const SceneSpec scene = parseScene(nlohmann::json::parse(R"({"frames": "1-12", "resolution": [640, 360],
+  const scene::SceneSpec scene = scene::parseScene(nlohmann::json::parse(R"({"frames": "1-12", "resolution": [640, 360],
       "quality": {"samples": 16, "light_samples": 4, "ao_samples": 4},
       "riders": [{"points": [[0, 0], [3000, 0]], "speed": [[0, 360]], "seed": 3}]})"),
                                      std::string(STIRRUP_SOURCE_DIR) + "/scenes/lod1.json");
   constexpr int kFrame = 6;
   const auto clip = rig::makePairClip(scene.pairs[0], scene.terrain, "test");
-  const rig::HorseFrame h = clip->sample(frameTime(scene, kFrame));
+  const rig::HorseFrame h = clip->sample(scene::frameTime(scene, kFrame));
   // The rear pivot at rest (horse_character.h: hips 60 cm behind the travel point, 128 cm up); the
   // trot moves it a few cm, well inside the 3% either side of a switch the test looks at.
   const glm::dvec3 root(h.travel_cm - 60.0, h.ground_y_cm + 128.0, h.travel_z_cm);
   const double cell = rig::HorseParams{}.cell;
   const double tan_half = std::tan(glm::radians(15.0));
-  for (int level = 0; level + 1 < kDetailLevels; ++level) {
+  for (int level = 0; level + 1 < scene::kDetailLevels; ++level) {
     // The coarser level's cell spans kDetailSwitchCellPixels where 360 / (2 d tan 15) = that / its
     // cell, d = distance - reach.
     const double switch_cm =
-        kPairReachCm + 360.0 * cell * kDetailCellFactor[level + 1] / (kDetailSwitchCellPixels * 2.0 * tan_half);
+        scene::kPairReachCm + 360.0 * cell * scene::kDetailCellFactor[level + 1] / (scene::kDetailSwitchCellPixels * 2.0 * tan_half);
     const auto cameraAt = [&](double distance) {
-      CameraSpec c;
+      scene::CameraSpec c;
       c.name = "lod";
       c.orthographic = false;
       c.fov_deg = 30.0;
@@ -501,11 +501,11 @@ TEST(Shot, ACrowdsLevelOfDetailSwitchesAtItsStatedSizeWithoutAPop) {
       return c;
     };
     for (const auto& [factor, expected] : {std::pair{0.97, level}, std::pair{1.03, level + 1}}) {
-      Shot shot(scene, resolveProfile(scene), cameraAt(factor * switch_cm), 0);
+      Shot shot(scene, scene::resolveProfile(scene), cameraAt(factor * switch_cm), 0);
       shot.renderFrame(kFrame);
       EXPECT_EQ(shot.lastTimings().pairs_at_level[std::size_t(expected)], 1) << "at " << factor << " x " << switch_cm << " cm";
     }
-    Shot shot(scene, resolveProfile(scene), cameraAt(switch_cm), 0);
+    Shot shot(scene, scene::resolveProfile(scene), cameraAt(switch_cm), 0);
     shot.setDetailLevel(level);
     const Image fine = shot.renderFrame(kFrame);
     shot.setDetailLevel(level + 1);
@@ -554,7 +554,7 @@ TEST(CrowdScenes, NoTwoPairsBodiesMeetAtAnyFrame) {
   EXPECT_FALSE(boxesMeet({{0, 0}, x, 50, 50}, {{110, 110}, d, 50, 50}));
   EXPECT_TRUE(boxesMeet({{0, 0}, x, 50, 50}, {{70, 70}, d, 50, 50}));
   for (const char* name : {"cavalry", "ride_out"}) {
-    const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
+    const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
     ASSERT_GE(scene.pairs.size(), 8u) << name;
     std::vector<rig::Character> horses, riders;
     std::vector<std::unique_ptr<rig::Clip>> clips;
@@ -563,23 +563,23 @@ TEST(CrowdScenes, NoTwoPairsBodiesMeetAtAnyFrame) {
     for (const rig::PairSpec& p : scene.pairs) {
       rig::HorseParams hp = p.horse();
       rig::RiderParams rp = p.rider();
-      hp.cell *= kDetailCellFactor[kDetailLevels - 1];
-      rp.cell *= kDetailCellFactor[kDetailLevels - 1];
+      hp.cell *= scene::kDetailCellFactor[scene::kDetailLevels - 1];
+      rp.cell *= scene::kDetailCellFactor[scene::kDetailLevels - 1];
       grow = std::max({grow, double(hp.cell), double(rp.cell)});
       horses.push_back(rig::buildHorse(hp));
       riders.push_back(rig::buildRider(rp, hp.mount));
       clips.push_back(rig::makePairClip(p, scene.terrain, name));
-      SceneSpec named = scene;
+      scene::SceneSpec named = scene;
       named.profile = p.profile;
-      profiles.push_back(resolveProfile(named));
+      profiles.push_back(scene::resolveProfile(named));
     }
     std::vector<rig::CrowdPair> list;
     for (std::size_t i = 0; i < clips.size(); ++i) list.push_back({clips[i].get(), &profiles[i], scene.pairs[i].clip_offset_s});
     std::vector<glm::vec3> positions, normals;
     int closest_frame = 0;
     double closest = 1e300;
-    for (int frame : rig::parseFrameList(scene.frames, "frames")) {
-      const std::vector<rig::BakedFrame> baked = rig::bakeCrowdFrame(list, frame, frameTime(scene, frame));
+    for (int frame : scene::parseFrameList(scene.frames, "frames")) {
+      const std::vector<rig::BakedFrame> baked = rig::bakeCrowdFrame(list, frame, scene::frameTime(scene, frame));
       std::vector<GroundBox> boxes;
       for (std::size_t i = 0; i < baked.size(); ++i) {
         const rig::MountedPose pose = rig::poseMounted(horses[i], riders[i], baked[i].horse, baked[i].rider, profiles[i]);
@@ -615,15 +615,15 @@ TEST(CrowdScenes, NoTwoPairsBodiesMeetAtAnyFrame) {
 // on earlier frames (here every pair at full detail, then at the coarsest) leave the same bytes as a
 // fresh shot rendering that frame alone.
 TEST(Shot, ACrowdsFrameIsTheSameWhateverWasRenderedBefore) {
-  const SceneSpec scene = crowdScene();
-  Shot before(scene, resolveProfile(scene), findCamera(scene, "persp"), 0);
+  const scene::SceneSpec scene = crowdScene();
+  Shot before(scene, scene::resolveProfile(scene), scene::findCamera(scene, "persp"), 0);
   before.setDetailLevel(0);
   before.renderFrame(1);
   before.setDetailLevel(2);
   before.renderFrame(24);
   before.setDetailLevel(-1);
   const Image after = before.renderFrame(12);
-  Shot alone(scene, resolveProfile(scene), findCamera(scene, "persp"), 0);
+  Shot alone(scene, scene::resolveProfile(scene), scene::findCamera(scene, "persp"), 0);
   const Image fresh = alone.renderFrame(12);
   EXPECT_TRUE(after.rgba == fresh.rgba);
   EXPECT_TRUE(after.depth == fresh.depth);
@@ -633,13 +633,13 @@ TEST(Shot, ACrowdsFrameIsTheSameWhateverWasRenderedBefore) {
 // A camera made in code (not read from a scene, which checks it when it loads) that follows a pair the
 // crowd does not have is a one-line error naming the scene, the camera and the range.
 TEST(Shot, FollowingAPairTheCrowdHasNotIsAOneLineError) {
-  const SceneSpec scene = crowdScene();
-  CameraSpec camera = findCamera(scene, "side");
+  const scene::SceneSpec scene = crowdScene();
+  scene::CameraSpec camera = scene::findCamera(scene, "side");
   camera.follow_pair = 4;
   try {
-    Shot shot(scene, resolveProfile(scene), camera, 1);
+    Shot shot(scene, scene::resolveProfile(scene), camera, 1);
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               std::string(STIRRUP_SOURCE_DIR) + "/scenes/crowd4.json: cameras.side.follow_pair: expected a pair index "
               "from 0 to 3, got 4");

@@ -28,10 +28,10 @@ constexpr double kH = kAccelerationWindowS;  // 0.2 s each side
 // speed profile weighs the two sides: at 1.5 s half of each (-281.25); at 1.6 s the triangle's part
 // before 1.5 s is 0.1 x 2.5 / 2 = 0.125 of it, so -562.5 x 0.875 = -492.1875.
 TEST(TravelAcceleration, TheStopBrakesAtItsEntrySpeedOverItsSlide) {
-  ClipSpec spec;
+  scene::ClipSpec spec;
   spec.generator = "stop";
   spec.params = {{"entry_speed_cm_s", 900}, {"entry_s", 1.5}, {"slide_s", 1.6}, {"seed", 5}};
-  const auto clip = makeClip(spec);
+  const auto clip = scene::makeClip(spec);
   constexpr double kBraking = -900.0 / 1.6;
   for (double t = 0.0; t <= 1.3 + 1e-9; t += 0.1) EXPECT_NEAR(travelAcceleration(*clip, t), 0.0, 1e-6) << t << " s";
   EXPECT_NEAR(travelAcceleration(*clip, 1.5), kBraking / 2.0, 1e-6);
@@ -96,9 +96,9 @@ TEST(TravelAcceleration, TheBakeHandsOnTheSidewaysPartSignedTowardTheTurn) {
     }
   }
   // A straight line has none.
-  ClipSpec spec;
+  scene::ClipSpec spec;
   spec.generator = "canter";
-  EXPECT_EQ(bakeFrame(*makeClip(spec), RigProfile::thesis(), 12, 0.5).horse.travel_side_accel_cm_s2, 0.0);
+  EXPECT_EQ(bakeFrame(*scene::makeClip(spec), RigProfile::thesis(), 12, 0.5).horse.travel_side_accel_cm_s2, 0.0);
 }
 
 // The same turn as a path clip draws it (rig/motion/path_clip.h), through 36 points on the 10 m circle
@@ -111,10 +111,10 @@ TEST(TravelAcceleration, APathClipsCircleIsCentripetal) {
     const double a = 2.0 * std::numbers::pi * i / 36.0;
     points.push_back({r * std::sin(a), r * (1.0 - std::cos(a))});
   }
-  ClipSpec spec;
+  scene::ClipSpec spec;
   spec.generator = "path";
   spec.params = {{"points", points}, {"speed", {{0, v}, {60, v}}}};
-  const auto clip = makeClip(spec);
+  const auto clip = scene::makeClip(spec);
   for (double t : {3.0, 5.5, 9.0, 12.5}) {
     const glm::dvec2 a = travelAccelerationOnGround(*clip, t);
     const HorseFrame f = clip->sample(t);

@@ -198,17 +198,17 @@ std::vector<Sample> ride(const std::string& scene_name, const RigProfile* profil
                          Riders who = defaultRiders()) {
   const Character& horse = *who.horse;
   const Character& rider = *who.rider;
-  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
-  const RigProfile profile = profile_override ? *profile_override : render::resolveProfile(scene);
-  const auto clip = makeClip(scene.clip);
+  const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
+  const RigProfile profile = profile_override ? *profile_override : scene::resolveProfile(scene);
+  const auto clip = scene::makeClip(scene.clip);
   // Her seat: the midpoint of her hip joints, which every rider has wherever her rig puts its pelvis joint.
   const auto seatOf = [&](const auto& position) {
     return 0.5f * (position(rider.role("lHip")) + position(rider.role("rHip")));
   };
   const glm::vec3 rest_seat = seatOf([&](int j) { return rider.skeleton.restPosition(j); });
   std::vector<Sample> out;
-  for (int f : parseFrameList(scene.frames, "frames")) {
-    const BakedFrame b = bakeFrame(*clip, profile, f, render::frameTime(scene, f));
+  for (int f : scene::parseFrameList(scene.frames, "frames")) {
+    const BakedFrame b = bakeFrame(*clip, profile, f, scene::frameTime(scene, f));
     const MountedPose pose = poseMounted(horse, rider, b.horse, b.rider, profile);
     const glm::mat4& saddle = pose.horse[horse.role("saddle")];
     const glm::vec3 pelvis(pose.rider[rider.role("pelvis")][3]), neck(pose.rider[rider.role("neck")][3]);
@@ -256,9 +256,9 @@ void forwardWithHerSeatRaisedInTheRear(Riders who) {
 void chestNeverInsideTheNeckInTheRear(Riders who) {
   const Character& horse = *who.horse;
   const Character& rider = *who.rider;
-  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
-  const RigProfile profile = render::resolveProfile(scene);
-  const auto clip = makeClip(scene.clip);
+  const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
+  const RigProfile profile = scene::resolveProfile(scene);
+  const auto clip = scene::makeClip(scene.clip);
   auto dominant = [](const SkinnedMesh& m, std::size_t v) {
     int k = 0;
     for (int q = 1; q < 4; ++q)
@@ -280,9 +280,9 @@ void chestNeverInsideTheNeckInTheRear(Riders who) {
   }
   std::vector<glm::vec3> hp, hn, rp, rn, neck_p, neck_n;
   double closest = 1e9;
-  for (int f : parseFrameList(scene.frames, "frames")) {
+  for (int f : scene::parseFrameList(scene.frames, "frames")) {
     if (f % 2) continue;
-    const BakedFrame b = bakeFrame(*clip, profile, f, render::frameTime(scene, f));
+    const BakedFrame b = bakeFrame(*clip, profile, f, scene::frameTime(scene, f));
     const MountedPose pose = poseMounted(horse, rider, b.horse, b.rider, profile);
     skinMesh(horse.mesh, horse.skeleton, pose.horse, hp, hn);
     skinMesh(rider.mesh, rider.skeleton, pose.rider, rp, rn);
@@ -385,12 +385,12 @@ TEST(RiderLeans, ForwardAtTheJumpsTakeOff) { forwardAtTheJumpsTakeOff(defaultRid
 // rig on the default horse: the balance stage leans them as it leans the default rider.
 class UserRiderLeans : public ::testing::TestWithParam<test::UserRiderSpec> {
  protected:
-  static const RiddenPair& pair(const test::UserRiderSpec& spec) {
-    static std::map<std::string, RiddenPair> seated;
+  static const scene::RiddenPair& pair(const test::UserRiderSpec& spec) {
+    static std::map<std::string, scene::RiddenPair> seated;
     auto it = seated.find(spec.name);
     if (it == seated.end()) {
       const test::UserRiderFiles f = test::writeUserRider(spec, std::filesystem::path(STIRRUP_BINARY_DIR) / "test_balance_riders");
-      it = seated.emplace(spec.name, seatPair(test::defaultHorse(), resolveCharacter(CharacterKind::Rider, f.glb.string(), f.mapping.string()),
+      it = seated.emplace(spec.name, scene::seatPair(test::defaultHorse(), resolveCharacter(CharacterKind::Rider, f.glb.string(), f.mapping.string()),
                                               RigProfile::thesis())).first;
     }
     return it->second;
@@ -462,10 +462,10 @@ TEST(RiderLeans, BalanceZeroIsTheThesisPose) {
   const Character& rider = test::defaultRider();
   RigProfile off = RigProfile::thesis();
   off.balance.amount = 0;
-  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
-  const auto clip = makeClip(scene.clip);
+  const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/rear.json");
+  const auto clip = scene::makeClip(scene.clip);
   for (int f : {1, 45, 80}) {
-    const BakedFrame b = bakeFrame(*clip, off, f, render::frameTime(scene, f));
+    const BakedFrame b = bakeFrame(*clip, off, f, scene::frameTime(scene, f));
     const MountedPose balanced_off = poseMounted(horse, rider, b.horse, b.rider, off);
     const RiderChannels limited = limitRiderChannels(b.rider, RiderPoseParams{}, off.rider_unit_cm);
     std::vector<glm::mat4> h = poseHorse(horse, b.horse);
@@ -481,9 +481,9 @@ TEST(RiderLeans, BalanceZeroIsTheThesisPose) {
 // as much; and she overshoots: at the jump she folds further forward.
 TEST(RiderLeans, ProfilesDifferInHowFarTheyLean) {
   auto under = [&](const char* scene_name, const char* profile_name) {
-    render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
+    scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
     scene.profile = profile_name;
-    const RigProfile p = render::resolveProfile(scene);
+    const RigProfile p = scene::resolveProfile(scene);
     return ride(scene_name, &p);
   };
   auto widest = [](const std::vector<Sample>& v) {
@@ -594,17 +594,17 @@ TEST(RiderLeans, InASteadyBankedTurnSheLeansWithHerHorse) {
 }
 
 // Every frame of a scene as the shot poses it (a crowd: every pair), sideways; `sets` joins the scene's
-// profile overrides (render::resolveProfileForEveryPair).
+// profile overrides (scene::resolveProfileForEveryPair).
 std::vector<Sideways> rideSideways(const std::string& scene_name, const nlohmann::json& sets = nlohmann::json::object()) {
-  render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
-  const RigProfile profile = render::resolveProfileForEveryPair(scene, sets);
-  render::ShotEvaluator shot(scene, profile, 0);
+  scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
+  const RigProfile profile = scene::resolveProfileForEveryPair(scene, sets);
+  scene::ShotEvaluator shot(scene, profile, 0);
   std::vector<Sideways> out;
-  render::ShotFrame frame;
-  for (int f : parseFrameList(scene.frames, "frames")) {
-    render::FrameRequest request;
+  scene::ShotFrame frame;
+  for (int f : scene::parseFrameList(scene.frames, "frames")) {
+    scene::FrameRequest request;
     request.frame = f;
-    request.until = render::EvalStage::Pose;
+    request.until = scene::EvalStage::Pose;
     shot.evaluate(request, frame);
     for (int i = 0; i < shot.pairCount(); ++i) {
       Sideways s = measureSideways(shot.horse(i), shot.rider(i), frame.pairs[std::size_t(i)].pose);

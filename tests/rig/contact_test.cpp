@@ -145,17 +145,17 @@ struct ClipContact {
 ClipContact measure(const std::string& scene_name) {
   const Character& horse = test::defaultHorse();
   const Character& rider = test::defaultRider();
-  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
-  const RigProfile profile = render::resolveProfile(scene);
-  const auto clip = makeClip(scene.clip);
+  const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
+  const RigProfile profile = scene::resolveProfile(scene);
+  const auto clip = scene::makeClip(scene.clip);
   const std::vector<bool> tack = horseLooseTack(horse);
   const glm::vec3 rest_pelvis = rider.skeleton.restPosition(rider.role("pelvis"));
   ClipContact out;
   std::vector<glm::vec3> hp, hn, rp, rn;
-  const std::vector<int> frames = parseFrameList(scene.frames, "frames");
+  const std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const int frame = frames[i];
-    const BakedFrame b = bakeFrame(*clip, profile, frame, render::frameTime(scene, frame));
+    const BakedFrame b = bakeFrame(*clip, profile, frame, scene::frameTime(scene, frame));
     const MountedPose pose = poseMounted(horse, rider, b.horse, b.rider, profile);
     // Seat, in the saddle's frame (the rider is built in saddle space, so rest = rest_pelvis).
     const glm::vec3 pelvis = glm::vec3(glm::inverse(pose.horse[horse.role("saddle")]) * pose.rider[rider.role("pelvis")][3]);

@@ -14,7 +14,7 @@ namespace stirrup::rig {
 namespace {
 
 RigProfile profileNamed(const std::string& name) {
-  return loadRigProfile(name, std::string(STIRRUP_SOURCE_DIR) + "/scenes/profiles");
+  return scene::loadRigProfile(name, std::string(STIRRUP_SOURCE_DIR) + "/scenes/profiles");
 }
 
 // Twelve pairs cantering in three ranks, of mixed profiles.

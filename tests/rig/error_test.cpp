@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace stirrup {
+namespace stirrup::rig {
 namespace {
 
 // Found by fuzzing (tests/fuzz/regressions/frame_spec/newline_in_part): a frame list holding a newline
@@ -26,4 +26,4 @@ TEST(InputError, NumbersAreQuotedShortOrInAReportsOwnFormat) {
 }
 
 }  // namespace
-}  // namespace stirrup
+}  // namespace stirrup::rig

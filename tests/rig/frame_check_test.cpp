@@ -32,7 +32,7 @@ struct Posed {
 // The default pair at a frame of the default trot (24 fps).
 Posed trotFrame(int frame) {
   static const RigProfile profile = RigProfile::thesis();
-  static const std::unique_ptr<Clip> clip = makeClip(ClipSpec{});
+  static const std::unique_ptr<Clip> clip = scene::makeClip(scene::ClipSpec{});
   Posed p;
   p.baked = bakeFrame(*clip, profile, frame, (frame - 1) / 24.0);
   p.pose = poseMounted(test::defaultHorse(), test::defaultRider(), p.baked.horse, p.baked.rider, profile);

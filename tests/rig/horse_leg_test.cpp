@@ -76,10 +76,10 @@ TEST(HorseLeg, TheShoulderIsWhereTheLimbBendsBelowThePivotNeverASplitBonesSegmen
 TEST(HorseLeg, PlantedHoovesHoldTheirGroundAtEveryGait) {
   const HorseLegParams p;
   for (const char* gait : {"walk", "trot", "canter", "gallop"}) {
-    ClipSpec spec;
+    scene::ClipSpec spec;
     spec.generator = gait;
     spec.source = "test";
-    const auto clip = makeClip(spec, defaultHorse());
+    const auto clip = scene::makeClip(spec, defaultHorse());
     for (int leg = 0; leg < 4; ++leg) {
       double slide = 0.0, highest = 0.0, lowest = 0.0;
       int stance = 0, off = 0, edge = -1;

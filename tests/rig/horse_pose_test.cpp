@@ -206,12 +206,12 @@ struct OverReach {
   int worst_stance_frame = 0, worst_swing_frame = 0;
 };
 OverReach overReachOf(const std::string& name) {
-  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
-  const auto clip = makeClip(scene.clip, test::defaultHorse());
+  const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + name + ".json");
+  const auto clip = scene::makeClip(scene.clip, test::defaultHorse());
   OverReach o;
-  for (int frame : parseFrameList(scene.frames, name)) {
+  for (int frame : scene::parseFrameList(scene.frames, name)) {
     HorseReach reach;
-    const HorseFrame f = clip->sample(render::frameTime(scene, frame));
+    const HorseFrame f = clip->sample(scene::frameTime(scene, frame));
     (void)poseHorse(test::defaultHorse(), f, {}, &reach);
     ++o.frames;
     o.flagged += reach.any();

@@ -37,7 +37,7 @@ float maxDifference(const glm::mat4& a, const glm::mat4& b) {
 }
 
 TEST(RigidRider, BuiltInProfileSetsEveryRiderChannelToRest) {
-  const RigProfile rigid = loadRigProfile("rigid", std::filesystem::path(STIRRUP_SOURCE_DIR) / "scenes/profiles");
+  const RigProfile rigid = scene::loadRigProfile("rigid", std::filesystem::path(STIRRUP_SOURCE_DIR) / "scenes/profiles");
   EXPECT_EQ(rigid.name, "rigid");
   EXPECT_TRUE(rigid.rigid);
   EXPECT_FALSE(RigProfile::thesis().rigid);
@@ -95,12 +95,12 @@ TEST(RigidRider, ProfileFileKeyAndJson) {
     std::fputs("{\"rigid\": 1}", f);
     std::fclose(f);
   }
-  const RigProfile p = loadRigProfile((dir / "statue.json").string(), dir);
+  const RigProfile p = scene::loadRigProfile((dir / "statue.json").string(), dir);
   EXPECT_TRUE(p.rigid);
-  EXPECT_EQ(profileToJson(p).value("rigid", false), true);
-  EXPECT_FALSE(profileToJson(RigProfile::thesis()).contains("rigid"));
+  EXPECT_EQ(scene::profileToJson(p).value("rigid", false), true);
+  EXPECT_FALSE(scene::profileToJson(RigProfile::thesis()).contains("rigid"));
   try {
-    loadRigProfile((dir / "bad.json").string(), dir);
+    scene::loadRigProfile((dir / "bad.json").string(), dir);
     FAIL() << "a non-boolean rigid should be an error";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("rigid: expected true or false"), std::string::npos) << e.what();

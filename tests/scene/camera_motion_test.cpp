@@ -16,7 +16,7 @@
 #include "scene/profile_resolver.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -54,7 +54,7 @@ TEST(DampedFollow, ZeroTauIsThePathItself) {
 struct MotionFixture : ::testing::Test {
   SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
   rig::RigProfile profile = resolveProfile(scene);
-  std::unique_ptr<rig::Clip> clip = rig::makeClip(scene.clip);
+  std::unique_ptr<rig::Clip> clip = scene::makeClip(scene.clip);
 };
 
 TEST_F(MotionFixture, FollowCameraTravelsWithTheHorse) {
@@ -160,14 +160,14 @@ TEST(FollowCamera, FollowsATravelFrameThatTurned) {
 TEST(FollowCamera, StaysOverTheSeatWhileTheHorseStops) {
   const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/stop.json");
   const rig::RigProfile profile = resolveProfile(scene);
-  const auto clip = rig::makeClip(scene.clip);
+  const auto clip = scene::makeClip(scene.clip);
   CameraSpec spec;
   spec.follow_target = "rider";
   spec.damping_s = 0.3;
   spec.position = {0.0, 0.0, 500.0};
   spec.target = {0.0, 0.0, 0.0};
   double worst = 0.0, travel_lo = 1e9, travel_hi = -1e9;
-  for (int f : rig::parseFrameList(scene.frames, "frames")) {
+  for (int f : scene::parseFrameList(scene.frames, "frames")) {
     const double t = frameTime(scene, f);
     const double seat = followPoint(spec, *clip, profile, t).x;
     worst = std::max(worst, std::abs(cameraAtFrame(spec, scene, *clip, profile, f).target.x - seat));
@@ -190,17 +190,17 @@ TEST(FollowCamera, RiderHoldsHerPlaceInEveryCloseView) {
     const auto close = std::find_if(scene.cameras.begin(), scene.cameras.end(),
                                     [](const CameraSpec& c) { return c.view == "close"; });
     ASSERT_NE(close, scene.cameras.end()) << name;
-    Shot shot(scene, resolveProfile(scene), *close, 0);
-    const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+    render::Shot shot(scene, resolveProfile(scene), *close, 0);
+    const std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
     double first = 0.0, worst = 0.0;
     int worst_frame = 0;
     for (std::size_t i = 0; i < frames.size(); i += 2) {
-      const Image image = shot.renderFrame(frames[i]);
+      const render::Image image = shot.renderFrame(frames[i]);
       double sum = 0.0;
       int count = 0;
       for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x)
-          if (image.object_id[std::size_t(y) * image.width + x] == uint32_t(ObjectId::Rider)) sum += x + 0.5, ++count;
+          if (image.object_id[std::size_t(y) * image.width + x] == uint32_t(render::ObjectId::Rider)) sum += x + 0.5, ++count;
       ASSERT_GT(count, 200) << name << " frame " << frames[i] << ": the rider is in the close view";
       const double centroid = sum / count / image.width;  // fraction of the width
       if (i == 0) first = centroid;
@@ -367,4 +367,4 @@ TEST(FollowCamera, MotionIsFoundOnceForAnyPlaceAndSize) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 Camera sideCamera(Camera::Projection projection) {
@@ -93,4 +93,4 @@ TEST(Camera, RejectsCamerasThatCannotFormAnImage) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

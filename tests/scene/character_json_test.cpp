@@ -8,14 +8,14 @@
 
 #include "tests/input_error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 const std::filesystem::path kScenes = STIRRUP_SOURCE_DIR "/scenes";
 
 CharacterEntry entryOf(const std::string& json) {
   const nlohmann::json j = nlohmann::json::parse(json);
-  JsonObjectReader r("s.json", "characters", j);
+  rig::JsonObjectReader r("s.json", "characters", j);
   return parseCharacterEntry(r, "horse", kScenes, {"fallback.glb", "fallback.json"});
 }
 
@@ -41,4 +41,4 @@ TEST(CharacterEntry, AMissingFileOrAWrongTypeIsOneLineNamingTheField) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -19,14 +19,14 @@
 #include "tests/input_error.h"
 #include "tests/rig/io/baked_trot.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
 using stirrup::test::errorOf;
 namespace fs = std::filesystem;
 
 ClipSpec parse(const nlohmann::json& j) {
-  JsonObjectReader r("scenes/x.json", "clip", j);
+  rig::JsonObjectReader r("scenes/x.json", "clip", j);
   return parseClipSpec(r, ".");
 }
 std::string parseError(const nlohmann::json& j) {
@@ -35,16 +35,16 @@ std::string parseError(const nlohmann::json& j) {
 
 TEST(ClipSpec, UnknownParameterNamesFileAndField) {
   nlohmann::json j = {{"generator", "jump"}, {"fence_hieght_cm", 90}};
-  JsonObjectReader r("scenes/x.json", "clip", j);
+  rig::JsonObjectReader r("scenes/x.json", "clip", j);
   try {
     parseClipSpec(r, ".");
     FAIL();
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_STREQ(e.what(), "scenes/x.json: clip.fence_hieght_cm: unknown field");
   }
   nlohmann::json bad = {{"generator", "rear"}, {"angle_deg", 95}};
-  JsonObjectReader r2("scenes/x.json", "clip", bad);
-  EXPECT_THROW(parseClipSpec(r2, "."), InputError);
+  rig::JsonObjectReader r2("scenes/x.json", "clip", bad);
+  EXPECT_THROW(parseClipSpec(r2, "."), rig::InputError);
 }
 
 TEST(ClipSpec, TheGeneratorsAndTheParametersEachAccepts) {
@@ -83,16 +83,16 @@ TEST(ClipSpec, BadValuesAreOneLineErrorsNamingTheField) {
 
 TEST(ClipSpec, SteadyGaitsAreTheirParametersOverTheGaitsOwn) {
   const ClipSpec trot = parse({{"generator", "trot"}, {"speed_cm_s", 350}, {"duty_factor", 0.5}});
-  const std::optional<GaitParams> g = steadyGaitParams(trot);
+  const std::optional<rig::GaitParams> g = steadyGaitParams(trot);
   ASSERT_TRUE(g);
   EXPECT_EQ(g->speed_cm_s, 350.0);
   EXPECT_EQ(g->duty_factor, (std::array<double, 4>{0.5, 0.5, 0.5, 0.5}));
-  EXPECT_EQ(g->stride_hz, trotParams().stride_hz);  // not given: the trot's own
+  EXPECT_EQ(g->stride_hz, rig::trotParams().stride_hz);  // not given: the trot's own
   EXPECT_FALSE(steadyGaitParams(parse({{"generator", "jump"}})));
   // Without variation a steady gait is the closed-form periodic gait; with it, a generated movement.
-  EXPECT_NE(dynamic_cast<const ProceduralGait*>(makeClip(trot).get()), nullptr);
-  EXPECT_NE(dynamic_cast<const MovementClip*>(makeClip(parse({{"generator", "trot"}, {"variation", 0.2}})).get()), nullptr);
-  EXPECT_NE(dynamic_cast<const MovementClip*>(makeClip(parse({{"generator", "rear"}})).get()), nullptr);
+  EXPECT_NE(dynamic_cast<const rig::ProceduralGait*>(makeClip(trot).get()), nullptr);
+  EXPECT_NE(dynamic_cast<const rig::MovementClip*>(makeClip(parse({{"generator", "trot"}, {"variation", 0.2}})).get()), nullptr);
+  EXPECT_NE(dynamic_cast<const rig::MovementClip*>(makeClip(parse({{"generator", "rear"}})).get()), nullptr);
 }
 
 // The speed of every gait a generator rides, with the field that sets it, for the gaits' top speeds
@@ -100,7 +100,7 @@ TEST(ClipSpec, SteadyGaitsAreTheirParametersOverTheGaitsOwn) {
 TEST(ClipSpec, EveryGaitAGeneratorRidesIsListedWithItsSpeedAndField) {
   const auto speeds = [](const nlohmann::json& j) {
     std::vector<std::string> out;
-    for (const GaitSpeed& g : generatedGaitSpeeds(parse(j))) out.push_back(g.field + " " + g.gait + " " + std::to_string(int(g.speed_cm_s)));
+    for (const rig::GaitSpeed& g : generatedGaitSpeeds(parse(j))) out.push_back(g.field + " " + g.gait + " " + std::to_string(int(g.speed_cm_s)));
     return out;
   };
   using V = std::vector<std::string>;
@@ -118,17 +118,17 @@ TEST(ClipSpec, EveryGaitAGeneratorRidesIsListedWithItsSpeedAndField) {
 // 1000 cm path, keys at 250 and 750 cm.
 TEST(ClipSpec, SegmentGaitsKeyTheMiddleHalfOfEachSegment) {
   const ClipSpec spec = parse({{"generator", "path"}, {"points", {{0, 0}, {1000, 0}}}, {"segment_gaits", {"walk"}}});
-  const std::optional<PathClipParams> p = pathClipParams(spec);
+  const std::optional<rig::PathClipParams> p = pathClipParams(spec);
   ASSERT_TRUE(p);
-  EXPECT_EQ(p->over, SpeedProfile::Over::Distance);
-  const double walk = gaitParamsByName("walk")->speed_cm_s;
+  EXPECT_EQ(p->over, rig::SpeedProfile::Over::Distance);
+  const double walk = rig::gaitParamsByName("walk")->speed_cm_s;
   ASSERT_EQ(p->speed.size(), 2u);
   EXPECT_NEAR(p->speed[0].at, 250.0, 1e-9);
   EXPECT_NEAR(p->speed[1].at, 750.0, 1e-9);
   EXPECT_EQ(p->speed[0].speed, walk);
   EXPECT_EQ(p->speed[1].speed, walk);
   EXPECT_FALSE(pathClipParams(parse({{"generator", "trot"}})));
-  EXPECT_NE(dynamic_cast<const PathClip*>(makeClip(spec).get()), nullptr);
+  EXPECT_NE(dynamic_cast<const rig::PathClip*>(makeClip(spec).get()), nullptr);
 }
 
 // ---- A horse's own animation (rig/io/keyed_horse_clip.h), read from a file with no control nodes: the
@@ -137,18 +137,18 @@ TEST(ClipSpec, SegmentGaitsKeyTheMiddleHalfOfEachSegment) {
 // With no mapping, a file that holds no control nodes is a horse: with the scene's horse made from that
 // very file, the clip keys the horse itself; without it (or on another horse), its controls alone.
 TEST(ClipSpec, AHorsesOwnFileKeysTheHorse) {
-  const ClipSpec spec = parse({{"file", test::bakedTrot().file.string()}});
+  const ClipSpec spec = parse({{"file", rig::test::bakedTrot().file.string()}});
   EXPECT_TRUE(spec.generator.empty());
   EXPECT_FALSE(spec.character_mapping);
   EXPECT_FALSE(readsControlNodes(spec));
-  EXPECT_NEAR(fileClipDuration(spec), (test::kFrames - 1) / test::kFps, 1e-4);
-  const Character own = loadCharacterGltf(test::bakedTrot().file, CharacterKind::Horse);
+  EXPECT_NEAR(fileClipDuration(spec), (rig::test::kFrames - 1) / rig::test::kFps, 1e-4);
+  const rig::Character own = rig::loadCharacterGltf(rig::test::bakedTrot().file, rig::CharacterKind::Horse);
   EXPECT_TRUE(makeClip(spec, own)->sample(0.5).keyed_pose);
   EXPECT_FALSE(makeClip(spec)->sample(0.5).keyed_pose);
-  EXPECT_FALSE(makeClip(spec, test::defaultHorse())->sample(0.5).keyed_pose);
+  EXPECT_FALSE(makeClip(spec, rig::test::defaultHorse())->sample(0.5).keyed_pose);
   // The controls are the same either way: the horse's own motion.
-  EXPECT_DOUBLE_EQ(makeClip(spec, own)->sample(0.5).controls[HorseChannel::lfHoofTy],
-                   makeClip(spec)->sample(0.5).controls[HorseChannel::lfHoofTy]);
+  EXPECT_DOUBLE_EQ(makeClip(spec, own)->sample(0.5).controls[rig::HorseChannel::lfHoofTy],
+                   makeClip(spec)->sample(0.5).controls[rig::HorseChannel::lfHoofTy]);
 }
 
 // The mapping `stirrup character map` writes (roles) names the same file's joints for the clip: one
@@ -156,31 +156,31 @@ TEST(ClipSpec, AHorsesOwnFileKeysTheHorse) {
 TEST(ClipSpec, ACharacterMappingReadsTheAnimationThroughItsRoles) {
   const fs::path dir = fs::temp_directory_path() / ("stirrup-clip-roles-" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const Character own = loadCharacterGltf(test::bakedTrot().file, CharacterKind::Horse);
+  const rig::Character own = rig::loadCharacterGltf(rig::test::bakedTrot().file, rig::CharacterKind::Horse);
   nlohmann::json roles;
   for (const auto& [role, j] : own.roles) roles[role] = own.skeleton.joints[std::size_t(j)].name;
   const fs::path map = dir / "trot-map.json";
   std::ofstream(map) << nlohmann::json{{"character", "horse"}, {"roles", roles}}.dump();
-  const ClipSpec spec = parse({{"file", test::bakedTrot().file.string()}, {"mapping", map.string()}, {"animation", "trot"}});
+  const ClipSpec spec = parse({{"file", rig::test::bakedTrot().file.string()}, {"mapping", map.string()}, {"animation", "trot"}});
   EXPECT_TRUE(spec.character_mapping);
   const auto clip = makeClip(spec);
   EXPECT_GT(clip->sample(1.0).travel_cm - clip->sample(0.0).travel_cm, 300.0) << "a trot travels 360 cm a second";
   roles["lfHoof"] = "lfHoofTip";
   std::ofstream(map) << nlohmann::json{{"character", "horse"}, {"roles", roles}}.dump();
-  EXPECT_EQ(parseError({{"file", test::bakedTrot().file.string()}, {"mapping", map.string()}}),
-            map.string() + ": roles.lfHoof: no joint named \"lfHoofTip\" in " + test::bakedTrot().file.string());
+  EXPECT_EQ(parseError({{"file", rig::test::bakedTrot().file.string()}, {"mapping", map.string()}}),
+            map.string() + ": roles.lfHoof: no joint named \"lfHoofTip\" in " + rig::test::bakedTrot().file.string());
   fs::remove_all(dir);
 }
 
 // A horse's own animation is not set on uneven ground: its hooves are where they were keyed.
 TEST(ClipSpec, AHorsesOwnAnimationOnTerrainIsAOneLineError) {
-  ClipSpec spec = parse({{"file", test::bakedTrot().file.string()}});
-  spec.terrain = std::make_shared<Terrain>();
+  ClipSpec spec = parse({{"file", rig::test::bakedTrot().file.string()}});
+  spec.terrain = std::make_shared<rig::Terrain>();
   EXPECT_EQ(errorOf([&] { makeClip(spec); }),
-            "scenes/x.json: clip.file: " + test::bakedTrot().file.string() +
+            "scenes/x.json: clip.file: " + rig::test::bakedTrot().file.string() +
                 ": a horse's animation read from its file rides on flat ground (its hooves are where they were keyed); remove "
                 "the scene's \"terrain\"");
 }
 
 }  // namespace
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

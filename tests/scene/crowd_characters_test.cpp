@@ -17,7 +17,7 @@
 #include "scene/shot_evaluator.h"
 #include "tests/input_error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // In the shipped scenes' folder, so "characters/..." resolves as it does for scenes/trot.json.
@@ -103,4 +103,4 @@ TEST(CrowdCharacters, WhatCannotBeIsOneLineNamingTheField) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

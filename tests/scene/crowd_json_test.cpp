@@ -4,24 +4,24 @@
 
 #include "tests/input_error.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
 using test::errorOf;
 
-CrowdSpec crowd(const std::string& text) {
+rig::CrowdSpec crowd(const std::string& text) {
   const nlohmann::json j = nlohmann::json::parse(text);
-  JsonObjectReader r("s.json", "crowd", j);
+  rig::JsonObjectReader r("s.json", "crowd", j);
   return parseCrowdSpec(r);
 }
-PairSpec pair(const std::string& text) {
+rig::PairSpec pair(const std::string& text) {
   const nlohmann::json j = nlohmann::json::parse(text);
-  JsonObjectReader r("s.json", "riders[2]", j);
+  rig::JsonObjectReader r("s.json", "riders[2]", j);
   return parsePairSpec(r);
 }
 
 TEST(CrowdJson, ReadsEveryField) {
-  const CrowdSpec s = crowd(R"({"pairs": 30, "seed": 7,
+  const rig::CrowdSpec s = crowd(R"({"pairs": 30, "seed": 7,
       "lead": {"points": [[0, 0], [4000, 600]], "speed": [[0, 560], [4, 900]]},
       "formation": {"files": 6, "file_spacing_cm": 260, "rank_spacing_cm": 700, "jitter_cm": 15},
       "speed_variation": 0.02, "start_offset_max_s": 1.5, "profiles": {"thesis": 2, "novice": 1},
@@ -50,7 +50,7 @@ TEST(CrowdJson, ReadsEveryField) {
 }
 
 TEST(CrowdJson, DefaultsAreTheWholeRanges) {
-  const CrowdSpec s = crowd(R"({"lead": {"points": [[0, 0], [100, 0]], "speed": [[0, 300]]}})");
+  const rig::CrowdSpec s = crowd(R"({"lead": {"points": [[0, 0], [100, 0]], "speed": [[0, 300]]}})");
   EXPECT_EQ(s.pairs, 1);
   EXPECT_EQ(s.withers_height_cm.lo, 145.0);
   EXPECT_EQ(s.withers_height_cm.hi, 175.0);
@@ -82,11 +82,11 @@ TEST(CrowdJson, BadFieldsAreOneLineErrors) {
 }
 
 TEST(CrowdJson, ReadsARider) {
-  const PairSpec p = pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "start_offset_s": 0.5, "profile": "english",
+  const rig::PairSpec p = pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "start_offset_s": 0.5, "profile": "english",
       "seed": 3, "variation": 0.2, "withers_height_cm": 150, "rider_height_cm": 180, "rider_build": 1.1})");
   EXPECT_EQ(p.path.points.size(), 2u);
   EXPECT_EQ(p.path.speed[0].speed, 300.0);
-  EXPECT_EQ(p.path.over, SpeedProfile::Over::Time);
+  EXPECT_EQ(p.path.over, rig::SpeedProfile::Over::Time);
   EXPECT_EQ(p.clip_offset_s, 0.5);
   EXPECT_EQ(p.profile, "english");
   EXPECT_EQ(p.path.seed, 3u);
@@ -96,14 +96,14 @@ TEST(CrowdJson, ReadsARider) {
   EXPECT_EQ(p.rider_build, 1.1);
   EXPECT_EQ(p.coat, "bay");  // the default characters' colours unless named
   EXPECT_EQ(p.jacket, "red");
-  const PairSpec q = pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "coat": "grey", "jacket": "navy",
+  const rig::PairSpec q = pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "coat": "grey", "jacket": "navy",
       "hair": "blonde", "skin": "olive"})");
   EXPECT_EQ(q.coat, "grey");
   EXPECT_EQ(q.jacket, "navy");
   EXPECT_EQ(q.hair, "blonde");
   EXPECT_EQ(q.skin, "olive");
   EXPECT_EQ(pair(R"({"points": [[0, 0], [500, 0]], "speed": [[0, 300]], "speed_over": "distance"})").path.over,
-            SpeedProfile::Over::Distance);
+            rig::SpeedProfile::Over::Distance);
 }
 
 TEST(CrowdJson, BadRiderFieldsAreOneLineErrors) {
@@ -123,4 +123,4 @@ TEST(CrowdJson, BadRiderFieldsAreOneLineErrors) {
 }
 
 }  // namespace
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -9,7 +9,7 @@
 
 #include "rig/error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -56,11 +56,11 @@ TEST_F(DataDir, StirrupDataOverridesAndIsNeverSecondGuessed) {
   try {
     dataDir();
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()), "STIRRUP_DATA: " + dir_.string() +
                                          ": no scenes/ folder there (expected stirrup's data folder, e.g. /usr/share/stirrup)");
   }
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 Camera perspective(double fov_deg) {
@@ -77,4 +77,4 @@ TEST(DetailLevel, APairOutOfViewIsAtTheCoarsestLevel) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 rig::Obstacle fence(double height) {
@@ -66,4 +66,4 @@ TEST(Fence, RejectsAFenceWithNoSize) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

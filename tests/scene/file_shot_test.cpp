@@ -16,7 +16,7 @@
 #include "tests/input_error.h"
 #include "tests/rig/io/baked_trot.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -102,4 +102,4 @@ TEST(FileShot, ASceneGivesItsLookNotItsMotion) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

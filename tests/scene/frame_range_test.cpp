@@ -5,7 +5,7 @@
 #include "rig/error.h"
 #include "tests/input_error.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
 TEST(FrameRange, SingleFrameAndRange) {
@@ -29,14 +29,14 @@ TEST(FrameRange, ErrorsNameTheContextAndThePart) {
     try {
       parseFrameList(bad, "--frames");
       FAIL() << "accepted \"" << bad << "\"";
-    } catch (const InputError& e) {
+    } catch (const rig::InputError& e) {
       EXPECT_EQ(std::string(e.what()).rfind("--frames: ", 0), 0u) << e.what();
     }
   }
   try {
     parseFrameList("1-10,20-x", "--frames");
     FAIL();
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("\"20-x\""), std::string::npos) << e.what();
   }
 }
@@ -86,4 +86,4 @@ TEST(FrameRange, FormatFrameListReadsBackAsTheSameFrames) {
 }
 
 }  // namespace
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -14,7 +14,7 @@
 #include "rig/error.h"
 #include "tests/input_error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -91,8 +91,8 @@ TEST(FrameSequence, NamedIsNameDotNumberExtension) {
   EXPECT_EQ(FrameSequence::named("", "trot_side", ".png").fileName(48), "trot_side.0048.png");
   EXPECT_EQ(FrameSequence::named("f/trot", "trot", ".sheet.exr").path(9), fs::path("f/trot/trot.0009.sheet.exr"));
   EXPECT_EQ(FrameSequence::named("o", "x", ".exr", 6).fileName(12), "x.000012.exr");
-  EXPECT_THROW(FrameSequence::named("o", "x", ".exr", 10), InputError);
-  EXPECT_THROW(FrameSequence::named("o", "x", ".exr", -1), InputError);
+  EXPECT_THROW(FrameSequence::named("o", "x", ".exr", 10), rig::InputError);
+  EXPECT_THROW(FrameSequence::named("o", "x", ".exr", -1), rig::InputError);
 }
 
 class FrameSequenceScan : public ::testing::Test {
@@ -141,7 +141,7 @@ TEST_F(FrameSequenceScan, AnEmptyFolderHasNoFramesAMissingOneIsAnError) {
   try {
     FrameSequence::parse(missing)->scan();
     FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()), missing.string() + ": no such folder " + (dir_ / "nowhere").string());
   }
 }
@@ -158,4 +158,4 @@ TEST_F(FrameSequenceScan, AFolderlessPatternScansTheWorkingFolder) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

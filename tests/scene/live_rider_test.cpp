@@ -27,12 +27,12 @@
 #include "tests/input_error.h"
 #include "tests/rig/io/baked_trot.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
-using test::bakedTrot;
-using test::kFps;
-using test::kFrames;
+using rig::test::bakedTrot;
+using rig::test::kFps;
+using rig::test::kFrames;
 
 // The tool's frames 0..47 are the file's keys at F / fps (the bake keys its frame 1 at 0 s).
 constexpr int kFirst = 0, kLast = kFrames - 1;
@@ -44,11 +44,11 @@ struct Trot {
 const Trot& trot() {
   static const Trot t = [] {
     Trot out;
-    const RigProfile profile;
+    const rig::RigProfile profile;
     out.pair = resolveRiddenPair(bakedTrot().file.string(), "", "default", "", profile);
     out.setup.horse_file = bakedTrot().file;
-    out.setup.horse = std::make_shared<const Character>(out.pair.horse);
-    out.setup.rider = std::make_shared<const Character>(out.pair.rider);
+    out.setup.horse = std::make_shared<const rig::Character>(out.pair.horse);
+    out.setup.rider = std::make_shared<const rig::Character>(out.pair.rider);
     out.setup.profile = profile;
     out.setup.fps = kFps;
     out.setup.first_frame = kFirst;
@@ -69,10 +69,10 @@ double worstEntry(const std::vector<glm::dmat4>& a, const std::vector<glm::dmat4
 // The horse's joints at the tool's frame as the file keys them: each joint's world times its inverse bind.
 std::vector<glm::dmat4> fileDeformations(int frame) {
   const std::string file = bakedTrot().file.string();
-  static const tinygltf::Model model = readGltfFile(bakedTrot().file, file);
-  static const GltfAnimation animation = GltfAnimation::together(model, file);
+  static const tinygltf::Model model = rig::readGltfFile(bakedTrot().file, file);
+  static const rig::GltfAnimation animation = rig::GltfAnimation::together(model, file);
   const std::vector<glm::dmat4> worlds = animation.worlds(frame / kFps);
-  const std::vector<glm::mat4> ibm = gltfInverseBinds(model, file, 0);
+  const std::vector<glm::mat4> ibm = rig::gltfInverseBinds(model, file, 0);
   std::vector<glm::dmat4> out;
   for (std::size_t k = 0; k < model.skins[0].joints.size(); ++k)
     out.push_back(worlds[std::size_t(model.skins[0].joints[k])] * glm::dmat4(ibm[k]));
@@ -86,20 +86,20 @@ TEST(LiveRider, BeforeAnyEditSheIsWhereTheBakeOfTheHorsesOwnAnimationPutsHer) {
   LiveRider live(t.setup);
   EXPECT_EQ(live.firstFrame(), kFirst);
   EXPECT_EQ(live.lastFrame(), kLast);
-  const Character& horse = *t.setup.horse;
-  const Character& rider = *t.setup.rider;
-  const KeyedHorseClip clip(bakedTrot().file.string(), "", keyedHorseMapping(horse), &horse);
+  const rig::Character& horse = *t.setup.horse;
+  const rig::Character& rider = *t.setup.rider;
+  const rig::KeyedHorseClip clip(bakedTrot().file.string(), "", rig::keyedHorseMapping(horse), &horse);
   // Out in the horse's file's world: the bake's is in metres, its joints bound in centimetres.
   const std::string file = bakedTrot().file.string();
-  const tinygltf::Model model = readGltfFile(bakedTrot().file, file);
-  const std::vector<std::string> names = gltfJointNames(model, 0);
-  const int root = int(std::find(names.begin(), names.end(), keyedHorseMapping(horse).roles.at("root")) - names.begin());
-  const double units = gltfSkinUnits(model, file, 0, root, GltfAnimation::together(model, file));
+  const tinygltf::Model model = rig::readGltfFile(bakedTrot().file, file);
+  const std::vector<std::string> names = rig::gltfJointNames(model, 0);
+  const int root = int(std::find(names.begin(), names.end(), rig::keyedHorseMapping(horse).roles.at("root")) - names.begin());
+  const double units = rig::gltfSkinUnits(model, file, 0, root, rig::GltfAnimation::together(model, file));
   EXPECT_DOUBLE_EQ(units, 0.01);
-  const glm::dmat4 from_horse_rig = glm::inverse(GltfSkinJoints(model, file, 0, keyedHorseMapping(horse).to_rig, units).worldToRig());
+  const glm::dmat4 from_horse_rig = glm::inverse(rig::GltfSkinJoints(model, file, 0, rig::keyedHorseMapping(horse).to_rig, units).worldToRig());
   for (const int frame : {0, 11, 30, kLast}) {
-    const BakedFrame baked = bakeFrame(clip, t.setup.profile, frame, frame / kFps);
-    const MountedPose pose = poseMounted(horse, rider, baked.horse, baked.rider, t.setup.profile);
+    const rig::BakedFrame baked = rig::bakeFrame(clip, t.setup.profile, frame, frame / kFps);
+    const rig::MountedPose pose = rig::poseMounted(horse, rider, baked.horse, baked.rider, t.setup.profile);
     std::vector<glm::dmat4> expected;
     for (std::size_t j = 0; j < rider.skeleton.size(); ++j)
       if (!rider.skeleton.joints[j].rig_point)
@@ -148,12 +148,12 @@ TEST(LiveRider, TheTackComesWithHerStirrupsAtHerFeetReinsInHerHands) {
   const Trot& t = trot();
   LiveRider live(t.setup);
   EXPECT_EQ(live.tackJoints(), (std::vector<std::string>{"saddle", "lStirrup", "rStirrup", "lRein", "rRein"}));
-  const Character& horse = *t.setup.horse;
-  const Character& rider = *t.setup.rider;
-  const KeyedHorseClip clip(bakedTrot().file.string(), "", keyedHorseMapping(horse), &horse);
+  const rig::Character& horse = *t.setup.horse;
+  const rig::Character& rider = *t.setup.rider;
+  const rig::KeyedHorseClip clip(bakedTrot().file.string(), "", rig::keyedHorseMapping(horse), &horse);
   const std::string file = bakedTrot().file.string();
-  const tinygltf::Model model = readGltfFile(bakedTrot().file, file);
-  const glm::dmat4 from_horse_rig = glm::inverse(GltfSkinJoints(model, file, 0, keyedHorseMapping(horse).to_rig, 0.01).worldToRig());
+  const tinygltf::Model model = rig::readGltfFile(bakedTrot().file, file);
+  const glm::dmat4 from_horse_rig = glm::inverse(rig::GltfSkinJoints(model, file, 0, rig::keyedHorseMapping(horse).to_rig, 0.01).worldToRig());
   const glm::dmat4 to_rig = horse.source.to_rig;
   const auto inFile = [&](glm::vec3 rig) { return glm::dvec3(glm::inverse(to_rig) * glm::dvec4(rig, 1.0)); };
   double hands = 0.0, treads = 0.0;
@@ -161,14 +161,14 @@ TEST(LiveRider, TheTackComesWithHerStirrupsAtHerFeetReinsInHerHands) {
     std::vector<glm::dmat4> tack;
     live.rider(frame, &tack);
     ASSERT_EQ(tack.size(), 5u);
-    const BakedFrame baked = bakeFrame(clip, t.setup.profile, frame, frame / kFps);
-    const MountedPose pose = poseMounted(horse, rider, baked.horse, baked.rider, t.setup.profile);
+    const rig::BakedFrame baked = rig::bakeFrame(clip, t.setup.profile, frame, frame / kFps);
+    const rig::MountedPose pose = rig::poseMounted(horse, rider, baked.horse, baked.rider, t.setup.profile);
     const auto moved = [&](int k, const char* role) { return glm::dvec3(tack[std::size_t(k)] * glm::dvec4(inFile(horse.skeleton.restPosition(horse.role(role))), 1.0)); };
     const auto world = [&](glm::vec3 rig) { return glm::dvec3(from_horse_rig * glm::dvec4(rig, 1.0)); };
     for (int side = 0; side < 2; ++side) {
       const char* rein = side == 0 ? "lRein" : "rRein";
       hands = std::max(hands, glm::length(moved(3 + side, rein) - world(glm::vec3(pose.rider[std::size_t(rider.role(side == 0 ? "lHand" : "rHand"))][3]))));
-      const glm::vec3 tread = stirrupTarget(horse, pose.horse, baked.rider, t.setup.profile.rider_unit_cm, side);
+      const glm::vec3 tread = rig::stirrupTarget(horse, pose.horse, baked.rider, t.setup.profile.rider_unit_cm, side);
       treads = std::max(treads, glm::length(moved(1 + side, side == 0 ? "lStirrup" : "rStirrup") - world(tread)));
     }
     EXPECT_LT(glm::length(moved(0, "saddle") - world(glm::vec3(pose.horse[std::size_t(horse.role("saddle"))][3]))), 1e-6);
@@ -193,4 +193,4 @@ TEST(LiveRider, BadFramesAreOneLineErrors) {
 }
 
 }  // namespace
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

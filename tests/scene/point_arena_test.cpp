@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 std::vector<glm::vec3> ramp(std::size_t n, float from) {
@@ -71,4 +71,4 @@ TEST(PointArena, ThreadsGetRangesOfTheirOwn) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

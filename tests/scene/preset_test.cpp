@@ -7,13 +7,13 @@
 
 #include "rig/error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 std::string presetError(const std::string& name) {
   try {
     findPreset(name);
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     return e.what();
   }
   return "(no error)";
@@ -93,7 +93,7 @@ TEST(QualityPreset, ASceneWithAnUnknownPresetIsAOneLineError) {
     try {
       parseScene(nlohmann::json::parse(text), "scenes/x.json");
       ADD_FAILURE() << text << " was accepted";
-    } catch (const InputError& e) {
+    } catch (const rig::InputError& e) {
       const std::string message = e.what();
       EXPECT_EQ(message.rfind("scenes/x.json: quality", 0), 0u) << message;
       EXPECT_NE(message.find("expected \"draft\", \"review\" or \"final\", got \"fast\""), std::string::npos) << message;
@@ -103,4 +103,4 @@ TEST(QualityPreset, ASceneWithAnUnknownPresetIsAOneLineError) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

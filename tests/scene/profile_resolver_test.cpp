@@ -15,7 +15,7 @@
 #include "rig/error.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -133,7 +133,7 @@ TEST_F(ProfileResolver, OverridesApplyAfterTheFileSceneThenCommandLine) {
   try {
     resolveProfile("thesis", {{"eq1.w9", 1}});
     FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()), "--set: eq1.w9: unknown rig profile parameter (see docs/rider-rig.md for the parameter keys)");
   }
 }
@@ -143,20 +143,20 @@ TEST_F(ProfileResolver, AMissingNameIsOneLineNamingTheFoldersAndTheNames) {
   try {
     sceneDoc("cowboy");
     FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()), (shot_ / "ride.json").string() + ": profile: no rig profile \"cowboy\" in " + folders +
                                          " (expected one of english, rigid, steady, thesis, or a path to a .json file)");
   }
   try {
     resolveProfile("");
     FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()), "--profile: expected a rig profile name or a .json path, got \"\"");
   }
   // A file that is not there is the file's own error.
   scene_.profile = "gone.json";
-  EXPECT_THROW(resolveProfile(scene_), InputError);
+  EXPECT_THROW(resolveProfile(scene_), rig::InputError);
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

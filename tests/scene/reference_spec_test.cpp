@@ -14,7 +14,7 @@
 #include "scene/scene.h"
 #include "tests/input_error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -91,4 +91,4 @@ TEST(PixelRectText, XYWidthHeightOrAnErrorNamingTheOption) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

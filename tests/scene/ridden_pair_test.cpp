@@ -14,30 +14,30 @@
 #include "tests/rig/default_characters.h"
 #include "tests/rig/user_riders.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
 
 TEST(RiddenPair, TheGeneratedPairRidesAsBuilt) {
-  const RiddenPair pair = resolveRiddenPair("default", "", "default", "", RigProfile::thesis());
+  const RiddenPair pair = resolveRiddenPair("default", "", "default", "", rig::RigProfile::thesis());
   EXPECT_FALSE(pair.seat.seated_by_rig);
   EXPECT_TRUE(pair.seat.added_points.empty());
   EXPECT_TRUE(pair.rider.fold_guard.empty());
-  const Character& built = test::defaultRider();
+  const rig::Character& built = rig::test::defaultRider();
   ASSERT_EQ(pair.rider.skeleton.size(), built.skeleton.size());
   for (int j = 0; j < int(built.skeleton.size()); ++j)
     EXPECT_EQ(pair.rider.skeleton.restPosition(j), built.skeleton.restPosition(j)) << j;
   EXPECT_EQ(pair.horse.skeleton.restPosition(pair.horse.role("lStirrup")),
-            test::defaultHorse().skeleton.restPosition(test::defaultHorse().role("lStirrup")));
+            rig::test::defaultHorse().skeleton.restPosition(rig::test::defaultHorse().role("lStirrup")));
 }
 
 // A standing user's rider: the rig seats her and sets the leathers by the profile's holes; two holes
 // up hang the treads higher under the seat than none.
 TEST(RiddenPair, AUsersRiderIsSeatedWithTheProfilesLeathers) {
   const fs::path dir = fs::temp_directory_path() / ("stirrup_ridden_pair_test_" + std::to_string(::getpid()));
-  const test::UserRiderFiles files = test::writeUserRider(test::userRiderSpecs().front(), dir);
-  RigProfile none = RigProfile::thesis(), two = RigProfile::thesis();
+  const rig::test::UserRiderFiles files = rig::test::writeUserRider(rig::test::userRiderSpecs().front(), dir);
+  rig::RigProfile none = rig::RigProfile::thesis(), two = rig::RigProfile::thesis();
   none.seat.stirrup_holes_up = 0;
   two.seat.stirrup_holes_up = 2;
   const RiddenPair low = resolveRiddenPair("default", "", files.glb.string(), files.mapping.string(), none);
@@ -54,4 +54,4 @@ TEST(RiddenPair, AUsersRiderIsSeatedWithTheProfilesLeathers) {
 }
 
 }  // namespace
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -17,12 +17,12 @@
 #include "rig/io/json_fields.h"
 #include "rig/rider_rig.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
-using H = HorseChannel;
-using R = RiderChannel;
+using H = rig::HorseChannel;
+using R = rig::RiderChannel;
 
 const fs::path kProfiles = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "profiles";
 
@@ -43,9 +43,9 @@ class ProfileFiles : public ::testing::Test {
 };
 
 TEST(RigProfile, ThesisJsonHoldsTheThesisValuesAndCitesEveryKey) {
-  const nlohmann::json j = readJsonFile(kProfiles / "thesis.json");
-  const RigProfile thesis = RigProfile::thesis();
-  for (const RigParameter& param : rigParameters()) {
+  const nlohmann::json j = rig::readJsonFile(kProfiles / "thesis.json");
+  const rig::RigProfile thesis = rig::RigProfile::thesis();
+  for (const rig::RigParameter& param : rig::rigParameters()) {
     const std::string key(param.key);
     ASSERT_TRUE(j.contains(key)) << key;
     EXPECT_DOUBLE_EQ(j[key].get<double>(), param.get(thesis)) << key;
@@ -55,9 +55,9 @@ TEST(RigProfile, ThesisJsonHoldsTheThesisValuesAndCitesEveryKey) {
                        note.rfind("Balance", 0) == 0 || note.rfind("Seat", 0) == 0;
     EXPECT_TRUE(cites) << key << ": " << note;
   }
-  const RigProfile loaded = loadRigProfile("thesis", kProfiles);
+  const rig::RigProfile loaded = loadRigProfile("thesis", kProfiles);
   EXPECT_EQ(loaded.name, "thesis");
-  for (const RigParameter& param : rigParameters())
+  for (const rig::RigParameter& param : rig::rigParameters())
     EXPECT_DOUBLE_EQ(param.get(loaded), param.get(thesis)) << param.key;
 }
 
@@ -66,11 +66,11 @@ TEST(RigProfile, EveryShippedProfileLoadsAndIsDocumented) {
   for (const auto& e : fs::directory_iterator(kProfiles)) {
     if (e.path().extension() != ".json") continue;
     ++count;
-    const RigProfile p = loadRigProfile(e.path().stem().string(), kProfiles);
+    const rig::RigProfile p = loadRigProfile(e.path().stem().string(), kProfiles);
     EXPECT_EQ(p.name, e.path().stem().string());
     EXPECT_FALSE(p.doc.empty()) << e.path();
     // Every parameter a profile sets has a note saying why.
-    const nlohmann::json j = readJsonFile(e.path());
+    const nlohmann::json j = rig::readJsonFile(e.path());
     for (const auto& [key, value] : j.items())
       if (key != "name" && key != "doc" && key != "notes") {
         EXPECT_TRUE(j["notes"].contains(key)) << e.path() << " " << key;
@@ -80,13 +80,13 @@ TEST(RigProfile, EveryShippedProfileLoadsAndIsDocumented) {
 }
 
 TEST(RigProfile, LoadsByPathToo) {
-  const RigProfile p = loadRigProfile((kProfiles / "english.json").string(), "/nonexistent");
+  const rig::RigProfile p = loadRigProfile((kProfiles / "english.json").string(), "/nonexistent");
   EXPECT_EQ(p.name, "english");
 }
 
 // A gallop stride with the pairs spread out: the rider leans forward.
-HorseChannels spreadGallop() {
-  HorseChannels h;
+rig::HorseChannels spreadGallop() {
+  rig::HorseChannels h;
   h[H::lfHoofTx] = h[H::rfHoofTx] = 50;
   h[H::lbHoofTx] = h[H::rbHoofTx] = -40;
   h[H::lfHoofTy] = 25;
@@ -95,8 +95,8 @@ HorseChannels spreadGallop() {
 }
 
 // The widest moment of a 2.8 m trot stride, hooves on the ground.
-HorseChannels trotSpread() {
-  HorseChannels h;
+rig::HorseChannels trotSpread() {
+  rig::HorseChannels h;
   h[H::lfHoofTx] = h[H::lbHoofTx] = 70;
   h[H::rfHoofTx] = h[H::rbHoofTx] = -70;
   h[H::lfHoofTy] = 8;
@@ -105,41 +105,41 @@ HorseChannels trotSpread() {
 }
 
 TEST(RigProfile, EnglishSitsMoreUprightAndQuieterThanThesis) {
-  const RigProfile thesis = loadRigProfile("thesis", kProfiles);
-  const RigProfile english = loadRigProfile("english", kProfiles);
-  const RiderChannels t = evaluateRider(spreadGallop(), thesis);
-  const RiderChannels e = evaluateRider(spreadGallop(), english);
+  const rig::RigProfile thesis = loadRigProfile("thesis", kProfiles);
+  const rig::RigProfile english = loadRigProfile("english", kProfiles);
+  const rig::RiderChannels t = rig::evaluateRider(spreadGallop(), thesis);
+  const rig::RiderChannels e = rig::evaluateRider(spreadGallop(), english);
   EXPECT_GT(t[R::lowerBackRz], 0);
   EXPECT_LT(e[R::lowerBackRz], t[R::lowerBackRz]);                       // less lean
   EXPECT_LT(e[R::waistRz] / e[R::lowerBackRz], t[R::waistRz] / t[R::lowerBackRz]);  // straighter spine
   EXPECT_LT(e[R::headRz] - (-e[R::lowerBackRz] * .9), t[R::headRz] - (-t[R::lowerBackRz] * .9));  // eyes up
-  EXPECT_LT(evaluateRider(trotSpread(), english)[R::lWristTy], evaluateRider(trotSpread(), thesis)[R::lWristTy]);
-  HorseChannels pitch;
+  EXPECT_LT(rig::evaluateRider(trotSpread(), english)[R::lWristTy], rig::evaluateRider(trotSpread(), thesis)[R::lWristTy]);
+  rig::HorseChannels pitch;
   pitch[H::rearPivotRz] = 30;  // seat shift at its limit in both
-  EXPECT_LT(evaluateRider(pitch, english)[R::cogTx], evaluateRider(pitch, thesis)[R::cogTx]);
+  EXPECT_LT(rig::evaluateRider(pitch, english)[R::cogTx], rig::evaluateRider(pitch, thesis)[R::cogTx]);
 }
 
 TEST(RigProfile, NoviceBouncesMoreThanThesis) {
-  const RigProfile thesis = loadRigProfile("thesis", kProfiles);
-  const RigProfile novice = loadRigProfile("novice", kProfiles);
-  const RiderChannels t = evaluateRider(trotSpread(), thesis);
-  const RiderChannels n = evaluateRider(trotSpread(), novice);
+  const rig::RigProfile thesis = loadRigProfile("thesis", kProfiles);
+  const rig::RigProfile novice = loadRigProfile("novice", kProfiles);
+  const rig::RiderChannels t = rig::evaluateRider(trotSpread(), thesis);
+  const rig::RiderChannels n = rig::evaluateRider(trotSpread(), novice);
   EXPECT_GT(n[R::cogTy], t[R::cogTy]);        // more lift
   EXPECT_GT(n[R::spineCTy], t[R::spineCTy]);  // more squash and stretch
   EXPECT_GT(n[R::neckTy], t[R::neckTy]);
   EXPECT_LT(n[R::headRz], t[R::headRz]);      // head nods further up with the bigger bounce
   EXPECT_GT(n[R::lWristTy], t[R::lWristTy]);  // hands bounce
   EXPECT_LT(n[R::lFootTz], t[R::lFootTz]);    // legs flap in against the belly
-  HorseChannels roll;
+  rig::HorseChannels roll;
   roll[H::rearPivotRx] = 10;
-  EXPECT_LT(evaluateRider(roll, novice)[R::lowerBackRx], evaluateRider(roll, thesis)[R::lowerBackRx]);
-  HorseChannels pitch;
+  EXPECT_LT(rig::evaluateRider(roll, novice)[R::lowerBackRx], rig::evaluateRider(roll, thesis)[R::lowerBackRx]);
+  rig::HorseChannels pitch;
   pitch[H::rearPivotRz] = 30;
-  EXPECT_GT(evaluateRider(pitch, novice)[R::cogTx], evaluateRider(pitch, thesis)[R::cogTx]);
+  EXPECT_GT(rig::evaluateRider(pitch, novice)[R::cogTx], rig::evaluateRider(pitch, thesis)[R::cogTx]);
 }
 
 TEST(RigProfile, OverridesSetSingleParameters) {
-  RigProfile p = RigProfile::thesis();
+  rig::RigProfile p = rig::RigProfile::thesis();
   applyProfileOverrides(p, {{"eq7.w2_scale", 0.02}, {"horse_unit_cm", 2.54}, {"eq10.lower_back_min", -25}}, "ctx");
   EXPECT_DOUBLE_EQ(p.eq7.w2_scale, 0.02);
   EXPECT_DOUBLE_EQ(p.horse_unit_cm, 2.54);
@@ -151,7 +151,7 @@ TEST(RigProfile, OverridesSetSingleParameters) {
 }
 
 TEST(RigProfile, OverrideErrorsNameTheContextAndTheKey) {
-  RigProfile p = RigProfile::thesis();
+  rig::RigProfile p = rig::RigProfile::thesis();
   EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"eq1.w9", 1}}, "scenes/trot.json: profile_overrides"); }),
             "scenes/trot.json: profile_overrides: eq1.w9: unknown rig profile parameter (see docs/rider-rig.md for "
             "the parameter keys)");
@@ -193,7 +193,7 @@ TEST_F(ProfileFiles, FileErrorsNameTheFileAndTheKey) {
 
 // The issue's example: --set eq7.w2_scale=1e300 rendered a broken rider. Every parameter has a range.
 TEST(RigProfileRanges, AValuePastItsRangeIsOneLineNamingKeyValueAndRange) {
-  RigProfile p = RigProfile::thesis();
+  rig::RigProfile p = rig::RigProfile::thesis();
   EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"eq7.w2_scale", 1e300}}, "--set"); }),
             "--set: eq7.w2_scale: expected a number from -0.1 to 0.1 (docs/rider-rig.md, valid ranges), got 1e+300");
   EXPECT_EQ(errorOf([&] { applyProfileOverrides(p, {{"eq9.w1_spine_divisor", 0}}, "scene.json: profile_overrides"); }),
@@ -220,16 +220,16 @@ TEST_F(ProfileFiles, AFileValuePastItsRangeNamesTheFile) {
 // sensitivity test's 10% perturbations (tests/cli/golden_sensitivity_test.cpp) and the prose's
 // alternatives the thesis's code overrides (docs/rider-rig.md, decisions).
 TEST(RigProfileRanges, HoldEveryShippedAndTestedValue) {
-  for (const RigParameter& param : rigParameters()) {
-    const double thesis = param.get(RigProfile::thesis());
+  for (const rig::RigParameter& param : rig::rigParameters()) {
+    const double thesis = param.get(rig::RigProfile::thesis());
     EXPECT_TRUE(param.accepts(thesis)) << param.key << " = " << thesis;
     // A share or a blend (balance 1, the default) has no 10% headroom above 1.
-    if (param.kind != RangeKind::Fraction) {
+    if (param.kind != rig::RangeKind::Fraction) {
       EXPECT_TRUE(param.accepts(thesis * 1.1)) << param.key;
     }
     EXPECT_TRUE(param.accepts(thesis * 0.9)) << param.key;
     EXPECT_LT(param.min, param.max) << param.key;
-    if (param.kind == RangeKind::Weight) {
+    if (param.kind == rig::RangeKind::Weight) {
       EXPECT_DOUBLE_EQ(param.max, 10 * std::abs(thesis)) << param.key;
       EXPECT_DOUBLE_EQ(param.min, -10 * std::abs(thesis)) << param.key;
     }
@@ -238,9 +238,9 @@ TEST(RigProfileRanges, HoldEveryShippedAndTestedValue) {
   for (const auto& e : fs::directory_iterator(kProfiles)) {
     if (e.path().extension() != ".json") continue;
     files.insert(e.path().stem().string());
-    const nlohmann::json j = readJsonFile(e.path());
+    const nlohmann::json j = rig::readJsonFile(e.path());
     for (const auto& [key, value] : j.items()) {
-      const RigParameter* param = findRigParameter(key);
+      const rig::RigParameter* param = rig::findRigParameter(key);
       if (param) {
         EXPECT_TRUE(param->accepts(value.get<double>())) << e.path() << ": " << key;
       }
@@ -254,7 +254,7 @@ TEST(RigProfileRanges, HoldEveryShippedAndTestedValue) {
            {"eq14.h1_reach_gain", 0.8}, {"eq11.w1_pivot_roll", -1}, {"eq1.front_limited_lf_tx_offset", 2.5},
            {"eq12.rear_pivot_rz_rest", 0.572}, {"eq15.foot_tx_rest", 3}, {"eq15.w2_rig_scale", -6},
            {"eq17.rest_offset", 2}, {"knee.rest_offset", -1}, {"eq10.lower_back_min", -17}})
-    EXPECT_TRUE(findRigParameter(key)->accepts(value)) << key << " = " << value;
+    EXPECT_TRUE(rig::findRigParameter(key)->accepts(value)) << key << " = " << value;
 }
 
 // docs/rider-rig.md's "Valid ranges" table lists every key with the range the code checks.
@@ -274,31 +274,31 @@ TEST(RigProfileRanges, DocumentedInTheRiderRigDoc) {
     const auto [e, ec] = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, e);
   };
-  for (const RigParameter& param : rigParameters()) {
+  for (const rig::RigParameter& param : rig::rigParameters()) {
     ASSERT_TRUE(rows.count(std::string(param.key))) << param.key << " has no row in docs/rider-rig.md";
     const std::string& row = rows[std::string(param.key)];
-    const std::string range = "| " + text(param.min) + " to " + text(param.max) + " | " + std::string(rangeKindName(param.kind)) + " |";
+    const std::string range = "| " + text(param.min) + " to " + text(param.max) + " | " + std::string(rig::rangeKindName(param.kind)) + " |";
     EXPECT_NE(row.find(range), std::string::npos) << param.key << ": expected \"" << range << "\" in its row:" << row;
   }
 }
 
 TEST_F(ProfileFiles, PartialProfileKeepsThesisValues) {
   write("p.json", R"({"name": "mine", "doc": "d", "eq4.w1_lower_back": 2.0, "notes": {"eq4.w1_lower_back": "why"}})");
-  const RigProfile p = loadRigProfile("p", dir_);
+  const rig::RigProfile p = loadRigProfile("p", dir_);
   EXPECT_EQ(p.name, "mine");
   EXPECT_DOUBLE_EQ(p.eq4.w1_lower_back, 2.0);
   EXPECT_DOUBLE_EQ(p.eq5.w1_lower_back, 0.8);
 }
 
 TEST(RigProfile, ToJsonRoundTripsThroughOverrides) {
-  const RigProfile english = loadRigProfile("english", kProfiles);
+  const rig::RigProfile english = loadRigProfile("english", kProfiles);
   nlohmann::json j = profileToJson(english);
   j.erase("name");
   j.erase("doc");
-  RigProfile p = RigProfile::thesis();
+  rig::RigProfile p = rig::RigProfile::thesis();
   applyProfileOverrides(p, j, "roundtrip");
-  for (const RigParameter& param : rigParameters()) EXPECT_DOUBLE_EQ(param.get(p), param.get(english)) << param.key;
+  for (const rig::RigParameter& param : rig::rigParameters()) EXPECT_DOUBLE_EQ(param.get(p), param.get(english)) << param.key;
 }
 
 }  // namespace
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -28,7 +28,7 @@
 #include "rig/error.h"
 #include "tests/input_error.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 std::string errorOf(const std::string& json_text) {
@@ -73,7 +73,7 @@ TEST(Scene, ReadsEveryField) {
   EXPECT_EQ(s.cameras[1].fov_deg, 40.0);
   EXPECT_FALSE(s.cameras[1].follow);
   EXPECT_EQ(&findCamera(s, "p"), &s.cameras[1]);
-  EXPECT_THROW(findCamera(s, "nope"), InputError);
+  EXPECT_THROW(findCamera(s, "nope"), rig::InputError);
 }
 
 TEST(Scene, WrongTypeNamesFileFieldAndValue) {
@@ -112,7 +112,7 @@ TEST(Scene, MissingFileNamesTheFile) {
   try {
     loadScene("/nonexistent/trot.json");
     FAIL();
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               "/nonexistent/trot.json: cannot open the file (expected a readable JSON file)");
   }
@@ -141,7 +141,7 @@ TEST(Scene, ShippedPathScenesFollowTheirPathsAndPassTheReference) {
     ++scenes;
     std::vector<glm::dvec2> dense;
     for (double d = 0; d <= path->path().length(); d += 1.0) dense.push_back(path->path().at(d).position);
-    const std::vector<int> frames = rig::parseFrameList(s.frames, name);
+    const std::vector<int> frames = scene::parseFrameList(s.frames, name);
     EXPECT_NEAR(frameTime(s, frames.back()), clip->duration(), 1.0 / s.fps) << name << ": the frames cover the clip";
     double worst_cm = 0, worst_deg = 0;
     for (int f : frames) {
@@ -174,9 +174,9 @@ TEST(Scene, ShippedPathScenesFollowTheirPathsAndPassTheReference) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // A crowd (issue 19): "crowd" generates the pairs, "riders" lists them; a scene without either keeps
@@ -260,7 +260,7 @@ TEST(SceneCrowd, ACrowdHasNoOneClip) {
   try {
     makeSceneClip(parseScene(nlohmann::json::parse(kCrowd), "scenes/x.json"));
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()), "scenes/x.json: crowd: expected a scene of one horse and rider here (each pair of "
                                      "a crowd rides its own clip)");
   }
@@ -289,9 +289,9 @@ TEST(SceneCrowd, FollowPairMustNameAPairOfTheCrowd) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // Limits a horse has (rig/motion/horse_limits.h), checked when a scene loads.
@@ -299,7 +299,7 @@ namespace {
 std::string loadError(const std::string& json, const SceneLoadOptions& options = {}) {
   try {
     (void)parseScene(nlohmann::json::parse(json), "scenes/x.json", options);
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     return e.what();
   }
   return "";
@@ -403,9 +403,9 @@ TEST(SceneLimits, AllowImpossibleLoadsAndWarnsEachFrameThatBreaksALimit) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // Every number a scene, a mapping or a profile can hold, set in turn to the values a mutation run feeds a
@@ -441,7 +441,7 @@ void expectFiniteMotion(const SceneSpec& s, const std::string& what) {
   const rig::RigProfile profile = resolveProfile(s);
   std::vector<std::shared_ptr<const rig::Clip>> clips(s.pair_clips.begin(), s.pair_clips.end());
   if (s.pairs.empty()) clips.push_back(makeSceneClip(s));
-  const std::vector<int> frames = rig::parseFrameList(s.frames, "frames");
+  const std::vector<int> frames = scene::parseFrameList(s.frames, "frames");
   for (const auto& clip : clips)
     for (const int f : {frames.front(), frames[frames.size() / 2], frames.back()}) {
       rig::BakedFrame b;
@@ -470,7 +470,7 @@ int mutateEveryNumber(const nlohmann::json& base, const std::string& file) {
     for (const double v : kAbsurd) {
       nlohmann::json j = base;
       j[f.at] = v;
-      const std::string what = f.at.to_string() + " = " + numberText(v);
+      const std::string what = f.at.to_string() + " = " + rig::numberText(v);
       std::optional<SceneSpec> s;
       const std::string e = stirrup::test::errorOf([&] { s = parseScene(j, file); }, "");
       if (!e.empty()) {
@@ -518,9 +518,9 @@ TEST(SceneNumbers, APathOverHillsWithItsLookAndCamerasRefusesEveryAbsurdNumber) 
 
 // Every parameter of every generator, absent from the base and set in turn.
 TEST(SceneNumbers, EveryGeneratorsParametersRefuseEveryAbsurdNumber) {
-  for (const std::string& generator : rig::clipGenerators()) {
+  for (const std::string& generator : scene::clipGenerators()) {
     if (generator == "path") continue;  // above, with its points and speeds
-    for (const std::string& key : rig::clipGeneratorParameters(generator)) {
+    for (const std::string& key : scene::clipGeneratorParameters(generator)) {
       if (key == "gaits" || key == "lead" || key == "end_with_stop") continue;  // names and a flag, not numbers
       SCOPED_TRACE(generator + "." + key);
       mutateEveryNumber({{"frames", "1-6"}, {"allow_impossible", true}, {"clip", {{"generator", generator}, {key, 1}}}}, kFile);
@@ -566,7 +566,7 @@ TEST(SceneNumbers, MappingFilesRefuseEveryAbsurdNumber) {
         j[f.at] = v;
         const std::filesystem::path file = dir / "mapping.json";
         std::ofstream(file) << j.dump();
-        const std::string what = f.at.to_string() + " = " + numberText(v);
+        const std::string what = f.at.to_string() + " = " + rig::numberText(v);
         std::optional<glm::dmat4> to_rig;
         const std::string e = stirrup::test::errorOf([&] {
           if (as_clip) {
@@ -592,4 +592,4 @@ TEST(SceneNumbers, MappingFilesRefuseEveryAbsurdNumber) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -9,11 +9,11 @@
 #include "scene/scene.h"
 #include "tests/render/crowd_of_four.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 TEST(ShotBake, EveryPairAndCameraAtEveryFrameOnce) {
-  const SceneSpec scene = test::crowdOfFour();
+  const SceneSpec scene = render::test::crowdOfFour();
   ShotEvaluator characters(scene, resolveProfile(scene), 2);
   const rig::BakedShot shot = bakeShot(characters, {5, 1, 5, 3});
   EXPECT_EQ(shot.name, "crowd4");
@@ -37,4 +37,4 @@ TEST(ShotBake, EveryPairAndCameraAtEveryFrameOnce) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -11,13 +11,13 @@
 #include "scene/scene.h"
 #include "tests/render/crowd_of_four.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 // A follow camera (no view, no damping) sits at its position in the travel frame of what it follows:
 // on these straight paths along +X (heading 0, flat ground) the travel origin plus (20, 255, 900).
 TEST(ShotCamera, TravelsWithThePairItFollows) {
-  const SceneSpec scene = test::crowdOfFour();
+  const SceneSpec scene = render::test::crowdOfFour();
   ShotEvaluator characters(scene, resolveProfile(scene), 1);
   CameraSpec spec;
   spec.follow_pair = 2;
@@ -41,7 +41,7 @@ TEST(ShotCamera, TravelsWithThePairItFollows) {
 }
 
 TEST(ShotCamera, ACrowdsCameraMustFollowAPairOfItAndStayOffTheTreadmill) {
-  const SceneSpec scene = test::crowdOfFour();
+  const SceneSpec scene = render::test::crowdOfFour();
   ShotEvaluator characters(scene, resolveProfile(scene), 1);
   CameraSpec far;
   far.name = "far";
@@ -49,7 +49,7 @@ TEST(ShotCamera, ACrowdsCameraMustFollowAPairOfItAndStayOffTheTreadmill) {
   try {
     ShotCamera camera(characters, far);
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()), scene.file.string() + ": cameras.far.follow_pair: expected a pair index from 0 to 3, got 4");
   }
   CameraSpec treadmill;
@@ -58,7 +58,7 @@ TEST(ShotCamera, ACrowdsCameraMustFollowAPairOfItAndStayOffTheTreadmill) {
   try {
     ShotCamera camera(characters, treadmill);
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_EQ(std::string(e.what()), scene.file.string() + ": cameras.mill.treadmill: expected false in a crowd scene");
   }
 }
@@ -66,7 +66,7 @@ TEST(ShotCamera, ACrowdsCameraMustFollowAPairOfItAndStayOffTheTreadmill) {
 // A view is framed from every frame's points and follow frame, found in parallel on the evaluator's
 // threads: the same camera to the bit at one thread and at two, for a pair's views and a crowd's.
 TEST(ShotCamera, FramesTheSameViewAtAnyThreadCount) {
-  for (const SceneSpec& scene : {loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json"), test::crowdOfFour()}) {
+  for (const SceneSpec& scene : {loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json"), render::test::crowdOfFour()}) {
     for (const char* view : {"side", "persp", "close", "top"}) {
       CameraSpec spec;
       spec.name = view;
@@ -83,4 +83,4 @@ TEST(ShotCamera, FramesTheSameViewAtAnyThreadCount) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

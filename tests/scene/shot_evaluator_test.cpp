@@ -20,10 +20,10 @@
 #include "scene/scene.h"
 #include "tests/render/crowd_of_four.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
-using test::crowdOfFour;
+using render::test::crowdOfFour;
 
 SceneSpec trot() { return loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json"); }
 
@@ -43,7 +43,7 @@ TEST(ShotEvaluator, ASinglePairIsACrowdOfOne) {
   EXPECT_FALSE(eval.isCrowd());
   EXPECT_EQ(eval.pairName(0), "");
   const std::unique_ptr<rig::Clip> clip = makeSceneClip(scene);
-  const rig::RiddenPair pair = rig::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
+  const scene::RiddenPair pair = scene::resolveRiddenPair(scene.horse, scene.horse_mapping, scene.rider, scene.rider_mapping, profile);
   ShotFrame out;
   for (int frame : {1, 9, 30}) {
     FrameRequest request;
@@ -293,4 +293,4 @@ TEST(ShotEvaluator, EachFrameOfABatchIsTheFrameAlone) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -17,14 +17,14 @@
 
 #include "tests/input_error.h"
 
-namespace stirrup::rig {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
 using test::errorOf;
 
-std::shared_ptr<const Terrain> parse(const nlohmann::json& j, const fs::path& base = ".") {
-  JsonObjectReader r("scenes/x.json", "terrain", j);
+std::shared_ptr<const rig::Terrain> parse(const nlohmann::json& j, const fs::path& base = ".") {
+  rig::JsonObjectReader r("scenes/x.json", "terrain", j);
   return parseTerrain(r, base);
 }
 std::string parseError(const nlohmann::json& j, const fs::path& base = ".") {
@@ -124,4 +124,4 @@ TEST(TerrainJson, BadObjectsAreOneLineErrorsNamingTheField) {
 }
 
 }  // namespace
-}  // namespace stirrup::rig
+}  // namespace stirrup::scene

@@ -22,7 +22,7 @@
 #include "scene/profile_resolver.h"
 #include "scene/scene.h"
 
-namespace stirrup::render {
+namespace stirrup::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -37,15 +37,15 @@ struct BorderCount {
   double width = 0, height = 0, rider_width = 0, rider_height = 0;
 };
 
-BorderCount countBorder(const Image& im) {
+BorderCount countBorder(const render::Image& im) {
   BorderCount c;
   EXPECT_EQ(im.matte.size(), im.pixelCount());
   int x0 = im.width, x1 = -1, y0 = im.height, y1 = -1, rx0 = im.width, rx1 = -1, ry0 = im.height, ry1 = -1;
   for (int y = 0; y < im.height; ++y)
     for (int x = 0; x < im.width; ++x) {
       const std::size_t i = std::size_t(y) * im.width + x;
-      const bool rider = im.object_id[i] == static_cast<uint32_t>(ObjectId::Rider);
-      const bool horse = im.object_id[i] == static_cast<uint32_t>(ObjectId::Horse);
+      const bool rider = im.object_id[i] == static_cast<uint32_t>(render::ObjectId::Rider);
+      const bool horse = im.object_id[i] == static_cast<uint32_t>(render::ObjectId::Horse);
       c.rider += rider;
       c.horse += horse;
       if (y == 0 && rider) ++c.rider_top;
@@ -81,12 +81,12 @@ TEST_P(ViewFraming, EveryViewKeepsHorseAndRiderInFrame) {
   for (const char* name : {"side", "persp", "close", "turntable", "turntable_pose"}) {
     const CameraSpec& camera = findCamera(scene, name);
     ASSERT_FALSE(camera.view.empty()) << name;
-    Shot shot(scene, profile, camera, 0);
+    render::Shot shot(scene, profile, camera, 0);
     std::vector<int> frames = framingFrames(shot.camera(), scene);
     int shown = 0;
     for (std::size_t k = 0; k < frames.size(); k += 6) {
       const int f = frames[k];
-      const Image im = shot.renderFrame(f);
+      const render::Image im = shot.renderFrame(f);
       const BorderCount c = countBorder(im);
       if (std::string(name) == "close") {
         // close frames the rider above the saddle: the horse runs off the frame, the rider's head never.
@@ -146,13 +146,13 @@ TEST(PathViewFraming, FollowViewsKeepAHorseOnAPathInFrame) {
                 {"name": "close", "view": "close"}]})"),
                                      "path1.json");
   const rig::RigProfile profile = resolveProfile(scene);
-  const auto clip = rig::makeClip(scene.clip);
-  const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  const auto clip = scene::makeClip(scene.clip);
+  const std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
   double turned = 0.0;
   for (int f : frames) turned = std::max(turned, std::abs(clip->sample(frameTime(scene, f)).heading_deg));
   ASSERT_GT(turned, 90.0) << "the clip does turn";
   for (const char* name : {"side", "persp", "close"}) {
-    Shot shot(scene, profile, findCamera(scene, name), 0);
+    render::Shot shot(scene, profile, findCamera(scene, name), 0);
     for (std::size_t k = 0; k < frames.size(); k += 3) {
       const BorderCount c = countBorder(shot.renderFrame(frames[k]));
       if (std::string(name) == "close") {
@@ -184,8 +184,8 @@ SceneSpec figureEight() {
 TEST(TopView, FramesTheWholeTrackFromAbove) {
   const SceneSpec scene = figureEight();
   const rig::RigProfile profile = resolveProfile(scene);
-  Shot shot(scene, profile, findCamera(scene, "top"), 0);
-  const auto clip = rig::makeClip(scene.clip);
+  render::Shot shot(scene, profile, findCamera(scene, "top"), 0);
+  const auto clip = scene::makeClip(scene.clip);
   const CameraFrame first(shot.cameraAtFrame(1), scene.width, scene.height);
   EXPECT_NEAR(glm::length(first.forward() - glm::dvec3(0.0, -1.0, 0.0)), 0.0, 1e-9);
   EXPECT_NEAR(glm::length(first.right() - glm::dvec3(1.0, 0.0, 0.0)), 0.0, 1e-9);
@@ -193,7 +193,7 @@ TEST(TopView, FramesTheWholeTrackFromAbove) {
   const Camera cam = shot.cameraAtFrame(1);
   const double half_h = 0.5 * cam.ortho_height_cm, half_w = half_h * scene.width / scene.height;
   double u_lo = 1.0, u_hi = 0.0;
-  const std::vector<int> frames = rig::parseFrameList(scene.frames, "frames");
+  const std::vector<int> frames = scene::parseFrameList(scene.frames, "frames");
   for (int f = frames.front(); f <= frames.back(); ++f) {
     EXPECT_EQ(shot.cameraAtFrame(f).position, cam.position) << "the top view is fixed";
     const rig::HorseFrame h = clip->sample(frameTime(scene, f));
@@ -244,7 +244,7 @@ TEST(CrowdViewFraming, ViewsWithoutAFollowedPairFrameTheWholeCrowd) {
   const rig::RigProfile profile = resolveProfile(scene);
   const double aspect = double(scene.width) / scene.height;
   for (const char* name : {"side", "persp", "close", "turntable", "top"}) {
-    Shot shot(scene, profile, findCamera(scene, name), 0);
+    render::Shot shot(scene, profile, findCamera(scene, name), 0);
     const std::vector<int> frames = framingFrames(shot.camera(), scene);
     for (std::size_t k = 0; k < frames.size(); k += 4) {
       const int f = frames[k];
@@ -280,14 +280,14 @@ TEST(CrowdViewFraming, AViewFollowingAPairFramesThatPair) {
   const SceneSpec scene = crowdInATurn();
   const rig::RigProfile profile = resolveProfile(scene);
   const double aspect = double(scene.width) / scene.height;
-  Shot crowd_side(scene, profile, findCamera(scene, "side"), 0);
-  Shot side(scene, profile, findCamera(scene, "side4"), 0), persp(scene, profile, findCamera(scene, "persp4"), 0);
+  render::Shot crowd_side(scene, profile, findCamera(scene, "side"), 0);
+  render::Shot side(scene, profile, findCamera(scene, "side4"), 0), persp(scene, profile, findCamera(scene, "persp4"), 0);
   // The followed pair fills the frame as one pair does (a horse and rider in about 3.2 m of height
   // with margins), far tighter than the whole crowd's.
   EXPECT_LT(side.camera().ortho_height_cm, 0.6 * crowd_side.camera().ortho_height_cm);
-  Shot crowd_persp(scene, profile, findCamera(scene, "persp"), 0);
+  render::Shot crowd_persp(scene, profile, findCamera(scene, "persp"), 0);
   // The width of the followed pair's points on the film, through a camera.
-  const auto width = [&](Shot& shot, const Camera& cam, int f) {
+  const auto width = [&](render::Shot& shot, const Camera& cam, int f) {
     std::vector<glm::dvec3> horse, rider;
     shot.pairPoints(4, f, 7, horse, rider);
     double lo = 1, hi = 0;
@@ -298,7 +298,7 @@ TEST(CrowdViewFraming, AViewFollowingAPairFramesThatPair) {
     return hi - lo;
   };
   for (auto [shot, whole] : {std::pair{&side, &crowd_side}, std::pair{&persp, &crowd_persp}}) {
-    for (int f : rig::parseFrameList(scene.frames, "frames")) {
+    for (int f : scene::parseFrameList(scene.frames, "frames")) {
       std::vector<glm::dvec3> horse, rider;
       shot->pairPoints(4, f, 7, horse, rider);
       horse.insert(horse.end(), rider.begin(), rider.end());
@@ -318,4 +318,4 @@ TEST(CrowdViewFraming, AViewFollowingAPairFramesThatPair) {
 }
 
 }  // namespace
-}  // namespace stirrup::render
+}  // namespace stirrup::scene

@@ -22,7 +22,7 @@
 #include "render/farm/farm_plan.h"
 #include "tests/input_error.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 
 // Test output names the state (found by ADL, so outside the anonymous namespace).
 void PrintTo(ChunkState s, std::ostream* os);
@@ -359,4 +359,4 @@ TEST_F(FakeSlurm, ResumeReplacesAWaitingFinishingJobOnlyWhenItSubmitsChunks) {
 }
 
 }  // namespace
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

@@ -10,7 +10,7 @@
 
 #include "tests/input_error.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 namespace {
 
 namespace fs = std::filesystem;
@@ -209,4 +209,4 @@ TEST(FarmPlan, ABrokenManifestIsAOneLineErrorNamingTheField) {
 }
 
 }  // namespace
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

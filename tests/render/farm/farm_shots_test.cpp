@@ -13,7 +13,7 @@
 #include "scene/profile_resolver.h"
 #include "tests/input_error.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 namespace {
 
 namespace fs = std::filesystem;
@@ -74,14 +74,14 @@ TEST(FarmShots, AnImpossibleSceneIsPlannedOnlyWithAllowImpossible) {
 // command passes it, the manifest gives it back to the bit, and a camera of another camera, scene or
 // size is a one-line error naming the file and the field.
 TEST(FarmShots, APlannedCameraRendersAChunkByteForByteAsFramingDoes) {
-  SceneSpec scene = loadScene(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "trot.json");
+  scene::SceneSpec scene = scene::loadScene(fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "trot.json");
   scene.width = 96, scene.height = 54, scene.samples = 1;
-  const rig::RigProfile profile = resolveProfile(scene);
-  const CameraSpec& camera = findCamera(scene, "persp");
+  const rig::RigProfile profile = scene::resolveProfile(scene);
+  const scene::CameraSpec& camera = scene::findCamera(scene, "persp");
   ASSERT_FALSE(camera.view.empty());
   const std::optional<PlannedCamera> planned = planCamera(scene, profile, camera, 2);
   ASSERT_TRUE(planned.has_value());
-  EXPECT_FALSE(planCamera(scene, profile, [&] { CameraSpec c = camera; c.view.clear(); return c; }()).has_value());
+  EXPECT_FALSE(planCamera(scene, profile, [&] { scene::CameraSpec c = camera; c.view.clear(); return c; }()).has_value());
 
   // Through the manifest, as a task reads it.
   const fs::path out = fs::path(STIRRUP_BINARY_DIR) / ("farm_camera_" + std::to_string(::getpid()));
@@ -96,7 +96,7 @@ TEST(FarmShots, APlannedCameraRendersAChunkByteForByteAsFramingDoes) {
   std::string where;
   const PlannedCamera read = plannedCameraOf(manifestFile(out), "trot_persp", where);
   EXPECT_EQ(where, manifestFile(out).string() + ": shots[0].camera");
-  const CameraSpec shown = plannedCameraSpec(scene, profile, camera, read, where);
+  const scene::CameraSpec shown = plannedCameraSpec(scene, profile, camera, read, where);
   EXPECT_TRUE(shown.view.empty());
 
   Shot framing(scene, profile, camera, 2);
@@ -104,7 +104,7 @@ TEST(FarmShots, APlannedCameraRendersAChunkByteForByteAsFramingDoes) {
   EXPECT_EQ(framing.camera().position, shown.position);
   EXPECT_EQ(framing.camera().target, shown.target);
   for (int frame : plan.shots[0].chunks[1].frames) {  // the second chunk: 12, 13
-    const Camera a = framing.cameraAtFrame(frame), b = reading.cameraAtFrame(frame);
+    const scene::Camera a = framing.cameraAtFrame(frame), b = reading.cameraAtFrame(frame);
     EXPECT_EQ(a.position, b.position) << frame;
     EXPECT_EQ(a.target, b.target) << frame;
     EXPECT_EQ(a.up, b.up) << frame;
@@ -116,9 +116,9 @@ TEST(FarmShots, APlannedCameraRendersAChunkByteForByteAsFramingDoes) {
   }
 
   const std::string file = manifestFile(out).string();
-  EXPECT_EQ(errorOf([&] { plannedCameraSpec(scene, profile, findCamera(scene, "side"), read, where); }),
+  EXPECT_EQ(errorOf([&] { plannedCameraSpec(scene, profile, scene::findCamera(scene, "side"), read, where); }),
             file + ": shots[0].camera.name: expected \"side\" (the camera rendered), got \"persp\"");
-  SceneSpec bigger = scene;
+  scene::SceneSpec bigger = scene;
   bigger.width = 192, bigger.height = 108;
   const std::string key = errorOf([&] { plannedCameraSpec(bigger, profile, camera, read, where); });
   EXPECT_EQ(key.rfind(file + ": shots[0].camera.key: expected ", 0), 0u) << key;
@@ -176,4 +176,4 @@ TEST(FarmShots, TheOutputFolderMustBeWritableAndShared) {
 }
 
 }  // namespace
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

@@ -11,7 +11,7 @@
 
 #include "tests/input_error.h"
 
-namespace stirrup::render::farm {
+namespace stirrup::render {
 namespace {
 
 using test::errorOf;
@@ -83,4 +83,4 @@ TEST(Slurm, NoControllerIsAOneLineError) {
 }
 
 }  // namespace
-}  // namespace stirrup::render::farm
+}  // namespace stirrup::render

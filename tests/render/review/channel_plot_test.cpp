@@ -25,11 +25,11 @@ TEST(NiceTicks, StepsOfOneTwoOrFive) {
 }
 
 TEST(ChannelPlot, PlotsTheBakedChannelsOfTheMovement) {
-  const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
-  const rig::RigProfile profile = resolveProfile(scene);
-  const auto clip = rig::makeClip(scene.clip);
+  const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
+  const rig::RigProfile profile = scene::resolveProfile(scene);
+  const auto clip = scene::makeClip(scene.clip);
   std::vector<rig::BakedFrame> baked;
-  for (int f = 1; f <= 24; ++f) baked.push_back(rig::bakeFrame(*clip, profile, f, frameTime(scene, f)));
+  for (int f = 1; f <= 24; ++f) baked.push_back(rig::bakeFrame(*clip, profile, f, scene::frameTime(scene, f)));
   const ChannelPlot plot = movementPlot("trot", baked, profile.rider_unit_cm);
   ASSERT_EQ(plot.frames.size(), 24u);
   ASSERT_GE(plot.panels.size(), 3u);
@@ -62,13 +62,13 @@ TEST(ChannelPlot, PlotsTheBakedChannelsOfTheMovement) {
 // steps walk (1), trot (2), canter (3) on the cross-country ride, the lead's sign follows the turns,
 // and the roll is the clip's own rearPivot.rx.
 TEST(ChannelPlot, PathScenesAddSpeedGaitAndRoll) {
-  const SceneSpec scene = loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/cross_country.json");
-  const rig::RigProfile profile = resolveProfile(scene);
-  const auto clip = makeSceneClip(scene);
+  const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/cross_country.json");
+  const rig::RigProfile profile = scene::resolveProfile(scene);
+  const auto clip = scene::makeSceneClip(scene);
   const auto* path = dynamic_cast<const rig::PathClip*>(clip.get());
   ASSERT_NE(path, nullptr);
   std::vector<rig::BakedFrame> baked;
-  for (int f = 1; f <= 687; f += 6) baked.push_back(rig::bakeFrame(*clip, profile, f, frameTime(scene, f)));
+  for (int f = 1; f <= 687; f += 6) baked.push_back(rig::bakeFrame(*clip, profile, f, scene::frameTime(scene, f)));
   const std::vector<PlotPanel> panels = pathPanels(*path, baked);
   ASSERT_EQ(panels.size(), 2u);
   const std::vector<double>& gait = panels[0].series[1].values;

@@ -48,18 +48,18 @@ TEST(Footage, OffsetRateAndEdgesPickTheRightFrames) {
   // Rate 1, offset 0: our frame 1 is their first frame.
   EXPECT_EQ(f.theirFrame(1), 101);
   EXPECT_EQ(f.theirFrame(5), 105);
-  f.edge = FootageEdge::Hold;
+  f.edge = scene::FootageEdge::Hold;
   EXPECT_EQ(f.theirFrame(6), 105);
   EXPECT_EQ(f.theirFrame(-3), 101);
-  f.edge = FootageEdge::Loop;
+  f.edge = scene::FootageEdge::Loop;
   EXPECT_EQ(f.theirFrame(6), 101);
   EXPECT_EQ(f.theirFrame(12), 102);
   EXPECT_EQ(f.theirFrame(0), 105);
-  f.edge = FootageEdge::Blank;
+  f.edge = scene::FootageEdge::Blank;
   EXPECT_EQ(f.theirFrame(6), std::nullopt);
   EXPECT_EQ(f.theirFrame(0), std::nullopt);
   // Footage at 12 fps under our 24: each of their frames held for two of ours.
-  f.edge = FootageEdge::Hold;
+  f.edge = scene::FootageEdge::Hold;
   f.rate = 0.5;
   EXPECT_EQ(f.theirFrame(1), 101);
   EXPECT_EQ(f.theirFrame(2), 101);
@@ -74,14 +74,14 @@ TEST(Footage, OffsetRateAndEdgesPickTheRightFrames) {
   EXPECT_EQ(f.theirFrame(5), 104);  // 3
   EXPECT_EQ(f.theirFrame(6), 104);  // 3.75
   EXPECT_EQ(f.theirFrame(7), 105);  // 4.5
-  f.edge = FootageEdge::Blank;
+  f.edge = scene::FootageEdge::Blank;
   // Offset in their frames.
   f.rate = 1.0;
   f.offset = 2;
   EXPECT_EQ(f.theirFrame(1), 103);
   EXPECT_EQ(f.theirFrame(4), std::nullopt);
   f.offset = -1;
-  f.edge = FootageEdge::Loop;
+  f.edge = scene::FootageEdge::Loop;
   EXPECT_EQ(f.theirFrame(1), 105);
   // The picture that comes back is that frame's.
   f.offset = 0;
@@ -193,9 +193,9 @@ TEST(Footage, LayeredFrameMapsBFromAsFirstFrameAndBlanksMissingFrames) {
   a.first = 5;
   a.images = {solid(2, 1, {0.1f, 0, 0, 1}), solid(2, 1, {0.2f, 0, 0, 1}), solid(2, 1, {0.3f, 0, 0, 1})};
   b.images = {solid(2, 1, {0, 0.5f, 0, 1}), solid(2, 1, {0, 0.7f, 0, 1})};
-  b.edge = FootageEdge::Blank;
+  b.edge = scene::FootageEdge::Blank;
   LayerStyle s;
-  s.mode = LayerMode::Over;
+  s.mode = scene::LayerMode::Over;
   s.coverage = LayerCoverage::Full;
   s.opacity = 0.5f;
   // Over at full coverage: 0.5 ours + 0.5 other.
@@ -223,7 +223,7 @@ TEST(Plate, UniformGridCellsInReadingOrder) {
       const bool inside = x >= 2 && y >= 1 && y < 21;
       plate.at(x, y) = inside ? glm::vec4(0.1f * float(row * 3 + col), 0, 0, 1) : glm::vec4(1, 1, 1, 1);
     }
-  PlateGrid g;
+  scene::PlateGrid g;
   g.rows = 2;
   g.columns = 3;
   g.margin_left = 2;
@@ -263,7 +263,7 @@ TEST(Plate, SnapFindsEachPhotographsCorner) {
   }
   plate.at(3, 2) = {0.9f, 0.0f, 0.0f, 1};   // markers at the photographs' corners
   plate.at(56, 2) = {0.0f, 0.9f, 0.0f, 1};
-  PlateGrid g;
+  scene::PlateGrid g;
   g.columns = 2;
   g.cell_crop = {0, 0, 40, 30};
   std::vector<Image> frames = cutPlate(plate, g, "p");
@@ -281,7 +281,7 @@ TEST(Plate, MuybridgeHorseAndRiderGallopIsTwelveFrames) {
   const fs::path plate = sharedDir() / "reference/muybridge/horse-and-rider-gallop-plate.jpg";
   if (!fs::exists(plate)) GTEST_SKIP() << plate << " is absent (../shared/reference)";
   // The scene's own grid, so the test checks what the movies use.
-  const SceneSpec scene = loadScene(fs::path(STIRRUP_SOURCE_DIR) / "scenes/gallop_layered.json");
+  const scene::SceneSpec scene = scene::loadScene(fs::path(STIRRUP_SOURCE_DIR) / "scenes/gallop_layered.json");
   ASSERT_TRUE(scene.reference.has_value());
   ASSERT_TRUE(scene.reference->grid.has_value());
   const Image img = readLinearImage(plate);
@@ -314,13 +314,13 @@ TEST(Plate, MuybridgeHorseAndRiderGallopIsTwelveFrames) {
 // --- The footage a scene's reference block names -------------------------------------------------------------------
 
 TEST(ReferenceBlock, StyleAndAvailabilityFollowTheBlock) {
-  ReferenceSpec r;
+  scene::ReferenceSpec r;
   r.file = "/nonexistent/plates/p.jpg";
-  r.mode = LayerMode::SideBySide;
+  r.mode = scene::LayerMode::SideBySide;
   r.label = "PLATE";
   EXPECT_FALSE(referenceAvailable(r));
   const LayerStyle style = referenceStyle(r, "OURS");
-  EXPECT_EQ(style.mode, LayerMode::SideBySide);
+  EXPECT_EQ(style.mode, scene::LayerMode::SideBySide);
   EXPECT_EQ(style.other_label, "PLATE");
   EXPECT_EQ(style.ours_label, "OURS");
 }
@@ -328,7 +328,7 @@ TEST(ReferenceBlock, StyleAndAvailabilityFollowTheBlock) {
 TEST(ReferenceBlock, ShiftCountMustMatchTheFootage) {
   const fs::path dir = freshDir("shifts");
   writePng(solid(4, 4, {1, 1, 1, 1}), dir / "one.png");
-  ReferenceSpec r;
+  scene::ReferenceSpec r;
   r.file = dir / "one.png";
   EXPECT_TRUE(referenceAvailable(r));
   r.shift_x = {1.0f, 2.0f};

@@ -27,7 +27,7 @@ TEST(LayerOver, MatteKeyedOpacityByHand) {
   ours.matte = {1.0f, 0.5f};
   other.rgba = {{0.0f, 0.2f, 0.4f, 1.0f}, {1.0f, 1.0f, 1.0f, 1.0f}};
   LayerStyle s;
-  s.mode = LayerMode::Over;
+  s.mode = scene::LayerMode::Over;
   s.opacity = 0.5f;
   s.coverage = LayerCoverage::Matte;
   const Image out = layerFrame(ours, other, s);
@@ -45,7 +45,7 @@ TEST(LayerOver, FullCoverageIsACrossDissolveAndNoMatteMeansFull) {
   Image ours = solid(1, 1, {1.0f, 0.0f, 0.5f, 0.0f});  // alpha 0: open sky
   const Image other = solid(1, 1, {0.0f, 1.0f, 0.5f, 1.0f});
   LayerStyle s;
-  s.mode = LayerMode::Over;
+  s.mode = scene::LayerMode::Over;
   s.opacity = 0.25f;
   s.coverage = LayerCoverage::Full;
   expectRgb(layerFrame(ours, other, s), 0, 0, {0.25f, 0.75f, 0.5f});
@@ -59,11 +59,11 @@ TEST(LayerOver, FullCoverageIsACrossDissolveAndNoMatteMeansFull) {
 
 TEST(LayerOver, DifferentSizesAreAnError) {
   LayerStyle s;
-  s.mode = LayerMode::Over;
+  s.mode = scene::LayerMode::Over;
   const std::string e = errorOf([&] { layerFrame(Image(4, 2), Image(4, 3), s); });
   EXPECT_NE(e.find("same size"), std::string::npos) << e;
   EXPECT_NE(e.find("4x2"), std::string::npos) << e;
-  s.mode = LayerMode::Difference;
+  s.mode = scene::LayerMode::Difference;
   EXPECT_NE(errorOf([&] { layerFrame(Image(4, 2), Image(3, 2), s); }).find("same size"), std::string::npos);
 }
 
@@ -73,7 +73,7 @@ TEST(LayerDifference, AbsoluteDifferenceTimesGainClampedToOne) {
   const Image a = solid(2, 2, {0.5f, 0.25f, 0.1f, 1.0f});
   const Image b = solid(2, 2, {0.25f, 0.5f, 0.1f, 1.0f});
   LayerStyle s;
-  s.mode = LayerMode::Difference;
+  s.mode = scene::LayerMode::Difference;
   s.difference_gain = 2.0f;
   // |0.5-0.25|*2, |0.25-0.5|*2, 0
   expectRgb(layerFrame(a, b, s), 1, 1, {0.5f, 0.5f, 0.0f});
@@ -90,7 +90,7 @@ TEST(LayerSideBySide, LayoutAtOursHeightWithGap) {
   Image other(2, 1);
   other.rgba = {{0.0f, 1.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 1.0f, 1.0f}};
   LayerStyle s;
-  s.mode = LayerMode::SideBySide;
+  s.mode = scene::LayerMode::SideBySide;
   s.labels = false;
   s.gap = 1;
   s.gap_colour = {0.5f, 0.5f, 0.5f, 1.0f};
@@ -159,7 +159,7 @@ TEST(LayerOnionSkin, GhostsFarthestFirstTintedAndFadedOursOnTop) {
   const std::vector<Image> ghosts = {ghost, ghost, ghost};
   const std::vector<int> offsets = {+1, -2, -1};
   LayerStyle s;
-  s.mode = LayerMode::OnionSkin;
+  s.mode = scene::LayerMode::OnionSkin;
   s.opacity = 0.5f;
   s.onion_falloff = 0.5f;
   s.onion_before = {1.0f, 0.5f, 0.25f, 1.0f};

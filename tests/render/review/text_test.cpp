@@ -39,7 +39,7 @@ TEST(Font, ABadStirrupFontIsAClearError) {
   try {
     (void)findFont();
     ADD_FAILURE() << "expected an error";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("STIRRUP_FONT: /nonexistent/font.ttf"), std::string::npos) << e.what();
   }
   ::unsetenv("STIRRUP_FONT");

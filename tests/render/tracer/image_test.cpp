@@ -145,8 +145,8 @@ TEST(Image, ExrCarriesNormalsAndTypedMetadata) {
   img.depth.assign(img.pixelCount(), 50.0f);
   img.normal.assign(img.pixelCount(), glm::vec3(0.0f, 1.0f, 0.0f));
   img.normal[5] = {0.6f, 0.0f, -0.8f};
-  Camera camera;
-  camera.projection = Camera::Projection::Orthographic;
+  scene::Camera camera;
+  camera.projection = scene::Camera::Projection::Orthographic;
   camera.position = {100.0, 200.0, 900.0};
   camera.target = {100.0, 200.0, 0.0};  // looking down -Z: worldToCamera is a pure translation
   camera.ortho_height_cm = 320.0;
@@ -225,7 +225,7 @@ TEST(Image, PngAtEveryZlibLevelHoldsTheSamePixels) {
   const Image img = speckled(97, 61);
   const std::vector<uint8_t> expected = expectedSrgbBytes(img);
   std::vector<uintmax_t> sizes;
-  for (const int level : {kPngCompressionMin, kDraftPngCompression, kReviewPngCompression, 6, kPngCompressionMax}) {
+  for (const int level : {scene::kPngCompressionMin, scene::kDraftPngCompression, scene::kReviewPngCompression, 6, scene::kPngCompressionMax}) {
     const fs::path file = tempDir() / ("level" + std::to_string(level) + ".png");
     writePng(img, file, level);
     EXPECT_EQ(readPngBytes(file), expected) << "level " << level;
@@ -244,7 +244,7 @@ TEST(Image, FfmpegDecodesStoredAndCompressedPngsToTheSamePixels) {
   if (std::system("ffmpeg -version > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg is not installed";
   const Image img = speckled(45, 23);
   const std::vector<uint8_t> expected = expectedSrgbBytes(img);
-  for (const int level : {kDraftPngCompression, kReviewPngCompression}) {
+  for (const int level : {scene::kDraftPngCompression, scene::kReviewPngCompression}) {
     const fs::path file = tempDir() / ("ffmpeg" + std::to_string(level) + ".png");
     writePng(img, file, level);
     const std::string cmd = "ffmpeg -v error -i '" + file.string() + "' -f rawvideo -pix_fmt rgb24 -";
@@ -297,7 +297,7 @@ TEST(Image, ReadRgbaExrNamesAMissingFile) {
   try {
     readRgbaExr(file);
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const rig::InputError& e) {
     EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
   }

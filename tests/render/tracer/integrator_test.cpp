@@ -21,7 +21,7 @@ namespace {
 // sphere's edge and its shadow.
 struct StreamScene {
   RenderSettings settings;
-  Camera camera;
+  scene::Camera camera;
   testing::TestMesh sphere = testing::makeSphere({0.0f, 35.0f, 0.0f}, 30.0f, 16, 32, {0.6f, 0.35f, 0.2f});
   EmbreeScene scene;
   ShadingMesh mesh;
@@ -52,7 +52,7 @@ struct StreamScene {
   // The whole frame, tiled `tile` x `tile` pixels, through one integrator and one scratch.
   std::vector<PixelResult> render(int tile, uint64_t& rays) {
     const Integrator integrator(settings, scene, by_geometry);
-    const CameraFrame frame(camera, settings.width, settings.height);
+    const scene::CameraFrame frame(camera, settings.width, settings.height);
     std::vector<PixelResult> image(size_t(settings.width * settings.height));
     std::vector<PixelResult> results;
     TileScratch scratch;
@@ -228,8 +228,8 @@ struct RidgeScene {
 
   // Mean red radiance of a 4 x 4 pixel, 2 cm square view straight down onto (x, y, z).
   float redAt(double x, double y, double z) {
-    Camera camera;
-    camera.projection = Camera::Projection::Orthographic;
+    scene::Camera camera;
+    camera.projection = scene::Camera::Projection::Orthographic;
     camera.position = {x, y + 1000.0, z};
     camera.target = {x, y, z};
     camera.up = {0.0, 0.0, -1.0};

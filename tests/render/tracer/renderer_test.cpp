@@ -27,7 +27,7 @@ using testing::TestMesh;
 // A 30 cm sphere floating 45 cm above the ground, seen from the front-right and above.
 struct SmallScene {
   RenderSettings settings;
-  Camera camera;
+  scene::Camera camera;
   TestMesh sphere = makeSphere({0.0f, 45.0f, 0.0f}, 30.0f, 24, 48, {0.6f, 0.35f, 0.2f});
 
   SmallScene() {
@@ -53,7 +53,7 @@ struct SmallScene {
 
   // The pixel a world point projects to.
   glm::ivec2 pixelOf(glm::dvec3 p) const {
-    const CameraFrame f(camera, settings.width, settings.height);
+    const scene::CameraFrame f(camera, settings.width, settings.height);
     const glm::dvec3 d = p - camera.position;
     const double z = glm::dot(d, f.forward());
     const double half_h = std::tan(camera.fov_deg * std::numbers::pi / 360.0);
@@ -114,9 +114,9 @@ Image renderOverHills(const Scene& scene, const std::shared_ptr<const rig::Terra
 }
 
 // A top-down orthographic camera over (x, z), `size` cm across.
-Camera lookingDownAt(double x, double z, double size) {
-  Camera c;
-  c.projection = Camera::Projection::Orthographic;
+scene::Camera lookingDownAt(double x, double z, double size) {
+  scene::Camera c;
+  c.projection = scene::Camera::Projection::Orthographic;
   c.position = {x, 1000.0, z};
   c.target = {x, 0.0, z};
   c.up = {0.0, 0.0, -1.0};
@@ -349,7 +349,7 @@ TEST(Renderer, AnOrthographicViewHasAHorizonToo) {
   SmallScene scene;
   scene.settings.width = 64;
   scene.settings.height = 48;
-  scene.camera.projection = Camera::Projection::Orthographic;
+  scene.camera.projection = scene::Camera::Projection::Orthographic;
   scene.camera.position = {0.0, 200.0, 900.0};
   scene.camera.target = {0.0, 100.0, 0.0};  // looking down 6 degrees, as the side view does
   scene.camera.ortho_height_cm = 300.0;
@@ -385,11 +385,11 @@ TEST(Renderer, DistantGroundIsCalmInASlowPan) {
     scene.camera.target = scene.camera.position + glm::dvec3(-std::sin(yaw), -0.18, -std::cos(yaw)) * 100.0;
     frames.push_back(scene.render(0, f + 1));
   }
-  const CameraFrame cf(scene.camera, 160, 90);
+  const scene::CameraFrame cf(scene.camera, 160, 90);
   double worst = 0.0, sum = 0.0;
   int pixels = 0;
   for (int y = 0; y < 90; ++y) {
-    const Ray ray = cf.ray(0.5, (y + 0.5) / 90.0);
+    const scene::Ray ray = cf.ray(0.5, (y + 0.5) / 90.0);
     if (!(ray.direction.y < 0.0)) continue;
     const double t = 400.0 / -ray.direction.y;
     const double squares = cf.pixelFootprint(t) / -ray.direction.y / scene.settings.ground_square_cm;
@@ -422,7 +422,7 @@ TEST(Renderer, SameBytesOnEveryDispatchTarget) {
   } restore;
   SmallScene scene;
   SmallScene side = scene;
-  side.camera.projection = Camera::Projection::Orthographic;
+  side.camera.projection = scene::Camera::Projection::Orthographic;
   side.camera.position = {0.0, 200.0, 900.0};
   side.camera.target = {0.0, 100.0, 0.0};
   side.camera.ortho_height_cm = 300.0;
@@ -692,8 +692,8 @@ TEST(Renderer, AFlatLitPanelHasNoShadowAcne) {
   Renderer r(settings);
   const int mesh = r.addMesh({ObjectId::Horse, {0, 1, 2, 0, 2, 3}, std::vector<glm::vec3>(4, glm::vec3(0.5f)), 4});
   r.updateMesh(mesh, positions, normals);
-  Camera camera;
-  camera.projection = Camera::Projection::Orthographic;
+  scene::Camera camera;
+  camera.projection = scene::Camera::Projection::Orthographic;
   camera.position = {x0, 500.0, 300.0};
   camera.target = {x0, y, 0.0};
   camera.ortho_height_cm = 150.0;  // only the middle of the panel: no edges, no sky
@@ -743,7 +743,7 @@ TEST(Renderer, GroundCheckerIsFilteredToItsMean) {
 // stripe: sRGB (200, 60, 20) on the left, (20, 60, 200) on the right, nearest.
 struct TexturedPanel {
   RenderSettings settings;
-  Camera camera;
+  scene::Camera camera;
   std::vector<glm::vec3> positions = {{-100, 0, 0}, {100, 0, 0}, {100, 200, 0}, {-100, 200, 0}};
   std::vector<glm::vec3> normals = std::vector<glm::vec3>(4, glm::vec3(0, 0, 1));
   std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
@@ -761,7 +761,7 @@ struct TexturedPanel {
     settings.samples_per_pixel = 4;
     settings.specular = 0.0f;  // matte: the light reflected is the albedo times the same irradiance
     settings.sun_direction = {0.3, 0.5, 1.0};
-    camera.projection = Camera::Projection::Orthographic;
+    camera.projection = scene::Camera::Projection::Orthographic;
     camera.position = {0.0, 100.0, 500.0};
     camera.target = {0.0, 100.0, 0.0};
     camera.ortho_height_cm = 150.0;
@@ -818,7 +818,7 @@ TEST(Renderer, ATexturedTriangleShowsItsTexture) {
 TEST(Renderer, TexturedBytesDoNotDependOnThreadsOrTarget) {
   const TexturedPanel panel;
   TexturedPanel seen = panel;
-  seen.camera.projection = Camera::Projection::Perspective;  // the panel's edges, the ground and the sky too
+  seen.camera.projection = scene::Camera::Projection::Perspective;  // the panel's edges, the ground and the sky too
   seen.camera.position = {150.0, 180.0, 420.0};
   const Image one = seen.render(true, glm::vec3(1.0f), 1);
   EXPECT_TRUE(sameBytes(one, seen.render(true, glm::vec3(1.0f), 2)));

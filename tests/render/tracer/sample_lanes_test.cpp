@@ -66,7 +66,7 @@ TEST(SampleLanes, TheCheckerHasNoContrastBelowAPixel) {
 // The tent filter's inverse CDF (as sample_lanes.cpp states it), for the expected rays.
 float tent(float u) { return u < 0.5f ? std::sqrt(2.0f * u) - 1.0f : 1.0f - std::sqrt(2.0f - 2.0f * u); }
 
-LaneConstants constantsFor(const CameraFrame& frame) {
+LaneConstants constantsFor(const scene::CameraFrame& frame) {
   LaneConstants k;
   frame.laneView(k.perspective, k.pixel_dx, k.pixel_dy, k.half_width, k.half_height, k.footprint_at_0,
                  k.footprint_per_cm);
@@ -91,8 +91,8 @@ CameraLanes randomSamples(std::size_t n, int width, int height, unsigned seed) {
   return lanes;
 }
 
-Camera sideCamera(Camera::Projection projection) {
-  Camera c;
+scene::Camera sideCamera(scene::Camera::Projection projection) {
+  scene::Camera c;
   c.projection = projection;
   c.position = {40.0, 220.0, 900.0};
   c.target = {0.0, 110.0, 0.0};
@@ -102,8 +102,8 @@ Camera sideCamera(Camera::Projection projection) {
 }
 
 TEST(SampleLanes, CameraRaysAreTheCameraFramesRays) {
-  for (Camera::Projection projection : {Camera::Projection::Perspective, Camera::Projection::Orthographic}) {
-    const CameraFrame frame(sideCamera(projection), 640, 360);
+  for (scene::Camera::Projection projection : {scene::Camera::Projection::Perspective, scene::Camera::Projection::Orthographic}) {
+    const scene::CameraFrame frame(sideCamera(projection), 640, 360);
     const LaneConstants k = constantsFor(frame);
     CameraLanes lanes = randomSamples(3001, 640, 360, 9);
     cameraRayLanes(k, lanes, true);
@@ -140,7 +140,7 @@ TEST(SampleLanes, CameraRaysAreTheCameraFramesRays) {
     EXPECT_EQ(differing, 0);
     EXPECT_GT(ground, 100);  // the frames hold ground and the box (and sky, in perspective)
     EXPECT_GT(may_hit, 100);
-    if (projection == Camera::Projection::Perspective) {
+    if (projection == scene::Camera::Projection::Perspective) {
       EXPECT_LT(ground, int(lanes.size));
     }
   }
@@ -148,7 +148,7 @@ TEST(SampleLanes, CameraRaysAreTheCameraFramesRays) {
 
 // Open ground's light from the lanes is the scalar shading's: (albedo cos) sun + albedo sky, hazed.
 TEST(SampleLanes, OpenGroundIsLitAsTheScalarShadingLightsIt) {
-  const CameraFrame frame(sideCamera(Camera::Projection::Perspective), 640, 360);
+  const scene::CameraFrame frame(sideCamera(scene::Camera::Projection::Perspective), 640, 360);
   LaneConstants k = constantsFor(frame);
   RenderSettings settings;
   k.color_a = settings.ground_color_a, k.color_b = settings.ground_color_b;
@@ -207,7 +207,7 @@ TEST(SampleLanes, HillsAreOpenToTheSunOnlyWhereNoSunRayMeetsThem) {
   const SunHorizon& horizon = hills.horizon;
   ASSERT_FALSE(horizon.everywhereOpen());
 
-  LaneConstants k = constantsFor(CameraFrame(sideCamera(Camera::Projection::Perspective), 640, 360));
+  LaneConstants k = constantsFor(scene::CameraFrame(sideCamera(scene::Camera::Projection::Perspective), 640, 360));
   k.hills = horizon.laneView();
   ASSERT_NE(k.hills.clear, nullptr);
 
@@ -360,8 +360,8 @@ TEST(SampleLanes, EveryDispatchTargetGivesTheSameBits) {
   ASSERT_FALSE(targets.empty());
   if (targets.size() < 2) GTEST_SKIP() << "this CPU runs one SIMD target only: " << targets.front();
   TargetPin restore;
-  for (Camera::Projection projection : {Camera::Projection::Perspective, Camera::Projection::Orthographic}) {
-    const CameraFrame frame(sideCamera(projection), 640, 360);
+  for (scene::Camera::Projection projection : {scene::Camera::Projection::Perspective, scene::Camera::Projection::Orthographic}) {
+    const scene::CameraFrame frame(sideCamera(projection), 640, 360);
     LaneConstants k = constantsFor(frame);
     k.sun_region = true, k.sun_y = 0.7f, k.sun_radiance = glm::vec3(1.5f), k.sky_irradiance = glm::vec3(0.4f);
     k.ao_distance = 300.0f, k.horizon = {0.6f, 0.66f, 0.74f}, k.zenith = {0.2f, 0.3f, 0.6f}, k.below = k.horizon;

@@ -47,10 +47,10 @@ struct Lit {
     mesh.indices = sphere.indices, mesh.colors = sphere.colors, mesh.normals = sphere.normals;
     by_geometry.assign(geometry + 1, nullptr);
     by_geometry[geometry] = &mesh;
-    Camera camera;
+    scene::Camera camera;
     camera.position = {0.0, 120.0, 260.0};
     camera.target = {0.0, 60.0, 0.0};
-    k = integrator().laneConstants(CameraFrame(camera, 64, 36));
+    k = integrator().laneConstants(scene::CameraFrame(camera, 64, 36));
   }
   Integrator integrator() const { return Integrator(settings, scene, by_geometry); }
 };

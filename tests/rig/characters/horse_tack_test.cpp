@@ -231,9 +231,9 @@ void rideTheTrot(const Character& horse, const Character& rider, const std::stri
   const Character& horse0 = test::defaultHorse();
   const Character& rider0 = test::defaultRider();
   const RigProfile profile = RigProfile::thesis();
-  const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
-  const auto clip = makeClip(scene.clip, horse);
-  const auto clip0 = makeClip(scene.clip);
+  const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/trot.json");
+  const auto clip = scene::makeClip(scene.clip, horse);
+  const auto clip0 = scene::makeClip(scene.clip);
   const std::vector<bool> tack = horseLooseTack(horse);
   const Skeleton& s = rider.skeleton;
   std::vector<bool> legs(rider.mesh.vertexCount(), false);
@@ -255,9 +255,9 @@ void rideTheTrot(const Character& horse, const Character& rider, const std::stri
   std::string deepest = "none inside";
   int frames = 0;
   std::vector<glm::vec3> hp, hn, rp, rn;
-  for (int f : parseFrameList(scene.frames, "frames")) {
-    const BakedFrame b = bakeFrame(*clip, profile, f, render::frameTime(scene, f));
-    const BakedFrame b0 = bakeFrame(*clip0, profile, f, render::frameTime(scene, f));
+  for (int f : scene::parseFrameList(scene.frames, "frames")) {
+    const BakedFrame b = bakeFrame(*clip, profile, f, scene::frameTime(scene, f));
+    const BakedFrame b0 = bakeFrame(*clip0, profile, f, scene::frameTime(scene, f));
     const MountedPose p = poseMounted(horse, rider, b.horse, b.rider, profile);
     const MountedPose d = poseMounted(horse0, rider0, b0.horse, b0.rider, profile);
     ++frames;
@@ -324,7 +324,7 @@ TEST(HorseTack, TheFoxWithoutTackRidesTheDefaultRidersTrot) {
   if (!fs::exists(fox)) GTEST_SKIP() << "no " << fox;
   const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox" / "fox-horse-mapping.json";
   const RigProfile profile = RigProfile::thesis();
-  const RiddenPair pair = resolveRiddenPair(fox.string(), mapping.string(), "default", "", profile);
+  const scene::RiddenPair pair = scene::resolveRiddenPair(fox.string(), mapping.string(), "default", "", profile);
   const Character& horse = pair.horse;
   const Character& rider = pair.rider;
   const Character& horse0 = test::defaultHorse();
@@ -351,7 +351,7 @@ TEST(HorseTack, AStandingUserRiderIsSeatedOnTheFoxsTackAndRidesTheTrot) {
   const fs::path mapping = fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "fox" / "fox-horse-mapping.json";
   const test::UserRiderSpec spec = test::userRiderSpecs().front();
   const test::UserRiderFiles files = test::writeUserRider(spec, fs::path(STIRRUP_BINARY_DIR) / "test_horse_tack");
-  const RiddenPair pair = resolveRiddenPair(fox.string(), mapping.string(), files.glb.string(), files.mapping.string(), RigProfile::thesis());
+  const scene::RiddenPair pair = scene::resolveRiddenPair(fox.string(), mapping.string(), files.glb.string(), files.mapping.string(), RigProfile::thesis());
   ASSERT_TRUE(pair.seat.seated_by_rig) << spec.name;
   std::printf("%s on the Fox: tread %.1f cm below the seat, knees out %.0f deg, treads out %.1f cm, hands short %.1f cm\n",
               spec.name.c_str(), pair.seat.tread_below_seat_cm, pair.seat.knee_turn_out_deg, pair.seat.tread_out_cm,
@@ -374,7 +374,7 @@ TEST(HorseTack, TheDefaultRiderIsFittedToAWideHorse) {
   const Character& rider = test::defaultRider();
   EXPECT_NE(seatedMisfit(rider, horse), "");
   EXPECT_EQ(seatedMisfit(rider, test::defaultHorse()), "") << "on the horse she was built for she fits as she is";
-  const RiddenPair pair = seatPair(horse, rider, RigProfile::thesis());
+  const scene::RiddenPair pair = scene::seatPair(horse, rider, RigProfile::thesis());
   ASSERT_TRUE(pair.seat.fitted_to_horse);
   EXPECT_FALSE(pair.seat.seated_by_rig);
   // Her trunk as built: the pelvis and neck where the generated rider has them.

@@ -97,7 +97,7 @@ void ridesSeated(const std::string& name, const fs::path& glb, const fs::path& m
   const Character& horse0 = test::defaultHorse();
   const Character& default_rider = test::defaultRider();
   const RigProfile profile = RigProfile::thesis();
-  const RiddenPair pair = seatPair(horse0, resolveCharacter(CharacterKind::Rider, glb.string(), mapping.string()), profile);
+  const scene::RiddenPair pair = scene::seatPair(horse0, resolveCharacter(CharacterKind::Rider, glb.string(), mapping.string()), profile);
   const Character& horse = pair.horse;
   const Character& rider = pair.rider;
   ASSERT_TRUE(pair.seat.seated_by_rig) << name;
@@ -116,11 +116,11 @@ void ridesSeated(const std::string& name, const fs::path& glb, const fs::path& m
   const std::vector<glm::vec3> rest_wrist = {s.restPosition(rider.role("lWrist")), s.restPosition(rider.role("rWrist"))};
   const RiderPoseParams pose_params;
   for (const char* clip_name : {"trot", "canter", "jump"}) {
-    const render::SceneSpec scene = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + clip_name + ".json");
-    const auto clip = makeClip(scene.clip);
+    const scene::SceneSpec scene = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + clip_name + ".json");
+    const auto clip = scene::makeClip(scene.clip);
     Worst w;
-    for (int f : parseFrameList(scene.frames, "frames")) {
-      const BakedFrame b = bakeFrame(*clip, profile, f, render::frameTime(scene, f));
+    for (int f : scene::parseFrameList(scene.frames, "frames")) {
+      const BakedFrame b = bakeFrame(*clip, profile, f, scene::frameTime(scene, f));
       const MountedPose p = poseMounted(horse, rider, b.horse, b.rider, profile);
       const MountedPose d = poseMounted(horse0, default_rider, b.horse, b.rider, profile);
       const glm::mat4& saddle = p.horse[horse.role("saddle")];

@@ -443,25 +443,25 @@ TEST(GltfClip, ASceneClipCanBeAFileWithAMapping) {
   // Paths resolve against the scene's folder.
   nlohmann::json j = {{"file", file.filename().string()}};
   JsonObjectReader r("scenes/x.json", "clip", j);
-  const ClipSpec spec = parseClipSpec(r, file.parent_path());
-  const auto clip = makeClip(spec);
+  const scene::ClipSpec spec = scene::parseClipSpec(r, file.parent_path());
+  const auto clip = scene::makeClip(spec);
   EXPECT_NEAR(clip->sample(2.0).controls[HorseChannel::rearPivotRz], rear.sample(2.0).controls[HorseChannel::rearPivotRz], 1e-3);
   // A missing file, an unknown field: one line naming the file and field.
   nlohmann::json missing = {{"file", "nowhere.glb"}};
   JsonObjectReader r2("scenes/x.json", "clip", missing);
   try {
-    parseClipSpec(r2, file.parent_path());
+    scene::parseClipSpec(r2, file.parent_path());
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("scenes/x.json: clip.file: no such file", 0), 0u) << e.what();
   }
   nlohmann::json extra = {{"file", file.filename().string()}, {"fence_height_cm", 90}};
   JsonObjectReader r3("scenes/x.json", "clip", extra);
-  EXPECT_THROW(parseClipSpec(r3, file.parent_path()), InputError);
+  EXPECT_THROW(scene::parseClipSpec(r3, file.parent_path()), InputError);
   if (!fs::exists(kFox)) GTEST_SKIP() << kFox << " is not there";
   nlohmann::json fox = {{"file", kFox.string()}, {"mapping", kFoxMapping.string()}, {"animation", "Run"}};
   JsonObjectReader r4("scenes/x.json", "clip", fox);
-  const auto run = makeClip(parseClipSpec(r4, "."));
+  const auto run = scene::makeClip(scene::parseClipSpec(r4, "."));
   EXPECT_EQ(run->name(), "Run");
 }
 

@@ -138,7 +138,7 @@ TEST(GltfRiderMotion, RoundTripsOntoTheUsersRider) {
   EXPECT_EQ(rider.skeleton.joints[rider.role("head")].name.rfind("mixamorig:", 0), 0u);
 
   // A trot, posed on the default horse: the rider's joint worlds at a few frames.
-  const RigProfile profile = loadRigProfile("thesis", fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "profiles");
+  const RigProfile profile = scene::loadRigProfile("thesis", fs::path(STIRRUP_SOURCE_DIR) / "scenes" / "profiles");
   const ProceduralGait gait(trotParams());
   RiderMotion motion;
   motion.name = "trot";

@@ -47,7 +47,7 @@ constexpr double kFps = 24.0;
 // The default pair at the generated trot, frames 1..kFrames, as the shot's evaluator poses it; in a
 // crowd pair k rides 300 cm to the right of the one before (a place the file must keep).
 struct Trot {
-  std::unique_ptr<Clip> clip = makeClip(ClipSpec{});
+  std::unique_ptr<Clip> clip = scene::makeClip(scene::ClipSpec{});
   RigProfile profile = RigProfile::thesis();
   std::vector<BakedFrame> frames;
   std::vector<MountedPose> poses;
@@ -305,7 +305,7 @@ TEST(GltfShot, AWorldNamedInTheScenesExtrasIsTakenToStirrups) {
 // A horse clip (one animated skeleton, no skin) is not a shot: the clip reader takes it.
 TEST(GltfShot, AClipIsNoShot) {
   const fs::path file = tempDir("clip") / "clip.glb";
-  writeClipGltf(*makeClip(ClipSpec{}), file);
+  writeClipGltf(*scene::makeClip(scene::ClipSpec{}), file);
   EXPECT_EQ(GltfShot::read(file), nullptr);
 }
 

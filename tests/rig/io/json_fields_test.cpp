@@ -9,7 +9,7 @@
 #include "rig/error.h"
 #include "tests/input_error.h"
 
-namespace stirrup {
+namespace stirrup::rig {
 namespace {
 
 namespace fs = std::filesystem;
@@ -71,4 +71,4 @@ TEST(DescribeJson, TextThatIsNotUtf8IsDescribedNotThrown) {
 }
 
 }  // namespace
-}  // namespace stirrup
+}  // namespace stirrup::rig

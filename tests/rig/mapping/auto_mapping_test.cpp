@@ -459,10 +459,10 @@ TEST(AutoMappingRigifyHorse, EveryFormRidesAGallopWithEveryBoneWholeAndItsLength
       EXPECT_TRUE(std::any_of(splits.begin(), splits.end(), [&](const std::array<int, 3>& x) { return s.joints[x[1]].name == "DEF-forearm.L.001"; }))
           << form;
     }
-    ClipSpec spec;
+    scene::ClipSpec spec;
     spec.generator = "gallop";
     spec.source = "test";
-    const auto clip = makeClip(spec, horse);
+    const auto clip = scene::makeClip(spec, horse);
     double worst = 0.0, worst_turn = 0.0;
     std::string worst_bone, worst_split;
     for (int i = 0; i < 24; ++i) {

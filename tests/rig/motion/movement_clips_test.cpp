@@ -27,7 +27,7 @@ constexpr int kLF = 0, kRF = 1, kLH = 2, kRH = 3;
 std::unique_ptr<Clip> generator(const std::string& name, nlohmann::json params = nlohmann::json::object()) {
   params["generator"] = name;
   JsonObjectReader r("test", "clip", params);
-  return makeClip(parseClipSpec(r, "."));
+  return scene::makeClip(scene::parseClipSpec(r, "."));
 }
 
 // A stretch of time in which the two hind hooves of a sliding stop may move while down: from the
@@ -384,8 +384,8 @@ TEST(Buck, AllFourHoovesLeaveTheGroundInEveryBuck) {
 // (the gallop's fore pair against the one-suspension phases, see gait_reference_test).
 TEST(ClipInfoVerdicts, EveryDefaultSceneClipIsInsideTheReference) {
   for (const char* scene : {"walk", "trot", "canter", "gallop", "stop", "jump", "rear", "buck"}) {
-    const render::SceneSpec spec = render::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene + ".json");
-    const auto clip = makeClip(spec.clip);
+    const scene::SceneSpec spec = scene::loadScene(std::string(STIRRUP_SOURCE_DIR) + "/scenes/" + scene + ".json");
+    const auto clip = scene::makeClip(spec.clip);
     const ClipInfo info = measureClip(*clip);
     const auto ref = gaitReference(spec.clip.generator);
     ASSERT_TRUE(ref) << scene;

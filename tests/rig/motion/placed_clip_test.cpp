@@ -13,7 +13,7 @@ namespace stirrup::rig {
 namespace {
 
 TEST(PlacedClip, CarriesAndTurnsTheTravelAndKeepsTheControls) {
-  const std::shared_ptr<const Clip> trot = makeClip(ClipSpec{});
+  const std::shared_ptr<const Clip> trot = scene::makeClip(scene::ClipSpec{});
   const HorseFrame start = trot->sample(0.0);
   const PlacedClip placed(trot, {start.travel_cm, start.travel_z_cm}, {50.0, 200.0}, 90.0);
   for (const double t : {0.0, 0.5, 1.25}) {
