@@ -17,14 +17,7 @@ namespace stirrup::render {
 namespace {
 
 // Rolling hills like a path scene's: 80 cm high, 30 m apart, two octaves.
-rig::Terrain hills() {
-  rig::HillsParams p;
-  p.seed = 3;
-  p.amplitude_cm = 80.0;
-  p.wavelength_cm = 3000.0;
-  p.octaves = 2;
-  return rig::Terrain::hills(p, "test");
-}
+rig::Terrain hills() { return test::rollingHillsTerrain(); }
 
 constexpr double kFineSpacingCm = 25.0;   // the brief: hooves visibly on the ground
 constexpr double kOnSurfaceCm = 0.5;      // how close the mesh must be to Terrain::height near the track

@@ -16,6 +16,7 @@
 #include "render/tracer/integrator.h"
 #include "render/tracer/sample_lanes.h"
 #include "rig/texture.h"
+#include "tests/render/tracer/steep_hills.h"
 #include "tests/render/test_meshes.h"
 
 namespace stirrup::render {
@@ -92,14 +93,7 @@ bool sameBytes(const Image& a, const Image& b) {
 }
 
 // Uneven ground (issue 15): the rolling hills of a path scene, meshed fine around the origin.
-rig::Terrain testHills() {
-  rig::HillsParams p;
-  p.seed = 3;
-  p.amplitude_cm = 80.0;
-  p.wavelength_cm = 3000.0;
-  p.octaves = 2;
-  return rig::Terrain::hills(p, "test");
-}
+rig::Terrain testHills() { return test::rollingHillsTerrain(); }
 const GroundRegion kHillsRegion{-2000.0, -2000.0, 2000.0, 2000.0};
 
 // The sphere of `scene` over `terrain` in kHillsRegion, rendered with `settings` at `frame`.

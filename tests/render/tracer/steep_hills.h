@@ -1,4 +1,4 @@
-// Steep hills under a low sun, for the tests of the hills' horizon map (heightfield_mesh_test.cpp) and of
+// Rolling hills, and steep hills under a low sun, for the tests of the hills' horizon map (heightfield_mesh_test.cpp) and of
 // the same test in the ground's SIMD lanes (sample_lanes_test.cpp): 5 m hills 15 m apart over a 30 m
 // square, the sun 8 degrees up with a disc 2 degrees across, the map, and the heightfield in Embree to
 // trace the sun's disc against.
@@ -16,6 +16,16 @@
 #include "rig/motion/terrain.h"
 
 namespace stirrup::render::test {
+
+// Rolling hills like a path scene's (issue 15): 80 cm high, 30 m apart, two octaves.
+inline rig::Terrain rollingHillsTerrain() {
+  rig::HillsParams p;
+  p.seed = 3;
+  p.amplitude_cm = 80.0;
+  p.wavelength_cm = 3000.0;
+  p.octaves = 2;
+  return rig::Terrain::hills(p, "test");
+}
 
 inline rig::Terrain steepHillsTerrain() {
   rig::HillsParams p;
