@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/review/movie.h"
 #include "rig/error.h"
 #include "rig/io/atomic_file.h"
 #include "rig/io/json_fields.h"
@@ -25,7 +26,7 @@ void writeTextAtomically(const fs::path& file, const std::string& text, fs::perm
 
 std::string commandLine(const std::vector<std::string>& argv) {
   std::string line;
-  for (const std::string& a : argv) line += (line.empty() ? "" : " ") + quoteShellWord(a);
+  for (const std::string& a : argv) line += (line.empty() ? "" : " ") + shellQuote(a);
   return line;
 }
 
@@ -42,7 +43,7 @@ std::string sbatchHeader(const FarmPlan& plan, const std::string& job_name, cons
   if (!plan.sbatch.time.empty()) s << "#SBATCH --time=" << plan.sbatch.time << "\n";
   if (!plan.sbatch.mem.empty()) s << "#SBATCH --mem=" << plan.sbatch.mem << "\n";
   s << "set -euo pipefail\n"
-    << "cd " << quoteShellWord(plan.out.string()) << "\n";
+    << "cd " << shellQuote(plan.out.string()) << "\n";
   return s.str();
 }
 
@@ -115,12 +116,6 @@ std::vector<std::vector<int>> chunkFrames(const std::vector<int>& frames, int ch
     chunks.emplace_back(frames.begin() + static_cast<long>(i),
                         frames.begin() + static_cast<long>(std::min(frames.size(), i + static_cast<std::size_t>(chunk))));
   return chunks;
-}
-
-std::string quoteShellWord(const std::string& word) {
-  std::string q = "'";
-  for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 fs::path manifestFile(const fs::path& out) { return out / "farm.json"; }

@@ -81,7 +81,4 @@ FarmPlan readManifest(const std::filesystem::path& out);
 // The manifest file itself (OUT/farm.json, or a copy of it under another name).
 FarmPlan readManifestFile(const std::filesystem::path& file);
 
-// Single-quoted for a POSIX shell.
-std::string quoteShellWord(const std::string& word);
-
 }  // namespace stirrup::render
