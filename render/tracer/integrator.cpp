@@ -136,23 +136,22 @@ struct TileScratch::LightSequences {
   Stratified2D sun, sky;
 };
 
-// A camera sample of the batch, from its ray to the light it gathered.
+// A camera sample of the batch, from its ray to the light it gathered. Its ray and the ground's distance
+// along it stay in the camera lanes (the same index), and so does the light of a sample that sees the
+// sky or open ground: such a sample is only marked (`kind`), not copied out.
 struct TileScratch::CameraSample {
-  glm::vec3 origin, dir;
-  float t_ground;       // the ground's distance along the ray (within the visible distance), or infinity
+  enum class Kind : uint8_t { Sky, OpenGround, Surface };
   int32_t ray;          // its index in camera_rays, or -1: the ray cannot reach the characters
   int32_t surface;      // its index in the surface lanes, or -1: sky or open ground
   // Set by the shading pass.
-  bool hit;
+  Kind kind;
   ObjectId id;
   float depth;
   glm::vec3 normal;
-  glm::vec3 radiance;   // of the sky, when nothing was hit; of open ground, when resolved
   glm::vec3 sun, sky;   // light that needed no rays (when the matching *_traced is false)
   glm::vec3 diffuse;    // scales the sky rays' sum
   float haze;           // aerial perspective (1: none)
   bool sun_traced, sky_traced;
-  bool resolved;        // open ground: `radiance` is its whole light, from the lanes
   uint32_t sun_pending, sky_pending;  // entries of the pending list: sun rays, then sky rays
 };
 
@@ -240,7 +239,7 @@ void queueCharacterRay(TileScratch::CameraSample& c, std::size_t k, const Camera
   if (lanes.may_hit[k]) {
     c.ray = int32_t(scratch.camera_rays.size());
     RTCRayHit& rh = scratch.camera_rays.emplace_back();
-    rh.ray = makeRay(c.origin, c.dir, c.t_ground);
+    rh.ray = makeRay(lanes.origin(k), lanes.direction(k), lanes.t_ground[k]);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   }
@@ -296,16 +295,11 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
   }
   stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
   cameraRayLanes(constants, lanes, !terrain_);
-  for (std::size_t k = 0; k < n; ++k) {
-    TileScratch::CameraSample& c = scratch.samples[k];
-    c.origin = {lanes.ox[k], lanes.oy[k], lanes.oz[k]};
-    c.dir = {lanes.dx[k], lanes.dy[k], lanes.dz[k]};
-    c.t_ground = lanes.t_ground[k];
-    ++tally.rays;
-    if (tally.camera) tally.camera->push_back(makeRay(c.origin, c.dir, kInfinity));
-    if (terrain_) continue;  // the heightfield first (pass 1b)
-    queueCharacterRay(c, k, lanes, scratch);
-  }
+  tally.rays += n;
+  if (tally.camera)
+    for (std::size_t k = 0; k < n; ++k) tally.camera->push_back(makeRay(lanes.origin(k), lanes.direction(k), kInfinity));
+  if (terrain_) return;  // the heightfield first (pass 1b)
+  for (std::size_t k = 0; k < n; ++k) queueCharacterRay(scratch.samples[k], k, lanes, scratch);
 }
 
 // Pass 1b (uneven ground): the camera rays against the heightfield as one structure-of-arrays stream
@@ -346,7 +340,6 @@ void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch
   }
   boxTestLanes(constants, lanes);
   for (std::size_t k = 0; k < n; ++k) {
-    scratch.samples[k].t_ground = lanes.t_ground[k];
     queueCharacterRay(scratch.samples[k], k, lanes, scratch);
   }
 }
@@ -388,7 +381,7 @@ void Integrator::groundAndSkyLanes(const LaneConstants& constants, TileScratch& 
   for (std::size_t k = 0; k < n; ++k) {
     const TileScratch::CameraSample& c = scratch.samples[k];
     const bool character_hit = c.ray >= 0 && scratch.camera_rays[std::size_t(c.ray)].hit.geomID != RTC_INVALID_GEOMETRY_ID;
-    lanes.t_shade[k] = character_hit ? kInfinity : c.t_ground;
+    lanes.t_shade[k] = character_hit ? kInfinity : lanes.t_ground[k];
   }
   if (terrain_) {
     terrainGroundLanes(constants, lanes);
@@ -414,24 +407,18 @@ std::size_t Integrator::gatherSurfaces(TileScratch& scratch) const {
   std::size_t j = 0;
   for (TileScratch::PixelState& pixel : scratch.pixels) {
     for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
-      c->resolved = false;
       c->surface = -1;
-      if (lanes.open[j]) {  // open ground: its light is known
-        c->hit = c->resolved = true;
-        c->id = ObjectId::Ground;
-        c->depth = lanes.depth[j];
-        c->normal = terrain_ ? glm::vec3(lanes.gnx[j], lanes.gny[j], lanes.gnz[j]) : glm::vec3(0.0f, 1.0f, 0.0f);
-        c->radiance = {lanes.radiance_r[j], lanes.radiance_g[j], lanes.radiance_b[j]};
+      if (lanes.open[j]) {  // open ground: its light is known, in the lanes
+        c->kind = TileScratch::CameraSample::Kind::OpenGround;
         continue;
       }
       const RTCRayHit* rh = c->ray >= 0 ? &scratch.camera_rays[size_t(c->ray)] : nullptr;
       const bool character_hit = rh && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
-      if (!character_hit && c->t_ground == kInfinity) {
-        c->hit = false;
-        c->radiance = {lanes.sky_r[j], lanes.sky_g[j], lanes.sky_b[j]};
+      if (!character_hit && lanes.t_ground[j] == kInfinity) {  // the sky, in the lanes
+        c->kind = TileScratch::CameraSample::Kind::Sky;
         continue;
       }
-      c->hit = true;
+      c->kind = TileScratch::CameraSample::Kind::Surface;
       c->surface = int32_t(m);
       gatherSurface(*c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
       if (pixel.lights < 0) {
@@ -537,8 +524,12 @@ void Integrator::occlusionPass(TileScratch& scratch) const {
   }
 }
 
-// Pass 5: each sample's light from its open rays, and each pixel's samples into its result.
+// Pass 5: each sample's light from its open rays, and each pixel's samples into its result. The sky's
+// and open ground's light are read from the camera lanes; the passes (depth, matte, normal, object id)
+// are worked out only when the renderer keeps them.
 void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) const {
+  using Kind = TileScratch::CameraSample::Kind;
+  const CameraLanes& lanes = scratch.lanes;
   const TileScratch::PendingRay* pending = scratch.pending.data();
   auto open = [&](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
     if (r.hill >= 0 && blocked(scratch.hill_rays[std::size_t(r.hill)])) return false;
@@ -546,7 +537,32 @@ void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) 
     const int32_t traced = scratch.occluder_ray[std::size_t(r.ray)];
     return traced < 0 || !blocked(stream[std::size_t(traced)]);
   };
+  // A surface's light from its rays (and the light that needed none), hazed.
+  auto surfaceRadiance = [&](const TileScratch::CameraSample& c) {
+    glm::vec3 sun = c.sun;
+    if (c.sun_traced) {
+      sun = glm::vec3(0.0f);
+      for (uint32_t k = 0; k < c.sun_pending; ++k, ++pending)
+        if (open(*pending, scratch.sun_rays)) sun += pending->weight;
+      sun *= sun_.axisRadiance() / float(light_spp_);
+    }
+    glm::vec3 radiance;
+    if (!c.sky_traced) {
+      radiance = sun + c.sky;
+    } else {
+      glm::vec3 sky(0.0f);
+      for (uint32_t k = 0; k < c.sky_pending; ++k, ++pending)
+        if (open(*pending, scratch.sky_rays)) sky += pending->weight;
+      sky *= c.diffuse / float(ao_spp_);
+      radiance = sun + sky;
+    }
+    if (c.haze < 1.0f) radiance = radiance * c.haze + settings_.sky.horizon * (1.0f - c.haze);
+    return radiance;
+  };
+  const bool passes = settings_.passes;
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
   const TileScratch::CameraSample* c = scratch.samples.data();
+  std::size_t j = 0;  // the sample's index in the lanes
   for (int p = 0; p < count; ++p) {
     glm::vec3 sum(0.0f), normal_sum(0.0f);
     uint32_t hits = 0, character_hits = 0;
@@ -555,47 +571,29 @@ void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) 
     constexpr int kMaxIds = 4;
     uint32_t ids[kMaxIds], votes[kMaxIds];
     int distinct = 0, sky_votes = 0;
-    for (uint32_t i = 0; i < spp_; ++i, ++c) {
-      if (!c->hit) {
-        sum += c->radiance;
+    for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
+      if (c->kind == Kind::Sky) {
+        sum += glm::vec3(lanes.sky_r[j], lanes.sky_g[j], lanes.sky_b[j]);
         ++sky_votes;
         continue;
       }
-      glm::vec3 radiance;
-      if (c->resolved) {
-        radiance = c->radiance;
-      } else {
-      glm::vec3 sun = c->sun;
-      if (c->sun_traced) {
-        sun = glm::vec3(0.0f);
-        for (uint32_t k = 0; k < c->sun_pending; ++k, ++pending)
-          if (open(*pending, scratch.sun_rays)) sun += pending->weight;
-        sun *= sun_.axisRadiance() / float(light_spp_);
-      }
-      if (!c->sky_traced) {
-        radiance = sun + c->sky;
-      } else {
-        glm::vec3 sky(0.0f);
-        for (uint32_t k = 0; k < c->sky_pending; ++k, ++pending)
-          if (open(*pending, scratch.sky_rays)) sky += pending->weight;
-        sky *= c->diffuse / float(ao_spp_);
-        radiance = sun + sky;
-      }
-      if (c->haze < 1.0f) radiance = radiance * c->haze + settings_.sky.horizon * (1.0f - c->haze);
-      }
-      sum += radiance;
+      const bool open_ground = c->kind == Kind::OpenGround;
+      sum += open_ground ? glm::vec3(lanes.radiance_r[j], lanes.radiance_g[j], lanes.radiance_b[j]) : surfaceRadiance(*c);
       ++hits;
-      normal_sum += c->normal;
-      if (c->id != ObjectId::Ground) ++character_hits;
-      nearest = std::min(nearest, c->depth);
+      if (!passes) continue;
+      const ObjectId id = open_ground ? ObjectId::Ground : c->id;
+      normal_sum += !open_ground ? c->normal : terrain_ ? glm::vec3(lanes.gnx[j], lanes.gny[j], lanes.gnz[j]) : up;
+      if (id != ObjectId::Ground) ++character_hits;
+      nearest = std::min(nearest, open_ground ? lanes.depth[j] : c->depth);
       int k = 0;
-      while (k < distinct && ids[k] != uint32_t(c->id)) ++k;
-      if (k == distinct && distinct < kMaxIds) ids[distinct] = uint32_t(c->id), votes[distinct++] = 0;
+      while (k < distinct && ids[k] != uint32_t(id)) ++k;
+      if (k == distinct && distinct < kMaxIds) ids[distinct] = uint32_t(id), votes[distinct++] = 0;
       if (k < distinct) ++votes[k];
     }
     PixelResult& r = out[p];
     const float inv = 1.0f / float(spp_);
     r.rgba = glm::vec4(sum * inv, float(hits) * inv);
+    if (!passes) continue;  // Renderer::setPasses(false): the colour alone
     r.depth = nearest;
     r.matte = float(character_hits) * inv;
     const float normal_length = glm::length(normal_sum);
@@ -612,14 +610,15 @@ void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) 
 
 void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh,
                                const CameraLanes& lanes, std::size_t j, SurfaceLanes& S, std::size_t m) const {
-  S.dx[m] = c.dir.x, S.dy[m] = c.dir.y, S.dz[m] = c.dir.z;
+  const glm::vec3 origin = lanes.origin(j), dir = lanes.direction(j);
+  S.dx[m] = dir.x, S.dy[m] = dir.y, S.dz[m] = dir.z;
   if (rh) {
     // A character: the hit and its triangle's vertices, for hitSurfaceLanes.
     const float t = rh->ray.tfar;
     const ShadingMesh& mesh = *meshes_[rh->hit.geomID];
     S.character[m] = -1;
     S.on_ground[m] = 0;
-    S.ox[m] = c.origin.x, S.oy[m] = c.origin.y, S.oz[m] = c.origin.z, S.t[m] = t;
+    S.ox[m] = origin.x, S.oy[m] = origin.y, S.oz[m] = origin.z, S.t[m] = t;
     S.gx[m] = rh->hit.Ng_x, S.gy[m] = rh->hit.Ng_y, S.gz[m] = rh->hit.Ng_z;
     S.u[m] = rh->hit.u, S.v[m] = rh->hit.v;
     // Its material: the vertex normals and colours, and a texture's colour at the hit.
@@ -629,7 +628,7 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
     S.ground_y[m] = 0.0f;
     S.hills[m] = 0;
     if (terrain_) {
-      const glm::vec3 p = c.origin + t * c.dir;
+      const glm::vec3 p = origin + t * dir;
       // The mesh as traced under the hit: within a fraction of a centimetre of the terrain's own height,
       // and a lookup where the terrain's noise costs many; the horizon map (of that mesh) then needs
       // no lookup of its own. Off the mesh, the terrain and the map's own test.
@@ -647,8 +646,8 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
   S.ground_y[m] = 0.0f;
   S.specular[m] = 0.0f;  // the ground is matte
   c.id = ObjectId::Ground;
-  const float t = c.t_ground;
-  glm::vec3 p = c.origin + t * c.dir;
+  const float t = lanes.t_ground[j];
+  glm::vec3 p = origin + t * dir;
   // The ground's look came from the lanes (groundLanes or terrainGroundLanes).
   S.ar[m] = lanes.albedo_r[j], S.ag[m] = lanes.albedo_g[j], S.ab[m] = lanes.albedo_b[j];
   S.depth[m] = lanes.depth[j];
@@ -662,7 +661,7 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
   glm::vec3 n(lanes.gnx[j], lanes.gny[j], lanes.gnz[j]);
   if (!terrain_) {
     p.y = 0.0f;
-    n = glm::vec3(0.0f, c.dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
+    n = glm::vec3(0.0f, dir.y <= 0.0f ? 1.0f : -1.0f, 0.0f);
   }
   S.hills[m] = terrain_ && !lanes.hills_open[j] ? -1 : 0;
   S.px[m] = p.x, S.py[m] = p.y, S.pz[m] = p.z;

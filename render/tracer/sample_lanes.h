@@ -42,6 +42,8 @@ struct CameraLanes {
   // whether it may meet the characters' box (all bits set) or certainly does not (0).
   std::vector<float> ox, oy, oz, dx, dy, dz, t_ground;
   std::vector<int32_t> may_hit;
+  glm::vec3 origin(std::size_t k) const { return {ox[k], oy[k], oz[k]}; }
+  glm::vec3 direction(std::size_t k) const { return {dx[k], dy[k], dz[k]}; }
   // Uneven ground: the part [t_enter, t_leave] of each camera ray within the heightfield's slab (and
   // the visible distance); t_enter > t_leave where there is none.
   std::vector<float> t_enter, t_leave;
