@@ -142,9 +142,8 @@ struct TileScratch::LightSequences {
 struct TileScratch::CameraSample {
   enum class Kind : uint8_t { Sky, OpenGround, Surface };
   int32_t ray;          // its index in camera_rays, or -1: the ray cannot reach the characters
-  int32_t surface;      // its index in the surface lanes, or -1: sky or open ground
   // Set by the shading pass.
-  Kind kind;
+  Kind kind;            // a Surface is in the surface lanes (TileScratch::surface_samples says where)
   ObjectId id;
   float depth;
   glm::vec3 normal;
@@ -257,6 +256,7 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   scratch.sun_rays.clear();
   scratch.sky_rays.clear();
   scratch.hill_rays.clear();
+  scratch.surface_samples.clear();
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = std::size_t(count) * spp_;
   lanes.resize(n);
@@ -407,7 +407,6 @@ std::size_t Integrator::gatherSurfaces(TileScratch& scratch) const {
   std::size_t j = 0;
   for (TileScratch::PixelState& pixel : scratch.pixels) {
     for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
-      c->surface = -1;
       if (lanes.open[j]) {  // open ground: its light is known, in the lanes
         c->kind = TileScratch::CameraSample::Kind::OpenGround;
         continue;
@@ -419,7 +418,7 @@ std::size_t Integrator::gatherSurfaces(TileScratch& scratch) const {
         continue;
       }
       c->kind = TileScratch::CameraSample::Kind::Surface;
-      c->surface = int32_t(m);
+      scratch.surface_samples.push_back(int32_t(j));
       gatherSurface(*c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
       if (pixel.lights < 0) {
         pixel.lights = int32_t(scratch.lights.size());
@@ -444,9 +443,8 @@ void Integrator::queueOcclusionRays(TileScratch& scratch, RayTally& tally) const
   RayLanes& occluders = scratch.occluders;
   occluders.start(m * (light_spp_ + ao_spp_));
   scratch.occluder_is_sky.resize(m * (light_spp_ + ao_spp_));
-  for (TileScratch::CameraSample& sample : scratch.samples) {
-    if (sample.surface < 0) continue;
-    const std::size_t s = std::size_t(sample.surface);
+  for (std::size_t s = 0; s < m; ++s) {  // the surfaces are in sample order
+    TileScratch::CameraSample& sample = scratch.samples[std::size_t(scratch.surface_samples[s])];
     sample.depth = S.depth[s];
     sample.normal = {S.nx[s], S.ny[s], S.nz[s]};
     sample.diffuse = {S.diffuse_r[s], S.diffuse_g[s], S.diffuse_b[s]};

@@ -82,6 +82,7 @@ struct TileScratch {
   StratifiedLanes sun_points, sky_points;  // the surfaces' sun and sky sequences
   CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
   SurfaceLanes surfaces;               // the surfaces its samples see, for the shading kernels
+  std::vector<int32_t> surface_samples;  // per surface: the sample that sees it
   RayLanes occluders;                  // its shadow and sky rays, for the box test
   std::vector<uint8_t> occluder_is_sky;  // per occlusion ray: the sky stream, else the sun's
   std::vector<int32_t> occluder_ray;   // per occlusion ray: its index in its stream, or -1 (not traced)
