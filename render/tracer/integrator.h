@@ -104,7 +104,7 @@ class Integrator {
              float ground_floor = 0.0f, const SunHorizon* hills = nullptr, const TerrainMesh* ground_mesh = nullptr);
 
   // Every pixel of the tile [x0, x1) x [y0, y1), written row by row to `out` ((x1 - x0) * (y1 - y0)
-  // results). The tile is traced in batches of pixels as ray streams, in three passes: all camera
+  // results; only their rgba unless RenderSettings::passes is set). The tile is traced in batches of pixels as ray streams, in three passes: all camera
   // samples of the batch (one rtcIntersect1M), then all shadow and sky rays their shading needs (one
   // rtcOccluded1M each), then the sums. Each pixel's result depends on its own samples only, so it is
   // the same whatever tile or batch the pixel falls in.
