@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <OpenImageIO/imageio.h>
 
+#include "render/tracer/srgb_encoder.h"
 #include "rig/error.h"
 #include "rig/io/atomic_file.h"
 
@@ -56,59 +57,10 @@ float linearToSrgb(float linear) {
 
 uint8_t linearToSrgb8(float linear) { return uint8_t(std::lround(linearToSrgb(linear) * 255.0f)); }
 
-namespace {
-
-// linearToSrgb8 without a pow per channel, byte for byte the same. The function is monotonic, so it is
-// fixed by the 255 inputs at which it steps up: step_[k] is the smallest float whose code is k, found
-// once by bisection over the bit patterns of the floats in [0, 1] (ordered like the integers for
-// non-negative floats). A pixel's code is then its 4096-bin table entry over [0, 1] plus one comparison
-// with the next step: sRGB's steepest slope (its linear toe, 12.92 x 255 codes a unit) crosses 0.8 of a
-// code in a bin, so a bin holds at most one step (checked when the table is made). Compared, not looped:
-// whether a value lies past its bin's step is a coin toss a branch would mispredict.
-class SrgbEncoder {
- public:
-  SrgbEncoder() {
-    const uint32_t one = std::bit_cast<uint32_t>(1.0f);
-    for (int k = 1; k < 256; ++k) {
-      uint32_t lo = 0, hi = one;  // code(lo) < k <= code(hi)
-      while (hi - lo > 1) {
-        const uint32_t mid = lo + (hi - lo) / 2;
-        (linearToSrgb8(std::bit_cast<float>(mid)) >= k ? hi : lo) = mid;
-      }
-      step_[k] = std::bit_cast<float>(hi);
-    }
-    step_[256] = std::numeric_limits<float>::infinity();  // no code past 255
-    for (int b = 0; b < kBins; ++b) {
-      const float start = float(b) / float(kBins);
-      int k = 0;
-      while (k < 255 && step_[k + 1] <= start) ++k;
-      bin_code_[b] = uint8_t(k);
-    }
-    for (int b = 0; b < kBins; ++b) {
-      const int last = b + 1 < kBins ? bin_code_[b + 1] : 255;  // the next bin's first code
-      if (last - bin_code_[b] > 1) throw std::logic_error("SrgbEncoder: a bin holds two steps");
-    }
-  }
-  uint8_t operator()(float v) const {
-    if (!(v > 0.0f)) return 0;  // and NaN
-    if (v >= 1.0f) return 255;
-    const int k = bin_code_[std::min(int(v * float(kBins)), kBins - 1)];
-    return uint8_t(k + int(v >= step_[k + 1]));
-  }
-
- private:
-  static constexpr int kBins = 4096;
-  std::array<float, 257> step_{};
-  std::array<uint8_t, kBins> bin_code_{};
-};
-
-}  // namespace
-
 void encodeSrgb8(std::span<const glm::vec4> rgba, std::span<uint8_t> rgb) {
   if (rgb.size() != rgba.size() * 3) throw std::invalid_argument("encodeSrgb8: expected 3 bytes a pixel");
-  static const SrgbEncoder encode;
-  for (size_t i = 0; i < rgba.size(); ++i)
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = encode(rgba[i][c]);
+  static_assert(sizeof(glm::vec4) == 4 * sizeof(float));
+  if (!rgba.empty()) srgbCodesRgb(&rgba[0].x, rgb.data(), rgba.size());
 }
 
 void writePng(const Image& image, const fs::path& file, int compression) {
