@@ -1,11 +1,8 @@
 #include "render/tracer/image.h"
 
 #include <algorithm>
-#include <array>
-#include <bit>
 #include <cstdint>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <system_error>

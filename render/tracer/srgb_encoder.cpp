@@ -2,7 +2,6 @@
 // part compiled once: the tables and the entry point of srgb_encoder.h.
 #include "render/tracer/srgb_encoder.h"
 
-#include <algorithm>
 #include <bit>
 #include <limits>
 #include <stdexcept>
