@@ -75,8 +75,8 @@ struct TileScratch {
     std::vector<unsigned> mask, id, flags, prim, geom, inst;
   } ground;
   std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
-  std::vector<RTCRay> sun_rays;        // traced as one coherent stream (nearly parallel)
-  std::vector<RTCRay> sky_rays;        // traced as one incoherent stream
+  std::vector<RTCRay> sun_rays;        // traced as one stream (nearly parallel, but not as coherent: occlusionPass)
+  std::vector<RTCRay> sky_rays;        // traced as one stream
   std::vector<RTCRay> hill_rays;       // uneven ground: the sun rays the hills may block, against the heightfield
   StratifiedLanes pixel_points;        // the samples' sequences, for their points in lanes
   StratifiedLanes sun_points, sky_points;  // the surfaces' sun and sky sequences
