@@ -507,21 +507,15 @@ void Integrator::occluderPass(const LaneConstants& constants, TileScratch& scrat
 // 0.91 (review) of the CPU it took with them gathered into packets, with the same hits
 // (docs/performance.md, "Streams, coherent or not").
 void Integrator::occlusionPass(TileScratch& scratch) const {
-  if (!scratch.sun_rays.empty()) {
+  auto occlude = [](RTCScene scene, std::vector<RTCRay>& rays) {
+    if (rays.empty()) return;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    rtcOccluded1M(characters_, &context, scratch.sun_rays.data(), unsigned(scratch.sun_rays.size()), sizeof(RTCRay));
-  }
-  if (!scratch.sky_rays.empty()) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcOccluded1M(characters_, &context, scratch.sky_rays.data(), unsigned(scratch.sky_rays.size()), sizeof(RTCRay));
-  }
-  if (!scratch.hill_rays.empty()) {  // the sun rays the hills may block, against the heightfield
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcOccluded1M(ground_, &context, scratch.hill_rays.data(), unsigned(scratch.hill_rays.size()), sizeof(RTCRay));
-  }
+    rtcOccluded1M(scene, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
+  };
+  occlude(characters_, scratch.sun_rays);
+  occlude(characters_, scratch.sky_rays);
+  occlude(ground_, scratch.hill_rays);  // the sun rays the hills may block, against the heightfield
 }
 
 // Pass 5: each sample's light from its open rays, and each pixel's samples into its result. The sky's
