@@ -39,10 +39,14 @@ int topJoint(const tinygltf::Skin& skin, const std::vector<int>& parent) {
 }
 
 // The armature's node: the skin's `skeleton` node where that is not one of its joints (stirrup's bake),
-// else the node its top joint hangs from (Blender's exporter: the armature object); -1 for neither.
+// else the node its top joint hangs from (Blender's exporter: the armature object); -1 for neither (and
+// for a skin with no joints or a joint that is no node, which the skin's own checks report later).
 int armatureNode(const tinygltf::Model& model, const std::vector<int>& parent, int k) {
   const tinygltf::Skin& skin = model.skins[std::size_t(k)];
   if (skin.skeleton >= 0 && skin.skeleton < int(model.nodes.size()) && !isJointOf(skin, skin.skeleton)) return skin.skeleton;
+  const bool joints_are_nodes = std::all_of(skin.joints.begin(), skin.joints.end(),
+                                            [&](int j) { return j >= 0 && std::size_t(j) < parent.size(); });
+  if (skin.joints.empty() || !joints_are_nodes) return -1;
   return parent[std::size_t(skin.joints[std::size_t(topJoint(skin, parent))])];
 }
 
