@@ -1,6 +1,7 @@
 #include "render/tracer/sampler.h"
 
 #include <algorithm>
+#include <array>
 #include <set>
 #include <vector>
 
@@ -16,6 +17,34 @@ TEST(Sampler, SameCoordinatesGiveTheSameNumbers) {
     EXPECT_EQ(a.stratified2D(s, 64, SampleDimension::SkyHemisphere), b.stratified2D(s, 64, SampleDimension::SkyHemisphere));
   }
   EXPECT_EQ(hashSample(1, 2, 3, 4, 5), hashSample(1, 2, 3, 4, 5));
+}
+
+// A PixelSampler's numbers are the five-coordinate hash's, written out here round by round from
+// MurmurHash3's finalizer: every golden image rests on this sequence, so a faster sampler must keep it.
+TEST(Sampler, ThePixelsNumbersAreTheFiveCoordinateHash) {
+  auto mix = [](uint64_t v) {
+    v = (v ^ (v >> 33)) * 0xff51afd7ed558ccdull;
+    v = (v ^ (v >> 33)) * 0xc4ceb9fe1a85ec53ull;
+    return v ^ (v >> 33);
+  };
+  auto hash = [&](uint32_t x, uint32_t y, uint32_t frame, uint32_t sample, uint32_t dim) {
+    const uint64_t h = mix(mix((uint64_t(x) << 32 | y) ^ 0x9e3779b97f4a7c15ull) ^ (uint64_t(frame) << 32 | dim));
+    return mix(h ^ (uint64_t(sample) * 0xd1b54a32d192ed03ull));
+  };
+  for (const auto& [x, y, frame] : {std::array<int, 3>{0, 0, 1}, {639, 359, 72}, {-5, 12, 0}, {17, 3, 1000}}) {
+    const PixelSampler p(x, y, frame);
+    const auto ux = uint32_t(x), uy = uint32_t(y), uf = uint32_t(frame);
+    for (uint32_t s : {0u, 1u, 15u, 0xfffffffeu}) {
+      for (auto dim : {SampleDimension::PixelFilter, SampleDimension::SunCone, SampleDimension::SkyHemisphere}) {
+        const uint32_t d = uint32_t(dim);
+        EXPECT_EQ(hashSample(ux, uy, uf, s, d * 4 + 1), hash(ux, uy, uf, s, d * 4 + 1));
+        EXPECT_EQ(p.uniform(s, dim, 1), float(hash(ux, uy, uf, s, d * 4 + 1) >> 40) * 0x1p-24f);
+        const uint64_t h2 = hash(ux, uy, uf, s, d * 4 + 3);
+        EXPECT_EQ(p.uniform2D(s, dim), glm::vec2(float(h2 >> 40) * 0x1p-24f, float((h2 >> 8) & 0xffffff) * 0x1p-24f));
+        EXPECT_EQ(p.seed(dim), uint32_t(hash(ux, uy, uf, 0xffffffffu, d)));
+      }
+    }
+  }
 }
 
 TEST(Sampler, EveryCoordinateChangesTheHash) {
