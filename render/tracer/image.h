@@ -19,7 +19,7 @@
 #include <glm/vec4.hpp>
 
 #include "scene/camera.h"
-#include "scene/png_compression.h"  // the zlib levels writePng takes
+#include "scene/png_compression.h"  // the compression levels writePng takes
 
 namespace stirrup::render {
 
@@ -56,8 +56,9 @@ uint8_t linearToSrgb8(float linear);
 void encodeSrgb8(std::span<const glm::vec4> rgba, std::span<uint8_t> rgb);
 
 // Review image: opaque 8-bit sRGB RGB (the sky is part of the picture; alpha is left out so viewers
-// and movie encoders never show the sky as transparent), at zlib level `compression` (0 to 9; else
-// std::invalid_argument). Throws std::runtime_error on failure.
+// and movie encoders never show the sky as transparent), at compression level `compression` (0 to 9,
+// zlib's scale; else std::invalid_argument), written by render/tracer/png_encoder.h. The folder must
+// exist. Throws std::runtime_error on failure.
 void writePng(const Image& image, const std::filesystem::path& file, int compression = scene::kReviewPngCompression);
 
 // One attribute of an EXR header: a string, int, float, 3-vector (v3f) or 4x4 matrix (m44f).

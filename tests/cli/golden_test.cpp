@@ -148,7 +148,9 @@ TEST(GoldenUpdate, RefusesToRunInCI) {
 
 // Outside CI it renders what the golden tests render and writes the references where it is told
 // (here a scratch folder laid out as tests/golden/): rendering is deterministic, so the fixed trot's
-// frame 4 comes out byte for byte as checked in, and it says so.
+// frame 4 comes out pixel for pixel as checked in (the file's bytes are the PNG writer's: the
+// references checked in before the writer moved to libdeflate hold the same pixels in other bytes),
+// and it says so.
 TEST(GoldenUpdate, WritesTheReferencesItIsAskedForAndSaysHowFarEachMoved) {
   const fs::path into = fs::path(STIRRUP_BINARY_DIR) / "golden_update_test";
   fs::remove_all(into);
@@ -156,7 +158,10 @@ TEST(GoldenUpdate, WritesTheReferencesItIsAskedForAndSaysHowFarEachMoved) {
   const CommandResult r = runCommand(exe + " --only fixed:4 --into " + quote(into.string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, "trot_side.0004.png: new\n");  // new to that folder
-  EXPECT_TRUE(readText(into / "trot_side.0004.png") == readText(kGoldenDir / "trot_side.0004.png"));
+  const render::DiffResult d =
+      render::compareImageFiles(kGoldenDir / "trot_side.0004.png", into / "trot_side.0004.png", goldenThresholds());
+  EXPECT_EQ(d.width, 320);
+  EXPECT_EQ(d.max_error, 0.0) << d.summary();
   const CommandResult again = runCommand(exe + " --only fixed:4 --into " + quote(into.string()));
   EXPECT_EQ(again.out, "trot_side.0004.png: unchanged\n");
   const CommandResult bad = runCommand(exe + " --only fixed:5");
