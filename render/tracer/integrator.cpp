@@ -125,15 +125,10 @@ bool Integrator::sunMayBeBlocked(const glm::vec3& origin) const { return sun_.ma
 bool Integrator::groundSunRegionExcludes(const glm::vec3& origin) const { return sun_.groundRegionExcludes(origin); }
 bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const { return sun_.groundMayBeBlocked(origin); }
 
-// A pixel of the batch: its sampler, and where its sun and sky sequences are (set up when the first of
-// its samples needs them: most pixels of a review frame are sky or open ground, which need neither).
+// A pixel of the batch: where its sun and sky sequences are (set up for the pixels whose samples need
+// them: most pixels of a review frame are sky or open ground, which need neither).
 struct TileScratch::PixelState {
-  PixelSampler sampler;
-  int32_t lights;  // index in TileScratch::lights, or -1: not set up
-};
-
-struct TileScratch::LightSequences {
-  Stratified2D sun, sky;
+  int32_t lights;  // index in TileScratch::sun_parts and sky_parts, or -1: none
 };
 
 // A camera sample of the batch, from its ray to the light it gathered. Its ray and the ground's distance
@@ -185,6 +180,9 @@ namespace {
 constexpr int kBatchSamples = 1024;
 
 bool blocked(const RTCRay& ray) { return ray.tfar < 0.0f; }  // Embree sets tfar to -inf on a hit
+
+// n rounded up to a whole number of the lanes' padding.
+std::size_t paddedCount(std::size_t n) { return (n + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad; }
 
 }  // namespace
 
@@ -250,7 +248,6 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
                              int first, int count, int frame, TileScratch& scratch, RayTally& tally,
                              PixelResult* out) const {
   scratch.pixels.clear();
-  scratch.lights.clear();
   scratch.camera_rays.clear();
   scratch.pending.clear();
   scratch.sun_rays.clear();
@@ -265,7 +262,7 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   cameraPass(constants, x0, tile_width, y0, first, count, frame, scratch, tally);
   if (terrain_ && n > 0) groundPass(constants, scratch);
   if (!scratch.camera_rays.empty()) characterPass(scratch);
-  surfacePass(constants, scratch, tally);
+  surfacePass(constants, frame, scratch, tally);
   occluderPass(constants, scratch);
   occlusionPass(scratch);
   resolvePass(count, scratch, out);
@@ -281,16 +278,30 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
   const std::size_t n = std::size_t(count) * spp_;
   StratifiedLanes& points = scratch.pixel_points;
   points.resize(lanes.padded);
+  const std::size_t padded_pixels = paddedCount(std::size_t(count));
+  scratch.pixel_x.assign(padded_pixels, 0u);
+  scratch.pixel_y.assign(padded_pixels, 0u);
   std::size_t j = 0;
   for (int p = 0; p < count; ++p) {
     const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
-    const PixelSampler sampler(x, y, frame);
-    const Stratified2D::PixelPart part = Stratified2D(sampler, pixel_layout_, SampleDimension::PixelFilter).pixelPart();
-    scratch.pixels.push_back({sampler, -1});
+    scratch.pixel_x[std::size_t(p)] = uint32_t(x), scratch.pixel_y[std::size_t(p)] = uint32_t(y);
+    scratch.pixels.push_back({-1});
     const float cx = float(x) + 0.5f, cy = float(y) + 0.5f;
-    for (uint32_t i = 0; i < spp_; ++i, ++j) {
-      points.set(j, part, i);
-      lanes.cx[j] = cx, lanes.cy[j] = cy;
+    for (uint32_t i = 0; i < spp_; ++i, ++j) lanes.cx[j] = cx, lanes.cy[j] = cy;
+  }
+  // The pixels' sequences in lanes; with one sample a pixel, the samples' points are the pixels'.
+  const uint32_t* xs = scratch.pixel_x.data();
+  const uint32_t* ys = scratch.pixel_y.data();
+  if (spp_ == 1) {
+    pixelPartLanes(pixel_layout_, SampleDimension::PixelFilter, uint32_t(frame), xs, ys, padded_pixels, points);
+  } else {
+    StratifiedLanes& parts = scratch.pixel_parts;
+    parts.resize(padded_pixels);
+    pixelPartLanes(pixel_layout_, SampleDimension::PixelFilter, uint32_t(frame), xs, ys, padded_pixels, parts);
+    j = 0;
+    for (int p = 0; p < count; ++p) {
+      const Stratified2D::PixelPart part = parts.part(std::size_t(p));
+      for (uint32_t i = 0; i < spp_; ++i, ++j) points.set(j, part, i);
     }
   }
   stratifiedLanes(pixel_layout_, points, 0, lanes.padded, lanes.ux.data(), lanes.uy.data());
@@ -357,9 +368,9 @@ void Integrator::characterPass(TileScratch& scratch) const {
 // In lanes first: the flat ground's surface (and the whole light of open ground, most of a review
 // frame) where no character is nearer, and the sky behind every sample. Then every other surface a
 // sample sees is gathered into the surface lanes, shaded there, and its rays queued.
-void Integrator::surfacePass(const LaneConstants& constants, TileScratch& scratch, RayTally& tally) const {
+void Integrator::surfacePass(const LaneConstants& constants, int frame, TileScratch& scratch, RayTally& tally) const {
   groundAndSkyLanes(constants, scratch);
-  const std::size_t m = gatherSurfaces(scratch);
+  const std::size_t m = gatherSurfaces(frame, scratch);
   SurfaceLanes& surfaces = scratch.surfaces;
   surfaces.setSize(m);
   // The surfaces' sun and sky points, in lanes: slot k of surface m is point k * stride + m.
@@ -393,9 +404,9 @@ void Integrator::groundAndSkyLanes(const LaneConstants& constants, TileScratch& 
 
 // Each sample resolved where the lanes know its light (open ground, sky), else its surface gathered
 // into the surface lanes in sample order (a character's hit triangle, its vertices' normals and
-// colours, or the ground's surface) with its pixel's sun and sky sequences, set up when a pixel's first
-// sample needs them. Returns the number of surfaces.
-std::size_t Integrator::gatherSurfaces(TileScratch& scratch) const {
+// colours, or the ground's surface) with its pixel's sun and sky sequences, set up in lanes for the
+// pixels that have a surface. Returns the number of surfaces.
+std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
   const CameraLanes& lanes = scratch.lanes;
   SurfaceLanes& surfaces = scratch.surfaces;
   surfaces.reserve(scratch.samples.size(), int(light_spp_), int(ao_spp_));
@@ -405,7 +416,10 @@ std::size_t Integrator::gatherSurfaces(TileScratch& scratch) const {
   std::size_t m = 0;
   TileScratch::CameraSample* c = scratch.samples.data();
   std::size_t j = 0;
-  for (TileScratch::PixelState& pixel : scratch.pixels) {
+  scratch.light_x.clear(), scratch.light_y.clear();
+  scratch.surface_light.clear(), scratch.surface_slot.clear();
+  for (std::size_t p = 0; p < scratch.pixels.size(); ++p) {
+    TileScratch::PixelState& pixel = scratch.pixels[p];
     for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
       if (lanes.open[j]) {  // open ground: its light is known, in the lanes
         c->kind = TileScratch::CameraSample::Kind::OpenGround;
@@ -421,16 +435,28 @@ std::size_t Integrator::gatherSurfaces(TileScratch& scratch) const {
       scratch.surface_samples.push_back(int32_t(j));
       gatherSurface(*c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
       if (pixel.lights < 0) {
-        pixel.lights = int32_t(scratch.lights.size());
-        scratch.lights.push_back({Stratified2D(pixel.sampler, sun_layout_, SampleDimension::SunCone),
-                                  Stratified2D(pixel.sampler, sky_layout_, SampleDimension::SkyHemisphere)});
+        pixel.lights = int32_t(scratch.light_x.size());
+        scratch.light_x.push_back(scratch.pixel_x[p]), scratch.light_y.push_back(scratch.pixel_y[p]);
       }
-      const TileScratch::LightSequences& sequences = scratch.lights[std::size_t(pixel.lights)];
-      const Stratified2D::PixelPart sun = sequences.sun.pixelPart(), sky = sequences.sky.pixelPart();
-      for (uint32_t k = 0; k < light_spp_; ++k) sun_points.set(k * surfaces.stride + m, sun, i * light_spp_ + k);
-      for (uint32_t k = 0; k < ao_spp_; ++k) sky_points.set(k * surfaces.stride + m, sky, i * ao_spp_ + k);
+      scratch.surface_light.push_back(pixel.lights), scratch.surface_slot.push_back(i);
       ++m;
     }
+  }
+  // The sun and sky sequences of the pixels with surfaces, in lanes, then each surface's points.
+  const std::size_t padded_lights = paddedCount(scratch.light_x.size());
+  if (padded_lights == 0) return m;
+  scratch.light_x.resize(padded_lights, 0u), scratch.light_y.resize(padded_lights, 0u);
+  scratch.sun_parts.resize(padded_lights), scratch.sky_parts.resize(padded_lights);
+  pixelPartLanes(sun_layout_, SampleDimension::SunCone, uint32_t(frame), scratch.light_x.data(), scratch.light_y.data(),
+                 padded_lights, scratch.sun_parts);
+  pixelPartLanes(sky_layout_, SampleDimension::SkyHemisphere, uint32_t(frame), scratch.light_x.data(),
+                 scratch.light_y.data(), padded_lights, scratch.sky_parts);
+  for (std::size_t s = 0; s < m; ++s) {
+    const std::size_t light = std::size_t(scratch.surface_light[s]);
+    const uint32_t i = scratch.surface_slot[s];
+    const Stratified2D::PixelPart sun = scratch.sun_parts.part(light), sky = scratch.sky_parts.part(light);
+    for (uint32_t k = 0; k < light_spp_; ++k) sun_points.set(k * surfaces.stride + s, sun, i * light_spp_ + k);
+    for (uint32_t k = 0; k < ao_spp_; ++k) sky_points.set(k * surfaces.stride + s, sky, i * ao_spp_ + k);
   }
   return m;
 }

@@ -56,7 +56,6 @@ float filteredChecker(float s, float t, float width);
 // then reused, so tracing allocates nothing per pixel or per tile.
 struct TileScratch {
   struct PixelState;
-  struct LightSequences;
   struct CameraSample;
   struct PendingRay;
   TileScratch();
@@ -64,7 +63,12 @@ struct TileScratch {
   TileScratch(TileScratch&&) noexcept;
   TileScratch& operator=(TileScratch&&) noexcept;
   std::vector<PixelState> pixels;
-  std::vector<LightSequences> lights;  // the sun and sky sequences of the pixels that need them
+  std::vector<uint32_t> pixel_x, pixel_y;  // the batch's pixels (padded for the lanes)
+  StratifiedLanes pixel_parts;             // their sequences, with more than one sample a pixel
+  std::vector<uint32_t> light_x, light_y;  // the pixels whose samples see surfaces (padded)
+  StratifiedLanes sun_parts, sky_parts;    // their sun and sky sequences
+  std::vector<int32_t> surface_light;      // per surface: its pixel's entry in light_x and the parts
+  std::vector<uint32_t> surface_slot;      // per surface: its sample's index within its pixel
   std::vector<CameraSample> samples;
   std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
   // Uneven ground: what Embree's structure-of-arrays stream reads and writes beside the camera lanes
@@ -133,11 +137,11 @@ class Integrator {
                   TileScratch& scratch, RayTally& tally) const;
   void groundPass(const LaneConstants& constants, TileScratch& scratch) const;
   void characterPass(TileScratch& scratch) const;
-  void surfacePass(const LaneConstants& constants, TileScratch& scratch, RayTally& tally) const;
+  void surfacePass(const LaneConstants& constants, int frame, TileScratch& scratch, RayTally& tally) const;
   // surfacePass's steps, in order: the ground and the sky in lanes, the other surfaces gathered into the
   // surface lanes (returns how many), and after the shading kernels, the shadow and sky rays queued.
   void groundAndSkyLanes(const LaneConstants& constants, TileScratch& scratch) const;
-  std::size_t gatherSurfaces(TileScratch& scratch) const;
+  std::size_t gatherSurfaces(int frame, TileScratch& scratch) const;
   void queueOcclusionRays(TileScratch& scratch, RayTally& tally) const;
   void occluderPass(const LaneConstants& constants, TileScratch& scratch) const;
   void occlusionPass(TileScratch& scratch) const;

@@ -531,6 +531,54 @@ void StratifiedPointLanes(const Stratified2D::Layout& L, const StratifiedLanes& 
   }
 }
 
+// fastMod(a, d, m) (render/tracer/sampler.h) for a, d below 2^32, in 64-bit lanes: the high 64 bits of
+// (m a mod 2^64) d, from 32-bit products.
+VU64 FastMod(VU64 a, uint32_t d, uint64_t m) {
+  const DU64 d64;
+  const hn::Repartition<uint32_t, DU64> d32;
+  const VU64 low = Mul64(a, m);
+  const auto dd = hn::BitCast(d32, hn::Set(d64, d));
+  const VU64 lo = hn::MulEven(hn::BitCast(d32, low), dd);                        // lo32(low) d
+  const VU64 hi = hn::MulEven(hn::BitCast(d32, hn::ShiftRight<32>(low)), dd);    // hi32(low) d
+  return hn::ShiftRight<32>(hn::Add(hi, hn::ShiftRight<32>(lo)));
+}
+
+// Stratified2D(PixelSampler(x, y, frame), layout, dim).pixelPart(), lane by lane: hashPixel's first
+// round (of the pixel alone) is shared by the jitter's hash and the permutation's seed.
+void PixelPartLanes(const Stratified2D::Layout& L, uint32_t dim, uint32_t frame, const uint32_t* x, const uint32_t* y,
+                    size_t n, StratifiedLanes& out) {
+  const DU du;
+  const DU64 d64;
+  const hn::Half<DU> dh;
+  const size_t lanes = hn::Lanes(du), half = hn::Lanes(d64);
+  const bool permuted = L.count > 1;  // one point needs no permutation: seed and offsets 0
+  const uint64_t jitter_key = uint64_t(frame) << 32 | (dim * 4 + 3), seed_key = uint64_t(frame) << 32 | dim;
+  const uint64_t seed_sample = uint64_t(0xffffffffu) * 0xd1b54a32d192ed03ull;  // hashSampleOf's sample 0xffffffff
+  auto narrow = [&](VU64 lo, VU64 hi) { return hn::ConcatEven(du, hn::BitCast(du, hi), hn::BitCast(du, lo)); };
+  for (size_t k = 0; k < n; k += lanes) {
+    const VU vx = hn::LoadU(du, x + k), vy = hn::LoadU(du, y + k);
+    VU64 seeds[2], offsets[2], row_offsets[2];
+    for (size_t h = 0; h < 2; ++h) {
+      const VU64 px = hn::PromoteTo(d64, h == 0 ? hn::LowerHalf(dh, vx) : hn::UpperHalf(dh, vx));
+      const VU64 py = hn::PromoteTo(d64, h == 0 ? hn::LowerHalf(dh, vy) : hn::UpperHalf(dh, vy));
+      const VU64 pixel = MixBits(hn::Xor(hn::Or(hn::ShiftLeft<32>(px), py), hn::Set(d64, 0x9e3779b97f4a7c15ull)));
+      hn::StoreU(MixBits(hn::Xor(pixel, hn::Set(d64, jitter_key))), d64, out.pixel_hash.data() + k + h * half);
+      seeds[h] = offsets[h] = row_offsets[h] = hn::Zero(d64);
+      if (!permuted) continue;
+      const VU64 seed_hash = MixBits(hn::Xor(MixBits(hn::Xor(pixel, hn::Set(d64, seed_key))), hn::Set(d64, seed_sample)));
+      seeds[h] = hn::And(seed_hash, hn::Set(d64, 0xffffffffull));
+      offsets[h] = FastMod(seeds[h], L.count, L.mod_multiplier);
+      row_offsets[h] = FastMod(hn::Xor(seeds[h], hn::Set(d64, 0x5bd1e995ull)), L.count, L.mod_multiplier);
+    }
+    const VU seed = narrow(seeds[0], seeds[1]);
+    hn::StoreU(seed, du, out.seed.data() + k);
+    hn::StoreU(hn::Xor(seed, hn::Set(du, 0x5bd1e995u)), du, out.row_seed.data() + k);
+    hn::StoreU(narrow(offsets[0], offsets[1]), du, out.offset.data() + k);
+    hn::StoreU(narrow(row_offsets[0], row_offsets[1]), du, out.row_offset.data() + k);
+    hn::StoreU(hn::Zero(du), du, out.index.data() + k);
+  }
+}
+
 // Which target this copy was compiled for.
 int64_t CompiledTarget() { return HWY_TARGET; }
 
@@ -551,6 +599,7 @@ HWY_EXPORT(SkyLanes);
 HWY_EXPORT(CheckerLanes);
 HWY_EXPORT(CompiledTarget);
 HWY_EXPORT(StratifiedPointLanes);
+HWY_EXPORT(PixelPartLanes);
 
 void StratifiedLanes::resize(std::size_t n) {
   pixel_hash.resize(n, 0);
@@ -560,6 +609,13 @@ void StratifiedLanes::resize(std::size_t n) {
 void stratifiedLanes(const Stratified2D::Layout& layout, const StratifiedLanes& points, std::size_t first,
                      std::size_t n, float* u, float* v) {
   HWY_DYNAMIC_DISPATCH(StratifiedPointLanes)(layout, points, first, n, u, v);
+}
+
+void pixelPartLanes(const Stratified2D::Layout& layout, SampleDimension dim, uint32_t frame, const uint32_t* x,
+                    const uint32_t* y, std::size_t n, StratifiedLanes& parts) {
+  if (n % CameraLanes::kPad != 0 || parts.pixel_hash.size() < n)
+    throw std::invalid_argument("pixelPartLanes: expected a whole number of CameraLanes::kPad pixels, and room for them");
+  HWY_DYNAMIC_DISPATCH(PixelPartLanes)(layout, uint32_t(dim), frame, x, y, n, parts);
 }
 
 void CameraLanes::resize(std::size_t n) {

@@ -91,6 +91,9 @@ struct StratifiedLanes {
     pixel_hash[k] = part.pixel_hash, seed[k] = part.seed, row_seed[k] = part.row_seed, offset[k] = part.offset;
     row_offset[k] = part.row_offset, index[k] = i;
   }
+  Stratified2D::PixelPart part(std::size_t k) const {
+    return {pixel_hash[k], seed[k], row_seed[k], offset[k], row_offset[k]};
+  }
 };
 
 // What the kernels read of the camera, the ground, the lights and the characters' box: plain numbers,
@@ -176,6 +179,15 @@ void skyLanes(const LaneConstants& k, CameraLanes& lanes);
 // target gives the same points.
 void stratifiedLanes(const Stratified2D::Layout& layout, const StratifiedLanes& points, std::size_t first,
                      std::size_t n, float* u, float* v);
+
+// The sequences of `n` pixels for one dimension, set up in lanes: entry p of `parts` becomes
+// Stratified2D(PixelSampler(x[p], y[p], frame), layout, dim).pixelPart() bit for bit, with index 0
+// (the hashes are 64-bit integer arithmetic, so every target agrees). n is a whole number of
+// CameraLanes::kPad (x and y hold n entries, padding included; `parts` is resized to at least n).
+// Throws std::invalid_argument otherwise. Setting a pixel's sequences up one by one was a visible part
+// of a draft frame: two to four hash rounds a pixel, each a chain of multiplies.
+void pixelPartLanes(const Stratified2D::Layout& layout, SampleDimension dim, uint32_t frame, const uint32_t* x,
+                    const uint32_t* y, std::size_t n, StratifiedLanes& parts);
 
 // The filtered checker of integrator.h in lanes, for n points (the test compares the two).
 void filteredCheckerLanes(const float* s, const float* t, const float* width, float* out, std::size_t n);

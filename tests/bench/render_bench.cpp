@@ -53,6 +53,26 @@ void BM_TrotPoseAndSkin(benchmark::State& state) {
 }
 BENCHMARK(BM_TrotPoseAndSkin)->Unit(benchmark::kMillisecond);
 
+// The skin alone: the default horse and rider at one pose of the trot (frame 12), positions and normals.
+void BM_SkinTrotCharacters(benchmark::State& state) {
+  const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");
+  const rig::RigProfile profile = scene::resolveProfile(scene);
+  const rig::Character horse = rig::buildDefaultHorse(), rider = rig::buildDefaultRider();
+  const render::Shot shot(scene, profile, scene.cameras.front(), 0);
+  const rig::BakedFrame b = shot.bake(12);
+  const std::vector<glm::mat4> hw = rig::poseHorse(horse, b.horse);
+  const std::vector<glm::mat4> rw = rig::poseRider(rider, horse, hw, b.rider, profile.rider_unit_cm);
+  std::vector<glm::vec3> positions, normals;
+  for (auto _ : state) {
+    rig::skinMesh(horse.mesh, horse.skeleton, hw, positions, normals);
+    rig::skinMesh(rider.mesh, rider.skeleton, rw, positions, normals);
+    benchmark::DoNotOptimize(positions.data());
+    benchmark::DoNotOptimize(normals.data());
+  }
+  state.counters["vertices"] = double(horse.mesh.vertexCount() + rider.mesh.vertexCount());
+}
+BENCHMARK(BM_SkinTrotCharacters)->Unit(benchmark::kMicrosecond);
+
 // A whole frame of the default trot side view: bake, pose, skin, BVH, trace (no PNG write).
 void BM_TrotFrame(benchmark::State& state) {
   const scene::SceneSpec scene = scene::loadScene(STIRRUP_SOURCE_DIR "/scenes/trot.json");

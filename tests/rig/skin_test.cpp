@@ -1,9 +1,11 @@
 #include "rig/skin.h"
 
 #include <cmath>
+#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include "rig/characters/horse_character.h"
 #include "rig/characters/rider_character.h"
@@ -109,6 +111,64 @@ TEST(Skin, PositionsAloneAreSkinMeshsEveryStrideThVertex) {
   EXPECT_THROW(skinPositions(horse.mesh, horse.skeleton, world, 0, none), std::invalid_argument);
   world.pop_back();
   EXPECT_THROW(skinPositions(horse.mesh, horse.skeleton, world, 3, none), std::invalid_argument);
+}
+
+// skinMesh runs vertices a SIMD vector at a time (Highway, the best target of this CPU): every vertex
+// must come out to the bit as skinVertex, glm's scalar reference, makes it, or frames would differ
+// between machines and from the goldens. The built horse and rider posed with bent joints (so vertices
+// blend), and a mesh of odd cases: weights of zero and below (skipped), a degenerate blend (the normal
+// kept), a vertex count that is no multiple of any vector's lanes.
+TEST(Skin, EveryVertexIsTheScalarReferencesToTheBit) {
+  auto expectReference = [](const SkinnedMesh& mesh, const Skeleton& skeleton, const std::vector<glm::mat4>& world,
+                            const char* what) {
+    std::vector<glm::vec3> p, n;
+    skinMesh(mesh, skeleton, world, p, n);
+    const std::vector<glm::mat4> m = skinningMatrices(skeleton, world);
+    ASSERT_EQ(p.size(), mesh.positions.size()) << what;
+    std::size_t blended = 0;
+    for (std::size_t v = 0; v < p.size(); ++v) {
+      glm::vec3 rp, rn;
+      skinVertex(mesh, m.data(), v, rp, rn);
+      ASSERT_EQ(std::memcmp(&rp, &p[v], sizeof rp), 0) << what << " vertex " << v << " position";
+      ASSERT_EQ(std::memcmp(&rn, &n[v], sizeof rn), 0) << what << " vertex " << v << " normal";
+      blended += mesh.weights[v][1] > 0.0f;
+    }
+    EXPECT_GT(blended, 0u) << what << ": no vertex blends two joints";
+  };
+  // Every SIMD target this CPU runs (Highway's dispatch, pinned one at a time), then the best again.
+  struct Unpin {
+    ~Unpin() { hwy::SetSupportedTargetsForTest(0); }
+  } unpin;
+  const std::vector<Character> characters = {buildHorse(HorseParams{}), buildDefaultRider()};
+  for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    SCOPED_TRACE(hwy::TargetName(target));
+    for (std::size_t k = 0; k < characters.size(); ++k) {
+      const Character& c = characters[k];
+      std::vector<glm::mat4> world = restWorlds(c.skeleton);
+      for (std::size_t j = 1; j < world.size(); j += 2)
+        world[j] = world[j] * glm::rotate(glm::mat4(1.0f), glm::radians(17.0f + float(j)), glm::normalize(glm::vec3(1, 2, 3)));
+      world[0] = glm::scale(world[0], glm::vec3(1.0f, 1.3f, 0.9f));  // non-uniform: the inverse transpose matters
+      expectReference(c.mesh, c.skeleton, world, k == 0 ? "horse" : "rider");
+    }
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  const Skeleton s = twoJoints();
+  SkinnedMesh odd;
+  for (int v = 0; v < 37; ++v) {
+    const float a = float(v);
+    odd.positions.push_back({a, 2.0f * a - 5.0f, 0.5f * a});
+    odd.normals.push_back(glm::normalize(glm::vec3(1.0f, a, 2.0f)));
+    odd.colors.push_back(glm::vec3(1));
+    odd.joints.push_back(glm::u16vec4(v % 2, 1 - v % 2, 0, 1));
+    const float w = float(v % 5) / 4.0f;
+    odd.weights.push_back(v % 7 == 3 ? glm::vec4(1.0f, 0.0f, -0.5f, 0.0f) : glm::vec4(w, 1.0f - w, 0.0f, 0.0f));
+  }
+  std::vector<glm::mat4> world = restWorlds(s);
+  world[1] = world[1] * glm::rotate(glm::mat4(1.0f), 0.7f, glm::vec3(0, 0, 1));
+  expectReference(odd, s, world, "odd cases");
+  world[1] = glm::scale(world[1], glm::vec3(0.0f));  // joint b flattened to a point: degenerate blends
+  expectReference(odd, s, world, "odd cases, a joint scaled to nothing");
 }
 
 }  // namespace

@@ -428,6 +428,47 @@ TEST(SampleLanes, StratifiedPointsAreTheSequencesPointsOnEveryTarget) {
   }
 }
 
+// Pixels' sequences set up in lanes are Stratified2D's, field for field, on every target: counts of one
+// (no permutation) and more (the seed and its remainders), every dimension, pixels near and far (their
+// coordinates fill the hash's 64 bits), frames small and large.
+TEST(SampleLanes, PixelPartsAreTheSequencesOnEveryTarget) {
+  TargetPin restore;
+  for (const std::string& target : simdTargets()) {
+    pinSimdTarget(target);
+    for (uint32_t count : {1u, 2u, 4u, 5u, 9u, 64u, 1000u}) {
+      const Stratified2D::Layout layout(count);
+      for (const auto dim : {SampleDimension::PixelFilter, SampleDimension::SunCone, SampleDimension::SkyHemisphere}) {
+        for (const int frame : {0, 1, 72, 1 << 30}) {
+          const std::size_t n = 3 * 16;
+          std::vector<uint32_t> xs(n), ys(n);
+          for (std::size_t p = 0; p < n; ++p) {
+            xs[p] = p % 2 ? uint32_t(p * 2654435761u) : uint32_t(p);
+            ys[p] = p % 3 ? uint32_t(639 - p) : uint32_t(-int(p));
+          }
+          StratifiedLanes parts;
+          parts.resize(n);
+          std::fill(parts.index.begin(), parts.index.end(), 7u);
+          pixelPartLanes(layout, dim, uint32_t(frame), xs.data(), ys.data(), n, parts);
+          int differing = 0;
+          for (std::size_t p = 0; p < n; ++p) {
+            const Stratified2D::PixelPart want =
+                Stratified2D(PixelSampler(int(xs[p]), int(ys[p]), frame), layout, dim).pixelPart();
+            const Stratified2D::PixelPart got = parts.part(p);
+            differing += want.pixel_hash != got.pixel_hash || want.seed != got.seed || want.row_seed != got.row_seed ||
+                         want.offset != got.offset || want.row_offset != got.row_offset || parts.index[p] != 0;
+          }
+          EXPECT_EQ(differing, 0) << target << ", count " << count << ", dimension " << int(dim) << ", frame " << frame;
+        }
+      }
+    }
+  }
+  const Stratified2D::Layout layout(4);
+  std::vector<uint32_t> xs(20), ys(20);
+  StratifiedLanes parts;
+  parts.resize(32);
+  EXPECT_THROW(pixelPartLanes(layout, SampleDimension::SunCone, 1, xs.data(), ys.data(), 20, parts), std::invalid_argument);
+}
+
 TEST(SampleLanes, AnUnknownTargetIsRefusedByName) {
   TargetPin restore;
   try {
