@@ -28,8 +28,15 @@ hn::Vec<hn::Rebind<uint8_t, DF>> Codes(DF df, const SrgbTables& tables, hn::Vec<
   const auto inside = hn::IfThenElseZero(hn::AndNot(at_least_one, positive), v);  // in [0, 1)
   const auto bin = hn::Min(hn::ConvertTo(di, hn::Mul(inside, hn::Set(df, float(SrgbTables::kBins)))),
                            hn::Set(di, SrgbTables::kBins - 1));
-  const auto k = hn::GatherIndex(di, tables.bin_code.data(), bin);
-  const auto next_step = hn::GatherIndex(df, tables.step.data(), hn::Add(k, hn::Set(di, 1)));
+  // The bins' entries, half a vector at a time in 64-bit lanes; their low halves are the codes, their
+  // high halves the next steps.
+  const hn::Repartition<int64_t, DF> d64;
+  const hn::Half<decltype(di)> dh;
+  const auto* entries = reinterpret_cast<const int64_t*>(tables.bin_entry.data());
+  const auto lo = hn::GatherIndex(d64, entries, hn::PromoteTo(d64, hn::LowerHalf(dh, bin)));
+  const auto hi = hn::GatherIndex(d64, entries, hn::PromoteTo(d64, hn::UpperHalf(dh, bin)));
+  const auto k = hn::ConcatEven(di, hn::BitCast(di, hi), hn::BitCast(di, lo));
+  const auto next_step = hn::BitCast(df, hn::ConcatOdd(di, hn::BitCast(di, hi), hn::BitCast(di, lo)));
   auto code = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, hn::Ge(inside, next_step)), hn::Set(di, 1)));
   code = hn::IfThenElse(hn::RebindMask(di, at_least_one), hn::Set(di, 255), code);
   code = hn::IfThenElseZero(hn::RebindMask(di, positive), code);
@@ -82,6 +89,8 @@ SrgbTables::SrgbTables() {
   for (int b = 0; b < kBins; ++b) {
     const int32_t next = b + 1 < kBins ? bin_code[std::size_t(b) + 1] : 255;  // the next bin's first code
     if (next - bin_code[std::size_t(b)] > 1) throw std::logic_error("SrgbTables: a bin holds two steps");
+    const uint32_t next_step = std::bit_cast<uint32_t>(step[std::size_t(bin_code[std::size_t(b)]) + 1]);
+    bin_entry[std::size_t(b)] = uint64_t(next_step) << 32 | uint32_t(bin_code[std::size_t(b)]);
   }
 }
 

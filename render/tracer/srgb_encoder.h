@@ -30,7 +30,10 @@ class SrgbTables {
   }
 
   std::array<float, 257> step{};         // step[256] = infinity: no code past 255
-  std::array<int32_t, kBins> bin_code{};  // the code at each bin's start (32-bit: the SIMD gathers read it)
+  std::array<int32_t, kBins> bin_code{};  // the code at each bin's start
+  // What the SIMD lanes gather, one 64-bit entry a bin: its code (low half) and the bits of the step
+  // after it (high half), so a value costs one gathered element, not two.
+  std::array<uint64_t, kBins> bin_entry{};
 
  private:
   SrgbTables();
