@@ -460,15 +460,20 @@ VU Permute(VU i, VU seed, VU w, VU count, VU offset) {
   return hn::IfThenElse(atOrAbove(r), hn::Sub(r, count), r);
 }
 
-// a * c modulo 2^64 from 32-bit products: lo(a) lo(c) + (hi(a) lo(c) + lo(a) hi(c)) 2^32.
+// a * c modulo 2^64: AVX-512 multiplies 64-bit lanes (vpmullq); the other targets build it from 32-bit
+// products, lo(a) lo(c) + (hi(a) lo(c) + lo(a) hi(c)) 2^32. The same bits either way.
 VU64 Mul64(VU64 a, uint64_t c) {
   const DU64 d64;
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+  return hn::Mul(a, hn::Set(d64, c));
+#else
   const hn::Repartition<uint32_t, DU64> d32;
   const auto c_lo = hn::BitCast(d32, hn::Set(d64, c & 0xffffffffu)), c_hi = hn::BitCast(d32, hn::Set(d64, c >> 32));
   const auto a32 = hn::BitCast(d32, a);
   const VU64 low = hn::MulEven(a32, c_lo);
   const VU64 cross = hn::Add(hn::MulEven(hn::BitCast(d32, hn::ShiftRight<32>(a)), c_lo), hn::MulEven(a32, c_hi));
   return hn::Add(low, hn::ShiftLeft<32>(cross));
+#endif
 }
 
 // mixBits (render/tracer/sampler.h).
