@@ -362,6 +362,11 @@ void Integrator::characterPass(TileScratch& scratch) const {
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   rtcIntersect1M(characters_, &context, scratch.camera_rays.data(), unsigned(scratch.camera_rays.size()),
                  sizeof(RTCRayHit));
+  // The hit triangles' indices, fetched toward the cache now: gathering a surface waited on them, each
+  // a miss in a mesh's index array (docs/performance.md).
+  for (const RTCRayHit& rh : scratch.camera_rays)
+    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+      __builtin_prefetch(&meshes_[rh.hit.geomID]->indices[std::size_t(rh.hit.primID) * 3]);
 }
 
 // Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
@@ -391,8 +396,17 @@ void Integrator::groundAndSkyLanes(const LaneConstants& constants, TileScratch& 
   const std::size_t n = scratch.samples.size();
   for (std::size_t k = 0; k < n; ++k) {
     const TileScratch::CameraSample& c = scratch.samples[k];
-    const bool character_hit = c.ray >= 0 && scratch.camera_rays[std::size_t(c.ray)].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    const RTCHit* hit = c.ray >= 0 ? &scratch.camera_rays[std::size_t(c.ray)].hit : nullptr;
+    const bool character_hit = hit && hit->geomID != RTC_INVALID_GEOMETRY_ID;
     lanes.t_shade[k] = character_hit ? kInfinity : lanes.t_ground[k];
+    if (character_hit) {  // its vertices toward the cache (their indices were fetched after the trace)
+      const ShadingMesh& mesh = *meshes_[hit->geomID];
+      const uint32_t* tri = &mesh.indices[std::size_t(hit->primID) * 3];
+      for (int v = 0; v < 3; ++v) {
+        __builtin_prefetch(&mesh.normals[tri[v]]);
+        __builtin_prefetch(&mesh.colors[tri[v]]);
+      }
+    }
   }
   if (terrain_) {
     terrainGroundLanes(constants, lanes);
