@@ -181,8 +181,6 @@ constexpr int kBatchSamples = 1024;
 
 bool blocked(const RTCRay& ray) { return ray.tfar < 0.0f; }  // Embree sets tfar to -inf on a hit
 
-// n rounded up to a whole number of the lanes' padding.
-std::size_t paddedCount(std::size_t n) { return (n + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad; }
 
 }  // namespace
 
@@ -278,7 +276,7 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
   const std::size_t n = std::size_t(count) * spp_;
   StratifiedLanes& points = scratch.pixel_points;
   points.resize(lanes.padded);
-  const std::size_t padded_pixels = paddedCount(std::size_t(count));
+  const std::size_t padded_pixels = CameraLanes::paddedSize(std::size_t(count));
   scratch.pixel_x.assign(padded_pixels, 0u);
   scratch.pixel_y.assign(padded_pixels, 0u);
   std::size_t j = 0;
@@ -457,7 +455,7 @@ std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
     }
   }
   // The sun and sky sequences of the pixels with surfaces, in lanes, then each surface's points.
-  const std::size_t padded_lights = paddedCount(scratch.light_x.size());
+  const std::size_t padded_lights = CameraLanes::paddedSize(scratch.light_x.size());
   if (padded_lights == 0) return m;
   scratch.light_x.resize(padded_lights, 0u), scratch.light_y.resize(padded_lights, 0u);
   scratch.sun_parts.resize(padded_lights), scratch.sky_parts.resize(padded_lights);

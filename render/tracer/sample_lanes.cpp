@@ -165,7 +165,7 @@ void BoxTestLanes(const LaneConstants& k, CameraLanes& L) {
 
 void BoxTestRays(const LaneConstants& k, RayLanes& R) {
   BoxTestArrays(k, R.ox.data(), R.oy.data(), R.oz.data(), R.dx.data(), R.dy.data(), R.dz.data(), R.t_far.data(),
-                R.may_hit.data(), (R.size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad);
+                R.may_hit.data(), CameraLanes::paddedSize(R.size));
 }
 
 // AerialPerspective::perspective and ::orthographic.
@@ -625,7 +625,7 @@ void pixelPartLanes(const Stratified2D::Layout& layout, SampleDimension dim, uin
 
 void CameraLanes::resize(std::size_t n) {
   size = n;
-  padded = (n + kPad - 1) / kPad * kPad;
+  padded = paddedSize(n);
   for (auto* v : {&ux, &uy, &cx, &cy, &ox, &oy, &oz, &dx, &dy, &dz, &t_ground, &t_shade, &albedo_r, &albedo_g,
                   &albedo_b, &haze, &depth, &radiance_r, &radiance_g, &radiance_b, &sky_r, &sky_g, &sky_b, &gnx, &gny, &gnz,
                   &t_enter, &t_leave})
@@ -643,13 +643,13 @@ void boxTestLanes(const LaneConstants& k, RayLanes& rays) { HWY_DYNAMIC_DISPATCH
 
 void RayLanes::start(std::size_t capacity) {
   size = 0;
-  const std::size_t padded = (capacity + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  const std::size_t padded = CameraLanes::paddedSize(capacity);
   for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->resize(padded);
   may_hit.resize(padded);
 }
 
 void RayLanes::pad() {
-  const std::size_t padded = (size + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  const std::size_t padded = CameraLanes::paddedSize(size);
   std::fill(t_far.begin() + std::ptrdiff_t(size), t_far.begin() + std::ptrdiff_t(padded), 0.0f);  // no ray
 }
 void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundLanes)(k, lanes); }

@@ -34,6 +34,8 @@ constexpr float kCheckerFadeStart = 0.25f, kCheckerFadeEnd = 1.0f;
 // the kernels need no scalar tail. Index i is the batch's i-th camera sample.
 struct CameraLanes {
   static constexpr std::size_t kPad = 16;
+  // n rounded up to a whole number of kPad: the length the kernels run over.
+  static constexpr std::size_t paddedSize(std::size_t n) { return (n + kPad - 1) / kPad * kPad; }
   void resize(std::size_t n);  // keeps the capacity: a batch allocates nothing once the buffers grew
   std::size_t size = 0, padded = 0;
   // Inputs: the sample's stratified point in [0, 1)^2 and its pixel's centre (x + 0.5, y + 0.5).

@@ -217,7 +217,7 @@ HWY_EXPORT(HitSurfaceLanes);
 HWY_EXPORT(ShadingLanes);
 
 void SurfaceLanes::reserve(std::size_t n, int light_samples, int ao_samples) {
-  stride = (n + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  stride = CameraLanes::paddedSize(n);
   size = padded = 0;
   for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t, &gx, &gy, &gz, &u, &v, &n0x, &n0y, &n0z, &n1x, &n1y, &n1z, &n2x,
                   &n2y, &n2z, &c0r, &c0g, &c0b, &c1r, &c1g, &c1b, &c2r, &c2g, &c2b, &px, &py, &pz, &ngx, &ngy, &ngz,
@@ -236,7 +236,7 @@ void SurfaceLanes::reserve(std::size_t n, int light_samples, int ao_samples) {
 
 void SurfaceLanes::setSize(std::size_t n) {
   size = n;
-  padded = (n + CameraLanes::kPad - 1) / CameraLanes::kPad * CameraLanes::kPad;
+  padded = CameraLanes::paddedSize(n);
 }
 
 void hitSurfaceLanes(const LaneConstants& k, SurfaceLanes& surfaces) {
