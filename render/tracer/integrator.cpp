@@ -131,31 +131,16 @@ struct TileScratch::PixelState {
   int32_t lights;  // index in TileScratch::sun_parts and sky_parts, or -1: none
 };
 
-// A camera sample of the batch, from its ray to the light it gathered. Its ray and the ground's distance
-// along it stay in the camera lanes (the same index), and so does the light of a sample that sees the
-// sky or open ground: such a sample is only marked (`kind`), not copied out.
+// A camera sample of the batch. Its ray and the ground's distance along it stay in the camera lanes
+// (the same index), and so does the light of a sample that sees the sky or open ground: such a sample
+// is only marked (`kind`), not copied out. A surface's light is in the surface lanes, whose surfaces
+// are in sample order.
 struct TileScratch::CameraSample {
   enum class Kind : uint8_t { Sky, OpenGround, Surface };
   int32_t ray;          // its index in camera_rays, or -1: the ray cannot reach the characters
   // Set by the shading pass.
   Kind kind;            // a Surface is in the surface lanes (TileScratch::surface_samples says where)
   ObjectId id;
-  float depth;
-  glm::vec3 normal;
-  glm::vec3 sun, sky;   // light that needed no rays (when the matching *_traced is false)
-  glm::vec3 diffuse;    // scales the sky rays' sum
-  float haze;           // aerial perspective (1: none)
-  bool sun_traced, sky_traced;
-  uint32_t sun_pending, sky_pending;  // entries of the pending list: sun rays, then sky rays
-};
-
-// What an occlusion ray brings when it is open. `ray` indexes the batch's occlusion rays (the lanes
-// in TileScratch::occluders), or is -1: no ray (its t_far was not positive), so it is open. `hill`
-// indexes TileScratch::hill_rays, the same sun ray against the heightfield, or is -1: not traced there.
-struct TileScratch::PendingRay {
-  glm::vec3 weight;
-  int32_t ray;
-  int32_t hill;
 };
 
 TileScratch::TileScratch() = default;
@@ -180,7 +165,6 @@ namespace {
 constexpr int kBatchSamples = 1024;
 
 bool blocked(const RTCRay& ray) { return ray.tfar < 0.0f; }  // Embree sets tfar to -inf on a hit
-
 
 }  // namespace
 
@@ -247,10 +231,8 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
                              PixelResult* out) const {
   scratch.pixels.clear();
   scratch.camera_rays.clear();
-  scratch.pending.clear();
-  scratch.sun_rays.clear();
-  scratch.sky_rays.clear();
   scratch.hill_rays.clear();
+  scratch.hill_list.clear();
   scratch.surface_samples.clear();
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = std::size_t(count) * spp_;
@@ -261,8 +243,7 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   if (terrain_ && n > 0) groundPass(constants, scratch);
   if (!scratch.camera_rays.empty()) characterPass(scratch);
   surfacePass(constants, frame, scratch, tally);
-  occluderPass(constants, scratch);
-  occlusionPass(scratch);
+  occlusionPass(constants, scratch);
   resolvePass(count, scratch, out);
 }
 
@@ -385,7 +366,7 @@ void Integrator::surfacePass(const LaneConstants& constants, int frame, TileScra
                     surfaces.sky_v.data());
   Material::shadeLanes(constants, surfaces);
   shadingLanes(constants, surfaces);
-  queueOcclusionRays(scratch, tally);
+  queueOcclusionRays(constants, scratch, tally);
 }
 
 // The ground where a sample sees it (t_shade: no character nearer) and the sky behind every sample.
@@ -473,128 +454,92 @@ std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
   return m;
 }
 
-// What the shading lanes left for each surface, back into its sample, and the shadow and sky rays that
-// carry light, queued in sample order (each sample's sun rays, then its sky rays) for the box test.
-void Integrator::queueOcclusionRays(TileScratch& scratch, RayTally& tally) const {
+// The shadow and sky rays that carry light, in lanes: those that may meet the characters' box go to
+// their streams (each ray's origin and direction from the surface lanes), the rest are open at once.
+// Over uneven ground, the sun rays of surfaces the hills may shade are also queued against the
+// heightfield.
+void Integrator::queueOcclusionRays(const LaneConstants& constants, TileScratch& scratch, RayTally& tally) const {
   const SurfaceLanes& S = scratch.surfaces;
-  const std::size_t m = S.size;
-  RayLanes& occluders = scratch.occluders;
-  occluders.start(m * (light_spp_ + ao_spp_));
-  scratch.occluder_is_sky.resize(m * (light_spp_ + ao_spp_));
-  for (std::size_t s = 0; s < m; ++s) {  // the surfaces are in sample order
-    TileScratch::CameraSample& sample = scratch.samples[std::size_t(scratch.surface_samples[s])];
-    sample.depth = S.depth[s];
-    sample.normal = {S.nx[s], S.ny[s], S.nz[s]};
-    sample.diffuse = {S.diffuse_r[s], S.diffuse_g[s], S.diffuse_b[s]};
+  scratch.sun_list.resize(S.stride * light_spp_ + CameraLanes::kPad);
+  scratch.sky_list.resize(S.stride * ao_spp_ + CameraLanes::kPad);
+  const OccluderCounts counts = occluderLanes(constants, scratch.surfaces, scratch.sun_list.data(), scratch.sky_list.data());
+  tally.rays += counts.made;
+  if (tally.occlusion) logOcclusionRays(S, *tally.occlusion);
+  // The listed rays as Embree's: the list ascends, one block of the per-ray arrays (ray k of every
+  // surface) after another, so a ray's surface is its index less its block's start.
+  auto stream = [&](const std::vector<int32_t>& list, std::size_t count, const std::vector<float>& wx,
+                    const std::vector<float>& wy, const std::vector<float>& wz, const float* t_far,
+                    std::vector<RTCRay>& rays) {
+    rays.resize(count);
+    std::size_t block = 0;
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::size_t at = std::size_t(list[r]);
+      while (at >= block + S.stride) block += S.stride;
+      const std::size_t s = at - block;
+      rays[r] = makeRay({S.rox[s], S.roy[s], S.roz[s]}, {wx[at], wy[at], wz[at]}, t_far ? t_far[at] : kInfinity);
+    }
+  };
+  stream(scratch.sun_list, counts.sun, S.sun_wx, S.sun_wy, S.sun_wz, nullptr, scratch.sun_rays);
+  stream(scratch.sky_list, counts.sky, S.sky_wx, S.sky_wy, S.sky_wz, S.sky_t_far.data(), scratch.sky_rays);
+  if (!terrain_) return;
+  for (std::size_t s = 0; s < S.size; ++s) {
+    if (!S.hills[s] || !S.sun_traced[s]) continue;
+    for (std::size_t k = 0, at = s; k < light_spp_; ++k, at += S.stride) {
+      if (!S.sun_valid[at]) continue;
+      scratch.hill_rays.push_back(makeRay({S.rox[s], S.roy[s], S.roz[s]}, {S.sun_wx[at], S.sun_wy[at], S.sun_wz[at]}, kInfinity));
+      scratch.hill_list.push_back(int32_t(at));
+      ++tally.rays;  // (not kept in a RayLog, whose occlusion rays are replayed against the characters)
+    }
+  }
+}
+
+void Integrator::logOcclusionRays(const SurfaceLanes& S, std::vector<RTCRay>& log) const {
+  for (std::size_t s = 0; s < S.size; ++s) {
     const glm::vec3 origin(S.rox[s], S.roy[s], S.roz[s]);
-    sample.sun_pending = sample.sky_pending = 0;
-    sample.sun_traced = S.sun_traced[s] != 0;
-    sample.sun = {S.sun_r[s], S.sun_g[s], S.sun_b[s]};
-    const bool hills = S.hills[s] != 0;
-    if (sample.sun_traced) {
-      for (std::size_t k = 0, at = s; k < light_spp_; ++k, at += S.stride) {
-        if (!S.sun_valid[at]) continue;  // no light from below: no ray, and nothing to add
-        const glm::vec3 direction(S.sun_wx[at], S.sun_wy[at], S.sun_wz[at]);
-        const int32_t ray = emitOcclusion(origin, direction, kInfinity, false, scratch, tally);
-        int32_t hill = -1;
-        if (hills) {  // the same ray against the heightfield
-          hill = int32_t(scratch.hill_rays.size());
-          scratch.hill_rays.push_back(makeRay(origin, direction, kInfinity));
-          ++tally.rays;  // (not kept in a RayLog, whose occlusion rays are replayed against the characters)
-        }
-        scratch.pending.push_back({{S.sun_fr[at], S.sun_fg[at], S.sun_fb[at]}, ray, hill});
-        ++sample.sun_pending;
-      }
-    }
-    sample.sky_traced = S.sky_traced[s] != 0;
-    sample.sky = {S.sky_r[s], S.sky_g[s], S.sky_b[s]};
-    if (sample.sky_traced) {
-      for (std::size_t k = 0, at = s; k < ao_spp_; ++k, at += S.stride) {
-        if (!S.sky_valid[at]) continue;  // below the real surface: blocked by it
-        const int32_t ray = emitOcclusion(origin, {S.sky_wx[at], S.sky_wy[at], S.sky_wz[at]}, S.sky_t_far[at], true,
-                                          scratch, tally);
-        scratch.pending.push_back({{S.sky_lr[at], S.sky_lg[at], S.sky_lb[at]}, ray, -1});
-        ++sample.sky_pending;
-      }
-    }
+    if (S.sun_traced[s])
+      for (std::size_t k = 0, at = s; k < light_spp_; ++k, at += S.stride)
+        if (S.sun_valid[at]) log.push_back(makeRay(origin, {S.sun_wx[at], S.sun_wy[at], S.sun_wz[at]}, kInfinity));
+    if (S.sky_traced[s])
+      for (std::size_t k = 0, at = s; k < ao_spp_; ++k, at += S.stride)
+        if (S.sky_valid[at] && S.sky_t_far[at] > 0.0f)
+          log.push_back(makeRay(origin, {S.sky_wx[at], S.sky_wy[at], S.sky_wz[at]}, S.sky_t_far[at]));
   }
 }
 
-// Pass 3b: the occlusion rays against the characters' box in lanes; those that may meet them go to
-// their stream, in the order they were made.
-void Integrator::occluderPass(const LaneConstants& constants, TileScratch& scratch) const {
-  RayLanes& occluders = scratch.occluders;
-  const std::size_t occluder_count = occluders.size;
-  occluders.pad();
-  boxTestLanes(constants, occluders);
-  scratch.occluder_ray.resize(occluder_count);
-  for (std::size_t k = 0; k < occluder_count; ++k) {
-    int32_t& ray = scratch.occluder_ray[k];
-    ray = -1;
-    if (!occluders.may_hit[k]) continue;
-    std::vector<RTCRay>& stream = scratch.occluder_is_sky[k] ? scratch.sky_rays : scratch.sun_rays;
-    ray = int32_t(stream.size());
-    stream.push_back(makeRay({occluders.ox[k], occluders.oy[k], occluders.oz[k]},
-                             {occluders.dx[k], occluders.dy[k], occluders.dz[k]}, occluders.t_far[k]));
-  }
-}
-
-// Pass 4: the shadow rays, the sky rays and the sun rays the hills may block, each as one stream. All
-// three go without Embree's coherent flag: the shadow rays are nearly parallel, but they start all over
-// a tile's surfaces and part ways in the tree; traced ray by ray, a trot frame took 0.95 (draft) and
-// 0.91 (review) of the CPU it took with them gathered into packets, with the same hits
-// (docs/performance.md, "Streams, coherent or not").
-void Integrator::occlusionPass(TileScratch& scratch) const {
-  auto occlude = [](RTCScene scene, std::vector<RTCRay>& rays) {
+// Pass 4: the shadow rays, the sky rays and the sun rays the hills may block, each as one stream, then
+// each surface's light from the rays left open. All three streams go without Embree's coherent flag:
+// the shadow rays are nearly parallel, but they start all over a tile's surfaces and part ways in the
+// tree; traced ray by ray, a trot frame took 0.95 (draft) and 0.91 (review) of the CPU it took with
+// them gathered into packets, with the same hits (docs/performance.md, "Streams, coherent or not").
+void Integrator::occlusionPass(const LaneConstants& constants, TileScratch& scratch) const {
+  auto occlude = [](RTCScene scene, std::vector<RTCRay>& rays, const std::vector<int32_t>& list,
+                    std::vector<int32_t>& open) {
     if (rays.empty()) return;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     rtcOccluded1M(scene, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
+    for (std::size_t r = 0; r < rays.size(); ++r)
+      if (blocked(rays[r])) open[std::size_t(list[r])] = 0;
   };
-  occlude(characters_, scratch.sun_rays);
-  occlude(characters_, scratch.sky_rays);
-  occlude(ground_, scratch.hill_rays);  // the sun rays the hills may block, against the heightfield
+  SurfaceLanes& S = scratch.surfaces;
+  occlude(characters_, scratch.sun_rays, scratch.sun_list, S.sun_open);
+  occlude(characters_, scratch.sky_rays, scratch.sky_list, S.sky_open);
+  occlude(ground_, scratch.hill_rays, scratch.hill_list, S.sun_open);  // the sun rays the hills may block
+  surfaceRadianceLanes(constants, S);
 }
 
-// Pass 5: each sample's light from its open rays, and each pixel's samples into its result. The sky's
-// and open ground's light are read from the camera lanes; the passes (depth, matte, normal, object id)
-// are worked out only when the renderer keeps them.
+// Pass 5: each pixel's samples into its result. The sky's and open ground's light are read from the
+// camera lanes, a surface's from the surface lanes; the passes (depth, matte, normal, object id) are
+// worked out only when the renderer keeps them.
 void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) const {
   using Kind = TileScratch::CameraSample::Kind;
   const CameraLanes& lanes = scratch.lanes;
-  const TileScratch::PendingRay* pending = scratch.pending.data();
-  auto open = [&](const TileScratch::PendingRay& r, const std::vector<RTCRay>& stream) {
-    if (r.hill >= 0 && blocked(scratch.hill_rays[std::size_t(r.hill)])) return false;
-    if (r.ray < 0) return true;
-    const int32_t traced = scratch.occluder_ray[std::size_t(r.ray)];
-    return traced < 0 || !blocked(stream[std::size_t(traced)]);
-  };
-  // A surface's light from its rays (and the light that needed none), hazed.
-  auto surfaceRadiance = [&](const TileScratch::CameraSample& c) {
-    glm::vec3 sun = c.sun;
-    if (c.sun_traced) {
-      sun = glm::vec3(0.0f);
-      for (uint32_t k = 0; k < c.sun_pending; ++k, ++pending)
-        if (open(*pending, scratch.sun_rays)) sun += pending->weight;
-      sun *= sun_.axisRadiance() / float(light_spp_);
-    }
-    glm::vec3 radiance;
-    if (!c.sky_traced) {
-      radiance = sun + c.sky;
-    } else {
-      glm::vec3 sky(0.0f);
-      for (uint32_t k = 0; k < c.sky_pending; ++k, ++pending)
-        if (open(*pending, scratch.sky_rays)) sky += pending->weight;
-      sky *= c.diffuse / float(ao_spp_);
-      radiance = sun + sky;
-    }
-    if (c.haze < 1.0f) radiance = radiance * c.haze + settings_.sky.horizon * (1.0f - c.haze);
-    return radiance;
-  };
+  const SurfaceLanes& S = scratch.surfaces;
   const bool passes = settings_.passes;
   const glm::vec3 up(0.0f, 1.0f, 0.0f);
   const TileScratch::CameraSample* c = scratch.samples.data();
   std::size_t j = 0;  // the sample's index in the lanes
+  std::size_t s = 0;  // the next surface's index in the surface lanes
   for (int p = 0; p < count; ++p) {
     glm::vec3 sum(0.0f), normal_sum(0.0f);
     uint32_t hits = 0, character_hits = 0;
@@ -610,13 +555,17 @@ void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) 
         continue;
       }
       const bool open_ground = c->kind == Kind::OpenGround;
-      sum += open_ground ? glm::vec3(lanes.radiance_r[j], lanes.radiance_g[j], lanes.radiance_b[j]) : surfaceRadiance(*c);
+      const std::size_t surface = open_ground ? 0 : s++;
+      sum += open_ground ? glm::vec3(lanes.radiance_r[j], lanes.radiance_g[j], lanes.radiance_b[j])
+                         : glm::vec3(S.radiance_r[surface], S.radiance_g[surface], S.radiance_b[surface]);
       ++hits;
       if (!passes) continue;
       const ObjectId id = open_ground ? ObjectId::Ground : c->id;
-      normal_sum += !open_ground ? c->normal : terrain_ ? glm::vec3(lanes.gnx[j], lanes.gny[j], lanes.gnz[j]) : up;
+      normal_sum += !open_ground ? glm::vec3(S.nx[surface], S.ny[surface], S.nz[surface])
+                    : terrain_   ? glm::vec3(lanes.gnx[j], lanes.gny[j], lanes.gnz[j])
+                                 : up;
       if (id != ObjectId::Ground) ++character_hits;
-      nearest = std::min(nearest, open_ground ? lanes.depth[j] : c->depth);
+      nearest = std::min(nearest, open_ground ? lanes.depth[j] : S.depth[surface]);
       int k = 0;
       while (k < distinct && ids[k] != uint32_t(id)) ++k;
       if (k == distinct && distinct < kMaxIds) ids[distinct] = uint32_t(id), votes[distinct++] = 0;
@@ -670,7 +619,7 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
       S.hills[m] = (on_mesh ? hillsMayBlockSunAbove(p, mesh_height) : hillsMayBlockSun(p, false)) ? -1 : 0;
     }
     c.id = mesh.id;
-    c.haze = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
+    S.haze[m] = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
     return;
   }
   S.character[m] = 0;
@@ -683,7 +632,7 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
   // The ground's look came from the lanes (groundLanes or terrainGroundLanes).
   S.ar[m] = lanes.albedo_r[j], S.ag[m] = lanes.albedo_g[j], S.ab[m] = lanes.albedo_b[j];
   S.depth[m] = lanes.depth[j];
-  c.haze = lanes.haze[j];
+  S.haze[m] = lanes.haze[j];
   // On the heightfield mesh as hit: the normal interpolated from the mesh's vertex normals (the
   // terrain's own, smooth and upward), which is also the geometric one the secondary rays leave along
   // (they meet only the characters and the hills). Never flipped toward the camera: at a hill's grazing
@@ -731,17 +680,6 @@ bool Integrator::hillsMayBlockSunAbove(const glm::vec3& p, double ground_height)
 float Integrator::visibleDistance(const scene::CameraFrame& camera) const {
   return camera.perspective() ? settings_.haze.visibility_cm
                               : camera.targetDistanceF() + settings_.haze.ortho_depth_cm;
-}
-
-int32_t Integrator::emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
-                                  TileScratch& scratch, RayTally& tally) const {
-  if (!(t_far > 0.0f)) return -1;
-  ++tally.rays;
-  if (tally.occlusion) tally.occlusion->push_back(makeRay(origin, direction, t_far));
-  // Queued for the box test in lanes (pass 3b), which sends it on to its stream or not.
-  scratch.occluder_is_sky[scratch.occluders.size] = sky;
-  scratch.occluders.push(origin, direction, t_far);
-  return int32_t(scratch.occluders.size - 1);
 }
 
 }  // namespace stirrup::render

@@ -57,7 +57,6 @@ float filteredChecker(float s, float t, float width);
 struct TileScratch {
   struct PixelState;
   struct CameraSample;
-  struct PendingRay;
   TileScratch();
   ~TileScratch();
   TileScratch(TileScratch&&) noexcept;
@@ -78,18 +77,16 @@ struct TileScratch {
     std::vector<float> time, ng_x, ng_y, ng_z, u, v;
     std::vector<unsigned> mask, id, flags, prim, geom, inst;
   } ground;
-  std::vector<PendingRay> pending;     // each shadow or sky ray's contribution, in shading order
   std::vector<RTCRay> sun_rays;        // traced as one stream (nearly parallel, but not as coherent: occlusionPass)
   std::vector<RTCRay> sky_rays;        // traced as one stream
+  std::vector<int32_t> sun_list, sky_list;  // each traced ray's index in the surface lanes' per-ray arrays
   std::vector<RTCRay> hill_rays;       // uneven ground: the sun rays the hills may block, against the heightfield
+  std::vector<int32_t> hill_list;      // each one's index among the sun rays of the surface lanes
   StratifiedLanes pixel_points;        // the samples' sequences, for their points in lanes
   StratifiedLanes sun_points, sky_points;  // the surfaces' sun and sky sequences
   CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
   SurfaceLanes surfaces;               // the surfaces its samples see, for the shading kernels
   std::vector<int32_t> surface_samples;  // per surface: the sample that sees it
-  RayLanes occluders;                  // its shadow and sky rays, for the box test
-  std::vector<uint8_t> occluder_is_sky;  // per occlusion ray: the sky stream, else the sun's
-  std::vector<int32_t> occluder_ray;   // per occlusion ray: its index in its stream, or -1 (not traced)
 };
 
 class Integrator {
@@ -142,18 +139,15 @@ class Integrator {
   // surface lanes (returns how many), and after the shading kernels, the shadow and sky rays queued.
   void groundAndSkyLanes(const LaneConstants& constants, TileScratch& scratch) const;
   std::size_t gatherSurfaces(int frame, TileScratch& scratch) const;
-  void queueOcclusionRays(TileScratch& scratch, RayTally& tally) const;
-  void occluderPass(const LaneConstants& constants, TileScratch& scratch) const;
-  void occlusionPass(TileScratch& scratch) const;
+  void queueOcclusionRays(const LaneConstants& constants, TileScratch& scratch, RayTally& tally) const;
+  void occlusionPass(const LaneConstants& constants, TileScratch& scratch) const;
   void resolvePass(int count, TileScratch& scratch, PixelResult* out) const;
   // A sample's surface into the surface lanes at m: a character's hit (rh) and its triangle's
   // vertices, or the ground's surface (the plane's from the lanes at sample j, or the terrain's).
   void gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh,
                      const CameraLanes& lanes, std::size_t j, SurfaceLanes& surfaces, std::size_t m) const;
-  // Queues an occlusion ray (for the sky stream or the sun's) for the box test; returns its index among
-  // the batch's occlusion rays, or -1 when t_far leaves no ray.
-  int32_t emitOcclusion(const glm::vec3& origin, const glm::vec3& direction, float t_far, bool sky,
-                        TileScratch& scratch, RayTally& tally) const;
+  // The shadow and sky rays the surface lanes made, into a RayLog's list in the order a surface makes them.
+  void logOcclusionRays(const SurfaceLanes& surfaces, std::vector<RTCRay>& log) const;
   // Without the heightfield's mesh (tests that give the terrain alone): the terrain's own normal at
   // camera sample k's ground hit (its ray at the lanes' t_ground), into the lanes. With it,
   // groundHitLanes interpolates the mesh's vertex normals.

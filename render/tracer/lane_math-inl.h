@@ -149,6 +149,31 @@ inline MF SunMayBeBlocked(const LaneConstants& k, const V3& o) {
   return hn::Not(miss);
 }
 
+// Slab test against the characters' box up to t_far: most rays of a review frame pass beside it, and
+// this is far cheaper than a call into Embree. All three slabs are tested (a test that stopped at the
+// first failed slab gives the same answer: t0 only grows and t1 only shrinks). Written so a NaN
+// (0 * inf) leaves the interval unchanged, with a little slack for rounding at grazing angles. No
+// characters: every ray misses.
+inline MF BoxTest(const LaneConstants& k, VF ox, VF oy, VF oz, VF dx, VF dy, VF dz, VF t_far) {
+  if (k.box_empty) return hn::FirstN(DF(), 0);  // no lane
+  VF t0 = Splat(0.0f), t1 = t_far;
+  MF miss = hn::Not(hn::Gt(t_far, Splat(0.0f)));
+  const VF o[3] = {ox, oy, oz}, d[3] = {dx, dy, dz};
+  const float lower[3] = {k.box_lower.x, k.box_lower.y, k.box_lower.z};
+  const float upper[3] = {k.box_upper.x, k.box_upper.y, k.box_upper.z};
+  for (int a = 0; a < 3; ++a) {
+    const VF inv = hn::Div(Splat(1.0f), d[a]);
+    const VF n0 = hn::Mul(hn::Sub(Splat(lower[a]), o[a]), inv);
+    const VF f0 = hn::Mul(hn::Sub(Splat(upper[a]), o[a]), inv);
+    const MF swap = hn::Gt(n0, f0);
+    const VF near = hn::IfThenElse(swap, f0, n0), far = hn::IfThenElse(swap, n0, f0);
+    t0 = hn::IfThenElse(hn::Gt(near, t0), near, t0);  // a NaN leaves the interval unchanged
+    t1 = hn::IfThenElse(hn::Lt(far, t1), far, t1);
+    miss = hn::Or(miss, hn::Gt(t0, hn::Mul(t1, Splat(1.0000004f))));
+  }
+  return hn::Not(miss);
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace stirrup::render
 HWY_AFTER_NAMESPACE();

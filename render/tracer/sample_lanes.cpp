@@ -68,31 +68,6 @@ void CheckerLanes(const float* s, const float* t, const float* width, float* out
   }
 }
 
-// Slab test against the characters' box up to t_far: most rays of a review frame pass beside it, and
-// this is far cheaper than a call into Embree. All three slabs are tested (a test that stopped at the
-// first failed slab gives the same answer: t0 only grows and t1 only shrinks). Written so a NaN
-// (0 * inf) leaves the interval unchanged, with a little slack for rounding at grazing angles. No
-// characters: every ray misses.
-MF BoxTest(const LaneConstants& k, VF ox, VF oy, VF oz, VF dx, VF dy, VF dz, VF t_far) {
-  if (k.box_empty) return hn::FirstN(DF(), 0);  // no lane
-  VF t0 = Splat(0.0f), t1 = t_far;
-  MF miss = hn::Not(hn::Gt(t_far, Splat(0.0f)));
-  const VF o[3] = {ox, oy, oz}, d[3] = {dx, dy, dz};
-  const float lower[3] = {k.box_lower.x, k.box_lower.y, k.box_lower.z};
-  const float upper[3] = {k.box_upper.x, k.box_upper.y, k.box_upper.z};
-  for (int a = 0; a < 3; ++a) {
-    const VF inv = hn::Div(Splat(1.0f), d[a]);
-    const VF n0 = hn::Mul(hn::Sub(Splat(lower[a]), o[a]), inv);
-    const VF f0 = hn::Mul(hn::Sub(Splat(upper[a]), o[a]), inv);
-    const MF swap = hn::Gt(n0, f0);
-    const VF near = hn::IfThenElse(swap, f0, n0), far = hn::IfThenElse(swap, n0, f0);
-    t0 = hn::IfThenElse(hn::Gt(near, t0), near, t0);  // a NaN leaves the interval unchanged
-    t1 = hn::IfThenElse(hn::Lt(far, t1), far, t1);
-    miss = hn::Or(miss, hn::Gt(t0, hn::Mul(t1, Splat(1.0000004f))));
-  }
-  return hn::Not(miss);
-}
-
 void CameraRayLanes(const LaneConstants& k, CameraLanes& L, bool flat_ground) {
   const DF df;
   const size_t lanes = hn::Lanes(df);
@@ -145,27 +120,13 @@ void CameraRayLanes(const LaneConstants& k, CameraLanes& L, bool flat_ground) {
   }
 }
 
-// BoxTest over n rays (n a whole number of vectors) given as arrays.
-void BoxTestArrays(const LaneConstants& k, const float* ox, const float* oy, const float* oz, const float* dx,
-                   const float* dy, const float* dz, const float* t_far, int32_t* may_hit, size_t n) {
-  const DF df;
-  const DI di;
-  const size_t lanes = hn::Lanes(df);
-  for (size_t i = 0; i < n; i += lanes) {
-    const MF m = BoxTest(k, hn::LoadU(df, ox + i), hn::LoadU(df, oy + i), hn::LoadU(df, oz + i), hn::LoadU(df, dx + i),
-                         hn::LoadU(df, dy + i), hn::LoadU(df, dz + i), hn::LoadU(df, t_far + i));
-    hn::StoreU(hn::VecFromMask(di, hn::RebindMask(di, m)), di, may_hit + i);
-  }
-}
-
 void BoxTestLanes(const LaneConstants& k, CameraLanes& L) {
-  BoxTestArrays(k, L.ox.data(), L.oy.data(), L.oz.data(), L.dx.data(), L.dy.data(), L.dz.data(), L.t_ground.data(),
-                L.may_hit.data(), L.padded);
-}
-
-void BoxTestRays(const LaneConstants& k, RayLanes& R) {
-  BoxTestArrays(k, R.ox.data(), R.oy.data(), R.oz.data(), R.dx.data(), R.dy.data(), R.dz.data(), R.t_far.data(),
-                R.may_hit.data(), CameraLanes::paddedSize(R.size));
+  const DF df;
+  for (size_t i = 0; i < L.padded; i += hn::Lanes(df)) {
+    StoreMask(BoxTest(k, Load(L.ox, i), Load(L.oy, i), Load(L.oz, i), Load(L.dx, i), Load(L.dy, i), Load(L.dz, i),
+                      Load(L.t_ground, i)),
+              L.may_hit, i);
+  }
 }
 
 // AerialPerspective::perspective and ::orthographic.
@@ -596,7 +557,6 @@ namespace stirrup::render {
 
 HWY_EXPORT(CameraRayLanes);
 HWY_EXPORT(BoxTestLanes);
-HWY_EXPORT(BoxTestRays);
 HWY_EXPORT(GroundLanes);
 HWY_EXPORT(TerrainGroundLanes);
 HWY_EXPORT(GroundHitLanes);
@@ -639,19 +599,7 @@ void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground
   HWY_DYNAMIC_DISPATCH(CameraRayLanes)(k, lanes, flat_ground);
 }
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(BoxTestLanes)(k, lanes); }
-void boxTestLanes(const LaneConstants& k, RayLanes& rays) { HWY_DYNAMIC_DISPATCH(BoxTestRays)(k, rays); }
 
-void RayLanes::start(std::size_t capacity) {
-  size = 0;
-  const std::size_t padded = CameraLanes::paddedSize(capacity);
-  for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_far}) v->resize(padded);
-  may_hit.resize(padded);
-}
-
-void RayLanes::pad() {
-  const std::size_t padded = CameraLanes::paddedSize(size);
-  std::fill(t_far.begin() + std::ptrdiff_t(size), t_far.begin() + std::ptrdiff_t(padded), 0.0f);  // no ray
-}
 void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundLanes)(k, lanes); }
 void terrainGroundLanes(const LaneConstants& k, CameraLanes& lanes) {
   HWY_DYNAMIC_DISPATCH(TerrainGroundLanes)(k, lanes);

@@ -66,23 +66,6 @@ struct CameraLanes {
   std::vector<int32_t> hills_open;
 };
 
-// A batch's shadow and sky rays as arrays, for the box test: `t_far` is each ray's far end. start()
-// makes room for as many rays as the batch can make (no reallocation while they are pushed); pad()
-// fills the rest of the last vector with rays of t_far 0 (no ray), so the kernel needs no scalar tail.
-struct RayLanes {
-  void start(std::size_t capacity);  // keeps the allocation
-  void push(const glm::vec3& origin, const glm::vec3& direction, float t_far_) {
-    ox[size] = origin.x, oy[size] = origin.y, oz[size] = origin.z;
-    dx[size] = direction.x, dy[size] = direction.y, dz[size] = direction.z;
-    t_far[size] = t_far_;
-    ++size;
-  }
-  void pad();
-  std::size_t size = 0;
-  std::vector<float> ox, oy, oz, dx, dy, dz, t_far;
-  std::vector<int32_t> may_hit;
-};
-
 // Points of Stratified2D sequences that share a Layout, as arrays: point k is point `index[k]` of the
 // sequence whose pixel part (Stratified2D::pixelPart) is at k. Sized by the caller (resize), padded.
 struct StratifiedLanes {
@@ -149,10 +132,8 @@ struct LaneConstants {
 // test against it; otherwise t_ground = infinity, [t_enter, t_leave] the ray's part within the
 // heightfield's slab, and the caller traces the terrain, then runs boxTestLanes.
 void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground);
-// may_hit: whether each ray may meet the characters' box before its far end (a camera ray's t_ground,
-// an occlusion ray's t_far; call RayLanes::pad first).
+// may_hit: whether each camera ray may meet the characters' box before its t_ground.
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes);
-void boxTestLanes(const LaneConstants& k, RayLanes& rays);
 // What Embree wrote for the camera rays against the heightfield (EmbreeScene::setGroundMesh's quads),
 // one entry per sample, padded as the lanes are (a padding entry's geom invalid), and the mesh the cells
 // index (TerrainMesh: three indices a triangle, one normal a vertex).

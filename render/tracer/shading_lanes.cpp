@@ -206,6 +206,84 @@ void ShadingLanes(const LaneConstants& k, SurfaceLanes& S) {
   }
 }
 
+// occluderLanes: the rays of one kind (sun or sky), block by block of the per-ray arrays (block r holds
+// every surface's ray r), so the list comes out ascending.
+template <typename FarEnd>
+void ListOccluders(const LaneConstants& k, SurfaceLanes& S, const std::vector<int32_t>& traced_of_surface,
+                   const std::vector<float>& wx, const std::vector<float>& wy, const std::vector<float>& wz,
+                   const std::vector<int32_t>& valid_of_ray, std::vector<int32_t>& open, int rays_a_surface,
+                   FarEnd far_end, int32_t* list, size_t& listed, size_t& made) {
+  const DF df;
+  const DI di;
+  const size_t lanes = hn::Lanes(df);
+  for (int r = 0; r < rays_a_surface; ++r) {
+    for (size_t i = 0; i < S.padded; i += lanes) {
+      const size_t at = size_t(r) * S.stride + i;
+      const MF live = i + lanes <= S.size ? hn::Not(hn::FirstN(df, 0)) : hn::FirstN(df, S.size - i);
+      const MF traced = hn::And(live, LoadMask(traced_of_surface, i));
+      const MF valid = hn::And(traced, LoadMask(valid_of_ray, at));
+      StoreMask(valid, open, at);
+      if (hn::AllFalse(df, valid)) continue;
+      const VF t_far = far_end(at);
+      made += hn::CountTrue(df, hn::And(valid, hn::Gt(t_far, Splat(0.0f))));
+      const MF hit = hn::And(valid, BoxTest(k, Load(S.rox, i), Load(S.roy, i), Load(S.roz, i), Load(wx, at),
+                                            Load(wy, at), Load(wz, at), t_far));
+      hn::CompressStore(hn::Iota(di, int32_t(at)), hn::RebindMask(di, hit), di, list + listed);
+      listed += hn::CountTrue(df, hit);
+    }
+  }
+}
+
+OccluderCounts OccluderLanes(const LaneConstants& k, SurfaceLanes& S, int32_t* sun_list, int32_t* sky_list) {
+  OccluderCounts c;
+  const VF infinity = Splat(std::numeric_limits<float>::infinity());
+  ListOccluders(k, S, S.sun_traced, S.sun_wx, S.sun_wy, S.sun_wz, S.sun_valid, S.sun_open, k.light_samples,
+                [&](size_t) { return infinity; }, sun_list, c.sun, c.made);
+  ListOccluders(k, S, S.sky_traced, S.sky_wx, S.sky_wy, S.sky_wz, S.sky_valid, S.sky_open, k.ao_samples,
+                [&](size_t at) { return Load(S.sky_t_far, at); }, sky_list, c.sky, c.made);
+  return c;
+}
+
+// The sum of the weights of a surface's open rays, ray by ray in order (as the scalar loop added them).
+HWY_INLINE V3 OpenSum(const SurfaceLanes& S, size_t i, int rays_a_surface, const std::vector<int32_t>& open,
+                      const std::vector<float>& r, const std::vector<float>& g, const std::vector<float>& b) {
+  const VF zero = Splat(0.0f);
+  V3 sum{zero, zero, zero};
+  for (int ray = 0; ray < rays_a_surface; ++ray) {
+    const size_t at = size_t(ray) * S.stride + i;
+    sum = Select3(LoadMask(open, at), Add3(sum, Load3(r, g, b, at)), sum);
+  }
+  return sum;
+}
+
+void SurfaceRadianceLanes(const LaneConstants& k, SurfaceLanes& S) {
+  const DF df;
+  const size_t lanes = hn::Lanes(df);
+  // Sun::axisRadiance() / light samples, as glm divides a vec3 by a float.
+  const glm::vec3 sun_scale = k.sun_radiance / float(k.light_samples);
+  const VF ao = Splat(float(k.ao_samples));
+  for (size_t i = 0; i < S.padded; i += lanes) {
+    const MF sun_traced = LoadMask(S.sun_traced, i), sky_traced = LoadMask(S.sky_traced, i);
+    V3 sun = Load3(S.sun_r, S.sun_g, S.sun_b, i);
+    if (!hn::AllFalse(df, sun_traced)) {
+      const V3 traced = Mul3(OpenSum(S, i, k.light_samples, S.sun_open, S.sun_fr, S.sun_fg, S.sun_fb), Splat3(sun_scale));
+      sun = Select3(sun_traced, traced, sun);
+    }
+    V3 sky = Load3(S.sky_r, S.sky_g, S.sky_b, i);
+    if (!hn::AllFalse(df, sky_traced)) {
+      const V3 scale = {hn::Div(Load(S.diffuse_r, i), ao), hn::Div(Load(S.diffuse_g, i), ao),
+                        hn::Div(Load(S.diffuse_b, i), ao)};
+      const V3 traced = Mul3(OpenSum(S, i, k.ao_samples, S.sky_open, S.sky_lr, S.sky_lg, S.sky_lb), scale);
+      sky = Select3(sky_traced, traced, sky);
+    }
+    V3 radiance = Add3(sun, sky);
+    const VF haze = Load(S.haze, i);
+    const VF clear = hn::Sub(Splat(1.0f), haze);
+    radiance = Select3(hn::Lt(haze, Splat(1.0f)), Add3(Scale3(haze, radiance), Scale3(clear, Splat3(k.horizon))), radiance);
+    Store3(radiance, S.radiance_r, S.radiance_g, S.radiance_b, i);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace stirrup::render
 HWY_AFTER_NAMESPACE();
@@ -215,6 +293,8 @@ namespace stirrup::render {
 
 HWY_EXPORT(HitSurfaceLanes);
 HWY_EXPORT(ShadingLanes);
+HWY_EXPORT(OccluderLanes);
+HWY_EXPORT(SurfaceRadianceLanes);
 
 void SurfaceLanes::reserve(std::size_t n, int light_samples, int ao_samples) {
   stride = CameraLanes::paddedSize(n);
@@ -222,16 +302,18 @@ void SurfaceLanes::reserve(std::size_t n, int light_samples, int ao_samples) {
   for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t, &gx, &gy, &gz, &u, &v, &n0x, &n0y, &n0z, &n1x, &n1y, &n1z, &n2x,
                   &n2y, &n2z, &c0r, &c0g, &c0b, &c1r, &c1g, &c1b, &c2r, &c2g, &c2b, &px, &py, &pz, &ngx, &ngy, &ngz,
                   &nx, &ny, &nz, &ar, &ag, &ab, &specular, &depth, &ground_y, &rox, &roy, &roz, &diffuse_r,
-                  &diffuse_g, &diffuse_b, &sun_r, &sun_g, &sun_b, &sky_r, &sky_g, &sky_b})
+                  &diffuse_g, &diffuse_b, &sun_r, &sun_g, &sun_b, &sky_r, &sky_g, &sky_b, &radiance_r, &radiance_g, &radiance_b})
     v->resize(stride, 0.0f);
-  for (auto* v : {&tr, &tg, &tb}) v->resize(stride, 1.0f);
+  for (auto* v : {&tr, &tg, &tb, &haze}) v->resize(stride, 1.0f);
   for (auto* v : {&character, &on_ground, &hills, &sun_traced, &sky_traced}) v->resize(stride, 0);
   const std::size_t sun_rays = stride * std::size_t(light_samples), sky_rays = stride * std::size_t(ao_samples);
   for (auto* v : {&sun_u, &sun_v, &sun_wx, &sun_wy, &sun_wz, &sun_fr, &sun_fg, &sun_fb}) v->resize(sun_rays, 0.0f);
   sun_valid.resize(sun_rays, 0);
+  sun_open.resize(sun_rays, 0);
   for (auto* v : {&sky_u, &sky_v, &sky_wx, &sky_wy, &sky_wz, &sky_t_far, &sky_lr, &sky_lg, &sky_lb})
     v->resize(sky_rays, 0.0f);
   sky_valid.resize(sky_rays, 0);
+  sky_open.resize(sky_rays, 0);
 }
 
 void SurfaceLanes::setSize(std::size_t n) {
@@ -243,6 +325,12 @@ void hitSurfaceLanes(const LaneConstants& k, SurfaceLanes& surfaces) {
   HWY_DYNAMIC_DISPATCH(HitSurfaceLanes)(k, surfaces);
 }
 void shadingLanes(const LaneConstants& k, SurfaceLanes& surfaces) { HWY_DYNAMIC_DISPATCH(ShadingLanes)(k, surfaces); }
+OccluderCounts occluderLanes(const LaneConstants& k, SurfaceLanes& surfaces, int32_t* sun_list, int32_t* sky_list) {
+  return HWY_DYNAMIC_DISPATCH(OccluderLanes)(k, surfaces, sun_list, sky_list);
+}
+void surfaceRadianceLanes(const LaneConstants& k, SurfaceLanes& surfaces) {
+  HWY_DYNAMIC_DISPATCH(SurfaceRadianceLanes)(k, surfaces);
+}
 
 }  // namespace stirrup::render
 #endif  // HWY_ONCE

@@ -62,11 +62,33 @@ struct SurfaceLanes {
   // ground's for a character's downward ray), and whether it is above the surface (else no ray).
   std::vector<float> sky_wx, sky_wy, sky_wz, sky_t_far, sky_lr, sky_lg, sky_lb;
   std::vector<int32_t> sky_valid;
+
+  // Per surface, filled by the caller: the aerial perspective over its light (1: none).
+  std::vector<float> haze;
+  // Per sun ray and per sky ray, set by occluderLanes: all bits where the ray brings its light unless
+  // something blocks it (it is valid and its surface traces that light); the caller then clears the
+  // rays Embree found blocked.
+  std::vector<int32_t> sun_open, sky_open;
+  // Output of surfaceRadianceLanes: each surface's light, hazed.
+  std::vector<float> radiance_r, radiance_g, radiance_b;
 };
 
 // The characters' surfaces (where `character` is set) from their hits; the others are left as filled.
 void hitSurfaceLanes(const LaneConstants& k, SurfaceLanes& surfaces);
 // The secondary rays and the light that needs none, for every surface.
 void shadingLanes(const LaneConstants& k, SurfaceLanes& surfaces);
+
+// What occluderLanes found among the shadow and sky rays of surfaces [0, size).
+struct OccluderCounts {
+  std::size_t sun = 0, sky = 0;  // rays that may meet the characters, listed
+  std::size_t made = 0;          // rays made: valid, of a surface that traces that light, with a far end past 0
+};
+// Sets sun_open and sky_open, and lists the rays that may meet the characters' box before their far end
+// (the others are open without a call into Embree) by their index in the per-ray arrays, ascending:
+// `sun_list` and `sky_list` need room for every ray of their kind plus one vector (CameraLanes::kPad).
+OccluderCounts occluderLanes(const LaneConstants& k, SurfaceLanes& surfaces, int32_t* sun_list, int32_t* sky_list);
+// Each surface's light from its open rays (or the light that needed none), hazed: what the integrator
+// summed surface by surface, in the same order of operations.
+void surfaceRadianceLanes(const LaneConstants& k, SurfaceLanes& surfaces);
 
 }  // namespace stirrup::render
