@@ -4,7 +4,9 @@
 // on every instruction set this CPU runs.
 #include "render/tracer/shading_lanes.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -252,6 +254,85 @@ TEST(ShadingLanes, AHitSurfaceIsItsTrianglesInterpolation) {
       EXPECT_GT(glm::dot(shading, -d), 0.0099f);
       EXPECT_LT(glm::dot(shading, -d), 0.02f);
     }
+  }
+}
+
+// Every shadow and sky ray Embree finds blocked by the sphere is listed for Embree (the box test
+// only ever leaves out rays that miss), the lists ascend, and each surface's light from the rays left
+// open is the scalar sum the integrator made ray by ray, to the bit, on every target.
+TEST(ShadingLanes, TheListedRaysHoldEveryBlockedOneAndTheLightSumsTheOpenOnes) {
+  TargetPin restore;
+  Lit lit;
+  std::vector<float> first_radiance;
+  std::vector<int32_t> first_lists;
+  for (const std::string& target : simdTargets()) {
+    pinSimdTarget(target);
+    SurfaceLanes S = randomSurfaces(lit.k, 1999, 29);
+    for (std::size_t i = 0; i < S.size; ++i) S.haze[i] = i % 4 == 0 ? 0.25f + 0.001f * float(i % 500) : 1.0f;
+    shadingLanes(lit.k, S);
+    std::vector<int32_t> sun_list(S.sun_valid.size() + CameraLanes::kPad), sky_list(S.sky_valid.size() + CameraLanes::kPad);
+    const OccluderCounts counts = occluderLanes(lit.k, S, sun_list.data(), sky_list.data());
+    sun_list.resize(counts.sun), sky_list.resize(counts.sky);
+    EXPECT_TRUE(std::is_sorted(sun_list.begin(), sun_list.end()) && std::is_sorted(sky_list.begin(), sky_list.end()));
+    std::size_t made = 0, blocked_rays = 0;
+    auto check = [&](bool sky, const std::vector<int32_t>& list, std::vector<int32_t>& open, std::size_t rays_a_surface) {
+      for (std::size_t i = 0; i < S.size; ++i) {
+        const bool traced = sky ? S.sky_traced[i] != 0 : S.sun_traced[i] != 0;
+        for (std::size_t r = 0, at = i; r < rays_a_surface; ++r, at += S.stride) {
+          const bool valid = traced && (sky ? S.sky_valid[at] : S.sun_valid[at]) != 0;
+          ASSERT_EQ(open[at] != 0, valid) << "ray " << at;
+          const float t_far = sky ? S.sky_t_far[at] : std::numeric_limits<float>::infinity();
+          if (!valid || !(t_far > 0.0f)) continue;
+          ++made;
+          RTCRay ray{};
+          ray.org_x = S.rox[i], ray.org_y = S.roy[i], ray.org_z = S.roz[i];
+          ray.dir_x = sky ? S.sky_wx[at] : S.sun_wx[at], ray.dir_y = sky ? S.sky_wy[at] : S.sun_wy[at];
+          ray.dir_z = sky ? S.sky_wz[at] : S.sun_wz[at];
+          ray.tfar = t_far, ray.mask = 0xffffffffu;
+          RTCIntersectContext context;
+          rtcInitIntersectContext(&context);
+          rtcOccluded1(lit.scene.characters(), &context, &ray);
+          if (!(ray.tfar < 0.0f)) continue;
+          ++blocked_rays;
+          EXPECT_TRUE(std::binary_search(list.begin(), list.end(), int32_t(at))) << target << ": blocked ray " << at;
+          open[at] = 0;  // as the integrator clears it
+        }
+      }
+    };
+    check(false, sun_list, S.sun_open, std::size_t(lit.k.light_samples));
+    check(true, sky_list, S.sky_open, std::size_t(lit.k.ao_samples));
+    EXPECT_EQ(counts.made, made);
+    EXPECT_GT(blocked_rays, 100u);  // the sphere shades a good part of the surfaces
+    EXPECT_LT(counts.sun + counts.sky, made);  // and the box leaves out rays that pass beside it
+    surfaceRadianceLanes(lit.k, S);
+    const glm::vec3 sun_scale = lit.k.sun_radiance / float(lit.k.light_samples);
+    for (std::size_t i = 0; i < S.size; ++i) {
+      glm::vec3 sun = at3(S.sun_r, S.sun_g, S.sun_b, i), sky = at3(S.sky_r, S.sky_g, S.sky_b, i);
+      if (S.sun_traced[i]) {
+        sun = glm::vec3(0.0f);
+        for (std::size_t r = 0, at = i; r < std::size_t(lit.k.light_samples); ++r, at += S.stride)
+          if (S.sun_valid[at] && S.sun_open[at]) sun += at3(S.sun_fr, S.sun_fg, S.sun_fb, at);
+        sun *= sun_scale;
+      }
+      if (S.sky_traced[i]) {
+        sky = glm::vec3(0.0f);
+        for (std::size_t r = 0, at = i; r < std::size_t(lit.k.ao_samples); ++r, at += S.stride)
+          if (S.sky_valid[at] && S.sky_open[at]) sky += at3(S.sky_lr, S.sky_lg, S.sky_lb, at);
+        sky *= at3(S.diffuse_r, S.diffuse_g, S.diffuse_b, i) / float(lit.k.ao_samples);
+      }
+      glm::vec3 radiance = sun + sky;
+      if (S.haze[i] < 1.0f) radiance = radiance * S.haze[i] + lit.k.horizon * (1.0f - S.haze[i]);
+      ASSERT_TRUE(sameBits(at3(S.radiance_r, S.radiance_g, S.radiance_b, i), radiance)) << target << ", surface " << i;
+    }
+    std::vector<float> radiance(S.radiance_r.begin(), S.radiance_r.begin() + std::ptrdiff_t(S.size));
+    std::vector<int32_t> lists = sun_list;
+    lists.insert(lists.end(), sky_list.begin(), sky_list.end());
+    if (first_radiance.empty()) {
+      first_radiance = radiance, first_lists = lists;
+      continue;
+    }
+    EXPECT_EQ(lists, first_lists) << target;
+    EXPECT_EQ(std::memcmp(radiance.data(), first_radiance.data(), radiance.size() * sizeof(float)), 0) << target;
   }
 }
 
