@@ -125,24 +125,6 @@ bool Integrator::sunMayBeBlocked(const glm::vec3& origin) const { return sun_.ma
 bool Integrator::groundSunRegionExcludes(const glm::vec3& origin) const { return sun_.groundRegionExcludes(origin); }
 bool Integrator::groundSunMayBeBlocked(const glm::vec3& origin) const { return sun_.groundMayBeBlocked(origin); }
 
-// A pixel of the batch: where its sun and sky sequences are (set up for the pixels whose samples need
-// them: most pixels of a review frame are sky or open ground, which need neither).
-struct TileScratch::PixelState {
-  int32_t lights;  // index in TileScratch::sun_parts and sky_parts, or -1: none
-};
-
-// A camera sample of the batch. Its ray and the ground's distance along it stay in the camera lanes
-// (the same index), and so does the light of a sample that sees the sky or open ground: such a sample
-// is only marked (`kind`), not copied out. A surface's light is in the surface lanes, whose surfaces
-// are in sample order.
-struct TileScratch::CameraSample {
-  enum class Kind : uint8_t { Sky, OpenGround, Surface };
-  int32_t ray;          // its index in camera_rays, or -1: the ray cannot reach the characters
-  // Set by the shading pass.
-  Kind kind;            // a Surface is in the surface lanes (TileScratch::surface_samples says where)
-  ObjectId id;
-};
-
 TileScratch::TileScratch() = default;
 TileScratch::~TileScratch() = default;
 TileScratch::TileScratch(TileScratch&&) noexcept = default;
@@ -209,27 +191,25 @@ LaneConstants Integrator::laneConstants(const scene::CameraFrame& camera) const 
   return k;
 }
 
-namespace {
-
-// Queues camera sample c (lane k) for the characters' stream when its ray may meet their box: most
-// camera rays of a review view pass beside it, with no call into Embree.
-void queueCharacterRay(TileScratch::CameraSample& c, std::size_t k, const CameraLanes& lanes, TileScratch& scratch) {
-  c.ray = -1;
-  if (lanes.may_hit[k]) {
-    c.ray = int32_t(scratch.camera_rays.size());
-    RTCRayHit& rh = scratch.camera_rays.emplace_back();
+// Pass 1c: the camera rays that may meet the characters' box, as Embree's rays: most camera rays of a
+// review view pass beside it, with no call into Embree.
+void Integrator::queueCharacterRays(TileScratch& scratch) const {
+  const CameraLanes& lanes = scratch.lanes;
+  scratch.ray_samples.resize(lanes.padded);
+  const std::size_t count = listMayHit(lanes, scratch.ray_samples.data());
+  scratch.camera_rays.resize(count);
+  for (std::size_t r = 0; r < count; ++r) {
+    const std::size_t k = std::size_t(scratch.ray_samples[r]);
+    RTCRayHit& rh = scratch.camera_rays[r];
     rh.ray = makeRay(lanes.origin(k), lanes.direction(k), lanes.t_ground[k]);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   }
 }
 
-}  // namespace
-
 void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_width, int y0,
                              int first, int count, int frame, TileScratch& scratch, RayTally& tally,
                              PixelResult* out) const {
-  scratch.pixels.clear();
   scratch.camera_rays.clear();
   scratch.hill_rays.clear();
   scratch.hill_list.clear();
@@ -237,10 +217,10 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = std::size_t(count) * spp_;
   lanes.resize(n);
-  scratch.samples.resize(n);  // not cleared: every field a pass reads is set by an earlier pass
 
   cameraPass(constants, x0, tile_width, y0, first, count, frame, scratch, tally);
   if (terrain_ && n > 0) groundPass(constants, scratch);
+  std::fill_n(lanes.hit_ray.begin(), lanes.padded, -1);
   if (!scratch.camera_rays.empty()) characterPass(scratch);
   surfacePass(constants, frame, scratch, tally);
   occlusionPass(constants, scratch);
@@ -264,7 +244,6 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
   for (int p = 0; p < count; ++p) {
     const int x = x0 + (first + p) % tile_width, y = y0 + (first + p) / tile_width;
     scratch.pixel_x[std::size_t(p)] = uint32_t(x), scratch.pixel_y[std::size_t(p)] = uint32_t(y);
-    scratch.pixels.push_back({-1});
     const float cx = float(x) + 0.5f, cy = float(y) + 0.5f;
     for (uint32_t i = 0; i < spp_; ++i, ++j) lanes.cx[j] = cx, lanes.cy[j] = cy;
   }
@@ -289,7 +268,7 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
   if (tally.camera)
     for (std::size_t k = 0; k < n; ++k) tally.camera->push_back(makeRay(lanes.origin(k), lanes.direction(k), kInfinity));
   if (terrain_) return;  // the heightfield first (pass 1b)
-  for (std::size_t k = 0; k < n; ++k) queueCharacterRay(scratch.samples[k], k, lanes, scratch);
+  queueCharacterRays(scratch);
 }
 
 // Pass 1b (uneven ground): the camera rays against the heightfield as one structure-of-arrays stream
@@ -299,7 +278,7 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
 // ground's distance then bounds the search through the characters as the plane's does.
 void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch) const {
   CameraLanes& lanes = scratch.lanes;
-  const std::size_t n = scratch.samples.size();
+  const std::size_t n = lanes.size;
   TileScratch::GroundStream& g = scratch.ground;
   g.resize(lanes.padded);
   std::fill_n(g.geom.begin(), lanes.padded, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
@@ -329,9 +308,7 @@ void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch
     }
   }
   boxTestLanes(constants, lanes);
-  for (std::size_t k = 0; k < n; ++k) {
-    queueCharacterRay(scratch.samples[k], k, lanes, scratch);
-  }
+  queueCharacterRays(scratch);
 }
 
 // Pass 2: the camera rays that may meet the characters, as one coherent stream.
@@ -341,11 +318,14 @@ void Integrator::characterPass(TileScratch& scratch) const {
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   rtcIntersect1M(characters_, &context, scratch.camera_rays.data(), unsigned(scratch.camera_rays.size()),
                  sizeof(RTCRayHit));
-  // The hit triangles' indices, fetched toward the cache now: gathering a surface waited on them, each
-  // a miss in a mesh's index array (docs/performance.md).
-  for (const RTCRayHit& rh : scratch.camera_rays)
-    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
-      __builtin_prefetch(&meshes_[rh.hit.geomID]->indices[std::size_t(rh.hit.primID) * 3]);
+  // Which samples hit, and the hit triangles' indices, fetched toward the cache now: gathering a
+  // surface waited on them, each a miss in a mesh's index array (docs/performance.md).
+  for (std::size_t r = 0; r < scratch.camera_rays.size(); ++r) {
+    const RTCRayHit& rh = scratch.camera_rays[r];
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    scratch.lanes.hit_ray[std::size_t(scratch.ray_samples[r])] = int32_t(r);
+    __builtin_prefetch(&meshes_[rh.hit.geomID]->indices[std::size_t(rh.hit.primID) * 3]);
+  }
 }
 
 // Pass 3: the surface each sample sees, the light that needs no rays, and the shadow and sky rays.
@@ -372,19 +352,15 @@ void Integrator::surfacePass(const LaneConstants& constants, int frame, TileScra
 // The ground where a sample sees it (t_shade: no character nearer) and the sky behind every sample.
 void Integrator::groundAndSkyLanes(const LaneConstants& constants, TileScratch& scratch) const {
   CameraLanes& lanes = scratch.lanes;
-  const std::size_t n = scratch.samples.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const TileScratch::CameraSample& c = scratch.samples[k];
-    const RTCHit* hit = c.ray >= 0 ? &scratch.camera_rays[std::size_t(c.ray)].hit : nullptr;
-    const bool character_hit = hit && hit->geomID != RTC_INVALID_GEOMETRY_ID;
-    lanes.t_shade[k] = character_hit ? kInfinity : lanes.t_ground[k];
-    if (character_hit) {  // its vertices toward the cache (their indices were fetched after the trace)
-      const ShadingMesh& mesh = *meshes_[hit->geomID];
-      const uint32_t* tri = &mesh.indices[std::size_t(hit->primID) * 3];
-      for (int v = 0; v < 3; ++v) {
-        __builtin_prefetch(&mesh.normals[tri[v]]);
-        __builtin_prefetch(&mesh.colors[tri[v]]);
-      }
+  for (std::size_t k = 0; k < lanes.size; ++k) lanes.t_shade[k] = lanes.hit_ray[k] >= 0 ? kInfinity : lanes.t_ground[k];
+  // The hits' vertices toward the cache (their indices were fetched after the trace).
+  for (const RTCRayHit& rh : scratch.camera_rays) {
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    const ShadingMesh& mesh = *meshes_[rh.hit.geomID];
+    const uint32_t* tri = &mesh.indices[std::size_t(rh.hit.primID) * 3];
+    for (int v = 0; v < 3; ++v) {
+      __builtin_prefetch(&mesh.normals[tri[v]]);
+      __builtin_prefetch(&mesh.colors[tri[v]]);
     }
   }
   if (terrain_) {
@@ -402,38 +378,32 @@ void Integrator::groundAndSkyLanes(const LaneConstants& constants, TileScratch& 
 std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
   const CameraLanes& lanes = scratch.lanes;
   SurfaceLanes& surfaces = scratch.surfaces;
-  surfaces.reserve(scratch.samples.size(), int(light_spp_), int(ao_spp_));
+  surfaces.reserve(lanes.size, int(light_spp_), int(ao_spp_));
   StratifiedLanes &sun_points = scratch.sun_points, &sky_points = scratch.sky_points;
   sun_points.resize(surfaces.stride * light_spp_);
   sky_points.resize(surfaces.stride * ao_spp_);
-  std::size_t m = 0;
-  TileScratch::CameraSample* c = scratch.samples.data();
-  std::size_t j = 0;
+  scratch.surface_samples.resize(lanes.padded);
+  const std::size_t m = listSurfaceSamples(lanes, scratch.surface_samples.data());
+  scratch.surface_samples.resize(m);
+  scratch.surface_ids.resize(m);
   scratch.light_x.clear(), scratch.light_y.clear();
-  scratch.surface_light.clear(), scratch.surface_slot.clear();
-  for (std::size_t p = 0; p < scratch.pixels.size(); ++p) {
-    TileScratch::PixelState& pixel = scratch.pixels[p];
-    for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
-      if (lanes.open[j]) {  // open ground: its light is known, in the lanes
-        c->kind = TileScratch::CameraSample::Kind::OpenGround;
-        continue;
-      }
-      const RTCRayHit* rh = c->ray >= 0 ? &scratch.camera_rays[size_t(c->ray)] : nullptr;
-      const bool character_hit = rh && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
-      if (!character_hit && lanes.t_ground[j] == kInfinity) {  // the sky, in the lanes
-        c->kind = TileScratch::CameraSample::Kind::Sky;
-        continue;
-      }
-      c->kind = TileScratch::CameraSample::Kind::Surface;
-      scratch.surface_samples.push_back(int32_t(j));
-      gatherSurface(*c, character_hit ? rh : nullptr, lanes, j, surfaces, m);
-      if (pixel.lights < 0) {
-        pixel.lights = int32_t(scratch.light_x.size());
-        scratch.light_x.push_back(scratch.pixel_x[p]), scratch.light_y.push_back(scratch.pixel_y[p]);
-      }
-      scratch.surface_light.push_back(pixel.lights), scratch.surface_slot.push_back(i);
-      ++m;
+  scratch.surface_light.resize(m), scratch.surface_slot.resize(m);
+  // The surfaces ascend by sample, so their pixels ascend too: a pixel's first surface gives it its
+  // entry among the pixels with lights.
+  std::size_t pixel = 0, pixel_end = spp_;  // the samples [pixel_end - spp, pixel_end) are pixel's
+  int32_t lights = -1;                      // the entry of the last pixel given one
+  std::size_t lit_pixel = std::size_t(-1);
+  for (std::size_t s = 0; s < m; ++s) {
+    const std::size_t j = std::size_t(scratch.surface_samples[s]);
+    while (j >= pixel_end) ++pixel, pixel_end += spp_;
+    const int32_t ray = lanes.hit_ray[j];
+    scratch.surface_ids[s] = gatherSurface(ray >= 0 ? &scratch.camera_rays[std::size_t(ray)] : nullptr, lanes, j, surfaces, s);
+    if (pixel != lit_pixel) {
+      lit_pixel = pixel, lights = int32_t(scratch.light_x.size());
+      scratch.light_x.push_back(scratch.pixel_x[pixel]), scratch.light_y.push_back(scratch.pixel_y[pixel]);
     }
+    scratch.surface_light[s] = lights;
+    scratch.surface_slot[s] = uint32_t(j - (pixel_end - spp_));
   }
   // The sun and sky sequences of the pixels with surfaces, in lanes, then each surface's points.
   const std::size_t padded_lights = CameraLanes::paddedSize(scratch.light_x.size());
@@ -532,12 +502,11 @@ void Integrator::occlusionPass(const LaneConstants& constants, TileScratch& scra
 // camera lanes, a surface's from the surface lanes; the passes (depth, matte, normal, object id) are
 // worked out only when the renderer keeps them.
 void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) const {
-  using Kind = TileScratch::CameraSample::Kind;
   const CameraLanes& lanes = scratch.lanes;
   const SurfaceLanes& S = scratch.surfaces;
   const bool passes = settings_.passes;
   const glm::vec3 up(0.0f, 1.0f, 0.0f);
-  const TileScratch::CameraSample* c = scratch.samples.data();
+  const std::size_t m = scratch.surface_samples.size();
   std::size_t j = 0;  // the sample's index in the lanes
   std::size_t s = 0;  // the next surface's index in the surface lanes
   for (int p = 0; p < count; ++p) {
@@ -548,19 +517,19 @@ void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) 
     constexpr int kMaxIds = 4;
     uint32_t ids[kMaxIds], votes[kMaxIds];
     int distinct = 0, sky_votes = 0;
-    for (uint32_t i = 0; i < spp_; ++i, ++c, ++j) {
-      if (c->kind == Kind::Sky) {
+    for (uint32_t i = 0; i < spp_; ++i, ++j) {
+      const bool open_ground = lanes.open[j] != 0;
+      if (!open_ground && (s == m || std::size_t(scratch.surface_samples[s]) != j)) {  // the sky
         sum += glm::vec3(lanes.sky_r[j], lanes.sky_g[j], lanes.sky_b[j]);
         ++sky_votes;
         continue;
       }
-      const bool open_ground = c->kind == Kind::OpenGround;
       const std::size_t surface = open_ground ? 0 : s++;
       sum += open_ground ? glm::vec3(lanes.radiance_r[j], lanes.radiance_g[j], lanes.radiance_b[j])
                          : glm::vec3(S.radiance_r[surface], S.radiance_g[surface], S.radiance_b[surface]);
       ++hits;
       if (!passes) continue;
-      const ObjectId id = open_ground ? ObjectId::Ground : c->id;
+      const ObjectId id = open_ground ? ObjectId::Ground : scratch.surface_ids[surface];
       normal_sum += !open_ground ? glm::vec3(S.nx[surface], S.ny[surface], S.nz[surface])
                     : terrain_   ? glm::vec3(lanes.gnx[j], lanes.gny[j], lanes.gnz[j])
                                  : up;
@@ -589,8 +558,8 @@ void Integrator::resolvePass(int count, TileScratch& scratch, PixelResult* out) 
   }
 }
 
-void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh,
-                               const CameraLanes& lanes, std::size_t j, SurfaceLanes& S, std::size_t m) const {
+ObjectId Integrator::gatherSurface(const RTCRayHit* rh, const CameraLanes& lanes, std::size_t j, SurfaceLanes& S,
+                                   std::size_t m) const {
   const glm::vec3 origin = lanes.origin(j), dir = lanes.direction(j);
   S.dx[m] = dir.x, S.dy[m] = dir.y, S.dz[m] = dir.z;
   if (rh) {
@@ -618,15 +587,13 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
       S.ground_y[m] = float(on_mesh ? mesh_height : terrain_->height(double(p.x), double(p.z)));
       S.hills[m] = (on_mesh ? hillsMayBlockSunAbove(p, mesh_height) : hillsMayBlockSun(p, false)) ? -1 : 0;
     }
-    c.id = mesh.id;
     S.haze[m] = 1.0f;  // the characters keep their colours: the haze is the ground's, for the horizon
-    return;
+    return mesh.id;
   }
   S.character[m] = 0;
   S.on_ground[m] = -1;
   S.ground_y[m] = 0.0f;
   S.specular[m] = 0.0f;  // the ground is matte
-  c.id = ObjectId::Ground;
   const float t = lanes.t_ground[j];
   glm::vec3 p = origin + t * dir;
   // The ground's look came from the lanes (groundLanes or terrainGroundLanes).
@@ -647,6 +614,7 @@ void Integrator::gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh
   S.hills[m] = terrain_ && !lanes.hills_open[j] ? -1 : 0;
   S.px[m] = p.x, S.py[m] = p.y, S.pz[m] = p.z;
   S.ngx[m] = S.nx[m] = n.x, S.ngy[m] = S.ny[m] = n.y, S.ngz[m] = S.nz[m] = n.z;
+  return ObjectId::Ground;
 }
 
 void Integrator::terrainNormal(CameraLanes& lanes, std::size_t k) const {

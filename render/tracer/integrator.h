@@ -55,21 +55,18 @@ float filteredChecker(float s, float t, float width);
 // The reusable buffers of one thread's tiles. They grow to the largest batch on the first tile and are
 // then reused, so tracing allocates nothing per pixel or per tile.
 struct TileScratch {
-  struct PixelState;
-  struct CameraSample;
   TileScratch();
   ~TileScratch();
   TileScratch(TileScratch&&) noexcept;
   TileScratch& operator=(TileScratch&&) noexcept;
-  std::vector<PixelState> pixels;
   std::vector<uint32_t> pixel_x, pixel_y;  // the batch's pixels (padded for the lanes)
   StratifiedLanes pixel_parts;             // their sequences, with more than one sample a pixel
   std::vector<uint32_t> light_x, light_y;  // the pixels whose samples see surfaces (padded)
   StratifiedLanes sun_parts, sky_parts;    // their sun and sky sequences
   std::vector<int32_t> surface_light;      // per surface: its pixel's entry in light_x and the parts
   std::vector<uint32_t> surface_slot;      // per surface: its sample's index within its pixel
-  std::vector<CameraSample> samples;
   std::vector<RTCRayHit> camera_rays;  // the samples that may hit the characters, traced as one stream
+  std::vector<int32_t> ray_samples;    // each camera ray's sample
   // Uneven ground: what Embree's structure-of-arrays stream reads and writes beside the camera lanes
   // (which it reads in place): the rays' constant fields and the hits.
   struct GroundStream {
@@ -86,7 +83,8 @@ struct TileScratch {
   StratifiedLanes sun_points, sky_points;  // the surfaces' sun and sky sequences
   CameraLanes lanes;                   // the batch's samples as arrays, for the SIMD kernels
   SurfaceLanes surfaces;               // the surfaces its samples see, for the shading kernels
-  std::vector<int32_t> surface_samples;  // per surface: the sample that sees it
+  std::vector<int32_t> surface_samples;  // per surface: the sample that sees it (ascending)
+  std::vector<ObjectId> surface_ids;     // per surface: what it is of, for the object id pass
 };
 
 class Integrator {
@@ -144,8 +142,11 @@ class Integrator {
   void resolvePass(int count, TileScratch& scratch, PixelResult* out) const;
   // A sample's surface into the surface lanes at m: a character's hit (rh) and its triangle's
   // vertices, or the ground's surface (the plane's from the lanes at sample j, or the terrain's).
-  void gatherSurface(TileScratch::CameraSample& c, const RTCRayHit* rh,
-                     const CameraLanes& lanes, std::size_t j, SurfaceLanes& surfaces, std::size_t m) const;
+  // Returns what it is of.
+  ObjectId gatherSurface(const RTCRayHit* rh, const CameraLanes& lanes, std::size_t j, SurfaceLanes& surfaces,
+                         std::size_t m) const;
+  // The camera rays that may meet the characters' box, for their stream.
+  void queueCharacterRays(TileScratch& scratch) const;
   // The shadow and sky rays the surface lanes made, into a RayLog's list in the order a surface makes them.
   void logOcclusionRays(const SurfaceLanes& surfaces, std::vector<RTCRay>& log) const;
   // Without the heightfield's mesh (tests that give the terrain alone): the terrain's own normal at

@@ -129,6 +129,35 @@ void BoxTestLanes(const LaneConstants& k, CameraLanes& L) {
   }
 }
 
+// The samples j < n for which `take` (a mask of the vector at i) holds, ascending, into out; how many.
+template <typename Take>
+size_t ListSamples(size_t n, size_t padded, int32_t* out, Take take) {
+  const DF df;
+  const DI di;
+  const size_t lanes = hn::Lanes(df);
+  size_t count = 0;
+  for (size_t i = 0; i < padded; i += lanes) {
+    const MF live = i + lanes <= n ? hn::Not(hn::FirstN(df, 0)) : hn::FirstN(df, n > i ? n - i : 0);
+    const MF m = hn::And(live, take(i));
+    hn::CompressStore(hn::Iota(di, int32_t(i)), hn::RebindMask(di, m), di, out + count);
+    count += hn::CountTrue(df, m);
+  }
+  return count;
+}
+
+size_t ListMayHit(const CameraLanes& L, int32_t* out) {
+  return ListSamples(L.size, L.padded, out, [&](size_t i) { return LoadMask(L.may_hit, i); });
+}
+
+size_t ListSurfaceSamples(const CameraLanes& L, int32_t* out) {
+  const DI di;
+  const VF inf = Splat(std::numeric_limits<float>::infinity());
+  return ListSamples(L.size, L.padded, out, [&](size_t i) {
+    const MF character = hn::RebindMask(DF(), hn::Gt(hn::LoadU(di, L.hit_ray.data() + i), hn::Set(di, -1)));
+    return hn::AndNot(LoadMask(L.open, i), hn::Or(character, hn::Ne(Load(L.t_ground, i), inf)));
+  });
+}
+
 // AerialPerspective::perspective and ::orthographic.
 VF Haze(const LaneConstants& k, VF t) {
   if (k.perspective) {
@@ -557,6 +586,8 @@ namespace stirrup::render {
 
 HWY_EXPORT(CameraRayLanes);
 HWY_EXPORT(BoxTestLanes);
+HWY_EXPORT(ListMayHit);
+HWY_EXPORT(ListSurfaceSamples);
 HWY_EXPORT(GroundLanes);
 HWY_EXPORT(TerrainGroundLanes);
 HWY_EXPORT(GroundHitLanes);
@@ -591,6 +622,7 @@ void CameraLanes::resize(std::size_t n) {
                   &t_enter, &t_leave})
     v->resize(padded, 0.0f);
   may_hit.resize(padded, 0);
+  hit_ray.resize(padded, -1);
   open.resize(padded, 0);
   hills_open.resize(padded, 0);
 }
@@ -599,6 +631,10 @@ void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground
   HWY_DYNAMIC_DISPATCH(CameraRayLanes)(k, lanes, flat_ground);
 }
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(BoxTestLanes)(k, lanes); }
+std::size_t listMayHit(const CameraLanes& lanes, int32_t* out) { return HWY_DYNAMIC_DISPATCH(ListMayHit)(lanes, out); }
+std::size_t listSurfaceSamples(const CameraLanes& lanes, int32_t* out) {
+  return HWY_DYNAMIC_DISPATCH(ListSurfaceSamples)(lanes, out);
+}
 
 void groundLanes(const LaneConstants& k, CameraLanes& lanes) { HWY_DYNAMIC_DISPATCH(GroundLanes)(k, lanes); }
 void terrainGroundLanes(const LaneConstants& k, CameraLanes& lanes) {

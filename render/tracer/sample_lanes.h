@@ -44,6 +44,9 @@ struct CameraLanes {
   // whether it may meet the characters' box (all bits set) or certainly does not (0).
   std::vector<float> ox, oy, oz, dx, dy, dz, t_ground;
   std::vector<int32_t> may_hit;
+  // Set by the caller after the characters' stream: the sample's index in it where its ray hit a
+  // character, else -1.
+  std::vector<int32_t> hit_ray;
   glm::vec3 origin(std::size_t k) const { return {ox[k], oy[k], oz[k]}; }
   glm::vec3 direction(std::size_t k) const { return {dx[k], dy[k], dz[k]}; }
   // Uneven ground: the part [t_enter, t_leave] of each camera ray within the heightfield's slab (and
@@ -134,6 +137,13 @@ struct LaneConstants {
 void cameraRayLanes(const LaneConstants& k, CameraLanes& lanes, bool flat_ground);
 // may_hit: whether each camera ray may meet the characters' box before its t_ground.
 void boxTestLanes(const LaneConstants& k, CameraLanes& lanes);
+// The samples [0, size) whose ray may meet the characters' box, ascending, into `out` (room for
+// `padded` entries); returns how many.
+std::size_t listMayHit(const CameraLanes& lanes, int32_t* out);
+// The samples [0, size) that see a surface to gather (a character, or ground that is not open: the
+// lanes hold the light of open ground and of the sky), ascending, into `out` (room for `padded`);
+// returns how many. Reads open, hit_ray and t_ground.
+std::size_t listSurfaceSamples(const CameraLanes& lanes, int32_t* out);
 // What Embree wrote for the camera rays against the heightfield (EmbreeScene::setGroundMesh's quads),
 // one entry per sample, padded as the lanes are (a padding entry's geom invalid), and the mesh the cells
 // index (TerrainMesh: three indices a triangle, one normal a vertex).
