@@ -154,7 +154,8 @@ size_t ListSurfaceSamples(const CameraLanes& L, int32_t* out) {
   const VF inf = Splat(std::numeric_limits<float>::infinity());
   return ListSamples(L.size, L.padded, out, [&](size_t i) {
     const MF character = hn::RebindMask(DF(), hn::Gt(hn::LoadU(di, L.hit_ray.data() + i), hn::Set(di, -1)));
-    return hn::AndNot(LoadMask(L.open, i), hn::Or(character, hn::Ne(Load(L.t_ground, i), inf)));
+    // Not Ne, which is false for a NaN on x86: the scalar sort took a NaN distance for a surface.
+    return hn::AndNot(LoadMask(L.open, i), hn::Or(character, hn::Not(hn::Eq(Load(L.t_ground, i), inf))));
   });
 }
 

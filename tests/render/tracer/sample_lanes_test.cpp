@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -467,6 +468,42 @@ TEST(SampleLanes, PixelPartsAreTheSequencesOnEveryTarget) {
   StratifiedLanes parts;
   parts.resize(32);
   EXPECT_THROW(pixelPartLanes(layout, SampleDimension::SunCone, 1, xs.data(), ys.data(), 20, parts), std::invalid_argument);
+}
+
+// The lists of samples, on every target and for every batch size (ragged tails, padding with stale
+// values): ascending, and exactly the samples a scalar loop picks.
+TEST(SampleLanes, TheListsHoldExactlyTheSamplesTheyName) {
+  TargetPin restore;
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<int> coin(0, 3);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (const std::string& target : simdTargets()) {
+    pinSimdTarget(target);
+    for (const std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(15), std::size_t(16), std::size_t(17),
+                                std::size_t(1000), std::size_t(1024)}) {
+      CameraLanes lanes;
+      lanes.resize(n);
+      for (std::size_t i = 0; i < lanes.padded; ++i) {  // the padding too: it must not be listed
+        lanes.may_hit[i] = coin(rng) == 0 ? -1 : 0;
+        lanes.open[i] = coin(rng) == 0 ? -1 : 0;
+        lanes.hit_ray[i] = coin(rng) == 0 ? int32_t(i) : -1;
+        const int t = coin(rng);
+        lanes.t_ground[i] = t == 0 ? inf : t == 1 ? std::numeric_limits<float>::quiet_NaN() : 100.0f + float(i);
+      }
+      std::vector<int32_t> may_hit(lanes.padded + 1, -7), surfaces(lanes.padded + 1, -7);
+      may_hit.resize(listMayHit(lanes, may_hit.data()));
+      surfaces.resize(listSurfaceSamples(lanes, surfaces.data()));
+      std::vector<int32_t> want_may_hit, want_surfaces;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (lanes.may_hit[i]) want_may_hit.push_back(int32_t(i));
+        // As the scalar loop sorted them: open ground, else the sky where no character was hit and no
+        // ground met (t_ground infinite), else a surface.
+        if (!lanes.open[i] && (lanes.hit_ray[i] >= 0 || lanes.t_ground[i] != inf)) want_surfaces.push_back(int32_t(i));
+      }
+      EXPECT_EQ(may_hit, want_may_hit) << target << ", " << n << " samples";
+      EXPECT_EQ(surfaces, want_surfaces) << target << ", " << n << " samples";
+    }
+  }
 }
 
 TEST(SampleLanes, AnUnknownTargetIsRefusedByName) {
