@@ -2,6 +2,7 @@
 // part compiled once: the dispatch tables and the entry points of shading_lanes.h.
 #include "render/tracer/shading_lanes.h"
 
+#include <algorithm>
 #include <limits>
 
 #undef HWY_TARGET_INCLUDE
@@ -297,8 +298,13 @@ HWY_EXPORT(OccluderLanes);
 HWY_EXPORT(SurfaceRadianceLanes);
 
 void SurfaceLanes::reserve(std::size_t n, int light_samples, int ao_samples) {
-  stride = CameraLanes::paddedSize(n);
   size = padded = 0;
+  // A batch no larger than one before, with as many rays a surface, finds every array sized (the stride
+  // stays the larger batch's): nothing to resize, which was a visible part of a batch's set-up.
+  const std::size_t needed = CameraLanes::paddedSize(n);
+  if (needed <= stride && light_samples == reserved_light_samples && ao_samples == reserved_ao_samples) return;
+  stride = light_samples == reserved_light_samples && ao_samples == reserved_ao_samples ? std::max(stride, needed) : needed;
+  reserved_light_samples = light_samples, reserved_ao_samples = ao_samples;
   for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t, &gx, &gy, &gz, &u, &v, &n0x, &n0y, &n0z, &n1x, &n1y, &n1z, &n2x,
                   &n2y, &n2z, &c0r, &c0g, &c0b, &c1r, &c1g, &c1b, &c2r, &c2g, &c2b, &px, &py, &pz, &ngx, &ngy, &ngz,
                   &nx, &ny, &nz, &ar, &ag, &ab, &specular, &depth, &ground_y, &rox, &roy, &roz, &diffuse_r,

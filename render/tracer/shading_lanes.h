@@ -21,11 +21,13 @@ namespace stirrup::render {
 // A batch's surfaces as arrays (index i: the batch's i-th surface, in sample order). Per-ray arrays
 // hold slot k of surface i at k * stride + i.
 struct SurfaceLanes {
-  // Room for n surfaces with these many sun and sky rays each; keeps the capacity.
+  // Room for n surfaces with these many sun and sky rays each; keeps the capacity (and the stride of a
+  // larger batch before, with as many rays a surface).
   void reserve(std::size_t n, int light_samples, int ao_samples);
   // The surfaces filled are [0, n): the kernels run over n rounded up to whole vectors.
   void setSize(std::size_t n);
   std::size_t size = 0, padded = 0, stride = 0;
+  int reserved_light_samples = -1, reserved_ao_samples = -1;  // the rays a surface the arrays are sized for
 
   // Inputs of hitSurfaceLanes, where `character` is set (all bits): the camera ray and the hit's
   // distance, Embree's geometric normal (any length, any side), the barycentrics (u, v), the
