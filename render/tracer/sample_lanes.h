@@ -6,8 +6,9 @@
 // ray), the analytic ground plane, the slab test against the characters' box, the ground's surface
 // (filtered checker, aerial perspective, view depth) with the whole light of open ground, and the sky
 // behind the samples that miss. The surfaces the samples see and the shadow and sky rays they need are
-// the kernels of render/tracer/shading_lanes.h. What needs Embree or per-sample branching (hashing the sample
-// sequences, gathering a hit triangle's vertices, queueing rays, the sums) stays scalar.
+// the kernels of render/tracer/shading_lanes.h. The samples are sorted in lanes too: lists of the rays for
+// Embree and of the samples that see a surface (CompressStore). What needs per-sample branching
+// (gathering a hit triangle's vertices, writing the listed rays into Embree's, each pixel's sum) stays scalar.
 //
 // Determinism: every kernel uses only operations IEEE 754 rounds exactly (add, subtract, multiply,
 // divide, square root, min, max, floor, compare, select), in the order the scalar expressions give, and
