@@ -391,18 +391,17 @@ std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
   // The surfaces ascend by sample, so their pixels ascend too: a pixel's first surface gives it its
   // entry among the pixels with lights.
   std::size_t pixel = 0, pixel_end = spp_;  // the samples [pixel_end - spp, pixel_end) are pixel's
-  int32_t lights = -1;                      // the entry of the last pixel given one
-  std::size_t lit_pixel = std::size_t(-1);
+  std::size_t lit_pixel = std::size_t(-1);  // the last pixel given an entry
   for (std::size_t s = 0; s < m; ++s) {
     const std::size_t j = std::size_t(scratch.surface_samples[s]);
     while (j >= pixel_end) ++pixel, pixel_end += spp_;
     const int32_t ray = lanes.hit_ray[j];
     scratch.surface_ids[s] = gatherSurface(ray >= 0 ? &scratch.camera_rays[std::size_t(ray)] : nullptr, lanes, j, surfaces, s);
     if (pixel != lit_pixel) {
-      lit_pixel = pixel, lights = int32_t(scratch.light_x.size());
+      lit_pixel = pixel;
       scratch.light_x.push_back(scratch.pixel_x[pixel]), scratch.light_y.push_back(scratch.pixel_y[pixel]);
     }
-    scratch.surface_light[s] = lights;
+    scratch.surface_light[s] = int32_t(scratch.light_x.size() - 1);
     scratch.surface_slot[s] = uint32_t(j - (pixel_end - spp_));
   }
   // The sun and sky sequences of the pixels with surfaces, in lanes, then each surface's points.

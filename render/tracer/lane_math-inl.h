@@ -40,6 +40,11 @@ inline MF LoadMask(const std::vector<int32_t>& v, size_t i) {
   return hn::RebindMask(DF(), hn::MaskFromVec(hn::LoadU(DI(), v.data() + i)));
 }
 inline VF Splat(float x) { return hn::Set(DF(), x); }
+// The lanes of the vector at i that hold one of the first n entries (the rest are padding).
+inline MF Live(size_t n, size_t i) {
+  const DF df;
+  return i + hn::Lanes(df) <= n ? hn::Not(hn::FirstN(df, 0)) : hn::FirstN(df, n > i ? n - i : 0);
+}
 // x * (1 - a) + y * a: glm::mix.
 inline VF Mix(VF x, VF y, VF a) { return hn::Add(hn::Mul(x, hn::Sub(Splat(1.0f), a)), hn::Mul(y, a)); }
 

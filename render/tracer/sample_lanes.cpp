@@ -137,8 +137,7 @@ size_t ListSamples(size_t n, size_t padded, int32_t* out, Take take) {
   const size_t lanes = hn::Lanes(df);
   size_t count = 0;
   for (size_t i = 0; i < padded; i += lanes) {
-    const MF live = i + lanes <= n ? hn::Not(hn::FirstN(df, 0)) : hn::FirstN(df, n > i ? n - i : 0);
-    const MF m = hn::And(live, take(i));
+    const MF m = hn::And(Live(n, i), take(i));
     hn::CompressStore(hn::Iota(di, int32_t(i)), hn::RebindMask(di, m), di, out + count);
     count += hn::CountTrue(df, m);
   }

@@ -220,8 +220,7 @@ void ListOccluders(const LaneConstants& k, SurfaceLanes& S, const std::vector<in
   for (int r = 0; r < rays_a_surface; ++r) {
     for (size_t i = 0; i < S.padded; i += lanes) {
       const size_t at = size_t(r) * S.stride + i;
-      const MF live = i + lanes <= S.size ? hn::Not(hn::FirstN(df, 0)) : hn::FirstN(df, S.size - i);
-      const MF traced = hn::And(live, LoadMask(traced_of_surface, i));
+      const MF traced = hn::And(Live(S.size, i), LoadMask(traced_of_surface, i));
       const MF valid = hn::And(traced, LoadMask(valid_of_ray, at));
       StoreMask(valid, open, at);
       if (hn::AllFalse(df, valid)) continue;
