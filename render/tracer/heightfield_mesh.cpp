@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <utility>
 #include <stdexcept>
 
@@ -81,6 +82,10 @@ TerrainMesh makeTerrainMesh(const rig::Terrain& terrain, const GroundRegion& reg
     spacing = std::max(spacing, std::sqrt(width * depth / params.max_fine_vertices) * 1.01);
   const std::vector<double> xs = terrainGridLines(region.x0, region.x0 + width, spacing, params);
   const std::vector<double> zs = terrainGridLines(region.z0, region.z0 + depth, spacing, params);
+  // The renderer finds a hit cell's row in floats (groundHitLanes): exact below 2^24 cells.
+  if (double(xs.size() - 1) * double(zs.size() - 1) >= double(1 << 24))
+    throw std::invalid_argument("terrain mesh: " + std::to_string(xs.size() - 1) + " x " + std::to_string(zs.size() - 1) +
+                                " cells, expected fewer than 2^24 (a wider fine spacing)");
   TerrainMesh mesh;
   mesh.xs = xs;
   mesh.zs = zs;

@@ -297,7 +297,7 @@ void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch
   // Each hit's distance (its tfar) and the ground's normal there, while the hits are at hand (a
   // character nearer makes the normal unused: few samples).
   if (ground_mesh_) {
-    groundHitLanes({g.geom.data(), g.prim.data(), g.u.data(), g.v.data(), ground_mesh_->indices.data(),
+    groundHitLanes({g.geom.data(), g.prim.data(), g.u.data(), g.v.data(), ground_mesh_->xs.size(),
                     ground_mesh_->normals.data()},
                    lanes);
   } else {

@@ -253,8 +253,11 @@ void GroundLanes(const LaneConstants& k, CameraLanes& L) {
 // The heightfield's hits as Embree left them in the stream (GroundHits), lane by lane: t_ground, and the
 // normal interpolated from the hit triangle's vertex normals: groundTriangleHit's triangle and
 // barycentrics, b0 = 1 - b1 - b2, then b0 n0 + b1 n1 + b2 n2, in that order (so every target rounds
-// alike). The triangle's indices and normals are gathered; a miss reads cell 0 (Embree leaves a miss's
-// cell as it was) and stores a zero normal.
+// alike). The triangle's vertices come from the grid, not from the index buffer: cell q of a row of
+// nx - 1 cells is (i, j) = (q mod (nx - 1), q div (nx - 1)), its corner a = j nx + i = q + j, and its
+// triangles are (a, a + nx, a + nx + 1) and (a, a + nx + 1, a + 1) (makeTerrainMesh), which spares three
+// gathers a vector that each of the normals' nine gathers waited on. A miss reads cell 0 (Embree leaves
+// a miss's cell as it was) and stores a zero normal.
 void GroundHitLanes(const GroundHits& h, CameraLanes& L) {
   const DF df;
   const DI di;
@@ -262,7 +265,11 @@ void GroundHitLanes(const GroundHits& h, CameraLanes& L) {
   const VF inf = Splat(std::numeric_limits<float>::infinity());
   const VF one = Splat(1.0f);
   const auto invalid = hn::Set(di, int32_t(-1));  // RTC_INVALID_GEOMETRY_ID
-  const auto* indices = reinterpret_cast<const int32_t*>(h.indices);
+  const auto row = hn::Set(di, int32_t(h.row_vertices));
+  const auto cells_a_row = hn::Set(di, int32_t(h.row_vertices) - 1);
+  const VF per_row = Splat(1.0f / float(h.row_vertices - 1));
+  const auto int_one = hn::Set(di, 1);
+  const auto three = hn::Set(di, 3);
   const float* normals = reinterpret_cast<const float*>(h.normals);
   for (size_t i = 0; i < L.padded; i += lanes) {
     const auto geom = hn::LoadU(di, reinterpret_cast<const int32_t*>(h.geom) + i);
@@ -270,20 +277,29 @@ void GroundHitLanes(const GroundHits& h, CameraLanes& L) {
     Store(hn::IfThenElse(hit, Load(L.t_leave, i), inf), L.t_ground, i);
     if (hn::AllFalse(df, hit)) continue;
     const auto cell = hn::IfThenElseZero(hn::RebindMask(di, hit), hn::LoadU(di, reinterpret_cast<const int32_t*>(h.prim) + i));
+    // The cell's row: the float quotient is exact to within one (cells < 2^24), then corrected.
+    auto j = hn::ConvertTo(di, hn::Floor(hn::Mul(hn::ConvertTo(df, cell), per_row)));
+    auto rest = hn::Sub(cell, hn::Mul(j, cells_a_row));
+    j = hn::IfThenElse(hn::Lt(rest, hn::Zero(di)), hn::Sub(j, int_one), j);
+    rest = hn::Sub(cell, hn::Mul(j, cells_a_row));
+    j = hn::IfThenElse(hn::Gt(rest, hn::Sub(cells_a_row, int_one)), hn::Add(j, int_one), j);
+    const auto a = hn::Add(cell, j);
     const VF u = hn::LoadU(df, h.u + i), v = hn::LoadU(df, h.v + i);
     // groundTriangleHit: the quad's first triangle where u + v <= 1, else its second.
     const MF first = hn::Le(hn::Add(u, v), one);
+    const auto first_i = hn::RebindMask(di, first);
     const VF b1 = hn::IfThenElse(first, hn::Sub(hn::Sub(one, u), v), hn::Sub(one, v));
     const VF b2 = hn::IfThenElse(first, u, hn::Sub(hn::Add(u, v), one));
     const VF b0 = hn::Sub(hn::Sub(one, b1), b2);
-    const auto second = hn::IfThenElseZero(hn::RebindMask(di, hn::Not(first)), hn::Set(di, 1));
-    const auto corner0 = hn::Mul(hn::Add(hn::Add(cell, cell), second), hn::Set(di, 3));  // 3 x triangle
-    auto vertexNormal = [&](int c) {  // the triangle's c-th vertex's normal
-      const auto at = hn::Mul(hn::GatherIndex(di, indices, hn::Add(corner0, hn::Set(di, c))), hn::Set(di, 3));
-      return V3{hn::GatherIndex(df, normals, at), hn::GatherIndex(df, normals, hn::Add(at, hn::Set(di, 1))),
+    const auto d = hn::Add(hn::Add(a, row), int_one);
+    const auto v1 = hn::IfThenElse(first_i, hn::Add(a, row), d);
+    const auto v2 = hn::IfThenElse(first_i, d, hn::Add(a, int_one));
+    auto vertexNormal = [&](const decltype(a)& vertex) {
+      const auto at = hn::Mul(vertex, three);
+      return V3{hn::GatherIndex(df, normals, at), hn::GatherIndex(df, normals, hn::Add(at, int_one)),
                 hn::GatherIndex(df, normals, hn::Add(at, hn::Set(di, 2)))};
     };
-    const V3 n = Add3(Add3(Scale3(b0, vertexNormal(0)), Scale3(b1, vertexNormal(1))), Scale3(b2, vertexNormal(2)));
+    const V3 n = Add3(Add3(Scale3(b0, vertexNormal(a)), Scale3(b1, vertexNormal(v1))), Scale3(b2, vertexNormal(v2)));
     Store(hn::IfThenElseZero(hit, n.x), L.gnx, i), Store(hn::IfThenElseZero(hit, n.y), L.gny, i);
     Store(hn::IfThenElseZero(hit, n.z), L.gnz, i);
   }

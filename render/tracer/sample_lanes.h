@@ -146,12 +146,14 @@ std::size_t listMayHit(const CameraLanes& lanes, int32_t* out);
 // returns how many. Reads open, hit_ray and t_ground.
 std::size_t listSurfaceSamples(const CameraLanes& lanes, int32_t* out);
 // What Embree wrote for the camera rays against the heightfield (EmbreeScene::setGroundMesh's quads),
-// one entry per sample, padded as the lanes are (a padding entry's geom invalid), and the mesh the cells
-// index (TerrainMesh: three indices a triangle, one normal a vertex).
+// one entry per sample, padded as the lanes are (a padding entry's geom invalid), and the grid the cells
+// are numbered in (TerrainMesh: cells and vertices row by row along X, one normal a vertex).
 struct GroundHits {
   const unsigned *geom = nullptr, *prim = nullptr;  // geomID (RTC_INVALID_GEOMETRY_ID: a miss) and the cell
   const float *u = nullptr, *v = nullptr;           // the quad's barycentrics
-  const uint32_t* indices = nullptr;
+  // The mesh's grid (TerrainMesh): vertices a row (xs.size(), at least 2; fewer than 2^24 cells) and
+  // the vertex normals, row by row.
+  std::size_t row_vertices = 2;
   const glm::vec3* normals = nullptr;
 };
 // t_ground (t_leave where the ray hit, else infinity) and, where it hit, gnx..gnz: the hit triangle's

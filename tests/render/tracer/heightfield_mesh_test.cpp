@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 
@@ -99,6 +101,22 @@ TEST(TerrainMesh, StaysWithinItsVertexBudget) {
   // The budget, plus the growing border's lines on each side (a few hundred per axis at most).
   EXPECT_LT(mesh.positions.size(), std::size_t((100.0 + 200.0) * (100.0 + 200.0)));
   EXPECT_EQ(mesh.indices.size() % 3, 0u);
+}
+
+// A grid of 2^24 cells or more is refused before anything is allocated, with a message that says why:
+// the renderer finds a hit cell's row in floats (groundHitLanes), exact only below that.
+TEST(TerrainMesh, RefusesAGridTooLargeToNumberItsCells) {
+  TerrainMeshParams params;
+  params.max_fine_vertices = 1.0e12;
+  params.fine_spacing_cm = 1.0;
+  try {
+    (void)makeTerrainMesh(hills(), {0.0, 0.0, 5000.0, 5000.0}, params);
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("fewer than 2^24"), std::string::npos) << e.what();
+  }
+  params.fine_spacing_cm = 10.0;  // 500 x 500 fine cells and the border: well under
+  EXPECT_NO_THROW((void)makeTerrainMesh(hills(), {0.0, 0.0, 5000.0, 5000.0}, params));
 }
 
 

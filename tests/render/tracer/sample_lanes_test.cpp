@@ -303,7 +303,7 @@ TEST(SampleLanes, GroundHitsGiveTheMeshNormalAtTheHitPoint) {
     lanes.t_leave[i] = rh.ray.tfar;  // as the stream leaves it: tfar is the hit's distance
   }
   ASSERT_GT(misses, 0);
-  const GroundHits hits{geom.data(), prim.data(), u.data(), v.data(), mesh.indices.data(), mesh.normals.data()};
+  const GroundHits hits{geom.data(), prim.data(), u.data(), v.data(), mesh.xs.size(), mesh.normals.data()};
 
   TargetPin restore;
   std::vector<float> first;
