@@ -277,12 +277,12 @@ void GroundHitLanes(const GroundHits& h, CameraLanes& L) {
     Store(hn::IfThenElse(hit, Load(L.t_leave, i), inf), L.t_ground, i);
     if (hn::AllFalse(df, hit)) continue;
     const auto cell = hn::IfThenElseZero(hn::RebindMask(di, hit), hn::LoadU(di, reinterpret_cast<const int32_t*>(h.prim) + i));
-    // The cell's row: the float quotient is exact to within one (cells < 2^24), then corrected.
+    // The cell's row: the float quotient is exact to within one (cells < 2^24), so the remainder
+    // says which way to correct it, if at all.
     auto j = hn::ConvertTo(di, hn::Floor(hn::Mul(hn::ConvertTo(df, cell), per_row)));
-    auto rest = hn::Sub(cell, hn::Mul(j, cells_a_row));
+    const auto rest = hn::Sub(cell, hn::Mul(j, cells_a_row));
     j = hn::IfThenElse(hn::Lt(rest, hn::Zero(di)), hn::Sub(j, int_one), j);
-    rest = hn::Sub(cell, hn::Mul(j, cells_a_row));
-    j = hn::IfThenElse(hn::Gt(rest, hn::Sub(cells_a_row, int_one)), hn::Add(j, int_one), j);
+    j = hn::IfThenElse(hn::Lt(rest, cells_a_row), j, hn::Add(j, int_one));
     const auto a = hn::Add(cell, j);
     const VF u = hn::LoadU(df, h.u + i), v = hn::LoadU(df, h.v + i);
     // groundTriangleHit: the quad's first triangle where u + v <= 1, else its second.
