@@ -71,8 +71,7 @@ Sky makeSky(const RenderSettings& settings, const OccluderBox& box, const Sun& s
 
 Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
                        std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain,
-                       float ground_floor, const SunHorizon* hills, const TerrainMesh* ground_mesh,
-                       const HeightfieldWalk* ground_walk)
+                       float ground_floor, const SunHorizon* hills, const TerrainMesh* ground_mesh)
     : settings_(settings),
       characters_(scene.characters()),
       bounds_lower_(characterBox(scene).lower),
@@ -87,7 +86,6 @@ Integrator::Integrator(const RenderSettings& settings, const EmbreeScene& scene,
       terrain_(terrain),
       hills_(hills),
       ground_mesh_(terrain ? ground_mesh : nullptr),
-      ground_walk_(ground_mesh_ ? ground_walk : nullptr),
       slab_low_(-kInfinity),
       slab_high_(kInfinity),
       ground_(scene.ground()),
@@ -283,23 +281,19 @@ void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch
   const std::size_t n = lanes.size;
   TileScratch::GroundStream& g = scratch.ground;
   g.resize(lanes.padded);
-  if (ground_walk_) {
-    ground_walk_->trace(lanes, g.geom.data(), g.prim.data(), g.u.data(), g.v.data());
-  } else {
-    std::fill_n(g.geom.begin(), lanes.padded, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
-    RTCRayHitNp stream;
-    stream.ray = {lanes.ox.data(), lanes.oy.data(), lanes.oz.data(), lanes.t_enter.data(),
-                  lanes.dx.data(), lanes.dy.data(), lanes.dz.data(), g.time.data(),
-                  lanes.t_leave.data(), g.mask.data(), g.id.data(), g.flags.data()};
-    stream.hit.Ng_x = g.ng_x.data(), stream.hit.Ng_y = g.ng_y.data(), stream.hit.Ng_z = g.ng_z.data();
-    stream.hit.u = g.u.data(), stream.hit.v = g.v.data();
-    stream.hit.primID = g.prim.data(), stream.hit.geomID = g.geom.data();
-    for (unsigned*& inst : stream.hit.instID) inst = g.inst.data();
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersectNp(ground_, &context, &stream, unsigned(n));
-  }
+  std::fill_n(g.geom.begin(), lanes.padded, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
+  RTCRayHitNp stream;
+  stream.ray = {lanes.ox.data(), lanes.oy.data(), lanes.oz.data(), lanes.t_enter.data(),
+                lanes.dx.data(), lanes.dy.data(), lanes.dz.data(), g.time.data(),
+                lanes.t_leave.data(), g.mask.data(), g.id.data(), g.flags.data()};
+  stream.hit.Ng_x = g.ng_x.data(), stream.hit.Ng_y = g.ng_y.data(), stream.hit.Ng_z = g.ng_z.data();
+  stream.hit.u = g.u.data(), stream.hit.v = g.v.data();
+  stream.hit.primID = g.prim.data(), stream.hit.geomID = g.geom.data();
+  for (unsigned*& inst : stream.hit.instID) inst = g.inst.data();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersectNp(ground_, &context, &stream, unsigned(n));
   // Each hit's distance (its tfar) and the ground's normal there, while the hits are at hand (a
   // character nearer makes the normal unused: few samples).
   if (ground_mesh_) {

@@ -17,7 +17,6 @@
 
 #include "render/tracer/embree_scene.h"
 #include "render/tracer/heightfield_mesh.h"
-#include "render/tracer/heightfield_walk.h"
 #include "render/tracer/light.h"
 #include "render/tracer/lights.h"
 #include "render/tracer/material.h"
@@ -99,12 +98,9 @@ class Integrator {
   // heightfield. Sky rays meet only the characters. `ground_mesh` is that heightfield (the mesh in the
   // scene's ground): a camera ray is traced only where it crosses the slab between its lowest and
   // highest points, and a hit is shaded with its vertex normals; without it, with the terrain's normal.
-  // `ground_walk`, that mesh's grid for the SIMD walk (render/tracer/heightfield_walk.h), traces the
-  // camera rays against it in place of Embree; without it Embree traces them.
   Integrator(const RenderSettings& settings, const EmbreeScene& scene,
              std::span<const ShadingMesh* const> meshes_by_geometry, const rig::Terrain* terrain = nullptr,
-             float ground_floor = 0.0f, const SunHorizon* hills = nullptr, const TerrainMesh* ground_mesh = nullptr,
-             const HeightfieldWalk* ground_walk = nullptr);
+             float ground_floor = 0.0f, const SunHorizon* hills = nullptr, const TerrainMesh* ground_mesh = nullptr);
 
   // Every pixel of the tile [x0, x1) x [y0, y1), written row by row to `out` ((x1 - x0) * (y1 - y0)
   // results; only their rgba unless RenderSettings::passes is set). The tile is traced in batches of pixels as ray streams, in three passes: all camera
@@ -180,7 +176,6 @@ class Integrator {
   const rig::Terrain* terrain_;  // or, when set, this terrain's mesh in ground_
   const SunHorizon* hills_;      // with terrain_: where the hills certainly leave the sun open (null: nowhere)
   const TerrainMesh* ground_mesh_;  // with terrain_: the heightfield as traced (null: unknown)
-  const HeightfieldWalk* ground_walk_;  // with ground_mesh_: its grid, walked by the camera rays (null: Embree)
   float slab_low_, slab_high_;   // with terrain_: every ground point's height is within these
   RTCScene ground_;
   uint32_t spp_, light_spp_, ao_spp_;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -86,7 +85,6 @@ struct Renderer::State {
   std::shared_ptr<const rig::Terrain> terrain;        // null: the flat plane
   float ground_floor = 0.0f;                          // the lowest ground height
   std::unique_ptr<const TerrainMesh> ground_mesh;     // the terrain's heightfield, as traced
-  std::unique_ptr<const HeightfieldWalk> ground_walk; // its grid, as the camera rays walk it
   std::unique_ptr<const SunHorizon> hills;            // where its hills certainly leave the sun open
   tbb::enumerable_thread_specific<TileBuffers> tile_buffers;
 };
@@ -111,7 +109,6 @@ void Renderer::setTerrain(std::shared_ptr<const rig::Terrain> terrain, const Gro
     state_->scene.setGroundMesh(mesh->positions, mesh->indices);
     state_->hills = std::make_unique<const SunHorizon>(*mesh, settings_.sun_direction, sun_radius, region);
   });
-  state_->ground_walk = std::getenv("STIRRUP_EMBREE_GROUND") ? nullptr : std::make_unique<const HeightfieldWalk>(*mesh);
   state_->ground_mesh = std::move(mesh);
   state_->terrain = std::move(terrain);
   state_->ground_floor = state_->ground_mesh->min_height;
@@ -193,8 +190,7 @@ Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, cons
     // one away for the side task only moved its time onto the trace).
     if (alongside) side.run(alongside);
     const Integrator integrator(settings_, state_->scene, state_->by_geometry, state_->terrain.get(),
-                                state_->ground_floor, state_->hills.get(), state_->ground_mesh.get(),
-                                state_->ground_walk.get());
+                                state_->ground_floor, state_->hills.get(), state_->ground_mesh.get());
 
     const auto t1 = Clock::now();
     // simple_partitioner: tiles of at most 16 x 16, whatever the thread count.
