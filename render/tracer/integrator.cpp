@@ -413,13 +413,18 @@ std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
                  padded_lights, scratch.sun_parts);
   pixelPartLanes(sky_layout_, SampleDimension::SkyHemisphere, uint32_t(frame), scratch.light_x.data(),
                  scratch.light_y.data(), padded_lights, scratch.sky_parts);
-  for (std::size_t s = 0; s < m; ++s) {
-    const std::size_t light = std::size_t(scratch.surface_light[s]);
-    const uint32_t i = scratch.surface_slot[s];
-    const Stratified2D::PixelPart sun = scratch.sun_parts.part(light), sky = scratch.sky_parts.part(light);
-    for (uint32_t k = 0; k < light_spp_; ++k) sun_points.set(k * surfaces.stride + s, sun, i * light_spp_ + k);
-    for (uint32_t k = 0; k < ao_spp_; ++k) sky_points.set(k * surfaces.stride + s, sky, i * ao_spp_ + k);
-  }
+  // A row of points at a time (point k of every surface), so each array is written in order.
+  const auto setPoints = [&](StratifiedLanes& points, const StratifiedLanes& parts, uint32_t per_sample) {
+    for (uint32_t k = 0; k < per_sample; ++k) {
+      const std::size_t row = k * surfaces.stride;
+      for (std::size_t s = 0; s < m; ++s) {
+        const std::size_t light = std::size_t(scratch.surface_light[s]);
+        points.set(row + s, parts.part(light), scratch.surface_slot[s] * per_sample + k);
+      }
+    }
+  };
+  setPoints(sun_points, scratch.sun_parts, light_spp_);
+  setPoints(sky_points, scratch.sky_parts, ao_spp_);
   return m;
 }
 
