@@ -219,7 +219,7 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   lanes.resize(n);
 
   cameraPass(constants, x0, tile_width, y0, first, count, frame, scratch, tally);
-  if (terrain_ && n > 0) groundPass(constants, x0, tile_width, y0, first, count, scratch);
+  if (terrain_ && n > 0) groundPass(constants, scratch);
   std::fill_n(lanes.hit_ray.begin(), lanes.padded, -1);
   if (!scratch.camera_rays.empty()) characterPass(scratch);
   surfacePass(constants, frame, scratch, tally);
@@ -276,29 +276,24 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
 // each ray from where it enters the heightfield's slab to where it leaves it (cameraRayLanes); a ray
 // wholly above the hills (the sky of most views) has t_enter > t_leave, which Embree skips. The
 // ground's distance then bounds the search through the characters as the plane's does.
-void Integrator::groundPass(const LaneConstants& constants, int x0, int tile_width, int y0, int first, int count,
-                            TileScratch& scratch) const {
+void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch) const {
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = lanes.size;
   TileScratch::GroundStream& g = scratch.ground;
   g.resize(lanes.padded);
-  if (!raster_ || !ground_mesh_ ||
-      !raster_->trace(*raster_frame_, x0, tile_width, y0, first, count, int(spp_), lanes, scratch.raster,
-                      g.geom.data(), g.prim.data(), g.u.data(), g.v.data())) {
-    std::fill_n(g.geom.begin(), lanes.padded, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
-    RTCRayHitNp stream;
-    stream.ray = {lanes.ox.data(), lanes.oy.data(), lanes.oz.data(), lanes.t_enter.data(),
-                  lanes.dx.data(), lanes.dy.data(), lanes.dz.data(), g.time.data(),
-                  lanes.t_leave.data(), g.mask.data(), g.id.data(), g.flags.data()};
-    stream.hit.Ng_x = g.ng_x.data(), stream.hit.Ng_y = g.ng_y.data(), stream.hit.Ng_z = g.ng_z.data();
-    stream.hit.u = g.u.data(), stream.hit.v = g.v.data();
-    stream.hit.primID = g.prim.data(), stream.hit.geomID = g.geom.data();
-    for (unsigned*& inst : stream.hit.instID) inst = g.inst.data();
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersectNp(ground_, &context, &stream, unsigned(n));
-  }
+  std::fill_n(g.geom.begin(), lanes.padded, RTC_INVALID_GEOMETRY_ID);  // Embree writes a hit's fields only
+  RTCRayHitNp stream;
+  stream.ray = {lanes.ox.data(), lanes.oy.data(), lanes.oz.data(), lanes.t_enter.data(),
+                lanes.dx.data(), lanes.dy.data(), lanes.dz.data(), g.time.data(),
+                lanes.t_leave.data(), g.mask.data(), g.id.data(), g.flags.data()};
+  stream.hit.Ng_x = g.ng_x.data(), stream.hit.Ng_y = g.ng_y.data(), stream.hit.Ng_z = g.ng_z.data();
+  stream.hit.u = g.u.data(), stream.hit.v = g.v.data();
+  stream.hit.primID = g.prim.data(), stream.hit.geomID = g.geom.data();
+  for (unsigned*& inst : stream.hit.instID) inst = g.inst.data();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersectNp(ground_, &context, &stream, unsigned(n));
   // Each hit's distance (its tfar) and the ground's normal there, while the hits are at hand (a
   // character nearer makes the normal unused: few samples).
   if (ground_mesh_) {

@@ -17,7 +17,6 @@
 
 #include "render/tracer/embree_scene.h"
 #include "render/tracer/heightfield_mesh.h"
-#include "render/tracer/heightfield_raster.h"
 #include "render/tracer/light.h"
 #include "render/tracer/lights.h"
 #include "render/tracer/material.h"
@@ -75,7 +74,6 @@ struct TileScratch {
     std::vector<float> time, ng_x, ng_y, ng_z, u, v;
     std::vector<unsigned> mask, id, flags, prim, geom, inst;
   } ground;
-  HeightfieldRaster::Scratch raster;   // uneven ground rasterized (Integrator::useGroundRaster)
   std::vector<RTCRay> sun_rays;        // traced as one stream (nearly parallel, but not as coherent: occlusionPass)
   std::vector<RTCRay> sky_rays;        // traced as one stream
   std::vector<int32_t> sun_list, sky_list;  // each traced ray's index in the surface lanes' per-ray arrays
@@ -112,12 +110,6 @@ class Integrator {
   void renderTile(const scene::CameraFrame& camera, int x0, int x1, int y0, int y1, int frame, TileScratch& scratch,
                   RayTally& tally, PixelResult* out) const;
 
-  // The camera rays meet the heightfield by `raster` (this frame's `frame` of it) instead of Embree.
-  // Both must outlive the integrator.
-  void useGroundRaster(const HeightfieldRaster* raster, const HeightfieldRaster::Frame* frame) {
-    raster_ = raster, raster_frame_ = frame;
-  }
-
   // What the SIMD kernels read (render/tracer/sample_lanes.h, render/tracer/shading_lanes.h), for this frame's camera.
   LaneConstants laneConstants(const scene::CameraFrame& camera) const;
 
@@ -138,8 +130,7 @@ class Integrator {
   // left in the scratch.
   void cameraPass(const LaneConstants& constants, int x0, int tile_width, int y0, int first, int count, int frame,
                   TileScratch& scratch, RayTally& tally) const;
-  void groundPass(const LaneConstants& constants, int x0, int tile_width, int y0, int first, int count,
-                  TileScratch& scratch) const;
+  void groundPass(const LaneConstants& constants, TileScratch& scratch) const;
   void characterPass(TileScratch& scratch) const;
   void surfacePass(const LaneConstants& constants, int frame, TileScratch& scratch, RayTally& tally) const;
   // surfacePass's steps, in order: the ground and the sky in lanes, the other surfaces gathered into the
@@ -185,8 +176,6 @@ class Integrator {
   const rig::Terrain* terrain_;  // or, when set, this terrain's mesh in ground_
   const SunHorizon* hills_;      // with terrain_: where the hills certainly leave the sun open (null: nowhere)
   const TerrainMesh* ground_mesh_;  // with terrain_: the heightfield as traced (null: unknown)
-  const HeightfieldRaster* raster_ = nullptr;             // with ground_mesh_: rasterizes it (null: Embree)
-  const HeightfieldRaster::Frame* raster_frame_ = nullptr;
   float slab_low_, slab_high_;   // with terrain_: every ground point's height is within these
   RTCScene ground_;
   uint32_t spp_, light_spp_, ao_spp_;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -86,7 +85,6 @@ struct Renderer::State {
   std::shared_ptr<const rig::Terrain> terrain;        // null: the flat plane
   float ground_floor = 0.0f;                          // the lowest ground height
   std::unique_ptr<const TerrainMesh> ground_mesh;     // the terrain's heightfield, as traced
-  std::unique_ptr<const HeightfieldRaster> ground_raster;  // its grid, as the camera rays meet it
   std::unique_ptr<const SunHorizon> hills;            // where its hills certainly leave the sun open
   tbb::enumerable_thread_specific<TileBuffers> tile_buffers;
 };
@@ -111,7 +109,6 @@ void Renderer::setTerrain(std::shared_ptr<const rig::Terrain> terrain, const Gro
     state_->scene.setGroundMesh(mesh->positions, mesh->indices);
     state_->hills = std::make_unique<const SunHorizon>(*mesh, settings_.sun_direction, sun_radius, region);
   });
-  if (!std::getenv("STIRRUP_EMBREE_GROUND")) state_->ground_raster = std::make_unique<const HeightfieldRaster>(*mesh);
   state_->ground_mesh = std::move(mesh);
   state_->terrain = std::move(terrain);
   state_->ground_floor = state_->ground_mesh->min_height;
@@ -192,28 +189,19 @@ Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, cons
     // After the commit: the refit has every thread (on two cores it scales with them, and taking
     // one away for the side task only moved its time onto the trace).
     if (alongside) side.run(alongside);
-    Integrator integrator(settings_, state_->scene, state_->by_geometry, state_->terrain.get(), state_->ground_floor,
-                          state_->hills.get(), state_->ground_mesh.get());
-    HeightfieldRaster::Frame raster_frame;
-    if (state_->ground_raster) {
-      raster_frame = state_->ground_raster->prepare(integrator.laneConstants(camera_frame), w, h);
-      integrator.useGroundRaster(state_->ground_raster.get(), &raster_frame);
-    }
+    const Integrator integrator(settings_, state_->scene, state_->by_geometry, state_->terrain.get(),
+                                state_->ground_floor, state_->hills.get(), state_->ground_mesh.get());
 
     const auto t1 = Clock::now();
-    // Tiles of 16 x 16 on a grid from the corner, whatever the thread count: the squares the heightfield's
-    // raster bins its cells by (HeightfieldRaster::kBinPixels).
-    static_assert(kTileSize == HeightfieldRaster::kBinPixels);
-    const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
+    // simple_partitioner: tiles of at most 16 x 16, whatever the thread count.
     tbb::parallel_for(
-        tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
-        [&](const tbb::blocked_range<int>& tiles) {
-         for (int tile = tiles.begin(); tile < tiles.end(); ++tile) {
+        tbb::blocked_range2d<int>(0, h, kTileSize, 0, w, kTileSize),
+        [&](const tbb::blocked_range2d<int>& tile) {
           DenormalsAreZero ftz;
           RayTally tally;
           TileBuffers& b = buffers.local();
-          const int x0 = (tile % tiles_x) * kTileSize, x1 = std::min(w, x0 + kTileSize);
-          const int y0 = (tile / tiles_x) * kTileSize, y1 = std::min(h, y0 + kTileSize);
+          const int x0 = tile.cols().begin(), x1 = tile.cols().end();
+          const int y0 = tile.rows().begin(), y1 = tile.rows().end();
           b.results.resize(size_t(x1 - x0) * size_t(y1 - y0));
           if (log) {
             // Keeping rays (benchmarks only): pixel by pixel, so the log holds exactly the kept pixels' rays.
@@ -244,7 +232,6 @@ Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, cons
             }
           }
           rays.fetch_add(tally.rays, std::memory_order_relaxed);
-         }
         },
         tbb::simple_partitioner());
     stats_.trace_ms = msSince(t1);
