@@ -219,9 +219,14 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
   lanes.resize(n);
 
   cameraPass(constants, x0, tile_width, y0, first, count, frame, scratch, tally);
-  if (terrain_ && n > 0) groundPass(constants, scratch);
   std::fill_n(lanes.hit_ray.begin(), lanes.padded, -1);
+  const bool hills = terrain_ && n > 0;
+  if (hills) {  // the characters first, unbounded: their hits then bound the heightfield's rays (pass 2b)
+    boxTestLanes(constants, lanes);
+    queueCharacterRays(scratch);
+  }
   if (!scratch.camera_rays.empty()) characterPass(scratch);
+  if (hills) groundPass(scratch);
   surfacePass(constants, frame, scratch, tally);
   occlusionPass(constants, scratch);
   resolvePass(count, scratch, out);
@@ -230,7 +235,8 @@ void Integrator::renderBatch(const LaneConstants& constants, int x0, int tile_wi
 // Pass 1: every camera ray of the batch. Each pixel's sequence is set up here; its points, the rays,
 // the flat ground (a square in the plane y = 0, intersected without a call into Embree: its distance
 // then bounds the search through the characters) and the test against the characters' box run in
-// SIMD lanes over the whole batch. Uneven ground is traced below (pass 1b) first.
+// SIMD lanes over the whole batch. Over uneven ground the characters are traced unbounded (pass 2), then
+// the heightfield up to them (pass 2b).
 void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_width, int y0, int first, int count,
                             int frame, TileScratch& scratch, RayTally& tally) const {
   CameraLanes& lanes = scratch.lanes;
@@ -267,16 +273,19 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
   tally.rays += n;
   if (tally.camera)
     for (std::size_t k = 0; k < n; ++k) tally.camera->push_back(makeRay(lanes.origin(k), lanes.direction(k), kInfinity));
-  if (terrain_) return;  // the heightfield first (pass 1b)
+  if (terrain_) return;  // over hills the characters' rays are not bounded by the ground (renderBatch)
   queueCharacterRays(scratch);
 }
 
-// Pass 1b (uneven ground): the camera rays against the heightfield as one structure-of-arrays stream
-// that Embree reads from the lanes in place (no per-ray structures to fill, no copies), coherent,
-// each ray from where it enters the heightfield's slab to where it leaves it (cameraRayLanes); a ray
-// wholly above the hills (the sky of most views) has t_enter > t_leave, which Embree skips. The
-// ground's distance then bounds the search through the characters as the plane's does.
-void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch) const {
+// Pass 2b (uneven ground, after the characters): the camera rays against the heightfield as one
+// structure-of-arrays stream that Embree reads from the lanes in place (no per-ray structures to fill,
+// no copies), coherent, each ray from where it enters the heightfield's slab to where it leaves it
+// (cameraRayLanes) or meets a character, whichever is nearer; a ray wholly above the hills (the sky of
+// most views) has t_enter > t_leave, which Embree skips. Where the ground is nearer than a character
+// hit, the sample sees the ground. The characters' rays are not bounded by the ground here, so they
+// search further than over the plane; the heightfield's rays saved more (docs/performance.md, "What a
+// hill frame pays beyond a flat one").
+void Integrator::groundPass(TileScratch& scratch) const {
   CameraLanes& lanes = scratch.lanes;
   const std::size_t n = lanes.size;
   TileScratch::GroundStream& g = scratch.ground;
@@ -290,6 +299,13 @@ void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch
   stream.hit.u = g.u.data(), stream.hit.v = g.v.data();
   stream.hit.primID = g.prim.data(), stream.hit.geomID = g.geom.data();
   for (unsigned*& inst : stream.hit.instID) inst = g.inst.data();
+  // A ray that met a character searches the hills only up to her: the ground behind is not seen.
+  for (std::size_t r = 0; r < scratch.camera_rays.size(); ++r) {
+    const RTCRayHit& rh = scratch.camera_rays[r];
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    float& t_leave = lanes.t_leave[std::size_t(scratch.ray_samples[r])];
+    t_leave = std::min(t_leave, rh.ray.tfar);
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -307,8 +323,9 @@ void Integrator::groundPass(const LaneConstants& constants, TileScratch& scratch
       if (hit) terrainNormal(lanes, k);
     }
   }
-  boxTestLanes(constants, lanes);
-  queueCharacterRays(scratch);
+  // Where the ground is nearer than the character a ray met, the sample sees the ground.
+  for (std::size_t k = 0; k < n; ++k)
+    if (lanes.hit_ray[k] >= 0 && lanes.t_ground[k] < kInfinity) lanes.hit_ray[k] = -1;
 }
 
 // Pass 2: the camera rays that may meet the characters, as one coherent stream.
@@ -408,6 +425,18 @@ std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
   const std::size_t padded_lights = CameraLanes::paddedSize(scratch.light_x.size());
   if (padded_lights == 0) return m;
   scratch.light_x.resize(padded_lights, 0u), scratch.light_y.resize(padded_lights, 0u);
+  if (spp_ == 1 && light_spp_ == 1 && ao_spp_ == 1) {
+    // A draft: each surface is its pixel's only one and takes its pixel's first point, so its points
+    // are its pixel's parts as they are, made in place (copying them surface by surface cost 1-3% of a
+    // draft's CPU: docs/performance.md).
+    pixelPartLanes(sun_layout_, SampleDimension::SunCone, uint32_t(frame), scratch.light_x.data(), scratch.light_y.data(),
+                   padded_lights, sun_points);
+    pixelPartLanes(sky_layout_, SampleDimension::SkyHemisphere, uint32_t(frame), scratch.light_x.data(),
+                   scratch.light_y.data(), padded_lights, sky_points);
+    std::fill_n(sun_points.index.begin(), padded_lights, 0u);
+    std::fill_n(sky_points.index.begin(), padded_lights, 0u);
+    return m;
+  }
   scratch.sun_parts.resize(padded_lights), scratch.sky_parts.resize(padded_lights);
   pixelPartLanes(sun_layout_, SampleDimension::SunCone, uint32_t(frame), scratch.light_x.data(), scratch.light_y.data(),
                  padded_lights, scratch.sun_parts);

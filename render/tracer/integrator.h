@@ -130,7 +130,7 @@ class Integrator {
   // left in the scratch.
   void cameraPass(const LaneConstants& constants, int x0, int tile_width, int y0, int first, int count, int frame,
                   TileScratch& scratch, RayTally& tally) const;
-  void groundPass(const LaneConstants& constants, TileScratch& scratch) const;
+  void groundPass(TileScratch& scratch) const;
   void characterPass(TileScratch& scratch) const;
   void surfacePass(const LaneConstants& constants, int frame, TileScratch& scratch, RayTally& tally) const;
   // surfacePass's steps, in order: the ground and the sky in lanes, the other surfaces gathered into the
