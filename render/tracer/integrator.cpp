@@ -324,8 +324,10 @@ void Integrator::groundPass(TileScratch& scratch) const {
     }
   }
   // Where the ground is nearer than the character a ray met, the sample sees the ground.
-  for (std::size_t k = 0; k < n; ++k)
+  for (std::size_t r = 0; r < scratch.camera_rays.size(); ++r) {
+    const std::size_t k = std::size_t(scratch.ray_samples[r]);
     if (lanes.hit_ray[k] >= 0 && lanes.t_ground[k] < kInfinity) lanes.hit_ray[k] = -1;
+  }
 }
 
 // Pass 2: the camera rays that may meet the characters, as one coherent stream.
@@ -425,23 +427,22 @@ std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
   const std::size_t padded_lights = CameraLanes::paddedSize(scratch.light_x.size());
   if (padded_lights == 0) return m;
   scratch.light_x.resize(padded_lights, 0u), scratch.light_y.resize(padded_lights, 0u);
-  if (spp_ == 1 && light_spp_ == 1 && ao_spp_ == 1) {
-    // A draft: each surface is its pixel's only one and takes its pixel's first point, so its points
-    // are its pixel's parts as they are, made in place (copying them surface by surface cost 1-3% of a
-    // draft's CPU: docs/performance.md).
-    pixelPartLanes(sun_layout_, SampleDimension::SunCone, uint32_t(frame), scratch.light_x.data(), scratch.light_y.data(),
-                   padded_lights, sun_points);
-    pixelPartLanes(sky_layout_, SampleDimension::SkyHemisphere, uint32_t(frame), scratch.light_x.data(),
-                   scratch.light_y.data(), padded_lights, sky_points);
+  // A draft: each surface is its pixel's only one and takes its pixel's first point, so its points are
+  // its pixel's parts as they are, made in place (copying them surface by surface cost 1-3% of a
+  // draft's CPU: docs/performance.md).
+  const bool in_place = spp_ == 1 && light_spp_ == 1 && ao_spp_ == 1;
+  StratifiedLanes& sun_parts = in_place ? sun_points : scratch.sun_parts;
+  StratifiedLanes& sky_parts = in_place ? sky_points : scratch.sky_parts;
+  if (!in_place) sun_parts.resize(padded_lights), sky_parts.resize(padded_lights);
+  pixelPartLanes(sun_layout_, SampleDimension::SunCone, uint32_t(frame), scratch.light_x.data(), scratch.light_y.data(),
+                 padded_lights, sun_parts);
+  pixelPartLanes(sky_layout_, SampleDimension::SkyHemisphere, uint32_t(frame), scratch.light_x.data(),
+                 scratch.light_y.data(), padded_lights, sky_parts);
+  if (in_place) {
     std::fill_n(sun_points.index.begin(), padded_lights, 0u);
     std::fill_n(sky_points.index.begin(), padded_lights, 0u);
     return m;
   }
-  scratch.sun_parts.resize(padded_lights), scratch.sky_parts.resize(padded_lights);
-  pixelPartLanes(sun_layout_, SampleDimension::SunCone, uint32_t(frame), scratch.light_x.data(), scratch.light_y.data(),
-                 padded_lights, scratch.sun_parts);
-  pixelPartLanes(sky_layout_, SampleDimension::SkyHemisphere, uint32_t(frame), scratch.light_x.data(),
-                 scratch.light_y.data(), padded_lights, scratch.sky_parts);
   // A row of points at a time (point k of every surface), so each array is written in order.
   const auto setPoints = [&](StratifiedLanes& points, const StratifiedLanes& parts, uint32_t per_sample) {
     for (uint32_t k = 0; k < per_sample; ++k) {
@@ -452,8 +453,8 @@ std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
       }
     }
   };
-  setPoints(sun_points, scratch.sun_parts, light_spp_);
-  setPoints(sky_points, scratch.sky_parts, ao_spp_);
+  setPoints(sun_points, sun_parts, light_spp_);
+  setPoints(sky_points, sky_parts, ao_spp_);
   return m;
 }
 
