@@ -145,7 +145,8 @@ namespace {
 
 // How far a ray origin may be from the point the map is asked about (the renderer's ray offset: 2e-3 cm
 // plus 3e-5 of the coordinates, under 1 cm within 300 m; render/tracer/shading_lanes.cpp). Farther points are
-// not answered (traced).
+// not answered from the map (traced); where the sun is open everywhere there is no map to miss, and a
+// point of any slack is open once its origins are known on or above the mesh.
 constexpr double kMaxSlackCm = 1.0;
 // Heights are stored in floats: this much more is asked of a point than the bound in doubles says.
 constexpr double kHeightEpsilonCm = 0.01;
@@ -374,12 +375,16 @@ SunHorizon::SunHorizon(const TerrainMesh& mesh, const glm::dvec3& toward_sun, do
 
 bool SunHorizon::open(const glm::vec3& p, float slack, bool above_mesh_known) const {
   if (!above_mesh_known) return openAbove(p, slack, mesh_->heightAt(p.x, p.z));
-  if (!(double(slack) <= kMaxSlackCm)) return false;
+  if (!answers(slack)) return false;
   return openOnMesh(p, slack);
 }
 
+bool SunHorizon::answers(float slack) const {
+  return everywhere_open_ ? !std::isnan(slack) : double(slack) <= kMaxSlackCm;
+}
+
 bool SunHorizon::openAbove(const glm::vec3& p, float slack, double mesh_height) const {
-  if (!(double(slack) <= kMaxSlackCm)) return false;
+  if (!answers(slack)) return false;
   // Every point within the slack must be on or above the mesh, which rises at most `steepest_` per unit run.
   const double floor = mesh_height + steepest_ * double(slack) * std::sqrt(2.0) + kHeightEpsilonCm;
   if (!(double(p.y) - double(slack) >= floor)) return false;
@@ -389,7 +394,7 @@ bool SunHorizon::openAbove(const glm::vec3& p, float slack, double mesh_height) 
 SunHorizon::LaneView SunHorizon::laneView() const {
   LaneView v;
   v.everywhere_open = everywhere_open_;
-  v.max_slack = float(kMaxSlackCm - kLaneSlackMarginCm);
+  v.max_slack = everywhere_open_ ? std::numeric_limits<float>::infinity() : float(kMaxSlackCm - kLaneSlackMarginCm);
   v.height_margin = float(kLaneHeightMarginCm);
   if (nx_ > 0 && !everywhere_open_) {
     v.clear = clear_.data();

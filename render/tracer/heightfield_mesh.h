@@ -103,7 +103,8 @@ struct SunHorizonParams {
 //    when q.y > max over s >= s0 of [mesh(p + s a) - s (tan e' - G chord(phi))] + G rho, the maximum
 //    taken every half texel and raised by the most the function can rise between two samples.
 // Past the map, or where the near field is too steep, nothing is known (the caller traces the rays).
-// When even the steepest triangle rises slower than tan e', every point on or above the mesh is open.
+// When even the steepest triangle rises slower than tan e', every point on or above the mesh is open,
+// however far from the origin (the map's slack limit is the texels').
 class SunHorizon {
  public:
   // `toward_sun` need not be unit; `angular_radius_rad` is the sun disc's (RenderSettings).
@@ -119,11 +120,11 @@ class SunHorizon {
   bool openAbove(const glm::vec3& p, float slack, double mesh_height) const;
   bool everywhereOpen() const { return everywhere_open_; }
   // The map as plain numbers, for the same test in SIMD lanes on ground points (on the mesh), in floats
-  // (render/tracer/sample_lanes.cpp): p is open when its slack is at most max_slack and everywhere_open,
-  // or when (p.x - x0) inv_texel and (p.z - z0) inv_texel fall in the map and p.y less its slack and
-  // height_margin is above that texel's clear height. max_slack and height_margin leave room for the
-  // floats' rounding (a texel by a hundredth of a centimetre off, a height by its last bits), which the
-  // map's horizontal slack and height epsilon cover.
+  // (render/tracer/sample_lanes.cpp): p is open when everywhere_open (max_slack is then infinite), or
+  // when its slack is at most max_slack, (p.x - x0) inv_texel and (p.z - z0) inv_texel fall in the map
+  // and p.y less its slack and height_margin is above that texel's clear height. max_slack and
+  // height_margin leave room for the floats' rounding (a texel by a hundredth of a centimetre off, a
+  // height by its last bits), which the map's horizontal slack and height epsilon cover.
   struct LaneView {
     const float* clear = nullptr;  // nx * nz heights, row by row along x; null: nothing known
     bool everywhere_open = false;
@@ -139,6 +140,9 @@ class SunHorizon {
 
  private:
   bool openOnMesh(const glm::vec3& p, float slack) const;  // open() once p is known on or above the mesh
+  // Whether a point of this slack can be answered: any where the sun is open everywhere (only the map's
+  // texels assume a slack under a centimetre), else within 300 m or so of the origin.
+  bool answers(float slack) const;
 
   const TerrainMesh* mesh_;
   bool everywhere_open_ = false;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <tbb/task_scheduler_observer.h>
 
 #include <algorithm>
@@ -286,29 +287,35 @@ TEST(Shot, SetupTimingsSayWhatTheShotBuilt) {
 // view's framing) and renders on the caller's thread alone: no TBB worker joins the caller's arena,
 // where a parallel loop outside the shot's own one-thread arenas would run (a farm node told
 // --threads 1 shares its cores with others).
+// The caller's arena is made for the test: a worker still in the process's default arena from an
+// earlier test's loops is told of an observer set on it, and counted once in a while.
 TEST(Shot, AskedForOneThreadNoWorkerJoinsItsSetUpOrFrames) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: there are no workers to join";
+  tbb::task_arena caller(2);
   struct WorkerCount : tbb::task_scheduler_observer {
+    explicit WorkerCount(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) {}
     std::atomic<int> joined{0};
     void on_scheduler_entry(bool is_worker) override { joined += is_worker ? 1 : 0; }
-  } workers;
+  } workers(caller);
   workers.observe(true);
   scene::SceneSpec hills = pathOverHills();
   hills.sun_direction = {0.9, 0.22, 0.35};  // low: the hills' horizon map is built
   scene::CameraSpec side;
   side.name = "side";
   side.view = "side";
-  {
+  caller.execute([&] {
     Shot shot(hills, scene::resolveProfile(hills), side, 1);
     shot.renderFrame(12);
     shot.renderFrame(13, 14);  // and with the next frame evaluated ahead
     shot.renderFrame(14);
-    EXPECT_EQ(workers.joined.load(), 0);
-  }
+  });
+  EXPECT_EQ(workers.joined.load(), 0);
   // The observer does see a loop run in the caller's arena (so the count above can fail).
   std::atomic<int> sum{0};
-  for (int tries = 0; tries < 200 && workers.joined == 0; ++tries)
-    tbb::parallel_for(0, 100000, [&](int i) { sum += i % 3; });
+  caller.execute([&] {
+    for (int tries = 0; tries < 200 && workers.joined == 0; ++tries)
+      tbb::parallel_for(0, 100000, [&](int i) { sum += i % 3; });
+  });
   workers.observe(false);
   EXPECT_GT(workers.joined.load(), 0) << "no worker joined even a plain loop";
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -207,6 +208,31 @@ TEST(SunHorizon, AHighSunOverGentleHillsIsOpenEverywhere) {
   EXPECT_LT(horizon.steepestSlope(), 1.0);
   EXPECT_TRUE(horizon.everywhereOpen());
   EXPECT_TRUE(horizon.open({100.0f, float(mesh.heightAt(100.0, 100.0)) + 0.01f, 100.0f}, 0.01f, true));
+}
+
+// Far from the origin a shadow ray's origin is lifted by centimetres (2e-3 cm plus 3e-5 of its largest
+// coordinate), more than the map's texels allow for; where the sun is open everywhere no texel is asked,
+// so the ground there is still open, and none of its sun rays meets the mesh (the rolling hills to a
+// kilometre past the track; every point 300 m to 1 km from the origin, lifted along the hills' normal
+// as the renderer lifts it).
+TEST(SunHorizon, AHighSunIsOpenEvenWhereTheRayOffsetIsCentimetres) {
+  const test::HighSunHills hills;
+  ASSERT_TRUE(hills.horizon.everywhereOpen());
+  std::mt19937 rng(29);
+  for (int i = 0; i < 400; ++i) {
+    const glm::vec2 at = test::farFromTheOrigin(rng);
+    const glm::vec3 p = test::groundBelow(hills.scene.ground(), at.x, at.y);
+    ASSERT_TRUE(std::isfinite(p.y)) << p.x << " " << p.z;
+    const float extent = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
+    const float slack = 3e-3f + 4e-5f * extent;
+    ASSERT_GT(slack, 1.0f);  // past what a texel allows for
+    ASSERT_TRUE(hills.horizon.open(p, slack, true)) << p.x << " " << p.z;
+    const glm::vec3 above(p.x, p.y + 100.0f, p.z);  // a rider's point, not known on the mesh
+    ASSERT_TRUE(hills.horizon.openAbove(above, slack, hills.mesh.heightAt(p.x, p.z))) << p.x << " " << p.z;
+    const glm::vec3 n(hills.terrain.normal(double(p.x), double(p.z)));
+    const std::array<bool, 17> blocked = hills.discBlocked(p + (2e-3f + 3e-5f * extent) * n);
+    for (int k = 0; k <= 16; ++k) ASSERT_FALSE(blocked[std::size_t(k)]) << p.x << " " << p.z << ", ray " << k;
+  }
 }
 
 // Steep hills under a low sun: wherever the map says a point is open, no ray of the sun's disc from it

@@ -266,6 +266,46 @@ TEST(SampleLanes, HillsAreOpenToTheSunOnlyWhereNoSunRayMeetsThem) {
   }
 }
 
+// Under a sun open everywhere, the lanes answer every ground point open to the hills, however far from the
+// origin (300 m to 1 km: the shadow rays' offset is centimetres there, past what the map's texels allow
+// for); none of their sun rays meets the mesh (SunHorizon.AHighSunIsOpenEvenWhereTheRayOffsetIsCentimetres).
+// The same on every SIMD target.
+TEST(SampleLanes, UnderAHighSunFarGroundIsOpenToTheHills) {
+  const test::HighSunHills hills;
+  ASSERT_TRUE(hills.horizon.everywhereOpen());
+  LaneConstants k = constantsFor(scene::CameraFrame(sideCamera(scene::Camera::Projection::Perspective), 640, 360));
+  k.hills = hills.horizon.laneView();
+  const std::size_t n = 2000;
+  CameraLanes lanes;
+  lanes.resize(n);
+  std::mt19937 rng(31);
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec2 at = test::farFromTheOrigin(rng);
+    const glm::vec3 p = test::groundBelow(hills.scene.ground(), at.x, at.y);
+    ASSERT_TRUE(std::isfinite(p.y));
+    lanes.ox[i] = p.x, lanes.oy[i] = 2000.0f, lanes.oz[i] = p.z;
+    lanes.dx[i] = 0.0f, lanes.dy[i] = -1.0f, lanes.dz[i] = 0.0f;
+    lanes.t_shade[i] = 2000.0f - p.y;
+    lanes.gnx[i] = 0.0f, lanes.gny[i] = 1.0f, lanes.gnz[i] = 0.0f;
+  }
+  const std::vector<std::string> targets = simdTargets();
+  TargetPin restore;
+  for (const std::string& target : targets) {
+    pinSimdTarget(target);
+    std::fill(lanes.hills_open.begin(), lanes.hills_open.end(), 0);
+    terrainGroundLanes(k, lanes);
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_NE(lanes.hills_open[i], 0) << target << " " << lanes.ox[i] << " " << lanes.oz[i];
+    }
+  }
+  for (std::size_t i = 0; i < n; i += 10) {
+    const glm::vec3 p(lanes.ox[i], 2000.0f - lanes.t_shade[i], lanes.oz[i]);
+    const float extent = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
+    const std::array<bool, 17> blocked = hills.discBlocked(p + glm::vec3(0.0f, 2e-3f + 3e-5f * extent, 0.0f));
+    for (int r = 0; r <= 16; ++r) ASSERT_FALSE(blocked[std::size_t(r)]) << p.x << " " << p.z << ", ray " << r;
+  }
+}
+
 // The heightfield's hits as Embree leaves them, read in lanes: where a ray hit, t_ground is its distance
 // and the normal is the mesh's vertex normals interpolated at the hit point, on the triangle the point
 // lies on (found here from the point's (x, z) in the grid, not from Embree's barycentrics); where it

@@ -1,15 +1,18 @@
-// Rolling hills, and steep hills under a low sun, for the tests of the hills' horizon map (heightfield_mesh_test.cpp) and of
-// the same test in the ground's SIMD lanes (sample_lanes_test.cpp): 5 m hills 15 m apart over a 30 m
-// square, the sun 8 degrees up with a disc 2 degrees across, the map, and the heightfield in Embree to
-// trace the sun's disc against.
+// Hills under a sun, for the tests of the hills' horizon map (heightfield_mesh_test.cpp) and of the
+// same test in the ground's SIMD lanes (sample_lanes_test.cpp): rolling hills under a high sun, and steep
+// hills under a low one (5 m hills 15 m apart over a 30 m square, the sun 8 degrees up with a disc 2
+// degrees across); each with its map and its heightfield in Embree to trace the sun's disc against.
 #pragma once
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <random>
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 
 #include "render/tracer/embree_scene.h"
 #include "render/tracer/heightfield_mesh.h"
@@ -35,6 +38,78 @@ inline rig::Terrain steepHillsTerrain() {
   return rig::Terrain::hills(p, "test");
 }
 
+// Whether each ray of a sun's disc (`sun` toward it, `radius` its angular radius) from `origin` meets the
+// heightfield in `ground`: its axis (ray 0), then 16 directions on its rim.
+inline std::array<bool, 17> sunDiscBlocked(RTCScene ground, const glm::dvec3& sun, double radius, const glm::vec3& origin) {
+  const glm::dvec3 axis = glm::normalize(sun);
+  const glm::dvec3 side = glm::normalize(glm::cross(axis, glm::dvec3(0.0, 1.0, 0.0)));
+  const glm::dvec3 up = glm::cross(side, axis);
+  std::array<bool, 17> blocked{};
+  for (int r = 0; r <= 16; ++r) {
+    glm::dvec3 d = axis;
+    if (r > 0) {
+      const double a = 2.0 * std::numbers::pi * double(r - 1) / 16.0;
+      d = glm::normalize(axis * std::cos(radius) + (side * std::cos(a) + up * std::sin(a)) * std::sin(radius));
+    }
+    RTCRay ray{};
+    ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
+    ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
+    ray.tfar = 1e7f;
+    ray.mask = 0xffffffffu;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1(ground, &context, &ray);
+    blocked[std::size_t(r)] = ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+  }
+  return blocked;
+}
+
+// The mesh's point straight under (x, z), found as a camera ray finds it: traced down through Embree from
+// 20 m up (-infinity off the mesh).
+inline glm::vec3 groundBelow(RTCScene ground, float x, float z) {
+  RTCRayHit rh{};
+  rh.ray.org_x = x, rh.ray.org_y = 2000.0f, rh.ray.org_z = z;
+  rh.ray.dir_y = -1.0f, rh.ray.tfar = 1.0e7f, rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect1(ground, &context, &rh);
+  const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  return {x, hit ? 2000.0f - rh.ray.tfar : -std::numeric_limits<float>::infinity(), z};
+}
+
+// A point (x, z) 300 m to 1 km from the origin in its larger coordinate, where a shadow ray's origin
+// is lifted by 0.9 to 3 cm.
+inline glm::vec2 farFromTheOrigin(std::mt19937& rng) {
+  std::uniform_real_distribution<float> across(-100000.0f, 100000.0f);
+  for (;;) {
+    const glm::vec2 at(across(rng), across(rng));
+    if (std::max(std::abs(at.x), std::abs(at.y)) >= 30000.0f) return at;
+  }
+}
+
+// The path scenes' rolling hills under their sun, 48 degrees up (scenes/cavalry.json, ride_out.json):
+// the sun rises faster than any hill, so the map is open everywhere; the mesh reaches a kilometre
+// past the track, where a shadow ray's origin is lifted by centimetres.
+struct HighSunHills {
+  static constexpr double kRadius = 2.0 * std::numbers::pi / 180.0;
+
+  HighSunHills() { scene.setGroundMesh(mesh.positions, mesh.indices); }
+  HighSunHills(const HighSunHills&) = delete;  // the map points at the mesh
+  HighSunHills& operator=(const HighSunHills&) = delete;
+
+  std::array<bool, 17> discBlocked(const glm::vec3& origin) const {
+    return sunDiscBlocked(scene.ground(), sun, kRadius, origin);
+  }
+
+  rig::Terrain terrain = rollingHillsTerrain();
+  GroundRegion region{-500.0, -800.0, 4000.0, 4500.0};
+  TerrainMesh mesh = makeTerrainMesh(terrain, region);
+  glm::dvec3 sun{0.45, 0.75, 0.5};
+  SunHorizon horizon{mesh, sun, kRadius, region};
+  EmbreeScene scene;
+};
+
 struct SteepHills {
   static constexpr double kRadius = 2.0 * std::numbers::pi / 180.0;     // the sun disc's angular radius
   static constexpr double kElevation = 8.0 * std::numbers::pi / 180.0;  // the sun's height above the horizon
@@ -46,27 +121,7 @@ struct SteepHills {
   // Whether each ray of the sun's disc from `origin` meets the mesh: its axis (ray 0), then 16
   // directions on its rim.
   std::array<bool, 17> discBlocked(const glm::vec3& origin) const {
-    const glm::dvec3 axis = glm::normalize(sun);
-    const glm::dvec3 side = glm::normalize(glm::cross(axis, glm::dvec3(0.0, 1.0, 0.0)));
-    const glm::dvec3 up = glm::cross(side, axis);
-    std::array<bool, 17> blocked{};
-    for (int r = 0; r <= 16; ++r) {
-      glm::dvec3 d = axis;
-      if (r > 0) {
-        const double a = 2.0 * std::numbers::pi * double(r - 1) / 16.0;
-        d = glm::normalize(axis * std::cos(kRadius) + (side * std::cos(a) + up * std::sin(a)) * std::sin(kRadius));
-      }
-      RTCRay ray{};
-      ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
-      ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
-      ray.tfar = 1e7f;
-      ray.mask = 0xffffffffu;
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      rtcOccluded1(scene.ground(), &context, &ray);
-      blocked[std::size_t(r)] = ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
-    }
-    return blocked;
+    return sunDiscBlocked(scene.ground(), sun, kRadius, origin);
   }
 
   rig::Terrain terrain = steepHillsTerrain();
