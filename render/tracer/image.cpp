@@ -45,9 +45,14 @@ void writeAtomically(const fs::path& file, const char* format, const OIIO::Image
 
 }  // namespace
 
-Image::Image(int w, int h) : width(w), height(h) {
+Image::Image(int w, int h) : Image(unfilled(w, h)) { std::fill(rgba.begin(), rgba.end(), glm::vec4(0.0f)); }
+
+Image Image::unfilled(int w, int h) {
   if (w <= 0 || h <= 0) throw std::invalid_argument("image size must be positive");
-  rgba.assign(pixelCount(), glm::vec4(0.0f));
+  Image image;
+  image.width = w, image.height = h;
+  image.rgba.resize(image.pixelCount());
+  return image;
 }
 
 float linearToSrgb(float linear) {

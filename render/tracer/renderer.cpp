@@ -167,7 +167,7 @@ void Renderer::setMeshEnabled(int mesh, bool enabled) {
 Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, const std::function<void()>& alongside) {
   const int w = settings_.width, h = settings_.height;
   const scene::CameraFrame camera_frame(camera, w, h);
-  Image image(w, h);
+  Image image = Image::unfilled(w, h);  // every pixel is written by its tile below
   if (settings_.passes) {
     image.depth.assign(image.pixelCount(), 0.0f);
     image.matte.assign(image.pixelCount(), 0.0f);

@@ -36,6 +36,28 @@ Image gradient(int w, int h) {
   return img;
 }
 
+// A new image is black with alpha 0 even where the memory it gets held a picture before (its pixels
+// are not zeroed by the vector: Image::unfilled leaves them for a renderer that writes every one), and
+// an unfilled one has its size. Neither size may be zero or negative.
+TEST(Image, ANewImageIsBlackAndAnUnfilledOneHasItsSize) {
+  for (int round = 0; round < 3; ++round) {
+    {
+      Image before = Image::unfilled(64, 32);
+      for (glm::vec4& p : before.rgba) p = glm::vec4(0.7f, 0.5f, 0.3f, 1.0f);
+    }
+    const Image image(64, 32);
+    ASSERT_EQ(image.rgba.size(), 64u * 32u);
+    for (const glm::vec4& p : image.rgba) ASSERT_EQ(p, glm::vec4(0.0f));
+  }
+  const Image unfilled = Image::unfilled(7, 5);
+  EXPECT_EQ(unfilled.width, 7);
+  EXPECT_EQ(unfilled.height, 5);
+  EXPECT_EQ(unfilled.rgba.size(), 35u);
+  EXPECT_TRUE(unfilled.depth.empty() && unfilled.object_id.empty());
+  EXPECT_THROW(Image::unfilled(0, 5), std::invalid_argument);
+  EXPECT_THROW(Image(4, -1), std::invalid_argument);
+}
+
 TEST(Image, SrgbEncodesKnownValues) {
   EXPECT_EQ(linearToSrgb8(0.0f), 0);
   EXPECT_EQ(linearToSrgb8(1.0f), 255);
