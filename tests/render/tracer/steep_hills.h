@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <utility>
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
@@ -88,35 +89,18 @@ inline glm::vec2 farFromTheOrigin(std::mt19937& rng) {
   }
 }
 
-// The path scenes' rolling hills under their sun, 48 degrees up (scenes/cavalry.json, ride_out.json):
-// the sun rises faster than any hill, so the map is open everywhere; the mesh reaches a kilometre
-// past the track, where a shadow ray's origin is lifted by centimetres.
-struct HighSunHills {
-  static constexpr double kRadius = 2.0 * std::numbers::pi / 180.0;
+// Hills under a sun with a disc 2 degrees across: the mesh over `region` (reaching a kilometre past it),
+// the sun's horizon map, and the mesh in Embree to trace the disc against.
+struct HillsUnderSun {
+  static constexpr double kRadius = 2.0 * std::numbers::pi / 180.0;  // the sun disc's angular radius
 
-  HighSunHills() { scene.setGroundMesh(mesh.positions, mesh.indices); }
-  HighSunHills(const HighSunHills&) = delete;  // the map points at the mesh
-  HighSunHills& operator=(const HighSunHills&) = delete;
-
-  std::array<bool, 17> discBlocked(const glm::vec3& origin) const {
-    return sunDiscBlocked(scene.ground(), sun, kRadius, origin);
+  HillsUnderSun(rig::Terrain hills, const GroundRegion& over, const glm::dvec3& toward_sun)
+      : terrain(std::move(hills)), region(over), mesh(makeTerrainMesh(terrain, region)), sun(toward_sun),
+        horizon(mesh, sun, kRadius, region) {
+    scene.setGroundMesh(mesh.positions, mesh.indices);
   }
-
-  rig::Terrain terrain = rollingHillsTerrain();
-  GroundRegion region{-500.0, -800.0, 4000.0, 4500.0};
-  TerrainMesh mesh = makeTerrainMesh(terrain, region);
-  glm::dvec3 sun{0.45, 0.75, 0.5};
-  SunHorizon horizon{mesh, sun, kRadius, region};
-  EmbreeScene scene;
-};
-
-struct SteepHills {
-  static constexpr double kRadius = 2.0 * std::numbers::pi / 180.0;     // the sun disc's angular radius
-  static constexpr double kElevation = 8.0 * std::numbers::pi / 180.0;  // the sun's height above the horizon
-
-  SteepHills() { scene.setGroundMesh(mesh.positions, mesh.indices); }
-  SteepHills(const SteepHills&) = delete;  // the map points at the mesh
-  SteepHills& operator=(const SteepHills&) = delete;
+  HillsUnderSun(const HillsUnderSun&) = delete;  // the map points at the mesh
+  HillsUnderSun& operator=(const HillsUnderSun&) = delete;
 
   // Whether each ray of the sun's disc from `origin` meets the mesh: its axis (ray 0), then 16
   // directions on its rim.
@@ -124,12 +108,28 @@ struct SteepHills {
     return sunDiscBlocked(scene.ground(), sun, kRadius, origin);
   }
 
-  rig::Terrain terrain = steepHillsTerrain();
-  GroundRegion region{-1500.0, -1500.0, 1500.0, 1500.0};
-  TerrainMesh mesh = makeTerrainMesh(terrain, region);
-  glm::dvec3 sun{std::cos(kElevation) * 0.8, std::sin(kElevation), std::cos(kElevation) * 0.6};
-  SunHorizon horizon{mesh, sun, kRadius, region};
+  rig::Terrain terrain;
+  GroundRegion region;
+  TerrainMesh mesh;
+  glm::dvec3 sun;
+  SunHorizon horizon;
   EmbreeScene scene;
+};
+
+// The path scenes' rolling hills under their sun, 48 degrees up (scenes/cavalry.json, ride_out.json):
+// the sun rises faster than any hill, so the map is open everywhere; the mesh reaches a kilometre
+// past the track, where a shadow ray's origin is lifted by centimetres.
+struct HighSunHills : HillsUnderSun {
+  HighSunHills() : HillsUnderSun(rollingHillsTerrain(), {-500.0, -800.0, 4000.0, 4500.0}, {0.45, 0.75, 0.5}) {}
+};
+
+// 5 m hills 15 m apart under a sun 8 degrees up.
+struct SteepHills : HillsUnderSun {
+  static constexpr double kElevation = 8.0 * std::numbers::pi / 180.0;  // the sun's height above the horizon
+
+  SteepHills()
+      : HillsUnderSun(steepHillsTerrain(), {-1500.0, -1500.0, 1500.0, 1500.0},
+                      {std::cos(kElevation) * 0.8, std::sin(kElevation), std::cos(kElevation) * 0.6}) {}
 };
 
 }  // namespace stirrup::render::test
