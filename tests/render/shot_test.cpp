@@ -287,8 +287,9 @@ TEST(Shot, SetupTimingsSayWhatTheShotBuilt) {
 // view's framing) and renders on the caller's thread alone: no TBB worker joins the caller's arena,
 // where a parallel loop outside the shot's own one-thread arenas would run (a farm node told
 // --threads 1 shares its cores with others).
-// The caller's arena is made for the test: a worker still in the process's default arena from an
-// earlier test's loops is told of an observer set on it, and counted once in a while.
+// The caller's arena is made for the test, so only threads that join it are counted. Known to fail now
+// and then, even run alone in its own process: some work of a one-thread shot still reaches the
+// caller's arena at times, not yet found.
 TEST(Shot, AskedForOneThreadNoWorkerJoinsItsSetUpOrFrames) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: there are no workers to join";
   tbb::task_arena caller(2);
