@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
-
 #include <atomic>
 
 #include <tbb/blocked_range.h>
@@ -74,11 +74,15 @@ struct TileBuffers {
 }  // namespace
 
 struct Renderer::State {
-  explicit State(const RenderSettings& s)
-      : scene(s.bvh_update, s.threads), arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic) {}
+  // Embree's device and its first (empty) commit are made on the renderer's threads too: a commit runs
+  // TBB tasks in the arena it is called from, and the caller's arena is not the renderer's to use (a
+  // renderer asked for one thread keeps to it).
+  explicit State(const RenderSettings& s) : arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic) {
+    arena.execute([&] { scene.emplace(s.bvh_update, s.threads); });
+  }
 
-  EmbreeScene scene;
   tbb::task_arena arena;
+  std::optional<EmbreeScene> scene;  // always set: made in the arena
   std::vector<std::unique_ptr<ShadingMesh>> meshes;  // by handle
   std::vector<unsigned> geometry_of_mesh;             // by handle
   std::vector<const ShadingMesh*> by_geometry;        // by geomID in the character scene
@@ -93,7 +97,7 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
   validate(settings_);
   state_ = std::make_unique<State>(settings_);
   // Embree builds a BVH on the threads of the arena it is called from: the renderer's.
-  state_->arena.execute([&] { state_->scene.setGround(settings_.ground_half_extent_cm); });
+  state_->arena.execute([&] { state_->scene->setGround(settings_.ground_half_extent_cm); });
 }
 
 Renderer::~Renderer() = default;
@@ -106,7 +110,7 @@ void Renderer::setTerrain(std::shared_ptr<const rig::Terrain> terrain, const Gro
   const double sun_radius = std::max(0.0, settings_.sun_angular_radius_deg) * std::numbers::pi / 180.0;
   state_->arena.execute([&] {  // on the renderer's threads, as every build of the shot
     mesh = std::make_unique<const TerrainMesh>(makeTerrainMesh(*terrain, region, params));
-    state_->scene.setGroundMesh(mesh->positions, mesh->indices);
+    state_->scene->setGroundMesh(mesh->positions, mesh->indices);
     state_->hills = std::make_unique<const SunHorizon>(*mesh, settings_.sun_direction, sun_radius, region);
   });
   state_->ground_mesh = std::move(mesh);
@@ -132,7 +136,7 @@ int Renderer::addMesh(const MeshDesc& desc) {
                                     std::to_string(desc.textures.size()) + " textures");
   }
   const unsigned geometry =
-      state_->scene.addTriangleMesh(desc.vertex_count, desc.indices, desc.rest_positions, desc.geometry_id);
+      state_->scene->addTriangleMesh(desc.vertex_count, desc.indices, desc.rest_positions, desc.geometry_id);
   auto mesh = std::make_unique<ShadingMesh>();
   mesh->id = desc.id;
   mesh->indices = desc.indices;
@@ -155,13 +159,13 @@ void Renderer::updateMesh(int mesh, std::span<const glm::vec3> positions, std::s
     throw std::invalid_argument("updateMesh: " + std::to_string(normals.size()) + " normals for " +
                                 std::to_string(m.normals.size()) + " vertices");
   }
-  state_->scene.setVertices(state_->geometry_of_mesh[size_t(mesh)], positions);  // checks the count
+  state_->scene->setVertices(state_->geometry_of_mesh[size_t(mesh)], positions);  // checks the count
   std::copy(normals.begin(), normals.end(), m.normals.begin());
 }
 
 void Renderer::setMeshEnabled(int mesh, bool enabled) {
   if (mesh < 0 || size_t(mesh) >= state_->meshes.size()) throw std::invalid_argument("setMeshEnabled: no mesh " + std::to_string(mesh));
-  state_->scene.setEnabled(state_->geometry_of_mesh[size_t(mesh)], enabled);
+  state_->scene->setEnabled(state_->geometry_of_mesh[size_t(mesh)], enabled);
 }
 
 Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, const std::function<void()>& alongside) {
@@ -184,12 +188,12 @@ Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, cons
   tbb::task_group side;
   const auto traceFrame = [&] {
     const auto t0 = Clock::now();
-    state_->scene.commit();
+    state_->scene->commit();
     stats_.commit_ms = msSince(t0);
     // After the commit: the refit has every thread (on two cores it scales with them, and taking
     // one away for the side task only moved its time onto the trace).
     if (alongside) side.run(alongside);
-    const Integrator integrator(settings_, state_->scene, state_->by_geometry, state_->terrain.get(),
+    const Integrator integrator(settings_, *state_->scene, state_->by_geometry, state_->terrain.get(),
                                 state_->ground_floor, state_->hills.get(), state_->ground_mesh.get());
 
     const auto t1 = Clock::now();
@@ -247,7 +251,7 @@ Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, cons
     if (alongside) side.wait();
     stats_.wait_ms = msSince(w0);
   });
-  stats_.triangles = state_->scene.enabledTriangleCount();
+  stats_.triangles = state_->scene->enabledTriangleCount();
   stats_.rays = rays.load();
   if (log) {
     log->camera.clear();
@@ -262,7 +266,7 @@ Image Renderer::render(const scene::Camera& camera, int frame, RayLog* log, cons
 }
 
 double Renderer::replay(const RayLog& log) {
-  const RTCScene ground = state_->scene.ground(), characters = state_->scene.characters();
+  const RTCScene ground = state_->scene->ground(), characters = state_->scene->characters();
   std::atomic<uint64_t> hits{0};
   // Streams of 256 rays, about one 16 x 16 tile of camera rays, through the same stream calls the
   // integrator makes (camera rays coherent, occlusion rays not).
