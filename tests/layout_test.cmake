@@ -7,6 +7,7 @@
 #   rig/io           files: glTF, JSON and CSV readers and writers
 #   scene            the scene document, read in this one place, and its evaluation without pixels
 #                    (clip factory, profiles, ridden pairs, evaluator, cameras, bakes)
+#   render/image_files  image files read and written, and text drawn (OpenImageIO, in a module)
 #   render/tracer    the ray tracer (Embree, the integrator and its lanes, images)
 #   render           the shot: evaluated frames traced
 #   render/review    review material: movies, layers, sheets, plots, diffs
@@ -36,7 +37,7 @@
 # its test file (and a program file without one, which is allowed) must give exactly that one.
 cmake_minimum_required(VERSION 3.25)
 
-set(STIRRUP_LAYERS rig rig/characters rig/motion rig/mapping rig/io scene render/tracer render render/review render/farm cli)
+set(STIRRUP_LAYERS rig rig/characters rig/motion rig/mapping rig/io scene render/image_files render/tracer render render/review render/farm cli)
 set(STIRRUP_NO_PIXELS cli/cmd_bake.cpp cli/cmd_rig.cpp cli/cmd_clip.cpp)
 
 # Appends one line to out_var for every include, in every source and header under `root`'s layers, of a

@@ -7,8 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include <OpenImageIO/imageio.h>
-
+#include "render/image_files/image_file.h"
 #include "rig/error.h"
 #include "scene/frame_sequence.h"
 
@@ -116,28 +115,20 @@ int snapEdge(const std::vector<float>& lum, int w, int h, bool columns, int nomi
 
 Image readLinearImage(const fs::path& file) {
   if (!fs::exists(file)) throw rig::InputError(file.string() + ": no such image file");
-  auto in = OIIO::ImageInput::open(file.string());
-  if (!in) throw rig::InputError(file.string() + ": cannot read the image (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec spec = in->spec();
-  const int nc = spec.nchannels;
-  if (spec.width <= 0 || spec.height <= 0 || nc < 1)
-    throw rig::InputError(file.string() + ": expected an image with pixels, got " + sizeText(spec.width, spec.height));
-  std::vector<float> px(size_t(spec.width) * size_t(spec.height) * size_t(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, px.data()))
-    throw rig::InputError(file.string() + ": cannot read the image (" + in->geterror() + ")");
-  in->close();
-  const OIIO::TypeDesc::BASETYPE base = OIIO::TypeDesc::BASETYPE(spec.format.basetype);
-  const bool linear = base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE;
+  const ImageFileData read = readImageFile(file);
+  const int nc = read.channels;
+  const std::vector<float>& px = read.pixels;
+  const bool linear = read.linear;
   auto decode = [&](float v) { return linear ? v : srgbToLinear(v); };
   // Channels by name where the file names them (an EXR's may come in any order), else by position.
   const auto channel = [&](const char* name, int fallback) {
-    const int i = spec.channelindex(name);
+    const int i = read.channelIndex(name);
     return i >= 0 ? i : (fallback < nc ? fallback : -1);
   };
   const bool colour = nc >= 3;
   const int cr = colour ? channel("R", 0) : 0, cg = colour ? channel("G", 1) : 0, cb = colour ? channel("B", 2) : 0;
-  const int ca = channel("A", colour ? 3 : 1), cm = spec.channelindex("matte");
-  Image img(spec.width, spec.height);
+  const int ca = channel("A", colour ? 3 : 1), cm = read.channelIndex("matte");
+  Image img(read.width, read.height);
   if (cm >= 0) img.matte.resize(img.pixelCount());
   for (size_t i = 0; i < img.pixelCount(); ++i) {
     const float* p = &px[i * size_t(nc)];

@@ -5,9 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
+#include "render/image_files/image_file.h"
 #include "rig/error.h"
 
 namespace stirrup::render {
@@ -20,39 +18,25 @@ std::string DiffResult::summary() const {
   return buf;
 }
 
-namespace {
-
-OIIO::ImageBuf readImage(const std::filesystem::path& file) {
-  OIIO::ImageBuf buf(file.string());
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-    throw rig::InputError(file.string() + ": cannot read the image (" + buf.geterror() + ")");
-  return buf;
-}
-
-}  // namespace
-
 DiffResult compareImageFiles(const std::filesystem::path& a_file, const std::filesystem::path& b_file,
                              const DiffThresholds& t, const std::filesystem::path& diff_image,
                              double diff_scale) {
-  const OIIO::ImageBuf a = readImage(a_file), b = readImage(b_file);
-  const OIIO::ImageSpec &sa = a.spec(), &sb = b.spec();
+  const ImageFileData sa = readImageFile(a_file), sb = readImageFile(b_file);
   if (sa.width != sb.width || sa.height != sb.height)
     throw rig::InputError(a_file.string() + " is " + std::to_string(sa.width) + "x" + std::to_string(sa.height) +
                      " but " + b_file.string() + " is " + std::to_string(sb.width) + "x" +
                      std::to_string(sb.height) + ": expected images of the same size");
-  if (sa.nchannels != sb.nchannels)
-    throw rig::InputError(a_file.string() + " has " + std::to_string(sa.nchannels) + " channels but " +
-                     b_file.string() + " has " + std::to_string(sb.nchannels) +
+  if (sa.channels != sb.channels)
+    throw rig::InputError(a_file.string() + " has " + std::to_string(sa.channels) + " channels but " +
+                     b_file.string() + " has " + std::to_string(sb.channels) +
                      ": expected the same channel count");
 
   DiffResult r;
   r.width = sa.width;
   r.height = sa.height;
-  r.channels = sa.nchannels;
-  const int nc = sa.nchannels;
-  std::vector<float> pa(static_cast<std::size_t>(r.width) * r.height * nc), pb(pa.size());
-  a.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pa.data());
-  b.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pb.data());
+  r.channels = sa.channels;
+  const int nc = sa.channels;
+  const std::vector<float>&pa = sa.pixels, &pb = sb.pixels;
 
   std::vector<float> diff(pa.size());
   double sum = 0, sum_sq = 0;
@@ -90,10 +74,10 @@ DiffResult compareImageFiles(const std::filesystem::path& a_file, const std::fil
   if (!diff_image.empty()) {
     if (nc == 4)  // keep the diff visible: opaque alpha
       for (std::size_t i = 3; i < diff.size(); i += 4) diff[i] = 1.0f;
-    OIIO::ImageBuf out(OIIO::ImageSpec(r.width, r.height, nc, OIIO::TypeDesc::UINT8));
-    out.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, diff.data());
-    if (!out.write(diff_image.string()))
-      throw rig::InputError(diff_image.string() + ": cannot write the diff image (" + out.geterror() + ")");
+    ImageFileSpec spec;
+    spec.width = r.width, spec.height = r.height;
+    spec.channel_formats.assign(std::size_t(nc), StoredAs::UInt8);
+    writeImageFile(diff_image, "", spec, diff.data());
   }
   return r;
 }

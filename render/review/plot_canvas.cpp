@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include <OpenImageIO/imageio.h>
 #include <glm/geometric.hpp>
 
+#include "render/image_files/image_file.h"
 #include "render/review/index_page.h"
 #include "rig/error.h"
 #include "rig/io/atomic_file.h"
@@ -96,16 +96,10 @@ void Canvas::paste(int x, int y, int w, int h, const std::vector<float>& rgb) {
 }
 
 void Canvas::write(const std::filesystem::path& file) const {
-  rig::replaceFileAtomically(
-      file,
-      [&](const std::filesystem::path& tmp) {
-        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tmp.string());
-        const OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::UINT8);
-        if (!out || !out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb_.data()) ||
-            !out->close())
-          throw rig::InputError(file.string() + ": cannot write the image");
-      },
-      rig::TempName::KeepExtension);
+  ImageFileSpec spec;
+  spec.width = width_, spec.height = height_;
+  spec.channel_formats.assign(3, StoredAs::UInt8);
+  writeImageFile(file, "", spec, rgb_.data());
 }
 
 void Canvas::blend(int x, int y, double coverage, const Color& c) {

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <memory>
 
-#include <OpenImageIO/imageio.h>
 #include <glm/geometric.hpp>
 
 #include "render/review/plot_canvas.h"

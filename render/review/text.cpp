@@ -5,9 +5,7 @@
 #include <map>
 #include <mutex>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
+#include "render/image_files/image_file.h"
 #include "rig/error.h"
 
 namespace stirrup::render {
@@ -59,9 +57,9 @@ std::filesystem::path findFont(FontStyle style) {
 }
 
 std::array<int, 2> textSize(const std::string& text, int size, FontStyle style) {
-  const OIIO::ROI r = OIIO::ImageBufAlgo::text_size(text, size, findFont(style).string());
-  if (!r.defined()) return {0, 0};
-  return {r.width(), r.height()};
+  const TextBox box = measureText(text, size, findFont(style));
+  if (!box.defined) return {0, 0};
+  return {box.width(), box.height()};
 }
 
 void drawTextMask(std::vector<float>& mask, int width, int height, int x, int y, const std::string& text,
@@ -71,21 +69,17 @@ void drawTextMask(std::vector<float>& mask, int width, int height, int x, int y,
   // image: draw nothing for text outside the mask. kSliverPx keeps a text whose box OpenImageIO places a
   // pixel or two differently from this estimate on the safe side (such a sliver shows nothing legible).
   constexpr int kSliverPx = 2;
-  OIIO::ROI box = OIIO::ImageBufAlgo::text_size(text, size, findFont(style).string());
-  if (!box.defined()) return;
+  const std::filesystem::path font = findFont(style);
+  const TextBox box = measureText(text, size, font);
+  if (!box.defined) return;
   const int left = x - (align == TextAlign::Left ? 0 : align == TextAlign::Center ? box.width() / 2 : box.width());
   if (left + box.xend <= kSliverPx || left + box.xbegin >= width - kSliverPx || y + box.yend <= kSliverPx ||
       y + box.ybegin >= height - kSliverPx)
     return;
-  OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::FLOAT);
-  OIIO::ImageBuf buf(spec, mask.data());
-  const float white[1] = {1.0f};
-  const auto ax = align == TextAlign::Left     ? OIIO::ImageBufAlgo::TextAlignX::Left
-                  : align == TextAlign::Center ? OIIO::ImageBufAlgo::TextAlignX::Center
-                                               : OIIO::ImageBufAlgo::TextAlignX::Right;
-  if (!OIIO::ImageBufAlgo::render_text(buf, x, y, text, size, findFont(style).string(), white, ax,
-                                       OIIO::ImageBufAlgo::TextAlignY::Baseline, 0, {}, 1))
-    throw std::runtime_error("render_text: " + buf.geterror());
+  drawTextCoverage(mask, width, height, x, y, text, size, font,
+                   align == TextAlign::Left     ? HorizontalAlign::Left
+                   : align == TextAlign::Center ? HorizontalAlign::Center
+                                                : HorizontalAlign::Right);
 }
 
 }  // namespace stirrup::render

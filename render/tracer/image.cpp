@@ -11,39 +11,16 @@
 #include <system_error>
 
 #include <glm/geometric.hpp>
-#include <OpenImageIO/imageio.h>
 
+#include "render/image_files/image_file.h"
 #include "render/tracer/png_encoder.h"
 #include "render/tracer/srgb_encoder.h"
 #include "rig/error.h"
 #include "rig/io/atomic_file.h"
 
 namespace stirrup::render {
-namespace {
 
 namespace fs = std::filesystem;
-
-// Writes `pixels` (interleaved float channels, or per-channel formats given in the spec) through
-// OIIO to FILE.tmp in `format`, then renames it to FILE (rig/io/atomic_file.h). On any failure the
-// temporary is removed.
-void writeAtomically(const fs::path& file, const char* format, const OIIO::ImageSpec& spec,
-                     OIIO::TypeDesc data_type, const void* pixels) {
-  // The format is named explicitly: OIIO would otherwise guess it from the ".tmp" extension.
-  auto out = OIIO::ImageOutput::create(format);
-  if (!out) throw std::runtime_error("cannot write " + file.string() + ": no OpenImageIO " + format + " writer");
-  auto fail = [&](const std::string& what) { throw std::runtime_error("cannot write " + file.string() + ": " + what); };
-  rig::replaceFileAtomically(file, [&](const fs::path& tmp) {
-    if (!out->open(tmp.string(), spec)) fail(out->geterror());
-    if (!out->write_image(data_type, pixels)) {
-      const std::string err = out->geterror();
-      out->close();
-      fail(err);
-    }
-    if (!out->close()) fail(out->geterror());
-  });
-}
-
-}  // namespace
 
 Image::Image(int w, int h) : Image(unfilled(w, h)) { std::fill(rgba.begin(), rgba.end(), glm::vec4(0.0f)); }
 
@@ -106,18 +83,23 @@ void writeExr(const Image& image, const fs::path& file, const ExrMetadata& metad
              has_normal = present(image.normal), has_id = present(image.object_id);
 
   // Channels in the order OpenImageIO reads them back: RGBA, Z, the unlayered passes, then N.
-  std::vector<std::string> names = {"R", "G", "B", "A"};
-  std::vector<OIIO::TypeDesc> formats(4, OIIO::TypeDesc::HALF);
-  if (has_depth) names.push_back("Z"), formats.push_back(OIIO::TypeDesc::FLOAT);
-  if (has_matte) names.push_back("matte"), formats.push_back(OIIO::TypeDesc::HALF);
+  ImageFileSpec spec;
+  spec.width = image.width, spec.height = image.height;
+  spec.channel_names = {"R", "G", "B", "A"};
+  spec.channel_formats.assign(4, StoredAs::Half);
+  const auto add = [&](const char* name, StoredAs format) {
+    spec.channel_names.push_back(name), spec.channel_formats.push_back(format);
+  };
+  if (has_depth) add("Z", StoredAs::Float);
+  if (has_matte) add("matte", StoredAs::Half);
   // Ids as float: exact for small integers, and every EXR reader understands float channels.
-  if (has_id) names.push_back("objectId"), formats.push_back(OIIO::TypeDesc::FLOAT);
+  if (has_id) add("objectId", StoredAs::Float);
   if (has_normal) {
-    for (const char* n : {"N.x", "N.y", "N.z"}) names.push_back(n), formats.push_back(OIIO::TypeDesc::HALF);
+    for (const char* n : {"N.x", "N.y", "N.z"}) add(n, StoredAs::Half);
   }
-  const int channels = int(names.size());
+  const int channels = int(spec.channel_names.size());
 
-  // Interleaved float data; OIIO converts each channel to its own file format.
+  // Interleaved float data; OpenImageIO converts each channel to its own file format.
   std::vector<float> data(n * channels);
   for (size_t i = 0; i < n; ++i) {
     float* px = &data[i * channels];
@@ -130,27 +112,11 @@ void writeExr(const Image& image, const fs::path& file, const ExrMetadata& metad
       for (int k = 0; k < 3; ++k) px[c++] = image.normal[i][k];
     }
   }
-  OIIO::ImageSpec spec(image.width, image.height, channels, OIIO::TypeDesc::HALF);
-  spec.channelnames = names;
-  spec.channelformats = formats;
   spec.alpha_channel = 3;
   spec.z_channel = has_depth ? 4 : -1;
-  spec.attribute("compression", "zip");
-  spec.attribute("oiio:ColorSpace", "Linear");
-  for (const ExrAttribute& a : metadata) {
-    if (const auto* text = std::get_if<std::string>(&a.value)) {
-      spec.attribute(a.name, *text);
-    } else if (const int* i = std::get_if<int>(&a.value)) {
-      spec.attribute(a.name, *i);
-    } else if (const float* f = std::get_if<float>(&a.value)) {
-      spec.attribute(a.name, *f);
-    } else if (const auto* v = std::get_if<glm::vec3>(&a.value)) {
-      spec.attribute(a.name, OIIO::TypeDesc::TypeVector, v);
-    } else if (const auto* m = std::get_if<glm::mat4>(&a.value)) {
-      spec.attribute(a.name, OIIO::TypeDesc::TypeMatrix44, m);
-    }
-  }
-  writeAtomically(file, "openexr", spec, OIIO::TypeDesc::FLOAT, data.data());
+  spec.attributes = {{"compression", std::string("zip")}, {"oiio:ColorSpace", std::string("Linear")}};
+  spec.attributes.insert(spec.attributes.end(), metadata.begin(), metadata.end());
+  writeImageFile(file, "openexr", spec, data.data());
 }
 
 ExrMetadata exrFrameMetadata(const scene::Camera& camera, const std::string& camera_name, int frame, double time_s,
@@ -193,28 +159,20 @@ ExrMetadata exrFrameMetadata(const scene::Camera& camera, const std::string& cam
 void writeRgbaExr(const Image& image, const fs::path& file) {
   if (image.rgba.size() != image.pixelCount() || image.pixelCount() == 0)
     throw std::invalid_argument("writeRgbaExr: image has no pixels");
-  OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
+  ImageFileSpec spec;
+  spec.width = image.width, spec.height = image.height;
+  spec.channel_formats.assign(4, StoredAs::Float);
   spec.alpha_channel = 3;
-  spec.attribute("compression", "zip");
-  writeAtomically(file, "openexr", spec, OIIO::TypeDesc::FLOAT, image.rgba.data());
+  spec.attributes = {{"compression", std::string("zip")}};
+  writeImageFile(file, "openexr", spec, &image.rgba.data()->x);
 }
 
 Image readRgbaExr(const fs::path& file) {
-  // OpenImageIO's messages can run over several lines; an InputError is one.
-  auto oneLine = [](std::string text) {
-    for (char& c : text)
-      if (c == '\n' || c == '\r') c = ' ';
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text;
-  };
-  auto in = OIIO::ImageInput::open(file.string());
-  if (!in) throw rig::InputError(file.string() + ": cannot read (" + oneLine(OIIO::geterror()) + ")");
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.nchannels != 4 || spec.width <= 0 || spec.height <= 0)
-    throw rig::InputError(file.string() + ": expected an RGBA image, got " + std::to_string(spec.nchannels) + " channels");
-  Image image(spec.width, spec.height);
-  if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, image.rgba.data()))
-    throw rig::InputError(file.string() + ": cannot read (" + oneLine(in->geterror()) + ")");
+  const ImageFileData read = readImageFile(file);
+  if (read.channels != 4)
+    throw rig::InputError(file.string() + ": expected an RGBA image, got " + std::to_string(read.channels) + " channels");
+  Image image = Image::unfilled(read.width, read.height);
+  std::copy(read.pixels.begin(), read.pixels.end(), &image.rgba.data()->x);
   return image;
 }
 

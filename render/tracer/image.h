@@ -21,6 +21,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "render/image_files/image_file.h"
 #include "scene/camera.h"
 #include "scene/png_compression.h"  // the compression levels writePng takes
 
@@ -87,10 +88,7 @@ void encodeSrgb8(std::span<const glm::vec4> rgba, std::span<uint8_t> rgb);
 void writePng(const Image& image, const std::filesystem::path& file, int compression = scene::kReviewPngCompression);
 
 // One attribute of an EXR header: a string, int, float, 3-vector (v3f) or 4x4 matrix (m44f).
-struct ExrAttribute {
-  std::string name;
-  std::variant<std::string, int, float, glm::vec3, glm::mat4> value;
-};
+using ExrAttribute = FileAttribute;
 using ExrMetadata = std::vector<ExrAttribute>;
 
 // Scene-linear OpenEXR: R, G, B, A as half float, plus for each pass the image has Z (float, cm along

@@ -52,6 +52,8 @@ std::string Installed::install_error_;
 
 TEST_F(Installed, LaysOutTheProgramAndItsData) {
   EXPECT_TRUE(fs::is_regular_file(prefix_ / "bin/stirrup"));
+  // OpenImageIO's module, which the program loads from ../LIBDIR/stirrup when it needs image files.
+  EXPECT_TRUE(fs::is_regular_file(prefix_ / STIRRUP_INSTALL_LIBDIR / "stirrup/libstirrup_openimageio.so"));
   for (const char* f : {"scenes/trot.json", "scenes/jump.json", "scenes/profiles/thesis.json", "scenes/profiles/english.json",
                         "scenes/characters/horse.glb", "scenes/characters/rider.glb", "scenes/characters/rider-mapping.json"})
     EXPECT_TRUE(fs::is_regular_file(prefix_ / "share/stirrup" / f)) << f;
@@ -133,6 +135,26 @@ TEST_F(Installed, MakesAReviewMovie) {
   EXPECT_TRUE(fs::is_regular_file(work_ / "movies/trot_side_sheet.png"));
 }
 
+// An installed tree moved elsewhere still finds OpenImageIO's module, beside its program (no build or
+// install path is needed): a frame is rendered there and compared with itself by `diff`, which reads
+// image files through the module.
+TEST_F(Installed, AMovedInstallFindsItsImageModule) {
+  const fs::path moved = root_ / "moved";
+  fs::remove_all(moved);
+  ASSERT_EQ(runCommand("cp -a " + quote(prefix_.string()) + " " + quote(moved.string())).exit_code, 0);
+  const std::string program = "cd " + quote(work_.string()) + " && " + kCleanEnv + quote((moved / "bin/stirrup").string());
+  const fs::path out = root_ / "moved_out";
+  const CommandResult render = runCommand(program + " render scenes/trot.json --frames 3 --resolution 64x36 --preset draft --out " +
+                                          quote(out.string()));
+  ASSERT_EQ(render.exit_code, 0) << render.err;
+  const std::string frame = quote((out / "trot_side.0003.png").string());
+  const CommandResult diff = runCommand(program + " diff " + frame + " " + frame);
+  EXPECT_EQ(diff.exit_code, 0) << diff.out << diff.err;
+  EXPECT_NE(diff.out.find("PASS"), std::string::npos) << diff.out;
+  fs::remove_all(moved);
+  fs::remove_all(out);
+}
+
 // `cpack -G DEB` (docs/install.md): the package holds the program under /usr and depends on the libraries
 // it links (found by dpkg-shlibdeps) and on the programs and fonts it runs with.
 TEST(DebianPackage, DependsOnWhatTheProgramLinksAndRuns) {
@@ -155,7 +177,8 @@ TEST(DebianPackage, DependsOnWhatTheProgramLinksAndRuns) {
   const CommandResult contents = runCommand("dpkg-deb -c " + quote(deb.string()));
   for (const char* f : {"./usr/bin/stirrup", "./usr/share/stirrup/scenes/trot.json", "./usr/share/stirrup/scenes/profiles/thesis.json",
                         "./usr/share/stirrup/scenes/characters/rider.glb", "./usr/share/doc/stirrup/install.md",
-                        "./usr/share/stirrup/blender/stirrup_blender/__init__.py"})
+                        "./usr/share/stirrup/blender/stirrup_blender/__init__.py",
+                        "./usr/" STIRRUP_INSTALL_LIBDIR "/stirrup/libstirrup_openimageio.so"})
     EXPECT_NE(contents.out.find(std::string(f) + "\n"), std::string::npos) << f;
   fs::remove_all(dir);
 }

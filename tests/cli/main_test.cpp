@@ -1,4 +1,5 @@
-// What the program does before any subcommand: STIRRUP_SIMD pins the integrator's SIMD target.
+// What the program does before any subcommand: STIRRUP_SIMD pins the integrator's SIMD target; and
+// what it loads to start (OpenImageIO only when a command reads or writes an image file or draws text).
 #include <filesystem>
 #include <string>
 
@@ -33,6 +34,35 @@ TEST(Main, APinnedSimdTargetRendersTheSameFrame) {
                                         quote((dir / "sse4/trot_persp.0028.png").string()) +
                                         " --fail 0 --failpercent 0 --warn 0 --warnpercent 0");
   EXPECT_EQ(same.exit_code, 0) << same.out << same.err;
+}
+
+// The dynamic loader's record of the files a run loaded (LD_DEBUG=files, on stderr).
+std::string loadedFiles(const std::string& args) {
+  const CommandResult r = runCommand("LD_DEBUG=files " + quote(STIRRUP_EXE) + " " + args);
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err.substr(r.err.size() > 2000 ? r.err.size() - 2000 : 0);
+  return r.err;
+}
+
+// OpenImageIO and its some 250 libraries cost 0.4 s of CPU at every start (docs/performance.md,
+// "Process start"): a run that touches no image file loads none of them; one that does loads the
+// module, found beside the program, and OpenImageIO through it.
+TEST(Main, OpenImageIOIsLoadedOnlyByARunThatReadsOrWritesAnImageFile) {
+  const fs::path dir = fs::path(STIRRUP_BINARY_DIR) / "main_loads";
+  fs::remove_all(dir);
+  const std::string scene = quote((fs::path(STIRRUP_SOURCE_DIR) / "scenes/trot.json").string());
+  const std::string help = loadedFiles("--help");
+  EXPECT_NE(help.find("file=libembree3.so"), std::string::npos) << "LD_DEBUG gave no record";
+  EXPECT_EQ(help.find("OpenImageIO"), std::string::npos);
+  EXPECT_EQ(help.find("libstirrup_openimageio.so"), std::string::npos);
+  const std::string render =
+      loadedFiles("render " + scene + " --frames 5 --resolution 64x36 --preset draft --out " + quote((dir / "a").string()));
+  EXPECT_EQ(render.find("OpenImageIO"), std::string::npos);
+  ASSERT_TRUE(fs::is_regular_file(dir / "a/trot_side.0005.png"));
+  const std::string diff = loadedFiles("diff " + quote((dir / "a/trot_side.0005.png").string()) + " " +
+                                       quote((dir / "a/trot_side.0005.png").string()));
+  EXPECT_NE(diff.find("libstirrup_openimageio.so [0];  dynamically loaded by"), std::string::npos);
+  EXPECT_NE(diff.find("file=libOpenImageIO.so"), std::string::npos);
+  fs::remove_all(dir);
 }
 
 }  // namespace

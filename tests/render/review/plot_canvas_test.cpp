@@ -83,7 +83,9 @@ TEST_F(CanvasTest, PasteCopiesAndClipsAndWriteFailsCleanly) {
   EXPECT_EQ(std::vector<uint8_t>(px.end() - 3, px.end()), (std::vector<uint8_t>{51, 102, 255}));
   EXPECT_EQ(px[(1 * 4 + 2) * 3], 0);
   const fs::path nowhere = dir_ / "no" / "such" / "folder" / "c.png";
-  EXPECT_EQ(test::errorOf([&] { c.write(nowhere); }), nowhere.string() + ": cannot write the image");
+  const std::string error = test::errorOf([&] { c.write(nowhere); });
+  EXPECT_EQ(error.rfind(nowhere.string() + ": cannot write the image (", 0), 0u) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   EXPECT_FALSE(fs::exists(nowhere.string() + ".tmp.png"));
 }
 
