@@ -6,7 +6,6 @@
 // libstirrup_openimageio.so (render/image_files/openimageio_module.cpp), installed beside the
 // program in LIBDIR/stirrup.
 
-#include <array>
 #include <filesystem>
 #include <string>
 #include <variant>

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -12,7 +11,6 @@
 #include "render/image_files/image_file.h"
 #include "render/review/index_page.h"
 #include "rig/error.h"
-#include "rig/io/atomic_file.h"
 
 namespace stirrup::render {
 

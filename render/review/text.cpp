@@ -76,10 +76,7 @@ void drawTextMask(std::vector<float>& mask, int width, int height, int x, int y,
   if (left + box.xend <= kSliverPx || left + box.xbegin >= width - kSliverPx || y + box.yend <= kSliverPx ||
       y + box.ybegin >= height - kSliverPx)
     return;
-  drawTextCoverage(mask, width, height, x, y, text, size, font,
-                   align == TextAlign::Left     ? HorizontalAlign::Left
-                   : align == TextAlign::Center ? HorizontalAlign::Center
-                                                : HorizontalAlign::Right);
+  drawTextCoverage(mask, width, height, x, y, text, size, font, align);
 }
 
 }  // namespace stirrup::render

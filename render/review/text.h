@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "render/image_files/image_file.h"
+
 namespace stirrup::render {
 
 enum class FontStyle { Sans, SansBold, Mono };
@@ -15,7 +17,7 @@ enum class FontStyle { Sans, SansBold, Mono };
 // The font file for a style; throws rig::InputError if no DejaVu font can be found.
 std::filesystem::path findFont(FontStyle style = FontStyle::Sans);
 
-enum class TextAlign { Left, Center, Right };
+using TextAlign = HorizontalAlign;  // Left, Center, Right (render/image_files/image_file.h)
 
 // Coverage (0..1) of `text` drawn at `size` pixels into a width x height single-channel mask, the
 // baseline at y, x being the left edge, centre or right edge by `align`. Pixels outside stay 0.

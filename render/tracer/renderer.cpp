@@ -74,11 +74,14 @@ struct TileBuffers {
 }  // namespace
 
 struct Renderer::State {
-  // Embree's device and its first (empty) commit are made on the renderer's threads too: a commit runs
-  // TBB tasks in the arena it is called from, and the caller's arena is not the renderer's to use (a
-  // renderer asked for one thread keeps to it).
+  // Embree's device, its first (empty) commit and the ground's BVH are made on the renderer's threads:
+  // a commit runs TBB tasks in the arena it is called from, and the caller's arena is not the
+  // renderer's to use (a renderer asked for one thread keeps to it).
   explicit State(const RenderSettings& s) : arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic) {
-    arena.execute([&] { scene.emplace(s.bvh_update, s.threads); });
+    arena.execute([&] {
+      scene.emplace(s.bvh_update, s.threads);
+      scene->setGround(s.ground_half_extent_cm);
+    });
   }
 
   tbb::task_arena arena;
@@ -96,8 +99,6 @@ struct Renderer::State {
 Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
   validate(settings_);
   state_ = std::make_unique<State>(settings_);
-  // Embree builds a BVH on the threads of the arena it is called from: the renderer's.
-  state_->arena.execute([&] { state_->scene->setGround(settings_.ground_half_extent_cm); });
 }
 
 Renderer::~Renderer() = default;

@@ -426,7 +426,9 @@ TEST_F(CheckCli, ARiderKeyedIntoTheHorseFailsRiderInHorseAtThoseFrames) {
   double deepest = 0, shallowest = 1e9, hand = 0, hand_least = 1e9;
   EXPECT_EQ(framesOf(report, "rider-in-horse", &deepest, &shallowest), (std::set<int>{5, 6, 7, 8}));
   for (const auto& e : report["findings"])
-    if (e["rule"] == "rider-in-horse") EXPECT_NEAR(e["time_s"].get<double>(), (e["frame"].get<int>() - 1) / 24.0, 1e-9) << e.dump();
+    if (e["rule"] == "rider-in-horse") {
+      EXPECT_NEAR(e["time_s"].get<double>(), (e["frame"].get<int>() - 1) / 24.0, 1e-9) << e.dump();
+    }
   // As text, its time in seconds (frame 5: 4 frames at 24 fps).
   const CommandResult text = runStirrup("check " + quote(sunk.string()));
   EXPECT_NE(text.out.find(sunk.string() + ": frame 5 (0.167 s): failure: rider-in-horse: "), std::string::npos) << text.out;
@@ -689,7 +691,9 @@ TEST_F(CheckCli, ABlenderShotWhoseHorseNamesItsTackJointsIsMeasuredAtThem) {
   EXPECT_NEAR(worst, 15.0, 0.05);
   EXPECT_NEAR(least, 15.0, 0.05);
   for (const auto& e : report["findings"])
-    if (e["rule"] == "hand-off-rein") EXPECT_EQ(e["where"], "left") << e.dump();
+    if (e["rule"] == "hand-off-rein") {
+      EXPECT_EQ(e["where"], "left") << e.dump();
+    }
   std::printf("the add-on's shot with its tack joints named: hand-off-rein %.2f to %.2f cm at frames 5-8\n", least, worst);
 }
 

@@ -2,8 +2,6 @@
 // checked against OpenImageIO linked here directly: a second reader and writer.
 #include "render/image_files/image_file.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +13,7 @@
 
 #include "rig/error.h"
 #include "tests/input_error.h"
+#include "tests/test_files.h"
 
 namespace stirrup::render {
 namespace {
@@ -23,13 +22,7 @@ namespace fs = std::filesystem;
 
 class ImageFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("stirrup_image_file_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  const fs::path dir_ = test::freshTestDir("image_file_test", ::testing::UnitTest::GetInstance()->current_test_info()->name());
 };
 
 // An EXR of mixed channels (half colour, float depth), its alpha and depth marked and its header's

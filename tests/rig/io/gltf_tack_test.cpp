@@ -56,7 +56,9 @@ TEST(GltfTack, TheGeneratedHorseSplitsIntoItsBodyAndOnePieceAPart) {
   std::vector<int> seen(m.triangleCount(), 0);
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     const GltfMeshPiece& piece = pieces[k];
-    if (k > 0) EXPECT_EQ(piece.part, kTackParts[k - 1]);
+    if (k > 0) {
+      EXPECT_EQ(piece.part, kTackParts[k - 1]);
+    }
     EXPECT_TRUE(std::is_sorted(piece.triangles.begin(), piece.triangles.end()));
     std::set<std::uint32_t> used;
     for (const std::uint32_t t : piece.triangles) {
