@@ -91,6 +91,7 @@ struct PresetResult {
   double rays_per_frame = 0;
   double rays_per_second = 0, bound_rays_per_second = 0;
   double fps = 0;
+  double page_faults = 0;  // per timed frame
   int png_level = 0;  // the zlib level the frames were written at
 };
 
@@ -113,26 +114,53 @@ void writeInBackground(render::FrameWriter& writer, render::Image&& image, const
 
 // The timed frames, as `stirrup render` makes them: each frame rendered (evaluating the next during its
 // trace unless --no-overlap) and its PNG written on the background thread while the next frame renders
-// (render/tracer/frame_writer.h), two scratch files in turn. `add` is given each frame's timings.
+// (render/tracer/frame_writer.h), two scratch files in turn. `add` is given each timed frame's timings.
 struct TimedRun {
-  double run_s = 0;     // wall clock of the whole run, writes included
-  double write_ms = 0;  // the writes' own time on their thread, summed
+  double run_s = 0;        // wall clock of the timed frames, their writes included
+  double write_ms = 0;     // the timed frames' writes' own time on their thread, summed
+  double page_faults = 0;  // the process's minor page faults during the timed frames, every thread's
 };
+
+// The process's minor page faults so far (every thread's): memory touched for the first time.
+double minorPageFaults() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_minflt);
+}
+
+// Before the clock starts, the first frames go through the same loop (overlapped, written, the writer
+// still busy with the last of them when the first timed frame starts), until the memory a frame uses is
+// memory the run already has. A frame's image (3.7 MB at 640x360) is above malloc's threshold for
+// mapping a block on its own: the first two images are mapped and, freed, given back, which raises the
+// threshold; the next two come from the heap, which grows; from the fifth frame on, the two images in
+// flight (one rendering, one being written) reuse the heap's pages. Each of the first four frames
+// faults in some 900 to 4 000 pages; timed, they added a run's start to a steady frame rate, about a
+// tenth of a 12-frame draft run (docs/performance.md, "The bench's warm-up").
+constexpr std::size_t kWarmUpFrames = 4;
+
 TimedRun timeFrames(render::Shot& shot, const std::vector<int>& frames, const BenchOptions& o, int png_level,
                     const std::filesystem::path& scratch, const std::function<void(const render::FrameTimings&)>& add) {
+  std::vector<int> run_frames;  // the warm-up's frames (the timed ones', round again if they are fewer), then them
+  for (std::size_t k = 0; k < kWarmUpFrames && !frames.empty(); ++k) run_frames.push_back(frames[k % frames.size()]);
+  const std::size_t warm = run_frames.size();
+  run_frames.insert(run_frames.end(), frames.begin(), frames.end());
   TimedRun run;
-  double write_ms = 0;  // touched only by the writer thread, read after its last wait()
+  double warm_write_ms = 0, write_ms = 0;  // touched only by the writer thread, read after its last wait()
   render::FrameWriter writer;
-  const auto run0 = Clock::now();
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    render::Image image = shot.renderFrame(frames[i], nextOf(o, frames, i));
+  double faults0 = 0;
+  auto run0 = Clock::now();
+  for (std::size_t i = 0; i < run_frames.size(); ++i) {
+    const bool timed = i >= warm;
+    if (i == warm) faults0 = minorPageFaults(), run0 = Clock::now();
+    render::Image image = shot.renderFrame(run_frames[i], nextOf(o, run_frames, i));
     const render::FrameTimings& t = shot.lastTimings();
     writeInBackground(writer, std::move(image), scratch / ("bench." + std::to_string(i % 2) + ".png"), png_level,
-                      write_ms);
-    add(t);
+                      timed ? write_ms : warm_write_ms);
+    if (timed) add(t);
   }
   writer.wait();
   run.run_s = render::secondsSince(run0);
+  run.page_faults = minorPageFaults() - faults0;
   run.write_ms = write_ms;
   return run;
 }
@@ -164,8 +192,8 @@ PresetResult benchPreset(const scene::QualityPreset& preset, const BenchOptions&
   r.samples = preset.samples;
   r.png_level = pngLevel(o, scene);
 
-  // Warm-up, and the rays of one frame: render frame 1 once to count them, again keeping them
-  // (sampled when there are many), then replay them while the BVH is that frame's.
+  // The rays of one frame: render frame 1 once to count them, again keeping them (sampled when there
+  // are many), then replay them while the BVH is that frame's.
   shot.renderFrame(1);
   render::RayLog log;
   log.pixel_stride = std::max(1, int(std::ceil(double(shot.lastTimings().rays) / kMaxLoggedRays)));
@@ -200,6 +228,7 @@ PresetResult benchPreset(const scene::QualityPreset& preset, const BenchOptions&
   const double compute_s = frame_ms / n / 1000.0;
   r.rays_per_second = compute_s > 0.0 ? r.rays_per_frame / compute_s : 0.0;
   r.fps = run_s > 0.0 ? n / run_s : 0.0;
+  r.page_faults = run.page_faults / n;
   return r;
 }
 
@@ -218,6 +247,7 @@ struct SceneResult {
   double wait = 0;      // ms per frame waiting after the trace for the next frame's evaluation
   double build = 0;     // ms per frame building levels of detail first needed (a one-time cost)
   double fps = 0;
+  double page_faults = 0;  // per timed frame
   double pairs = 0, skinned_vertices = 0, triangles = 0;     // per frame
   std::array<double, 3> pairs_at_level{};                   // per frame
   // The frame (pose to trace) against others measured frame for frame with the scene's, interleaved
@@ -247,7 +277,6 @@ SceneResult benchScenePreset(const scene::QualityPreset& preset, const BenchOpti
   const std::vector<int> all = scene::parseFrameList(scene.frames, "frames");
   std::vector<int> frames;
   for (int i = 0; i < o.frames; ++i) frames.push_back(all[std::size_t(i) * all.size() / std::size_t(o.frames)]);
-  shot.renderFrame(frames.front());  // warm-up
   const TimedRun run = timeFrames(shot, frames, o, r.png_level, scratch, [&](const render::FrameTimings& t) {
     r.bake += t.pose_ms, r.skin += t.skin_ms - t.build_ms, r.build += t.build_ms, r.bvh += t.bvh_ms,
         r.trace += t.trace_ms - t.bvh_ms - t.wait_ms;
@@ -258,6 +287,7 @@ SceneResult benchScenePreset(const scene::QualityPreset& preset, const BenchOpti
   });
   const double n = double(frames.size());
   r.fps = n / run.run_s;
+  r.page_faults = run.page_faults / n;
   r.write = run.write_ms / n;
   r.wait /= n;
   r.bake /= n, r.skin /= n, r.build /= n, r.bvh /= n, r.trace /= n, r.skinned_vertices /= n, r.triangles /= n;
@@ -310,7 +340,8 @@ void runSceneBench(const BenchOptions& o) {
     nlohmann::json presets = nlohmann::json::object();
     for (const SceneResult& r : results) {
       presets[r.preset] = {
-          {"fps", r.fps}, {"setup_s", r.setup_s}, {"peak_memory_bytes", r.peak_bytes},
+          {"fps", r.fps}, {"page_faults_per_frame", r.page_faults}, {"setup_s", r.setup_s},
+          {"peak_memory_bytes", r.peak_bytes},
           {"setup_ms", {{"characters", r.setup.characters_ms}, {"terrain", r.setup.terrain_ms},
                         {"framing", r.setup.framing_ms}}},
           {"ms", {{"bake", r.bake}, {"skin", r.skin}, {"bvh", r.bvh}, {"trace", r.trace}, {"write", r.write},
@@ -357,9 +388,11 @@ void runSceneBench(const BenchOptions& o) {
               "pair); levels: pairs at full, half and quarter detail a frame (scene/detail_level.h);\n"
               "overlapped: each frame's bake, pose and skin run while the frame before it traces; wait: after a\n"
               "trace, waiting for the next frame's evaluation; png: the zlib level the frames were written at;\n"
-              "peak MB: the process's peak resident memory; set-up: making the shot, of which reading, seating\n"
-              "and building the characters and their clips, meshing the terrain (normals, sun horizon), and\n"
-              "framing the view camera over every frame it shows (the terrain is built alongside the framing).\n");
+              "fps: the timed frames over their wall clock, writes included, after four untimed frames that\n"
+              "touch the memory a run reuses; peak MB: the process's peak resident memory; set-up: making the\n"
+              "shot, of which reading, seating and building the characters and their clips, meshing the terrain\n"
+              "(normals, sun horizon), and framing the view camera over every frame it shows (the terrain is\n"
+              "built alongside the framing).\n");
 }
 
 void runBench(const BenchOptions& o) {
@@ -375,6 +408,7 @@ void runBench(const BenchOptions& o) {
     nlohmann::json presets = nlohmann::json::object();
     for (const PresetResult& r : results) {
       presets[r.name] = {{"fps", r.fps},
+                         {"page_faults_per_frame", r.page_faults},
                          {"rays_per_second", r.rays_per_second},
                          {"bound_rays_per_second", r.bound_rays_per_second},
                          {"png_level", r.png_level},
@@ -400,7 +434,8 @@ void runBench(const BenchOptions& o) {
   std::printf("\nratio: the renderer's rays per second (frame time without write) over the bound, the same\n"
               "rays cast through Embree alone with no shading; overlapped: each frame's pose and skin run while\n"
               "the frame before it traces; wait: after a trace, waiting for the next frame's evaluation;\n"
-              "png: the zlib level the frames were written at.\n");
+              "png: the zlib level the frames were written at; fps: the timed frames over their wall clock,\n"
+              "writes included, after four untimed frames that touch the memory a run reuses.\n");
 }
 
 }  // namespace
