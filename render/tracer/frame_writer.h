@@ -3,10 +3,16 @@
 // trace turns the write's time into throughput instead of a pause. One frame is in flight at most:
 // submit() first waits for the previous write, so memory stays bounded and the order of the files on
 // disk follows the frame order. A failed write is rethrown by the next submit() or by wait().
+//
+// The writes run on one thread the writer keeps for its lifetime, started by the first submit(): a
+// thread started for each frame cost about 0.3% of a draft frame (issue 58, docs/performance.md).
 #pragma once
 
+#include <condition_variable>
+#include <exception>
 #include <functional>
-#include <future>
+#include <mutex>
+#include <thread>
 
 namespace stirrup::render {
 
@@ -15,24 +21,27 @@ class FrameWriter {
   FrameWriter() = default;
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
-  // Waits for the write in flight (without rethrowing: the owner's own exception is already leaving).
-  ~FrameWriter() {
-    if (pending_.valid()) pending_.wait();
-  }
+  // Waits for the write in flight (without rethrowing: the owner's own exception is already leaving),
+  // then ends the thread.
+  ~FrameWriter();
 
   // Waits for the previous write (rethrowing its error), then starts `write` in the background.
-  void submit(std::function<void()> write) {
-    wait();
-    pending_ = std::async(std::launch::async, std::move(write));
-  }
+  void submit(std::function<void()> write);
 
   // Waits for the write in flight, rethrowing its error.
-  void wait() {
-    if (pending_.valid()) pending_.get();
-  }
+  void wait();
 
  private:
-  std::future<void> pending_;
+  void run();
+  // Waits, with `lock` held, until no write is queued or running.
+  void waitIdle(std::unique_lock<std::mutex>& lock);
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::function<void()> job_;  // the write queued or running; empty when idle
+  std::exception_ptr error_;   // the last write's failure, until rethrown
+  bool stopping_ = false;
+  std::thread thread_;  // last: started after the members it reads
 };
 
 }  // namespace stirrup::render

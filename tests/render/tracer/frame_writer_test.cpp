@@ -64,6 +64,17 @@ TEST(FrameWriter, AFailedWriteIsRethrownByTheNextSubmitOrWait) {
   EXPECT_NO_THROW(writer.wait());  // nothing in flight any more
 }
 
+TEST(FrameWriter, EveryWriteRunsOnTheOneThreadItKeeps) {
+  // One thread for the writer's lifetime, not one a frame, and never the caller's.
+  std::vector<std::thread::id> ids;
+  FrameWriter writer;
+  for (int i = 0; i < 5; ++i) writer.submit([&] { ids.push_back(std::this_thread::get_id()); });
+  writer.wait();
+  ASSERT_EQ(ids.size(), 5u);
+  for (const std::thread::id id : ids) EXPECT_EQ(id, ids.front());
+  EXPECT_NE(ids.front(), std::this_thread::get_id());
+}
+
 TEST(FrameWriter, TheDestructorWaitsForTheWriteInFlight) {
   std::atomic<bool> done{false};
   {
