@@ -140,10 +140,10 @@ constexpr std::size_t kWarmUpFrames = 4;
 
 TimedRun timeFrames(render::Shot& shot, const std::vector<int>& frames, const BenchOptions& o, int png_level,
                     const std::filesystem::path& scratch, const std::function<void(const render::FrameTimings&)>& add) {
-  std::vector<int> run_frames;  // the warm-up's frames (the timed ones', round again if they are fewer), then them
-  for (std::size_t k = 0; k < kWarmUpFrames && !frames.empty(); ++k) run_frames.push_back(frames[k % frames.size()]);
-  const std::size_t warm = run_frames.size();
-  run_frames.insert(run_frames.end(), frames.begin(), frames.end());
+  // The warm-up's frames (the timed ones', round again if they are fewer), then them.
+  const std::size_t warm = frames.empty() ? 0 : kWarmUpFrames;
+  std::vector<int> run_frames(warm + frames.size());
+  for (std::size_t k = 0; k < run_frames.size(); ++k) run_frames[k] = k < warm ? frames[k % frames.size()] : frames[k - warm];
   TimedRun run;
   double warm_write_ms = 0, write_ms = 0;  // touched only by the writer thread, read after its last wait()
   render::FrameWriter writer;
