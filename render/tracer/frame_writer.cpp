@@ -26,8 +26,10 @@ void FrameWriter::submit(std::function<void()> write) {
 }
 
 void FrameWriter::wait() {
+  std::function<void()> finished;  // freed when this returns, on the caller's thread
   std::unique_lock lock(mutex_);
   waitIdle(lock);
+  finished = std::move(finished_);
   if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
 }
 
@@ -48,7 +50,8 @@ void FrameWriter::run() {
       error = std::current_exception();
     }
     lock.lock();
-    job_ = nullptr;  // the job's captures (a frame's image) are freed here, before the caller goes on
+    finished_ = std::move(job_);  // its captures are freed by the caller's next wait() (frame_writer.h)
+    job_ = nullptr;
     error_ = error;
     changed_.notify_all();
   }

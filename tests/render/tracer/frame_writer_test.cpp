@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -73,6 +74,23 @@ TEST(FrameWriter, EveryWriteRunsOnTheOneThreadItKeeps) {
   ASSERT_EQ(ids.size(), 5u);
   for (const std::thread::id id : ids) EXPECT_EQ(id, ids.front());
   EXPECT_NE(ids.front(), std::this_thread::get_id());
+}
+
+TEST(FrameWriter, AWritesCapturesAreFreedOnTheCallersThread) {
+  // A write's captures (a frame's image) are freed by the caller's next wait(), between frames, not by
+  // the writer's thread while the next frame renders (frame_writer.h says why: page faults).
+  struct Probe {
+    std::thread::id* freed_on;
+    ~Probe() { *freed_on = std::this_thread::get_id(); }
+  };
+  std::thread::id freed_on, wrote_on;
+  FrameWriter writer;
+  auto probe = std::make_shared<Probe>(&freed_on);
+  writer.submit([probe, &wrote_on] { wrote_on = std::this_thread::get_id(); });
+  probe.reset();
+  writer.wait();
+  EXPECT_EQ(freed_on, std::this_thread::get_id());
+  EXPECT_NE(wrote_on, std::this_thread::get_id());
 }
 
 TEST(FrameWriter, TheDestructorWaitsForTheWriteInFlight) {
