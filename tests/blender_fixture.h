@@ -65,7 +65,7 @@ inline BlenderMade madeByBlender(const std::filesystem::path& dir, const std::fi
 inline std::filesystem::path blenderRigifyRider(BlenderMade* made = nullptr) {
   const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_blender_riders" / "rigify";
   const std::filesystem::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-rider";
-  const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' '" + (dir / "rigify-rider.glb").string() + "' --blend '" +
+  const BlenderMade m = madeByBlender(dir, script, std::string("'") + script.string() + "' '" + (dir / "rigify-rider.glb").string() + "' --blend '" +
                                                        (dir / "rigify-rider.blend").string() + "'");
   if (made) *made = m;
   return m.ok ? dir / "rigify-rider.glb" : std::filesystem::path();
@@ -82,7 +82,7 @@ inline std::filesystem::path blenderRigifyRiderBlend(BlenderMade* made = nullptr
 inline std::filesystem::path blenderRigifyHorses(BlenderMade* made = nullptr) {
   const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_blender_riders" / "rigify-horses";
   const std::filesystem::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-horse";
-  const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' --batch '" + dir.string() +
+  const BlenderMade m = madeByBlender(dir, script, std::string("'") + script.string() + "' --batch '" + dir.string() +
                                                        "' 'ik:--form generated --walk --rigify-stretch --blend ik.blend'"
                                                        " 'fk:--form generated --walk --walk-controls fk --rigify-stretch --blend fk.blend'");
   if (made) *made = m;
@@ -96,7 +96,7 @@ inline std::filesystem::path blenderRigifyHorses(BlenderMade* made = nullptr) {
 inline std::filesystem::path blenderRigifyHorse(const std::string& name, const std::string& options, BlenderMade* made = nullptr) {
   const std::filesystem::path dir = std::filesystem::path(STIRRUP_BINARY_DIR) / "test_own_horse" / name;
   const std::filesystem::path script = STIRRUP_SOURCE_DIR "/tests/blender/rigify-horse";
-  const BlenderMade m = madeByBlender(dir, script, "'" + script.string() + "' '" + (dir / "horse.glb").string() + "' " + options +
+  const BlenderMade m = madeByBlender(dir, script, std::string("'") + script.string() + "' '" + (dir / "horse.glb").string() + "' " + options +
                                                        " --walk --expected '" + (dir / "blender.json").string() + "'");
   if (made) *made = m;
   return m.ok ? dir : std::filesystem::path();

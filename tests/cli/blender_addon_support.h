@@ -118,7 +118,7 @@ inline AddonRun runAddon(const std::filesystem::path& dir, const std::string& bo
   std::ofstream(script) << kBlenderScriptStart << kAddonEnable << body << (windowed ? "" : "\ndone()\n");
   const std::string env = "env BLENDER_USER_SCRIPTS=" + quote(STIRRUP_BINARY_DIR "/blender") + " PATH=/usr/bin:/bin ";
   const std::string blender = windowed ? "timeout 300 xvfb-run -a -s '-screen 0 1280x800x24' blender" : "blender -b";
-  const std::string file = blend.empty() ? "" : " " + quote(blend.string());
+  const std::string file = blend.empty() ? std::string() : std::string(" ") + quote(blend.string());
   run.command = runCommand(env + blender + file + " --factory-startup --python-exit-code 3 --python " + quote(script.string()) + " -- " +
                            quote(dir.string()) + " " + args + " 2>&1");
   if (std::filesystem::exists(dir / "result.json")) run.result = nlohmann::json::parse(readText(dir / "result.json"));
