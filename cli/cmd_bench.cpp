@@ -135,7 +135,7 @@ double minorPageFaults() {
 // threshold; the next two come from the heap, which grows; from the fifth frame on, the two images in
 // flight (one rendering, one being written) reuse the heap's pages. Each of the first four frames
 // faults in some 900 to 4 000 pages; timed, they added a run's start to a steady frame rate, about a
-// tenth of a 12-frame draft run (docs/performance.md, "The bench's warm-up").
+// tenth of a 12-frame draft run (docs/performance-history.md, "The bench's warm-up").
 constexpr std::size_t kWarmUpFrames = 4;
 
 TimedRun timeFrames(render::Shot& shot, const std::vector<int>& frames, const BenchOptions& o, int png_level,

@@ -30,7 +30,7 @@ namespace stirrup::render {
 // stands on it. Past it the cells widen by TerrainMeshParams::growth each (31, 39, 49 cm ...), the mesh
 // leaving Terrain::height by at most |height''| cell² / 8 where nothing stands. It was 10 m until issue
 // 35's seventh pass: half again as many ground quads for Embree to traverse (trail's ground 122 460
-// vertices then, 84 660 now; docs/performance.md "Terrain at flat-ground cost") and no visible difference.
+// vertices then, 84 660 now; docs/performance-history.md, "Terrain at flat-ground cost") and no visible difference.
 inline constexpr double kFineGroundMarginCm = 300.0;
 
 // The box (x, z) the horses' travel frames cross over the scene's frames, grown by kFineGroundMarginCm:

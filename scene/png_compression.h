@@ -4,7 +4,7 @@
 // frames' default (a 640x360 frame's whole write in about 4 ms of CPU); level 0 is draft's: the
 // frame's bytes are stored as they are (about 0.7 MB at 640x360, four times level 1's file), and the
 // write is little more than the sRGB encode, the checksums and the copy to disk (about 2 ms;
-// docs/performance.md, "The frames' write"). Here, below the tracer, because a scene's preset picks
+// docs/performance-history.md, "The frames' write"). Here, below the tracer, because a scene's preset picks
 // its level (scene/preset.h) and the tracer's writePng takes it.
 #pragma once
 

@@ -2,7 +2,7 @@
 // Image files read and written, and text drawn, through OpenImageIO, which is loaded only when a
 // process first needs it: its libraries (some 250: codecs, DICOM, GDAL, OpenCV) cost about 0.4 s of
 // CPU to load and relocate, which every run of stirrup paid, also those that never touch an image
-// file (docs/performance.md, "Process start"). OpenImageIO lives in a module of its own,
+// file (docs/performance-history.md, "Process start"). OpenImageIO lives in a module of its own,
 // libstirrup_openimageio.so (render/image_files/openimageio_module.cpp), installed beside the
 // program in LIBDIR/stirrup.
 

@@ -117,7 +117,7 @@ void EmbreeScene::setGroundMesh(std::span<const glm::vec3> positions, std::span<
   // Watertight: Embree's default (Moeller-Trumbore) test lets a ray through where two triangles
   // share an edge or a vertex, and a camera ray through such a crack saw the sky: a bright speck on
   // the ground in a few pixels of most hill frames. The robust test closes the cracks for 1.4% more
-  // CPU on a `trail` draft frame (docs/performance.md, "Cracks in the heightfield").
+  // CPU on a `trail` draft frame (docs/performance-history.md, "Cracks in the heightfield").
   rtcSetSceneFlags(ground_, RTC_SCENE_FLAG_ROBUST);
   rtcCommitScene(ground_);
   throwOnDeviceError(device_, "ground mesh commit", last_error_);

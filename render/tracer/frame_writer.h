@@ -5,7 +5,7 @@
 // disk follows the frame order. A failed write is rethrown by the next submit() or by wait().
 //
 // The writes run on one thread the writer keeps for its lifetime, started by the first submit(): a
-// thread started for each frame cost about 0.3% of a draft frame (issue 58, docs/performance.md).
+// thread started for each frame cost about 0.3% of a draft frame (issue 58, docs/performance-history.md).
 #pragma once
 
 #include <condition_variable>

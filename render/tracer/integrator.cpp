@@ -283,7 +283,7 @@ void Integrator::cameraPass(const LaneConstants& constants, int x0, int tile_wid
 // (cameraRayLanes) or meets a character, whichever is nearer; a ray wholly above the hills (the sky of
 // most views) has t_enter > t_leave, which Embree skips. Where the ground is nearer than a character
 // hit, the sample sees the ground. The characters' rays are not bounded by the ground here, so they
-// search further than over the plane; the heightfield's rays saved more (docs/performance.md, "What a
+// search further than over the plane; the heightfield's rays saved more (docs/performance-history.md, "What a
 // hill frame pays beyond a flat one").
 void Integrator::groundPass(TileScratch& scratch) const {
   CameraLanes& lanes = scratch.lanes;
@@ -338,7 +338,7 @@ void Integrator::characterPass(TileScratch& scratch) const {
   rtcIntersect1M(characters_, &context, scratch.camera_rays.data(), unsigned(scratch.camera_rays.size()),
                  sizeof(RTCRayHit));
   // Which samples hit, and the hit triangles' indices, fetched toward the cache now: gathering a
-  // surface waited on them, each a miss in a mesh's index array (docs/performance.md).
+  // surface waited on them, each a miss in a mesh's index array (docs/performance-history.md).
   for (std::size_t r = 0; r < scratch.camera_rays.size(); ++r) {
     const RTCRayHit& rh = scratch.camera_rays[r];
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
@@ -429,7 +429,7 @@ std::size_t Integrator::gatherSurfaces(int frame, TileScratch& scratch) const {
   scratch.light_x.resize(padded_lights, 0u), scratch.light_y.resize(padded_lights, 0u);
   // A draft: each surface is its pixel's only one and takes its pixel's first point, so its points are
   // its pixel's parts as they are, made in place (copying them surface by surface cost 1-3% of a
-  // draft's CPU: docs/performance.md).
+  // draft's CPU: docs/performance-history.md).
   const bool in_place = spp_ == 1 && light_spp_ == 1 && ao_spp_ == 1;
   StratifiedLanes& sun_parts = in_place ? sun_points : scratch.sun_parts;
   StratifiedLanes& sky_parts = in_place ? sky_points : scratch.sky_parts;
@@ -514,7 +514,7 @@ void Integrator::logOcclusionRays(const SurfaceLanes& S, std::vector<RTCRay>& lo
 // each surface's light from the rays left open. All three streams go without Embree's coherent flag:
 // the shadow rays are nearly parallel, but they start all over a tile's surfaces and part ways in the
 // tree; traced ray by ray, a trot frame took 0.95 (draft) and 0.91 (review) of the CPU it took with
-// them gathered into packets, with the same hits (docs/performance.md, "Streams, coherent or not").
+// them gathered into packets, with the same hits (docs/performance-history.md, "Streams, coherent or not").
 void Integrator::occlusionPass(const LaneConstants& constants, TileScratch& scratch) const {
   auto occlude = [](RTCScene scene, std::vector<RTCRay>& rays, const std::vector<int32_t>& list,
                     std::vector<int32_t>& open) {

@@ -2,7 +2,7 @@
 // render/tracer/image.h). Deflated by libdeflate rather than written through OpenImageIO's libpng and
 // zlib: at level 1 libdeflate deflates a 640x360 review frame in about half zlib's time, and a draft
 // frame stored (level 0) is little more than two checksums, which libdeflate computes with the CPU's
-// carry-less multiply (docs/performance.md, "The frames' write"). Any PNG reader opens the file.
+// carry-less multiply (docs/performance-history.md, "The frames' write"). Any PNG reader opens the file.
 #pragma once
 
 #include <cstddef>

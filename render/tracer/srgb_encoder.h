@@ -1,6 +1,6 @@
 // 8-bit sRGB codes of linear values, exactly linearToSrgb8's (render/tracer/image.h) without a pow per
 // value: the review PNGs and the movies' frames are encoded by it on the writer's thread, beside the
-// tracer on the same cores, so its time is taken from the trace (docs/performance.md).
+// tracer on the same cores, so its time is taken from the trace (docs/performance-history.md, "The frames' write").
 #pragma once
 
 #include <algorithm>

@@ -43,7 +43,7 @@ std::string loadedFiles(const std::string& args) {
   return r.err;
 }
 
-// OpenImageIO and its some 250 libraries cost 0.4 s of CPU at every start (docs/performance.md,
+// OpenImageIO and its some 250 libraries cost 0.4 s of CPU at every start (docs/performance-history.md,
 // "Process start"): a run that touches no image file loads none of them; one that does loads the
 // module, found beside the program, and OpenImageIO through it.
 TEST(Main, OpenImageIOIsLoadedOnlyByARunThatReadsOrWritesAnImageFile) {

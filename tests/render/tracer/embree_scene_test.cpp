@@ -157,7 +157,7 @@ TEST(EmbreeScene, BadTrianglesAreRefused) {
 // diagonal, the edge between two cells) meets the ground, traced as the renderer traces camera rays (one
 // coherent stream). Without Embree's robust (watertight) test 14.5% of these rays passed between two
 // triangles, and on `cross_country` and `trail` frames a few camera rays a frame did and saw the sky
-// (docs/performance.md). A ray aimed at a vertex, where six triangles meet, can still slip through
+// (docs/performance-history.md, "Cracks in the heightfield"). A ray aimed at a vertex, where six triangles meet, can still slip through
 // (about 1.4% of them here, against 23% without the robust test); a camera ray passes that close to
 // a vertex (within the rounding of its direction) far too rarely to show.
 TEST(EmbreeScene, RaysAtTheHeightfieldsSharedEdgesMeetIt) {
