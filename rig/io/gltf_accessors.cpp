@@ -164,9 +164,17 @@ std::vector<float> readAccessor(const tinygltf::Model& model, int index, int com
     const auto [first, stride] =
         elementBytes(model, a, static_cast<std::size_t>(csize) * components, true, where, "accessor runs past its buffer");
     out.assign(a.count * components, 0.0f);
-    for (std::size_t i = 0; i < a.count; ++i)
-      for (int k = 0; k < components; ++k)
-        out[i * components + k] = componentValue(first + stride * i + static_cast<std::size_t>(csize) * k, a.componentType, a.normalized, where);
+    const std::size_t element = static_cast<std::size_t>(csize) * static_cast<std::size_t>(components);
+    if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+      // Floats are taken as they are (componentValue's own case), an element at a time: a mesh's
+      // positions, normals and weights, most of what a character file holds, read without a switch
+      // per component.
+      for (std::size_t i = 0; i < a.count; ++i) std::memcpy(out.data() + i * components, first + stride * i, element);
+    } else {
+      for (std::size_t i = 0; i < a.count; ++i)
+        for (int k = 0; k < components; ++k)
+          out[i * components + k] = componentValue(first + stride * i + static_cast<std::size_t>(csize) * k, a.componentType, a.normalized, where);
+    }
   }
   if (a.sparse.isSparse) applySparse(model, a, components, csize, where, out);
   return out;
