@@ -161,10 +161,9 @@ std::vector<float> readAccessor(const tinygltf::Model& model, int index, int com
     if (a.count > (std::size_t(1) << 28)) throw InputError(where + ": accessor count " + std::to_string(a.count) + " without a buffer view");
     out.assign(a.count * components, 0.0f);
   } else {
-    const auto [first, stride] =
-        elementBytes(model, a, static_cast<std::size_t>(csize) * components, true, where, "accessor runs past its buffer");
-    out.assign(a.count * components, 0.0f);
     const std::size_t element = static_cast<std::size_t>(csize) * static_cast<std::size_t>(components);
+    const auto [first, stride] = elementBytes(model, a, element, true, where, "accessor runs past its buffer");
+    out.assign(a.count * components, 0.0f);
     if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
       // Floats are taken as they are (componentValue's own case), an element at a time: a mesh's
       // positions, normals and weights, most of what a character file holds, read without a switch
